@@ -1,0 +1,43 @@
+!> voussoir-run FILE.nml: one simulation of an arch (or a polygon assembly) under base
+!> motion; writes one HDF5 file and prints a one-line summary whose first word is
+!> `stood` or `collapsed`.
+program voussoir_run
+  use voussoir_kinds, only: dp
+  use voussoir_status, only: status_t
+  use voussoir_config, only: config_t, read_config
+  use voussoir_assembly, only: assembly_t
+  use voussoir_model, only: model_t
+  use voussoir_simulation, only: run_result_t
+  use voussoir_setup, only: run_config
+  use voussoir_run_output, only: write_run_file
+  implicit none
+  type(config_t) :: cfg
+  type(assembly_t) :: assembly
+  type(model_t) :: model
+  type(run_result_t) :: res
+  type(status_t) :: status
+  character(len=1024) :: path
+
+  if (command_argument_count() /= 1) then
+    write (*, '(a)') 'usage: voussoir-run FILE.nml'
+    error stop 2
+  end if
+  call get_command_argument(1, path)
+  call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output'], cfg, status)
+  if (status%ok) call run_config(cfg, assembly, model, res, status)
+  if (status%ok) call write_run_file(cfg, assembly, model, res, status)
+  if (.not. status%ok) then
+    write (*, '(a)') 'voussoir-run: error: '//trim(status%message)
+    error stop 1
+  end if
+  if (res%collapsed) then
+    write (*, '(a,f0.3,a)', advance='no') 'collapsed at ', res%collapse_time_s, ' s;'
+  else
+    write (*, '(a)', advance='no') 'stood;'
+  end if
+  write (*, '(a,f0.3,a,f0.1,a,f0.2,a,a)') ' peak crown displacement ', 1.0e3_dp*res%peak_crown_disp_m, &
+    ' mm; mean NLGS iterations ', res%mean_iterations, '; wall time ', res%wall_time_s, ' s; result ', &
+    trim(cfg%output%file)
+  if (res%nonconverged_steps > 0) write (*, '(a,i0,a)') 'warning: ', res%nonconverged_steps, &
+    ' steps ended without NLGS convergence'
+end program voussoir_run

@@ -1,0 +1,230 @@
+!> Assemblies of rigid polygons: the arch builder and the plain-text polygon reader.
+!>
+!> An assembly is geometry only (vertices, which bodies are driven by the table, and for
+!> arches the joint numbering of shared/MEASURED_DATA.md); the dynamic state lives in
+!> `bodies_t`.
+module voussoir_assembly
+  use voussoir_kinds, only: dp, pi
+  use voussoir_status, only: status_t, fail
+  use voussoir_geometry, only: polygon_area, is_convex_ccw
+  implicit none
+  private
+
+  public :: polygon_t, assembly_t, build_arch, read_polygon_file, arch_joint_angle_deg
+  public :: role_voussoir, role_foundation, role_restraint
+
+  integer, parameter :: role_voussoir = 1    !! a free block of the arch
+  integer, parameter :: role_foundation = 2  !! a block carried by the table
+  integer, parameter :: role_restraint = 3   !! a bracket carried by the table
+
+  !> One convex polygon, vertices counter-clockwise, absolute coordinates [m].
+  type :: polygon_t
+    real(dp), allocatable :: xy(:, :)
+  end type polygon_t
+
+  !> Geometry of an assembly of blocks.
+  type :: assembly_t
+    integer :: n_bodies = 0
+    type(polygon_t), allocatable :: polygon(:)
+    logical, allocatable :: driven(:)       !! velocity imposed by the table
+    integer, allocatable :: role(:)
+    ! Arch description (n_voussoirs = 0 for a generic assembly).
+    integer :: n_voussoirs = 0
+    real(dp) :: thickness_m = 0.0_dp
+    real(dp) :: r_ext_m = 0.0_dp
+    integer, allocatable :: joint_bodies(:, :)      !! (2, 0:n) bodies on each side of joint j
+    real(dp), allocatable :: joint_intrados_xy(:, :) !! (2, 0:n) inner end of joint j [m]
+    real(dp), allocatable :: joint_extrados_xy(:, :) !! (2, 0:n) outer end of joint j [m]
+  end type assembly_t
+
+contains
+
+  !> Angle [deg] from +x of the radial line of joint j (0..n) of an arch.
+  pure real(dp) function arch_joint_angle_deg(embrace_deg, n_voussoirs, j)
+    real(dp), intent(in) :: embrace_deg
+    integer, intent(in) :: n_voussoirs, j
+    arch_joint_angle_deg = 90.0_dp + 0.5_dp*embrace_deg - real(j, dp)*embrace_deg/real(n_voussoirs, dp)
+  end function arch_joint_angle_deg
+
+  !> The arch of shared/MEASURED_DATA.md: n equal voussoirs with radial joints and chord
+  !> faces, centre of the circle at the origin, on two foundation blocks whose top faces
+  !> are the springing joints. Bodies 1..n are the voussoirs from left to right, n+1 the
+  !> left foundation, n+2 the right one. With `restrained`, a bracket carried by the
+  !> table stands against the outer face of the bottom voussoir on that side
+  !> (restrained(1) left, restrained(2) right).
+  subroutine build_arch(embrace_deg, n_voussoirs, r_ext_m, thickness_m, arch, restrained)
+    real(dp), intent(in) :: embrace_deg, r_ext_m, thickness_m
+    integer, intent(in) :: n_voussoirs
+    type(assembly_t), intent(out) :: arch
+    logical, intent(in), optional :: restrained(2)
+    real(dp) :: r_int, ang, inner(2, 0:n_voussoirs), outer(2, 0:n_voussoirs)
+    logical :: bracket(2)
+    integer :: j, n, nb, side
+
+    n = n_voussoirs
+    bracket = .false.
+    if (present(restrained)) bracket = restrained
+    nb = n + 2 + count(bracket)
+    r_int = r_ext_m - thickness_m
+    do j = 0, n
+      ang = arch_joint_angle_deg(embrace_deg, n, j)*pi/180.0_dp
+      inner(:, j) = r_int*[cos(ang), sin(ang)]
+      outer(:, j) = r_ext_m*[cos(ang), sin(ang)]
+    end do
+
+    arch%n_bodies = nb
+    arch%n_voussoirs = n
+    arch%thickness_m = thickness_m
+    arch%r_ext_m = r_ext_m
+    allocate (arch%polygon(nb), arch%driven(nb), arch%role(nb))
+    allocate (arch%joint_bodies(2, 0:n), arch%joint_intrados_xy(2, 0:n), arch%joint_extrados_xy(2, 0:n))
+    arch%joint_intrados_xy = inner
+    arch%joint_extrados_xy = outer
+
+    do j = 1, n
+      ! Counter-clockwise: inner left, inner right, outer right, outer left.
+      arch%polygon(j)%xy = reshape([inner(:, j - 1), inner(:, j), outer(:, j), outer(:, j - 1)], [2, 4])
+      arch%driven(j) = .false.
+      arch%role(j) = role_voussoir
+      arch%joint_bodies(:, j) = [j, j + 1]
+    end do
+    arch%joint_bodies(:, 0) = [n + 1, 1]
+    arch%joint_bodies(:, n) = [n, n + 2]
+
+    ! Foundations: the springing joint on top, vertical sides, flat bottom a thickness
+    ! below the lower end of the joint.
+    arch%polygon(n + 1)%xy = foundation(outer(:, 0), inner(:, 0), thickness_m)
+    arch%polygon(n + 2)%xy = foundation(inner(:, n), outer(:, n), thickness_m)
+    arch%driven(n + 1:n + 2) = .true.
+    arch%role(n + 1:n + 2) = role_foundation
+
+    j = n + 2
+    do side = 1, 2
+      if (.not. bracket(side)) cycle
+      j = j + 1
+      arch%polygon(j)%xy = bracket_block(side, outer, n, thickness_m)
+      arch%driven(j) = .true.
+      arch%role(j) = role_restraint
+    end do
+  end subroutine build_arch
+
+  !> Foundation under the springing joint from `left_top` to `right_top`.
+  pure function foundation(left_top, right_top, depth_m) result(xy)
+    real(dp), intent(in) :: left_top(2), right_top(2), depth_m
+    real(dp) :: xy(2, 4), y_bottom
+    y_bottom = min(left_top(2), right_top(2)) - depth_m
+    xy(:, 1) = [left_top(1), y_bottom]
+    xy(:, 2) = [right_top(1), y_bottom]
+    xy(:, 3) = right_top
+    xy(:, 4) = left_top
+  end function foundation
+
+  !> A bracket on the table against the outer (extrados) face of the bottom voussoir of
+  !> `side` (1 left, 2 right): its inner face is the lower half of that extrados chord,
+  !> it is a thickness wide and stands on the level of the springing's outer corner.
+  pure function bracket_block(side, outer, n, thickness_m) result(xy)
+    integer, intent(in) :: side, n
+    real(dp), intent(in) :: outer(2, 0:n), thickness_m
+    real(dp) :: xy(2, 4), p0(2), mid(2)
+    if (side == 1) then
+      p0 = outer(:, 0)
+      mid = 0.5_dp*(p0 + outer(:, 1))
+      xy = reshape([[p0(1) - thickness_m, p0(2)], p0, mid, [p0(1) - thickness_m, mid(2)]], [2, 4])
+    else
+      p0 = outer(:, n)
+      mid = 0.5_dp*(p0 + outer(:, n - 1))
+      xy = reshape([p0, [p0(1) + thickness_m, p0(2)], [p0(1) + thickness_m, mid(2)], mid], [2, 4])
+    end if
+  end function bracket_block
+
+  !> Read an assembly of convex polygons from a plain text file.
+  !>
+  !> Format: lines `block free` or `block driven` start a polygon, followed by one vertex
+  !> `x y` [m] a line; `#` starts a comment; blank lines are ignored. Vertices may be in
+  !> either orientation; the polygon must be convex.
+  subroutine read_polygon_file(path, assembly, status)
+    character(len=*), intent(in) :: path
+    type(assembly_t), intent(out) :: assembly
+    type(status_t), intent(inout) :: status
+    character(len=512) :: line, iomsg
+    character(len=16) :: word, mode
+    integer :: unit, ios, line_no, nb, nv, k
+    real(dp) :: x, y
+    real(dp), allocatable :: xy(:, :)
+    type(polygon_t), allocatable :: polys(:)
+    logical, allocatable :: driven(:)
+    character(len=32) :: where
+
+    open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
+    if (ios /= 0) then
+      call fail(status, trim(path)//': cannot open polygon file: '//trim(iomsg))
+      return
+    end if
+    allocate (polys(0), driven(0), xy(2, 0))
+    nb = 0
+    line_no = 0
+    do
+      read (unit, '(a)', iostat=ios) line
+      if (ios /= 0) exit
+      line_no = line_no + 1
+      write (where, '(a,i0)') ':', line_no
+      k = index(line, '#')
+      if (k > 0) line = line(:k - 1)
+      if (len_trim(line) == 0) cycle
+      read (line, *, iostat=ios) word
+      if (word == 'block') then
+        if (nb > 0) call close_polygon()
+        if (.not. status%ok) exit
+        read (line, *, iostat=ios) word, mode
+        if (ios /= 0 .or. (mode /= 'free' .and. mode /= 'driven')) then
+          call fail(status, trim(path)//trim(where)//": expected 'block free' or 'block driven'")
+          exit
+        end if
+        nb = nb + 1
+        driven = [driven, mode == 'driven']
+        deallocate (xy)
+        allocate (xy(2, 0))
+      else
+        read (line, *, iostat=ios) x, y
+        if (ios /= 0 .or. nb == 0) then
+          call fail(status, trim(path)//trim(where)//": expected a vertex 'x y' in m after a 'block' line")
+          exit
+        end if
+        xy = reshape([xy, x, y], [2, size(xy, 2) + 1])
+      end if
+    end do
+    close (unit)
+    if (.not. status%ok) return
+    if (nb == 0) then
+      call fail(status, trim(path)//': no block in polygon file')
+      return
+    end if
+    call close_polygon()
+    if (.not. status%ok) return
+    assembly%n_bodies = nb
+    call move_alloc(polys, assembly%polygon)
+    call move_alloc(driven, assembly%driven)
+    allocate (assembly%role(nb))
+    assembly%role = merge(role_foundation, role_voussoir, assembly%driven)
+
+  contains
+
+    subroutine close_polygon()
+      character(len=16) :: id
+      nv = size(xy, 2)
+      write (id, '(i0)') nb
+      if (nv < 3) then
+        call fail(status, trim(path)//': block '//trim(id)//' has fewer than 3 vertices')
+        return
+      end if
+      if (polygon_area(xy) < 0.0_dp) xy = xy(:, nv:1:-1)
+      if (.not. is_convex_ccw(xy)) then
+        call fail(status, trim(path)//': block '//trim(id)//' is not a convex polygon')
+        return
+      end if
+      polys = [polys, polygon_t(xy)]
+    end subroutine close_polygon
+
+  end subroutine read_polygon_file
+
+end module voussoir_assembly

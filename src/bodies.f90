@@ -1,0 +1,105 @@
+!> Rigid polygonal bodies: mass properties, state (x, y, rotation) and their velocities.
+module voussoir_bodies
+  use voussoir_kinds, only: dp
+  use voussoir_status, only: status_t, fail
+  use voussoir_geometry, only: polygon_area, polygon_centroid, polygon_polar_moment
+  use voussoir_assembly, only: assembly_t
+  implicit none
+  private
+
+  public :: bodies_t, bodies_init, update_world_vertices
+
+  !> All bodies of a model, structure of arrays. Index 1 of the state is x [m], 2 is
+  !> y [m], 3 is the rotation [rad] from the reference configuration.
+  type :: bodies_t
+    integer :: n = 0
+    integer :: max_vertices = 0
+    real(dp), allocatable :: q(:, :)        !! (3, n) centroid position and rotation
+    real(dp), allocatable :: q_ref(:, :)    !! (3, n) reference configuration
+    real(dp), allocatable :: v(:, :)        !! (3, n) velocity [m/s, m/s, rad/s]
+    real(dp), allocatable :: mass_kg(:)
+    real(dp), allocatable :: inertia_kg_m2(:)
+    real(dp), allocatable :: inv_mass(:)    !! 0 for driven bodies
+    real(dp), allocatable :: inv_inertia(:) !! 0 for driven bodies
+    logical, allocatable :: driven(:)
+    integer, allocatable :: role(:)
+    integer, allocatable :: n_vertices(:)
+    real(dp), allocatable :: vertex_local(:, :, :) !! (2, max_vertices, n) about the centroid
+    real(dp), allocatable :: vertex(:, :, :)       !! (2, max_vertices, n) world, current
+    real(dp), allocatable :: radius_m(:)           !! farthest vertex from the centroid
+  end type bodies_t
+
+contains
+
+  !> Mass properties of every polygon of `assembly` for a density [kg/m3] and an
+  !> out-of-plane width [m]; driven bodies get zero inverse mass and inertia.
+  subroutine bodies_init(assembly, density_kg_m3, width_m, bodies, status)
+    type(assembly_t), intent(in) :: assembly
+    real(dp), intent(in) :: density_kg_m3, width_m
+    type(bodies_t), intent(out) :: bodies
+    type(status_t), intent(inout) :: status
+    integer :: i, nv, n
+    real(dp) :: area, c(2)
+
+    n = assembly%n_bodies
+    bodies%n = n
+    bodies%max_vertices = 0
+    do i = 1, n
+      bodies%max_vertices = max(bodies%max_vertices, size(assembly%polygon(i)%xy, 2))
+    end do
+    allocate (bodies%q(3, n), bodies%q_ref(3, n), bodies%v(3, n), bodies%mass_kg(n), &
+              bodies%inertia_kg_m2(n), bodies%inv_mass(n), bodies%inv_inertia(n), &
+              bodies%driven(n), bodies%role(n), bodies%n_vertices(n), &
+              bodies%vertex_local(2, bodies%max_vertices, n), &
+              bodies%vertex(2, bodies%max_vertices, n), bodies%radius_m(n))
+    bodies%vertex_local = 0.0_dp
+    bodies%v = 0.0_dp
+    do i = 1, n
+      associate (xy => assembly%polygon(i)%xy)
+        nv = size(xy, 2)
+        area = polygon_area(xy)
+        if (area <= 0.0_dp) then
+          call fail(status, 'body has zero or negative area (vertices must be counter-clockwise)')
+          return
+        end if
+        c = polygon_centroid(xy)
+        bodies%n_vertices(i) = nv
+        bodies%vertex_local(:, 1:nv, i) = xy - spread(c, 2, nv)
+        bodies%radius_m(i) = maxval(norm2(bodies%vertex_local(:, 1:nv, i), dim=1))
+        bodies%q(:, i) = [c(1), c(2), 0.0_dp]
+        bodies%mass_kg(i) = density_kg_m3*width_m*area
+        bodies%inertia_kg_m2(i) = density_kg_m3*width_m*polygon_polar_moment(xy)
+      end associate
+    end do
+    bodies%q_ref = bodies%q
+    bodies%driven = assembly%driven
+    bodies%role = assembly%role
+    where (bodies%driven)
+      bodies%inv_mass = 0.0_dp
+      bodies%inv_inertia = 0.0_dp
+    elsewhere
+      bodies%inv_mass = 1.0_dp/bodies%mass_kg
+      bodies%inv_inertia = 1.0_dp/bodies%inertia_kg_m2
+    end where
+    call update_world_vertices(bodies, bodies%q)
+  end subroutine bodies_init
+
+  !> World coordinates of every vertex for the configuration `q` (3, n).
+  pure subroutine update_world_vertices(bodies, q)
+    type(bodies_t), intent(inout) :: bodies
+    real(dp), intent(in) :: q(:, :)
+    integer :: i, k
+    real(dp) :: c, s
+    do i = 1, bodies%n
+      c = cos(q(3, i))
+      s = sin(q(3, i))
+      do k = 1, bodies%n_vertices(i)
+        associate (p => bodies%vertex_local(:, k, i))
+          bodies%vertex(1, k, i) = q(1, i) + c*p(1) - s*p(2)
+          bodies%vertex(2, k, i) = q(2, i) + s*p(1) + c*p(2)
+        end associate
+      end do
+    end do
+  end subroutine update_world_vertices
+
+end module voussoir_bodies

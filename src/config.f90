@@ -1,0 +1,467 @@
+!> The input of a run: namelist groups read into validated types.
+!>
+!> Groups: &arch, &motion, &solver, &output (and the drivers' own, e.g. &sweep, which
+!> they read themselves with `open_namelist`/`read_group_status`). Every value is
+!> checked; a bad one gives an error that names the file, the group, the variable, the
+!> value and the allowed range. `config_entries` lists the effective configuration,
+!> defaults included, for the result files.
+module voussoir_config
+  use, intrinsic :: iso_fortran_env, only: iostat_end
+  use voussoir_kinds, only: dp
+  use voussoir_status, only: status_t, fail
+  implicit none
+  private
+
+  public :: config_t, arch_config_t, motion_config_t, solver_config_t, output_config_t
+  public :: config_entry_t, read_config, validate_config, config_entries, config_to_nml
+  public :: check_groups, resolve_path, fmt_real
+
+  integer, parameter :: path_len = 512
+
+  !> &arch: the arch (or a polygon file) and its material.
+  type :: arch_config_t
+    real(dp) :: embrace_deg = 156.0_dp        !! total angle of embrace [deg]
+    integer :: n_voussoirs = 13
+    real(dp) :: r_ext_m = 0.508_dp            !! extrados radius [m]
+    real(dp) :: thickness_m = 0.071_dp        !! radial thickness [m]
+    real(dp) :: width_m = 0.145_dp            !! out-of-plane width [m]
+    real(dp) :: density_kg_m3 = 700.0_dp
+    real(dp) :: friction = 0.5_dp             !! Coulomb coefficient of every contact
+    real(dp) :: contact_inset_m = 0.0_dp      !! contact points set in from face ends [m]
+    character(len=16) :: restrained_springings = 'none'  !! none, left, right, both
+    character(len=path_len) :: polygon_file = ''          !! assembly instead of an arch
+  end type arch_config_t
+
+  !> &motion: the base motion.
+  type :: motion_config_t
+    character(len=16) :: waveform = 'afd'     !! afd, ramp or record
+    real(dp) :: frequency_hz = 1.25_dp
+    real(dp) :: amplitude_m = 0.046_dp        !! commanded amplitude of the full cycles
+    integer :: n_attack = 1, n_full = 1, n_decay = 1
+    character(len=path_len) :: record_file = ''  !! CSV with t_s, table_x_m
+    real(dp) :: record_cutoff_hz = 20.0_dp    !! low-pass cut-off of the record
+    real(dp) :: ramp_rate_m_s3 = 0.1_dp       !! growth of the ramp's load acceleration
+    real(dp) :: rest_s = 1.0_dp               !! simulated time after the motion ends
+    real(dp) :: duration_s = 0.0_dp           !! total simulated time; 0: motion + rest
+  end type motion_config_t
+
+  !> &solver: time stepping and contact solve.
+  type :: solver_config_t
+    real(dp) :: dt_s = 1.0e-3_dp
+    real(dp) :: theta = 0.5_dp
+    real(dp) :: tol = 1.0e-4_dp
+    integer :: max_iter = 2000
+    real(dp) :: alert_m = 0.0_dp              !! 0: 2 % of the smallest free block
+    logical :: allow_nonconvergence = .false.
+  end type solver_config_t
+
+  !> &output: the result file and the monitors.
+  type :: output_config_t
+    character(len=path_len) :: file = 'voussoir_run.h5'
+    integer :: every = 10                     !! steps between samples
+    real(dp) :: hinge_gap_m = 0.0_dp          !! 0: 1 % of the thickness
+    real(dp) :: collapse_drop_m = 0.0_dp      !! 0: half the thickness
+    real(dp) :: collapse_rotation_rad = 0.5_dp
+    real(dp) :: stop_after_collapse_s = 0.5_dp !! < 0: run to the end
+  end type output_config_t
+
+  !> The whole input of a simulation.
+  type :: config_t
+    type(arch_config_t) :: arch
+    type(motion_config_t) :: motion
+    type(solver_config_t) :: solver
+    type(output_config_t) :: output
+    character(len=path_len) :: source_file = ''
+  end type config_t
+
+  !> One effective setting: group, name, type ('r', 'i', 'l', 's') and value as text.
+  type :: config_entry_t
+    character(len=16) :: group = ''
+    character(len=32) :: name = ''
+    character(len=1) :: kind = 's'
+    character(len=path_len) :: value = ''
+  end type config_entry_t
+
+contains
+
+  !> Read and validate the &arch, &motion, &solver and &output groups of `path`;
+  !> `allowed_groups` lists every group the calling driver accepts in the file.
+  subroutine read_config(path, allowed_groups, cfg, status)
+    character(len=*), intent(in) :: path
+    character(len=*), intent(in) :: allowed_groups(:)
+    type(config_t), intent(out) :: cfg
+    type(status_t), intent(inout) :: status
+    integer :: unit, ios
+    character(len=512) :: iomsg
+    ! Namelist objects, initialised from the defaults of the types.
+    type(arch_config_t) :: a
+    type(motion_config_t) :: m
+    type(solver_config_t) :: s
+    type(output_config_t) :: o
+    real(dp) :: embrace_deg, r_ext_m, thickness_m, width_m, density_kg_m3, friction, contact_inset_m
+    integer :: n_voussoirs
+    character(len=16) :: restrained_springings, waveform
+    character(len=path_len) :: polygon_file, record_file, file
+    real(dp) :: frequency_hz, amplitude_m, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s
+    integer :: n_attack, n_full, n_decay, max_iter, every
+    real(dp) :: dt_s, theta, tol, alert_m, hinge_gap_m, collapse_drop_m, collapse_rotation_rad, &
+                stop_after_collapse_s
+    logical :: allow_nonconvergence
+    namelist /arch/ embrace_deg, n_voussoirs, r_ext_m, thickness_m, width_m, density_kg_m3, &
+      friction, contact_inset_m, restrained_springings, polygon_file
+    namelist /motion/ waveform, frequency_hz, amplitude_m, n_attack, n_full, n_decay, &
+      record_file, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s
+    namelist /solver/ dt_s, theta, tol, max_iter, alert_m, allow_nonconvergence
+    namelist /output/ file, every, hinge_gap_m, collapse_drop_m, collapse_rotation_rad, &
+      stop_after_collapse_s
+
+    cfg%source_file = path
+    call check_groups(path, allowed_groups, status)
+    if (.not. status%ok) return
+    open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
+    if (ios /= 0) then
+      call fail(status, trim(path)//': cannot open input: '//trim(iomsg))
+      return
+    end if
+
+    embrace_deg = a%embrace_deg; n_voussoirs = a%n_voussoirs; r_ext_m = a%r_ext_m
+    thickness_m = a%thickness_m; width_m = a%width_m; density_kg_m3 = a%density_kg_m3
+    friction = a%friction; contact_inset_m = a%contact_inset_m
+    restrained_springings = a%restrained_springings; polygon_file = a%polygon_file
+    read (unit, nml=arch, iostat=ios, iomsg=iomsg)
+    if (.not. group_ok('arch')) return
+    a = arch_config_t(embrace_deg, n_voussoirs, r_ext_m, thickness_m, width_m, density_kg_m3, &
+                      friction, contact_inset_m, restrained_springings, polygon_file)
+
+    waveform = m%waveform; frequency_hz = m%frequency_hz; amplitude_m = m%amplitude_m
+    n_attack = m%n_attack; n_full = m%n_full; n_decay = m%n_decay; record_file = m%record_file
+    record_cutoff_hz = m%record_cutoff_hz; ramp_rate_m_s3 = m%ramp_rate_m_s3; rest_s = m%rest_s
+    duration_s = m%duration_s
+    rewind (unit)
+    read (unit, nml=motion, iostat=ios, iomsg=iomsg)
+    if (.not. group_ok('motion')) return
+    m = motion_config_t(waveform, frequency_hz, amplitude_m, n_attack, n_full, n_decay, &
+                        record_file, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s)
+
+    dt_s = s%dt_s; theta = s%theta; tol = s%tol; max_iter = s%max_iter; alert_m = s%alert_m
+    allow_nonconvergence = s%allow_nonconvergence
+    rewind (unit)
+    read (unit, nml=solver, iostat=ios, iomsg=iomsg)
+    if (.not. group_ok('solver')) return
+    s = solver_config_t(dt_s, theta, tol, max_iter, alert_m, allow_nonconvergence)
+
+    file = o%file; every = o%every; hinge_gap_m = o%hinge_gap_m; collapse_drop_m = o%collapse_drop_m
+    collapse_rotation_rad = o%collapse_rotation_rad; stop_after_collapse_s = o%stop_after_collapse_s
+    rewind (unit)
+    read (unit, nml=output, iostat=ios, iomsg=iomsg)
+    if (.not. group_ok('output')) return
+    o = output_config_t(file, every, hinge_gap_m, collapse_drop_m, collapse_rotation_rad, &
+                        stop_after_collapse_s)
+    close (unit)
+
+    cfg%arch = a
+    cfg%motion = m
+    cfg%solver = s
+    cfg%output = o
+    if (len_trim(cfg%arch%polygon_file) > 0) &
+      cfg%arch%polygon_file = resolve_path(path, cfg%arch%polygon_file)
+    if (len_trim(cfg%motion%record_file) > 0) &
+      cfg%motion%record_file = resolve_path(path, cfg%motion%record_file)
+    call validate_config(cfg, status)
+
+  contains
+
+    logical function group_ok(name)
+      character(len=*), intent(in) :: name
+      group_ok = .true.
+      if (ios == iostat_end) then
+        ios = 0   ! group absent: defaults
+      else if (ios /= 0) then
+        call fail(status, trim(path)//': in namelist group &'//name//': '//trim(iomsg))
+        close (unit)
+        group_ok = .false.
+      end if
+    end function group_ok
+
+  end subroutine read_config
+
+  !> Fail if `path` has a namelist group not in `allowed` (names without '&').
+  subroutine check_groups(path, allowed, status)
+    character(len=*), intent(in) :: path
+    character(len=*), intent(in) :: allowed(:)
+    type(status_t), intent(inout) :: status
+    integer :: unit, ios, line_no, k, e
+    character(len=1024) :: line
+    character(len=512) :: iomsg, list
+    character(len=64) :: name
+    character(len=16) :: num
+
+    open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
+    if (ios /= 0) then
+      call fail(status, trim(path)//': cannot open input: '//trim(iomsg))
+      return
+    end if
+    list = ''
+    do k = 1, size(allowed)
+      list = trim(list)//' &'//trim(allowed(k))
+    end do
+    line_no = 0
+    do
+      read (unit, '(a)', iostat=ios) line
+      if (ios /= 0) exit
+      line_no = line_no + 1
+      line = adjustl(line)
+      if (line(1:1) /= '&') cycle
+      e = scan(line(2:), ' ,/!'//achar(9))
+      if (e == 0) then
+        name = line(2:)
+      else
+        name = line(2:e)
+      end if
+      if (name == 'end' .or. len_trim(name) == 0) cycle
+      if (.not. any(allowed == lower(name))) then
+        write (num, '(i0)') line_no
+        call fail(status, trim(path)//':'//trim(num)//': unknown namelist group &'//trim(name)// &
+                  ' (allowed:'//trim(list)//')')
+        exit
+      end if
+    end do
+    close (unit)
+  end subroutine check_groups
+
+  pure function lower(s) result(t)
+    character(len=*), intent(in) :: s
+    character(len=len(s)) :: t
+    integer :: i
+    t = s
+    do i = 1, len(s)
+      if (s(i:i) >= 'A' .and. s(i:i) <= 'Z') t(i:i) = achar(iachar(s(i:i)) + 32)
+    end do
+  end function lower
+
+  !> A file named in an input file: absolute, or relative to that input file's folder.
+  function resolve_path(input_path, name) result(full)
+    character(len=*), intent(in) :: input_path, name
+    character(len=path_len) :: full
+    integer :: k
+    full = adjustl(name)
+    if (full(1:1) == '/') return
+    k = index(input_path, '/', back=.true.)
+    if (k > 0) full = input_path(:k)//trim(full)
+  end function resolve_path
+
+  !> Check every value of `cfg` against its physical range.
+  subroutine validate_config(cfg, status)
+    type(config_t), intent(inout) :: cfg
+    type(status_t), intent(inout) :: status
+    character(len=:), allocatable :: f
+    logical :: exists
+
+    f = trim(cfg%source_file)
+    ! Each check records the first failure only, so the user sees the first bad value.
+    associate (a => cfg%arch, m => cfg%motion, s => cfg%solver, o => cfg%output)
+      a%restrained_springings = lower(a%restrained_springings)
+      m%waveform = lower(m%waveform)
+      if (len_trim(a%polygon_file) == 0) then
+        call need(a%embrace_deg > 0.0_dp .and. a%embrace_deg <= 180.0_dp, &
+          'arch', 'embrace_deg', a%embrace_deg, '0 < embrace_deg <= 180')
+        call need_int(a%n_voussoirs >= 2, 'arch', 'n_voussoirs', a%n_voussoirs, 'n_voussoirs >= 2')
+        call need(a%r_ext_m > 0.0_dp, 'arch', 'r_ext_m', a%r_ext_m, 'r_ext_m > 0')
+        call need(a%thickness_m > 0.0_dp .and. a%thickness_m < a%r_ext_m, &
+          'arch', 'thickness_m', a%thickness_m, '0 < thickness_m < r_ext_m = '//fmt_real(a%r_ext_m))
+        if (.not. status%ok) return
+        select case (a%restrained_springings)
+        case ('none', 'left', 'right', 'both')
+        case default
+          call fail(status, f//": &arch restrained_springings = '"//trim(a%restrained_springings)// &
+                    "' is not one of 'none', 'left', 'right', 'both'")
+          return
+        end select
+      else
+        inquire (file=a%polygon_file, exist=exists)
+        if (.not. exists) then
+          call fail(status, f//": &arch polygon_file = '"//trim(a%polygon_file)//"': no such file")
+          return
+        end if
+        call need(a%thickness_m > 0.0_dp, 'arch', 'thickness_m', a%thickness_m, 'thickness_m > 0')
+      end if
+      call need(a%width_m > 0.0_dp, 'arch', 'width_m', a%width_m, 'width_m > 0')
+      call need(a%density_kg_m3 > 0.0_dp, &
+          'arch', 'density_kg_m3', a%density_kg_m3, 'density_kg_m3 > 0')
+      call need(a%friction >= 0.0_dp, 'arch', 'friction', a%friction, 'friction >= 0')
+      call need(a%contact_inset_m >= 0.0_dp .and. a%contact_inset_m < 0.5_dp*a%thickness_m, &
+          'arch', 'contact_inset_m', a%contact_inset_m, &
+                   '0 <= contact_inset_m < thickness_m/2 = '//fmt_real(0.5_dp*a%thickness_m))
+
+      if (.not. status%ok) return
+      select case (m%waveform)
+      case ('afd')
+        call need(m%frequency_hz > 0.0_dp, 'motion', 'frequency_hz', m%frequency_hz, 'frequency_hz > 0')
+        call need(m%amplitude_m >= 0.0_dp, 'motion', 'amplitude_m', m%amplitude_m, 'amplitude_m >= 0')
+        call need_int(m%n_attack >= 1, 'motion', 'n_attack', m%n_attack, 'n_attack >= 1')
+        call need_int(m%n_full >= 0, 'motion', 'n_full', m%n_full, 'n_full >= 0')
+        call need_int(m%n_decay >= 1, 'motion', 'n_decay', m%n_decay, 'n_decay >= 1')
+      case ('ramp')
+        call need(m%ramp_rate_m_s3 /= 0.0_dp, &
+          'motion', 'ramp_rate_m_s3', m%ramp_rate_m_s3, 'ramp_rate_m_s3 /= 0')
+        call need(m%duration_s > 0.0_dp, &
+          'motion', 'duration_s', m%duration_s, 'duration_s > 0 (the ramp has no end)')
+      case ('record')
+        inquire (file=m%record_file, exist=exists)
+        if (.not. exists) then
+          call fail(status, f//": &motion record_file = '"//trim(m%record_file)//"': no such file")
+          return
+        end if
+        call need(m%record_cutoff_hz >= 0.0_dp, &
+          'motion', 'record_cutoff_hz', m%record_cutoff_hz, 'record_cutoff_hz >= 0 (0: no filter)')
+      case default
+        call fail(status, f//": &motion waveform = '"//trim(m%waveform)//"' is not one of 'afd', 'ramp', 'record'")
+        return
+      end select
+      call need(m%rest_s >= 0.0_dp, 'motion', 'rest_s', m%rest_s, 'rest_s >= 0')
+      call need(m%duration_s >= 0.0_dp, 'motion', 'duration_s', m%duration_s, 'duration_s >= 0')
+
+      call need(s%dt_s > 0.0_dp .and. s%dt_s <= 0.1_dp, 'solver', 'dt_s', s%dt_s, '0 < dt_s <= 0.1')
+      call need(s%theta >= 0.5_dp .and. s%theta <= 1.0_dp, 'solver', 'theta', s%theta, '0.5 <= theta <= 1')
+      call need(s%tol > 0.0_dp .and. s%tol < 1.0_dp, 'solver', 'tol', s%tol, '0 < tol < 1')
+      call need_int(s%max_iter >= 1, 'solver', 'max_iter', s%max_iter, 'max_iter >= 1')
+      call need(s%alert_m >= 0.0_dp, 'solver', 'alert_m', s%alert_m, 'alert_m >= 0 (0: automatic)')
+
+      if (len_trim(o%file) == 0) then
+        call fail(status, f//': &output file is empty')
+        return
+      end if
+      call need_int(o%every >= 1, 'output', 'every', o%every, 'every >= 1')
+      call need(o%hinge_gap_m >= 0.0_dp, 'output', 'hinge_gap_m', o%hinge_gap_m, 'hinge_gap_m >= 0')
+      call need(o%collapse_drop_m >= 0.0_dp, &
+          'output', 'collapse_drop_m', o%collapse_drop_m, 'collapse_drop_m >= 0')
+      call need(o%collapse_rotation_rad > 0.0_dp, &
+          'output', 'collapse_rotation_rad', o%collapse_rotation_rad, 'collapse_rotation_rad > 0')
+      if (.not. status%ok) return
+      ! Automatic values.
+      if (o%hinge_gap_m == 0.0_dp) o%hinge_gap_m = 0.01_dp*a%thickness_m
+      if (o%collapse_drop_m == 0.0_dp) o%collapse_drop_m = 0.5_dp*a%thickness_m
+    end associate
+
+  contains
+
+    subroutine need(good, group, name, value, allowed)
+      logical, intent(in) :: good
+      character(len=*), intent(in) :: group, name, allowed
+      real(dp), intent(in) :: value
+      if (good .or. .not. status%ok) return
+      call fail(status, f//': &'//group//' '//name//' = '//fmt_real(value)// &
+                ' is outside the allowed range '//allowed)
+    end subroutine need
+
+    subroutine need_int(good, group, name, value, allowed)
+      logical, intent(in) :: good
+      character(len=*), intent(in) :: group, name, allowed
+      integer, intent(in) :: value
+      character(len=16) :: text
+      if (good .or. .not. status%ok) return
+      write (text, '(i0)') value
+      call fail(status, f//': &'//group//' '//name//' = '//trim(text)// &
+                ' is outside the allowed range '//allowed)
+    end subroutine need_int
+
+  end subroutine validate_config
+
+  !> Shortest readable text of a real.
+  function fmt_real(x) result(text)
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: text
+    character(len=32) :: buf
+    write (buf, '(g0.8)') x
+    text = trim(adjustl(buf))
+  end function fmt_real
+
+  !> Every setting of `cfg`, defaults included, in group order.
+  function config_entries(cfg) result(e)
+    type(config_t), intent(in) :: cfg
+    type(config_entry_t), allocatable :: e(:)
+    allocate (e(0))
+    associate (a => cfg%arch, m => cfg%motion, s => cfg%solver, o => cfg%output)
+      call r('arch', 'embrace_deg', a%embrace_deg)
+      call i('arch', 'n_voussoirs', a%n_voussoirs)
+      call r('arch', 'r_ext_m', a%r_ext_m)
+      call r('arch', 'thickness_m', a%thickness_m)
+      call r('arch', 'width_m', a%width_m)
+      call r('arch', 'density_kg_m3', a%density_kg_m3)
+      call r('arch', 'friction', a%friction)
+      call r('arch', 'contact_inset_m', a%contact_inset_m)
+      call t('arch', 'restrained_springings', a%restrained_springings)
+      call t('arch', 'polygon_file', a%polygon_file)
+      call t('motion', 'waveform', m%waveform)
+      call r('motion', 'frequency_hz', m%frequency_hz)
+      call r('motion', 'amplitude_m', m%amplitude_m)
+      call i('motion', 'n_attack', m%n_attack)
+      call i('motion', 'n_full', m%n_full)
+      call i('motion', 'n_decay', m%n_decay)
+      call t('motion', 'record_file', m%record_file)
+      call r('motion', 'record_cutoff_hz', m%record_cutoff_hz)
+      call r('motion', 'ramp_rate_m_s3', m%ramp_rate_m_s3)
+      call r('motion', 'rest_s', m%rest_s)
+      call r('motion', 'duration_s', m%duration_s)
+      call r('solver', 'dt_s', s%dt_s)
+      call r('solver', 'theta', s%theta)
+      call r('solver', 'tol', s%tol)
+      call i('solver', 'max_iter', s%max_iter)
+      call r('solver', 'alert_m', s%alert_m)
+      call l('solver', 'allow_nonconvergence', s%allow_nonconvergence)
+      call t('output', 'file', o%file)
+      call i('output', 'every', o%every)
+      call r('output', 'hinge_gap_m', o%hinge_gap_m)
+      call r('output', 'collapse_drop_m', o%collapse_drop_m)
+      call r('output', 'collapse_rotation_rad', o%collapse_rotation_rad)
+      call r('output', 'stop_after_collapse_s', o%stop_after_collapse_s)
+    end associate
+  contains
+    subroutine r(g, n, x)
+      character(len=*), intent(in) :: g, n
+      real(dp), intent(in) :: x
+      character(len=32) :: buf
+      write (buf, '(es24.16)') x
+      e = [e, config_entry_t(g, n, 'r', adjustl(buf))]
+    end subroutine r
+    subroutine i(g, n, x)
+      character(len=*), intent(in) :: g, n
+      integer, intent(in) :: x
+      character(len=32) :: buf
+      write (buf, '(i0)') x
+      e = [e, config_entry_t(g, n, 'i', buf)]
+    end subroutine i
+    subroutine l(g, n, x)
+      character(len=*), intent(in) :: g, n
+      logical, intent(in) :: x
+      e = [e, config_entry_t(g, n, 'l', merge('.true. ', '.false.', x))]
+    end subroutine l
+    subroutine t(g, n, x)
+      character(len=*), intent(in) :: g, n, x
+      e = [e, config_entry_t(g, n, 's', x)]
+    end subroutine t
+  end function config_entries
+
+  !> The entries as namelist text that reads back to the same configuration.
+  function config_to_nml(e) result(text)
+    type(config_entry_t), intent(in) :: e(:)
+    character(len=:), allocatable :: text
+    integer :: k
+    character(len=1), parameter :: nl = achar(10)
+    text = ''
+    do k = 1, size(e)
+      if (k == 1) then
+        text = text//'&'//trim(e(k)%group)//nl
+      else if (e(k)%group /= e(k - 1)%group) then
+        text = text//'/'//nl//'&'//trim(e(k)%group)//nl
+      end if
+      if (e(k)%kind == 's') then
+        text = text//'  '//trim(e(k)%name)//" = '"//trim(e(k)%value)//"'"//nl
+      else
+        text = text//'  '//trim(e(k)%name)//' = '//trim(e(k)%value)//nl
+      end if
+    end do
+    if (size(e) > 0) text = text//'/'//nl
+  end function config_to_nml
+
+end module voussoir_config

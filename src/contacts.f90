@@ -1,0 +1,336 @@
+!> Contact detection between rigid convex polygons.
+!>
+!> Broad phase: axis-aligned boxes sorted into a uniform cell grid whose cell is at least
+!> the largest box, so that each body meets only the bodies of its 3 x 3 cells and the
+!> cost grows linearly with the number of bodies. Narrow phase: the face of largest
+!> separation (separating-axis test) is the reference face of the antagonist body; the
+!> most opposed face of the candidate body is clipped to it, and the two ends of the
+!> overlap (set in by the contact inset) are the contact points.
+module voussoir_contacts
+  use voussoir_kinds, only: dp
+  use voussoir_geometry, only: cross2
+  use voussoir_bodies, only: bodies_t
+  implicit none
+  private
+
+  public :: contact_set_t, detect_contacts, polygon_contact, pair_friction_t
+
+  !> A friction coefficient for one pair of bodies, overriding the default.
+  type :: pair_friction_t
+    integer :: body_a = 0, body_b = 0
+    real(dp) :: friction = 0.0_dp
+  end type pair_friction_t
+
+  !> The contact points of one step, structure of arrays. Body `a` is the candidate,
+  !> body `b` the antagonist that owns the reference face; the normal points from b to a.
+  type :: contact_set_t
+    integer :: n = 0
+    integer, allocatable :: body_a(:), body_b(:), slot(:)
+    real(dp), allocatable :: normal(:, :), tangent(:, :) !! (2, n) unit vectors
+    real(dp), allocatable :: arm_a(:, :), arm_b(:, :)    !! (2, n) centroid -> point [m]
+    real(dp), allocatable :: point(:, :)                 !! (2, n) contact point [m]
+    real(dp), allocatable :: gap_m(:)
+    real(dp), allocatable :: friction(:)
+    real(dp), allocatable :: impulse(:, :)               !! (2, n) [N s], (tangent, normal)
+    ! Work arrays of the broad phase.
+    integer, allocatable :: cell_start(:), cell_body(:), body_cell(:, :)
+  end type contact_set_t
+
+contains
+
+  !> Make room for at least `capacity` contacts, keeping the `set%n` present.
+  subroutine reserve(set, capacity)
+    type(contact_set_t), intent(inout) :: set
+    integer, intent(in) :: capacity
+    integer :: new_cap
+    if (allocated(set%body_a)) then
+      if (size(set%body_a) >= capacity) return
+    end if
+    new_cap = max(64, 2*capacity)
+    call grow_int(set%body_a)
+    call grow_int(set%body_b)
+    call grow_int(set%slot)
+    call grow_real2(set%normal)
+    call grow_real2(set%tangent)
+    call grow_real2(set%arm_a)
+    call grow_real2(set%arm_b)
+    call grow_real2(set%point)
+    call grow_real2(set%impulse)
+    call grow_real(set%gap_m)
+    call grow_real(set%friction)
+  contains
+    subroutine grow_int(a)
+      integer, allocatable, intent(inout) :: a(:)
+      integer, allocatable :: b(:)
+      allocate (b(new_cap))
+      if (allocated(a)) b(1:set%n) = a(1:set%n)
+      call move_alloc(b, a)
+    end subroutine grow_int
+    subroutine grow_real(a)
+      real(dp), allocatable, intent(inout) :: a(:)
+      real(dp), allocatable :: b(:)
+      allocate (b(new_cap))
+      if (allocated(a)) b(1:set%n) = a(1:set%n)
+      call move_alloc(b, a)
+    end subroutine grow_real
+    subroutine grow_real2(a)
+      real(dp), allocatable, intent(inout) :: a(:, :)
+      real(dp), allocatable :: b(:, :)
+      allocate (b(2, new_cap))
+      if (allocated(a)) b(:, 1:set%n) = a(:, 1:set%n)
+      call move_alloc(b, a)
+    end subroutine grow_real2
+  end subroutine reserve
+
+  !> All contact points within `alert_m` for the current world vertices of `bodies`
+  !> (the caller has set them to the predicted configuration `q`).
+  subroutine detect_contacts(bodies, q, alert_m, inset_m, default_friction, pair_friction, set)
+    type(bodies_t), intent(in) :: bodies
+    real(dp), intent(in) :: q(:, :)           !! (3, n) configuration of the vertices
+    real(dp), intent(in) :: alert_m, inset_m, default_friction
+    type(pair_friction_t), intent(in) :: pair_friction(:)
+    type(contact_set_t), intent(inout) :: set
+    real(dp) :: box(4, bodies%n), lo(2), cell_m
+    integer :: nx, ny, i, j, ix, iy, jx, jy, c, k, nb, n_cells
+
+    nb = bodies%n
+    set%n = 0
+    call reserve(set, 4*nb)
+    do i = 1, nb
+      associate (vx => bodies%vertex(1, 1:bodies%n_vertices(i), i), &
+                 vy => bodies%vertex(2, 1:bodies%n_vertices(i), i))
+        box(:, i) = [minval(vx), minval(vy), maxval(vx), maxval(vy)] &
+                    + [-0.5_dp, -0.5_dp, 0.5_dp, 0.5_dp]*alert_m
+      end associate
+    end do
+    lo = [minval(box(1, :)), minval(box(2, :))]
+    cell_m = max(maxval(box(3, :) - box(1, :)), maxval(box(4, :) - box(2, :)))
+    nx = max(1, min(int((maxval(box(3, :)) - lo(1))/cell_m) + 1, 4*nb))
+    ny = max(1, min(int((maxval(box(4, :)) - lo(2))/cell_m) + 1, 4*nb))
+    cell_m = max(cell_m, (maxval(box(3, :)) - lo(1))/nx, (maxval(box(4, :)) - lo(2))/ny)
+    n_cells = nx*ny
+
+    ! Counting sort of bodies into the cell of their box's lower corner.
+    if (.not. allocated(set%cell_start)) then
+      allocate (set%cell_start(n_cells + 1), set%cell_body(nb), set%body_cell(2, nb))
+    else if (size(set%cell_start) < n_cells + 1 .or. size(set%cell_body) < nb) then
+      deallocate (set%cell_start, set%cell_body, set%body_cell)
+      allocate (set%cell_start(n_cells + 1), set%cell_body(nb), set%body_cell(2, nb))
+    end if
+    set%cell_start(1:n_cells + 1) = 0
+    do i = 1, nb
+      ix = min(nx - 1, int((box(1, i) - lo(1))/cell_m))
+      iy = min(ny - 1, int((box(2, i) - lo(2))/cell_m))
+      set%body_cell(:, i) = [ix, iy]
+      c = ix + nx*iy + 2
+      set%cell_start(c) = set%cell_start(c) + 1
+    end do
+    set%cell_start(1) = 1
+    do c = 2, n_cells + 1
+      set%cell_start(c) = set%cell_start(c) + set%cell_start(c - 1)
+    end do
+    ! Cell c will hold cell_body(cell_start(c) : cell_start(c+1)-1); fill from the top,
+    ! which leaves the start of cell c in cell_start(c+1).
+    do i = nb, 1, -1
+      c = set%body_cell(1, i) + nx*set%body_cell(2, i) + 1
+      set%cell_start(c + 1) = set%cell_start(c + 1) - 1
+      set%cell_body(set%cell_start(c + 1)) = i
+    end do
+    ! Shift back so that cell c starts at cell_start(c).
+    do c = 1, n_cells
+      set%cell_start(c) = set%cell_start(c + 1)
+    end do
+    set%cell_start(n_cells + 1) = nb + 1
+
+    do i = 1, nb
+      ix = set%body_cell(1, i)
+      iy = set%body_cell(2, i)
+      do jy = max(0, iy - 1), min(ny - 1, iy + 1)
+        do jx = max(0, ix - 1), min(nx - 1, ix + 1)
+          c = jx + nx*jy + 1
+          do k = set%cell_start(c), set%cell_start(c + 1) - 1
+            j = set%cell_body(k)
+            if (j <= i) cycle
+            if (bodies%driven(i) .and. bodies%driven(j)) cycle
+            if (box(1, i) > box(3, j) .or. box(1, j) > box(3, i)) cycle
+            if (box(2, i) > box(4, j) .or. box(2, j) > box(4, i)) cycle
+            call add_pair(i, j)
+          end do
+        end do
+      end do
+    end do
+
+  contains
+
+    subroutine add_pair(i, j)
+      integer, intent(in) :: i, j
+      integer :: n_points, a, b, p, m
+      real(dp) :: points(2, 2), gaps(2), normal(2)
+      logical :: i_is_candidate
+      real(dp) :: mu
+
+      call polygon_contact(bodies%vertex(:, 1:bodies%n_vertices(i), i), &
+                           bodies%vertex(:, 1:bodies%n_vertices(j), j), alert_m, inset_m, &
+                           n_points, points, gaps, normal, i_is_candidate)
+      if (n_points == 0) return
+      if (i_is_candidate) then
+        a = i
+        b = j
+      else
+        a = j
+        b = i
+      end if
+      mu = default_friction
+      do m = 1, size(pair_friction)
+        if ((pair_friction(m)%body_a == a .and. pair_friction(m)%body_b == b) .or. &
+            (pair_friction(m)%body_a == b .and. pair_friction(m)%body_b == a)) &
+          mu = pair_friction(m)%friction
+      end do
+      call reserve(set, set%n + 2)
+      do p = 1, 2
+        if (gaps(p) > alert_m) cycle
+        if (p == 2 .and. n_points == 1) cycle
+        set%n = set%n + 1
+        m = set%n
+        set%body_a(m) = a
+        set%body_b(m) = b
+        set%slot(m) = p
+        set%normal(:, m) = normal
+        set%tangent(:, m) = [-normal(2), normal(1)]
+        set%point(:, m) = points(:, p)
+        set%arm_a(:, m) = points(:, p) - q(1:2, a)
+        set%arm_b(:, m) = points(:, p) - q(1:2, b)
+        set%gap_m(m) = gaps(p)
+        set%friction(m) = mu
+        set%impulse(:, m) = 0.0_dp
+      end do
+    end subroutine add_pair
+
+  end subroutine detect_contacts
+
+  !> Face-to-face contact of two convex polygons `pa`, `pb` (2, n) counter-clockwise.
+  !>
+  !> Returns up to two points on the candidate's incident face, their gaps [m] along the
+  !> reference face's outward normal (pointing from the antagonist to the candidate),
+  !> and whether `pa` is the candidate. The points are the ends of the part of the
+  !> incident face that lies over the reference face, each moved inwards by `inset_m`
+  !> (merged into one point when the overlap is shorter than two insets).
+  pure subroutine polygon_contact(pa, pb, alert_m, inset_m, n_points, points, gaps, normal, &
+                                  a_is_candidate)
+    real(dp), intent(in) :: pa(:, :), pb(:, :), alert_m, inset_m
+    integer, intent(out) :: n_points
+    real(dp), intent(out) :: points(2, 2), gaps(2), normal(2)
+    logical, intent(out) :: a_is_candidate
+    real(dp) :: sep_a, sep_b
+    integer :: face_a, face_b
+
+    n_points = 0
+    points = 0.0_dp
+    gaps = huge(1.0_dp)
+    normal = 0.0_dp
+    a_is_candidate = .true.
+    call max_separation(pa, pb, sep_a, face_a)
+    if (sep_a > alert_m) return
+    call max_separation(pb, pa, sep_b, face_b)
+    if (sep_b > alert_m) return
+    ! Prefer the face of b as reference unless a's face separates clearly more, so that
+    ! the choice does not flip between parallel faces from one step to the next.
+    if (sep_a > sep_b + 1.0e-3_dp*alert_m) then
+      a_is_candidate = .false.
+      call clip(pb, pa, face_a, inset_m, n_points, points, gaps, normal)
+    else
+      call clip(pa, pb, face_b, inset_m, n_points, points, gaps, normal)
+    end if
+  end subroutine polygon_contact
+
+  !> Contact points of the incident face of `cand` on face `ref_face` of `ref`.
+  pure subroutine clip(cand, ref, ref_face, inset_m, n_points, points, gaps, normal)
+    real(dp), intent(in) :: cand(:, :), ref(:, :), inset_m
+    integer, intent(in) :: ref_face
+    integer, intent(inout) :: n_points
+    real(dp), intent(inout) :: points(2, 2), gaps(2), normal(2)
+    real(dp) :: r1(2), r2(2), t(2), len_ref, d, best, s1, s2, s_lo, s_hi, c1(2), c2(2), &
+                e(2), len_inc, u_lo, u_hi, mid
+    integer :: k, inc, nc, nr
+
+    nr = size(ref, 2)
+    nc = size(cand, 2)
+    r1 = ref(:, ref_face)
+    r2 = ref(:, modulo(ref_face, nr) + 1)
+    t = r2 - r1
+    len_ref = norm2(t)
+    t = t/len_ref
+    normal = [t(2), -t(1)]
+    ! Incident face: the candidate's face most opposed to the normal.
+    best = huge(1.0_dp)
+    inc = 1
+    do k = 1, nc
+      e = cand(:, modulo(k, nc) + 1) - cand(:, k)
+      ! n . outward normal of face k, which is (e2, -e1)/|e| for a ccw polygon
+      d = (normal(1)*e(2) - normal(2)*e(1))/norm2(e)
+      if (d < best) then
+        best = d
+        inc = k
+      end if
+    end do
+    c1 = cand(:, inc)
+    c2 = cand(:, modulo(inc, nc) + 1)
+    ! Parametrise the incident face by its projection on the reference tangent.
+    s1 = dot_product(c1 - r1, t)
+    s2 = dot_product(c2 - r1, t)
+    if (abs(s2 - s1) < tiny(1.0_dp)) return
+    s_lo = max(min(s1, s2), 0.0_dp)
+    s_hi = min(max(s1, s2), len_ref)
+    if (s_hi < s_lo) return
+    len_inc = norm2(c2 - c1)
+    ! Curvilinear abscissae along the incident face of the overlap ends.
+    u_lo = (s_lo - s1)/(s2 - s1)*len_inc
+    u_hi = (s_hi - s1)/(s2 - s1)*len_inc
+    if (u_lo > u_hi) then
+      mid = u_lo
+      u_lo = u_hi
+      u_hi = mid
+    end if
+    if (u_hi - u_lo > 2.0_dp*inset_m) then
+      u_lo = u_lo + inset_m
+      u_hi = u_hi - inset_m
+      n_points = 2
+    else
+      u_lo = 0.5_dp*(u_lo + u_hi)
+      u_hi = u_lo
+      n_points = 1
+    end if
+    e = (c2 - c1)/len_inc
+    points(:, 1) = c1 + u_lo*e
+    points(:, 2) = c1 + u_hi*e
+    gaps(1) = dot_product(points(:, 1) - r1, normal)
+    gaps(2) = dot_product(points(:, 2) - r1, normal)
+  end subroutine clip
+
+  !> Largest separation of `q`'s vertices from a face of `p` (separating-axis test):
+  !> for every face of p, the smallest signed distance of q's vertices along the face's
+  !> outward normal; the largest of these over p's faces, and that face.
+  pure subroutine max_separation(p, q, separation, face)
+    real(dp), intent(in) :: p(:, :), q(:, :)
+    real(dp), intent(out) :: separation
+    integer, intent(out) :: face
+    real(dp) :: e(2), n(2), s
+    integer :: i, k, np
+    np = size(p, 2)
+    separation = -huge(1.0_dp)
+    face = 1
+    do i = 1, np
+      e = p(:, modulo(i, np) + 1) - p(:, i)
+      n = [e(2), -e(1)]/norm2(e)
+      s = huge(1.0_dp)
+      do k = 1, size(q, 2)
+        s = min(s, n(1)*(q(1, k) - p(1, i)) + n(2)*(q(2, k) - p(2, i)))
+      end do
+      if (s > separation) then
+        separation = s
+        face = i
+      end if
+    end do
+  end subroutine max_separation
+
+end module voussoir_contacts

@@ -1,0 +1,91 @@
+!> Plane geometry of convex polygons: area, centroid, inertia, orientation.
+!>
+!> Polygons are (2, n) arrays of vertices in counter-clockwise order.
+module voussoir_geometry
+  use voussoir_kinds, only: dp
+  implicit none
+  private
+
+  public :: polygon_area, polygon_centroid, polygon_polar_moment, cross2, rotate2, &
+            is_convex_ccw
+
+contains
+
+  !> z-component of the cross product of two plane vectors.
+  pure real(dp) function cross2(a, b)
+    real(dp), intent(in) :: a(2), b(2)
+    cross2 = a(1)*b(2) - a(2)*b(1)
+  end function cross2
+
+  !> Vector `v` rotated by `angle_rad` counter-clockwise.
+  pure function rotate2(v, angle_rad) result(w)
+    real(dp), intent(in) :: v(2), angle_rad
+    real(dp) :: w(2)
+    w(1) = cos(angle_rad)*v(1) - sin(angle_rad)*v(2)
+    w(2) = sin(angle_rad)*v(1) + cos(angle_rad)*v(2)
+  end function rotate2
+
+  !> Signed area [m2] (positive for counter-clockwise vertices).
+  pure real(dp) function polygon_area(xy)
+    real(dp), intent(in) :: xy(:, :)
+    integer :: i, j, n
+    n = size(xy, 2)
+    polygon_area = 0.0_dp
+    do i = 1, n
+      j = merge(1, i + 1, i == n)
+      polygon_area = polygon_area + cross2(xy(:, i), xy(:, j))
+    end do
+    polygon_area = 0.5_dp*polygon_area
+  end function polygon_area
+
+  !> Centroid [m] of the polygon's area.
+  pure function polygon_centroid(xy) result(c)
+    real(dp), intent(in) :: xy(:, :)
+    real(dp) :: c(2), w
+    integer :: i, j, n
+    n = size(xy, 2)
+    c = 0.0_dp
+    do i = 1, n
+      j = merge(1, i + 1, i == n)
+      w = cross2(xy(:, i), xy(:, j))
+      c = c + w*(xy(:, i) + xy(:, j))
+    end do
+    c = c/(6.0_dp*polygon_area(xy))
+  end function polygon_centroid
+
+  !> Polar second moment of area about the centroid [m4].
+  pure real(dp) function polygon_polar_moment(xy)
+    real(dp), intent(in) :: xy(:, :)
+    real(dp) :: c(2), p(2), q(2), w
+    integer :: i, j, n
+    n = size(xy, 2)
+    c = polygon_centroid(xy)
+    polygon_polar_moment = 0.0_dp
+    do i = 1, n
+      j = merge(1, i + 1, i == n)
+      p = xy(:, i) - c
+      q = xy(:, j) - c
+      w = cross2(p, q)
+      polygon_polar_moment = polygon_polar_moment + w*(dot_product(p, p) + dot_product(p, q) &
+                                                       + dot_product(q, q))
+    end do
+    polygon_polar_moment = polygon_polar_moment/12.0_dp
+  end function polygon_polar_moment
+
+  !> True when the polygon is strictly convex with counter-clockwise vertices.
+  pure logical function is_convex_ccw(xy)
+    real(dp), intent(in) :: xy(:, :)
+    integer :: i, n
+    n = size(xy, 2)
+    is_convex_ccw = n >= 3
+    if (.not. is_convex_ccw) return
+    do i = 1, n
+      if (cross2(xy(:, modulo(i, n) + 1) - xy(:, i), &
+                 xy(:, modulo(i + 1, n) + 1) - xy(:, modulo(i, n) + 1)) <= 0.0_dp) then
+        is_convex_ccw = .false.
+        return
+      end if
+    end do
+  end function is_convex_ccw
+
+end module voussoir_geometry

@@ -1,0 +1,139 @@
+!> The dynamic model and one Moreau-Jean time step.
+!>
+!> Step from t to t + h with the theta-method: free velocities under gravity and the
+!> inertial load, predicted configuration q + (1 - theta) h v, contact detection there,
+!> NLGS for the end-of-step velocities, then q_end = q_pred + theta h v_end. Driven
+!> bodies (foundations, brackets) move with the table velocity.
+module voussoir_model
+  use voussoir_kinds, only: dp, g_m_s2
+  use voussoir_status, only: status_t, fail
+  use voussoir_bodies, only: bodies_t, update_world_vertices
+  use voussoir_contacts, only: contact_set_t, detect_contacts, pair_friction_t
+  use voussoir_nlgs, only: nlgs_work_t, nlgs_prepare, nlgs_solve, warm_start
+  use voussoir_motion, only: motion_t, motion_eval, waveform_ramp
+  implicit none
+  private
+
+  public :: model_t, solver_settings_t, model_step, model_apply_impulses
+
+  !> Numerical settings of the time stepping and of the contact solve.
+  type :: solver_settings_t
+    real(dp) :: dt_s = 1.0e-3_dp
+    real(dp) :: theta = 0.5_dp
+    real(dp) :: tol = 1.0e-4_dp
+    integer :: max_iter = 2000
+    real(dp) :: alert_m = 1.0e-3_dp
+    real(dp) :: contact_inset_m = 0.0_dp
+    real(dp) :: friction = 0.5_dp
+    logical :: allow_nonconvergence = .false.
+  end type solver_settings_t
+
+  !> Everything one simulation evolves.
+  type :: model_t
+    type(bodies_t) :: bodies
+    type(contact_set_t) :: contacts
+    type(nlgs_work_t) :: work
+    type(motion_t) :: motion
+    type(solver_settings_t) :: solver
+    type(pair_friction_t), allocatable :: pair_friction(:)
+    real(dp) :: t_s = 0.0_dp
+    integer :: step = 0
+    ! Of the last step:
+    integer :: iterations = 0
+    real(dp) :: norm = 0.0_dp
+    logical :: converged = .true.
+    integer :: nonconverged_steps = 0
+    real(dp) :: table(3) = 0.0_dp       !! table x [m], v [m/s], a [m/s2] at t_s
+    real(dp), allocatable :: q_pred(:, :), v_free(:, :)
+  end type model_t
+
+contains
+
+  !> Advance `model` by one time step.
+  subroutine model_step(model, status)
+    type(model_t), intent(inout) :: model
+    type(status_t), intent(inout) :: status
+    real(dp) :: h, theta, x0, v0, a0, x1, v1, a1, load_x
+    integer :: i, nb
+    character(len=160) :: where
+
+    h = model%solver%dt_s
+    theta = model%solver%theta
+    nb = model%bodies%n
+    if (.not. allocated(model%q_pred)) allocate (model%q_pred(3, nb), model%v_free(3, nb))
+
+    call motion_eval(model%motion, model%t_s, x0, v0, a0)
+    call motion_eval(model%motion, model%t_s + h, x1, v1, a1)
+    ! Inertial load of the ramp, at the theta point of the step.
+    load_x = 0.0_dp
+    if (model%motion%waveform == waveform_ramp) load_x = (1.0_dp - theta)*a0 + theta*a1
+
+    associate (b => model%bodies)
+      do i = 1, nb
+        if (b%driven(i)) then
+          b%v(:, i) = [v0, 0.0_dp, 0.0_dp]
+          model%v_free(:, i) = [v1, 0.0_dp, 0.0_dp]
+        else
+          model%v_free(:, i) = b%v(:, i) + h*[load_x, -g_m_s2, 0.0_dp]
+        end if
+      end do
+      model%q_pred = b%q + (1.0_dp - theta)*h*b%v
+      call update_world_vertices(b, model%q_pred)
+      call detect_contacts(b, model%q_pred, model%solver%alert_m, model%solver%contact_inset_m, &
+                           model%solver%friction, model%pair_friction, model%contacts)
+      call nlgs_prepare(b, model%contacts, theta*h, model%work)
+      call warm_start(model%work, model%contacts, nb, remember=.false.)
+      b%v = model%v_free
+      call model_apply_impulses(model)
+      call nlgs_solve(b, model%contacts, model%work, b%v, model%solver%tol, model%solver%max_iter, &
+                      model%iterations, model%norm, model%converged)
+      call warm_start(model%work, model%contacts, nb, remember=.true.)
+    end associate
+
+    model%step = model%step + 1
+    write (where, '(a,i0,a,es12.5,a)') 'step ', model%step, ' (t = ', model%t_s + h, ' s)'
+    if (.not. (model%norm == model%norm) .or. any(.not. (model%bodies%v == model%bodies%v))) then
+      call fail(status, 'NaN in the contact solve at '//trim(where))
+      return
+    end if
+    if (maxval(abs(model%bodies%v)) > 1.0e6_dp) then
+      call fail(status, 'divergence (velocity above 1e6) at '//trim(where))
+      return
+    end if
+    if (.not. model%converged) then
+      model%nonconverged_steps = model%nonconverged_steps + 1
+      if (.not. model%solver%allow_nonconvergence) then
+        write (where, '(a,a,i0,a,es10.3,a,es10.3)') trim(where), ': ', model%iterations, &
+          ' iterations, norm ', model%norm, ' > tol ', model%solver%tol
+        call fail(status, 'NLGS did not converge at '//trim(where)// &
+                  ' (raise max_iter or set allow_nonconvergence = .true. in &solver)')
+        return
+      end if
+    end if
+
+    model%bodies%q = model%q_pred + theta*h*model%bodies%v
+    model%t_s = model%t_s + h
+    model%table = [x1, v1, a1]
+    if (model%motion%waveform == waveform_ramp) model%table = [0.0_dp, 0.0_dp, a1]
+  end subroutine model_step
+
+  !> Velocities of the free bodies plus the effect of the impulses held in the contacts.
+  subroutine model_apply_impulses(model)
+    type(model_t), intent(inout) :: model
+    integer :: k, a, b
+    real(dp) :: p(2)
+    associate (c => model%contacts, bd => model%bodies, w => model%work)
+      do k = 1, c%n
+        if (all(c%impulse(:, k) == 0.0_dp)) cycle
+        a = c%body_a(k)
+        b = c%body_b(k)
+        p = c%impulse(1, k)*c%tangent(:, k) + c%impulse(2, k)*c%normal(:, k)
+        bd%v(1:2, a) = bd%v(1:2, a) + bd%inv_mass(a)*p
+        bd%v(3, a) = bd%v(3, a) + bd%inv_inertia(a)*(c%impulse(1, k)*w%arm_at(k) + c%impulse(2, k)*w%arm_an(k))
+        bd%v(1:2, b) = bd%v(1:2, b) - bd%inv_mass(b)*p
+        bd%v(3, b) = bd%v(3, b) - bd%inv_inertia(b)*(c%impulse(1, k)*w%arm_bt(k) + c%impulse(2, k)*w%arm_bn(k))
+      end do
+    end associate
+  end subroutine model_apply_impulses
+
+end module voussoir_model

@@ -1,0 +1,302 @@
+!> Base motion of the shaking table.
+!>
+!> `afd`: the commanded sinusoid with attack, full and decay envelopes of
+!> shared/MEASURED_DATA.md, velocity and acceleration its exact derivatives.
+!> `record`: a measured table displacement record, low-pass filtered (zero-phase
+!> Butterworth), velocity and acceleration by central differences of the filtered record.
+!> `ramp`: no table motion; an inertial horizontal load whose acceleration grows at a
+!> constant rate (the quasi-static capacity test, in the frame of the table).
+module voussoir_motion
+  use voussoir_kinds, only: dp, pi
+  use voussoir_status, only: status_t, fail
+  implicit none
+  private
+
+  public :: motion_t, motion_afd, motion_ramp, motion_record, motion_eval, motion_duration_s
+  public :: waveform_afd, waveform_ramp, waveform_record
+
+  integer, parameter :: waveform_afd = 1, waveform_ramp = 2, waveform_record = 3
+
+  !> A table motion, ready to evaluate at any time.
+  type :: motion_t
+    integer :: waveform = waveform_afd
+    real(dp) :: frequency_hz = 0.0_dp
+    real(dp) :: amplitude_m = 0.0_dp
+    real(dp) :: t_attack_s = 0.0_dp, t_full_s = 0.0_dp, t_decay_s = 0.0_dp
+    real(dp) :: ramp_rate_m_s3 = 0.0_dp  !! d(load acceleration)/dt, towards +x if > 0
+    ! Record: filtered samples.
+    real(dp) :: dt_record_s = 0.0_dp
+    real(dp), allocatable :: x_m(:), v_m_s(:), a_m_s2(:)
+  end type motion_t
+
+contains
+
+  !> The commanded `afd` motion.
+  pure function motion_afd(frequency_hz, amplitude_m, n_attack, n_full, n_decay) result(m)
+    real(dp), intent(in) :: frequency_hz, amplitude_m
+    integer, intent(in) :: n_attack, n_full, n_decay
+    type(motion_t) :: m
+    m%waveform = waveform_afd
+    m%frequency_hz = frequency_hz
+    m%amplitude_m = amplitude_m
+    m%t_attack_s = n_attack/frequency_hz
+    m%t_full_s = n_full/frequency_hz
+    m%t_decay_s = n_decay/frequency_hz
+  end function motion_afd
+
+  !> The quasi-static ramp of horizontal load acceleration.
+  pure function motion_ramp(ramp_rate_m_s3) result(m)
+    real(dp), intent(in) :: ramp_rate_m_s3
+    type(motion_t) :: m
+    m%waveform = waveform_ramp
+    m%ramp_rate_m_s3 = ramp_rate_m_s3
+  end function motion_ramp
+
+  !> Length [s] of the motion itself (0 for the ramp, which has no end).
+  pure real(dp) function motion_duration_s(m)
+    type(motion_t), intent(in) :: m
+    select case (m%waveform)
+    case (waveform_afd)
+      motion_duration_s = m%t_attack_s + m%t_full_s + m%t_decay_s
+    case (waveform_record)
+      motion_duration_s = (size(m%x_m) - 1)*m%dt_record_s
+    case default
+      motion_duration_s = 0.0_dp
+    end select
+  end function motion_duration_s
+
+  !> Table displacement [m], velocity [m/s] and acceleration [m/s2] at time `t_s`. For
+  !> the ramp, x = v = 0 and `a` is the inertial load acceleration towards +x.
+  pure subroutine motion_eval(m, t_s, x, v, a)
+    type(motion_t), intent(in) :: m
+    real(dp), intent(in) :: t_s
+    real(dp), intent(out) :: x, v, a
+    real(dp) :: e, de, d2e, w, s, c, tau, f
+    integer :: i
+
+    x = 0.0_dp
+    v = 0.0_dp
+    a = 0.0_dp
+    select case (m%waveform)
+    case (waveform_afd)
+      if (t_s < 0.0_dp) return
+      if (t_s < m%t_attack_s) then
+        f = pi/m%t_attack_s
+        e = sin(0.5_dp*f*t_s)**2
+        de = 0.5_dp*f*sin(f*t_s)
+        d2e = 0.5_dp*f*f*cos(f*t_s)
+      else if (t_s < m%t_attack_s + m%t_full_s) then
+        e = 1.0_dp
+        de = 0.0_dp
+        d2e = 0.0_dp
+      else if (t_s < m%t_attack_s + m%t_full_s + m%t_decay_s) then
+        tau = t_s - m%t_attack_s - m%t_full_s
+        f = pi/m%t_decay_s
+        e = cos(0.5_dp*f*tau)**2
+        de = -0.5_dp*f*sin(f*tau)
+        d2e = -0.5_dp*f*f*cos(f*tau)
+      else
+        return
+      end if
+      w = 2.0_dp*pi*m%frequency_hz
+      s = sin(w*t_s)
+      c = cos(w*t_s)
+      x = m%amplitude_m*e*s
+      v = m%amplitude_m*(de*s + e*w*c)
+      a = m%amplitude_m*(d2e*s + 2.0_dp*de*w*c - e*w*w*s)
+    case (waveform_ramp)
+      a = m%ramp_rate_m_s3*max(t_s, 0.0_dp)
+    case (waveform_record)
+      if (t_s <= 0.0_dp) then
+        x = m%x_m(1)
+        return
+      end if
+      f = t_s/m%dt_record_s
+      i = int(f) + 1
+      if (i >= size(m%x_m)) then
+        x = m%x_m(size(m%x_m))
+        return
+      end if
+      f = f - (i - 1)
+      x = (1.0_dp - f)*m%x_m(i) + f*m%x_m(i + 1)
+      v = (1.0_dp - f)*m%v_m_s(i) + f*m%v_m_s(i + 1)
+      a = (1.0_dp - f)*m%a_m_s2(i) + f*m%a_m_s2(i + 1)
+    end select
+  end subroutine motion_eval
+
+  !> Read a measured table record (CSV with a header naming `t_s` and `table_x_m`; `#`
+  !> comment lines), low-pass filter it at `cutoff_hz` and differentiate it.
+  subroutine motion_record(path, cutoff_hz, m, status)
+    character(len=*), intent(in) :: path
+    real(dp), intent(in) :: cutoff_hz
+    type(motion_t), intent(out) :: m
+    type(status_t), intent(inout) :: status
+    real(dp), allocatable :: t(:), x(:)
+    real(dp) :: dt
+    integer :: n, i
+
+    call read_record_csv(path, t, x, status)
+    if (.not. status%ok) return
+    n = size(t)
+    if (n < 3) then
+      call fail(status, trim(path)//': a record needs at least 3 samples')
+      return
+    end if
+    dt = (t(n) - t(1))/(n - 1)
+    if (dt <= 0.0_dp) then
+      call fail(status, trim(path)//': t_s must increase')
+      return
+    end if
+    do i = 2, n
+      if (abs(t(i) - t(i - 1) - dt) > 1.0e-3_dp*dt) then
+        call fail(status, trim(path)//': t_s is not uniformly sampled')
+        return
+      end if
+    end do
+    m%waveform = waveform_record
+    m%dt_record_s = dt
+    x = x - x(1)
+    if (cutoff_hz > 0.0_dp .and. cutoff_hz < 0.5_dp/dt) call filtfilt_butter2(x, cutoff_hz*dt)
+    allocate (m%v_m_s(n), m%a_m_s2(n))
+    m%v_m_s(2:n - 1) = (x(3:n) - x(1:n - 2))/(2.0_dp*dt)
+    m%v_m_s(1) = (x(2) - x(1))/dt
+    m%v_m_s(n) = (x(n) - x(n - 1))/dt
+    m%a_m_s2(2:n - 1) = (x(3:n) - 2.0_dp*x(2:n - 1) + x(1:n - 2))/dt**2
+    m%a_m_s2(1) = 0.0_dp
+    m%a_m_s2(n) = 0.0_dp
+    call move_alloc(x, m%x_m)
+  end subroutine motion_record
+
+  !> Zero-phase second-order Butterworth low-pass (forward and backward) in place;
+  !> `fc` is the cut-off frequency times the sampling interval.
+  pure subroutine filtfilt_butter2(x, fc)
+    real(dp), intent(inout) :: x(:)
+    real(dp), intent(in) :: fc
+    real(dp) :: k, norm, b0, b1, b2, a1, a2, offset
+    k = tan(pi*fc)
+    norm = 1.0_dp/(1.0_dp + sqrt(2.0_dp)*k + k*k)
+    b0 = k*k*norm
+    b1 = 2.0_dp*b0
+    b2 = b0
+    a1 = 2.0_dp*(k*k - 1.0_dp)*norm
+    a2 = (1.0_dp - sqrt(2.0_dp)*k + k*k)*norm
+    offset = x(1)
+    x = x - offset
+    call pass(x)
+    x = x + offset
+    offset = x(size(x))
+    x = x(size(x):1:-1) - offset
+    call pass(x)
+    x = x(size(x):1:-1) + offset
+  contains
+    pure subroutine pass(y)
+      real(dp), intent(inout) :: y(:)
+      real(dp) :: x1, x2, y1, y2, x0
+      integer :: i
+      x1 = 0.0_dp; x2 = 0.0_dp; y1 = 0.0_dp; y2 = 0.0_dp
+      do i = 1, size(y)
+        x0 = y(i)
+        y(i) = b0*x0 + b1*x1 + b2*x2 - a1*y1 - a2*y2
+        x2 = x1; x1 = x0
+        y2 = y1; y1 = y(i)
+      end do
+    end subroutine pass
+  end subroutine filtfilt_butter2
+
+  !> The t_s and table_x_m columns of a record CSV.
+  subroutine read_record_csv(path, t, x, status)
+    character(len=*), intent(in) :: path
+    real(dp), allocatable, intent(out) :: t(:), x(:)
+    type(status_t), intent(inout) :: status
+    character(len=4096) :: line
+    character(len=512) :: iomsg
+    character(len=64), allocatable :: fields(:)
+    integer :: unit, ios, col_t, col_x, line_no, n, i
+    real(dp), allocatable :: values(:)
+    character(len=32) :: where
+
+    open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
+    if (ios /= 0) then
+      call fail(status, trim(path)//': cannot open record: '//trim(iomsg))
+      return
+    end if
+    col_t = 0
+    col_x = 0
+    line_no = 0
+    n = 0
+    allocate (t(1024), x(1024))
+    do
+      read (unit, '(a)', iostat=ios) line
+      if (ios /= 0) exit
+      line_no = line_no + 1
+      if (len_trim(line) == 0) cycle
+      if (adjustl(line(1:1)) == '#') cycle
+      call split_csv(line, fields)
+      if (col_t == 0) then
+        do i = 1, size(fields)
+          if (fields(i) == 't_s') col_t = i
+          if (fields(i) == 'table_x_m') col_x = i
+        end do
+        if (col_t == 0 .or. col_x == 0) then
+          write (where, '(a,i0)') ':', line_no
+          call fail(status, trim(path)//trim(where)//': header lacks t_s or table_x_m')
+          exit
+        end if
+        cycle
+      end if
+      allocate (values(2))
+      if (size(fields) < max(col_t, col_x)) then
+        ios = 1
+      else
+        read (fields(col_t), *, iostat=ios) values(1)
+        if (ios == 0) read (fields(col_x), *, iostat=ios) values(2)
+      end if
+      if (ios /= 0) then
+        write (where, '(a,i0)') ':', line_no
+        call fail(status, trim(path)//trim(where)//': t_s or table_x_m is not a number')
+        exit
+      end if
+      n = n + 1
+      if (n > size(t)) then
+        t = [t, t]
+        x = [x, x]
+      end if
+      t(n) = values(1)
+      x(n) = values(2)
+      deallocate (values)
+    end do
+    close (unit)
+    if (status%ok .and. col_t == 0) call fail(status, trim(path)//': empty record')
+    t = t(1:n)
+    x = x(1:n)
+  end subroutine read_record_csv
+
+  !> Split a CSV line at commas (no quoting in numeric records), trimming blanks and CR.
+  pure subroutine split_csv(line, fields)
+    character(len=*), intent(in) :: line
+    character(len=64), allocatable, intent(out) :: fields(:)
+    integer :: i, start, n, lt
+    lt = len_trim(line)
+    if (lt > 0) then
+      if (line(lt:lt) == achar(13)) lt = lt - 1
+    end if
+    n = 1
+    do i = 1, lt
+      if (line(i:i) == ',') n = n + 1
+    end do
+    allocate (fields(n))
+    n = 0
+    start = 1
+    do i = 1, lt + 1
+      if (i == lt + 1) then
+        n = n + 1
+        fields(n) = adjustl(line(start:lt))
+      else if (line(i:i) == ',') then
+        n = n + 1
+        fields(n) = adjustl(line(start:i - 1))
+        start = i + 1
+      end if
+    end do
+  end subroutine split_csv
+
+end module voussoir_motion

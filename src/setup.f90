@@ -1,0 +1,114 @@
+!> From a validated configuration to a model ready to run.
+module voussoir_setup
+  use voussoir_kinds, only: dp
+  use voussoir_status, only: status_t, fail
+  use voussoir_config, only: config_t
+  use voussoir_assembly, only: assembly_t, build_arch, read_polygon_file
+  use voussoir_bodies, only: bodies_t, bodies_init
+  use voussoir_model, only: model_t, solver_settings_t
+  use voussoir_motion, only: motion_afd, motion_ramp, motion_record, motion_duration_s
+  use voussoir_simulation, only: monitor_t, monitor_init, run_result_t, simulate
+  implicit none
+  private
+
+  public :: build_model, run_config, init_model, automatic_alert_m
+
+contains
+
+  !> The assembly, model and monitors that `cfg` describes, and the time to simulate.
+  subroutine build_model(cfg, assembly, model, mon, duration_s, status)
+    type(config_t), intent(in) :: cfg
+    type(assembly_t), intent(out) :: assembly
+    type(model_t), intent(out) :: model
+    type(monitor_t), intent(out) :: mon
+    real(dp), intent(out) :: duration_s
+    type(status_t), intent(inout) :: status
+    logical :: restrained(2)
+    type(solver_settings_t) :: settings
+
+    duration_s = 0.0_dp
+    associate (a => cfg%arch, m => cfg%motion, s => cfg%solver)
+      if (len_trim(a%polygon_file) > 0) then
+        call read_polygon_file(trim(a%polygon_file), assembly, status)
+        if (.not. status%ok) return
+        assembly%thickness_m = a%thickness_m
+      else
+        restrained = [a%restrained_springings == 'left' .or. a%restrained_springings == 'both', &
+                      a%restrained_springings == 'right' .or. a%restrained_springings == 'both']
+        call build_arch(a%embrace_deg, a%n_voussoirs, a%r_ext_m, a%thickness_m, assembly, restrained)
+      end if
+      settings%dt_s = s%dt_s
+      settings%theta = s%theta
+      settings%tol = s%tol
+      settings%max_iter = s%max_iter
+      settings%friction = a%friction
+      settings%contact_inset_m = a%contact_inset_m
+      settings%allow_nonconvergence = s%allow_nonconvergence
+      settings%alert_m = s%alert_m
+      call init_model(assembly, a%density_kg_m3, a%width_m, settings, model, status)
+      if (.not. status%ok) return
+
+      select case (m%waveform)
+      case ('afd')
+        model%motion = motion_afd(m%frequency_hz, m%amplitude_m, m%n_attack, m%n_full, m%n_decay)
+      case ('ramp')
+        model%motion = motion_ramp(m%ramp_rate_m_s3)
+      case ('record')
+        call motion_record(trim(m%record_file), m%record_cutoff_hz, model%motion, status)
+        if (.not. status%ok) return
+      case default
+        call fail(status, 'unknown waveform '//trim(m%waveform))
+        return
+      end select
+      duration_s = m%duration_s
+      if (duration_s == 0.0_dp) duration_s = motion_duration_s(model%motion) + m%rest_s
+      if (duration_s <= 0.0_dp) then
+        call fail(status, trim(cfg%source_file)//': nothing to simulate: set &motion rest_s or duration_s > 0')
+        return
+      end if
+    end associate
+    call monitor_init(assembly, model, cfg%output%collapse_drop_m, cfg%output%collapse_rotation_rad, &
+                      cfg%output%hinge_gap_m, mon)
+  end subroutine build_model
+
+  !> A model of `assembly` at rest with the given solver settings and no table motion
+  !> (set `model%motion` afterwards); an alert distance of 0 is made automatic.
+  subroutine init_model(assembly, density_kg_m3, width_m, settings, model, status)
+    type(assembly_t), intent(in) :: assembly
+    real(dp), intent(in) :: density_kg_m3, width_m
+    type(solver_settings_t), intent(in) :: settings
+    type(model_t), intent(out) :: model
+    type(status_t), intent(inout) :: status
+    call bodies_init(assembly, density_kg_m3, width_m, model%bodies, status)
+    if (.not. status%ok) return
+    model%solver = settings
+    if (settings%alert_m == 0.0_dp) model%solver%alert_m = automatic_alert_m(model%bodies)
+    allocate (model%pair_friction(0))
+  end subroutine init_model
+
+  !> Default alert distance: 4 % of the smallest free body's circumradius.
+  pure real(dp) function automatic_alert_m(bodies)
+    type(bodies_t), intent(in) :: bodies
+    integer :: i
+    automatic_alert_m = huge(1.0_dp)
+    do i = 1, bodies%n
+      if (.not. bodies%driven(i)) automatic_alert_m = min(automatic_alert_m, 0.04_dp*bodies%radius_m(i))
+    end do
+    if (automatic_alert_m == huge(1.0_dp)) automatic_alert_m = 1.0e-3_dp
+  end function automatic_alert_m
+
+  !> Build and run the simulation `cfg` describes.
+  subroutine run_config(cfg, assembly, model, res, status)
+    type(config_t), intent(in) :: cfg
+    type(assembly_t), intent(out) :: assembly
+    type(model_t), intent(out) :: model
+    type(run_result_t), intent(out) :: res
+    type(status_t), intent(inout) :: status
+    type(monitor_t) :: mon
+    real(dp) :: duration_s
+    call build_model(cfg, assembly, model, mon, duration_s, status)
+    if (.not. status%ok) return
+    call simulate(model, mon, duration_s, cfg%output%every, cfg%output%stop_after_collapse_s, res, status)
+  end subroutine run_config
+
+end module voussoir_setup

@@ -1,0 +1,180 @@
+!> Single blocks against closed-form answers (shared/DESIGN.md):
+!> a block on an incline sticks when tan(slope) <= mu and otherwise slides with
+!> a = g (sin - mu cos); a block of half-width b and half-height h starts to rock at a
+!> horizontal acceleration g b / h; in free rocking its amplitudes follow Housner's exact
+!> recursion cos(alpha - th_k+1) - cos(alpha) = r^2 (cos(alpha - th_k) - cos(alpha)) with
+!> r = 1 - 1.5 sin^2(alpha), alpha = atan(b / h).
+program test_block_physics
+  use voussoir_kinds, only: dp, pi, g_m_s2
+  use voussoir_status, only: status_t
+  use voussoir_assembly, only: assembly_t, polygon_t, role_voussoir, role_foundation
+  use voussoir_geometry, only: rotate2
+  use voussoir_model, only: model_t, model_step, solver_settings_t
+  use voussoir_motion, only: motion_ramp
+  use voussoir_setup, only: init_model
+  use voussoir_assert, only: assert_true, assert_close, assert_summary
+  implicit none
+
+  call incline(slope_deg=20.0_dp, mu=0.5_dp)
+  call incline(slope_deg=35.0_dp, mu=0.5_dp)
+  call incline(slope_deg=30.0_dp, mu=0.2_dp)
+  call uplift(half_width_m=0.1_dp, half_height_m=0.5_dp)
+  call uplift(half_width_m=0.15_dp, half_height_m=0.3_dp)
+  call free_rocking()
+  call assert_summary()
+
+contains
+
+  !> A rectangle (half sizes b, h) standing on its base centred at `base`, rotated by
+  !> `angle` about that point; vertices counter-clockwise.
+  function block(b, h, base, angle) result(p)
+    real(dp), intent(in) :: b, h, base(2), angle
+    type(polygon_t) :: p
+    real(dp) :: local(2, 4)
+    integer :: k
+    local = reshape([-b, 0.0_dp, b, 0.0_dp, b, 2*h, -b, 2*h], [2, 4])
+    allocate (p%xy(2, 4))
+    do k = 1, 4
+      p%xy(:, k) = base + rotate2(local(:, k), angle)
+    end do
+  end function block
+
+  !> An assembly of one free block on one driven ground polygon.
+  function two_bodies(free_block, ground) result(a)
+    type(polygon_t), intent(in) :: free_block, ground
+    type(assembly_t) :: a
+    a%n_bodies = 2
+    a%polygon = [free_block, ground]
+    a%driven = [.false., .true.]
+    a%role = [role_voussoir, role_foundation]
+  end function two_bodies
+
+  function settings(dt_s, mu) result(s)
+    real(dp), intent(in) :: dt_s, mu
+    type(solver_settings_t) :: s
+    s%dt_s = dt_s
+    s%friction = mu
+    s%tol = 1.0e-8_dp
+    s%max_iter = 5000
+  end function settings
+
+  subroutine incline(slope_deg, mu)
+    real(dp), intent(in) :: slope_deg, mu
+    type(model_t) :: model
+    type(status_t) :: status
+    type(polygon_t) :: ground
+    real(dp) :: alpha, length, t_end, along(2), start(2), s_m, a_expected, a_sim
+    character(len=64) :: label
+    integer :: k
+
+    alpha = slope_deg*pi/180.0_dp
+    length = 20.0_dp
+    ground%xy = reshape([0.0_dp, -1.0_dp, length*cos(alpha), -1.0_dp, &
+                         length*cos(alpha), length*sin(alpha), 0.0_dp, 0.0_dp], [2, 4])
+    along = [cos(alpha), sin(alpha)]
+    call init_model(two_bodies(block(0.2_dp, 0.05_dp, 0.5_dp*length*along, alpha), ground), &
+                    2000.0_dp, 1.0_dp, settings(1.0e-3_dp, mu), model, status)
+    call assert_true(status%ok, 'incline model builds')
+    start = model%bodies%q(1:2, 1)
+    t_end = 1.0_dp
+    do k = 1, nint(t_end/model%solver%dt_s)
+      call model_step(model, status)
+      if (.not. status%ok) exit
+    end do
+    call assert_true(status%ok, 'incline run: '//trim(status%message))
+    ! Distance travelled down the slope.
+    s_m = -dot_product(model%bodies%q(1:2, 1) - start, along)
+    write (label, '(a,f0.1,a,f0.2)') 'incline ', slope_deg, ' deg, mu ', mu
+    if (tan(alpha) <= mu) then
+      call assert_true(abs(s_m) < 1.0e-6_dp, trim(label)//': block sticks')
+    else
+      a_expected = g_m_s2*(sin(alpha) - mu*cos(alpha))
+      a_sim = 2.0_dp*s_m/t_end**2
+      call assert_close(a_sim, a_expected, trim(label)//': sliding acceleration [m/s2]', rtol=0.01_dp)
+      ! It slides without leaving the slope or turning.
+      call assert_true(abs(model%bodies%q(3, 1)) < 1.0e-6_dp, trim(label)//': no rotation while sliding')
+    end if
+  end subroutine incline
+
+  !> Slow ramp of horizontal load: the block tips when the load reaches g b / h.
+  subroutine uplift(half_width_m, half_height_m)
+    real(dp), intent(in) :: half_width_m, half_height_m
+    type(model_t) :: model
+    type(status_t) :: status
+    type(polygon_t) :: ground
+    real(dp), parameter :: rate_m_s3 = 0.05_dp
+    real(dp) :: lambda_sim
+    character(len=64) :: label
+    integer :: k
+
+    ground%xy = reshape([-2.0_dp, -0.5_dp, 2.0_dp, -0.5_dp, 2.0_dp, 0.0_dp, -2.0_dp, 0.0_dp], [2, 4])
+    call init_model(two_bodies(block(half_width_m, half_height_m, [0.0_dp, 0.0_dp], 0.0_dp), ground), &
+                    2000.0_dp, 1.0_dp, settings(1.0e-3_dp, 0.9_dp), model, status)
+    model%motion = motion_ramp(rate_m_s3)
+    lambda_sim = -1.0_dp
+    do k = 1, nint(2.0_dp*half_width_m/half_height_m*g_m_s2/rate_m_s3/model%solver%dt_s)
+      call model_step(model, status)
+      if (.not. status%ok) exit
+      if (abs(model%bodies%q(3, 1)) > 1.0e-5_dp) then
+        lambda_sim = rate_m_s3*model%t_s/g_m_s2
+        exit
+      end if
+    end do
+    write (label, '(a,f0.2,a,f0.2)') 'uplift of a block b = ', half_width_m, ', h = ', half_height_m
+    call assert_true(status%ok, trim(label)//': run '//trim(status%message))
+    call assert_close(lambda_sim, half_width_m/half_height_m, trim(label)//': uplift acceleration / g', &
+                      rtol=0.02_dp)
+  end subroutine uplift
+
+  !> Free rocking of a 0.2 m x 1.0 m block released at half its slenderness angle.
+  subroutine free_rocking()
+    real(dp), parameter :: b = 0.1_dp, h = 0.5_dp
+    type(model_t) :: model
+    type(status_t) :: status
+    type(polygon_t) :: ground
+    real(dp) :: alpha, r, theta0, expected(0:5), peak, previous_sign
+    real(dp) :: found(5)
+    integer :: k, n_found
+    character(len=48) :: label
+
+    alpha = atan(b/h)
+    theta0 = 0.5_dp*alpha
+    r = 1.0_dp - 1.5_dp*sin(alpha)**2
+    expected(0) = theta0
+    do k = 1, 5
+      expected(k) = alpha - acos(cos(alpha) + r**2*(cos(alpha - expected(k - 1)) - cos(alpha)))
+    end do
+
+    ground%xy = reshape([-2.0_dp, -0.5_dp, 2.0_dp, -0.5_dp, 2.0_dp, 0.0_dp, -2.0_dp, 0.0_dp], [2, 4])
+    ! Tilted by theta0 about its left corner (-b, 0).
+    call init_model(two_bodies(block(b, h, [-b + b*cos(theta0), b*sin(theta0)], theta0), ground), &
+                    2000.0_dp, 1.0_dp, settings(1.0e-4_dp, 0.8_dp), model, status)
+    n_found = 0
+    peak = 0.0_dp
+    previous_sign = 1.0_dp
+    do k = 1, 60000
+      call model_step(model, status)
+      if (.not. status%ok) exit
+      ! The reference configuration is the tilted one: add the initial tilt.
+      associate (th => theta0 + model%bodies%q(3, 1))
+        if (sign(1.0_dp, th) /= previous_sign .and. abs(th) > 1.0e-9_dp) then
+          ! An impact: the peak of the half cycle just ended is complete.
+          if (k > 1 .and. peak < 0.99_dp*theta0) then
+            n_found = n_found + 1
+            found(n_found) = peak
+            if (n_found == 5) exit
+          end if
+          previous_sign = sign(1.0_dp, th)
+          peak = 0.0_dp
+        end if
+        peak = max(peak, abs(th))
+      end associate
+    end do
+    call assert_true(status%ok .and. n_found == 5, 'free rocking: five half cycles found')
+    do k = 1, n_found
+      write (label, '(a,i0,a)') 'free rocking: peak ', k, ' [rad] (Housner)'
+      call assert_close(found(k), expected(k), trim(label), rtol=0.02_dp)
+    end do
+  end subroutine free_rocking
+
+end program test_block_physics
