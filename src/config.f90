@@ -50,7 +50,7 @@ module voussoir_config
     real(dp) :: dt_s = 1.0e-3_dp
     real(dp) :: theta = 0.5_dp
     real(dp) :: tol = 1.0e-4_dp
-    integer :: max_iter = 2000
+    integer :: max_iter = 10000
     real(dp) :: alert_m = 0.0_dp              !! 0: 2 % of the smallest free block
     logical :: allow_nonconvergence = .false.
   end type solver_config_t

@@ -21,7 +21,7 @@ module voussoir_model
     real(dp) :: dt_s = 1.0e-3_dp
     real(dp) :: theta = 0.5_dp
     real(dp) :: tol = 1.0e-4_dp
-    integer :: max_iter = 2000
+    integer :: max_iter = 10000
     real(dp) :: alert_m = 1.0e-3_dp
     real(dp) :: contact_inset_m = 0.0_dp
     real(dp) :: friction = 0.5_dp

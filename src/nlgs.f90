@@ -19,7 +19,6 @@ module voussoir_nlgs
     real(dp), allocatable :: w_tt(:), w_tn(:), w_nn(:), det(:)
     real(dp), allocatable :: arm_at(:), arm_an(:), arm_bt(:), arm_bn(:) !! cross(arm, t or n)
     real(dp), allocatable :: shift(:)  !! max(0, gap)/(theta h) [m/s]
-    integer, allocatable :: order(:)
     ! Warm start: the previous step's contacts sorted by candidate body.
     integer :: n_prev = 0
     integer, allocatable :: prev_first(:), prev_b(:), prev_slot(:)
@@ -40,13 +39,13 @@ contains
     if (allocated(work%w_tt)) then
       if (size(work%w_tt) < cap) deallocate (work%w_tt, work%w_tn, work%w_nn, work%det, &
                                              work%arm_at, work%arm_an, work%arm_bt, &
-                                             work%arm_bn, work%shift, work%order)
+                                             work%arm_bn, work%shift)
     end if
     if (.not. allocated(work%w_tt)) then
       cap = max(2*cap, 64)
       allocate (work%w_tt(cap), work%w_tn(cap), work%w_nn(cap), work%det(cap), &
                 work%arm_at(cap), work%arm_an(cap), work%arm_bt(cap), work%arm_bn(cap), &
-                work%shift(cap), work%order(cap))
+                work%shift(cap))
     end if
     do k = 1, set%n
       a = set%body_a(k)
@@ -63,7 +62,6 @@ contains
                      + bodies%inv_inertia(b)*work%arm_bt(k)*work%arm_bn(k)
       work%det(k) = work%w_tt(k)*work%w_nn(k) - work%w_tn(k)**2
       work%shift(k) = max(0.0_dp, set%gap_m(k))/h_theta_s
-      work%order(k) = k
     end do
   end subroutine nlgs_prepare
 
@@ -141,7 +139,7 @@ contains
     integer, intent(out) :: iterations
     real(dp), intent(out) :: norm
     logical, intent(out) :: converged
-    integer :: it, i, k, a, b, first, last, stride
+    integer :: it, k, a, b
     real(dp) :: u_t, u_n, r_old(2), r_new(2), dr(2), sum_change, sum_energy
     real(dp) :: ima, imb, iia, iib
 
@@ -151,16 +149,9 @@ contains
     if (set%n == 0) return
     converged = .false.
     do it = 1, max_iter
-      ! Alternate the sweep direction: symmetric Gauss-Seidel converges faster on chains.
-      if (modulo(it, 2) == 1) then
-        first = 1; last = set%n; stride = 1
-      else
-        first = set%n; last = 1; stride = -1
-      end if
       sum_change = 0.0_dp
       sum_energy = 0.0_dp
-      do i = first, last, stride
-        k = work%order(i)
+      do k = 1, set%n
         a = set%body_a(k)
         b = set%body_b(k)
         associate (t => set%tangent(:, k), n => set%normal(:, k))

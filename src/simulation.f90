@@ -114,7 +114,7 @@ contains
     call system_clock(clock0, rate)
     nb = model%bodies%n
     n_steps = max(1, nint(duration_s/model%solver%dt_s))
-    n_samples = n_steps/every + 1
+    n_samples = n_steps/every + 2  ! t = 0, every multiple of `every`, and the last step
     allocate (res%time_s(n_samples), res%table(3, n_samples), res%crown(2, n_samples), &
               res%q(3, nb, n_samples), res%contact_count(n_samples), res%step_time_s(n_steps), &
               res%step_norm(n_steps), res%step_iterations(n_steps), res%hinge_time_s(16), &
