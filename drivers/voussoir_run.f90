@@ -2,6 +2,7 @@
 !> motion; writes one HDF5 file and prints a one-line summary whose first word is
 !> `stood` or `collapsed`.
 program voussoir_run
+  use, intrinsic :: iso_fortran_env, only: error_unit
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t
   use voussoir_config, only: config_t, read_config
@@ -19,16 +20,16 @@ program voussoir_run
   character(len=1024) :: path
 
   if (command_argument_count() /= 1) then
-    write (*, '(a)') 'usage: voussoir-run FILE.nml'
-    error stop 2
+    write (error_unit, '(a)') 'usage: voussoir-run FILE.nml'
+    stop 2, quiet=.true.
   end if
   call get_command_argument(1, path)
   call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output'], cfg, status)
   if (status%ok) call run_config(cfg, assembly, model, res, status)
   if (status%ok) call write_run_file(cfg, assembly, model, res, status)
   if (.not. status%ok) then
-    write (*, '(a)') 'voussoir-run: error: '//trim(status%message)
-    error stop 1
+    write (error_unit, '(a)') 'voussoir-run: error: '//trim(status%message)
+    stop 1, quiet=.true.
   end if
   if (res%collapsed) then
     write (*, '(a,f0.3,a)', advance='no') 'collapsed at ', res%collapse_time_s, ' s;'

@@ -26,6 +26,8 @@ module voussoir_bodies
     integer, allocatable :: n_vertices(:)
     real(dp), allocatable :: vertex_local(:, :, :) !! (2, max_vertices, n) about the centroid
     real(dp), allocatable :: vertex(:, :, :)       !! (2, max_vertices, n) world, current
+    real(dp), allocatable :: face_normal_local(:, :, :) !! (2, max_vertices, n) outward, reference
+    real(dp), allocatable :: face_normal(:, :, :)       !! (2, max_vertices, n) outward, current
     real(dp), allocatable :: radius_m(:)           !! farthest vertex from the centroid
   end type bodies_t
 
@@ -38,8 +40,8 @@ contains
     real(dp), intent(in) :: density_kg_m3, width_m
     type(bodies_t), intent(out) :: bodies
     type(status_t), intent(inout) :: status
-    integer :: i, nv, n
-    real(dp) :: area, c(2)
+    integer :: i, nv, n, k
+    real(dp) :: area, c(2), e(2)
 
     n = assembly%n_bodies
     bodies%n = n
@@ -51,7 +53,10 @@ contains
               bodies%inertia_kg_m2(n), bodies%inv_mass(n), bodies%inv_inertia(n), &
               bodies%driven(n), bodies%role(n), bodies%n_vertices(n), &
               bodies%vertex_local(2, bodies%max_vertices, n), &
-              bodies%vertex(2, bodies%max_vertices, n), bodies%radius_m(n))
+              bodies%vertex(2, bodies%max_vertices, n), bodies%radius_m(n), &
+              bodies%face_normal_local(2, bodies%max_vertices, n), &
+              bodies%face_normal(2, bodies%max_vertices, n))
+    bodies%face_normal_local = 0.0_dp
     bodies%vertex_local = 0.0_dp
     bodies%v = 0.0_dp
     do i = 1, n
@@ -66,6 +71,10 @@ contains
         bodies%n_vertices(i) = nv
         bodies%vertex_local(:, 1:nv, i) = xy - spread(c, 2, nv)
         bodies%radius_m(i) = maxval(norm2(bodies%vertex_local(:, 1:nv, i), dim=1))
+        do k = 1, nv
+          e = xy(:, modulo(k, nv) + 1) - xy(:, k)
+          bodies%face_normal_local(:, k, i) = [e(2), -e(1)]/norm2(e)
+        end do
         bodies%q(:, i) = [c(1), c(2), 0.0_dp]
         bodies%mass_kg(i) = density_kg_m3*width_m*area
         bodies%inertia_kg_m2(i) = density_kg_m3*width_m*polygon_polar_moment(xy)
@@ -84,7 +93,7 @@ contains
     call update_world_vertices(bodies, bodies%q)
   end subroutine bodies_init
 
-  !> World coordinates of every vertex for the configuration `q` (3, n).
+  !> World coordinates of every vertex and face normal for the configuration `q` (3, n).
   pure subroutine update_world_vertices(bodies, q)
     type(bodies_t), intent(inout) :: bodies
     real(dp), intent(in) :: q(:, :)
@@ -97,6 +106,10 @@ contains
         associate (p => bodies%vertex_local(:, k, i))
           bodies%vertex(1, k, i) = q(1, i) + c*p(1) - s*p(2)
           bodies%vertex(2, k, i) = q(2, i) + s*p(1) + c*p(2)
+        end associate
+        associate (p => bodies%face_normal_local(:, k, i))
+          bodies%face_normal(1, k, i) = c*p(1) - s*p(2)
+          bodies%face_normal(2, k, i) = s*p(1) + c*p(2)
         end associate
       end do
     end do

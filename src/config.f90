@@ -177,13 +177,36 @@ contains
       if (ios == iostat_end) then
         ios = 0   ! group absent: defaults
       else if (ios /= 0) then
-        call fail(status, trim(path)//': in namelist group &'//name//': '//trim(iomsg))
+        call fail(status, trim(path)//': in namelist group &'//name//': '//trim(iomsg)// &
+                  '. The variables of &'//name//' are: '//group_variables(name))
         close (unit)
         group_ok = .false.
       end if
     end function group_ok
 
   end subroutine read_config
+
+  !> The variables of a group with their types and units, for error messages.
+  function group_variables(name) result(text)
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: text
+    select case (name)
+    case ('arch')
+      text = 'embrace_deg (real, deg), n_voussoirs (integer), r_ext_m, thickness_m, width_m (real, m), '// &
+             'density_kg_m3 (real), friction (real), contact_inset_m (real, m), '// &
+             "restrained_springings ('none'|'left'|'right'|'both'), polygon_file (text)"
+    case ('motion')
+      text = "waveform ('afd'|'ramp'|'record'), frequency_hz (real), amplitude_m (real), n_attack, n_full, "// &
+             'n_decay (integer), record_file (text), record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s (real)'
+    case ('solver')
+      text = 'dt_s, theta, tol (real), max_iter (integer), alert_m (real, m), allow_nonconvergence (logical)'
+    case ('output')
+      text = 'file (text), every (integer), hinge_gap_m, collapse_drop_m, collapse_rotation_rad, '// &
+             'stop_after_collapse_s (real)'
+    case default
+      text = '(see the documentation)'
+    end select
+  end function group_variables
 
   !> Fail if `path` has a namelist group not in `allowed` (names without '&').
   subroutine check_groups(path, allowed, status)
@@ -367,13 +390,31 @@ contains
 
   end subroutine validate_config
 
-  !> Shortest readable text of a real.
+  !> Short readable text of a real: plain decimals for ordinary magnitudes, else
+  !> scientific notation.
   function fmt_real(x) result(text)
     real(dp), intent(in) :: x
     character(len=:), allocatable :: text
-    character(len=32) :: buf
-    write (buf, '(g0.8)') x
-    text = trim(adjustl(buf))
+    character(len=40) :: buf
+    integer :: k
+    if (x == 0.0_dp) then
+      text = '0'
+      return
+    end if
+    if (abs(x) >= 1.0e-4_dp .and. abs(x) < 1.0e9_dp) then
+      write (buf, '(f0.9)') x
+      k = len_trim(buf)
+      do while (buf(k:k) == '0')
+        k = k - 1
+      end do
+      if (buf(k:k) == '.') k = k - 1
+      text = buf(:k)
+      if (text(1:1) == '.') text = '0'//text
+      if (text(1:2) == '-.') text = '-0'//text(2:)
+    else
+      write (buf, '(es12.5)') x
+      text = trim(adjustl(buf))
+    end if
   end function fmt_real
 
   !> Every setting of `cfg`, defaults included, in group order.

@@ -32,7 +32,10 @@ module voussoir_contacts
     real(dp), allocatable :: gap_m(:)
     real(dp), allocatable :: friction(:)
     real(dp), allocatable :: impulse(:, :)               !! (2, n) [N s], (tangent, normal)
-    ! Work arrays of the broad phase.
+    ! The broad phase's pair list, the configuration it was built for, and its work arrays.
+    integer :: n_pairs = 0
+    integer, allocatable :: pairs(:, :)
+    real(dp), allocatable :: q_pairs(:, :)
     integer, allocatable :: cell_start(:), cell_body(:), body_cell(:, :)
   end type contact_set_t
 
@@ -84,23 +87,104 @@ contains
 
   !> All contact points within `alert_m` for the current world vertices of `bodies`
   !> (the caller has set them to the predicted configuration `q`).
+  !>
+  !> The broad phase keeps a list of the pairs whose boxes, grown by `alert_m` plus a
+  !> margin of `alert_m`, overlap (a Verlet list); it is rebuilt only once some body has
+  !> moved by more than half the margin since, so most steps run the narrow phase only.
   subroutine detect_contacts(bodies, q, alert_m, inset_m, default_friction, pair_friction, set)
     type(bodies_t), intent(in) :: bodies
     real(dp), intent(in) :: q(:, :)           !! (3, n) configuration of the vertices
     real(dp), intent(in) :: alert_m, inset_m, default_friction
     type(pair_friction_t), intent(in) :: pair_friction(:)
     type(contact_set_t), intent(inout) :: set
-    real(dp) :: box(4, bodies%n), lo(2), cell_m
-    integer :: nx, ny, i, j, ix, iy, jx, jy, c, k, nb, n_cells
+    integer :: p, nb
+    real(dp) :: moved_m
 
     nb = bodies%n
     set%n = 0
     call reserve(set, 4*nb)
+    if (.not. allocated(set%q_pairs)) then
+      moved_m = huge(1.0_dp)
+    else if (size(set%q_pairs, 2) /= nb) then
+      moved_m = huge(1.0_dp)
+    else
+      moved_m = maxval(abs(q(1, :) - set%q_pairs(1, :)) + abs(q(2, :) - set%q_pairs(2, :)) &
+                       + bodies%radius_m*abs(q(3, :) - set%q_pairs(3, :)))
+    end if
+    if (moved_m > 0.5_dp*alert_m) then
+      call broad_phase(bodies, 2.0_dp*alert_m, set)
+      set%q_pairs = q
+    end if
+    do p = 1, set%n_pairs
+      call add_pair(set%pairs(1, p), set%pairs(2, p))
+    end do
+
+  contains
+
+    subroutine add_pair(i, j)
+      integer, intent(in) :: i, j
+      integer :: n_points, a, b, p, m
+      real(dp) :: points(2, 2), gaps(2), normal(2)
+      logical :: i_is_candidate
+      real(dp) :: mu
+
+      associate (ni => bodies%n_vertices(i), nj => bodies%n_vertices(j))
+        call polygon_contact_normals(bodies%vertex(:, 1:ni, i), bodies%face_normal(:, 1:ni, i), &
+                                     bodies%vertex(:, 1:nj, j), bodies%face_normal(:, 1:nj, j), &
+                                     alert_m, inset_m, n_points, points, gaps, normal, i_is_candidate)
+      end associate
+      if (n_points == 0) return
+      if (i_is_candidate) then
+        a = i
+        b = j
+      else
+        a = j
+        b = i
+      end if
+      mu = default_friction
+      do m = 1, size(pair_friction)
+        if ((pair_friction(m)%body_a == a .and. pair_friction(m)%body_b == b) .or. &
+            (pair_friction(m)%body_a == b .and. pair_friction(m)%body_b == a)) &
+          mu = pair_friction(m)%friction
+      end do
+      call reserve(set, set%n + 2)
+      do p = 1, 2
+        if (gaps(p) > alert_m) cycle
+        if (p == 2 .and. n_points == 1) cycle
+        set%n = set%n + 1
+        m = set%n
+        set%body_a(m) = a
+        set%body_b(m) = b
+        set%slot(m) = p
+        set%normal(:, m) = normal
+        set%tangent(:, m) = [-normal(2), normal(1)]
+        set%point(:, m) = points(:, p)
+        set%arm_a(:, m) = points(:, p) - q(1:2, a)
+        set%arm_b(:, m) = points(:, p) - q(1:2, b)
+        set%gap_m(m) = gaps(p)
+        set%friction(m) = mu
+        set%impulse(:, m) = 0.0_dp
+      end do
+    end subroutine add_pair
+
+  end subroutine detect_contacts
+
+  !> Pairs of bodies (not both driven) whose boxes grown by `reach_m` overlap, found
+  !> with a uniform cell grid whose cell is at least the largest box.
+  subroutine broad_phase(bodies, reach_m, set)
+    type(bodies_t), intent(in) :: bodies
+    real(dp), intent(in) :: reach_m
+    type(contact_set_t), intent(inout) :: set
+    real(dp) :: box(4, bodies%n), lo(2), cell_m
+    integer :: nx, ny, i, j, ix, iy, jx, jy, c, k, nb, n_cells
+
+    nb = bodies%n
+    set%n_pairs = 0
     do i = 1, nb
       associate (vx => bodies%vertex(1, 1:bodies%n_vertices(i), i), &
                  vy => bodies%vertex(2, 1:bodies%n_vertices(i), i))
         box(:, i) = [minval(vx), minval(vy), maxval(vx), maxval(vy)] &
-                    + [-0.5_dp, -0.5_dp, 0.5_dp, 0.5_dp]*alert_m
+                    + [-0.5_dp, -0.5_dp, 0.5_dp, 0.5_dp]*reach_m
       end associate
     end do
     lo = [minval(box(1, :)), minval(box(2, :))]
@@ -150,63 +234,30 @@ contains
           c = jx + nx*jy + 1
           do k = set%cell_start(c), set%cell_start(c + 1) - 1
             j = set%cell_body(k)
-            if (j <= i) cycle
+            if (j == i) cycle
             if (bodies%driven(i) .and. bodies%driven(j)) cycle
             if (box(1, i) > box(3, j) .or. box(1, j) > box(3, i)) cycle
             if (box(2, i) > box(4, j) .or. box(2, j) > box(4, i)) cycle
-            call add_pair(i, j)
+            if (j < i) cycle
+            call push_pair(min(i, j), max(i, j))
           end do
         end do
       end do
     end do
-
   contains
-
-    subroutine add_pair(i, j)
+    subroutine push_pair(i, j)
       integer, intent(in) :: i, j
-      integer :: n_points, a, b, p, m
-      real(dp) :: points(2, 2), gaps(2), normal(2)
-      logical :: i_is_candidate
-      real(dp) :: mu
-
-      call polygon_contact(bodies%vertex(:, 1:bodies%n_vertices(i), i), &
-                           bodies%vertex(:, 1:bodies%n_vertices(j), j), alert_m, inset_m, &
-                           n_points, points, gaps, normal, i_is_candidate)
-      if (n_points == 0) return
-      if (i_is_candidate) then
-        a = i
-        b = j
-      else
-        a = j
-        b = i
+      integer, allocatable :: grown(:, :)
+      if (.not. allocated(set%pairs)) allocate (set%pairs(2, 4*nb + 16))
+      if (set%n_pairs == size(set%pairs, 2)) then
+        allocate (grown(2, 2*size(set%pairs, 2)))
+        grown(:, 1:set%n_pairs) = set%pairs(:, 1:set%n_pairs)
+        call move_alloc(grown, set%pairs)
       end if
-      mu = default_friction
-      do m = 1, size(pair_friction)
-        if ((pair_friction(m)%body_a == a .and. pair_friction(m)%body_b == b) .or. &
-            (pair_friction(m)%body_a == b .and. pair_friction(m)%body_b == a)) &
-          mu = pair_friction(m)%friction
-      end do
-      call reserve(set, set%n + 2)
-      do p = 1, 2
-        if (gaps(p) > alert_m) cycle
-        if (p == 2 .and. n_points == 1) cycle
-        set%n = set%n + 1
-        m = set%n
-        set%body_a(m) = a
-        set%body_b(m) = b
-        set%slot(m) = p
-        set%normal(:, m) = normal
-        set%tangent(:, m) = [-normal(2), normal(1)]
-        set%point(:, m) = points(:, p)
-        set%arm_a(:, m) = points(:, p) - q(1:2, a)
-        set%arm_b(:, m) = points(:, p) - q(1:2, b)
-        set%gap_m(m) = gaps(p)
-        set%friction(m) = mu
-        set%impulse(:, m) = 0.0_dp
-      end do
-    end subroutine add_pair
-
-  end subroutine detect_contacts
+      set%n_pairs = set%n_pairs + 1
+      set%pairs(:, set%n_pairs) = [i, j]
+    end subroutine push_pair
+  end subroutine broad_phase
 
   !> Face-to-face contact of two convex polygons `pa`, `pb` (2, n) counter-clockwise.
   !>
@@ -221,6 +272,22 @@ contains
     integer, intent(out) :: n_points
     real(dp), intent(out) :: points(2, 2), gaps(2), normal(2)
     logical, intent(out) :: a_is_candidate
+    real(dp), allocatable :: na(:, :), nb(:, :)
+    allocate (na(2, size(pa, 2)), nb(2, size(pb, 2)))
+    call face_normals(pa, na)
+    call face_normals(pb, nb)
+    call polygon_contact_normals(pa, na, pb, nb, alert_m, inset_m, n_points, points, gaps, normal, &
+                                 a_is_candidate)
+  end subroutine polygon_contact
+
+  !> `polygon_contact` with the outward unit normals of the faces given (face k runs
+  !> from vertex k to vertex k+1).
+  pure subroutine polygon_contact_normals(pa, na, pb, nb, alert_m, inset_m, n_points, points, gaps, &
+                                          normal, a_is_candidate)
+    real(dp), intent(in) :: pa(:, :), na(:, :), pb(:, :), nb(:, :), alert_m, inset_m
+    integer, intent(out) :: n_points
+    real(dp), intent(out) :: points(2, 2), gaps(2), normal(2)
+    logical, intent(out) :: a_is_candidate
     real(dp) :: sep_a, sep_b
     integer :: face_a, face_b
 
@@ -229,23 +296,23 @@ contains
     gaps = huge(1.0_dp)
     normal = 0.0_dp
     a_is_candidate = .true.
-    call max_separation(pa, pb, sep_a, face_a)
+    call max_separation(pa, na, pb, alert_m, sep_a, face_a)
     if (sep_a > alert_m) return
-    call max_separation(pb, pa, sep_b, face_b)
+    call max_separation(pb, nb, pa, alert_m, sep_b, face_b)
     if (sep_b > alert_m) return
     ! Prefer the face of b as reference unless a's face separates clearly more, so that
     ! the choice does not flip between parallel faces from one step to the next.
     if (sep_a > sep_b + 1.0e-3_dp*alert_m) then
       a_is_candidate = .false.
-      call clip(pb, pa, face_a, inset_m, n_points, points, gaps, normal)
+      call clip(pb, pa, na, face_a, inset_m, n_points, points, gaps, normal)
     else
-      call clip(pa, pb, face_b, inset_m, n_points, points, gaps, normal)
+      call clip(pa, pb, nb, face_b, inset_m, n_points, points, gaps, normal)
     end if
-  end subroutine polygon_contact
+  end subroutine polygon_contact_normals
 
   !> Contact points of the incident face of `cand` on face `ref_face` of `ref`.
-  pure subroutine clip(cand, ref, ref_face, inset_m, n_points, points, gaps, normal)
-    real(dp), intent(in) :: cand(:, :), ref(:, :), inset_m
+  pure subroutine clip(cand, ref, ref_normals, ref_face, inset_m, n_points, points, gaps, normal)
+    real(dp), intent(in) :: cand(:, :), ref(:, :), ref_normals(:, :), inset_m
     integer, intent(in) :: ref_face
     integer, intent(inout) :: n_points
     real(dp), intent(inout) :: points(2, 2), gaps(2), normal(2)
@@ -258,9 +325,9 @@ contains
     r1 = ref(:, ref_face)
     r2 = ref(:, modulo(ref_face, nr) + 1)
     t = r2 - r1
-    len_ref = norm2(t)
-    t = t/len_ref
-    normal = [t(2), -t(1)]
+    normal = ref_normals(:, ref_face)
+    t = [-normal(2), normal(1)]
+    len_ref = dot_product(r2 - r1, t)
     ! Incident face: the candidate's face most opposed to the normal.
     best = huge(1.0_dp)
     inc = 1
@@ -307,28 +374,40 @@ contains
     gaps(2) = dot_product(points(:, 2) - r1, normal)
   end subroutine clip
 
-  !> Largest separation of `q`'s vertices from a face of `p` (separating-axis test):
-  !> for every face of p, the smallest signed distance of q's vertices along the face's
-  !> outward normal; the largest of these over p's faces, and that face.
-  pure subroutine max_separation(p, q, separation, face)
-    real(dp), intent(in) :: p(:, :), q(:, :)
-    real(dp), intent(out) :: separation
-    integer, intent(out) :: face
-    real(dp) :: e(2), n(2), s
-    integer :: i, k, np
+  !> Outward unit normals of the faces of a counter-clockwise polygon.
+  pure subroutine face_normals(p, normals)
+    real(dp), intent(in) :: p(:, :)
+    real(dp), intent(out) :: normals(:, :)
+    real(dp) :: e(2)
+    integer :: i, np
     np = size(p, 2)
-    separation = -huge(1.0_dp)
-    face = 1
     do i = 1, np
       e = p(:, modulo(i, np) + 1) - p(:, i)
-      n = [e(2), -e(1)]/norm2(e)
+      normals(:, i) = [e(2), -e(1)]/norm2(e)
+    end do
+  end subroutine face_normals
+
+  !> Largest separation of `q`'s vertices from a face of `p` (separating-axis test):
+  !> for every face of p, the smallest signed distance of q's vertices along the face's
+  !> outward normal; the largest of these over p's faces, and that face. Stops as soon
+  !> as a face separates by more than `alert_m`.
+  pure subroutine max_separation(p, normals, q, alert_m, separation, face)
+    real(dp), intent(in) :: p(:, :), normals(:, :), q(:, :), alert_m
+    real(dp), intent(out) :: separation
+    integer, intent(out) :: face
+    real(dp) :: s
+    integer :: i, k
+    separation = -huge(1.0_dp)
+    face = 1
+    do i = 1, size(p, 2)
       s = huge(1.0_dp)
       do k = 1, size(q, 2)
-        s = min(s, n(1)*(q(1, k) - p(1, i)) + n(2)*(q(2, k) - p(2, i)))
+        s = min(s, normals(1, i)*(q(1, k) - p(1, i)) + normals(2, i)*(q(2, k) - p(2, i)))
       end do
       if (s > separation) then
         separation = s
         face = i
+        if (s > alert_m) return
       end if
     end do
   end subroutine max_separation

@@ -9,7 +9,8 @@ module voussoir_model
   use voussoir_status, only: status_t, fail
   use voussoir_bodies, only: bodies_t, update_world_vertices
   use voussoir_contacts, only: contact_set_t, detect_contacts, pair_friction_t
-  use voussoir_nlgs, only: nlgs_work_t, nlgs_prepare, nlgs_solve, warm_start
+  use voussoir_nlgs, only: nlgs_work_t, nlgs_prepare, nlgs_solve, warm_start, i_arm_at, i_arm_an, &
+                           i_arm_bt, i_arm_bn
   use voussoir_motion, only: motion_t, motion_eval, waveform_ramp
   implicit none
   private
@@ -85,25 +86,24 @@ contains
       call warm_start(model%work, model%contacts, nb, remember=.false.)
       b%v = model%v_free
       call model_apply_impulses(model)
-      call nlgs_solve(b, model%contacts, model%work, b%v, model%solver%tol, model%solver%max_iter, &
+      call nlgs_solve(model%contacts, model%work, b%v, model%solver%tol, model%solver%max_iter, &
                       model%iterations, model%norm, model%converged)
       call warm_start(model%work, model%contacts, nb, remember=.true.)
     end associate
 
     model%step = model%step + 1
-    write (where, '(a,i0,a,es12.5,a)') 'step ', model%step, ' (t = ', model%t_s + h, ' s)'
     if (.not. (model%norm == model%norm) .or. any(.not. (model%bodies%v == model%bodies%v))) then
-      call fail(status, 'NaN in the contact solve at '//trim(where))
+      call fail(status, 'NaN in the contact solve at '//where_now())
       return
     end if
     if (maxval(abs(model%bodies%v)) > 1.0e6_dp) then
-      call fail(status, 'divergence (velocity above 1e6) at '//trim(where))
+      call fail(status, 'divergence (velocity above 1e6 m/s) at '//where_now())
       return
     end if
     if (.not. model%converged) then
       model%nonconverged_steps = model%nonconverged_steps + 1
       if (.not. model%solver%allow_nonconvergence) then
-        write (where, '(a,a,i0,a,es10.3,a,es10.3)') trim(where), ': ', model%iterations, &
+        write (where, '(a,a,i0,a,es10.3,a,es10.3)') where_now(), ': ', model%iterations, &
           ' iterations, norm ', model%norm, ' > tol ', model%solver%tol
         call fail(status, 'NLGS did not converge at '//trim(where)// &
                   ' (raise max_iter or set allow_nonconvergence = .true. in &solver)')
@@ -115,6 +115,16 @@ contains
     model%t_s = model%t_s + h
     model%table = [x1, v1, a1]
     if (model%motion%waveform == waveform_ramp) model%table = [0.0_dp, 0.0_dp, a1]
+
+  contains
+
+    !> Where the step is, for messages (formatted only when one is needed).
+    function where_now() result(text)
+      character(len=:), allocatable :: text
+      character(len=64) :: buf
+      write (buf, '(a,i0,a,es12.5,a)') 'step ', model%step, ' (t = ', model%t_s + h, ' s)'
+      text = trim(buf)
+    end function where_now
   end subroutine model_step
 
   !> Velocities of the free bodies plus the effect of the impulses held in the contacts.
@@ -129,9 +139,9 @@ contains
         b = c%body_b(k)
         p = c%impulse(1, k)*c%tangent(:, k) + c%impulse(2, k)*c%normal(:, k)
         bd%v(1:2, a) = bd%v(1:2, a) + bd%inv_mass(a)*p
-        bd%v(3, a) = bd%v(3, a) + bd%inv_inertia(a)*(c%impulse(1, k)*w%arm_at(k) + c%impulse(2, k)*w%arm_an(k))
+        bd%v(3, a) = bd%v(3, a) + bd%inv_inertia(a)*(c%impulse(1, k)*w%data(i_arm_at, k) + c%impulse(2, k)*w%data(i_arm_an, k))
         bd%v(1:2, b) = bd%v(1:2, b) - bd%inv_mass(b)*p
-        bd%v(3, b) = bd%v(3, b) - bd%inv_inertia(b)*(c%impulse(1, k)*w%arm_bt(k) + c%impulse(2, k)*w%arm_bn(k))
+        bd%v(3, b) = bd%v(3, b) - bd%inv_inertia(b)*(c%impulse(1, k)*w%data(i_arm_bt, k) + c%impulse(2, k)*w%data(i_arm_bn, k))
       end do
     end associate
   end subroutine model_apply_impulses

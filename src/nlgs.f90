@@ -14,11 +14,18 @@ module voussoir_nlgs
 
   public :: nlgs_work_t, nlgs_prepare, nlgs_solve, coulomb_local, warm_start
 
-  !> Per-contact data of the solve: Delassus blocks, lever arms and the gap shift.
+  ! Rows of the packed per-contact data: tangent, normal, cross(arm, t or n) of bodies a
+  ! and b, the Delassus block and its determinant, the gap shift max(0, gap)/(theta h)
+  ! [m/s], the friction coefficient and the inverse masses and inertias of a and b.
+  integer, parameter, public :: i_t = 1, i_n = 3, i_arm_at = 5, i_arm_an = 6, i_arm_bt = 7, &
+                                i_arm_bn = 8, i_w_tt = 9, i_w_tn = 10, i_w_nn = 11, i_det = 12, &
+                                i_shift = 13, i_mu = 14, i_ima = 15, i_iia = 16, i_imb = 17, &
+                                i_iib = 18, n_rows = 18
+
+  !> Per-contact data of the solve, packed contact by contact for the hot loop.
   type :: nlgs_work_t
-    real(dp), allocatable :: w_tt(:), w_tn(:), w_nn(:), det(:)
-    real(dp), allocatable :: arm_at(:), arm_an(:), arm_bt(:), arm_bn(:) !! cross(arm, t or n)
-    real(dp), allocatable :: shift(:)  !! max(0, gap)/(theta h) [m/s]
+    real(dp), allocatable :: data(:, :)   !! (n_rows, capacity)
+    integer, allocatable :: pair(:, :)    !! (2, capacity) bodies a and b
     ! Warm start: the previous step's contacts sorted by candidate body.
     integer :: n_prev = 0
     integer, allocatable :: prev_first(:), prev_b(:), prev_slot(:)
@@ -33,40 +40,59 @@ contains
     type(contact_set_t), intent(in) :: set
     real(dp), intent(in) :: h_theta_s   !! theta times the time step [s]
     type(nlgs_work_t), intent(inout) :: work
-    integer :: k, a, b, cap
+    integer :: k, a, b
+    real(dp) :: at, an, bt, bn, ima, iia, imb, iib, w_tt, w_tn, w_nn
 
-    cap = max(set%n, 1)
-    if (allocated(work%w_tt)) then
-      if (size(work%w_tt) < cap) deallocate (work%w_tt, work%w_tn, work%w_nn, work%det, &
-                                             work%arm_at, work%arm_an, work%arm_bt, &
-                                             work%arm_bn, work%shift)
+    if (allocated(work%data)) then
+      if (size(work%data, 2) < set%n) deallocate (work%data, work%pair)
     end if
-    if (.not. allocated(work%w_tt)) then
-      cap = max(2*cap, 64)
-      allocate (work%w_tt(cap), work%w_tn(cap), work%w_nn(cap), work%det(cap), &
-                work%arm_at(cap), work%arm_an(cap), work%arm_bt(cap), work%arm_bn(cap), &
-                work%shift(cap))
-    end if
+    if (.not. allocated(work%data)) allocate (work%data(n_rows, max(64, 2*set%n)), &
+                                              work%pair(2, max(64, 2*set%n)))
     do k = 1, set%n
       a = set%body_a(k)
       b = set%body_b(k)
-      work%arm_at(k) = cross2(set%arm_a(:, k), set%tangent(:, k))
-      work%arm_an(k) = cross2(set%arm_a(:, k), set%normal(:, k))
-      work%arm_bt(k) = cross2(set%arm_b(:, k), set%tangent(:, k))
-      work%arm_bn(k) = cross2(set%arm_b(:, k), set%normal(:, k))
-      work%w_tt(k) = bodies%inv_mass(a) + bodies%inv_inertia(a)*work%arm_at(k)**2 &
-                     + bodies%inv_mass(b) + bodies%inv_inertia(b)*work%arm_bt(k)**2
-      work%w_nn(k) = bodies%inv_mass(a) + bodies%inv_inertia(a)*work%arm_an(k)**2 &
-                     + bodies%inv_mass(b) + bodies%inv_inertia(b)*work%arm_bn(k)**2
-      work%w_tn(k) = bodies%inv_inertia(a)*work%arm_at(k)*work%arm_an(k) &
-                     + bodies%inv_inertia(b)*work%arm_bt(k)*work%arm_bn(k)
-      work%det(k) = work%w_tt(k)*work%w_nn(k) - work%w_tn(k)**2
-      work%shift(k) = max(0.0_dp, set%gap_m(k))/h_theta_s
+      associate (t => set%tangent(:, k), n => set%normal(:, k), ra => set%arm_a(:, k), &
+                 rb => set%arm_b(:, k), c => work%data(:, k))
+        at = ra(1)*t(2) - ra(2)*t(1)
+        an = ra(1)*n(2) - ra(2)*n(1)
+        bt = rb(1)*t(2) - rb(2)*t(1)
+        bn = rb(1)*n(2) - rb(2)*n(1)
+        ima = bodies%inv_mass(a)
+        iia = bodies%inv_inertia(a)
+        imb = bodies%inv_mass(b)
+        iib = bodies%inv_inertia(b)
+        w_tt = ima + iia*at**2 + imb + iib*bt**2
+        w_nn = ima + iia*an**2 + imb + iib*bn**2
+        w_tn = iia*at*an + iib*bt*bn
+        work%pair(1, k) = a
+        work%pair(2, k) = b
+        c(i_t) = t(1)
+        c(i_t + 1) = t(2)
+        c(i_n) = n(1)
+        c(i_n + 1) = n(2)
+        c(i_arm_at) = at
+        c(i_arm_an) = an
+        c(i_arm_bt) = bt
+        c(i_arm_bn) = bn
+        c(i_w_tt) = w_tt
+        c(i_w_tn) = w_tn
+        c(i_w_nn) = w_nn
+        c(i_det) = w_tt*w_nn - w_tn**2
+        c(i_shift) = max(0.0_dp, set%gap_m(k))/h_theta_s
+        c(i_mu) = set%friction(k)
+        c(i_ima) = ima
+        c(i_iia) = iia
+        c(i_imb) = imb
+        c(i_iib) = iib
+      end associate
     end do
   end subroutine nlgs_prepare
 
-  !> Take the impulses of the previous step's contacts that match (same bodies, same
-  !> slot) as the first guess, then store the present set for the next step.
+  !> First guess of the impulses: for a contact that existed at the previous step (same
+  !> bodies, same slot), its impulse then. (A linear extrapolation from the last two
+  !> steps was tried and made the solve slower: the impulses of a hyperstatic arch are
+  !> not unique and wander between equivalent distributions from step to step.)
+  !> `remember` stores the present set for the next step.
   subroutine warm_start(work, set, n_bodies, remember)
     type(nlgs_work_t), intent(inout) :: work
     type(contact_set_t), intent(inout) :: set
@@ -129,19 +155,17 @@ contains
   !> free velocities plus the effect of the impulses already in `set` and leave as the
   !> end-of-step velocities. Convergence: the 'Quad' norm
   !> sqrt(sum dr.W.dr / sum r.W.r) of one sweep's change of impulses below `tol`.
-  subroutine nlgs_solve(bodies, set, work, v, tol, max_iter, iterations, norm, converged)
-    type(bodies_t), intent(in) :: bodies
+  subroutine nlgs_solve(set, work, v, tol, max_iter, iterations, norm, converged)
     type(contact_set_t), intent(inout) :: set
-    type(nlgs_work_t), intent(inout) :: work
+    type(nlgs_work_t), intent(in) :: work
     real(dp), intent(inout) :: v(:, :)
     real(dp), intent(in) :: tol
     integer, intent(in) :: max_iter
     integer, intent(out) :: iterations
     real(dp), intent(out) :: norm
     logical, intent(out) :: converged
-    integer :: it, k, a, b
-    real(dp) :: u_t, u_n, r_old(2), r_new(2), dr(2), sum_change, sum_energy
-    real(dp) :: ima, imb, iia, iib
+    integer :: it
+    real(dp) :: sum_change, sum_energy
 
     iterations = 0
     norm = 0.0_dp
@@ -149,40 +173,8 @@ contains
     if (set%n == 0) return
     converged = .false.
     do it = 1, max_iter
-      sum_change = 0.0_dp
-      sum_energy = 0.0_dp
-      do k = 1, set%n
-        a = set%body_a(k)
-        b = set%body_b(k)
-        associate (t => set%tangent(:, k), n => set%normal(:, k))
-          u_t = t(1)*(v(1, a) - v(1, b)) + t(2)*(v(2, a) - v(2, b)) &
-                + work%arm_at(k)*v(3, a) - work%arm_bt(k)*v(3, b)
-          u_n = n(1)*(v(1, a) - v(1, b)) + n(2)*(v(2, a) - v(2, b)) &
-                + work%arm_an(k)*v(3, a) - work%arm_bn(k)*v(3, b)
-          r_old = set%impulse(:, k)
-          ! Free local velocity: remove this contact's own contribution.
-          u_t = u_t - work%w_tt(k)*r_old(1) - work%w_tn(k)*r_old(2)
-          u_n = u_n - work%w_tn(k)*r_old(1) - work%w_nn(k)*r_old(2) + work%shift(k)
-          call coulomb_local(work%w_tt(k), work%w_tn(k), work%w_nn(k), work%det(k), &
-                             u_t, u_n, set%friction(k), r_new)
-          dr = r_new - r_old
-          set%impulse(:, k) = r_new
-          ima = bodies%inv_mass(a)
-          iia = bodies%inv_inertia(a)
-          imb = bodies%inv_mass(b)
-          iib = bodies%inv_inertia(b)
-          v(1, a) = v(1, a) + ima*(dr(1)*t(1) + dr(2)*n(1))
-          v(2, a) = v(2, a) + ima*(dr(1)*t(2) + dr(2)*n(2))
-          v(3, a) = v(3, a) + iia*(dr(1)*work%arm_at(k) + dr(2)*work%arm_an(k))
-          v(1, b) = v(1, b) - imb*(dr(1)*t(1) + dr(2)*n(1))
-          v(2, b) = v(2, b) - imb*(dr(1)*t(2) + dr(2)*n(2))
-          v(3, b) = v(3, b) - iib*(dr(1)*work%arm_bt(k) + dr(2)*work%arm_bn(k))
-        end associate
-        sum_change = sum_change + work%w_tt(k)*dr(1)**2 + 2.0_dp*work%w_tn(k)*dr(1)*dr(2) &
-                     + work%w_nn(k)*dr(2)**2
-        sum_energy = sum_energy + work%w_tt(k)*r_new(1)**2 + 2.0_dp*work%w_tn(k)*r_new(1)*r_new(2) &
-                     + work%w_nn(k)*r_new(2)**2
-      end do
+      call gauss_seidel_sweep(set%n, size(v, 2), work%pair, work%data, set%impulse, v, &
+                              sum_change, sum_energy)
       iterations = it
       if (sum_energy > 0.0_dp) then
         norm = sqrt(sum_change/sum_energy)
@@ -196,6 +188,63 @@ contains
       end if
     end do
   end subroutine nlgs_solve
+
+  !> One sweep over the contacts in order: local solve, then update of the two bodies.
+  !> Returns the sums of dr.W.dr and r.W.r for the convergence norm.
+  pure subroutine gauss_seidel_sweep(n, n_bodies, pair, c, r, v, sum_change, sum_energy)
+    integer, intent(in) :: n, n_bodies
+    integer, intent(in) :: pair(2, n)
+    real(dp), intent(in) :: c(n_rows, n)
+    real(dp), intent(inout) :: r(2, n), v(3, n_bodies)
+    real(dp), intent(out) :: sum_change, sum_energy
+    integer :: k, a, b
+    real(dp) :: u_t, u_n, r_t, r_n, dr_t, dr_n, dvx, dvy, px, py, w_tt, w_tn, w_nn, new(2)
+
+    sum_change = 0.0_dp
+    sum_energy = 0.0_dp
+    do k = 1, n
+      a = pair(1, k)
+      b = pair(2, k)
+      w_tt = c(i_w_tt, k)
+      w_tn = c(i_w_tn, k)
+      w_nn = c(i_w_nn, k)
+      dvx = v(1, a) - v(1, b)
+      dvy = v(2, a) - v(2, b)
+      ! Free local velocity: the present one less this contact's own contribution.
+      u_t = c(1, k)*dvx + c(2, k)*dvy + c(i_arm_at, k)*v(3, a) - c(i_arm_bt, k)*v(3, b) &
+            - w_tt*r(1, k) - w_tn*r(2, k)
+      u_n = c(3, k)*dvx + c(4, k)*dvy + c(i_arm_an, k)*v(3, a) - c(i_arm_bn, k)*v(3, b) &
+            - w_tn*r(1, k) - w_nn*r(2, k) + c(i_shift, k)
+      ! The two common cases inline (open, stick); the local solve handles the rest.
+      if (u_n >= 0.0_dp) then
+        r_t = 0.0_dp
+        r_n = 0.0_dp
+      else
+        r_t = -(w_nn*u_t - w_tn*u_n)/c(i_det, k)
+        r_n = -(w_tt*u_n - w_tn*u_t)/c(i_det, k)
+        if (.not. (r_n >= 0.0_dp .and. abs(r_t) <= c(i_mu, k)*r_n)) then
+          call coulomb_local(w_tt, w_tn, w_nn, c(i_det, k), u_t, u_n, c(i_mu, k), new)
+          r_t = new(1)
+          r_n = new(2)
+        end if
+      end if
+      dr_t = r_t - r(1, k)
+      dr_n = r_n - r(2, k)
+      r(1, k) = r_t
+      r(2, k) = r_n
+      px = dr_t*c(1, k) + dr_n*c(3, k)
+      py = dr_t*c(2, k) + dr_n*c(4, k)
+      v(1, a) = v(1, a) + c(i_ima, k)*px
+      v(2, a) = v(2, a) + c(i_ima, k)*py
+      v(3, a) = v(3, a) + c(i_iia, k)*(dr_t*c(i_arm_at, k) + dr_n*c(i_arm_an, k))
+      v(1, b) = v(1, b) - c(i_imb, k)*px
+      v(2, b) = v(2, b) - c(i_imb, k)*py
+      v(3, b) = v(3, b) - c(i_iib, k)*(dr_t*c(i_arm_bt, k) + dr_n*c(i_arm_bn, k))
+      sum_change = sum_change + w_tt*dr_t*dr_t + 2.0_dp*w_tn*dr_t*dr_n + w_nn*dr_n*dr_n
+      sum_energy = sum_energy + w_tt*r_t*r_t + 2.0_dp*w_tn*r_t*r_n + w_nn*r_n*r_n
+    end do
+  end subroutine gauss_seidel_sweep
+
 
   !> Exact solution of the local inelastic Signorini-Coulomb problem
   !>   u = u_free + W r,  0 <= u_n  _|_  r_n >= 0,  |r_t| <= mu r_n, r_t opposes u_t,

@@ -1,0 +1,14 @@
+# Every input file runs with its driver, and bad inputs are refused cleanly.
+file(GLOB INPUT_FILES CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/input/*.nml)
+foreach(input ${INPUT_FILES})
+  get_filename_component(name ${input} NAME_WE)
+  add_test(NAME input_${name}
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/run_input.sh ${input}
+                   ${CMAKE_BINARY_DIR}/drivers ${CMAKE_CURRENT_BINARY_DIR}/inputs/${name})
+  if(name MATCHES "^sweep_")
+    set_tests_properties(input_${name} PROPERTIES PROCESSORS 2)
+  endif()
+endforeach()
+add_test(NAME bad_inputs
+         COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/bad_inputs.sh ${CMAKE_BINARY_DIR}/drivers
+                 ${CMAKE_CURRENT_BINARY_DIR}/bad_inputs)

@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Run one input file with the driver its name calls for, in a scratch folder, and check
+# that it succeeds with the answer the driver promises.
+#   run_input.sh INPUT.nml BIN_DIR WORK_DIR
+set -euo pipefail
+input=$(readlink -f "$1"); bin=$(readlink -f "$2"); work=$3
+mkdir -p "$work" && cd "$work"
+name=$(basename "$input" .nml)
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+case "$name" in
+  sweep_*)
+    mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" "$input" | tee output.txt ;;
+  limit_*)
+    "$bin/voussoir-limit" "$input" | tee output.txt
+    "$bin/voussoir-limit" "$input" --json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert "lambda_pos" in d' ;;
+  *)
+    "$bin/voussoir-run" "$input" | tee output.txt
+    first=$(head -n 1 output.txt | cut -d' ' -f1)
+    if [[ "$first" != "stood;" && "$first" != "collapsed" ]]; then
+      echo "first word is '$first', not stood/collapsed"; exit 1
+    fi
+    result=$(sed -n 's/.*; result \(.*\)$/\1/p' output.txt | head -n 1)
+    [[ -s "$result" ]] || { echo "no result file $result"; exit 1; } ;;
+esac
