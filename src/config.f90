@@ -43,6 +43,8 @@ module voussoir_config
     real(dp) :: ramp_rate_m_s3 = 0.1_dp       !! growth of the ramp's load acceleration
     real(dp) :: rest_s = 1.0_dp               !! simulated time after the motion ends
     real(dp) :: duration_s = 0.0_dp           !! total simulated time; 0: motion + rest
+    real(dp) :: table_gain = 1.0_dp           !! actuator model: table / commanded amplitude
+    real(dp) :: table_delay_s = 0.0_dp        !! actuator model: lag of the table [s]
   end type motion_config_t
 
   !> &solver: time stepping and contact solve.
@@ -102,7 +104,8 @@ contains
     integer :: n_voussoirs
     character(len=16) :: restrained_springings, waveform
     character(len=path_len) :: polygon_file, record_file, file
-    real(dp) :: frequency_hz, amplitude_m, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s
+    real(dp) :: frequency_hz, amplitude_m, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s, &
+                table_gain, table_delay_s
     integer :: n_attack, n_full, n_decay, max_iter, every
     real(dp) :: dt_s, theta, tol, alert_m, hinge_gap_m, collapse_drop_m, collapse_rotation_rad, &
                 stop_after_collapse_s
@@ -110,7 +113,7 @@ contains
     namelist /arch/ embrace_deg, n_voussoirs, r_ext_m, thickness_m, width_m, density_kg_m3, &
       friction, contact_inset_m, restrained_springings, polygon_file
     namelist /motion/ waveform, frequency_hz, amplitude_m, n_attack, n_full, n_decay, &
-      record_file, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s
+      record_file, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s, table_gain, table_delay_s
     namelist /solver/ dt_s, theta, tol, max_iter, alert_m, allow_nonconvergence
     namelist /output/ file, every, hinge_gap_m, collapse_drop_m, collapse_rotation_rad, &
       stop_after_collapse_s
@@ -136,12 +139,13 @@ contains
     waveform = m%waveform; frequency_hz = m%frequency_hz; amplitude_m = m%amplitude_m
     n_attack = m%n_attack; n_full = m%n_full; n_decay = m%n_decay; record_file = m%record_file
     record_cutoff_hz = m%record_cutoff_hz; ramp_rate_m_s3 = m%ramp_rate_m_s3; rest_s = m%rest_s
-    duration_s = m%duration_s
+    duration_s = m%duration_s; table_gain = m%table_gain; table_delay_s = m%table_delay_s
     rewind (unit)
     read (unit, nml=motion, iostat=ios, iomsg=iomsg)
     if (.not. group_ok('motion')) return
     m = motion_config_t(waveform, frequency_hz, amplitude_m, n_attack, n_full, n_decay, &
-                        record_file, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s)
+                        record_file, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s, &
+                        table_gain, table_delay_s)
 
     dt_s = s%dt_s; theta = s%theta; tol = s%tol; max_iter = s%max_iter; alert_m = s%alert_m
     allow_nonconvergence = s%allow_nonconvergence
@@ -197,7 +201,8 @@ contains
              "restrained_springings ('none'|'left'|'right'|'both'), polygon_file (text)"
     case ('motion')
       text = "waveform ('afd'|'ramp'|'record'), frequency_hz (real), amplitude_m (real), n_attack, n_full, "// &
-             'n_decay (integer), record_file (text), record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s (real)'
+             'n_decay (integer), record_file (text), record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s, '// &
+             'table_gain, table_delay_s (real)'
     case ('solver')
       text = 'dt_s, theta, tol (real), max_iter (integer), alert_m (real, m), allow_nonconvergence (logical)'
     case ('output')
@@ -324,6 +329,8 @@ contains
         call need_int(m%n_attack >= 1, 'motion', 'n_attack', m%n_attack, 'n_attack >= 1')
         call need_int(m%n_full >= 0, 'motion', 'n_full', m%n_full, 'n_full >= 0')
         call need_int(m%n_decay >= 1, 'motion', 'n_decay', m%n_decay, 'n_decay >= 1')
+        call need(m%table_gain > 0.0_dp, 'motion', 'table_gain', m%table_gain, 'table_gain > 0')
+        call need(m%table_delay_s >= 0.0_dp, 'motion', 'table_delay_s', m%table_delay_s, 'table_delay_s >= 0')
       case ('ramp')
         call need(m%ramp_rate_m_s3 /= 0.0_dp, &
           'motion', 'ramp_rate_m_s3', m%ramp_rate_m_s3, 'ramp_rate_m_s3 /= 0')
@@ -444,6 +451,8 @@ contains
       call r('motion', 'ramp_rate_m_s3', m%ramp_rate_m_s3)
       call r('motion', 'rest_s', m%rest_s)
       call r('motion', 'duration_s', m%duration_s)
+      call r('motion', 'table_gain', m%table_gain)
+      call r('motion', 'table_delay_s', m%table_delay_s)
       call r('solver', 'dt_s', s%dt_s)
       call r('solver', 'theta', s%theta)
       call r('solver', 'tol', s%tol)

@@ -24,6 +24,8 @@ module voussoir_motion
     real(dp) :: amplitude_m = 0.0_dp
     real(dp) :: t_attack_s = 0.0_dp, t_full_s = 0.0_dp, t_decay_s = 0.0_dp
     real(dp) :: ramp_rate_m_s3 = 0.0_dp  !! d(load acceleration)/dt, towards +x if > 0
+    real(dp) :: gain = 1.0_dp            !! actuator model: table / command amplitude
+    real(dp) :: delay_s = 0.0_dp         !! actuator model: lag of the table [s]
     ! Record: filtered samples.
     real(dp) :: dt_record_s = 0.0_dp
     real(dp), allocatable :: x_m(:), v_m_s(:), a_m_s2(:)
@@ -31,11 +33,15 @@ module voussoir_motion
 
 contains
 
-  !> The commanded `afd` motion.
-  pure function motion_afd(frequency_hz, amplitude_m, n_attack, n_full, n_decay) result(m)
+  !> The commanded `afd` motion, optionally played by an actuator that scales it by
+  !> `gain` and lags it by `delay_s` (table(t) = gain command(t - delay)).
+  pure function motion_afd(frequency_hz, amplitude_m, n_attack, n_full, n_decay, gain, delay_s) result(m)
     real(dp), intent(in) :: frequency_hz, amplitude_m
     integer, intent(in) :: n_attack, n_full, n_decay
+    real(dp), intent(in), optional :: gain, delay_s
     type(motion_t) :: m
+    if (present(gain)) m%gain = gain
+    if (present(delay_s)) m%delay_s = delay_s
     m%waveform = waveform_afd
     m%frequency_hz = frequency_hz
     m%amplitude_m = amplitude_m
@@ -57,7 +63,7 @@ contains
     type(motion_t), intent(in) :: m
     select case (m%waveform)
     case (waveform_afd)
-      motion_duration_s = m%t_attack_s + m%t_full_s + m%t_decay_s
+      motion_duration_s = m%t_attack_s + m%t_full_s + m%t_decay_s + m%delay_s
     case (waveform_record)
       motion_duration_s = (size(m%x_m) - 1)*m%dt_record_s
     case default
@@ -71,7 +77,7 @@ contains
     type(motion_t), intent(in) :: m
     real(dp), intent(in) :: t_s
     real(dp), intent(out) :: x, v, a
-    real(dp) :: e, de, d2e, w, s, c, tau, f
+    real(dp) :: e, de, d2e, w, s, c, tau, f, t
     integer :: i
 
     x = 0.0_dp
@@ -79,18 +85,19 @@ contains
     a = 0.0_dp
     select case (m%waveform)
     case (waveform_afd)
-      if (t_s < 0.0_dp) return
-      if (t_s < m%t_attack_s) then
+      t = t_s - m%delay_s
+      if (t < 0.0_dp) return
+      if (t < m%t_attack_s) then
         f = pi/m%t_attack_s
-        e = sin(0.5_dp*f*t_s)**2
-        de = 0.5_dp*f*sin(f*t_s)
-        d2e = 0.5_dp*f*f*cos(f*t_s)
-      else if (t_s < m%t_attack_s + m%t_full_s) then
+        e = sin(0.5_dp*f*t)**2
+        de = 0.5_dp*f*sin(f*t)
+        d2e = 0.5_dp*f*f*cos(f*t)
+      else if (t < m%t_attack_s + m%t_full_s) then
         e = 1.0_dp
         de = 0.0_dp
         d2e = 0.0_dp
-      else if (t_s < m%t_attack_s + m%t_full_s + m%t_decay_s) then
-        tau = t_s - m%t_attack_s - m%t_full_s
+      else if (t < m%t_attack_s + m%t_full_s + m%t_decay_s) then
+        tau = t - m%t_attack_s - m%t_full_s
         f = pi/m%t_decay_s
         e = cos(0.5_dp*f*tau)**2
         de = -0.5_dp*f*sin(f*tau)
@@ -99,11 +106,11 @@ contains
         return
       end if
       w = 2.0_dp*pi*m%frequency_hz
-      s = sin(w*t_s)
-      c = cos(w*t_s)
-      x = m%amplitude_m*e*s
-      v = m%amplitude_m*(de*s + e*w*c)
-      a = m%amplitude_m*(d2e*s + 2.0_dp*de*w*c - e*w*w*s)
+      s = sin(w*t)
+      c = cos(w*t)
+      x = m%gain*m%amplitude_m*e*s
+      v = m%gain*m%amplitude_m*(de*s + e*w*c)
+      a = m%gain*m%amplitude_m*(d2e*s + 2.0_dp*de*w*c - e*w*w*s)
     case (waveform_ramp)
       a = m%ramp_rate_m_s3*max(t_s, 0.0_dp)
     case (waveform_record)

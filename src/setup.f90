@@ -50,7 +50,8 @@ contains
 
       select case (m%waveform)
       case ('afd')
-        model%motion = motion_afd(m%frequency_hz, m%amplitude_m, m%n_attack, m%n_full, m%n_decay)
+        model%motion = motion_afd(m%frequency_hz, m%amplitude_m, m%n_attack, m%n_full, m%n_decay, &
+                                  m%table_gain, m%table_delay_s)
       case ('ramp')
         model%motion = motion_ramp(m%ramp_rate_m_s3)
       case ('record')

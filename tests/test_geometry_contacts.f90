@@ -127,7 +127,7 @@ contains
   end subroutine local_solver
 
   subroutine afd_waveform()
-    type(motion_t) :: m
+    type(motion_t) :: m, m2
     real(dp) :: x, v, a, xp, xm, vp, vm, h, t
     integer :: k
     m = motion_afd(2.0_dp, 0.01_dp, 1, 1, 1)
@@ -148,6 +148,15 @@ contains
     end do
     call motion_eval(m, 1.6_dp, x, v, a)
     call assert_true(x == 0.0_dp .and. v == 0.0_dp, 'afd: at rest after the decay')
+    ! Actuator model: the table plays the command 10 % larger, 20 ms late.
+    m2 = motion_afd(2.0_dp, 0.01_dp, 1, 1, 1, gain=1.1_dp, delay_s=0.02_dp)
+    do k = 1, 9
+      t = 0.17_dp*k
+      call motion_eval(m, t - 0.02_dp, x, v, a)
+      call motion_eval(m2, t, xp, vp, h)
+      call assert_close(xp, 1.1_dp*x, 'actuator model displacement = gain x command(t - delay)', atol=1.0e-15_dp)
+      call assert_close(h, 1.1_dp*a, 'actuator model acceleration = gain x command(t - delay)', atol=1.0e-12_dp)
+    end do
   end subroutine afd_waveform
 
 end program test_geometry_contacts
