@@ -1,0 +1,123 @@
+"""Fixtures: the real Fortran executables and the result files they write.
+
+Executables are looked up in ``$VOUSSOIR_BIN_DIR`` (default ``<repo>/build/drivers``).
+A missing ``voussoir-run`` fails the tests that need it (the project rule: plots are
+tested on files made by the real executables, never on hand-made fakes); the
+``voussoir-sweep`` and ``voussoir-limit`` tests are skipped while those executables do
+not exist yet.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+from pathlib import Path
+
+import matplotlib
+import pytest
+
+matplotlib.use("Agg")
+
+POSTPROC_DIR = Path(__file__).resolve().parents[1]
+REPO_ROOT = POSTPROC_DIR.parent
+SEED_CAMPAIGN = REPO_ROOT.parent / "shared" / "data" / "seed_2013"
+
+#: The short run every run-file test reads: the seed's 156-degree wooden arch, one
+#: attack, one full and one decay cycle at 2.5 Hz and 50 mm (about 12 m/s2, far above
+#: its capacity, so it collapses), 0.5 s of rest.
+RUN_NML = """\
+&arch
+  embrace_deg = 156.0, n_voussoirs = 13, r_ext_m = 0.508, thickness_m = 0.071,
+  width_m = 0.145, density_kg_m3 = 700.0, friction = 0.5, contact_inset_m = 0.0
+/
+&motion
+  waveform = 'afd', frequency_hz = 2.5, amplitude_m = 0.05,
+  n_attack = 1, n_full = 1, n_decay = 1, rest_s = 0.5
+/
+&solver
+  dt_s = 2.0e-3, theta = 0.5, tol = 1.0e-4, max_iter = 1000
+/
+&output
+  file = '{file}', every = 5
+/
+"""
+
+
+def bin_dir() -> Path:
+    """Folder of the Fortran executables: $VOUSSOIR_BIN_DIR or <repo>/build/drivers."""
+    return Path(os.environ.get("VOUSSOIR_BIN_DIR", REPO_ROOT / "build" / "drivers"))
+
+
+def executable(name: str) -> Path | None:
+    path = bin_dir() / name
+    return path if path.is_file() and os.access(path, os.X_OK) else None
+
+
+def run_executable(args: list, cwd: Path, timeout_s: float = 600.0,
+                   env: dict | None = None) -> subprocess.CompletedProcess:
+    """Run a Fortran executable; fail the test with its output when it fails."""
+    proc = subprocess.run([str(a) for a in args], cwd=cwd, capture_output=True, text=True,
+                          timeout=timeout_s, env=env)
+    if proc.returncode != 0:
+        pytest.fail(f"{' '.join(map(str, args))} exited with {proc.returncode}\n"
+                    f"stdout:\n{proc.stdout}\nstderr:\n{proc.stderr}")
+    return proc
+
+
+@pytest.fixture(scope="session")
+def voussoir_run_exe() -> Path:
+    """The voussoir-run executable; fails (not skips) when it has not been built."""
+    exe = executable("voussoir-run")
+    if exe is None:
+        pytest.fail(f"voussoir-run not found in {bin_dir()}: build the project "
+                    "(cmake -S . -B build && cmake --build build) or set VOUSSOIR_BIN_DIR "
+                    "to the folder that holds the executables")
+    return exe
+
+
+@pytest.fixture(scope="session")
+def voussoir_sweep_exe() -> Path:
+    """The voussoir-sweep executable; skips while it does not exist yet."""
+    exe = executable("voussoir-sweep")
+    if exe is None:
+        pytest.skip(f"voussoir-sweep not built yet (looked in {bin_dir()}); sweep tests skipped")
+    return exe
+
+
+@pytest.fixture(scope="session")
+def voussoir_limit_exe() -> Path:
+    """The voussoir-limit executable; skips while it does not exist yet."""
+    exe = executable("voussoir-limit")
+    if exe is None:
+        pytest.skip(f"voussoir-limit not built yet (looked in {bin_dir()}); mechanism tests skipped")
+    return exe
+
+
+@pytest.fixture(scope="session")
+def run_file(voussoir_run_exe, tmp_path_factory) -> Path:
+    """A short real run (see RUN_NML), written once per test session."""
+    folder = tmp_path_factory.mktemp("run")
+    h5 = folder / "arch156.h5"
+    nml = folder / "arch156.nml"
+    nml.write_text(RUN_NML.format(file=h5))
+    run_executable([voussoir_run_exe, nml], folder)
+    if not h5.is_file():
+        pytest.fail(f"voussoir-run did not write {h5}")
+    return h5
+
+
+@pytest.fixture
+def run_copy(run_file, tmp_path) -> Path:
+    """A private copy of the session run file (for tests that write beside it or edit it)."""
+    dest = tmp_path / run_file.name
+    shutil.copy(run_file, dest)
+    return dest
+
+
+@pytest.fixture(scope="session")
+def seed_campaign() -> Path:
+    """<repo>/../shared/data/seed_2013."""
+    if not (SEED_CAMPAIGN / "tests.csv").is_file():
+        pytest.fail(f"seed campaign not found at {SEED_CAMPAIGN}")
+    return SEED_CAMPAIGN

@@ -1,0 +1,80 @@
+"""mechanism on the JSON of the real voussoir-limit (skipped while it does not exist)."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from conftest import run_executable
+from voussoir_post import cli
+from voussoir_post.mechanism import plot_mechanism, voussoir_polygons
+from voussoir_post.results import ResultsError, read_limit_json
+
+LIMIT_NML = """\
+&arch
+  embrace_deg = 156.0, n_voussoirs = 13, r_ext_m = 0.508, thickness_m = 0.071,
+  width_m = 0.145, density_kg_m3 = 700.0, friction = 0.5, contact_inset_m = 0.0
+/
+"""
+
+
+@pytest.fixture(scope="module")
+def limit_json(voussoir_limit_exe, tmp_path_factory):
+    folder = tmp_path_factory.mktemp("limit")
+    nml = folder / "limit_156.nml"
+    nml.write_text(LIMIT_NML)
+    proc = run_executable([voussoir_limit_exe, nml, "--json"], folder)
+    path = folder / "limit_156.json"
+    path.write_text(proc.stdout)
+    json.loads(proc.stdout)
+    return path
+
+
+def test_mechanism_draws_the_json_hinges(limit_json, tmp_path):
+    limit = read_limit_json(limit_json)
+    assert limit.n_voussoirs == 13 and limit.joint_intrados_xy_m.shape == (14, 2)
+    data = plot_mechanism(limit, tmp_path / "mech.png")
+    assert [p.direction for p in data.panels] == ["+x", "-x"]
+    # docs/limit_analysis.md: 156/13 without inset, lambda 0.376, 0i 5e 10i 13e / 0e 3i 8e 13i
+    pos, neg = data.panels
+    assert pos.load_factor == pytest.approx(0.376019, abs=1e-5)
+    assert pos.hinges == [(0, "intrados"), (5, "extrados"), (10, "intrados"), (13, "extrados")]
+    assert neg.hinges == [(13 - j, s) for j, s in reversed(pos.hinges)]
+    for panel in data.panels:
+        for (j, side), xy in zip(panel.hinges, panel.hinge_xy_m):
+            end = limit.joint_intrados_xy_m[j] if side == "intrados" else limit.joint_extrados_xy_m[j]
+            assert np.array_equal(xy, end)
+    polys = voussoir_polygons(limit.joint_intrados_xy_m, limit.joint_extrados_xy_m)
+    assert len(data.voussoirs_m) == 13 and np.array_equal(data.voussoirs_m[6], polys[6])
+    assert len(data.table.rows) == 8
+    assert pos.sliding_joints == [] and neg.sliding_joints == []  # hinging governs at friction 0.5
+    assert pos.accel_m_s2 == pytest.approx(0.376019 * 9.81, rel=1e-5)
+
+
+def test_mechanism_sliding_joints_of_the_118_arch(voussoir_limit_exe, tmp_path):
+    """docs/limit_analysis.md: at friction 0.5 the 118-degree arch slides at joints 0 and 10."""
+    nml = tmp_path / "limit_118.nml"
+    nml.write_text(LIMIT_NML.replace("embrace_deg = 156.0, n_voussoirs = 13",
+                                     "embrace_deg = 118.0, n_voussoirs = 10"))
+    path = tmp_path / "limit_118.json"
+    path.write_text(run_executable([voussoir_limit_exe, nml, "--json"], tmp_path).stdout)
+    data = plot_mechanism(read_limit_json(path), tmp_path / "m.png")
+    assert [p.sliding_joints for p in data.panels] == [[0, 10], [0, 10]]
+    assert [row[-1] for row in data.table.rows] == [True, False, False, True] * 2
+
+
+def test_limit_json_from_another_producer(limit_json, tmp_path):
+    data = json.loads(limit_json.read_text())
+    data["producer"] = "voussoir-run"
+    other = tmp_path / "other.json"
+    other.write_text(json.dumps(data))
+    with pytest.raises(ResultsError, match="written by 'voussoir-run', but this command reads 'voussoir-limit'"):
+        read_limit_json(other)
+
+
+def test_mechanism_cli(limit_json, tmp_path, capsys):
+    assert cli.main(["mechanism", str(limit_json), "--out", str(tmp_path / "m.png"), "--csv"]) == 0
+    assert (tmp_path / "m.png").is_file() and (tmp_path / "m.csv").is_file()
+    assert "extrados" in capsys.readouterr().out

@@ -1,0 +1,221 @@
+"""``voussoir-post``: plots of Voussoir result files.
+
+Every subcommand writes its PNG(s) beside the input (``<input stem>_<kind>.png``) or to
+``--out`` (a ``.png`` file, or a folder), prints the plotted numbers as a table and,
+with ``--csv``, writes them as CSV beside the PNG (same stem, ``.csv``). Errors in the
+input files are reported on stderr with exit status 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import sys
+
+from .campaign import CampaignError, read_campaign
+from .compare import MatchError, plot_compare
+from .envelope import plot_envelope
+from .history import plot_history
+from .mechanism import plot_mechanism
+from .results import ResultsError, read_limit_json, read_run, read_sweep
+from .sequence import default_frame_times, plot_sequence, write_sequence_gif
+from .tables import Table, format_table, write_csv
+from .xdmf import check_xdmf, write_xdmf
+
+__all__ = ["main", "build_parser", "output_path"]
+
+
+def output_path(input_path: str, kind: str, out: str | None, ext: str = ".png") -> str:
+    """Where a subcommand writes: ``--out`` when it names a file with extension ``ext``,
+    ``<out>/<stem>_<kind><ext>`` when it names a folder, else beside the input."""
+    stem = os.path.splitext(os.path.basename(input_path))[0]
+    name = f"{stem}_{kind}{ext}"
+    if out is None:
+        return os.path.join(os.path.dirname(os.path.abspath(input_path)), name)
+    if out.lower().endswith(ext):
+        return out
+    return os.path.join(out, name)
+
+
+def _emit(table: Table, png_path: str, csv_wanted: bool, extra: list[tuple[Table, str]] = ()) -> None:
+    """Print the table and the written files; write CSV(s) when asked."""
+    print(format_table(table))
+    print(f"wrote {png_path}")
+    if csv_wanted:
+        print(f"wrote {write_csv(table, os.path.splitext(png_path)[0] + '.csv')}")
+        for tab, suffix in extra:
+            print(f"wrote {write_csv(tab, os.path.splitext(png_path)[0] + suffix)}")
+
+
+def _parse_times(text: str) -> list[float]:
+    try:
+        times = [float(t) for t in text.split(",") if t.strip()]
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(f"--times expects comma-separated seconds, got '{text}'") from exc
+    if not times:
+        raise argparse.ArgumentTypeError("--times is empty")
+    return times
+
+
+def cmd_envelope(args) -> int:
+    sweep = read_sweep(args.sweep)
+    campaign = read_campaign(args.campaign) if args.campaign else None
+    if args.specimen and campaign is None:
+        raise ValueError("--specimen needs --campaign")
+    if campaign is not None and args.specimen:
+        for sid in args.specimen:
+            if sid not in campaign.specimens:
+                raise ValueError(f"{campaign.path}: no specimen '{sid}' (has: {', '.join(campaign.specimens)})")
+    png = output_path(args.sweep, "envelope", args.out)
+    data = plot_envelope(sweep, png, campaign, args.specimen)
+    _emit(data.table, data.png_path, args.csv)
+    return 0
+
+
+def cmd_sequence(args) -> int:
+    run = read_run(args.run)
+    png = output_path(args.run, "sequence", args.out)
+    open_tol = None if args.open_tol_mm is None else 1e-3 * args.open_tol_mm
+    data = plot_sequence(run, png, times_s=args.times, n_frames=args.n_frames, amplify=args.amplify,
+                         open_tol_m=open_tol)
+    _emit(data.table, data.png_path, args.csv)
+    if args.gif:
+        t_end = max(f.time_s for f in data.frames) if args.times else float(default_frame_times(run, 2)[-1])
+        gif, samples = write_sequence_gif(run, os.path.splitext(png)[0] + ".gif", t_end_s=t_end,
+                                          amplify=args.amplify, open_tol_m=open_tol)
+        print(f"wrote {gif} ({len(samples)} frames)")
+    return 0
+
+
+def cmd_history(args) -> int:
+    run = read_run(args.run)
+    png = output_path(args.run, "history", args.out)
+    data = plot_history(run, png)
+    print(format_table(data.summary))
+    print(f"wrote {data.png_path}")
+    if args.csv:
+        stem = os.path.splitext(data.png_path)[0]
+        print(f"wrote {write_csv(data.samples_table(), stem + '.csv')}")
+        print(f"wrote {write_csv(data.steps_table(), stem + '_steps.csv')}")
+    return 0
+
+
+def cmd_compare(args) -> int:
+    sweep = read_sweep(args.sweep)
+    campaign = read_campaign(args.campaign)
+    png = output_path(args.sweep, "compare", args.out)
+    data = plot_compare(sweep, campaign, png, args.specimen)
+    for note in data.notes:
+        print(note)
+    _emit(data.table, data.png_path, args.csv)
+    for ps, err in data.mean_abs_error_pct.items():
+        label = sweep.set_label(ps)
+        text = "n/a" if math.isnan(err) else f"{err:.2f} %"
+        print(f"mean |error| of parameter set {ps} ({label}): {text}")
+    return 0
+
+
+def cmd_xdmf(args) -> int:
+    run = read_run(args.run)
+    xmf = None
+    if args.out is not None:
+        xmf = args.out if args.out.lower().endswith(".xmf") else os.path.join(
+            args.out, os.path.splitext(os.path.basename(args.run))[0] + ".xmf")
+    data = write_xdmf(run, xmf, every=args.every)
+    items = check_xdmf(data.xmf_path)
+    table = Table(["samples", "bodies", "vertices", "hdf_items_checked"],
+                  [(data.n_samples, data.n_bodies, data.n_vertices_total, len(items))],
+                  title=f"XDMF of {run.path}")
+    print(format_table(table))
+    print(f"wrote {data.h5_path}")
+    print(f"wrote {data.xmf_path}")
+    return 0
+
+
+def cmd_mechanism(args) -> int:
+    limit = read_limit_json(args.limit)
+    png = output_path(args.limit, "mechanism", args.out)
+    data = plot_mechanism(limit, png)
+    _emit(data.table, data.png_path, args.csv)
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="voussoir-post",
+        description="Plots of Voussoir result files (HDF5 from voussoir-run / voussoir-sweep, "
+                    "JSON from voussoir-limit --json).")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    def common(p, csv=True):
+        p.add_argument("--out", help="output .png file, or a folder (default: beside the input)")
+        if csv:
+            p.add_argument("--csv", action="store_true", help="also write the plotted numbers as CSV")
+
+    p = sub.add_parser("envelope", help="collapse envelope of a sweep (threshold or grid mode)")
+    p.add_argument("sweep", metavar="SWEEP.h5")
+    p.add_argument("--campaign", metavar="DIR", help="overlay the measured points of this campaign folder")
+    p.add_argument("--specimen", metavar="ID", action="append",
+                   help="overlay only this specimen (repeatable; default: all)")
+    common(p)
+    p.set_defaults(func=cmd_envelope)
+
+    p = sub.add_parser("sequence", help="frames of the blocks with open hinges")
+    p.add_argument("run", metavar="RUN.h5")
+    p.add_argument("--times", type=_parse_times, metavar="T1,T2,...", help="frame times [s] (nearest samples)")
+    p.add_argument("--n-frames", type=int, default=6, metavar="N",
+                   help="frames evenly spread up to the collapse time + 15%% or the end (default 6)")
+    p.add_argument("--amplify", type=float, default=1.0, metavar="K",
+                   help="multiply displacements and rotations relative to the table-carried "
+                        "reference by K (default 1)")
+    p.add_argument("--open-tol-mm", type=float, metavar="MM",
+                   help="joint opening counted as open [mm] (default: the run's &output hinge_gap_m, "
+                        "else 1%% of the ring thickness)")
+    p.add_argument("--gif", action="store_true", help="also write an animated GIF")
+    common(p)
+    p.set_defaults(func=cmd_sequence)
+
+    p = sub.add_parser("history", help="time histories: table, crown, NLGS iterations, contacts")
+    p.add_argument("run", metavar="RUN.h5")
+    common(p)
+    p.set_defaults(func=cmd_history)
+
+    p = sub.add_parser("compare", help="simulated vs measured thresholds per specimen and frequency")
+    p.add_argument("sweep", metavar="SWEEP.h5")
+    p.add_argument("campaign", metavar="CAMPAIGN")
+    p.add_argument("--specimen", metavar="ID",
+                   help="the specimen the sweep simulates (default: matched by the &arch geometry)")
+    common(p)
+    p.set_defaults(func=cmd_compare)
+
+    p = sub.add_parser("xdmf", help="write RUN.xmf + RUN.vtk.h5 for ParaView")
+    p.add_argument("run", metavar="RUN.h5")
+    p.add_argument("--every", type=int, default=1, metavar="N", help="export every N-th sample (default 1)")
+    p.add_argument("--out", help="output .xmf file or folder (default: beside the run)")
+    p.set_defaults(func=cmd_xdmf)
+
+    p = sub.add_parser("mechanism", help="limit-analysis mechanisms (voussoir-limit --json)")
+    p.add_argument("limit", metavar="LIMIT.json")
+    common(p)
+    p.set_defaults(func=cmd_mechanism)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of ``voussoir-post``; returns the exit status."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return args.func(args)
+    except BrokenPipeError:  # stdout closed early (piped into head): end quietly
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
+    except (ResultsError, CampaignError, MatchError, ValueError, KeyError) as exc:
+        message = exc.args[0] if isinstance(exc, KeyError) and exc.args else str(exc)
+        print(f"voussoir-post: error: {message}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

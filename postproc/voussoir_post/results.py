@@ -1,0 +1,585 @@
+"""Readers of the HDF5 result files written by the Fortran drivers.
+
+The layout is the one of ``docs/results_format.md`` (arrays in the shapes h5py reports).
+Every reader checks the ``producer`` root attribute against the file kind it reads and
+raises :class:`ResultsError`, whose message names the file and what is wrong, for a
+missing file, a file that is not HDF5, a file from another producer and a missing
+dataset or attribute.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import re
+from dataclasses import dataclass, field
+
+import h5py
+import numpy as np
+
+__all__ = [
+    "ResultsError",
+    "ArchGeometry",
+    "RunResult",
+    "SweepResult",
+    "LimitResult",
+    "read_run",
+    "read_sweep",
+    "read_limit_json",
+    "parse_namelist",
+    "SIDE_NAMES",
+]
+
+#: Hinge side codes of /hinges/side: 0 intrados, 1 extrados.
+SIDE_NAMES = ("intrados", "extrados")
+
+
+class ResultsError(Exception):
+    """A result file cannot be read; the message names the file and the problem."""
+
+    def __init__(self, path: str | os.PathLike, message: str):
+        self.path = os.fspath(path)
+        self.message = message
+        super().__init__(f"{self.path}: {message}")
+
+
+# --------------------------------------------------------------------------- helpers
+
+
+def _as_str(value) -> str:
+    """Text of an HDF5 string attribute (fixed or variable length, bytes or str)."""
+    if isinstance(value, np.ndarray):
+        if value.size != 1:
+            return "\n".join(_as_str(v) for v in value.reshape(-1))
+        value = value.reshape(-1)[0]
+    if isinstance(value, (bytes, np.bytes_)):
+        value = bytes(value).decode("utf-8", errors="replace")
+    return str(value).rstrip("\x00").rstrip()
+
+
+def _as_scalar(value):
+    """A Python scalar from an attribute stored as a scalar or a 1-element array."""
+    arr = np.asarray(value)
+    if arr.dtype.kind in "SUO":
+        return _as_str(value)
+    if arr.size != 1:
+        return arr
+    item = arr.reshape(-1)[0].item()
+    return item
+
+
+def _open_h5(path, expected_producer: str) -> h5py.File:
+    """Open ``path`` read-only after checking it exists, is HDF5 and comes from
+    ``expected_producer``."""
+    path = os.fspath(path)
+    if not os.path.exists(path):
+        raise ResultsError(path, "no such file")
+    if os.path.isdir(path):
+        raise ResultsError(path, "is a directory, expected an HDF5 result file")
+    if not h5py.is_hdf5(path):
+        raise ResultsError(path, "not an HDF5 file")
+    try:
+        h5 = h5py.File(path, "r")
+    except OSError as exc:  # pragma: no cover - corrupt file that passes is_hdf5
+        raise ResultsError(path, f"cannot open HDF5 file: {exc}") from exc
+    if "producer" not in h5.attrs:
+        h5.close()
+        raise ResultsError(path, f"missing root attribute 'producer' (expected '{expected_producer}')")
+    producer = _as_str(h5.attrs["producer"])
+    if producer != expected_producer:
+        h5.close()
+        raise ResultsError(
+            path,
+            f"written by '{producer}', but this command reads '{expected_producer}' files",
+        )
+    return h5
+
+
+def _dataset(h5: h5py.File, name: str, dtype=float) -> np.ndarray:
+    """The whole dataset ``name`` as a numpy array; ResultsError when absent."""
+    if name not in h5:
+        raise ResultsError(h5.filename, f"missing dataset '{name}'")
+    obj = h5[name]
+    if not isinstance(obj, h5py.Dataset):
+        raise ResultsError(h5.filename, f"'{name}' is a group, expected a dataset")
+    data = obj[()]
+    return np.asarray(data, dtype=dtype) if dtype is not None else np.asarray(data)
+
+
+def _attr(h5obj, name: str, kind=float):
+    """Attribute ``name`` of a file, group or dataset converted by ``kind``."""
+    if name not in h5obj.attrs:
+        where = h5obj.name if h5obj.name != "/" else "root"
+        raise ResultsError(h5obj.file.filename, f"missing attribute '{name}' of {where}")
+    value = h5obj.attrs[name]
+    if kind is str:
+        return _as_str(value)
+    return kind(_as_scalar(value))
+
+
+def _optional_str_attr(h5obj, name: str, default: str = "") -> str:
+    return _as_str(h5obj.attrs[name]) if name in h5obj.attrs else default
+
+
+def _check_shape(path, name: str, array: np.ndarray, shape: tuple) -> None:
+    """Check ``array.shape`` against ``shape`` (None = any length)."""
+    ok = array.ndim == len(shape) and all(s is None or s == a for s, a in zip(shape, array.shape))
+    if not ok:
+        want = "(" + ", ".join("?" if s is None else str(s) for s in shape) + ")"
+        raise ResultsError(path, f"dataset '{name}' has shape {array.shape}, expected {want}")
+
+
+def _nml_value(text: str):
+    """One namelist value: int, float, bool, string or a list of them."""
+    text = text.strip().rstrip(",").strip()
+    if not text:
+        return None
+    items = []
+    for token in re.findall(r"'(?:[^']|'')*'|\"(?:[^\"]|\"\")*\"|[^,\s]+", text):
+        repeat = 1
+        m = re.fullmatch(r"(\d+)\*(.+)", token)
+        if m and not token.startswith(("'", '"')):
+            repeat, token = int(m.group(1)), m.group(2)
+        if token[0] in "'\"":
+            value = token[1:-1].replace(token[0] * 2, token[0]).rstrip()
+        elif re.fullmatch(r"\.?(t|true|f|false)\.?", token, re.I):
+            value = token.strip(".").lower().startswith("t")
+        else:
+            try:
+                value = int(token)
+            except ValueError:
+                try:
+                    value = float(token.replace("d", "e").replace("D", "e"))
+                except ValueError:
+                    value = token
+        items.extend([value] * repeat)
+    return items[0] if len(items) == 1 else items
+
+
+def parse_namelist(text: str) -> dict[str, dict[str, object]]:
+    """Parse Fortran namelist text into ``{group: {variable: value}}`` (lower case names).
+
+    Tolerant of the formats compilers write (upper-case names, trailing commas,
+    ``n*value`` repeats, quoted strings, ``T``/``F`` logicals); values are int, float,
+    bool, str or lists of them. Used on the ``config_nml`` root attribute.
+    """
+    groups: dict[str, dict[str, object]] = {}
+    # Split on group starts; each chunk runs to its terminating '/'.
+    for chunk in re.split(r"(?m)^\s*&", "\n" + text)[1:]:
+        m = re.match(r"(\w+)", chunk)
+        if not m:
+            continue
+        name = m.group(1).lower()
+        body = chunk[m.end():]
+        # Drop the terminating '/' (outside quotes) and anything after it.
+        end = _namelist_end(body)
+        body = body[:end]
+        variables: dict[str, object] = {}
+        # Assignments: name = values up to the next 'name ='.
+        assigns = list(re.finditer(r"(?:^|[\s,])([A-Za-z]\w*(?:%\w+)*)\s*=", body))
+        for k, am in enumerate(assigns):
+            stop = assigns[k + 1].start() if k + 1 < len(assigns) else len(body)
+            variables[am.group(1).lower()] = _nml_value(body[am.end():stop])
+        groups[name] = variables
+    return groups
+
+
+def _namelist_end(body: str) -> int:
+    """Index of the '/' ending a namelist group body (outside quotes)."""
+    quote = None
+    for i, ch in enumerate(body):
+        if quote:
+            if ch == quote:
+                quote = None
+        elif ch in "'\"":
+            quote = ch
+        elif ch == "/":
+            return i
+        elif body.startswith("&end", i) or body.startswith("&END", i):
+            return i
+    return len(body)
+
+
+# ------------------------------------------------------------------------ run files
+
+
+def _side_names(h5: h5py.File) -> tuple[str, str]:
+    """Names of the hinge side codes 0 and 1 from the ``side_names`` attribute of
+    /hinges/side or /hinges ('intrados,extrados' or '0=intrados,1=extrados')."""
+    for obj in (h5["hinges/side"], h5["hinges"]):
+        if "side_names" not in obj.attrs:
+            continue
+        names = dict(enumerate(SIDE_NAMES))
+        items = [s.strip() for s in re.split(r"[,;\s]+", _as_str(obj.attrs["side_names"])) if s.strip()]
+        for k, item in enumerate(items):
+            code, _, name = item.rpartition("=")
+            names[int(code) if code.strip().isdigit() else k] = name.strip()
+        return names[0], names[1]
+    return SIDE_NAMES
+
+
+@dataclass
+class ArchGeometry:
+    """The ``/arch`` group of a run file: joint end points in the reference configuration."""
+
+    n_voussoirs: int
+    thickness_m: float
+    r_ext_m: float
+    embrace_deg: float
+    joint_intrados_xy_m: np.ndarray  #: (n+1, 2)
+    joint_extrados_xy_m: np.ndarray  #: (n+1, 2)
+
+
+@dataclass
+class RunResult:
+    """One ``voussoir-run`` result file (see docs/results_format.md)."""
+
+    path: str
+    code_version: str
+    created_utc: str
+    config_nml: str
+    input_file: str
+    config: dict  #: {group: {variable: value}} from /config
+    # /result attributes
+    collapsed: bool
+    collapse_time_s: float
+    peak_crown_disp_m: float
+    mean_iterations: float
+    max_iterations: int
+    nonconverged_steps: int
+    n_steps: int
+    wall_time_s: float
+    # samples (nt,)
+    time_s: np.ndarray
+    table_x_m: np.ndarray
+    table_v_m_s: np.ndarray
+    table_a_m_s2: np.ndarray
+    crown_dx_m: np.ndarray
+    crown_dy_m: np.ndarray
+    contact_count: np.ndarray
+    # bodies
+    body_position: np.ndarray  #: (nt, nb, 3): centroid x [m], y [m], rotation [rad]
+    vertices_local_m: np.ndarray  #: (nb, max_nv, 2), NaN padded
+    n_vertices: np.ndarray  #: (nb,)
+    body_role: np.ndarray  #: (nb,) 1 voussoir, 2 foundation, 3 restraint bracket
+    # steps (ns,)
+    step_time_s: np.ndarray
+    step_iterations: np.ndarray
+    step_norm: np.ndarray
+    # hinge events (nh,)
+    hinge_time_s: np.ndarray
+    hinge_joint: np.ndarray
+    hinge_side: np.ndarray  #: 0 intrados, 1 extrados
+    hinge_side_names: tuple = SIDE_NAMES
+    arch: ArchGeometry | None = None
+
+    @property
+    def n_samples(self) -> int:
+        return int(self.time_s.shape[0])
+
+    @property
+    def n_bodies(self) -> int:
+        return int(self.body_role.shape[0])
+
+
+def read_run(path: str | os.PathLike) -> RunResult:
+    """Read a ``voussoir-run`` HDF5 file into a :class:`RunResult`.
+
+    Raises :class:`ResultsError` for a missing or non-HDF5 file, another producer, a
+    missing dataset or attribute, or inconsistent shapes.
+    """
+    path = os.fspath(path)
+    with _open_h5(path, "voussoir-run") as h5:
+        config: dict[str, dict[str, object]] = {}
+        if "config" in h5:
+            for gname, group in h5["config"].items():
+                config[gname] = {k: _as_scalar(v) for k, v in group.attrs.items()}
+        if "result" not in h5:
+            raise ResultsError(path, "missing group '/result'")
+        res = h5["result"]
+
+        time_s = _dataset(h5, "time_s")
+        nt = time_s.shape[0]
+        _check_shape(path, "/time_s", time_s, (None,))
+        samples = {}
+        for name in ("table/x_m", "table/v_m_s", "table/a_m_s2", "crown/dx_m", "crown/dy_m",
+                     "contacts/count"):
+            samples[name] = _dataset(h5, name)
+            _check_shape(path, "/" + name, samples[name], (nt,))
+
+        role = _dataset(h5, "bodies/role", dtype=int)
+        nb = role.shape[0]
+        _check_shape(path, "/bodies/role", role, (None,))
+        position = _dataset(h5, "bodies/position")
+        _check_shape(path, "/bodies/position", position, (nt, nb, 3))
+        vertices = _dataset(h5, "bodies/vertices_local_m")
+        _check_shape(path, "/bodies/vertices_local_m", vertices, (nb, None, 2))
+        n_vertices = _dataset(h5, "bodies/n_vertices", dtype=int)
+        _check_shape(path, "/bodies/n_vertices", n_vertices, (nb,))
+        if np.any(n_vertices < 3) or np.any(n_vertices > vertices.shape[1]):
+            raise ResultsError(path, "'/bodies/n_vertices' out of range 3..max_nv")
+
+        step_time = _dataset(h5, "solver/time_s")
+        ns = step_time.shape[0]
+        iterations = _dataset(h5, "solver/iterations", dtype=int)
+        _check_shape(path, "/solver/iterations", iterations, (ns,))
+        norm = _dataset(h5, "solver/norm")
+        _check_shape(path, "/solver/norm", norm, (ns,))
+
+        hinge_time = _dataset(h5, "hinges/time_s").reshape(-1)
+        nh = hinge_time.shape[0]
+        hinge_joint = _dataset(h5, "hinges/joint", dtype=int).reshape(-1)
+        _check_shape(path, "/hinges/joint", hinge_joint, (nh,))
+        hinge_side = _dataset(h5, "hinges/side", dtype=int).reshape(-1)
+        _check_shape(path, "/hinges/side", hinge_side, (nh,))
+        side_names = _side_names(h5)
+
+        arch = None
+        if "arch" in h5:
+            g = h5["arch"]
+            n = _attr(g, "n_voussoirs", int)
+            intr = _dataset(h5, "arch/joint_intrados_xy_m")
+            extr = _dataset(h5, "arch/joint_extrados_xy_m")
+            _check_shape(path, "/arch/joint_intrados_xy_m", intr, (n + 1, 2))
+            _check_shape(path, "/arch/joint_extrados_xy_m", extr, (n + 1, 2))
+            arch = ArchGeometry(
+                n_voussoirs=n,
+                thickness_m=_attr(g, "thickness_m"),
+                r_ext_m=_attr(g, "r_ext_m"),
+                embrace_deg=_attr(g, "embrace_deg"),
+                joint_intrados_xy_m=intr,
+                joint_extrados_xy_m=extr,
+            )
+
+        return RunResult(
+            path=path,
+            code_version=_optional_str_attr(h5, "code_version"),
+            created_utc=_optional_str_attr(h5, "created_utc"),
+            config_nml=_optional_str_attr(h5, "config_nml"),
+            input_file=_optional_str_attr(h5, "input_file"),
+            config=config,
+            collapsed=bool(_attr(res, "collapsed", int)),
+            collapse_time_s=_attr(res, "collapse_time_s"),
+            peak_crown_disp_m=_attr(res, "peak_crown_disp_m"),
+            mean_iterations=_attr(res, "mean_iterations"),
+            max_iterations=_attr(res, "max_iterations", int),
+            nonconverged_steps=_attr(res, "nonconverged_steps", int),
+            n_steps=_attr(res, "n_steps", int),
+            wall_time_s=_attr(res, "wall_time_s"),
+            time_s=time_s,
+            table_x_m=samples["table/x_m"],
+            table_v_m_s=samples["table/v_m_s"],
+            table_a_m_s2=samples["table/a_m_s2"],
+            crown_dx_m=samples["crown/dx_m"],
+            crown_dy_m=samples["crown/dy_m"],
+            contact_count=samples["contacts/count"].astype(int),
+            body_position=position,
+            vertices_local_m=vertices,
+            n_vertices=n_vertices,
+            body_role=role,
+            step_time_s=step_time,
+            step_iterations=iterations,
+            step_norm=norm,
+            hinge_time_s=hinge_time,
+            hinge_joint=hinge_joint,
+            hinge_side=hinge_side,
+            hinge_side_names=side_names,
+            arch=arch,
+        )
+
+
+# ---------------------------------------------------------------------- sweep files
+
+_THRESHOLD_COLUMNS = ("job", "param_set", "frequency_hz", "mean_iterations", "threshold_m",
+                      "peak_accel_m_s2", "non_monotonic", "n_runs")
+_GRID_COLUMNS = ("job", "param_set", "frequency_hz", "amplitude_m", "collapsed",
+                 "collapse_time_s", "peak_crown_disp_m", "mean_iterations")
+
+
+@dataclass
+class SweepResult:
+    """One ``voussoir-sweep`` result file; ``results`` rows sorted by job index."""
+
+    path: str
+    mode: str  #: 'threshold' or 'grid'
+    sweep_signature: str
+    n_jobs: int
+    parameter_names: list[str]
+    parameter_values: np.ndarray  #: (n_sets, n_params)
+    results: dict[str, np.ndarray]  #: column name -> (n_rows,) sorted by job
+    code_version: str = ""
+    created_utc: str = ""
+    config_nml: str = ""
+    config: dict = field(default_factory=dict)  #: parsed config_nml {group: {var: value}}
+
+    @property
+    def n_sets(self) -> int:
+        return int(self.parameter_values.shape[0])
+
+    @property
+    def n_rows(self) -> int:
+        return int(self.results["job"].shape[0])
+
+    def set_label(self, param_set: int) -> str:
+        """Human label of a parameter set: 'name=value, ...' or 'nominal'."""
+        if not self.parameter_names:
+            return "nominal"
+        values = self.parameter_values[param_set]
+        return ", ".join(f"{n}={v:.6g}" for n, v in zip(self.parameter_names, values))
+
+    def set_parameters(self, param_set: int) -> dict[str, float]:
+        """The swept parameter values of one set as a dict."""
+        return {n: float(v) for n, v in zip(self.parameter_names, self.parameter_values[param_set])}
+
+
+def read_sweep(path: str | os.PathLike) -> SweepResult:
+    """Read a ``voussoir-sweep`` HDF5 file into a :class:`SweepResult`.
+
+    Rows of ``/results`` are sorted by the ``job`` column (the file stores them in order
+    of completion). A partly finished sweep (fewer rows than ``n_jobs``) is read as it is.
+    """
+    path = os.fspath(path)
+    with _open_h5(path, "voussoir-sweep") as h5:
+        mode = _attr(h5, "mode", str)
+        if mode not in ("threshold", "grid"):
+            raise ResultsError(path, f"root attribute 'mode' is '{mode}', expected 'threshold' or 'grid'")
+        names_text = _attr(h5, "parameter_names", str)
+        names = [n.strip() for n in names_text.split(",") if n.strip()]
+        if names:
+            values = _dataset(h5, "parameters/values")
+            if values.ndim == 1 and len(names) == 1:
+                values = values.reshape(-1, 1)
+            _check_shape(path, "/parameters/values", values, (None, len(names)))
+        else:
+            values = np.zeros((1, 0))
+        columns = _THRESHOLD_COLUMNS if mode == "threshold" else _GRID_COLUMNS
+        if "results" not in h5:
+            raise ResultsError(path, "missing group '/results'")
+        results = {}
+        for col in columns:
+            results[col] = _dataset(h5, f"results/{col}").reshape(-1)
+        n_rows = results["job"].shape[0]
+        for col in columns:
+            _check_shape(path, f"/results/{col}", results[col], (n_rows,))
+        order = np.argsort(results["job"], kind="stable")
+        results = {k: v[order] for k, v in results.items()}
+        for col in ("job", "param_set", "collapsed", "non_monotonic", "n_runs"):
+            if col in results:
+                results[col] = results[col].astype(int)
+        if n_rows and (results["param_set"].min() < 0 or results["param_set"].max() >= values.shape[0]):
+            raise ResultsError(path, "'/results/param_set' refers to a parameter set that "
+                                     f"'/parameters/values' does not have ({values.shape[0]} sets)")
+        config_nml = _optional_str_attr(h5, "config_nml")
+        return SweepResult(
+            path=path,
+            mode=mode,
+            sweep_signature=_attr(h5, "sweep_signature", str),
+            n_jobs=_attr(h5, "n_jobs", int),
+            parameter_names=names,
+            parameter_values=values,
+            results=results,
+            code_version=_optional_str_attr(h5, "code_version"),
+            created_utc=_optional_str_attr(h5, "created_utc"),
+            config_nml=config_nml,
+            config=parse_namelist(config_nml),
+        )
+
+
+# ----------------------------------------------------------------------- limit JSON
+
+
+@dataclass
+class LimitResult:
+    """The JSON written by ``voussoir-limit --json``."""
+
+    path: str
+    lambda_pos: float
+    lambda_neg: float
+    hinges_pos: list[tuple[int, str]]  #: (joint, side) from the left
+    hinges_neg: list[tuple[int, str]]
+    min_thickness_ratio_ext: float
+    min_thickness_ratio_mean: float
+    n_voussoirs: int
+    embrace_deg: float
+    r_ext_m: float
+    thickness_m: float
+    contact_inset_m: float
+    joint_intrados_xy_m: np.ndarray  #: (n+1, 2)
+    joint_extrados_xy_m: np.ndarray  #: (n+1, 2)
+    sliding: list  #: joints where friction does not carry the collapse thrust
+    sliding_pos: list | None = None  #: the same per direction, when the JSON has it
+    sliding_neg: list | None = None
+    friction: float = math.nan
+    g_m_s2: float = 9.81  #: gravity used for lambda (JSON 'g_m_s2', else the kernel's 9.81)
+    code_version: str = ""
+
+
+def _json_float(value) -> float:
+    return math.nan if value is None else float(value)
+
+
+def read_limit_json(path: str | os.PathLike) -> LimitResult:
+    """Read the ``voussoir-limit --json`` output; ResultsError on a missing file, bad JSON
+    or a missing key."""
+    path = os.fspath(path)
+    if not os.path.exists(path):
+        raise ResultsError(path, "no such file")
+    try:
+        with open(path, encoding="utf-8") as f:
+            data = json.load(f)
+    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
+        raise ResultsError(path, f"not a JSON file: {exc}") from exc
+    if not isinstance(data, dict):
+        raise ResultsError(path, "expected one JSON object")
+    producer = data.get("producer", "voussoir-limit")
+    if producer != "voussoir-limit":
+        raise ResultsError(path, f"written by '{producer}', but this command reads 'voussoir-limit' files")
+
+    def need(obj, key, where=""):
+        if key not in obj:
+            raise ResultsError(path, f"missing key '{where}{key}'")
+        return obj[key]
+
+    def hinges(key):
+        out = []
+        for k, h in enumerate(need(data, key)):
+            try:
+                side = str(h["side"])
+                joint = int(h["joint"])
+            except (KeyError, TypeError, ValueError) as exc:
+                raise ResultsError(path, f"'{key}[{k}]' must be {{\"joint\": j, \"side\": ...}}") from exc
+            if side not in SIDE_NAMES:
+                raise ResultsError(path, f"'{key}[{k}].side' is '{side}', expected intrados or extrados")
+            out.append((joint, side))
+        return out
+
+    arch = need(data, "arch")
+    n = int(need(arch, "n_voussoirs", "arch."))
+    intr = np.asarray(need(arch, "joint_intrados_xy_m", "arch."), dtype=float)
+    extr = np.asarray(need(arch, "joint_extrados_xy_m", "arch."), dtype=float)
+    for name, arr in (("joint_intrados_xy_m", intr), ("joint_extrados_xy_m", extr)):
+        if arr.shape != (n + 1, 2):
+            raise ResultsError(path, f"'arch.{name}' has shape {arr.shape}, expected ({n + 1}, 2)")
+    return LimitResult(
+        path=path,
+        lambda_pos=_json_float(need(data, "lambda_pos")),
+        lambda_neg=_json_float(need(data, "lambda_neg")),
+        hinges_pos=hinges("hinges_pos"),
+        hinges_neg=hinges("hinges_neg"),
+        min_thickness_ratio_ext=_json_float(data.get("min_thickness_ratio_ext")),
+        min_thickness_ratio_mean=_json_float(data.get("min_thickness_ratio_mean")),
+        n_voussoirs=n,
+        embrace_deg=float(need(arch, "embrace_deg", "arch.")),
+        r_ext_m=float(need(arch, "r_ext_m", "arch.")),
+        thickness_m=float(need(arch, "thickness_m", "arch.")),
+        contact_inset_m=float(arch.get("contact_inset_m", 0.0) or 0.0),
+        joint_intrados_xy_m=intr,
+        joint_extrados_xy_m=extr,
+        sliding=list(data.get("sliding", []) or []),
+        sliding_pos=list(data["sliding_pos"]) if data.get("sliding_pos") is not None else None,
+        sliding_neg=list(data["sliding_neg"]) if data.get("sliding_neg") is not None else None,
+        friction=_json_float(data.get("friction")),
+        g_m_s2=_json_float(data.get("g_m_s2", 9.81)),
+        code_version=str(data.get("code_version", "")),
+    )
