@@ -1,7 +1,7 @@
 !> The input of a run: namelist groups read into validated types.
 !>
-!> Groups: &arch, &motion, &solver, &output (and the drivers' own, e.g. &sweep, which
-!> they read themselves with `open_namelist`/`read_group_status`). Every value is
+!> Groups: &arch, &motion, &solver, &output (and the drivers' own, e.g. &sweep and
+!> &limit, which they read themselves; `check_groups` refuses any other group). Every value is
 !> checked; a bad one gives an error that names the file, the group, the variable, the
 !> value and the allowed range. `config_entries` lists the effective configuration,
 !> defaults included, for the result files.

@@ -166,7 +166,9 @@ contains
       res%table(:, s) = model%table
       res%crown(:, s) = crown_displacement()
       res%q(:, :, s) = model%bodies%q
-      res%contact_count(s) = count(model%contacts%impulse(2, 1:model%contacts%n) > 0.0_dp)
+      res%contact_count(s) = 0
+      if (model%contacts%n > 0) &
+        res%contact_count(s) = count(model%contacts%impulse(2, 1:model%contacts%n) > 0.0_dp)
     end subroutine sample
 
     function crown_displacement() result(d)

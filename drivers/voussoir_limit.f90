@@ -1,0 +1,482 @@
+!> voussoir-limit FILE.nml [--json]: limit analysis of the arch that the &arch group of
+!> FILE.nml describes (the same group voussoir-run reads): horizontal collapse multipliers
+!> towards +x and -x with their four-hinge mechanisms, the friction check, and the
+!> minimum thickness of the arch with its hinges. Prints a table, or with --json exactly
+!> one JSON object on stdout (docs/results_format.md, "voussoir-limit --json").
+!> The optional &limit group is documented in docs/limit_analysis.md. Errors go to
+!> stderr with a non-zero exit code.
+program voussoir_limit_main
+  use, intrinsic :: iso_fortran_env, only: error_unit, output_unit, iostat_end
+  use voussoir_kinds, only: dp, g_m_s2
+  use voussoir_status, only: status_t, fail
+  use voussoir_config, only: config_t, read_config
+  use voussoir_assembly, only: assembly_t, build_arch
+  use voussoir_limit, only: limit_result_t, side_intrados, horizontal_capacity, &
+                            thickness_search => minimum_thickness
+  use voussoir_version, only: code_version
+  implicit none
+
+  !> The &limit group.
+  type :: limit_options_t
+    logical :: minimum_thickness = .true.  !! compute the minimum thickness
+    real(dp) :: inset_m = 0.0_dp           !! pivot inset of the analysis [m]
+  end type limit_options_t
+
+  !> The minimum thickness of the arch's shape (embrace, voussoirs, r_ext, inset).
+  type :: thickness_result_t
+    logical :: computed = .false.
+    real(dp) :: ratio_ext = 0.0_dp, ratio_mean = 0.0_dp
+    integer, allocatable :: hinges(:), sides(:)
+  end type thickness_result_t
+
+  type(config_t) :: cfg
+  type(limit_options_t) :: opts
+  type(assembly_t) :: arch
+  type(limit_result_t) :: res
+  type(thickness_result_t) :: tmin
+  type(status_t) :: status
+  character(len=1024) :: path
+  logical :: json
+
+  call parse_arguments(path, json)
+  call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'limit'], &
+                   cfg, status)
+  if (status%ok) call read_limit_group(trim(path), cfg, opts, status)
+  if (status%ok) call analyse(cfg, opts, arch, res, tmin, status)
+  if (.not. status%ok) then
+    write (error_unit, '(a)') 'voussoir-limit: error: '//trim(status%message)
+    error stop 1
+  end if
+  if (json) then
+    call write_json(output_unit, trim(path), cfg, opts, arch, res, tmin)
+  else
+    call write_table(output_unit, trim(path), cfg, opts, res, tmin)
+  end if
+
+contains
+
+  !> FILE.nml and the optional --json, in either order.
+  subroutine parse_arguments(path, json)
+    character(len=*), intent(out) :: path
+    logical, intent(out) :: json
+    character(len=1024) :: arg
+    integer :: k
+    path = ''
+    json = .false.
+    do k = 1, command_argument_count()
+      call get_command_argument(k, arg)
+      if (arg == '--json') then
+        json = .true.
+      else if (arg(1:1) == '-' .or. len_trim(path) > 0) then
+        path = ''
+        exit
+      else
+        path = arg
+      end if
+    end do
+    if (len_trim(path) == 0) then
+      write (error_unit, '(a)') 'usage: voussoir-limit FILE.nml [--json]'
+      error stop 2
+    end if
+  end subroutine parse_arguments
+
+  !> Read the optional &limit group of `path`; the inset defaults to &arch contact_inset_m.
+  subroutine read_limit_group(path, cfg, opts, status)
+    character(len=*), intent(in) :: path
+    type(config_t), intent(in) :: cfg
+    type(limit_options_t), intent(out) :: opts
+    type(status_t), intent(inout) :: status
+    real(dp), parameter :: unset = -huge(1.0_dp)
+    logical :: minimum_thickness
+    real(dp) :: inset_m
+    integer :: unit, ios
+    character(len=512) :: iomsg
+    namelist /limit/ minimum_thickness, inset_m
+
+    minimum_thickness = opts%minimum_thickness
+    inset_m = unset
+    open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
+    if (ios /= 0) then
+      call fail(status, path//': cannot open input: '//trim(iomsg))
+      return
+    end if
+    read (unit, nml=limit, iostat=ios, iomsg=iomsg)
+    close (unit)
+    ! End of file: the group is absent and the defaults hold.
+    if (ios /= 0 .and. ios /= iostat_end) then
+      call fail(status, path//': in namelist group &limit: '//trim(iomsg))
+      return
+    end if
+    opts%minimum_thickness = minimum_thickness
+    opts%inset_m = merge(cfg%arch%contact_inset_m, inset_m, inset_m == unset)
+    if (.not. (opts%inset_m >= 0.0_dp .and. opts%inset_m < 0.5_dp*cfg%arch%thickness_m)) &
+      call fail(status, path//': &limit inset_m = '//short(inset_m)// &
+                ' is outside the allowed range 0 <= inset_m < thickness_m/2 = '// &
+                short(0.5_dp*cfg%arch%thickness_m))
+  end subroutine read_limit_group
+
+  !> Build the arch of &arch and run the analyses; refuse what the limit analysis does not model.
+  subroutine analyse(cfg, opts, arch, res, tmin, status)
+    type(config_t), intent(in) :: cfg
+    type(limit_options_t), intent(in) :: opts
+    type(assembly_t), intent(out) :: arch
+    type(limit_result_t), intent(out) :: res
+    type(thickness_result_t), intent(out) :: tmin
+    type(status_t), intent(inout) :: status
+    character(len=:), allocatable :: f
+
+    f = trim(cfg%source_file)
+    associate (a => cfg%arch)
+      if (len_trim(a%polygon_file) > 0) then
+        call fail(status, f//": &arch polygon_file = '"//trim(a%polygon_file)//"': voussoir-limit "// &
+                  'analyses the arch of embrace_deg, n_voussoirs, r_ext_m and thickness_m only; '// &
+                  'a polygon assembly has no joints to hinge (remove polygon_file)')
+      else if (a%restrained_springings /= 'none') then
+        call fail(status, f//": &arch restrained_springings = '"//trim(a%restrained_springings)// &
+                  "': the limit analysis does not model restraint brackets (its mechanisms hinge "// &
+                  "freely at the springings); set restrained_springings = 'none'")
+      else if (a%n_voussoirs < 3) then
+        call fail(status, f//': &arch n_voussoirs = '//itoa(a%n_voussoirs)// &
+                  ' is outside the allowed range n_voussoirs >= 3 (a four-hinge mechanism needs 3 voussoirs)')
+      else if (opts%minimum_thickness .and. a%n_voussoirs < 4) then
+        call fail(status, f//': &arch n_voussoirs = 3: the minimum thickness needs n_voussoirs >= 4 '// &
+                  '(an arch of 3 voussoirs stands at vanishing thickness); set &limit minimum_thickness = .false.')
+      end if
+      if (.not. status%ok) return
+      call build_arch(a%embrace_deg, a%n_voussoirs, a%r_ext_m, a%thickness_m, arch)
+      call horizontal_capacity(arch, opts%inset_m, a%friction, res, status)
+      if (status%ok .and. opts%minimum_thickness) then
+        call thickness_search(a%embrace_deg, a%n_voussoirs, a%r_ext_m, opts%inset_m, tmin%ratio_ext, &
+                              tmin%ratio_mean, tmin%hinges, tmin%sides, status)
+        tmin%computed = status%ok
+        if (.not. status%ok) status%message = trim(status%message)// &
+          ' (set &limit minimum_thickness = .false. to skip it)'
+      end if
+    end associate
+    if (.not. status%ok) status%message = f//': '//trim(status%message)
+  end subroutine analyse
+
+  !> The readable report.
+  subroutine write_table(u, path, cfg, opts, res, tmin)
+    integer, intent(in) :: u
+    character(len=*), intent(in) :: path
+    type(config_t), intent(in) :: cfg
+    type(limit_options_t), intent(in) :: opts
+    type(limit_result_t), intent(in) :: res
+    type(thickness_result_t), intent(in) :: tmin
+    character(len=*), parameter :: rule = '  ------------------------------------------------------------------'
+    associate (a => cfg%arch)
+      write (u, '(a)') 'voussoir-limit: '//path
+      write (u, '(a)') 'arch: '//itoa(a%n_voussoirs)//' voussoirs, embrace '//short(a%embrace_deg)// &
+        ' deg, r_ext '//short(a%r_ext_m)//' m, thickness '//short(a%thickness_m)//' m (t/R_ext '// &
+        short(a%thickness_m/a%r_ext_m)//')'
+      write (u, '(a)') '      pivot inset '//short(1.0e3_dp*opts%inset_m)//' mm, friction '//short(a%friction)
+      write (u, '(/,a)') 'Horizontal collapse (rigid blocks, no tension, no sliding; load = lambda x weight)'
+      write (u, '(a)') '  direction  lambda     lambda g [m/s2]  mechanism (hinges from the left)'
+      write (u, '(a)') rule
+      call direction_row(u, '+x', res%lambda_pos, res%hinges_pos(1:res%n_hinges_pos), &
+                         res%sides_pos(1:res%n_hinges_pos))
+      call direction_row(u, '-x', res%lambda_neg, res%hinges_neg(1:res%n_hinges_neg), &
+                         res%sides_neg(1:res%n_hinges_neg))
+      if (res%n_hinges_pos == 0 .and. res%n_hinges_neg == 0) then
+        write (u, '(a)') '  no mechanism opens: without sliding the blocks carry any horizontal load '// &
+          '(no friction check)'
+      else
+        ! A direction without a mechanism has nothing to check.
+        if ((res%bounds_meet_pos .or. res%n_hinges_pos == 0) .and. (res%bounds_meet_neg .or. res%n_hinges_neg == 0)) then
+          write (u, '(a)') '  static check: the thrust line through the hinges stays inside every joint '// &
+            '(bounds meet)'
+        else
+          write (u, '(a)') '  static check: the thrust line through the hinges leaves a joint '// &
+            '(bounds do not meet: lambda is an upper bound only)'
+        end if
+        write (u, '(a)') '  friction check: '//friction_text(res, a%n_voussoirs, a%friction)
+      end if
+      if (tmin%computed) then
+        write (u, '(/,a)') 'Minimum thickness (same embrace, voussoirs, r_ext and inset; own weight only)'
+        write (u, '(a,f9.6,a,f9.6,a)') '  t/R_ext ', tmin%ratio_ext, '   t/R_mean ', tmin%ratio_mean, &
+          '   t_min '//short(1.0e3_dp*tmin%ratio_ext*a%r_ext_m)//' mm'
+        write (u, '(a)') '  hinges: '//hinge_text(tmin%hinges, tmin%sides)
+      end if
+    end associate
+  end subroutine write_table
+
+  !> One line of the capacity table.
+  subroutine direction_row(u, name, lambda, hinges, sides)
+    integer, intent(in) :: u
+    character(len=*), intent(in) :: name
+    real(dp), intent(in) :: lambda
+    integer, intent(in) :: hinges(:), sides(:)
+    if (lambda == huge(1.0_dp)) then
+      write (u, '(4x,a,7x,a)') name, 'no admissible mechanism'
+      return
+    end if
+    write (u, '(4x,a,5x,f9.6,2x,f9.4,8x,a)') name, lambda, lambda*g_m_s2, hinge_text(hinges, sides)
+    if (lambda < 0.0_dp) write (u, '(15x,a)') &
+      '(negative: the arch cannot carry its own weight; it is thinner than its minimum thickness)'
+  end subroutine direction_row
+
+  !> 'joint 0 intrados, joint 5 extrados, ...'
+  function hinge_text(hinges, sides) result(text)
+    integer, intent(in) :: hinges(:), sides(:)
+    character(len=:), allocatable :: text
+    integer :: k
+    text = ''
+    do k = 1, size(hinges)
+      if (k > 1) text = text//', '
+      text = text//'joint '//itoa(hinges(k))//' '//side_name(sides(k))
+    end do
+  end function hinge_text
+
+  !> 'hinging governs ...' or 'sliding governs at joints ...'.
+  function friction_text(res, n_voussoirs, friction) result(text)
+    type(limit_result_t), intent(in) :: res
+    integer, intent(in) :: n_voussoirs
+    real(dp), intent(in) :: friction
+    character(len=:), allocatable :: text
+    integer, allocatable :: joints(:)
+    real(dp) :: worst
+    integer :: k
+    call sliding_union(res, n_voussoirs, joints)
+    worst = max(maxval(res%shear_ratio_pos), maxval(res%shear_ratio_neg))
+    if (size(joints) == 0) then
+      text = 'hinging governs (largest |T|/N at collapse '//short(worst, 5)//' <= friction '// &
+             short(friction)//')'
+    else
+      text = 'sliding governs at joints '
+      do k = 1, size(joints)
+        if (k > 1) text = text//', '
+        text = text//itoa(joints(k))
+      end do
+      if (worst == huge(1.0_dp)) then
+        text = text//' (a joint is not in compression in the collapse state)'
+      else
+        text = text//' (|T|/N at collapse up to '//short(worst, 5)//' > friction '//short(friction)// &
+               '): the true capacity can be lower than lambda'
+      end if
+    end if
+  end function friction_text
+
+  !> Joints where sliding governs in either direction, ascending.
+  pure subroutine sliding_union(res, n_voussoirs, joints)
+    type(limit_result_t), intent(in) :: res
+    integer, intent(in) :: n_voussoirs
+    integer, allocatable, intent(out) :: joints(:)
+    integer :: j
+    allocate (joints(0))
+    do j = 0, n_voussoirs
+      if (any(res%sliding_joints_pos == j) .or. any(res%sliding_joints_neg == j)) joints = [joints, j]
+    end do
+  end subroutine sliding_union
+
+  !> The JSON object of docs/results_format.md.
+  subroutine write_json(u, path, cfg, opts, arch, res, tmin)
+    integer, intent(in) :: u
+    character(len=*), intent(in) :: path
+    type(config_t), intent(in) :: cfg
+    type(limit_options_t), intent(in) :: opts
+    type(assembly_t), intent(in) :: arch
+    type(limit_result_t), intent(in) :: res
+    type(thickness_result_t), intent(in) :: tmin
+    integer :: j
+    integer, allocatable :: sliding(:)
+    character(len=1), parameter :: nl = achar(10)
+    character(len=:), allocatable :: text
+    call sliding_union(res, cfg%arch%n_voussoirs, sliding)
+    associate (a => cfg%arch)
+      text = '{'//nl// &
+        '  "producer": "voussoir-limit",'//nl// &
+        '  "code_version": '//quoted(code_version)//','//nl// &
+        '  "input_file": '//quoted(path)//','//nl// &
+        '  "g_m_s2": '//num(g_m_s2)//','//nl// &
+        '  "lambda_pos": '//finite_or_null(res%lambda_pos)//','//nl// &
+        '  "lambda_neg": '//finite_or_null(res%lambda_neg)//','//nl// &
+        '  "hinges_pos": '//hinge_json(res%hinges_pos(1:res%n_hinges_pos), res%sides_pos(1:res%n_hinges_pos))// &
+        ','//nl// &
+        '  "hinges_neg": '//hinge_json(res%hinges_neg(1:res%n_hinges_neg), res%sides_neg(1:res%n_hinges_neg))// &
+        ','//nl// &
+        '  "bounds_meet_pos": '//boolean(res%bounds_meet_pos)//','//nl// &
+        '  "bounds_meet_neg": '//boolean(res%bounds_meet_neg)//','//nl
+      if (tmin%computed) then
+        text = text// &
+          '  "min_thickness_ratio_ext": '//num(tmin%ratio_ext)//','//nl// &
+          '  "min_thickness_ratio_mean": '//num(tmin%ratio_mean)//','//nl// &
+          '  "min_thickness_m": '//num(tmin%ratio_ext*a%r_ext_m)//','//nl// &
+          '  "hinges_min_thickness": '//hinge_json(tmin%hinges, tmin%sides)//','//nl
+      else
+        text = text// &
+          '  "min_thickness_ratio_ext": null,'//nl//'  "min_thickness_ratio_mean": null,'//nl// &
+          '  "min_thickness_m": null,'//nl//'  "hinges_min_thickness": [],'//nl
+      end if
+      text = text// &
+        '  "friction": '//num(a%friction)//','//nl// &
+        '  "sliding": '//int_list(sliding)//','//nl// &
+        '  "sliding_pos": '//int_list(res%sliding_joints_pos)//','//nl// &
+        '  "sliding_neg": '//int_list(res%sliding_joints_neg)//','//nl// &
+        '  "max_shear_ratio_pos": '//finite_or_null(maxval(res%shear_ratio_pos))//','//nl// &
+        '  "max_shear_ratio_neg": '//finite_or_null(maxval(res%shear_ratio_neg))//','//nl// &
+        '  "arch": {'//nl// &
+        '    "n_voussoirs": '//itoa(a%n_voussoirs)//','//nl// &
+        '    "embrace_deg": '//num(a%embrace_deg)//','//nl// &
+        '    "r_ext_m": '//num(a%r_ext_m)//','//nl// &
+        '    "thickness_m": '//num(a%thickness_m)//','//nl// &
+        '    "contact_inset_m": '//num(opts%inset_m)//','//nl// &
+        '    "joint_intrados_xy_m": ['
+      do j = 0, a%n_voussoirs
+        if (j > 0) text = text//', '
+        text = text//'['//num(arch%joint_intrados_xy(1, j))//', '// &
+               num(arch%joint_intrados_xy(2, j))//']'
+      end do
+      text = text//'],'//nl//'    "joint_extrados_xy_m": ['
+      do j = 0, a%n_voussoirs
+        if (j > 0) text = text//', '
+        text = text//'['//num(arch%joint_extrados_xy(1, j))//', '// &
+               num(arch%joint_extrados_xy(2, j))//']'
+      end do
+      text = text//']'//nl//'  }'//nl//'}'
+    end associate
+    write (u, '(a)') text
+  end subroutine write_json
+
+  !> A number, or null for the module's `huge` (no admissible mechanism, joint not in
+  !> compression).
+  function finite_or_null(x) result(text)
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: text
+    if (x == huge(1.0_dp)) then
+      text = 'null'
+    else
+      text = num(x)
+    end if
+  end function finite_or_null
+
+  function hinge_json(hinges, sides) result(text)
+    integer, intent(in) :: hinges(:), sides(:)
+    character(len=:), allocatable :: text
+    integer :: k
+    text = '['
+    do k = 1, size(hinges)
+      if (k > 1) text = text//', '
+      text = text//'{"joint": '//itoa(hinges(k))//', "side": "'//side_name(sides(k))//'"}'
+    end do
+    text = text//']'
+  end function hinge_json
+
+  function int_list(values) result(text)
+    integer, intent(in) :: values(:)
+    character(len=:), allocatable :: text
+    integer :: k
+    text = '['
+    do k = 1, size(values)
+      if (k > 1) text = text//', '
+      text = text//itoa(values(k))
+    end do
+    text = text//']'
+  end function int_list
+
+  pure function side_name(side) result(name)
+    integer, intent(in) :: side
+    character(len=:), allocatable :: name
+    if (side == side_intrados) then
+      name = 'intrados'
+    else
+      name = 'extrados'
+    end if
+  end function side_name
+
+  !> A JSON string (escapes backslashes and quotes).
+  pure function quoted(s) result(text)
+    character(len=*), intent(in) :: s
+    character(len=:), allocatable :: text
+    integer :: k
+    text = '"'
+    do k = 1, len(s)
+      if (s(k:k) == '"' .or. s(k:k) == '\') text = text//'\'
+      text = text//s(k:k)
+    end do
+    text = text//'"'
+  end function quoted
+
+  !> A real as a JSON number: the fewest digits (15 to 17) that read back to the same
+  !> value, in E notation without padding zeros (0.376 -> 3.76E-1).
+  function num(x) result(text)
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: text
+    character(len=40) :: buf
+    character(len=16) :: fmt
+    real(dp) :: back
+    integer :: digits, e, k, exponent
+    if (x == 0.0_dp) then
+      text = '0.0'
+      return
+    end if
+    do digits = 15, 17
+      write (fmt, '(a,i0,a)') '(es30.', digits - 1, 'e3)'
+      write (buf, fmt) x
+      read (buf, *) back
+      if (back == x) exit
+    end do
+    buf = adjustl(buf)
+    e = index(buf, 'E')
+    read (buf(e + 1:), *) exponent
+    k = e - 1
+    do while (buf(k:k) == '0')
+      k = k - 1
+    end do
+    if (buf(k:k) == '.') k = k + 1   ! keep one digit after the point
+    text = buf(1:k)
+    if (exponent /= 0) text = text//'E'//itoa(exponent)
+  end function num
+
+  pure function boolean(x) result(text)
+    logical, intent(in) :: x
+    character(len=:), allocatable :: text
+    if (x) then
+      text = 'true'
+    else
+      text = 'false'
+    end if
+  end function boolean
+
+  !> A real for people: `digits` significant digits (6 by default), trailing zeros dropped.
+  function short(x, digits) result(text)
+    real(dp), intent(in) :: x
+    integer, intent(in), optional :: digits
+    character(len=:), allocatable :: text
+    character(len=40) :: buf
+    character(len=16) :: fmt
+    integer :: k, n_digits
+    n_digits = 6
+    if (present(digits)) n_digits = digits
+    if (x == 0.0_dp) then
+      text = '0'
+      return
+    end if
+    if (abs(x) >= 1.0e-3_dp .and. abs(x) < 1.0e7_dp) then
+      write (fmt, '(a,i0,a)') '(f0.', max(0, n_digits - 1 - floor(log10(abs(x)))), ')'
+    else
+      write (fmt, '(a,i0,a)') '(es0.', n_digits - 1, ')'
+    end if
+    write (buf, fmt) x
+    text = trim(adjustl(buf))
+    if (scan(text, 'eE') == 0 .and. index(text, '.') > 0) then
+      k = len(text)
+      do while (text(k:k) == '0')
+        k = k - 1
+      end do
+      if (text(k:k) == '.') k = k - 1
+      text = text(1:k)
+    end if
+    if (text(1:1) == '.') text = '0'//text
+    if (text(1:2) == '-.') text = '-0'//text(2:)
+  end function short
+
+  pure function itoa(i) result(text)
+    integer, intent(in) :: i
+    character(len=:), allocatable :: text
+    character(len=16) :: buf
+    write (buf, '(i0)') i
+    text = trim(buf)
+  end function itoa
+
+end program voussoir_limit_main
