@@ -110,6 +110,7 @@ contains
     integer :: n_steps, n_samples, nb, istep
     integer(8) :: clock0, clock1, rate
     real(dp) :: sum_iter
+    real(dp) :: cs(2, model%bodies%n)  ! cos and sin of every body's rotation
 
     call system_clock(clock0, rate)
     nb = model%bodies%n
@@ -186,6 +187,11 @@ contains
     subroutine watch()
       integer :: i, j, side
       real(dp) :: gaps(2)
+      if (mon%n_joints > 0) then
+        ! Rotation of every body, once per step (the joints share them).
+        cs(1, :) = cos(model%bodies%q(3, :))
+        cs(2, :) = sin(model%bodies%q(3, :))
+      end if
       res%peak_crown_disp_m = max(res%peak_crown_disp_m, norm2(crown_displacement()))
       if (.not. res%collapsed) then
         do i = 1, nb
@@ -223,7 +229,7 @@ contains
       integer :: a, b, e
       a = mon%joint_bodies(1, j)
       b = mon%joint_bodies(2, j)
-      nrm = rotated(mon%joint_normal(:, j), model%bodies%q(3, b))
+      nrm = rotated(mon%joint_normal(:, j), b)
       pb = material_point(b, mon%joint_ends(:, 1, j))
       do e = 1, 2
         pa = material_point(a, mon%joint_ends(:, e, j))
@@ -235,14 +241,15 @@ contains
       integer, intent(in) :: body
       real(dp), intent(in) :: x_ref(2)
       real(dp) :: x(2)
-      x = model%bodies%q(1:2, body) + rotated(x_ref - model%bodies%q_ref(1:2, body), &
-                                              model%bodies%q(3, body))
+      x = model%bodies%q(1:2, body) + rotated(x_ref - model%bodies%q_ref(1:2, body), body)
     end function material_point
 
-    pure function rotated(p, angle) result(r)
-      real(dp), intent(in) :: p(2), angle
+    !> `p` turned by the present rotation of `body`.
+    function rotated(p, body) result(r)
+      real(dp), intent(in) :: p(2)
+      integer, intent(in) :: body
       real(dp) :: r(2)
-      r = [cos(angle)*p(1) - sin(angle)*p(2), sin(angle)*p(1) + cos(angle)*p(2)]
+      r = [cs(1, body)*p(1) - cs(2, body)*p(2), cs(2, body)*p(1) + cs(1, body)*p(2)]
     end function rotated
 
     subroutine add_hinge(joint, side)
