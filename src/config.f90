@@ -367,10 +367,6 @@ contains
           'output', 'collapse_drop_m', o%collapse_drop_m, 'collapse_drop_m >= 0')
       call need(o%collapse_rotation_rad > 0.0_dp, &
           'output', 'collapse_rotation_rad', o%collapse_rotation_rad, 'collapse_rotation_rad > 0')
-      if (.not. status%ok) return
-      ! Automatic values.
-      if (o%hinge_gap_m == 0.0_dp) o%hinge_gap_m = 0.01_dp*a%thickness_m
-      if (o%collapse_drop_m == 0.0_dp) o%collapse_drop_m = 0.5_dp*a%thickness_m
     end associate
 
   contains

@@ -25,6 +25,7 @@ contains
     type(status_t), intent(inout) :: status
     logical :: restrained(2)
     type(solver_settings_t) :: settings
+    real(dp) :: hinge_gap_m, collapse_drop_m
 
     duration_s = 0.0_dp
     associate (a => cfg%arch, m => cfg%motion, s => cfg%solver)
@@ -68,8 +69,13 @@ contains
         return
       end if
     end associate
-    call monitor_init(assembly, model, cfg%output%collapse_drop_m, cfg%output%collapse_rotation_rad, &
-                      cfg%output%hinge_gap_m, mon)
+    ! Monitors left automatic (0) follow the thickness: hinges open at 1 % of it, a
+    ! voussoir has fallen when it drops by half of it.
+    hinge_gap_m = cfg%output%hinge_gap_m
+    if (hinge_gap_m == 0.0_dp) hinge_gap_m = 0.01_dp*cfg%arch%thickness_m
+    collapse_drop_m = cfg%output%collapse_drop_m
+    if (collapse_drop_m == 0.0_dp) collapse_drop_m = 0.5_dp*cfg%arch%thickness_m
+    call monitor_init(assembly, model, collapse_drop_m, cfg%output%collapse_rotation_rad, hinge_gap_m, mon)
   end subroutine build_model
 
   !> A model of `assembly` at rest with the given solver settings and no table motion

@@ -4,7 +4,7 @@
 #   run_input.sh INPUT.nml BIN_DIR WORK_DIR
 set -euo pipefail
 input=$(readlink -f "$1"); bin=$(readlink -f "$2"); work=$3
-mkdir -p "$work" && cd "$work"
+rm -rf "$work" && mkdir -p "$work" && cd "$work"
 name=$(basename "$input" .nml)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 case "$name" in

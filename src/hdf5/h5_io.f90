@@ -51,11 +51,11 @@ contains
     character(len=*), intent(in) :: path
     integer(hid_t), intent(out) :: file_id
     type(status_t), intent(inout) :: status
-    integer :: err
+    integer :: err, quiet
     call h5open_f(err)
-    call h5eset_auto_f(0, err)
+    call h5eset_auto_f(0, quiet)
     call h5fopen_f(path, H5F_ACC_RDWR_F, file_id, err)
-    call h5eset_auto_f(1, err)
+    call h5eset_auto_f(1, quiet)
     if (err /= 0) call fail(status, trim(path)//': cannot open HDF5 file for writing (not an HDF5 file?)')
   end subroutine h5_open_rw
 
@@ -64,11 +64,11 @@ contains
     character(len=*), intent(in) :: path
     integer(hid_t), intent(out) :: file_id
     type(status_t), intent(inout) :: status
-    integer :: err
+    integer :: err, quiet
     call h5open_f(err)
-    call h5eset_auto_f(0, err)
+    call h5eset_auto_f(0, quiet)
     call h5fopen_f(path, H5F_ACC_RDONLY_F, file_id, err)
-    call h5eset_auto_f(1, err)
+    call h5eset_auto_f(1, quiet)
     if (err /= 0) call fail(status, trim(path)//': cannot open HDF5 file (not an HDF5 file?)')
   end subroutine h5_open_ro
 

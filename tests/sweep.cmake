@@ -1,0 +1,29 @@
+# MPI and driver tests of voussoir-sweep (issue 4): tests/sweep/sweep_test.py runs the
+# real executables under MPIEXEC_EXECUTABLE and checks the result files with h5py.
+#   sweep_ranks             same file on 1, 2 and 3 (oversubscribed) ranks; thresholds
+#                           consistent with their own runs
+#   sweep_grid              grid mode on 1 and 3 ranks; a grid row equals a single run
+#   sweep_resume            kill -9 of mpirun mid-sweep, rerun: nothing redone, same file
+#   sweep_refuse            another sweep's file, or a run's file, is refused untouched
+#   sweep_threshold_vs_run  voussoir-run stands at threshold - amp_tol, falls at threshold
+#   sweep_bad_inputs        bad &sweep values: clear errors, no result file
+# The input files input/sweep_*.nml are run by driver_tests.cmake.
+if(NOT TARGET voussoir-sweep OR NOT MPIEXEC_EXECUTABLE)
+  return()
+endif()
+find_package(Python3 COMPONENTS Interpreter QUIET)
+if(NOT Python3_Interpreter_FOUND)
+  message(STATUS "voussoir-sweep tests skipped: no Python 3 interpreter")
+  return()
+endif()
+
+foreach(case ranks grid resume refuse threshold_vs_run bad_inputs)
+  add_test(NAME sweep_${case}
+           COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/sweep/sweep_test.py ${case}
+                   --mpiexec ${MPIEXEC_EXECUTABLE} --bin $<TARGET_FILE_DIR:voussoir-sweep>
+                   --work ${CMAKE_CURRENT_BINARY_DIR}/sweep/${case})
+  # Open MPI refuses to run as root unless told; only for these tests, never globally.
+  set_tests_properties(sweep_${case} PROPERTIES
+                       ENVIRONMENT "OMPI_ALLOW_RUN_AS_ROOT=1;OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1"
+                       PROCESSORS 2 TIMEOUT 600 SKIP_RETURN_CODE 77)
+endforeach()

@@ -1,0 +1,448 @@
+"""MPI and driver tests of voussoir-sweep (issue 4), one scenario per CTest:
+
+    sweep_test.py CASE --mpiexec MPIEXEC --bin BIN_DIR --work WORK_DIR
+
+CASE is one of:
+  ranks             a threshold sweep gives the same file on 1, 2 and 3 (oversubscribed)
+                    ranks, and its rows are consistent with its own runs
+  grid              a grid sweep gives the same file on 1 and 3 ranks, and a grid row
+                    equals a single voussoir-run of the same case
+  resume            kill -9 of mpirun mid-sweep, rerun: no finished run is redone and
+                    the final file equals that of an uninterrupted sweep
+  refuse            a file of another sweep definition, or not of a sweep, is refused
+                    and left untouched
+  threshold_vs_run  single voussoir-run runs at threshold - amp_tol stand and at the
+                    threshold collapse
+  bad_inputs        bad &sweep values are refused with a message naming the file, the
+                    variable and the allowed range, and no result file appears
+
+Files are compared on every dataset and attribute except the wall times and
+created_utc, which differ between any two runs. Exit code 77 means skipped (no h5py).
+"""
+import argparse
+import hashlib
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+try:
+    import h5py
+    import numpy as np
+except ImportError:  # pragma: no cover
+    print("SKIP: h5py and numpy are needed")
+    sys.exit(77)
+
+FAILURES = []
+
+
+def check(good, what):
+    print(("PASS  " if good else "FAIL  ") + what, flush=True)
+    if not good:
+        FAILURES.append(what)
+    return good
+
+
+# The base case of the small sweeps: the seed's 156-degree arch with a coarse step.
+BASE = """&arch
+  embrace_deg = 156, n_voussoirs = 13, r_ext_m = 0.508, thickness_m = 0.071
+/
+&motion
+  waveform = 'afd', n_attack = 1, n_full = 1, n_decay = 1, rest_s = 1.0
+/
+&solver
+  dt_s = 2.0e-3
+/
+"""
+
+# Two frequencies x two thicknesses: four searches of a few runs each.
+THRESHOLD_SWEEP = """&sweep
+  mode = 'threshold'
+  frequencies_hz = 2.0, 3.0
+  thickness_list_m = 0.071, 0.065
+  amp_tol_m = 1.0e-3, amp_max_m = 0.2, n_confirm = 1
+  progress_every_s = 0.5
+/
+"""
+
+GRID_SWEEP = """&sweep
+  mode = 'grid'
+  frequencies_hz = 2.0, 2.5
+  amplitudes_m = 0.020, 0.024, 0.028
+  friction_list = 0.5, 0.7
+/
+"""
+
+
+def write_nml(path, h5_name, sweep, base=BASE, extra=""):
+    with open(path, "w") as f:
+        f.write(base + f"&output\n  file = '{h5_name}'{extra}\n/\n" + sweep)
+
+
+class Runner:
+    def __init__(self, args):
+        self.mpiexec = args.mpiexec
+        self.sweep = os.path.join(args.bin, "voussoir-sweep")
+        self.run_exe = os.path.join(args.bin, "voussoir-run")
+        version = subprocess.run([self.mpiexec, "--version"], capture_output=True, text=True)
+        self.openmpi = "Open MPI" in (version.stdout + version.stderr) or "OpenRTE" in version.stdout
+        self.env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+
+    def command(self, n_ranks, nml):
+        extra = ["--oversubscribe"] if self.openmpi else []
+        return [self.mpiexec, *extra, "-n", str(n_ranks), self.sweep, nml]
+
+    def sweep_run(self, n_ranks, nml, expect_ok=True):
+        p = subprocess.run(self.command(n_ranks, nml), capture_output=True, text=True, env=self.env)
+        out = p.stdout + p.stderr
+        if expect_ok:
+            check(p.returncode == 0, f"{nml} on {n_ranks} ranks: exit code 0")
+            if p.returncode != 0:
+                print(out)
+        return p.returncode, out
+
+    def start(self, n_ranks, nml, log):
+        return subprocess.Popen(self.command(n_ranks, nml), stdout=log, stderr=subprocess.STDOUT,
+                                env=self.env)
+
+
+def datasets(f):
+    found = {}
+    f.visititems(lambda name, obj: found.__setitem__(name, obj[()])
+                 if isinstance(obj, h5py.Dataset) else None)
+    return found
+
+
+def attributes(f):
+    found = {"/": dict(f.attrs)}
+    f.visititems(lambda name, obj: found.__setitem__(name, dict(obj.attrs)))
+    return found
+
+
+IGNORED_ATTRS = {"created_utc", "input_file"}  # input_file: the compared sweeps have their own
+
+
+def same_files(a_path, b_path, what):
+    """Every dataset and attribute equal, except wall times and created_utc."""
+    diffs = []
+    with h5py.File(a_path, "r") as a, h5py.File(b_path, "r") as b:
+        da, db = datasets(a), datasets(b)
+        if set(da) != set(db):
+            diffs.append(f"datasets {sorted(set(da) ^ set(db))}")
+        for name in sorted(set(da) & set(db)):
+            if name.endswith("wall_time_s"):
+                continue
+            x, y = np.asarray(da[name]), np.asarray(db[name])
+            equal = x.shape == y.shape and (np.array_equal(x, y, equal_nan=True) if x.dtype.kind == "f"
+                                            else np.array_equal(x, y))
+            if not equal:
+                diffs.append(name)
+        aa, ab = attributes(a), attributes(b)
+        for obj in sorted(set(aa) | set(ab)):
+            ka, kb = aa.get(obj, {}), ab.get(obj, {})
+            for key in sorted(set(ka) | set(kb)):
+                if key in IGNORED_ATTRS or (obj == "config/output" and key == "file"):
+                    continue
+                if key == "config_nml" and obj == "/":
+                    continue  # holds the file name; the /config groups are compared instead
+                if ka.get(key) != kb.get(key):
+                    diffs.append(f"{obj}@{key}")
+    check(not diffs, f"{what}: same data (differences: {diffs})")
+    return not diffs
+
+
+def read(path):
+    with h5py.File(path, "r") as f:
+        return {k: v for k, v in datasets(f).items()}, dict(f.attrs)
+
+
+def consistent_threshold_file(path, amp_tol_m):
+    """Rows sorted, complete, and each threshold backed by its own runs."""
+    data, attrs = read(path)
+    check(attrs["complete"] == 1, f"{path}: complete = 1")
+    job = data["results/job"]
+    check(list(job) == sorted(job) and len(job) == attrs["n_jobs"], f"{path}: one row per job, sorted by job")
+    rj, rr = data["runs/job"], data["runs/run"]
+    check(list(zip(rj, rr)) == sorted(zip(rj, rr)), f"{path}: /runs sorted by job and run")
+    good = True
+    for k, j in enumerate(job):
+        mine = rj == j
+        amps, fell = data["runs/amplitude_m"][mine], data["runs/collapsed"][mine] == 1
+        thr, below = data["results/threshold_m"][k], data["results/stand_below_m"][k]
+        good &= data["results/n_runs"][k] == mine.sum()
+        good &= list(rr[mine]) == list(range(mine.sum()))
+        good &= bool(np.any(fell & (amps == thr))) and bool(np.any(~fell & (amps == below)))
+        good &= 0.0 < thr - below <= amp_tol_m * (1 + 1e-12)
+        good &= not np.any(fell & (amps < thr))  # the first collapse from below
+        good &= data["results/non_monotonic"][k] == int(np.any(~fell & (amps > thr)))
+        acc = thr * (2 * np.pi * data["results/frequency_hz"][k]) ** 2
+        good &= abs(data["results/peak_accel_m_s2"][k] - acc) <= 1e-12 * acc
+    check(good, f"{path}: thresholds, brackets, run counts and flags agree with the runs")
+
+
+def case_ranks(r, work):
+    paths = {}
+    for n in (1, 2, 3):
+        nml = f"ranks_{n}.nml"
+        write_nml(nml, f"ranks_{n}.h5", THRESHOLD_SWEEP)
+        rc, out = r.sweep_run(n, nml)
+        check("done:" in out and "ETA" in out or "done:" in out, f"{n} ranks: progress and final line printed")
+        paths[n] = f"ranks_{n}.h5"
+    if FAILURES:
+        return
+    consistent_threshold_file(paths[1], 1.0e-3)
+    same_files(paths[1], paths[2], "1 and 2 ranks")
+    same_files(paths[1], paths[3], "1 and 3 ranks (oversubscribed)")
+    csv = [open(f"ranks_{n}.csv").read() for n in (1, 2, 3)]
+    check(csv[0] == csv[1] == csv[2], "the CSV summaries are identical on 1, 2 and 3 ranks")
+    header = csv[0].splitlines()[0]
+    check(header == "param_set,thickness_m,frequency_hz,threshold_m,peak_accel_m_s2,non_monotonic",
+          f"CSV header as in docs/results_format.md ({header})")
+    check(len(csv[0].splitlines()) == 5, "CSV: one row per job")
+
+
+def case_grid(r, work):
+    for n in (1, 3):
+        write_nml(f"grid_{n}.nml", f"grid_{n}.h5", GRID_SWEEP)
+        r.sweep_run(n, f"grid_{n}.nml")
+    if FAILURES:
+        return
+    same_files("grid_1.h5", "grid_3.h5", "grid on 1 and 3 ranks")
+    data, attrs = read("grid_1.h5")
+    check(attrs["n_jobs"] == 12 and len(data["results/job"]) == 12 and attrs["complete"] == 1,
+          "grid: 2 friction x 2 frequencies x 3 amplitudes = 12 rows")
+    check(attrs["parameter_names"].decode().strip() == "friction"
+          and data["parameters/values"].shape == (2, 1), "grid: /parameters/values is (n_sets, n_params)")
+    # Job layout: ((set * n_freq) + freq) * n_amp + amp.
+    checked = 0
+    for k in (4, 11):
+        s, f, a = k // 6, (k // 3) % 2, k % 3
+        check(data["results/param_set"][k] == s and data["results/frequency_hz"][k] == [2.0, 2.5][f]
+              and data["results/amplitude_m"][k] == [0.020, 0.024, 0.028][a], f"grid: job {k} is set {s}, "
+              f"frequency {f}, amplitude {a}")
+        nml = f"single_{k}.nml"
+        base = BASE.replace("&arch\n", f"&arch\n  friction = {[0.5, 0.7][s]},\n").replace(
+            "&motion\n", f"&motion\n  frequency_hz = {[2.0, 2.5][f]!r}, amplitude_m = {[0.020, 0.024, 0.028][a]!r},\n")
+        with open(nml, "w") as fh:
+            fh.write(base + f"&output\n  file = 'single_{k}.h5'\n/\n")
+        p = subprocess.run([r.run_exe, nml], capture_output=True, text=True)
+        with h5py.File(f"single_{k}.h5", "r") as h:
+            res = dict(h["result"].attrs)
+        same = (res["collapsed"] == data["results/collapsed"][k]
+                and np.array_equal(res["collapse_time_s"], data["results/collapse_time_s"][k], equal_nan=True)
+                and abs(res["peak_crown_disp_m"] - data["results/peak_crown_disp_m"][k])
+                <= 1e-12 * abs(res["peak_crown_disp_m"])
+                and abs(res["mean_iterations"] - data["results/mean_iterations"][k]) <= 1e-12 * res["mean_iterations"])
+        check(p.returncode == 0 and same, f"grid: job {k} equals a single voussoir-run ({p.stdout.strip()[:40]})")
+        checked += 1
+    lines = open("grid_1.csv").read().splitlines()
+    check(lines[0] == "param_set,friction,frequency_hz,amplitude_m,outcome,collapse_time_s,"
+          "peak_crown_disp_m,mean_iterations" and len(lines) == 13, "grid CSV: header and 12 rows")
+
+
+def descendants(pid):
+    kids = []
+    try:
+        out = subprocess.run(["pgrep", "-P", str(pid)], capture_output=True, text=True).stdout.split()
+    except FileNotFoundError:  # pragma: no cover
+        out = []
+    for k in out:
+        kids.append(int(k))
+        kids.extend(descendants(int(k)))
+    return kids
+
+
+def alive(pid):
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    try:  # a zombie is dead for our purpose
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().split()[2] != "Z"
+    except OSError:
+        return False
+
+
+def n_rows(path, group):
+    try:
+        with h5py.File(path, "r") as f:
+            return len(f[f"{group}/job"]), int(f.attrs["complete"])
+    except (OSError, KeyError):
+        return 0, 0
+
+
+def case_resume(r, work):
+    # The uninterrupted reference and the interrupted sweep differ only in the file name,
+    # which is not part of the sweep definition.
+    sweep = THRESHOLD_SWEEP.replace("frequencies_hz = 2.0, 3.0", "frequencies_hz = 1.5, 2.0, 3.0")
+    write_nml("reference.nml", "reference.h5", sweep)
+    write_nml("killed.nml", "killed.h5", sweep)
+    r.sweep_run(2, "reference.nml")
+    total_runs, _ = n_rows("reference.h5", "runs")
+    with open("killed_1.txt", "w") as log:
+        p = r.start(2, "killed.nml", log)
+        t0 = time.time()
+        rows = 0
+        while time.time() - t0 < 120 and p.poll() is None:
+            rows, complete = n_rows("killed.h5", "runs")
+            if rows >= 6:
+                break
+            time.sleep(0.02)
+        ranks = descendants(p.pid)
+        p.send_signal(signal.SIGKILL)   # kill -9 mpirun
+        p.wait()
+        for pid in ranks:               # and the ranks it started, should they outlive it
+            if alive(pid):
+                os.kill(pid, signal.SIGKILL)
+        while any(alive(pid) for pid in ranks):
+            time.sleep(0.05)
+    kept, complete = n_rows("killed.h5", "runs")
+    check(6 <= kept < total_runs and complete == 0 and not os.path.exists("killed.csv"),
+          f"killed mid-sweep: the file is whole and holds {kept} of {total_runs} runs")
+    rc, out = r.sweep_run(2, "killed.nml")
+    print(out)
+    m = re.search(r"done: \d+ jobs, (\d+) runs .*?(\d+) runs kept", out)
+    check("resuming killed.h5" in out and m is not None, "the rerun resumes from the file")
+    if m:
+        made, kept_said = int(m.group(1)), int(m.group(2))
+        check(kept_said == kept and made + kept == total_runs,
+              f"no finished run redone: {kept} kept + {made} made = {total_runs}")
+    same_files("reference.h5", "killed.h5", "killed and resumed vs uninterrupted")
+    check(open("reference.csv").read() == open("killed.csv").read(), "the CSV summaries are identical")
+    # Rerunning a finished sweep computes nothing and keeps the data.
+    rc, out = r.sweep_run(2, "killed.nml")
+    check(re.search(r"done: \d+ jobs, 0 runs", out) is not None, "a finished sweep rerun makes no run")
+    same_files("reference.h5", "killed.h5", "after a rerun of the finished sweep")
+
+
+def md5(path):
+    return hashlib.md5(open(path, "rb").read()).hexdigest()
+
+
+def case_refuse(r, work):
+    write_nml("first.nml", "shared.h5", THRESHOLD_SWEEP.replace("2.0, 3.0", "3.0"))
+    r.sweep_run(1, "first.nml")
+    before = md5("shared.h5")
+    write_nml("other.nml", "shared.h5", THRESHOLD_SWEEP.replace("2.0, 3.0", "2.5"))
+    rc, out = r.sweep_run(2, "other.nml", expect_ok=False)
+    check(rc != 0 and "shared.h5: holds a different sweep" in out and "frequencies_hz" in out,
+          "another frequency list on the same file is refused, naming the difference")
+    check(md5("shared.h5") == before, "the refused file is untouched")
+    base = BASE.replace("thickness_m = 0.071", "thickness_m = 0.070")
+    write_nml("base.nml", "shared.h5", THRESHOLD_SWEEP.replace("2.0, 3.0", "3.0"), base=base)
+    rc, out = r.sweep_run(1, "base.nml", expect_ok=False)
+    check(rc != 0 and "holds a different sweep" in out and "thickness_m" in out,
+          "another base case on the same file is refused")
+    # Another code version: a finished file is left as it is, an unfinished one refused.
+    shutil.copy("shared.h5", "old.h5")
+    with h5py.File("old.h5", "a") as f:
+        f.attrs.create("code_version", np.bytes_("voussoir 0.0.0+old"))
+    write_nml("old.nml", "old.h5", THRESHOLD_SWEEP.replace("2.0, 3.0", "3.0"))
+    before = md5("old.h5")
+    rc, out = r.sweep_run(1, "old.nml", expect_ok=False)
+    check(rc == 0 and "is complete, written by voussoir 0.0.0+old; nothing to do" in out
+          and md5("old.h5") == before, "a finished file of another code version is left as it is")
+    with h5py.File("old.h5", "a") as f:
+        for name in list(f["results"]):
+            data = f["results"][name][()]
+            del f["results"][name]
+            f["results"].create_dataset(name, data=data[:0])
+    before = md5("old.h5")
+    rc, out = r.sweep_run(1, "old.nml", expect_ok=False)
+    check(rc != 0 and "results of two code versions are never mixed" in out and md5("old.h5") == before,
+          "an unfinished file of another code version is refused and untouched")
+    # A voussoir-run result under the sweep's name.
+    with open("run.nml", "w") as fh:
+        fh.write(BASE + "&output\n  file = 'single.h5'\n/\n")
+    subprocess.run([r.run_exe, "run.nml"], capture_output=True)
+    before = md5("single.h5")
+    write_nml("onrun.nml", "single.h5", THRESHOLD_SWEEP)
+    rc, out = r.sweep_run(1, "onrun.nml", expect_ok=False)
+    check(rc != 0 and "not written by voussoir-sweep" in out and md5("single.h5") == before,
+          "a voussoir-run file is refused and untouched")
+
+
+def case_threshold_vs_run(r, work):
+    sweep = THRESHOLD_SWEEP.replace("thickness_list_m = 0.071, 0.065\n", "").replace(
+        "amp_tol_m = 1.0e-3", "amp_tol_m = 5.0e-4")
+    write_nml("search.nml", "search.h5", sweep)
+    r.sweep_run(2, "search.nml")
+    data, attrs = read("search.h5")
+    tol = 5.0e-4
+    for k in range(len(data["results/job"])):
+        f_hz, thr = float(data["results/frequency_hz"][k]), float(data["results/threshold_m"][k])
+        for amp, word in ((thr - tol, "stood;"), (thr, "collapsed")):
+            nml = f"single_{k}_{word[:5]}.nml"
+            base = BASE.replace("&motion\n", f"&motion\n  frequency_hz = {f_hz!r}, amplitude_m = {amp!r},\n")
+            with open(nml, "w") as fh:
+                fh.write(base + f"&output\n  file = '{nml[:-4]}.h5', stop_after_collapse_s = 0\n/\n")
+            p = subprocess.run([r.run_exe, nml], capture_output=True, text=True)
+            first = p.stdout.split()[0] if p.stdout.split() else ""
+            check(p.returncode == 0 and first == word,
+                  f"{f_hz} Hz: voussoir-run at {1e3 * amp:.4f} mm ({'threshold - amp_tol' if word == 'stood;' else 'threshold'})"
+                  f" says '{first}', expected '{word}'")
+
+
+BAD = [
+    ("no_group", "&arch /", r"no &sweep group"),
+    ("mode", "&sweep mode = 'sideways', frequencies_hz = 1 /", r"&sweep mode = 'sideways' is not one of"),
+    ("no_freq", "&sweep mode = 'threshold' /", r"frequencies_hz is not set"),
+    ("freq_neg", "&sweep frequencies_hz = 1, -2 /", r"frequencies_hz\(2\) = -2 is outside the allowed range 0 < frequencies_hz"),
+    ("freq_gap", "&sweep frequencies_hz(1) = 1, frequencies_hz(3) = 2 /", r"frequencies_hz\(2\) is unset but frequencies_hz\(3\)"),
+    ("unknown", "&sweep frequencies_hz = 1, thickness_list = 0.07 /", r"&sweep has no variable 'thickness_list'"),
+    ("tol", "&sweep frequencies_hz = 1, amp_tol_m = 0 /", r"amp_tol_m = 0 is outside the allowed range amp_tol_m > 0"),
+    ("amp_max", "&sweep frequencies_hz = 1, amp_max_m = 1e-4 /", r"amp_max_m = .* is outside the allowed range amp_max_m > amp_tol_m"),
+    ("refine", "&sweep frequencies_hz = 1, refine_factor = 1 /", r"refine_factor = 1 is outside the allowed range 2 <= refine_factor"),
+    ("grid_no_amp", "&sweep mode = 'grid', frequencies_hz = 1 /", r"amplitudes_m is not set"),
+    ("grid_amp_neg", "&sweep mode = 'grid', frequencies_hz = 1, amplitudes_m = -0.01 /", r"amplitudes_m\(1\) = -0.01 is outside the allowed range amplitudes_m >= 0"),
+    ("threshold_amp", "&sweep frequencies_hz = 1, amplitudes_m = 0.01 /", r"amplitudes_m is set but mode = 'threshold'"),
+    ("friction", "&sweep frequencies_hz = 1, friction_list = 0.5, -0.1 /", r"friction_list\(2\) = -0.1 is outside the allowed range friction >= 0"),
+    ("n_voussoirs", "&sweep frequencies_hz = 1, n_voussoirs_list = 13, 2 /", r"n_voussoirs_list\(2\) = 2 is outside the allowed range 3 <= n_voussoirs"),
+    ("paired", "&sweep frequencies_hz = 1, combine = 'paired', embrace_list_deg = 180, 156, n_voussoirs_list = 15 /", r"combine = 'paired' needs swept lists of equal length"),
+    ("pair_freq", "&sweep frequencies_hz = 1, 2, pair_frequencies = .true. /", r"pair_frequencies = .true. needs one frequency per parameter set"),
+    ("set_inset", "&sweep frequencies_hz = 1, thickness_list_m = 0.071, 0.02, contact_inset_list_m = 0.015 /", r"parameter set 1 \(thickness_m = 0.02, contact_inset_m = 0.015\): &arch contact_inset_m = 0.015 is outside the allowed range"),
+    ("waveform", "&motion waveform = 'ramp', duration_s = 1 /\n&sweep frequencies_hz = 1 /", r"waveform = 'ramp': a sweep sets the frequency and amplitude of the 'afd' waveform"),
+    ("group", "&geometry r = 1 /\n&sweep frequencies_hz = 1 /", r"unknown namelist group &geometry"),
+]
+
+
+def case_bad_inputs(r, work):
+    # All at once: mpirun takes seconds to wind down a job that exits with an error.
+    running = []
+    for name, text, expect in BAD:
+        nml = f"{name}.nml"
+        with open(nml, "w") as fh:
+            fh.write(text + f"\n&output file = '{name}.h5' /\n")
+        log = open(f"{name}.txt", "w")
+        running.append((name, nml, expect, r.start(1, nml, log), log))
+    for name, nml, expect, p, log in running:
+        rc = p.wait()
+        log.close()
+        out = open(f"{name}.txt").read()
+        message = next((line for line in out.splitlines() if "voussoir-sweep: error:" in line), "")
+        check(rc != 0 and re.search(expect, message) is not None and nml in message
+              and not os.path.exists(f"{name}.h5"), f"{name}: {message or out.strip()[:200]}")
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("case")
+    parser.add_argument("--mpiexec", required=True)
+    parser.add_argument("--bin", required=True)
+    parser.add_argument("--work", required=True)
+    args = parser.parse_args()
+    shutil.rmtree(args.work, ignore_errors=True)
+    os.makedirs(args.work)
+    os.chdir(args.work)
+    runner = Runner(args)
+    globals()["case_" + args.case](runner, args.work)
+    print(f"{args.case}: {len(FAILURES)} failed")
+    sys.exit(1 if FAILURES else 0)
+
+
+if __name__ == "__main__":
+    main()
