@@ -112,14 +112,26 @@ def test_diagnose_check_lists_records_hinges_and_warnings(tmp_path, capsys):
     assert " 3 " in t2 and "dx" in t2
 
 
-def test_diagnose_run_not_implemented(seed_campaign, capsys):
-    assert diagnose_cli.main(["run", str(seed_campaign)]) == 2
-    assert "not yet implemented" in capsys.readouterr().err
+def test_diagnose_run_refuses_missing_executables(seed_campaign, tmp_path, capsys):
+    assert diagnose_cli.main(["run", str(seed_campaign), "--bin-dir", str(tmp_path)]) == 2
+    assert "voussoir-run not found" in capsys.readouterr().err
+
+
+def test_diagnose_run_refuses_invalid_campaign(tmp_path, capsys):
+    folder = tmp_path / "bad"
+    folder.mkdir()
+    (folder / "specimens.csv").write_text("specimen_id,embrace_deg,n_voussoirs,r_ext_m,thickness_m,width_m,"
+                                          "density_kg_m3\nA,190,10,0.5,0.07,0.1,700\n")
+    (folder / "tests.csv").write_text("test_id,specimen_id,waveform,outcome\n")
+    assert diagnose_cli.main(["run", str(folder), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err
+    assert "specimens.csv:2:" in err and "embrace_deg" in err
+    assert not (tmp_path / "out").exists()
 
 
 @pytest.mark.parametrize("module, args, code", [
     ("voussoir_post.diagnose_cli", ["check"], 0),
-    ("voussoir_post.diagnose_cli", ["run"], 2),
+    ("voussoir_post.diagnose_cli", ["run", "--bin-dir", "/nonexistent"], 2),
 ])
 def test_entry_points_as_processes(module, args, code, seed_campaign):
     proc = subprocess.run([sys.executable, "-m", module, *args, str(seed_campaign)], capture_output=True,

@@ -4,8 +4,8 @@ Subcommands:
 
 - ``check CAMPAIGN``: validate the folder and print a summary; exit 0 when valid,
   2 with ``file:line:column: message`` when not.
-- ``run CAMPAIGN``: the full diagnosis (report.md + diagnosis.json); not yet
-  implemented, exits 2.
+- ``run CAMPAIGN --out DIR [--np N]``: the full diagnosis (report.md + diagnosis.json),
+  see diagnosis.py.
 
 Each subcommand is a ``cmd_<name>(args) -> int`` function registered in
 :func:`build_parser`; adding one means adding its parser and function.
@@ -106,10 +106,35 @@ def cmd_check(args) -> int:
     return 0
 
 
+def _default_bin_dir() -> str:
+    here = os.path.dirname(os.path.abspath(__file__))
+    return os.environ.get("VOUSSOIR_BIN_DIR", os.path.join(here, "..", "..", "build", "drivers"))
+
+
 def cmd_run(args) -> int:
-    print("voussoir-diagnose: error: 'run' is not yet implemented (only 'check' is available)",
-          file=sys.stderr)
-    return 2
+    from pathlib import Path
+
+    from .diagnosis import DiagnosisSettings, diagnose
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", CampaignWarning)
+        read_campaign(args.campaign)  # refuse an invalid folder before anything else
+    bin_dir = Path(args.bin_dir or _default_bin_dir()).resolve()
+    for exe in ("voussoir-run", "voussoir-sweep"):
+        if not (bin_dir / exe).is_file():
+            print(f"voussoir-diagnose: error: {bin_dir / exe} not found: build the project or give --bin-dir",
+                  file=sys.stderr)
+            return 2
+    if args.np < 1 or args.dt <= 0:
+        print("voussoir-diagnose: error: --np must be >= 1 and --dt > 0", file=sys.stderr)
+        return 2
+    out = args.out or os.path.join(os.getcwd(), "diagnosis_" + os.path.basename(os.path.normpath(args.campaign)))
+    settings = DiagnosisSettings(bin_dir=bin_dir, n_ranks=args.np, dt_s=args.dt,
+                                 log=lambda m: print(m, flush=True))
+    result = diagnose(args.campaign, out, settings)
+    print(f"verdict: {result['verdict']}; threshold error {result['baseline']['threshold_error_pct']:.1f} % "
+          f"(nominal) -> {result['extended']['threshold_error_pct']:.1f} % (extended, held out); "
+          f"report: {os.path.join(out, 'report.md')}")
+    return 0
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -120,9 +145,15 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("check", help="validate a campaign folder and print a summary")
     p.add_argument("campaign", metavar="CAMPAIGN")
     p.set_defaults(func=cmd_check)
-    p = sub.add_parser("run", help="full diagnosis (not yet implemented)")
+    p = sub.add_parser("run", help="simulate every test, compare, name the cause, write report.md and "
+                                   "diagnosis.json")
     p.add_argument("campaign", metavar="CAMPAIGN")
-    p.add_argument("--out", metavar="DIR", help="output folder for report.md and diagnosis.json")
+    p.add_argument("--out", metavar="DIR", help="output folder for report.md and diagnosis.json "
+                                                "(default: ./diagnosis_<campaign>)")
+    p.add_argument("--np", type=int, default=2, help="MPI ranks of the sweeps (default 2)")
+    p.add_argument("--dt", type=float, default=1.0e-3, help="time step of the simulations [s] (default 1e-3)")
+    p.add_argument("--bin-dir", help="folder of the Fortran executables (default $VOUSSOIR_BIN_DIR or "
+                                     "<repo>/build/drivers)")
     p.set_defaults(func=cmd_run)
     return parser
 

@@ -1,0 +1,177 @@
+"""report.md and its figures for a diagnosis (see diagnosis.py)."""
+
+from __future__ import annotations
+
+import math
+import subprocess
+from pathlib import Path
+
+import numpy as np
+
+from .drawing import new_figure, save_png
+
+__all__ = ["write_report"]
+
+
+def _pct(x: float | None) -> str:
+    return "-" if x is None or not math.isfinite(x) else f"{100 * x:.1f} %"
+
+
+def _value_text(c) -> str:
+    if c.effect == "contact_edges":
+        return f"inset {1e3 * float(c.value):.1f} mm ({1e3 * float(c.low):.1f} to {1e3 * float(c.high):.1f})"
+    if c.effect == "friction":
+        return f"friction {float(c.value):.3f} ({float(c.low):.3f} to {float(c.high):.3f})"
+    if c.effect == "base_restraint":
+        return f"restrained: {c.value}"
+    return f"gain {float(c.value):.3f} ({float(c.low):.3f} to {float(c.high):.3f})"
+
+
+def _md_table(headers, rows) -> str:
+    out = ["| " + " | ".join(headers) + " |", "|" + "---|" * len(headers)]
+    out += ["| " + " | ".join(str(x) for x in r) + " |" for r in rows]
+    return "\n".join(out)
+
+
+def _figure_thresholds(out: Path, pairs, cands, decision) -> str:
+    from .diagnosis import Variant
+    fig = new_figure(max(6.0, 1.1 * len(pairs) + 2), 4.2)
+    ax = fig.subplots()
+    x = np.arange(len(pairs))
+    meas = np.array([1e3 * p.measured.threshold_m for p in pairs])
+    low = np.array([1e3 * (p.measured.low_m if math.isfinite(p.measured.low_m) else p.measured.high_m) for p in pairs])
+    high = np.array([1e3 * p.measured.high_m for p in pairs])
+    ax.errorbar(x, meas, yerr=[meas - low, high - meas], fmt="o", color="k", capsize=4,
+                label="measured (bracket: last stand, first collapse)")
+    base = [1e3 * p.simulated.get(Variant(), math.nan) for p in pairs]
+    ax.plot(x - 0.15, base, "s", color="tab:red", label="nominal model")
+    if decision.chosen is not None:
+        ax.plot(x + 0.15, [1e3 * h for h in decision.chosen.per_pair], "D", color="tab:blue",
+                label=f"{decision.chosen.effect}, held out")
+    ax.set_xticks(x)
+    ax.set_xticklabels([f"{p.spec.specimen_id}\n{p.measured.frequency_hz:g} Hz" for p in pairs], fontsize=8)
+    ax.set_ylabel("collapse threshold amplitude [mm]")
+    ax.set_title("Measured and simulated collapse thresholds")
+    ax.legend(fontsize=8)
+    name = "thresholds.png"
+    save_png(fig, out / name)
+    return name
+
+
+def _figure_candidates(out: Path, pairs, cands, settings) -> str:
+    from .diagnosis import _candidate_values, _mean_error
+    fig = new_figure(12.0, 3.6)
+    axes = fig.subplots(1, 3)
+    specs = [("contact_edges", 1e3, "contact inset [mm]"), ("friction", 1.0, "friction coefficient"),
+             ("table_motion", 1.0, "table gain (measured / commanded)")]
+    for ax, (effect, scale, label) in zip(axes, specs):
+        values = _candidate_values(effect, pairs, settings)
+        err = [100 * _mean_error(pairs, effect, v) for v in values]
+        ax.plot(np.array(values, float) * scale, err, "-", color="tab:blue")
+        c = cands[effect]
+        ax.axvline(float(c.value) * scale, color="tab:green", ls="--", label="fitted")
+        ax.set_xlabel(label)
+        ax.set_ylabel("mean threshold error [%]")
+        ax.set_title(f"{effect}: held-out {100 * c.cv_error:.1f} %" + ("" if c.admissible else " (excluded)"),
+                     fontsize=9)
+        ax.legend(fontsize=8)
+    name = "candidates.png"
+    save_png(fig, out / name)
+    return name
+
+
+def _figure_table(out: Path, campaign, table) -> str | None:
+    if table.source != "records" or not table.per_test:
+        return None
+    from .diagnosis import afd_command
+    tid = max(table.per_test, key=lambda r: campaign.tests[r[0]].amplitude_m)[0]
+    rec = campaign.records[tid]
+    test = campaign.tests[tid]
+    t = rec.t_s - rec.t_s[0]
+    fig = new_figure(11.0, 3.6)
+    axes = fig.subplots(1, 2)
+    axes[0].plot(t, 1e3 * afd_command(t, test.frequency_hz, test.amplitude_m, test.n_attack, test.n_full,
+                                      test.n_decay), label="command")
+    axes[0].plot(t, 1e3 * (rec.table_x_m - rec.table_x_m[0]), lw=0.8, label="measured")
+    axes[0].set_xlabel("time [s]")
+    axes[0].set_ylabel("table displacement [mm]")
+    axes[0].set_title(f"{tid}", fontsize=9)
+    axes[0].legend(fontsize=8)
+    gains = [r[1] for r in table.per_test]
+    delays = [1e3 * r[2] for r in table.per_test]
+    axes[1].plot(delays, gains, "o")
+    axes[1].axhline(1.0, color="k", lw=0.6)
+    axes[1].set_xlabel("fitted delay [ms]")
+    axes[1].set_ylabel("fitted gain")
+    axes[1].set_title("Actuator fit of every record", fontsize=9)
+    name = "table_records.png"
+    save_png(fig, out / name)
+    return name
+
+
+def write_report(out: Path, campaign, pairs, cands, decision, table, baseline_error, resolution, result, info
+                 ) -> None:
+    from .diagnosis import Variant
+    figs = [_figure_thresholds(out, pairs, cands, decision), _figure_candidates(out, pairs, cands, info["settings"])]
+    tfig = _figure_table(out, campaign, table)
+    lines = [f"# Diagnosis of campaign `{campaign.name}`", "",
+             f"**Verdict: `{result['verdict']}`.** {result['notes']}", ""]
+    if result["parameters"]:
+        lines.append("Fitted parameters: " + "; ".join(
+            f"{k} = {v['value']} (interval {v['low']} to {v['high']}{' ' + v['unit'] if v['unit'] else ''})"
+            for k, v in result["parameters"].items()) + ".")
+        lines.append("")
+    lines += ["## Thresholds", "",
+              f"Mean absolute error of the nominal model: {_pct(baseline_error)}; of the extended model, held out: "
+              f"{result['extended']['threshold_error_pct']:.1f} %. Measurement resolution (half the amplitude "
+              f"steps, plus the search tolerance): {_pct(resolution)}.", "", f"![thresholds]({figs[0]})", ""]
+    rows = []
+    for k, p in enumerate(pairs):
+        base = p.simulated.get(Variant(), math.nan)
+        ext = decision.chosen.per_pair[k] if decision.chosen else math.nan
+        rows.append((p.spec.specimen_id, f"{p.measured.frequency_hz:g}",
+                     "-" if not math.isfinite(p.measured.low_m) else f"{1e3 * p.measured.low_m:.1f}",
+                     f"{1e3 * p.measured.high_m:.1f}", f"{1e3 * p.measured.threshold_m:.1f}",
+                     f"{1e3 * base:.1f}", _pct((base - p.measured.threshold_m) / p.measured.threshold_m),
+                     "-" if not math.isfinite(ext) else f"{1e3 * ext:.1f}"))
+    lines.append(_md_table(["specimen", "f [Hz]", "last stand [mm]", "first collapse [mm]", "measured [mm]",
+                            "nominal [mm]", "nominal error", "extended, held out [mm]"], rows))
+    lines += ["", "## Candidate causes", "",
+              "Each effect's parameter is fitted on all specimens but one and judged on the one left out "
+              "(leave-one-specimen-out; leave-one-pair-out with a single specimen).", "",
+              _md_table(["effect", "held-out error", "in-sample error", "fitted", "hinge match", "status"],
+                        [(e, _pct(c.cv_error), _pct(c.in_sample_error), _value_text(c),
+                          _pct(c.hinge_match) if c.hinge_match is not None else "-",
+                          "admissible" if c.admissible else f"excluded: {c.reason}") for e, c in cands.items()]),
+              "", f"![candidates]({figs[1]})", ""]
+    lines += ["## The table", ""]
+    if table.source == "records":
+        lines.append(f"{table.n} records of afd tests fitted as gain x command(t - delay): gain {table.gain:.3f} "
+                     f"(scatter {table.gain_sd:.3f}), delay {1e3 * table.delay_s:.1f} ms. "
+                     + ("The table did not follow the command." if table.deviates
+                        else "The table followed the command within the scatter."))
+    elif table.source == "peak_accel":
+        lines.append(f"No records; the measured peak accelerations are {table.gain:.3f} times the commanded "
+                     f"A (2 pi f)^2 (median of {table.n} tests; a noisy record overstates a peak).")
+    else:
+        lines.append("No records and no measured peak accelerations: the table's motion is unknown.")
+    if tfig:
+        lines += ["", f"![table]({tfig})"]
+    lines += ["", "## Hinges", ""]
+    if result["baseline"]["hinge_match"] is None:
+        lines.append("No hinges were observed (no hinges/ files).")
+    else:
+        lines.append(f"Fraction of observed hinges (joint and side) that the model reproduces in the same test: "
+                     f"nominal {_pct(result['baseline']['hinge_match'])}, extended "
+                     f"{_pct(result['extended']['hinge_match'])}.")
+    s = info["settings"]
+    try:
+        version = subprocess.run([str(s.bin_dir / "voussoir-run")], capture_output=True, text=True).stderr.strip()
+    except OSError:
+        version = ""
+    lines += ["", "## How this was made", "",
+              f"voussoir-diagnose run on `{campaign.path}`: {info['sweeps']} sweeps with voussoir-sweep on "
+              f"{s.n_ranks} ranks and {info['runs']} single runs with voussoir-run, dt = {s.dt_s:g} s, threshold "
+              f"tolerance {100 * s.amp_tol_fraction:g} % of the threshold, in {info['elapsed_s']:.0f} s. "
+              f"Executables from `{s.bin_dir}`. The machine-readable result is `diagnosis.json`.", ""]
+    (out / "report.md").write_text("\n".join(lines))
