@@ -10,6 +10,7 @@ program voussoir_limit_main
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
   use voussoir_config, only: config_t, read_config
+  use voussoir_text, only: itoa
   use voussoir_assembly, only: assembly_t, build_arch
   use voussoir_limit, only: limit_result_t, side_intrados, horizontal_capacity, &
                             thickness_search => minimum_thickness
@@ -471,12 +472,5 @@ contains
     if (text(1:2) == '-.') text = '-0'//text(2:)
   end function short
 
-  pure function itoa(i) result(text)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: text
-    character(len=16) :: buf
-    write (buf, '(i0)') i
-    text = trim(buf)
-  end function itoa
 
 end program voussoir_limit_main

@@ -15,6 +15,7 @@ module voussoir_sweep_plan
   use, intrinsic :: iso_fortran_env, only: iostat_end
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
+  use voussoir_text, only: lower, itoa
   use voussoir_config, only: config_t, config_entry_t, config_entries, config_to_nml, validate_config, &
                              fmt_real
   use voussoir_threshold, only: threshold_settings_t, search_run_config
@@ -553,23 +554,7 @@ contains
     end associate
   end function job_cost
 
-  pure function lower(s) result(t)
-    character(len=*), intent(in) :: s
-    character(len=len(s)) :: t
-    integer :: i
-    t = s
-    do i = 1, len(s)
-      if (s(i:i) >= 'A' .and. s(i:i) <= 'Z') t(i:i) = achar(iachar(s(i:i)) + 32)
-    end do
-  end function lower
 
-  function itoa(i) result(text)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: text
-    character(len=16) :: buf
-    write (buf, '(i0)') i
-    text = trim(buf)
-  end function itoa
 
   !> Reals written so that they read back exactly.
   function real_list(x) result(text)
@@ -764,7 +749,8 @@ module voussoir_sweep_roles
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
   use voussoir_version, only: code_version
-  use voussoir_config, only: config_t, fmt_real
+  use voussoir_config, only: config_t
+  use voussoir_text, only: fmt_real, itoa
   use voussoir_assembly, only: assembly_t
   use voussoir_model, only: model_t
   use voussoir_simulation, only: run_result_t
@@ -1543,13 +1529,6 @@ contains
     end do
   end function join
 
-  function itoa(i) result(text)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: text
-    character(len=16) :: buf
-    write (buf, '(i0)') i
-    text = trim(buf)
-  end function itoa
 
 end module voussoir_sweep_roles
 

@@ -9,6 +9,7 @@ module voussoir_config
   use, intrinsic :: iso_fortran_env, only: iostat_end
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
+  use voussoir_text, only: lower, fmt_real
   implicit none
   private
 
@@ -257,15 +258,6 @@ contains
     close (unit)
   end subroutine check_groups
 
-  pure function lower(s) result(t)
-    character(len=*), intent(in) :: s
-    character(len=len(s)) :: t
-    integer :: i
-    t = s
-    do i = 1, len(s)
-      if (s(i:i) >= 'A' .and. s(i:i) <= 'Z') t(i:i) = achar(iachar(s(i:i)) + 32)
-    end do
-  end function lower
 
   !> A file named in an input file: absolute, or relative to that input file's folder.
   function resolve_path(input_path, name) result(full)
@@ -393,32 +385,6 @@ contains
 
   end subroutine validate_config
 
-  !> Short readable text of a real: plain decimals for ordinary magnitudes, else
-  !> scientific notation.
-  function fmt_real(x) result(text)
-    real(dp), intent(in) :: x
-    character(len=:), allocatable :: text
-    character(len=40) :: buf
-    integer :: k
-    if (x == 0.0_dp) then
-      text = '0'
-      return
-    end if
-    if (abs(x) >= 1.0e-4_dp .and. abs(x) < 1.0e9_dp) then
-      write (buf, '(f0.9)') x
-      k = len_trim(buf)
-      do while (buf(k:k) == '0')
-        k = k - 1
-      end do
-      if (buf(k:k) == '.') k = k - 1
-      text = buf(:k)
-      if (text(1:1) == '.') text = '0'//text
-      if (text(1:2) == '-.') text = '-0'//text(2:)
-    else
-      write (buf, '(es12.5)') x
-      text = trim(adjustl(buf))
-    end if
-  end function fmt_real
 
   !> Every setting of `cfg`, defaults included, in group order.
   function config_entries(cfg) result(e)
