@@ -19,7 +19,7 @@ specimens = (SyntheticSpecimen("B180", 180.0, 15, (0.8, 1.0, 1.25)),
              SyntheticSpecimen("B132", 132.0, 11, (1.25, 1.6, 2.5)),
              SyntheticSpecimen("B118", 118.0, 10, (2.0, 2.5, 3.0)))
 n = write_synthetic_campaign(sys.argv[2], Truth(effect="contact_edges", inset_m=0.003), sys.argv[1] + "/build/drivers",
-                             specimens=specimens, start_fraction=0.85, step_fraction=0.05, seed=11)
+                             specimens=specimens, start_fraction=0.65, step_fraction=0.05, seed=11)
 print(f"campaign: {len(specimens)} arches x 3 frequencies, {sum(n.values())} tests "
       f"({sum(n.values()) / len(n):.1f} per pair)")
 PY
