@@ -105,6 +105,7 @@ def test_outputs_follow_the_spec(diagnosed):
         assert set(on_disk[key]) == {"threshold_error_pct", "hinge_match"}
     report = (out / "report.md").read_text()
     assert f"`{name}`" in report
+    assert "## Crown motion" in report and "## Hinges" in report
     for png in ("thresholds.png", "candidates.png"):
         assert png in report and (out / png).stat().st_size > 1000
 

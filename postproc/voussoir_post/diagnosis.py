@@ -672,6 +672,8 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     extended_error = chosen.cv_error if chosen else baseline_error
     extended_hinges = chosen.hinge_match if chosen else baseline_hinges
     notes = decision.notes or _notes_named(chosen, baseline_error, resolution, cands, table)
+    crown = crown_comparison(campaign, sim, [("nominal", Variant(), {})]
+                             + ([(chosen.effect, *_model_of(chosen, table))] if chosen else []))
     elapsed = time.time() - t0
     result = {
         "campaign": campaign.name,
@@ -686,9 +688,38 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     (out_dir / "diagnosis.json").write_text(json.dumps(result, indent=2) + "\n")
     from .diagnosis_report import write_report
     write_report(out_dir, campaign, pairs, cands, decision, table, baseline_error, resolution, result,
-                 {"elapsed_s": elapsed, "sweeps": sim.n_sweeps, "runs": sim.n_runs, "settings": settings})
+                 {"elapsed_s": elapsed, "sweeps": sim.n_sweeps, "runs": sim.n_runs, "settings": settings,
+                  "crown": crown})
     log(f"[diagnose] verdict: {decision.verdict} ({elapsed:.0f} s, {sim.n_sweeps} sweeps, {sim.n_runs} single runs)")
     return result
+
+
+def crown_comparison(campaign: Campaign, sim: Simulator, models: list, max_tests: int = 24) -> dict:
+    """Measured crown motion against the simulated one, per model, on the tests that
+    stood and whose records have crown_dx_m (at most `max_tests`, the largest amplitudes
+    first: near the threshold the arch rocks most). The compared feature is the peak
+    horizontal crown displacement relative to the table, floored at 0.5 mm (the noise of
+    a displacement sensor): a peak is robust where a time series near collapse is
+    chaotic. Returns, per model, the mean of |log(simulated peak / measured peak)| and
+    the per-test values."""
+    floor_m = 5e-4
+    tests = [campaign.tests[tid] for tid, r in campaign.records.items()
+             if r.crown_dx_m is not None and campaign.tests[tid].waveform == "afd"
+             and campaign.tests[tid].amplitude_m is not None and not campaign.tests[tid].collapsed]
+    if not tests:
+        return {}
+    tests.sort(key=lambda t: -t.amplitude_m)
+    tests = tests[:max_tests]
+    out = {"tests": [t.test_id for t in tests], "models": {}}
+    for name, variant, motion in models:
+        runs = sim.run_tests([(campaign.specimens[t.specimen_id], t, variant, motion) for t in tests])
+        errors = []
+        for t, r in zip(tests, runs):
+            measured = max(floor_m, float(np.abs(campaign.records[t.test_id].crown_dx_m).max()))
+            simulated = max(floor_m, float(np.abs(r["crown_dx_m"]).max())) if not r["collapsed"] else 1.0
+            errors.append(abs(math.log(simulated / measured)))
+        out["models"][name] = {"mean": float(np.mean(errors)), "per_test": errors}
+    return out
 
 
 def _notes_named(c: CandidateResult, baseline_error: float, resolution: float, cands: dict, table: TableEvidence

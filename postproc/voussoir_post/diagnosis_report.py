@@ -164,6 +164,18 @@ def write_report(out: Path, campaign, pairs, cands, decision, table, baseline_er
         lines.append(f"Fraction of observed hinges (joint and side) that the model reproduces in the same test: "
                      f"nominal {_pct(result['baseline']['hinge_match'])}, extended "
                      f"{_pct(result['extended']['hinge_match'])}.")
+    crown = info.get("crown") or {}
+    lines += ["", "## Crown motion", ""]
+    if crown.get("models"):
+        lines.append(f"Peak horizontal crown displacement of {len(crown['tests'])} recorded tests that stood (the "
+                     "largest amplitudes, where the arch rocks most) against the simulation of the same test; "
+                     "peaks below 0.5 mm count as 0.5 mm (sensor noise), a simulated collapse as 1 m. The figure "
+                     "is the mean of |ln(simulated / measured)|: 0 is perfect, 0.69 a factor of 2.")
+        lines.append("")
+        lines.append(_md_table(["model", "mean abs log ratio of peaks"],
+                               [(k, f"{v['mean']:.2f}") for k, v in crown["models"].items()]))
+    else:
+        lines.append("No record has the crown's motion.")
     s = info["settings"]
     try:
         version = subprocess.run([str(s.bin_dir / "voussoir-run")], capture_output=True, text=True).stderr.strip()
