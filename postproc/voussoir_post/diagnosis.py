@@ -33,7 +33,6 @@ from __future__ import annotations
 import json
 import math
 import os
-import shutil
 import subprocess
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -204,6 +203,7 @@ class Simulator:
         self.work.mkdir(parents=True, exist_ok=True)
         self.n_sweeps = 0
         self.n_runs = 0
+        self.code_version = ""  #: of the executables, from the first sweep file
         self._count = 0
 
     def _env(self) -> dict:
@@ -247,6 +247,11 @@ class Simulator:
                 path.write_text(nml)
                 self._sweep(name)
             rows = _read_csv(self.work / f"{name}.csv")
+            if not self.code_version:
+                import h5py
+                with h5py.File(self.work / f"{name}.h5", "r") as f:
+                    v = f.attrs.get("code_version", b"")
+                    self.code_version = v.decode() if isinstance(v, bytes) else str(v)
             for row in rows:
                 v = vs[int(row["param_set"])] if len(vs) > 1 else vs[0]
                 f = min(freqs, key=lambda x: abs(x - float(row["frequency_hz"])))
@@ -689,6 +694,7 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     from .diagnosis_report import write_report
     write_report(out_dir, campaign, pairs, cands, decision, table, baseline_error, resolution, result,
                  {"elapsed_s": elapsed, "sweeps": sim.n_sweeps, "runs": sim.n_runs, "settings": settings,
+                  "code_version": sim.code_version,
                   "crown": crown})
     log(f"[diagnose] verdict: {decision.verdict} ({elapsed:.0f} s, {sim.n_sweeps} sweeps, {sim.n_runs} single runs)")
     return result

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -177,13 +176,10 @@ def write_report(out: Path, campaign, pairs, cands, decision, table, baseline_er
     else:
         lines.append("No record has the crown's motion.")
     s = info["settings"]
-    try:
-        version = subprocess.run([str(s.bin_dir / "voussoir-run")], capture_output=True, text=True).stderr.strip()
-    except OSError:
-        version = ""
     lines += ["", "## How this was made", "",
               f"voussoir-diagnose run on `{campaign.path}`: {info['sweeps']} sweeps with voussoir-sweep on "
               f"{s.n_ranks} ranks and {info['runs']} single runs with voussoir-run, dt = {s.dt_s:g} s, threshold "
               f"tolerance {100 * s.amp_tol_fraction:g} % of the threshold, in {info['elapsed_s']:.0f} s. "
-              f"Executables from `{s.bin_dir}`. The machine-readable result is `diagnosis.json`.", ""]
+              f"Executables from `{s.bin_dir}` ({info.get('code_version') or 'version unknown'}). The "
+              f"machine-readable result is `diagnosis.json`.", ""]
     (out / "report.md").write_text("\n".join(lines))
