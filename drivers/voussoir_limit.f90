@@ -10,7 +10,7 @@ program voussoir_limit_main
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
   use voussoir_config, only: config_t, read_config
-  use voussoir_text, only: itoa
+  use voussoir_text, only: itoa, int_list
   use voussoir_assembly, only: assembly_t, build_arch
   use voussoir_limit, only: limit_result_t, side_intrados, horizontal_capacity, &
                             thickness_search => minimum_thickness
@@ -311,9 +311,9 @@ contains
       end if
       text = text// &
         '  "friction": '//num(a%friction)//','//nl// &
-        '  "sliding": '//int_list(sliding)//','//nl// &
-        '  "sliding_pos": '//int_list(res%sliding_joints_pos)//','//nl// &
-        '  "sliding_neg": '//int_list(res%sliding_joints_neg)//','//nl// &
+        '  "sliding": ['//int_list(sliding)//'],'//nl// &
+        '  "sliding_pos": ['//int_list(res%sliding_joints_pos)//'],'//nl// &
+        '  "sliding_neg": ['//int_list(res%sliding_joints_neg)//'],'//nl// &
         '  "max_shear_ratio_pos": '//finite_or_null(maxval(res%shear_ratio_pos))//','//nl// &
         '  "max_shear_ratio_neg": '//finite_or_null(maxval(res%shear_ratio_neg))//','//nl// &
         '  "arch": {'//nl// &
@@ -363,17 +363,6 @@ contains
     text = text//']'
   end function hinge_json
 
-  function int_list(values) result(text)
-    integer, intent(in) :: values(:)
-    character(len=:), allocatable :: text
-    integer :: k
-    text = '['
-    do k = 1, size(values)
-      if (k > 1) text = text//', '
-      text = text//itoa(values(k))
-    end do
-    text = text//']'
-  end function int_list
 
   pure function side_name(side) result(name)
     integer, intent(in) :: side

@@ -15,7 +15,7 @@ module voussoir_sweep_plan
   use, intrinsic :: iso_fortran_env, only: iostat_end
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
-  use voussoir_text, only: lower, itoa
+  use voussoir_text, only: lower, itoa, int_list
   use voussoir_config, only: config_t, config_entry_t, config_entries, config_to_nml, validate_config, &
                              fmt_real
   use voussoir_threshold, only: threshold_settings_t, search_run_config
@@ -570,16 +570,6 @@ contains
     end do
   end function real_list
 
-  function int_list(x) result(text)
-    integer, intent(in) :: x(:)
-    character(len=:), allocatable :: text
-    integer :: j
-    text = ''
-    do j = 1, size(x)
-      if (j > 1) text = text//', '
-      text = text//itoa(x(j))
-    end do
-  end function int_list
 
 end module voussoir_sweep_plan
 

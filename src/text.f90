@@ -5,7 +5,7 @@ module voussoir_text
   implicit none
   private
 
-  public :: lower, itoa, fmt_real
+  public :: lower, itoa, int_list, fmt_real
 
 contains
 
@@ -28,6 +28,18 @@ contains
     write (buf, '(i0)') i
     text = trim(buf)
   end function itoa
+
+  !> Integers as text separated by ', ' (empty for none).
+  pure function int_list(values) result(text)
+    integer, intent(in) :: values(:)
+    character(len=:), allocatable :: text
+    integer :: k
+    text = ''
+    do k = 1, size(values)
+      if (k > 1) text = text//', '
+      text = text//itoa(values(k))
+    end do
+  end function int_list
 
   !> Short readable text of a real: plain decimals for ordinary magnitudes, else
   !> scientific notation.
