@@ -386,22 +386,25 @@ def _nominal(effect: str, pairs: list[PairData]):
     return {"contact_edges": 0.0, "friction": pairs[0].spec.friction, "table_motion": 1.0}.get(effect)
 
 
-def _mean_error(pairs: list[PairData], effect, value) -> float:
-    errs = []
+def _predictions(pairs: list[PairData], effect, value) -> list[float]:
+    """Threshold [m] of every pair under one model (effect None: the nominal one)."""
+    out = []
     for p in pairs:
         nominal = p.spec.friction if effect == "friction" else _nominal(effect, [p]) if effect else None
-        pred = _predict(p, effect, value, nominal)
-        errs.append(_rel_error(pred, p.measured.threshold_m) if math.isfinite(pred) else 1.0)
+        out.append(_predict(p, effect, value, nominal))
+    return out
+
+
+def _mean_error(pairs: list[PairData], effect, value) -> float:
+    errs = [_rel_error(pred, p.measured.threshold_m) if math.isfinite(pred) else 1.0
+            for pred, p in zip(_predictions(pairs, effect, value), pairs)]
     return float(np.mean(errs)) if errs else math.nan
 
 
 def _loss(pairs: list[PairData], effect, value) -> float:
     """Negative log-likelihood of the measured thresholds under one model."""
-    total = 0.0
-    for p in pairs:
-        nominal = p.spec.friction if effect == "friction" else _nominal(effect, [p]) if effect else None
-        total += _neg_log_likelihood(_predict(p, effect, value, nominal), p.measured.threshold_m, p.sigma)
-    return total
+    return sum(_neg_log_likelihood(pred, p.measured.threshold_m, p.sigma)
+               for pred, p in zip(_predictions(pairs, effect, value), pairs))
 
 
 def _fit(pairs: list[PairData], effect: str, settings: DiagnosisSettings, fixed=None):
