@@ -35,6 +35,6 @@ if ! .venv/bin/python -c 'import numpy, h5py, matplotlib, pytest, voussoir_post'
 fi
 
 echo "[setup] building (Release) in build/"
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE="$root/.venv/bin/python" >/dev/null
 cmake --build build -j "$(nproc)" >/dev/null
 echo "[setup] done: executables in build/drivers, Python tools in .venv/bin"

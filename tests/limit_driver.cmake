@@ -9,11 +9,6 @@
 if(NOT TARGET voussoir-limit)
   return()
 endif()
-find_package(Python3 COMPONENTS Interpreter QUIET)
-if(NOT Python3_Interpreter_FOUND)
-  message(STATUS "voussoir-limit tests skipped: no Python 3 interpreter")
-  return()
-endif()
 
 set(LIMIT_TEST_DIR ${CMAKE_CURRENT_BINARY_DIR}/limit_driver)
 file(MAKE_DIRECTORY ${LIMIT_TEST_DIR})

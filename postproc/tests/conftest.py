@@ -1,10 +1,9 @@
 """Fixtures: the real Fortran executables and the result files they write.
 
 Executables are looked up in ``$VOUSSOIR_BIN_DIR`` (default ``<repo>/build/drivers``).
-A missing ``voussoir-run`` fails the tests that need it (the project rule: plots are
-tested on files made by the real executables, never on hand-made fakes); the
-``voussoir-sweep`` and ``voussoir-limit`` tests are skipped while those executables do
-not exist yet.
+A missing executable fails the tests that need it (the project rule: plots are tested
+on files made by the real executables, never on hand-made fakes), and no test is ever
+skipped: a skip is counted as a failure at the end of the session.
 """
 
 from __future__ import annotations
@@ -65,33 +64,38 @@ def run_executable(args: list, cwd: Path, timeout_s: float = 600.0,
     return proc
 
 
-@pytest.fixture(scope="session")
-def voussoir_run_exe() -> Path:
-    """The voussoir-run executable; fails (not skips) when it has not been built."""
-    exe = executable("voussoir-run")
+def required_executable(name: str) -> Path:
+    """An executable of the project; fails (never skips) when it has not been built."""
+    exe = executable(name)
     if exe is None:
-        pytest.fail(f"voussoir-run not found in {bin_dir()}: build the project "
+        pytest.fail(f"{name} not found in {bin_dir()}: build the project "
                     "(cmake -S . -B build && cmake --build build) or set VOUSSOIR_BIN_DIR "
                     "to the folder that holds the executables")
     return exe
 
 
 @pytest.fixture(scope="session")
+def voussoir_run_exe() -> Path:
+    return required_executable("voussoir-run")
+
+
+@pytest.fixture(scope="session")
 def voussoir_sweep_exe() -> Path:
-    """The voussoir-sweep executable; skips while it does not exist yet."""
-    exe = executable("voussoir-sweep")
-    if exe is None:
-        pytest.skip(f"voussoir-sweep not built yet (looked in {bin_dir()}); sweep tests skipped")
-    return exe
+    return required_executable("voussoir-sweep")
 
 
 @pytest.fixture(scope="session")
 def voussoir_limit_exe() -> Path:
-    """The voussoir-limit executable; skips while it does not exist yet."""
-    exe = executable("voussoir-limit")
-    if exe is None:
-        pytest.skip(f"voussoir-limit not built yet (looked in {bin_dir()}); mechanism tests skipped")
-    return exe
+    return required_executable("voussoir-limit")
+
+
+def pytest_sessionfinish(session, exitstatus):
+    """No test may be skipped: a skipped test fails the session."""
+    reporter = session.config.pluginmanager.get_plugin("terminalreporter")
+    skipped = len(reporter.stats.get("skipped", [])) if reporter else 0
+    if skipped and exitstatus == 0:
+        print(f"\n{skipped} test(s) skipped: every test must run (a missing dependency is a failure)")
+        session.exitstatus = 1
 
 
 @pytest.fixture(scope="session")

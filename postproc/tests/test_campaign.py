@@ -100,6 +100,32 @@ def test_friction_column_absent_defaults(tmp_path):
     assert c.specimens["S1"].friction == 0.5
 
 
+def test_setup_columns_read_and_default(tmp_path):
+    specimens = ("specimen_id,embrace_deg,n_voussoirs,r_ext_m,thickness_m,width_m,density_kg_m3,"
+                 "restrained_springings,setup_certain\n"
+                 "S1,156,13,0.508,0.071,0.145,700,left,0\nS2,180,15,0.508,0.071,0.145,700,,\n")
+    c = read_campaign(make_campaign(tmp_path / "c", specimens=specimens))
+    assert c.warnings == []
+    assert (c.specimens["S1"].restrained_springings, c.specimens["S1"].setup_certain) == ("left", False)
+    assert (c.specimens["S2"].restrained_springings, c.specimens["S2"].setup_certain) == ("none", True)
+    old = read_campaign(make_campaign(tmp_path / "old"))  # a campaign without the set-up columns
+    assert all(s.restrained_springings == "none" and s.setup_certain for s in old.specimens.values())
+
+
+@pytest.mark.parametrize("column,value,column_index", [("restrained_springings", "top", 8),
+                                                       ("setup_certain", "yes", 9),
+                                                       ("setup_certain", "2", 9)])
+def test_setup_columns_bad_values_named(tmp_path, column, value, column_index):
+    cells = {"restrained_springings": "none", "setup_certain": "1", column: value}
+    specimens = ("specimen_id,embrace_deg,n_voussoirs,r_ext_m,thickness_m,width_m,density_kg_m3,"
+                 "restrained_springings,setup_certain\n"
+                 f"S1,156,13,0.508,0.071,0.145,700,{cells['restrained_springings']},{cells['setup_certain']}\n")
+    with pytest.raises(CampaignError) as err:
+        read_campaign(make_campaign(tmp_path / "c", specimens=specimens))
+    assert str(err.value).startswith(f"{tmp_path / 'c' / 'specimens.csv'}:2:{column_index}: column '{column}': "
+                                     f"'{value}' is not one of")
+
+
 def test_column_order_free_and_unknown_columns_warn(tmp_path):
     specimens = ("density_kg_m3,colour,width_m,thickness_m,r_ext_m,n_voussoirs,embrace_deg,specimen_id\n"
                  "700,red,0.145,0.071,0.508,13,156,S1\n700,blue,0.145,0.071,0.508,15,180,S2\n")
@@ -384,6 +410,9 @@ def test_seed_campaign_thresholds(seed_campaign):
     assert list(c.specimens) == ["A180", "A156", "A132", "A118"]
     assert [c.specimens[s].n_voussoirs for s in c.specimens] == [15, 13, 11, 10]
     assert c.warnings == [] and c.records == {} and c.hinges == {}
+    # The set-up declared in the file: A180's brackets; A180 and A118 uncertain.
+    assert [(s.restrained_springings, s.setup_certain) for s in c.specimens.values()] == [
+        ("both", False), ("none", True), ("none", True), ("none", False)]
     got = [(m.specimen_id, m.frequency_hz, m.threshold_m, m.high_m, m.n_stand) for m in measured_thresholds(c)]
     assert got == [("A180", 1.00, 0.040, 0.040, 0), ("A156", 1.25, 0.046, 0.046, 0),
                    ("A132", 1.60, 0.056, 0.056, 0), ("A118", 2.50, 0.046, 0.046, 0)]

@@ -1,4 +1,4 @@
-"""mechanism on the JSON of the real voussoir-limit (skipped while it does not exist)."""
+"""mechanism on the JSON of the real voussoir-limit."""
 
 from __future__ import annotations
 

@@ -48,6 +48,7 @@ __all__ = [
     "measured_thresholds",
     "DEFAULT_FRICTION",
     "DEFAULT_CYCLES",
+    "RESTRAINTS",
 ]
 
 DEFAULT_FRICTION = 0.5  #: friction of a specimen whose `friction` cell or column is absent
@@ -58,6 +59,10 @@ DEFAULT_CYCLES = 1  #: default of n_attack, n_full and n_decay
 SAMPLING_TOLERANCE = 0.01
 
 WAVEFORMS = ("afd", "record")
+#: Values of specimens.csv `restrained_springings`: brackets fixed to the table against the
+#: outer face of the bottom voussoir(s), a known part of the specimen's set-up.
+RESTRAINTS = ("none", "left", "right", "both")
+DEFAULT_RESTRAINT = "none"
 OUTCOMES = ("stand", "collapse")
 SIDES = ("intrados", "extrados")
 
@@ -107,6 +112,8 @@ class Specimen:
     width_m: float
     density_kg_m3: float
     friction: float = DEFAULT_FRICTION
+    restrained_springings: str = DEFAULT_RESTRAINT  #: known brackets: none, left, right or both
+    setup_certain: bool = True  #: False: simulated and reported apart, never fitted nor scored
     line: int = 0  #: line of specimens.csv
 
     @property
@@ -408,7 +415,7 @@ class _Cells:
 
 _SPECIMEN_REQUIRED = ("specimen_id", "embrace_deg", "n_voussoirs", "r_ext_m", "thickness_m",
                       "width_m", "density_kg_m3")
-_SPECIMEN_KNOWN = _SPECIMEN_REQUIRED + ("friction",)
+_SPECIMEN_KNOWN = _SPECIMEN_REQUIRED + ("friction", "restrained_springings", "setup_certain")
 _TEST_REQUIRED = ("test_id", "specimen_id", "waveform", "outcome")
 _TEST_KNOWN = _TEST_REQUIRED + ("frequency_hz", "amplitude_m", "n_attack", "n_full", "n_decay",
                                 "collapse_time_s", "peak_accel_m_s2")
@@ -435,12 +442,15 @@ def _read_specimens(path: str, warn_list: list[str]) -> dict[str, Specimen]:
         width = c.number("width_m", length=True, low=0.0, low_inclusive=False, rule="width_m > 0")
         density = c.number("density_kg_m3", low=0.0, low_inclusive=False, rule="density_kg_m3 > 0")
         friction = c.number("friction", required=False, low=0.0, rule="friction >= 0")
+        restrained = c.enum("restrained_springings", RESTRAINTS, required=False)
+        certain = c.enum("setup_certain", ("1", "0"), required=False)
         if thickness is not None and r_ext is not None and thickness >= r_ext:
             c.error("thickness_m", f"{row.cells['thickness_m']} is out of range: "
                                    f"0 < thickness_m < r_ext_m = {row.cells['r_ext_m']}")
         c.raise_first()
         specimens[sid] = Specimen(sid, embrace, n, r_ext, thickness, width, density,
-                                  DEFAULT_FRICTION if friction is None else friction, row.line)
+                                  DEFAULT_FRICTION if friction is None else friction,
+                                  restrained or DEFAULT_RESTRAINT, certain != "0", row.line)
     return specimens
 
 
