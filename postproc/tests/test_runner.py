@@ -1,0 +1,40 @@
+"""The runner: namelist text from a mapping, read back by the executables and by
+results.parse_namelist; failures raise RunError with the program's words."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from voussoir_post.results import parse_namelist
+from voussoir_post.runner import RunError, Runner, format_value, namelist
+
+
+def test_namelist_round_trip_through_the_parser():
+    groups = {"arch": {"embrace_deg": 156.0, "n_voussoirs": 13, "restrained_springings": "it's"},
+              "solver": {"allow_nonconvergence": True, "dt_s": 1.0e-3},
+              "sweep": {"frequencies_hz": [1.25, 2.0]}}
+    parsed = parse_namelist(namelist(groups))
+    assert parsed["arch"] == {"embrace_deg": 156.0, "n_voussoirs": 13, "restrained_springings": "it's"}
+    assert parsed["solver"] == {"allow_nonconvergence": True, "dt_s": 1.0e-3}
+    assert parsed["sweep"] == {"frequencies_hz": [1.25, 2.0]}
+
+
+@pytest.mark.parametrize("bad", [math.nan, math.inf, [], object()])
+def test_values_without_a_namelist_form_are_refused(bad):
+    with pytest.raises((ValueError, TypeError)):
+        format_value(bad)
+
+
+def test_run_single_reads_the_result_and_a_bad_input_raises(voussoir_run_exe, tmp_path):
+    runner = Runner(voussoir_run_exe.parent, tmp_path)
+    groups = {"arch": {"embrace_deg": 156.0, "n_voussoirs": 13},
+              "motion": {"waveform": "afd", "frequency_hz": 1.25, "amplitude_m": 0.0, "rest_s": 0.2,
+                         "duration_s": 0.3},
+              "solver": {"dt_s": 1.0e-3}}
+    result = runner.run_single(groups, "gravity")
+    assert not result.collapsed and (tmp_path / "gravity.nml").is_file()
+    groups["arch"]["n_voussoirs"] = 1  # below the allowed range: the program refuses it
+    with pytest.raises(RunError, match="n_voussoirs"):
+        runner.run_single(groups, "bad")

@@ -1,0 +1,164 @@
+"""The one way Python runs the Fortran executables: a namelist from a mapping, the
+executable on it, the result read back through :mod:`voussoir_post.results`.
+
+    groups = {"arch": {"embrace_deg": 156.0, "n_voussoirs": 13},
+              "motion": {"waveform": "afd", "frequency_hz": 1.25, "amplitude_m": 0.046}}
+    run = Runner(bin_dir, work_dir).run_single(groups, "A156_f1.25")   # -> RunResult
+
+Every run writes ``<name>.nml`` in the work folder and its result beside it, so a failed
+run can be repeated by hand from what is left there. A failure raises :class:`RunError`
+with the command, the namelist and the program's own words. Sweeps run under MPI when
+``n_ranks > 1`` (with the variables Open MPI needs as root).
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import os
+import subprocess
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+from .results import LimitResult, RunResult, SweepResult, read_limit_json, read_run, read_sweep
+
+__all__ = ["RunError", "Runner", "namelist", "format_value", "read_csv_rows"]
+
+
+class RunError(RuntimeError):
+    """An executable failed: the message has the command, the input and its output."""
+
+
+def format_value(value) -> str:
+    """One namelist value in Fortran syntax (lists comma-separated)."""
+    if isinstance(value, bool):
+        return ".true." if value else ".false."
+    if isinstance(value, (int,)) and not isinstance(value, bool):
+        return str(value)
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            raise ValueError(f"a namelist value must be finite, got {value!r}")
+        return repr(value)
+    if isinstance(value, str):
+        return "'" + value.replace("'", "''") + "'"
+    if isinstance(value, Sequence):
+        if len(value) == 0:
+            raise ValueError("a namelist list must not be empty")
+        return ", ".join(format_value(v) for v in value)
+    if hasattr(value, "item"):  # numpy scalars
+        return format_value(value.item())
+    raise TypeError(f"no namelist form for {type(value).__name__} {value!r}")
+
+
+def namelist(groups: Mapping[str, Mapping[str, object]]) -> str:
+    """The text of a namelist file: one ``&group`` per mapping entry, in order."""
+    out = []
+    for group, variables in groups.items():
+        body = ",\n".join(f"  {name} = {format_value(v)}" for name, v in variables.items())
+        out.append(f"&{group}\n{body}\n/\n" if body else f"&{group}\n/\n")
+    return "".join(out)
+
+
+def read_csv_rows(path: str | os.PathLike) -> list[dict[str, str]]:
+    """Rows of a CSV written by the executables (``#`` comment lines skipped)."""
+    with open(path, newline="") as fh:
+        return list(csv.DictReader(line for line in fh if not line.startswith("#")))
+
+
+@dataclass
+class Runner:
+    """Runs voussoir-run, voussoir-sweep and voussoir-limit in one work folder."""
+
+    bin_dir: Path
+    work_dir: Path
+    n_ranks: int = 1  #: MPI ranks of a sweep (1: no mpirun)
+    mpiexec: str = "mpirun"
+    timeout_s: float | None = None
+
+    def __post_init__(self):
+        self.bin_dir = Path(self.bin_dir)
+        self.work_dir = Path(self.work_dir)
+        self.work_dir.mkdir(parents=True, exist_ok=True)
+        self.n_runs = 0  #: executables started
+        self.reused = 0  #: results found already made from the same input
+
+    def exe(self, name: str) -> Path:
+        path = self.bin_dir / name
+        if not path.is_file():
+            raise RunError(f"{path} does not exist: build the project (bash scripts/setup.sh)")
+        return path
+
+    def _env(self) -> dict:
+        env = dict(os.environ)
+        env.setdefault("OMPI_ALLOW_RUN_AS_ROOT", "1")
+        env.setdefault("OMPI_ALLOW_RUN_AS_ROOT_CONFIRM", "1")
+        return env
+
+    def write(self, groups: Mapping[str, Mapping[str, object]], name: str) -> Path:
+        """Write ``<name>.nml``; returns its path."""
+        path = self.work_dir / f"{name}.nml"
+        path.write_text(namelist(groups))
+        return path
+
+    def execute(self, program: str, nml: Path, *args: str, mpi: bool = False) -> subprocess.CompletedProcess:
+        """Run one program on one namelist in the work folder; RunError when it fails."""
+        cmd = [str(self.exe(program)), nml.name, *args]
+        if mpi and self.n_ranks > 1:
+            cmd = [self.mpiexec, "--oversubscribe", "-np", str(self.n_ranks), *cmd]
+        try:
+            proc = subprocess.run(cmd, cwd=self.work_dir, capture_output=True, text=True, env=self._env(),
+                                  timeout=self.timeout_s)
+        except subprocess.TimeoutExpired as exc:
+            raise RunError(f"{' '.join(cmd)} (in {self.work_dir}) did not finish in {self.timeout_s} s") from exc
+        self.n_runs += 1
+        if proc.returncode != 0:
+            raise RunError(f"{' '.join(cmd)} (in {self.work_dir}) exited with {proc.returncode}\n"
+                           f"input {nml}:\n{nml.read_text()}\nstdout:\n{proc.stdout}\nstderr:\n{proc.stderr}")
+        return proc
+
+    def _fresh(self, groups, name: str, outputs: Sequence[str]) -> tuple[Path, bool]:
+        """Write the namelist unless the same one and all its outputs are already there."""
+        path = self.work_dir / f"{name}.nml"
+        text = namelist(groups)
+        done = path.is_file() and path.read_text() == text and all((self.work_dir / o).is_file() for o in outputs)
+        if not done:
+            path.write_text(text)
+        return path, done
+
+    @staticmethod
+    def _with_output(groups, file: str) -> dict:
+        out = {g: dict(v) for g, v in groups.items()}
+        out.setdefault("output", {})["file"] = file
+        return out
+
+    def run_single(self, groups: Mapping[str, Mapping[str, object]], name: str, keep: bool = True) -> RunResult:
+        """voussoir-run on the groups (``&output file`` is set to ``<name>.h5``)."""
+        groups = self._with_output(groups, f"{name}.h5")
+        nml = self.write(groups, name)
+        self.execute("voussoir-run", nml)
+        h5 = self.work_dir / f"{name}.h5"
+        result = read_run(h5)
+        if not keep:
+            h5.unlink()
+        return result
+
+    def run_sweep(self, groups: Mapping[str, Mapping[str, object]], name: str, reuse: bool = True
+                  ) -> tuple[SweepResult, list[dict[str, str]]]:
+        """voussoir-sweep (under MPI when n_ranks > 1): the HDF5 result and the CSV rows.
+        A finished sweep of the same input in the work folder is reused when ``reuse``."""
+        groups = self._with_output(groups, f"{name}.h5")
+        nml, done = self._fresh(groups, name, [f"{name}.h5", f"{name}.csv"])
+        if done and reuse:
+            self.reused += 1
+        else:
+            self.execute("voussoir-sweep", nml, mpi=True)
+        return read_sweep(self.work_dir / f"{name}.h5"), read_csv_rows(self.work_dir / f"{name}.csv")
+
+    def run_limit(self, groups: Mapping[str, Mapping[str, object]], name: str) -> LimitResult:
+        """voussoir-limit --json on the groups."""
+        nml = self.write(groups, name)
+        proc = self.execute("voussoir-limit", nml, "--json")
+        path = self.work_dir / f"{name}.json"
+        path.write_text(proc.stdout)
+        return read_limit_json(path)
