@@ -10,7 +10,7 @@ program voussoir_limit_main
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
   use voussoir_config, only: config_t, read_config
-  use voussoir_text, only: itoa, int_list
+  use voussoir_text, only: itoa, int_list, fmt_json_real, json_string, json_bool, fmt_significant
   use voussoir_assembly, only: assembly_t, build_arch
   use voussoir_limit, only: limit_result_t, side_intrados, horizontal_capacity, &
                             thickness_search => minimum_thickness
@@ -111,9 +111,9 @@ contains
     opts%minimum_thickness = minimum_thickness
     opts%inset_m = merge(cfg%arch%contact_inset_m, inset_m, inset_m == unset)
     if (.not. (opts%inset_m >= 0.0_dp .and. opts%inset_m < 0.5_dp*cfg%arch%thickness_m)) &
-      call fail(status, path//': &limit inset_m = '//short(inset_m)// &
+      call fail(status, path//': &limit inset_m = '//fmt_significant(inset_m)// &
                 ' is outside the allowed range 0 <= inset_m < thickness_m/2 = '// &
-                short(0.5_dp*cfg%arch%thickness_m))
+                fmt_significant(0.5_dp*cfg%arch%thickness_m))
   end subroutine read_limit_group
 
   !> Build the arch of &arch and run the analyses; refuse what the limit analysis does not model.
@@ -168,10 +168,10 @@ contains
     character(len=*), parameter :: rule = '  ------------------------------------------------------------------'
     associate (a => cfg%arch)
       write (u, '(a)') 'voussoir-limit: '//path
-      write (u, '(a)') 'arch: '//itoa(a%n_voussoirs)//' voussoirs, embrace '//short(a%embrace_deg)// &
-        ' deg, r_ext '//short(a%r_ext_m)//' m, thickness '//short(a%thickness_m)//' m (t/R_ext '// &
-        short(a%thickness_m/a%r_ext_m)//')'
-      write (u, '(a)') '      pivot inset '//short(1.0e3_dp*opts%inset_m)//' mm, friction '//short(a%friction)
+      write (u, '(a)') 'arch: '//itoa(a%n_voussoirs)//' voussoirs, embrace '//fmt_significant(a%embrace_deg)// &
+        ' deg, r_ext '//fmt_significant(a%r_ext_m)//' m, thickness '//fmt_significant(a%thickness_m)//' m (t/R_ext '// &
+        fmt_significant(a%thickness_m/a%r_ext_m)//')'
+      write (u, '(a)') '      pivot inset '//fmt_significant(1.0e3_dp*opts%inset_m)//' mm, friction '//fmt_significant(a%friction)
       write (u, '(/,a)') 'Horizontal collapse (rigid blocks, no tension, no sliding; load = lambda x weight)'
       write (u, '(a)') '  direction  lambda     lambda g [m/s2]  mechanism (hinges from the left)'
       write (u, '(a)') rule
@@ -196,7 +196,7 @@ contains
       if (tmin%computed) then
         write (u, '(/,a)') 'Minimum thickness (same embrace, voussoirs, r_ext and inset; own weight only)'
         write (u, '(a,f9.6,a,f9.6,a)') '  t/R_ext ', tmin%ratio_ext, '   t/R_mean ', tmin%ratio_mean, &
-          '   t_min '//short(1.0e3_dp*tmin%ratio_ext*a%r_ext_m)//' mm'
+          '   t_min '//fmt_significant(1.0e3_dp*tmin%ratio_ext*a%r_ext_m)//' mm'
         write (u, '(a)') '  hinges: '//hinge_text(tmin%hinges, tmin%sides)
       end if
     end associate
@@ -241,8 +241,8 @@ contains
     call sliding_union(res, n_voussoirs, joints)
     worst = max(maxval(res%shear_ratio_pos), maxval(res%shear_ratio_neg))
     if (size(joints) == 0) then
-      text = 'hinging governs (largest |T|/N at collapse '//short(worst, 5)//' <= friction '// &
-             short(friction)//')'
+      text = 'hinging governs (largest |T|/N at collapse '//fmt_significant(worst, 5)//' <= friction '// &
+             fmt_significant(friction)//')'
     else
       text = 'sliding governs at joints '
       do k = 1, size(joints)
@@ -252,7 +252,7 @@ contains
       if (worst == huge(1.0_dp)) then
         text = text//' (a joint is not in compression in the collapse state)'
       else
-        text = text//' (|T|/N at collapse up to '//short(worst, 5)//' > friction '//short(friction)// &
+        text = text//' (|T|/N at collapse up to '//fmt_significant(worst, 5)//' > friction '//fmt_significant(friction)// &
                '): the true capacity can be lower than lambda'
       end if
     end if
@@ -287,22 +287,22 @@ contains
     associate (a => cfg%arch)
       text = '{'//nl// &
         '  "producer": "voussoir-limit",'//nl// &
-        '  "code_version": '//quoted(code_version)//','//nl// &
-        '  "input_file": '//quoted(path)//','//nl// &
-        '  "g_m_s2": '//num(g_m_s2)//','//nl// &
+        '  "code_version": '//json_string(code_version)//','//nl// &
+        '  "input_file": '//json_string(path)//','//nl// &
+        '  "g_m_s2": '//fmt_json_real(g_m_s2)//','//nl// &
         '  "lambda_pos": '//finite_or_null(res%lambda_pos)//','//nl// &
         '  "lambda_neg": '//finite_or_null(res%lambda_neg)//','//nl// &
         '  "hinges_pos": '//hinge_json(res%hinges_pos(1:res%n_hinges_pos), res%sides_pos(1:res%n_hinges_pos))// &
         ','//nl// &
         '  "hinges_neg": '//hinge_json(res%hinges_neg(1:res%n_hinges_neg), res%sides_neg(1:res%n_hinges_neg))// &
         ','//nl// &
-        '  "bounds_meet_pos": '//boolean(res%bounds_meet_pos)//','//nl// &
-        '  "bounds_meet_neg": '//boolean(res%bounds_meet_neg)//','//nl
+        '  "bounds_meet_pos": '//json_bool(res%bounds_meet_pos)//','//nl// &
+        '  "bounds_meet_neg": '//json_bool(res%bounds_meet_neg)//','//nl
       if (tmin%computed) then
         text = text// &
-          '  "min_thickness_ratio_ext": '//num(tmin%ratio_ext)//','//nl// &
-          '  "min_thickness_ratio_mean": '//num(tmin%ratio_mean)//','//nl// &
-          '  "min_thickness_m": '//num(tmin%ratio_ext*a%r_ext_m)//','//nl// &
+          '  "min_thickness_ratio_ext": '//fmt_json_real(tmin%ratio_ext)//','//nl// &
+          '  "min_thickness_ratio_mean": '//fmt_json_real(tmin%ratio_mean)//','//nl// &
+          '  "min_thickness_m": '//fmt_json_real(tmin%ratio_ext*a%r_ext_m)//','//nl// &
           '  "hinges_min_thickness": '//hinge_json(tmin%hinges, tmin%sides)//','//nl
       else
         text = text// &
@@ -310,7 +310,7 @@ contains
           '  "min_thickness_m": null,'//nl//'  "hinges_min_thickness": [],'//nl
       end if
       text = text// &
-        '  "friction": '//num(a%friction)//','//nl// &
+        '  "friction": '//fmt_json_real(a%friction)//','//nl// &
         '  "sliding": ['//int_list(sliding)//'],'//nl// &
         '  "sliding_pos": ['//int_list(res%sliding_joints_pos)//'],'//nl// &
         '  "sliding_neg": ['//int_list(res%sliding_joints_neg)//'],'//nl// &
@@ -318,21 +318,21 @@ contains
         '  "max_shear_ratio_neg": '//finite_or_null(maxval(res%shear_ratio_neg))//','//nl// &
         '  "arch": {'//nl// &
         '    "n_voussoirs": '//itoa(a%n_voussoirs)//','//nl// &
-        '    "embrace_deg": '//num(a%embrace_deg)//','//nl// &
-        '    "r_ext_m": '//num(a%r_ext_m)//','//nl// &
-        '    "thickness_m": '//num(a%thickness_m)//','//nl// &
-        '    "contact_inset_m": '//num(opts%inset_m)//','//nl// &
+        '    "embrace_deg": '//fmt_json_real(a%embrace_deg)//','//nl// &
+        '    "r_ext_m": '//fmt_json_real(a%r_ext_m)//','//nl// &
+        '    "thickness_m": '//fmt_json_real(a%thickness_m)//','//nl// &
+        '    "contact_inset_m": '//fmt_json_real(opts%inset_m)//','//nl// &
         '    "joint_intrados_xy_m": ['
       do j = 0, a%n_voussoirs
         if (j > 0) text = text//', '
-        text = text//'['//num(arch%joint_intrados_xy(1, j))//', '// &
-               num(arch%joint_intrados_xy(2, j))//']'
+        text = text//'['//fmt_json_real(arch%joint_intrados_xy(1, j))//', '// &
+               fmt_json_real(arch%joint_intrados_xy(2, j))//']'
       end do
       text = text//'],'//nl//'    "joint_extrados_xy_m": ['
       do j = 0, a%n_voussoirs
         if (j > 0) text = text//', '
-        text = text//'['//num(arch%joint_extrados_xy(1, j))//', '// &
-               num(arch%joint_extrados_xy(2, j))//']'
+        text = text//'['//fmt_json_real(arch%joint_extrados_xy(1, j))//', '// &
+               fmt_json_real(arch%joint_extrados_xy(2, j))//']'
       end do
       text = text//']'//nl//'  }'//nl//'}'
     end associate
@@ -347,7 +347,7 @@ contains
     if (x == huge(1.0_dp)) then
       text = 'null'
     else
-      text = num(x)
+      text = fmt_json_real(x)
     end if
   end function finite_or_null
 
@@ -374,92 +374,9 @@ contains
     end if
   end function side_name
 
-  !> A JSON string (escapes backslashes and quotes).
-  pure function quoted(s) result(text)
-    character(len=*), intent(in) :: s
-    character(len=:), allocatable :: text
-    integer :: k
-    text = '"'
-    do k = 1, len(s)
-      if (s(k:k) == '"' .or. s(k:k) == '\') text = text//'\'
-      text = text//s(k:k)
-    end do
-    text = text//'"'
-  end function quoted
 
-  !> A real as a JSON number: the fewest digits (15 to 17) that read back to the same
-  !> value, in E notation without padding zeros (0.376 -> 3.76E-1).
-  function num(x) result(text)
-    real(dp), intent(in) :: x
-    character(len=:), allocatable :: text
-    character(len=40) :: buf
-    character(len=16) :: fmt
-    real(dp) :: back
-    integer :: digits, e, k, exponent
-    if (x == 0.0_dp) then
-      text = '0.0'
-      return
-    end if
-    do digits = 15, 17
-      write (fmt, '(a,i0,a)') '(es30.', digits - 1, 'e3)'
-      write (buf, fmt) x
-      read (buf, *) back
-      if (back == x) exit
-    end do
-    buf = adjustl(buf)
-    e = index(buf, 'E')
-    read (buf(e + 1:), *) exponent
-    k = e - 1
-    do while (buf(k:k) == '0')
-      k = k - 1
-    end do
-    if (buf(k:k) == '.') k = k + 1   ! keep one digit after the point
-    text = buf(1:k)
-    if (exponent /= 0) text = text//'E'//itoa(exponent)
-  end function num
 
-  pure function boolean(x) result(text)
-    logical, intent(in) :: x
-    character(len=:), allocatable :: text
-    if (x) then
-      text = 'true'
-    else
-      text = 'false'
-    end if
-  end function boolean
 
-  !> A real for people: `digits` significant digits (6 by default), trailing zeros dropped.
-  function short(x, digits) result(text)
-    real(dp), intent(in) :: x
-    integer, intent(in), optional :: digits
-    character(len=:), allocatable :: text
-    character(len=40) :: buf
-    character(len=16) :: fmt
-    integer :: k, n_digits
-    n_digits = 6
-    if (present(digits)) n_digits = digits
-    if (x == 0.0_dp) then
-      text = '0'
-      return
-    end if
-    if (abs(x) >= 1.0e-3_dp .and. abs(x) < 1.0e7_dp) then
-      write (fmt, '(a,i0,a)') '(f0.', max(0, n_digits - 1 - floor(log10(abs(x)))), ')'
-    else
-      write (fmt, '(a,i0,a)') '(es0.', n_digits - 1, ')'
-    end if
-    write (buf, fmt) x
-    text = trim(adjustl(buf))
-    if (scan(text, 'eE') == 0 .and. index(text, '.') > 0) then
-      k = len(text)
-      do while (text(k:k) == '0')
-        k = k - 1
-      end do
-      if (text(k:k) == '.') k = k - 1
-      text = text(1:k)
-    end if
-    if (text(1:1) == '.') text = '0'//text
-    if (text(1:2) == '-.') text = '-0'//text(2:)
-  end function short
 
 
 end program voussoir_limit_main

@@ -7,8 +7,8 @@
 !> (named columns; integers are stored exactly as reals), which is what a resumed sweep
 !> reads back.
 module voussoir_sweep_output
-  use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
   use voussoir_kinds, only: dp
+  use voussoir_text, only: itoa, fmt_exact
   use voussoir_status, only: status_t, fail
   use voussoir_config, only: config_t, config_entries, config_to_nml
   use voussoir_h5, only: hid_t, h5_create, h5_open_ro, h5_close, h5_group, h5_group_close, h5_write, &
@@ -439,19 +439,19 @@ contains
     end if
     do r = 1, results%n_rows
       set = nint(col('param_set'))
-      line = int_text(set)
+      line = itoa(set)
       do k = 1, n_params
-        line = line//','//real_text(header%parameter_values(k, set + 1))
+        line = line//','//fmt_exact(header%parameter_values(k, set + 1))
       end do
-      line = line//','//real_text(col('frequency_hz'))
+      line = line//','//fmt_exact(col('frequency_hz'))
       if (header%mode == 'grid') then
-        line = line//','//real_text(col('amplitude_m'))//','// &
+        line = line//','//fmt_exact(col('amplitude_m'))//','// &
                trim(merge('collapse', 'stand   ', nint(col('collapsed')) == 1))//','// &
-               real_text(col('collapse_time_s'))//','//real_text(col('peak_crown_disp_m'))//','// &
-               real_text(col('mean_iterations'))
+               fmt_exact(col('collapse_time_s'))//','//fmt_exact(col('peak_crown_disp_m'))//','// &
+               fmt_exact(col('mean_iterations'))
       else
-        line = line//','//real_text(col('threshold_m'))//','//real_text(col('peak_accel_m_s2'))//','// &
-               int_text(nint(col('non_monotonic')))
+        line = line//','//fmt_exact(col('threshold_m'))//','//fmt_exact(col('peak_accel_m_s2'))//','// &
+               itoa(nint(col('non_monotonic')))
       end if
       write (unit, '(a)') line
     end do
@@ -467,25 +467,5 @@ contains
 
   end subroutine write_sweep_csv
 
-  !> A real for the CSV: shortest exact text ('nan' for NaN).
-  function real_text(x) result(text)
-    real(dp), intent(in) :: x
-    character(len=:), allocatable :: text
-    character(len=32) :: buf
-    if (ieee_is_nan(x)) then
-      text = 'nan'
-      return
-    end if
-    write (buf, '(es23.16)') x
-    text = trim(adjustl(buf))
-  end function real_text
-
-  function int_text(i) result(text)
-    integer, intent(in) :: i
-    character(len=:), allocatable :: text
-    character(len=16) :: buf
-    write (buf, '(i0)') i
-    text = trim(buf)
-  end function int_text
 
 end module voussoir_sweep_output

@@ -1,0 +1,615 @@
+!> The master of a sweep (rank 0: schedules, computes, writes); the workers are
+!> drivers/sweep_worker.f90.
+!>
+!> Scheduling is dynamic and per run: a threshold search is a state machine that asks
+!> for one run at a time, so the unit of work is one simulation whatever the mode, and
+!> every search with no run in flight is ready. Rank 0 computes too: between its own
+!> runs it receives the results that have arrived (MPI_Iprobe) and hands out new tasks;
+!> it takes its own runs from the cheap end of the queue, the workers get the costly end.
+!> Two things keep the workers busy while rank 0 is inside a run and cannot answer:
+!> a worker holds up to two tasks (one running, one queued), and a task of a threshold
+!> search carries the outcomes of its earlier runs, so that a worker with nothing queued
+!> goes on with the same search by itself (the search is deterministic: any rank that
+!> has its history proposes the same next amplitude) and tells rank 0 so with the result.
+module voussoir_sweep_master
+  use, intrinsic :: iso_fortran_env, only: output_unit
+  use voussoir_kinds, only: dp
+  use voussoir_status, only: status_t, fail
+  use voussoir_version, only: code_version
+  use voussoir_config, only: config_t
+  use voussoir_text, only: fmt_real, fmt_fixed, itoa, join_words
+  use voussoir_threshold, only: threshold_search_t, threshold_result_t, run_outcome_t, threshold_init, &
+                                threshold_next, threshold_record, threshold_result, threshold_done, &
+                                outcome_of_run
+  use voussoir_sweep_output, only: sweep_table_t, sweep_header_t, results_table, runs_table, table_init, &
+                                   table_append, table_value, table_sort, table_row, table_set, write_sweep_file, &
+                                   read_sweep_file, write_sweep_csv, csv_path_of
+  use voussoir_sweep_plan, only: sweep_plan_t, job_param_set, job_frequency_hz, job_amplitude_m, &
+                                 job_run_config, job_cost, set_description
+  use voussoir_sweep_comm, only: sweep_comm_t, comm_abort, comm_send, comm_poll, comm_recv, wall_s, nap, &
+                                 tag_task, tag_result, tag_stop
+  use voussoir_sweep_tasks, only: simulate_job, outcome_of_msg, prefetch, task_head, history_width, result_len
+  implicit none
+  private
+
+  public :: master_t, master_prepare, master_run
+
+  integer, parameter :: job_ready = 0, job_running = 1, job_done = 2
+  !> Above this many ranks rank 0 only serves: one core more matters little then, and
+  !> its answers must not wait for a run of its own.
+  integer, parameter :: max_ranks_computing_master = 16
+  real(dp), parameter :: first_guess_runs = 12.0_dp         !! runs of a search, before any ended
+  !> Longest sweep summary printed at the end [jobs].
+  integer, parameter :: max_listed_jobs = 60
+
+  !> The state of the sweep on rank 0.
+  type :: master_t
+    integer, allocatable :: state(:)                       !! (0:n_jobs-1) ready, running, done
+    type(threshold_search_t), allocatable :: search(:)     !! (0:n_jobs-1) threshold mode
+    logical, allocatable :: started(:)                     !! search initialised
+    integer, allocatable :: order(:)                       !! jobs, costliest run first
+    real(dp), allocatable :: cost(:)                       !! (0:n_jobs-1) relative cost of a run
+    integer, allocatable :: outstanding(:)                 !! (1:n_ranks-1) tasks held by a worker
+    integer :: front = 1, back = 0                         !! grid: no ready job outside order(front:back)
+    type(sweep_table_t) :: results, runs
+    type(sweep_header_t) :: header
+    character(len=:), allocatable :: path, csv_path
+    character(len=:), allocatable :: finished_by          !! code version of a finished file
+    integer :: n_ready = 0                                 !! jobs in state ready
+    integer :: n_done = 0, n_runs = 0, n_runs_resumed = 0
+    real(dp) :: t0_s = 0.0_dp, last_report_s = 0.0_dp, cost_done = 0.0_dp
+    real(dp) :: busy_s = 0.0_dp                            !! wall time of the runs of this session
+  end type master_t
+
+contains
+
+  !> Set up rank 0: the file to write, and what an earlier run of the same sweep left in it.
+  subroutine master_prepare(plan, base, n_ranks, m, status)
+    type(sweep_plan_t), intent(in) :: plan
+    type(config_t), intent(in) :: base
+    integer, intent(in) :: n_ranks
+    type(master_t), intent(out) :: m
+    type(status_t), intent(inout) :: status
+    type(sweep_table_t) :: by_cost
+    logical :: exists
+    integer :: job
+    character(len=:), allocatable :: written_by
+
+    m%path = trim(base%output%file)
+    if (m%path == 'voussoir_run.h5') m%path = 'voussoir_sweep.h5'   ! the default is voussoir-run's
+    m%csv_path = csv_path_of(m%path)
+    allocate (m%state(0:plan%n_jobs - 1), m%started(0:plan%n_jobs - 1), m%cost(0:plan%n_jobs - 1), &
+              m%outstanding(1:max(1, n_ranks - 1)))
+    m%state = job_ready
+    m%n_ready = plan%n_jobs
+    m%started = .false.
+    m%outstanding = 0
+    if (plan%mode == 'threshold') allocate (m%search(0:plan%n_jobs - 1))
+    ! Costliest first, ties by job index (the sort is stable).
+    call table_init(by_cost, ['minus_cost', 'job       '], [.false., .true.])
+    do job = 0, plan%n_jobs - 1
+      m%cost(job) = job_cost(plan, job)
+      call table_append(by_cost, [-m%cost(job), real(job, dp)])
+    end do
+    call table_sort(by_cost, ['minus_cost'])
+    allocate (m%order(plan%n_jobs))
+    do job = 1, plan%n_jobs
+      m%order(job) = nint(table_value(by_cost, 'job', job))
+    end do
+    m%front = 1
+    m%back = plan%n_jobs
+
+    m%header%cfg = base
+    m%header%cfg%output%file = m%path
+    m%header%mode = plan%mode
+    m%header%signature = plan%signature
+    m%header%sweep_nml = plan%sweep_nml
+    m%header%n_jobs = plan%n_jobs
+    m%header%parameter_names = join_words(plan%param_names, ',')
+    m%header%parameter_values = plan%param_values
+    m%header%frequencies_hz = plan%frequencies_hz
+    m%header%amplitudes_m = plan%amplitudes_m
+
+    m%results = results_table(plan%mode)
+    if (plan%mode == 'threshold') m%runs = runs_table()
+    inquire (file=m%path, exist=exists)
+    if (.not. exists) return
+    call read_sweep_file(m%path, plan%signature, m%results, m%runs, written_by, status)
+    if (.not. status%ok) return
+    if (written_by /= code_version) then
+      ! A finished sweep stays as it is; an unfinished one cannot be continued by other code.
+      if (m%results%n_rows == plan%n_jobs) then
+        m%finished_by = written_by
+        return
+      end if
+      call fail(status, m%path//": was written by '"//written_by//"', this is '"//code_version// &
+                "'; results of two code versions are never mixed: finish the sweep with the first "// &
+                'build, or move the file away')
+      return
+    end if
+    call restore(plan, m, status)
+  end subroutine master_prepare
+
+  !> Mark the jobs the file holds as done and replay the runs of unfinished searches.
+  subroutine restore(plan, m, status)
+    type(sweep_plan_t), intent(in) :: plan
+    type(master_t), intent(inout) :: m
+    type(status_t), intent(inout) :: status
+    integer :: r, job, seq
+    type(run_outcome_t) :: o
+    real(dp) :: amp_m
+    logical :: done
+
+    do r = 1, m%results%n_rows
+      job = nint(table_value(m%results, 'job', r))
+      if (job < 0 .or. job >= plan%n_jobs) then
+        call fail(status, m%path//': /results holds job '//itoa(job)//', outside this sweep')
+        return
+      else if (m%state(job) == job_done) then
+        call fail(status, m%path//': /results holds job '//itoa(job)//' twice')
+        return
+      end if
+      call set_state(m, job, job_done)
+      m%n_done = m%n_done + 1
+    end do
+    if (plan%mode == 'threshold') then
+      ! Replay the runs of each unfinished search in its own order: the search asks for
+      ! the same amplitudes again, and continues where it stopped.
+      call table_sort(m%runs, ['job', 'run'])
+      do r = 1, m%runs%n_rows
+        job = nint(table_value(m%runs, 'job', r))
+        seq = nint(table_value(m%runs, 'run', r))
+        if (job < 0 .or. job >= plan%n_jobs) then
+          call fail(status, m%path//': /runs holds job '//itoa(job)//', outside this sweep')
+          return
+        end if
+        if (m%state(job) == job_done) cycle
+        call start_search(plan, m, job, status)
+        if (.not. status%ok) return
+        call threshold_next(m%search(job), amp_m, done)
+        o = outcome_from_row(m%runs, r)
+        if (done .or. seq /= m%search(job)%n_runs .or. o%amplitude_m /= amp_m) then
+          call fail(status, m%path//': run '//itoa(seq)//' of job '//itoa(job)// &
+                    ' does not follow the search of this input; the file cannot be continued')
+          return
+        end if
+        call threshold_record(m%search(job), o, status)
+        if (.not. status%ok) return
+        if (threshold_done(m%search(job))) call finish_search(plan, m, job)
+      end do
+      m%n_runs_resumed = m%runs%n_rows
+    else
+      m%n_runs_resumed = m%results%n_rows
+    end if
+  end subroutine restore
+
+  !> The sweep on rank 0: serve the workers, compute, write, report.
+  subroutine master_run(plan, net, m)
+    type(sweep_plan_t), intent(in) :: plan
+    type(sweep_comm_t), intent(in) :: net
+    type(master_t), intent(inout) :: m
+    type(status_t) :: status
+    integer :: job, w
+    logical :: found, got
+    character(len=:), allocatable :: amps
+
+    m%t0_s = wall_s()
+    m%last_report_s = m%t0_s
+    if (plan%pair_frequencies) then
+      amps = itoa(plan%n_sets)//' parameter sets, each at its frequency'
+    else
+      amps = itoa(plan%n_sets)//' parameter sets x '//itoa(plan%n_freq)//' frequencies'
+    end if
+    if (plan%mode == 'grid') amps = amps//' x '//itoa(plan%n_amp)//' amplitudes'
+    write (output_unit, '(a)') 'voussoir-sweep: '//trim(plan%mode)//' sweep of '//itoa(plan%n_jobs)//' jobs ('// &
+      amps//') on '//itoa(net%size)//' ranks -> '//m%path
+    if (m%n_done > 0 .or. m%n_runs_resumed > 0) write (output_unit, '(a)') 'voussoir-sweep: resuming '// &
+      m%path//': '//itoa(m%n_done)//' of '//itoa(plan%n_jobs)//' jobs done, '//itoa(m%n_runs_resumed)// &
+      ' runs kept'
+    flush (output_unit)
+    if (allocated(m%finished_by)) then
+      write (output_unit, '(a)') 'voussoir-sweep: '//m%path//' is complete, written by '//m%finished_by// &
+        '; nothing to do (move it away to recompute it with this build)'
+      do w = 1, net%size - 1
+        call comm_send(net, w, tag_stop, [0.0_dp])
+      end do
+      return
+    end if
+    if (m%n_done < plan%n_jobs) call write_state(m, .false.)
+
+    call hand_out(plan, net, m)
+    do while (m%n_done < plan%n_jobs)
+      call serve(plan, net, m, got)
+      if (got) call write_state(m, .false.)
+      if (m%n_done == plan%n_jobs) exit
+      found = .false.
+      if (net%size <= max_ranks_computing_master) call pick(plan, m, .false., job, found)
+      if (found) then
+        call run_own(job)
+        call write_state(m, .false.)
+      else
+        call nap()
+      end if
+      call report(plan, m, net%size, .false.)
+    end do
+    do w = 1, net%size - 1
+      call comm_send(net, w, tag_stop, [0.0_dp])
+    end do
+
+    call table_sort(m%results, ['job'])
+    if (plan%mode == 'threshold') call table_sort(m%runs, ['job', 'run'])
+    call write_state(m, .true.)
+    call write_sweep_csv(m%csv_path, m%header, m%results, status)
+    if (.not. status%ok) call die(status%message)
+    call report(plan, m, net%size, .true.)
+    call summary(plan, m)
+
+  contains
+
+    subroutine run_own(job)
+      integer, intent(in) :: job
+      integer :: seq
+      real(dp) :: amp_m
+      type(run_outcome_t) :: o
+      call next_run(plan, m, job, seq, amp_m)
+      call set_state(m, job, job_running)
+      call simulate_job(plan, job, amp_m, o, status)
+      if (.not. status%ok) call die('rank 0, '//trim(status%message))
+      call take_result(plan, m, job, seq, o, .false., status)
+      if (.not. status%ok) call die(status%message)
+    end subroutine run_own
+
+    subroutine write_state(mm, complete)
+      type(master_t), intent(in) :: mm
+      logical, intent(in) :: complete
+      call write_sweep_file(mm%path, mm%header, mm%results, mm%runs, complete, status)
+      if (.not. status%ok) call die(status%message)
+    end subroutine write_state
+
+    subroutine die(message)
+      character(len=*), intent(in) :: message
+      write (output_unit, '(a)') 'voussoir-sweep: error: '//trim(message)
+      call comm_abort(net, 1)
+    end subroutine die
+
+  end subroutine master_run
+
+  !> Receive every result that has arrived, then refill the workers.
+  subroutine serve(plan, net, m, got)
+    type(sweep_plan_t), intent(in) :: plan
+    type(sweep_comm_t), intent(in) :: net
+    type(master_t), intent(inout) :: m
+    logical, intent(out) :: got
+    real(dp), allocatable :: msg(:)
+    logical :: waiting, continuing
+    integer :: sender, tag, length
+    type(status_t) :: status
+    got = .false.
+    do
+      call comm_poll(net, -1, waiting, sender, tag, length)
+      if (.not. waiting) exit
+      call comm_recv(net, sender, tag, length, msg)
+      if (tag /= tag_result .or. length /= result_len) cycle
+      ! A worker that goes on with the same search keeps its task.
+      continuing = msg(3) == 1.0_dp
+      if (.not. continuing) m%outstanding(sender) = m%outstanding(sender) - 1
+      call take_result(plan, m, nint(msg(1)), nint(msg(2)), outcome_of_msg(msg), continuing, status)
+      if (.not. status%ok) then
+        write (output_unit, '(a)') 'voussoir-sweep: error: '//trim(status%message)
+        call comm_abort(net, 1)
+      end if
+      got = .true.
+    end do
+    call hand_out(plan, net, m)
+  end subroutine serve
+
+  !> Give each worker up to `prefetch` tasks, costliest first; a second task only while
+  !> one more stays ready for rank 0.
+  subroutine hand_out(plan, net, m)
+    type(sweep_plan_t), intent(in) :: plan
+    type(sweep_comm_t), intent(in) :: net
+    type(master_t), intent(inout) :: m
+    integer :: slot, w, job, seq, k
+    real(dp) :: amp_m
+    real(dp), allocatable :: msg(:)
+    logical :: found
+    do slot = 1, prefetch
+      do w = 1, net%size - 1
+        if (m%outstanding(w) >= slot) cycle
+        if (slot > 1 .and. m%n_ready <= 1) return
+        call pick(plan, m, .true., job, found)
+        if (.not. found) return
+        call next_run(plan, m, job, seq, amp_m)
+        call set_state(m, job, job_running)
+        m%outstanding(w) = m%outstanding(w) + 1
+        allocate (msg(task_head + history_width*seq))
+        msg(1:task_head) = [real(job, dp), real(seq, dp), amp_m, real(seq, dp)]
+        do k = 1, seq
+          associate (o => m%search(job)%runs(k))
+            msg(task_head + history_width*(k - 1) + 1:task_head + history_width*k) = &
+              [o%amplitude_m, merge(1.0_dp, 0.0_dp, o%collapsed), o%peak_crown_disp_m]
+          end associate
+        end do
+        call comm_send(net, w, tag_task, msg)
+        deallocate (msg)
+      end do
+    end do
+  end subroutine hand_out
+
+  !> A ready job: the costliest (for a worker) or the cheapest (for rank 0).
+  subroutine pick(plan, m, costliest, job, found)
+    type(sweep_plan_t), intent(in) :: plan
+    type(master_t), intent(inout) :: m
+    logical, intent(in) :: costliest
+    integer, intent(out) :: job
+    logical, intent(out) :: found
+    integer :: k
+    found = .false.
+    job = -1
+    if (plan%mode == 'grid') then
+      ! Grid jobs never become ready again: the ends of the order only move inwards.
+      do while (m%front <= m%back)
+        if (costliest) then
+          k = m%front
+        else
+          k = m%back
+        end if
+        if (m%state(m%order(k)) == job_ready) then
+          job = m%order(k)
+          found = .true.
+          return
+        end if
+        if (costliest) then
+          m%front = m%front + 1
+        else
+          m%back = m%back - 1
+        end if
+      end do
+    else
+      do k = 1, plan%n_jobs
+        job = m%order(merge(k, plan%n_jobs + 1 - k, costliest))
+        if (m%state(job) == job_ready) then
+          found = .true.
+          return
+        end if
+      end do
+      job = -1
+    end if
+  end subroutine pick
+
+  !> Move job `job` to state `new`, keeping count of the ready ones.
+  subroutine set_state(m, job, new)
+    type(master_t), intent(inout) :: m
+    integer, intent(in) :: job, new
+    if (m%state(job) == job_ready) m%n_ready = m%n_ready - 1
+    if (new == job_ready) m%n_ready = m%n_ready + 1
+    m%state(job) = new
+  end subroutine set_state
+
+  !> Sequence number and amplitude of the next run of a ready job.
+  subroutine next_run(plan, m, job, seq, amp_m)
+    type(sweep_plan_t), intent(in) :: plan
+    type(master_t), intent(inout) :: m
+    integer, intent(in) :: job
+    integer, intent(out) :: seq
+    real(dp), intent(out) :: amp_m
+    logical :: done
+    type(status_t) :: status
+    if (plan%mode == 'grid') then
+      seq = 0
+      amp_m = job_amplitude_m(plan, job)
+    else
+      call start_search(plan, m, job, status)   ! checked when the plan was read
+      seq = m%search(job)%n_runs
+      call threshold_next(m%search(job), amp_m, done)
+    end if
+  end subroutine next_run
+
+  subroutine start_search(plan, m, job, status)
+    type(sweep_plan_t), intent(in) :: plan
+    type(master_t), intent(inout) :: m
+    integer, intent(in) :: job
+    type(status_t), intent(inout) :: status
+    if (m%started(job)) return
+    call threshold_init(m%search(job), plan%set_cfg(job_param_set(plan, job)), job_frequency_hz(plan, job), &
+                        plan%search, status)
+    m%started(job) = .true.
+  end subroutine start_search
+
+  !> Record the outcome of run `seq` of job `job`; `continuing`: the rank that made it
+  !> goes on with the same search.
+  subroutine take_result(plan, m, job, seq, o, continuing, status)
+    type(sweep_plan_t), intent(in) :: plan
+    type(master_t), intent(inout) :: m
+    integer, intent(in) :: job, seq
+    type(run_outcome_t), intent(in) :: o
+    logical, intent(in) :: continuing
+    type(status_t), intent(inout) :: status
+    real(dp), allocatable :: row(:)
+    m%n_runs = m%n_runs + 1
+    m%cost_done = m%cost_done + m%cost(job)
+    m%busy_s = m%busy_s + o%wall_time_s
+    if (plan%mode == 'grid') then
+      call table_row(m%results, row)
+      call table_set(m%results, row, 'job', real(job, dp))
+      call table_set(m%results, row, 'param_set', real(job_param_set(plan, job), dp))
+      call table_set(m%results, row, 'frequency_hz', job_frequency_hz(plan, job))
+      call table_set(m%results, row, 'amplitude_m', o%amplitude_m)
+      call table_set(m%results, row, 'collapsed', merge(1.0_dp, 0.0_dp, o%collapsed))
+      call table_set(m%results, row, 'collapse_time_s', o%collapse_time_s)
+      call table_set(m%results, row, 'peak_crown_disp_m', o%peak_crown_disp_m)
+      call table_set(m%results, row, 'mean_iterations', o%mean_iterations)
+      call table_set(m%results, row, 'nonconverged_steps', real(o%nonconverged_steps, dp))
+      call table_set(m%results, row, 'wall_time_s', o%wall_time_s)
+      call table_append(m%results, row)
+      call set_state(m, job, job_done)
+      m%n_done = m%n_done + 1
+      return
+    end if
+    if (seq /= m%search(job)%n_runs) then
+      call fail(status, 'internal: run '//itoa(seq)//' of job '//itoa(job)//' arrived out of order')
+      return
+    end if
+    call table_row(m%runs, row)
+    call table_set(m%runs, row, 'job', real(job, dp))
+    call table_set(m%runs, row, 'run', real(seq, dp))
+    call table_set(m%runs, row, 'amplitude_m', o%amplitude_m)
+    call table_set(m%runs, row, 'collapsed', merge(1.0_dp, 0.0_dp, o%collapsed))
+    call table_set(m%runs, row, 'collapse_time_s', o%collapse_time_s)
+    call table_set(m%runs, row, 'peak_crown_disp_m', o%peak_crown_disp_m)
+    call table_set(m%runs, row, 'mean_iterations', o%mean_iterations)
+    call table_set(m%runs, row, 'n_steps', real(o%n_steps, dp))
+    call table_set(m%runs, row, 'nonconverged_steps', real(o%nonconverged_steps, dp))
+    call table_set(m%runs, row, 'wall_time_s', o%wall_time_s)
+    call table_append(m%runs, row)
+    call threshold_record(m%search(job), o, status)
+    if (.not. status%ok) return
+    if (threshold_done(m%search(job))) then
+      call finish_search(plan, m, job)
+    else if (continuing) then
+      call set_state(m, job, job_running)
+    else
+      call set_state(m, job, job_ready)
+    end if
+  end subroutine take_result
+
+  !> The /results row of a finished search.
+  subroutine finish_search(plan, m, job)
+    type(sweep_plan_t), intent(in) :: plan
+    type(master_t), intent(inout) :: m
+    integer, intent(in) :: job
+    type(threshold_result_t) :: r
+    real(dp), allocatable :: row(:)
+    r = threshold_result(m%search(job))
+    call table_row(m%results, row)
+    call table_set(m%results, row, 'job', real(job, dp))
+    call table_set(m%results, row, 'param_set', real(job_param_set(plan, job), dp))
+    call table_set(m%results, row, 'frequency_hz', job_frequency_hz(plan, job))
+    call table_set(m%results, row, 'threshold_m', r%threshold_m)
+    call table_set(m%results, row, 'peak_accel_m_s2', r%peak_accel_m_s2)
+    call table_set(m%results, row, 'non_monotonic', merge(1.0_dp, 0.0_dp, r%non_monotonic))
+    call table_set(m%results, row, 'n_runs', real(r%n_runs, dp))
+    call table_set(m%results, row, 'mean_iterations', r%mean_iterations)
+    call table_set(m%results, row, 'stand_below_m', r%stand_below_m)
+    call table_set(m%results, row, 'static_onset_m', r%onset_amp_m)
+    call table_set(m%results, row, 'wall_time_s', r%wall_time_s)
+    call table_append(m%results, row)
+    call set_state(m, job, job_done)
+    m%n_done = m%n_done + 1
+  end subroutine finish_search
+
+  !> A progress line every `progress_every_s` (and the last one): jobs and runs done,
+  !> elapsed time, and the time left estimated from the cost of the runs still to come.
+  subroutine report(plan, m, n_ranks, final)
+    type(sweep_plan_t), intent(in) :: plan
+    type(master_t), intent(inout) :: m
+    integer, intent(in) :: n_ranks
+    logical, intent(in) :: final
+    real(dp) :: now_s, elapsed_s, left, runs_per_search, eta_s, runs_left
+    integer :: job, r, done_runs
+    character(len=:), allocatable :: runs
+    character(len=32) :: eta
+    now_s = wall_s()
+    if (.not. final .and. now_s - m%last_report_s < plan%progress_every_s) return
+    m%last_report_s = now_s
+    elapsed_s = now_s - m%t0_s
+    if (final) then
+      ! Busy: the simulations' share of the ranks' time (the rest is waiting, messages, I/O).
+      write (output_unit, '(a)') 'voussoir-sweep: done: '//itoa(plan%n_jobs)//' jobs, '// &
+        itoa(m%n_runs)//' runs in '//fmt_fixed(elapsed_s, 2)//' s on '//itoa(n_ranks)//' ranks (busy '// &
+        fmt_fixed(100.0_dp*m%busy_s/max(n_ranks*elapsed_s, tiny(1.0_dp)), 1)//' %; '//itoa(m%n_runs_resumed)// &
+        ' runs kept from the file); '//m%path//', '//m%csv_path
+      flush (output_unit)
+      return
+    end if
+    ! Work left, in run costs; a search is expected to take as many runs as the finished ones.
+    runs_per_search = first_guess_runs
+    if (plan%mode == 'threshold' .and. m%results%n_rows > 0) then
+      runs_per_search = 0.0_dp
+      do r = 1, m%results%n_rows
+        runs_per_search = runs_per_search + table_value(m%results, 'n_runs', r)/m%results%n_rows
+      end do
+    end if
+    left = 0.0_dp
+    runs_left = 0.0_dp
+    do job = 0, plan%n_jobs - 1
+      if (m%state(job) == job_done) cycle
+      if (plan%mode == 'grid') then
+        runs_left = runs_left + 1.0_dp
+        left = left + m%cost(job)
+      else
+        runs_left = runs_left + max(1.0_dp, runs_per_search - m%search(job)%n_runs)
+        left = left + m%cost(job)*max(1.0_dp, runs_per_search - m%search(job)%n_runs)
+      end if
+    end do
+    eta = '?'
+    if (m%cost_done > 0.0_dp) then
+      eta_s = elapsed_s*left/m%cost_done
+      if (eta_s < 120.0_dp) then
+        eta = itoa(nint(eta_s))//' s'
+      else if (eta_s < 7200.0_dp) then
+        eta = itoa(nint(eta_s/60.0_dp))//' min'
+      else
+        eta = fmt_fixed(eta_s/3600.0_dp, 1)//' h'
+      end if
+    end if
+    ! Runs done / total (a threshold search's total is an estimate until it ends).
+    done_runs = m%n_runs + m%n_runs_resumed
+    if (plan%mode == 'grid') then
+      runs = itoa(done_runs)//'/'//itoa(plan%n_jobs)//' runs'
+    else
+      runs = itoa(m%n_done)//'/'//itoa(plan%n_jobs)//' searches, '//itoa(done_runs)//'/~'// &
+             itoa(done_runs + nint(runs_left))//' runs'
+    end if
+    write (output_unit, '(a)') 'voussoir-sweep: '//runs//', elapsed '//fmt_fixed(elapsed_s, 1)//' s, ETA '//trim(eta)
+    flush (output_unit)
+  end subroutine report
+
+  !> The thresholds of a short sweep, for the log.
+  subroutine summary(plan, m)
+    type(sweep_plan_t), intent(in) :: plan
+    type(master_t), intent(in) :: m
+    real(dp) :: thr
+    integer :: r, job, n_runs
+    character(len=160) :: line
+    if (plan%mode /= 'threshold' .or. plan%n_jobs > max_listed_jobs) return
+    do r = 1, m%results%n_rows
+      job = nint(table_value(m%results, 'job', r))
+      thr = table_value(m%results, 'threshold_m', r)
+      n_runs = nint(table_value(m%results, 'n_runs', r))
+      if (thr == thr) then
+        write (line, '(a,f7.3,a,f9.3,a,f8.3,a,i3,a)') '  f = ', job_frequency_hz(plan, job), &
+          ' Hz: threshold ', 1.0e3_dp*thr, ' mm (', table_value(m%results, 'peak_accel_m_s2', r), &
+          ' m/s2), ', n_runs, ' runs'
+      else
+        write (line, '(a,f7.3,a,i3,a)') '  f = ', job_frequency_hz(plan, job), ' Hz: stands up to amp_max_m, ', &
+          n_runs, ' runs'
+      end if
+      if (nint(table_value(m%results, 'non_monotonic', r)) == 1) line = trim(line)//', non-monotonic'
+      write (output_unit, '(a)') trim(line)//'  ['//set_description(plan, job_param_set(plan, job))//']'
+    end do
+    flush (output_unit)
+  end subroutine summary
+
+  !> A worker: run the tasks rank 0 sends and return each outcome, until told to stop.
+  !> The outcome stored in row `r` of a /runs table.
+  function outcome_from_row(t, r) result(o)
+    type(sweep_table_t), intent(in) :: t
+    integer, intent(in) :: r
+    type(run_outcome_t) :: o
+    o%amplitude_m = value('amplitude_m')
+    o%collapsed = nint(value('collapsed')) == 1
+    o%collapse_time_s = value('collapse_time_s')
+    o%peak_crown_disp_m = value('peak_crown_disp_m')
+    o%mean_iterations = value('mean_iterations')
+    o%n_steps = nint(value('n_steps'))
+    o%nonconverged_steps = nint(value('nonconverged_steps'))
+    o%wall_time_s = value('wall_time_s')
+  contains
+    real(dp) function value(name)
+      character(len=*), intent(in) :: name
+      value = table_value(t, name, r)
+    end function value
+  end function outcome_from_row
+
+end module voussoir_sweep_master

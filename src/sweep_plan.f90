@@ -1,0 +1,539 @@
+!> The sweep definition: the &sweep group, its parameter sets and its jobs.
+module voussoir_sweep_plan
+  use, intrinsic :: iso_fortran_env, only: iostat_end
+  use voussoir_kinds, only: dp
+  use voussoir_status, only: status_t, fail
+  use voussoir_text, only: lower, itoa, int_list, join_words, fmt_exact_list
+  use voussoir_config, only: config_t, config_entry_t, config_entries, config_to_nml, validate_config, &
+                             fmt_real
+  use voussoir_threshold, only: threshold_settings_t, search_run_config
+  implicit none
+  private
+
+  public :: sweep_plan_t, read_sweep_plan, job_param_set, job_frequency_hz, job_amplitude_m, &
+            job_run_config, job_cost, set_description
+
+  integer, parameter :: max_list = 256              !! entries of every &sweep list
+  real(dp), parameter :: unset_real = -huge(1.0_dp) !! sentinel of an unset list entry
+  integer, parameter :: unset_int = -huge(1)
+  real(dp), parameter :: max_jobs = 1.0e7_dp
+  integer, parameter :: n_kinds = 5                 !! model parameters that can be swept
+  character(len=*), parameter :: nl = achar(10)
+  !> Swept parameters in the order of their columns, and their &sweep list names.
+  character(len=16), parameter :: param_kinds(n_kinds) = [character(len=16) :: &
+    'embrace_deg', 'n_voussoirs', 'thickness_m', 'friction', 'contact_inset_m']
+  character(len=24), parameter :: list_names(n_kinds) = [character(len=24) :: &
+    'embrace_list_deg', 'n_voussoirs_list', 'thickness_list_m', 'friction_list', 'contact_inset_list_m']
+
+  !> Everything a rank needs to turn a job index into a run.
+  type :: sweep_plan_t
+    character(len=16) :: mode = 'threshold'       !! threshold or grid
+    character(len=16) :: combine = 'product'      !! product or paired
+    logical :: pair_frequencies = .false.         !! frequency k goes with parameter set k only
+    real(dp), allocatable :: frequencies_hz(:)
+    real(dp), allocatable :: amplitudes_m(:)      !! grid mode
+    type(threshold_settings_t) :: search          !! threshold mode
+    real(dp) :: progress_every_s = 10.0_dp        !! seconds between progress lines
+    integer :: n_params = 0, n_sets = 1, n_freq = 0, n_amp = 1, n_jobs = 0
+    integer :: n_freq_per_set = 0                 !! n_freq, or 1 with pair_frequencies
+    character(len=16), allocatable :: param_names(:)
+    real(dp), allocatable :: param_values(:, :)   !! (n_params, n_sets)
+    type(config_t), allocatable :: set_cfg(:)     !! (0:n_sets-1) the validated case of each set
+    character(len=:), allocatable :: sweep_nml    !! the effective &sweep group
+    character(len=:), allocatable :: signature    !! what a resumed file must match
+  end type sweep_plan_t
+
+contains
+
+  !> Read and check the &sweep group of `path` against the base case `base`.
+  subroutine read_sweep_plan(path, base, plan, status)
+    character(len=*), intent(in) :: path
+    type(config_t), intent(in) :: base
+    type(sweep_plan_t), intent(out) :: plan
+    type(status_t), intent(inout) :: status
+    character(len=16) :: mode, combine
+    logical :: pair_frequencies
+    real(dp) :: frequencies_hz(max_list), amplitudes_m(max_list)
+    real(dp) :: amp_tol_m, amp_max_m, scan_step, progress_every_s
+    integer :: refine_factor, n_confirm
+    real(dp) :: embrace_list_deg(max_list), thickness_list_m(max_list), friction_list(max_list), &
+                contact_inset_list_m(max_list)
+    integer :: n_voussoirs_list(max_list)
+    namelist /sweep/ mode, combine, pair_frequencies, frequencies_hz, amplitudes_m, amp_tol_m, amp_max_m, scan_step, &
+      refine_factor, n_confirm, progress_every_s, embrace_list_deg, n_voussoirs_list, thickness_list_m, &
+      friction_list, contact_inset_list_m
+    type(threshold_settings_t) :: defaults
+    real(dp) :: lists(max_list, n_kinds), f_max_hz
+    integer :: lengths(n_kinds), unit, ios, k, n_freq, n_amp
+    character(len=512) :: iomsg
+
+    mode = plan%mode
+    combine = plan%combine
+    pair_frequencies = plan%pair_frequencies
+    frequencies_hz = unset_real
+    amplitudes_m = unset_real
+    amp_tol_m = defaults%amp_tol_m
+    amp_max_m = defaults%amp_max_m
+    scan_step = defaults%scan_step
+    refine_factor = defaults%refine_factor
+    n_confirm = defaults%n_confirm
+    progress_every_s = plan%progress_every_s
+    embrace_list_deg = unset_real
+    thickness_list_m = unset_real
+    friction_list = unset_real
+    contact_inset_list_m = unset_real
+    n_voussoirs_list = unset_int
+
+    call check_names(path, 'sweep', [character(len=24) :: 'mode', 'combine', 'pair_frequencies', &
+      'frequencies_hz', 'amplitudes_m', 'amp_tol_m', 'amp_max_m', 'scan_step', 'refine_factor', 'n_confirm', &
+      'progress_every_s', list_names], status)
+    if (.not. status%ok) return
+    open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
+    if (ios /= 0) then
+      call fail(status, path//': cannot open input: '//trim(iomsg))
+      return
+    end if
+    read (unit, nml=sweep, iostat=ios, iomsg=iomsg)
+    close (unit)
+    if (ios == iostat_end) then
+      call fail(status, path//': no &sweep group; voussoir-sweep needs one (mode, frequencies_hz, ...; '// &
+                'see docs/sweep.md)')
+      return
+    else if (ios /= 0) then
+      call fail(status, path//': in namelist group &sweep: '//trim(iomsg))
+      return
+    end if
+
+    plan%mode = lower(mode)
+    plan%combine = lower(combine)
+    select case (plan%mode)
+    case ('threshold', 'grid')
+    case default
+      call fail(status, path//": &sweep mode = '"//trim(mode)//"' is not one of 'threshold', 'grid'")
+      return
+    end select
+    select case (plan%combine)
+    case ('product', 'paired')
+    case default
+      call fail(status, path//": &sweep combine = '"//trim(combine)//"' is not one of 'product', 'paired'")
+      return
+    end select
+    if (base%motion%waveform /= 'afd') then
+      call fail(status, path//": &motion waveform = '"//trim(base%motion%waveform)// &
+                "': a sweep sets the frequency and amplitude of the 'afd' waveform; use waveform = 'afd'")
+      return
+    end if
+
+    ! Frequencies: at least one, each resolved by at least 20 steps per cycle.
+    n_freq = list_length(frequencies_hz, 'frequencies_hz')
+    if (.not. status%ok) return
+    if (n_freq == 0) then
+      call fail(status, path//': &sweep frequencies_hz is not set: give at least one frequency')
+      return
+    end if
+    f_max_hz = 1.0_dp/(20.0_dp*base%solver%dt_s)
+    do k = 1, n_freq
+      call need(frequencies_hz(k) > 0.0_dp .and. frequencies_hz(k) <= f_max_hz, 'frequencies_hz', k, &
+                frequencies_hz(k), '0 < frequencies_hz <= 1/(20 dt_s) = '//fmt_real(f_max_hz))
+    end do
+    n_amp = list_length(amplitudes_m, 'amplitudes_m')
+    if (.not. status%ok) return
+    if (plan%mode == 'grid') then
+      if (n_amp == 0) then
+        call fail(status, path//": &sweep amplitudes_m is not set: mode = 'grid' needs at least one amplitude")
+        return
+      end if
+      do k = 1, n_amp
+        call need(amplitudes_m(k) >= 0.0_dp, 'amplitudes_m', k, amplitudes_m(k), 'amplitudes_m >= 0')
+      end do
+    else
+      if (n_amp > 0) then
+        call fail(status, path//": &sweep amplitudes_m is set but mode = 'threshold' searches the "// &
+                  "amplitude: remove amplitudes_m or use mode = 'grid'")
+        return
+      end if
+      n_amp = 1
+      call need(amp_tol_m > 0.0_dp, 'amp_tol_m', 0, amp_tol_m, 'amp_tol_m > 0')
+      call need(amp_max_m > amp_tol_m, 'amp_max_m', 0, amp_max_m, 'amp_max_m > amp_tol_m = '//fmt_real(amp_tol_m))
+      call need(scan_step > 0.0_dp .and. scan_step <= 1.0_dp, 'scan_step', 0, scan_step, '0 < scan_step <= 1')
+      call need(refine_factor >= 2 .and. refine_factor <= 64, 'refine_factor', 0, real(refine_factor, dp), &
+                '2 <= refine_factor <= 64 (2: bisection)')
+      call need(n_confirm >= 0 .and. n_confirm <= 16, 'n_confirm', 0, real(n_confirm, dp), '0 <= n_confirm <= 16')
+    end if
+    call need(progress_every_s >= 0.0_dp, 'progress_every_s', 0, progress_every_s, &
+              'progress_every_s >= 0 (0: every result)')
+    if (.not. status%ok) return
+
+    ! Parameter lists.
+    lists(:, 1) = embrace_list_deg
+    lists(:, 2) = merge(real(n_voussoirs_list, dp), unset_real, n_voussoirs_list /= unset_int)
+    lists(:, 3) = thickness_list_m
+    lists(:, 4) = friction_list
+    lists(:, 5) = contact_inset_list_m
+    do k = 1, n_kinds
+      lengths(k) = list_length(lists(:, k), trim(list_names(k)))
+    end do
+    if (.not. status%ok) return
+    do k = 1, lengths(1)
+      call need(lists(k, 1) > 0.0_dp .and. lists(k, 1) <= 180.0_dp, 'embrace_list_deg', k, lists(k, 1), &
+                '0 < embrace_deg <= 180')
+    end do
+    do k = 1, lengths(2)
+      call need(n_voussoirs_list(k) >= 3 .and. n_voussoirs_list(k) <= 1000, 'n_voussoirs_list', k, lists(k, 2), &
+                '3 <= n_voussoirs <= 1000')
+    end do
+    do k = 1, lengths(3)
+      call need(lists(k, 3) > 0.0_dp, 'thickness_list_m', k, lists(k, 3), 'thickness_m > 0')
+    end do
+    do k = 1, lengths(4)
+      call need(lists(k, 4) >= 0.0_dp, 'friction_list', k, lists(k, 4), 'friction >= 0')
+    end do
+    do k = 1, lengths(5)
+      call need(lists(k, 5) >= 0.0_dp, 'contact_inset_list_m', k, lists(k, 5), 'contact_inset_m >= 0')
+    end do
+    if (.not. status%ok) return
+    if (len_trim(base%arch%polygon_file) > 0 .and. any(lengths(1:3) > 0)) then
+      call fail(status, path//': &sweep embrace_list_deg, n_voussoirs_list and thickness_list_m apply to '// &
+                'arches, but &arch polygon_file is set')
+      return
+    end if
+    if (plan%combine == 'paired' .and. count(lengths > 0) > 1) then
+      if (any(lengths > 0 .and. lengths /= maxval(lengths))) then
+        call fail(status, path//": &sweep combine = 'paired' needs swept lists of equal length; they have "// &
+                  lengths_text(lengths))
+        return
+      end if
+    end if
+
+    plan%frequencies_hz = frequencies_hz(1:n_freq)
+    plan%n_freq = n_freq
+    plan%pair_frequencies = pair_frequencies
+    plan%n_freq_per_set = merge(1, n_freq, pair_frequencies)
+    plan%n_amp = n_amp
+    if (plan%mode == 'grid') then
+      plan%amplitudes_m = amplitudes_m(1:n_amp)
+    else
+      allocate (plan%amplitudes_m(0))
+    end if
+    plan%search%amp_tol_m = amp_tol_m
+    plan%search%amp_max_m = amp_max_m
+    plan%search%scan_step = scan_step
+    plan%search%refine_factor = refine_factor
+    plan%search%n_confirm = n_confirm
+    plan%progress_every_s = progress_every_s
+
+    call build_sets(lists, lengths)
+    if (.not. status%ok) return
+    if (pair_frequencies .and. n_freq /= plan%n_sets) then
+      call fail(status, path//': &sweep pair_frequencies = .true. needs one frequency per parameter set: '// &
+                'frequencies_hz has '//itoa(n_freq)//' entries, the lists give '//itoa(plan%n_sets)//' sets')
+      return
+    end if
+    if (real(plan%n_sets, dp)*plan%n_freq_per_set*plan%n_amp > max_jobs) then
+      call fail(status, path//': the sweep has more than 1e7 jobs; split it')
+      return
+    end if
+    plan%n_jobs = plan%n_sets*plan%n_freq_per_set*plan%n_amp
+    call make_texts(lists, lengths)
+
+  contains
+
+    !> Entries set from the start of `x`, with no gap.
+    integer function list_length(x, name) result(n)
+      real(dp), intent(in) :: x(:)
+      character(len=*), intent(in) :: name
+      integer :: j
+      character(len=16) :: a, b
+      n = 0
+      do j = 1, size(x)
+        if (x(j) == unset_real) exit
+        n = j
+      end do
+      do j = n + 2, size(x)
+        if (x(j) /= unset_real .and. status%ok) then
+          write (a, '(i0)') n + 1
+          write (b, '(i0)') j
+          call fail(status, path//': &sweep '//name//'('//trim(a)//') is unset but '//name//'('//trim(b)// &
+                    ') = '//fmt_real(x(j))//' is set: give the list without gaps')
+        end if
+      end do
+    end function list_length
+
+    subroutine need(good, name, index, value, allowed)
+      logical, intent(in) :: good
+      character(len=*), intent(in) :: name, allowed
+      integer, intent(in) :: index
+      real(dp), intent(in) :: value
+      character(len=16) :: idx
+      if (good .or. .not. status%ok) return
+      idx = ''
+      if (index > 0) write (idx, '(a,i0,a)') '(', index, ')'
+      call fail(status, path//': &sweep '//name//trim(idx)//' = '//fmt_real(value)// &
+                ' is outside the allowed range '//allowed)
+    end subroutine need
+
+    function lengths_text(n) result(text)
+      integer, intent(in) :: n(:)
+      character(len=:), allocatable :: text
+      character(len=16) :: buf
+      integer :: j
+      text = ''
+      do j = 1, size(n)
+        if (n(j) == 0) cycle
+        write (buf, '(i0)') n(j)
+        if (len(text) > 0) text = text//', '
+        text = text//trim(list_names(j))//' '//trim(buf)
+      end do
+    end function lengths_text
+
+    !> The parameter sets (the first swept parameter varies slowest) and their cases.
+    subroutine build_sets(lists, lengths)
+      real(dp), intent(in) :: lists(:, :)
+      integer, intent(in) :: lengths(:)
+      integer :: s, j, p, rest, pick(n_kinds)
+      type(status_t) :: check
+      character(len=:), allocatable :: inner
+      plan%n_params = count(lengths > 0)
+      plan%param_names = pack(param_kinds, lengths > 0)
+      if (plan%n_params == 0) then
+        plan%n_sets = 1
+      else if (plan%combine == 'paired') then
+        plan%n_sets = maxval(lengths)
+      else
+        plan%n_sets = product(pack(lengths, lengths > 0))
+      end if
+      allocate (plan%param_values(plan%n_params, plan%n_sets), plan%set_cfg(0:plan%n_sets - 1))
+      do s = 0, plan%n_sets - 1
+        rest = s
+        do j = n_kinds, 1, -1
+          pick(j) = 0
+          if (lengths(j) == 0) cycle
+          if (plan%combine == 'paired') then
+            pick(j) = s + 1
+          else
+            pick(j) = modulo(rest, lengths(j)) + 1
+            rest = rest/lengths(j)
+          end if
+        end do
+        p = 0
+        plan%set_cfg(s) = base
+        associate (a => plan%set_cfg(s)%arch)
+          do j = 1, n_kinds
+            if (lengths(j) == 0) cycle
+            p = p + 1
+            plan%param_values(p, s + 1) = lists(pick(j), j)
+            select case (j)
+            case (1)
+              a%embrace_deg = lists(pick(j), j)
+            case (2)
+              a%n_voussoirs = nint(lists(pick(j), j))
+            case (3)
+              a%thickness_m = lists(pick(j), j)
+            case (4)
+              a%friction = lists(pick(j), j)
+            case (5)
+              a%contact_inset_m = lists(pick(j), j)
+            end select
+          end do
+        end associate
+        call validate_config(plan%set_cfg(s), check)
+        if (.not. check%ok) then
+          inner = trim(check%message)
+          if (index(inner, path//': ') == 1) inner = inner(len(path) + 3:)
+          call fail(status, path//': &sweep parameter set '//itoa(s)//' ('//set_description(plan, s)// &
+                    '): '//inner)
+          return
+        end if
+      end do
+    end subroutine build_sets
+
+    !> The effective &sweep group and the signature of the sweep definition.
+    subroutine make_texts(lists, lengths)
+      real(dp), intent(in) :: lists(:, :)
+      integer, intent(in) :: lengths(:)
+      character(len=:), allocatable :: body
+      type(config_entry_t), allocatable :: e(:)
+      integer :: j
+      body = "&sweep"//nl//"  mode = '"//trim(plan%mode)//"'"//nl// &
+             "  combine = '"//trim(plan%combine)//"'"//nl// &
+             '  pair_frequencies = '//trim(merge('.true. ', '.false.', plan%pair_frequencies))//nl// &
+             '  frequencies_hz = '//fmt_exact_list(plan%frequencies_hz)//nl
+      if (plan%mode == 'grid') then
+        body = body//'  amplitudes_m = '//fmt_exact_list(plan%amplitudes_m)//nl
+      else
+        body = body//'  amp_tol_m = '//fmt_exact_list([plan%search%amp_tol_m])//nl// &
+               '  amp_max_m = '//fmt_exact_list([plan%search%amp_max_m])//nl// &
+               '  scan_step = '//fmt_exact_list([plan%search%scan_step])//nl// &
+               '  refine_factor = '//itoa(plan%search%refine_factor)//nl// &
+               '  n_confirm = '//itoa(plan%search%n_confirm)//nl
+      end if
+      do j = 1, n_kinds
+        if (lengths(j) == 0) cycle
+        if (j == 2) then
+          body = body//'  '//trim(list_names(j))//' = '//int_list(nint(lists(1:lengths(j), j)))//nl
+        else
+          body = body//'  '//trim(list_names(j))//' = '//fmt_exact_list(lists(1:lengths(j), j))//nl
+        end if
+      end do
+      plan%sweep_nml = body//'  progress_every_s = '//fmt_exact_list([plan%progress_every_s])//nl//'/'//nl
+      ! The base case without what does not change results (file name, sampling).
+      e = config_entries(base)
+      e = pack(e, .not. (e%group == 'output' .and. (e%name == 'file' .or. e%name == 'every')))
+      plan%signature = 'voussoir-sweep definition'//nl//body//'/'//nl//config_to_nml(e)
+    end subroutine make_texts
+
+  end subroutine read_sweep_plan
+
+  !> Fail on a variable of namelist group `group` in `path` that is not in `known`: the
+  !> compiler's own message for it names another variable.
+  subroutine check_names(path, group, known, status)
+    character(len=*), intent(in) :: path, group
+    character(len=*), intent(in) :: known(:)
+    type(status_t), intent(inout) :: status
+    character(len=1024) :: line
+    character(len=:), allocatable :: text, name
+    character(len=1) :: quote
+    integer :: unit, ios, i, j, k
+    logical :: inside
+
+    open (newunit=unit, file=path, status='old', action='read', iostat=ios)
+    if (ios /= 0) return   ! reported by the namelist read
+    text = ''
+    inside = .false.
+    quote = ' '
+    do
+      read (unit, '(a)', iostat=ios) line
+      if (ios /= 0) exit
+      if (.not. inside) then
+        line = adjustl(line)
+        if (lower(line(1:len(group) + 1)) /= '&'//group .or. &
+            verify(line(len(group) + 2:len(group) + 2), ' ,/!'//achar(9)) /= 0) cycle
+        inside = .true.
+        line = line(len(group) + 2:)
+      end if
+      ! Keep the group's text up to its closing '/', without comments and quoted text.
+      do i = 1, len_trim(line)
+        if (quote /= ' ') then
+          if (line(i:i) == quote) quote = ' '
+          cycle
+        end if
+        select case (line(i:i))
+        case ("'", '"')
+          quote = line(i:i)
+          text = text//' '
+        case ('!')
+          exit
+        case ('/')
+          inside = .false.
+          exit
+        case default
+          text = text//line(i:i)
+        end select
+      end do
+      if (.not. inside .and. len(text) > 0) exit
+      text = text//' '
+    end do
+    close (unit)
+    ! A name is the identifier before each '=' (after an optional (index)).
+    do k = 1, len(text)
+      if (text(k:k) /= '=') cycle
+      j = k - 1
+      do while (j > 0)
+        if (text(j:j) /= ' ') exit
+        j = j - 1
+      end do
+      if (j > 0) then
+        if (text(j:j) == ')') then
+          j = index(text(1:j), '(', back=.true.) - 1
+          do while (j > 0)
+            if (text(j:j) /= ' ') exit
+            j = j - 1
+          end do
+        end if
+      end if
+      i = j
+      do while (i > 0)
+        if (verify(lower(text(i:i)), 'abcdefghijklmnopqrstuvwxyz0123456789_') /= 0) exit
+        i = i - 1
+      end do
+      if (j <= i) cycle
+      name = lower(text(i + 1:j))
+      if (.not. any(known == name)) then
+        call fail(status, path//': &'//group//" has no variable '"//name//"' (known: "// &
+                  join_words(known)//')')
+        return
+      end if
+    end do
+  end subroutine check_names
+
+  !> "name = value, ..." of parameter set `s` (0-based), or "base case".
+  function set_description(plan, s) result(text)
+    type(sweep_plan_t), intent(in) :: plan
+    integer, intent(in) :: s
+    character(len=:), allocatable :: text
+    integer :: p
+    text = ''
+    do p = 1, plan%n_params
+      if (p > 1) text = text//', '
+      text = text//trim(plan%param_names(p))//' = '//fmt_real(plan%param_values(p, s + 1))
+    end do
+    if (plan%n_params == 0) text = 'base case'
+  end function set_description
+
+  !> Parameter set (0-based) of job `job` (0-based).
+  pure integer function job_param_set(plan, job)
+    type(sweep_plan_t), intent(in) :: plan
+    integer, intent(in) :: job
+    job_param_set = job/(plan%n_freq_per_set*plan%n_amp)
+  end function job_param_set
+
+  pure real(dp) function job_frequency_hz(plan, job)
+    type(sweep_plan_t), intent(in) :: plan
+    integer, intent(in) :: job
+    if (plan%pair_frequencies) then
+      job_frequency_hz = plan%frequencies_hz(job_param_set(plan, job) + 1)
+    else
+      job_frequency_hz = plan%frequencies_hz(modulo(job/plan%n_amp, plan%n_freq) + 1)
+    end if
+  end function job_frequency_hz
+
+  !> Commanded amplitude of a grid job (0 in threshold mode).
+  pure real(dp) function job_amplitude_m(plan, job)
+    type(sweep_plan_t), intent(in) :: plan
+    integer, intent(in) :: job
+    job_amplitude_m = 0.0_dp
+    if (plan%mode == 'grid') job_amplitude_m = plan%amplitudes_m(modulo(job, plan%n_amp) + 1)
+  end function job_amplitude_m
+
+  !> The configuration of one run of job `job` at `amplitude_m`: a threshold search run
+  !> stops at the collapse; a grid run keeps the base case's stop_after_collapse_s. No
+  !> time series is kept.
+  pure function job_run_config(plan, job, amplitude_m) result(cfg)
+    type(sweep_plan_t), intent(in) :: plan
+    integer, intent(in) :: job
+    real(dp), intent(in) :: amplitude_m
+    type(config_t) :: cfg
+    cfg = search_run_config(plan%set_cfg(job_param_set(plan, job)), job_frequency_hz(plan, job), amplitude_m)
+    if (plan%mode == 'grid') cfg%output%stop_after_collapse_s = &
+      plan%set_cfg(job_param_set(plan, job))%output%stop_after_collapse_s
+  end function job_run_config
+
+  !> Relative cost of one run of job `job`: steps x bodies.
+  pure real(dp) function job_cost(plan, job)
+    type(sweep_plan_t), intent(in) :: plan
+    integer, intent(in) :: job
+    real(dp) :: duration_s, f_hz
+    f_hz = job_frequency_hz(plan, job)
+    associate (c => plan%set_cfg(job_param_set(plan, job)))
+      duration_s = c%motion%duration_s
+      if (duration_s == 0.0_dp) duration_s = (c%motion%n_attack + c%motion%n_full + c%motion%n_decay)/f_hz &
+                                             + c%motion%rest_s
+      job_cost = duration_s/c%solver%dt_s*(c%arch%n_voussoirs + 2)
+    end associate
+  end function job_cost
+
+
+
+
+
+end module voussoir_sweep_plan
