@@ -12,3 +12,9 @@ endforeach()
 add_test(NAME bad_inputs
          COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/bad_inputs.sh ${CMAKE_BINARY_DIR}/drivers
                  ${CMAKE_CURRENT_BINARY_DIR}/bad_inputs)
+# A full disk (a small tmpfs) while voussoir-run and voussoir-sweep write: a clear
+# error, no half-written file, the previous result byte for byte intact.
+add_test(NAME disk_full
+         COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/disk_full.sh ${CMAKE_BINARY_DIR}/drivers
+                 ${CMAKE_CURRENT_BINARY_DIR}/disk_full)
+set_tests_properties(disk_full PROPERTIES PROCESSORS 2)

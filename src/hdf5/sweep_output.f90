@@ -11,15 +11,15 @@ module voussoir_sweep_output
   use voussoir_text, only: itoa, fmt_exact
   use voussoir_status, only: status_t, fail
   use voussoir_config, only: config_t, config_entries, config_to_nml
-  use voussoir_h5, only: hid_t, h5_create, h5_open_ro, h5_close, h5_group, h5_group_close, h5_write, &
-                         h5_attr, h5_rename, h5_exists, h5_read_real_1d, h5_read_int_1d, &
+  use voussoir_h5, only: hid_t, h5_create, h5_commit, h5_open_ro, h5_close, h5_group, h5_group_close, h5_write, &
+                         h5_attr, commit_text_file, h5_exists, h5_read_real_1d, h5_read_int_1d, &
                          h5_read_attr_string
   use voussoir_run_output, only: write_provenance
   implicit none
   private
 
   public :: sweep_table_t, sweep_header_t
-  public :: results_table, runs_table, table_init, table_append, table_column, table_sort, table_row, table_set, table_value
+  public :: results_table, runs_table, table_init, table_append, table_sort, table_row, table_set, table_value
   public :: write_sweep_file, read_sweep_file, write_sweep_csv, csv_path_of
 
   integer, parameter :: name_len = 32
@@ -129,19 +129,6 @@ contains
     if (k > 0) row(k) = x
   end subroutine table_set
 
-  !> The values of column `name` (empty if there is no such column).
-  function table_column(t, name) result(x)
-    type(sweep_table_t), intent(in) :: t
-    character(len=*), intent(in) :: name
-    real(dp), allocatable :: x(:)
-    integer :: k
-    k = column_index(t, name)
-    if (k == 0) then
-      allocate (x(0))
-    else
-      x = t%values(k, 1:t%n_rows)
-    end if
-  end function table_column
 
   pure integer function column_index(t, name)
     type(sweep_table_t), intent(in) :: t
@@ -226,54 +213,52 @@ contains
     logical, intent(in) :: complete
     type(status_t), intent(inout) :: status
     integer(hid_t) :: file_id, g
-    character(len=:), allocatable :: tmp
 
-    tmp = trim(path)//'.part'
-    call h5_create(tmp, file_id, status)
+    call h5_create(trim(path), file_id, status)
     if (.not. status%ok) return
-    call write_provenance(file_id, 'voussoir-sweep', header%cfg)
-    call h5_attr(file_id, 'config_nml', config_to_nml(config_entries(header%cfg))//header%sweep_nml)
-    call h5_attr(file_id, 'mode', trim(header%mode))
-    call h5_attr(file_id, 'sweep_signature', header%signature)
-    call h5_attr(file_id, 'n_jobs', header%n_jobs)
-    call h5_attr(file_id, 'parameter_names', header%parameter_names)
-    call h5_attr(file_id, 'complete', merge(1, 0, complete))
+    call write_provenance(file_id, 'voussoir-sweep', header%cfg, status)
+    call h5_attr(file_id, 'config_nml', config_to_nml(config_entries(header%cfg))//header%sweep_nml, status)
+    call h5_attr(file_id, 'mode', trim(header%mode), status)
+    call h5_attr(file_id, 'sweep_signature', header%signature, status)
+    call h5_attr(file_id, 'n_jobs', header%n_jobs, status)
+    call h5_attr(file_id, 'parameter_names', header%parameter_names, status)
+    call h5_attr(file_id, 'complete', merge(1, 0, complete), status)
 
-    call h5_group(file_id, 'sweep', g)
-    call h5_write(g, 'frequencies_hz', header%frequencies_hz)
-    if (header%mode == 'grid') call h5_write(g, 'amplitudes_m', header%amplitudes_m)
-    call h5_group_close(g)
+    call h5_group(file_id, 'sweep', g, status)
+    call h5_write(g, 'frequencies_hz', header%frequencies_hz, status)
+    if (header%mode == 'grid') call h5_write(g, 'amplitudes_m', header%amplitudes_m, status)
+    call h5_group_close(g, status)
     if (size(header%parameter_values, 1) > 0) then
-      call h5_group(file_id, 'parameters', g)
-      call h5_write(g, 'values', header%parameter_values)
-      call h5_group_close(g)
+      call h5_group(file_id, 'parameters', g, status)
+      call h5_write(g, 'values', header%parameter_values, status)
+      call h5_group_close(g, status)
     end if
-    call write_table(file_id, 'results', results)
+    call write_table(file_id, 'results', results, status)
     if (allocated(runs%names)) then
-      if (size(runs%names) > 0) call write_table(file_id, 'runs', runs)
+      if (size(runs%names) > 0) call write_table(file_id, 'runs', runs, status)
     end if
-    call h5_close(file_id)
-    call h5_rename(tmp, trim(path), status)
+    call h5_commit(file_id, trim(path), status)
   end subroutine write_sweep_file
 
-  subroutine write_table(file_id, name, t)
+  subroutine write_table(file_id, name, t, status)
     integer(hid_t), intent(in) :: file_id
     character(len=*), intent(in) :: name
     type(sweep_table_t), intent(in) :: t
+    type(status_t), intent(inout) :: status
     integer(hid_t) :: g
     integer :: k
     real(dp), allocatable :: column(:)   ! contiguous copy of a row of `values`
     allocate (column(t%n_rows))
-    call h5_group(file_id, name, g)
+    call h5_group(file_id, name, g, status)
     do k = 1, size(t%names)
       column = t%values(k, 1:t%n_rows)
       if (t%is_int(k)) then
-        call h5_write(g, trim(t%names(k)), nint(column))
+        call h5_write(g, trim(t%names(k)), nint(column), status)
       else
-        call h5_write(g, trim(t%names(k)), column)
+        call h5_write(g, trim(t%names(k)), column, status)
       end if
     end do
-    call h5_group_close(g)
+    call h5_group_close(g, status)
   end subroutine write_table
 
   !> Read back the rows of an earlier run of the same sweep from `path` into `results`
@@ -308,7 +293,7 @@ contains
     if (status%ok .and. allocated(runs%names)) then
       if (size(runs%names) > 0) call read_table(file_id, 'runs', runs, status)
     end if
-    call h5_close(file_id)
+    call h5_close(file_id, status)
 
   contains
 
@@ -326,7 +311,7 @@ contains
         call fail(st, trim(path)//': has no /'//name//' group')
         return
       end if
-      call h5_group(loc, name, g)
+      call h5_group(loc, name, g, st)
       n = -1
       do k = 1, size(t%names)
         if (.not. h5_exists(g, trim(t%names(k)))) then
@@ -334,11 +319,12 @@ contains
           exit
         end if
         if (t%is_int(k)) then
-          call h5_read_int_1d(g, trim(t%names(k)), ix)
+          call h5_read_int_1d(g, trim(t%names(k)), ix, st)
           x = real(ix, dp)
         else
-          call h5_read_real_1d(g, trim(t%names(k)), x)
+          call h5_read_real_1d(g, trim(t%names(k)), x, st)
         end if
+        if (.not. st%ok) exit
         if (n < 0) then
           n = size(x)
           allocate (cols(size(t%names), n))
@@ -348,7 +334,7 @@ contains
         end if
         cols(k, :) = x
       end do
-      call h5_group_close(g)
+      call h5_group_close(g, st)
       if (.not. st%ok) return
       do k = 1, n
         call table_append(t, cols(:, k))
@@ -418,24 +404,18 @@ contains
     type(sweep_header_t), intent(in) :: header
     type(sweep_table_t), intent(in) :: results
     type(status_t), intent(inout) :: status
-    integer :: unit, ios, r, k, set, n_params
-    character(len=512) :: iomsg
-    character(len=:), allocatable :: tmp, line, names
+    integer :: r, k, set, n_params
+    character(len=:), allocatable :: text, line, names
+    character(len=*), parameter :: nl = achar(10)
 
-    tmp = trim(path)//'.part'
-    open (newunit=unit, file=tmp, status='replace', action='write', iostat=ios, iomsg=iomsg)
-    if (ios /= 0) then
-      call fail(status, tmp//': cannot write: '//trim(iomsg))
-      return
-    end if
     n_params = size(header%parameter_values, 1)
     names = ''
     if (n_params > 0) names = ','//header%parameter_names
     if (header%mode == 'grid') then
-      write (unit, '(a)') 'param_set'//names//',frequency_hz,amplitude_m,outcome,collapse_time_s,'// &
-        'peak_crown_disp_m,mean_iterations'
+      text = 'param_set'//names//',frequency_hz,amplitude_m,outcome,collapse_time_s,peak_crown_disp_m,'// &
+             'mean_iterations'//nl
     else
-      write (unit, '(a)') 'param_set'//names//',frequency_hz,threshold_m,peak_accel_m_s2,non_monotonic'
+      text = 'param_set'//names//',frequency_hz,threshold_m,peak_accel_m_s2,non_monotonic'//nl
     end if
     do r = 1, results%n_rows
       set = nint(col('param_set'))
@@ -453,10 +433,9 @@ contains
         line = line//','//fmt_exact(col('threshold_m'))//','//fmt_exact(col('peak_accel_m_s2'))//','// &
                itoa(nint(col('non_monotonic')))
       end if
-      write (unit, '(a)') line
+      text = text//line//nl
     end do
-    close (unit)
-    call h5_rename(tmp, path, status)
+    call commit_text_file(path, text, status)
 
   contains
 
