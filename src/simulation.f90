@@ -5,12 +5,12 @@ module voussoir_simulation
   use voussoir_status, only: status_t
   use voussoir_assembly, only: assembly_t, role_voussoir
   use voussoir_model, only: model_t, model_step
+  use voussoir_hinge_side, only: side_intrados, side_extrados
   implicit none
   private
 
-  public :: monitor_t, run_result_t, monitor_init, simulate, side_intrados, side_extrados
+  public :: monitor_t, run_result_t, monitor_init, simulate
 
-  integer, parameter :: side_intrados = 0, side_extrados = 1
   integer, parameter :: joint_closed = -1
 
   !> What the run watches: crown, collapse, hinges at the joints of an arch.

@@ -44,10 +44,10 @@ program test_limit_dynamics
   use voussoir_model, only: model_t, solver_settings_t
   use voussoir_motion, only: motion_ramp, motion_afd
   use voussoir_setup, only: init_model
-  use voussoir_simulation, only: monitor_t, monitor_init, run_result_t, simulate, &
-                                 sim_intrados => side_intrados, sim_extrados => side_extrados
-  use voussoir_limit, only: limit_result_t, horizontal_capacity, minimum_thickness, &
-                            lim_intrados => side_intrados
+  use voussoir_simulation, only: monitor_t, monitor_init, run_result_t, simulate
+  use voussoir_hinge_side, only: side_intrados, side_extrados
+  use voussoir_limit, only: limit_result_t, horizontal_capacity
+  use voussoir_minimum_thickness, only: minimum_thickness
   use voussoir_assert, only: assert_true, assert_close, assert_summary
   implicit none
 
@@ -113,7 +113,7 @@ contains
     type(solver_settings_t) :: settings
     character(len=80) :: name
     real(dp) :: lambda_g_m_s2, onset_m_s2, duration_s
-    integer :: joints(4), sides(4), n_found, k, expected_side, hinges(4), hinge_sides(4)
+    integer :: joints(4), sides(4), n_found, k, hinges(4), hinge_sides(4)
     logical :: solved, hinging
 
     write (name, '(i0,a,i0,a,f5.3,a,f3.1,a,a)') nint(embrace_deg), '/', n_voussoirs, ' r_ext ', r_ext_m, &
@@ -178,11 +178,10 @@ contains
     if (n_found < 4) return
     call sort_by_joint(joints, sides)
     write (*, '(6x,a,4(i0,a1,1x),a,4(i0,a1,1x))') 'dynamic hinges ', &
-      (joints(k), merge('i', 'e', sides(k) == sim_intrados), k = 1, 4), '; limit analysis ', &
-      (hinges(k), merge('i', 'e', hinge_sides(k) == lim_intrados), k = 1, 4)
+      (joints(k), merge('i', 'e', sides(k) == side_intrados), k = 1, 4), '; limit analysis ', &
+      (hinges(k), merge('i', 'e', hinge_sides(k) == side_intrados), k = 1, 4)
     do k = 1, 4
-      expected_side = merge(sim_intrados, sim_extrados, hinge_sides(k) == lim_intrados)
-      if (joints(k) /= hinges(k) .or. sides(k) /= expected_side) exit
+      if (joints(k) /= hinges(k) .or. sides(k) /= hinge_sides(k)) exit
     end do
     call assert_true(k == 5, trim(name)//': the first four hinges are those of the limit analysis')
   end subroutine check_ramp

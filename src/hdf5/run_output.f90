@@ -8,6 +8,7 @@ module voussoir_run_output
   use voussoir_assembly, only: assembly_t
   use voussoir_model, only: model_t
   use voussoir_simulation, only: run_result_t
+  use voussoir_hinge_side, only: side_file_code
   use voussoir_h5, only: hid_t, h5_create, h5_close, h5_group, h5_group_close, h5_write, h5_attr, &
                          h5_commit, utc_now
   implicit none
@@ -118,7 +119,7 @@ contains
     call h5_group(file_id, 'hinges', g, status)
     call h5_write(g, 'time_s', res%hinge_time_s, status)
     call h5_write(g, 'joint', res%hinge_joint, status)
-    call h5_write(g, 'side', res%hinge_side, status)
+    call h5_write(g, 'side', side_file_code(res%hinge_side), status)
     call h5_attr(g, 'side_names', '0=intrados,1=extrados', status)
     call h5_group_close(g, status)
 

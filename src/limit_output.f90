@@ -1,0 +1,227 @@
+!> What voussoir-limit prints: a readable table, or one JSON object
+!> (docs/results_format.md, "voussoir-limit --json").
+module voussoir_limit_output
+  use voussoir_kinds, only: dp, g_m_s2
+  use voussoir_config, only: config_t
+  use voussoir_text, only: itoa, int_list, fmt_json_real, json_string, json_bool, fmt_significant
+  use voussoir_assembly, only: assembly_t
+  use voussoir_limit, only: limit_result_t
+  use voussoir_hinge_side, only: side_name
+  use voussoir_limit_study, only: limit_options_t, thickness_result_t
+  use voussoir_version, only: code_version
+  implicit none
+  private
+
+  public :: write_table, write_json
+
+contains
+
+  !> The readable report.
+  subroutine write_table(u, path, cfg, opts, res, tmin)
+    integer, intent(in) :: u
+    character(len=*), intent(in) :: path
+    type(config_t), intent(in) :: cfg
+    type(limit_options_t), intent(in) :: opts
+    type(limit_result_t), intent(in) :: res
+    type(thickness_result_t), intent(in) :: tmin
+    character(len=*), parameter :: rule = '  ------------------------------------------------------------------'
+    associate (a => cfg%arch)
+      write (u, '(a)') 'voussoir-limit: '//path
+      write (u, '(a)') 'arch: '//itoa(a%n_voussoirs)//' voussoirs, embrace '//fmt_significant(a%embrace_deg)// &
+        ' deg, r_ext '//fmt_significant(a%r_ext_m)//' m, thickness '//fmt_significant(a%thickness_m)//' m (t/R_ext '// &
+        fmt_significant(a%thickness_m/a%r_ext_m)//')'
+      write (u, '(a)') '      pivot inset '//fmt_significant(1.0e3_dp*opts%inset_m)//' mm, friction '//fmt_significant(a%friction)
+      write (u, '(/,a)') 'Horizontal collapse (rigid blocks, no tension, no sliding; load = lambda x weight)'
+      write (u, '(a)') '  direction  lambda     lambda g [m/s2]  mechanism (hinges from the left)'
+      write (u, '(a)') rule
+      call direction_row(u, '+x', res%lambda_pos, res%hinges_pos(1:res%n_hinges_pos), &
+                         res%sides_pos(1:res%n_hinges_pos))
+      call direction_row(u, '-x', res%lambda_neg, res%hinges_neg(1:res%n_hinges_neg), &
+                         res%sides_neg(1:res%n_hinges_neg))
+      if (res%n_hinges_pos == 0 .and. res%n_hinges_neg == 0) then
+        write (u, '(a)') '  no mechanism opens: without sliding the blocks carry any horizontal load '// &
+          '(no friction check)'
+      else
+        ! A direction without a mechanism has nothing to check.
+        if ((res%bounds_meet_pos .or. res%n_hinges_pos == 0) .and. (res%bounds_meet_neg .or. res%n_hinges_neg == 0)) then
+          write (u, '(a)') '  static check: the thrust line through the hinges stays inside every joint '// &
+            '(bounds meet)'
+        else
+          write (u, '(a)') '  static check: the thrust line through the hinges leaves a joint '// &
+            '(bounds do not meet: lambda is an upper bound only)'
+        end if
+        write (u, '(a)') '  friction check: '//friction_text(res, a%n_voussoirs, a%friction)
+      end if
+      if (tmin%computed) then
+        write (u, '(/,a)') 'Minimum thickness (same embrace, voussoirs, r_ext and inset; own weight only)'
+        write (u, '(a,f9.6,a,f9.6,a)') '  t/R_ext ', tmin%ratio_ext, '   t/R_mean ', tmin%ratio_mean, &
+          '   t_min '//fmt_significant(1.0e3_dp*tmin%ratio_ext*a%r_ext_m)//' mm'
+        write (u, '(a)') '  hinges: '//hinge_text(tmin%hinges, tmin%sides)
+      end if
+    end associate
+  end subroutine write_table
+
+  !> One line of the capacity table.
+  subroutine direction_row(u, name, lambda, hinges, sides)
+    integer, intent(in) :: u
+    character(len=*), intent(in) :: name
+    real(dp), intent(in) :: lambda
+    integer, intent(in) :: hinges(:), sides(:)
+    if (lambda == huge(1.0_dp)) then
+      write (u, '(4x,a,7x,a)') name, 'no admissible mechanism'
+      return
+    end if
+    write (u, '(4x,a,5x,f9.6,2x,f9.4,8x,a)') name, lambda, lambda*g_m_s2, hinge_text(hinges, sides)
+    if (lambda < 0.0_dp) write (u, '(15x,a)') &
+      '(negative: the arch cannot carry its own weight; it is thinner than its minimum thickness)'
+  end subroutine direction_row
+
+  !> 'joint 0 intrados, joint 5 extrados, ...'
+  function hinge_text(hinges, sides) result(text)
+    integer, intent(in) :: hinges(:), sides(:)
+    character(len=:), allocatable :: text
+    integer :: k
+    text = ''
+    do k = 1, size(hinges)
+      if (k > 1) text = text//', '
+      text = text//'joint '//itoa(hinges(k))//' '//side_name(sides(k))
+    end do
+  end function hinge_text
+
+  !> 'hinging governs ...' or 'sliding governs at joints ...'.
+  function friction_text(res, n_voussoirs, friction) result(text)
+    type(limit_result_t), intent(in) :: res
+    integer, intent(in) :: n_voussoirs
+    real(dp), intent(in) :: friction
+    character(len=:), allocatable :: text
+    integer, allocatable :: joints(:)
+    real(dp) :: worst
+    integer :: k
+    call sliding_union(res, n_voussoirs, joints)
+    worst = max(maxval(res%shear_ratio_pos), maxval(res%shear_ratio_neg))
+    if (size(joints) == 0) then
+      text = 'hinging governs (largest |T|/N at collapse '//fmt_significant(worst, 5)//' <= friction '// &
+             fmt_significant(friction)//')'
+    else
+      text = 'sliding governs at joints '
+      do k = 1, size(joints)
+        if (k > 1) text = text//', '
+        text = text//itoa(joints(k))
+      end do
+      if (worst == huge(1.0_dp)) then
+        text = text//' (a joint is not in compression in the collapse state)'
+      else
+        text = text//' (|T|/N at collapse up to '//fmt_significant(worst, 5)//' > friction '//fmt_significant(friction)// &
+               '): the true capacity can be lower than lambda'
+      end if
+    end if
+  end function friction_text
+
+  !> Joints where sliding governs in either direction, ascending.
+  pure subroutine sliding_union(res, n_voussoirs, joints)
+    type(limit_result_t), intent(in) :: res
+    integer, intent(in) :: n_voussoirs
+    integer, allocatable, intent(out) :: joints(:)
+    integer :: j
+    allocate (joints(0))
+    do j = 0, n_voussoirs
+      if (any(res%sliding_joints_pos == j) .or. any(res%sliding_joints_neg == j)) joints = [joints, j]
+    end do
+  end subroutine sliding_union
+
+  !> The JSON object of docs/results_format.md.
+  subroutine write_json(u, path, cfg, opts, arch, res, tmin)
+    integer, intent(in) :: u
+    character(len=*), intent(in) :: path
+    type(config_t), intent(in) :: cfg
+    type(limit_options_t), intent(in) :: opts
+    type(assembly_t), intent(in) :: arch
+    type(limit_result_t), intent(in) :: res
+    type(thickness_result_t), intent(in) :: tmin
+    integer :: j
+    integer, allocatable :: sliding(:)
+    character(len=1), parameter :: nl = achar(10)
+    character(len=:), allocatable :: text
+    call sliding_union(res, cfg%arch%n_voussoirs, sliding)
+    associate (a => cfg%arch)
+      text = '{'//nl// &
+        '  "producer": "voussoir-limit",'//nl// &
+        '  "code_version": '//json_string(code_version)//','//nl// &
+        '  "input_file": '//json_string(path)//','//nl// &
+        '  "g_m_s2": '//fmt_json_real(g_m_s2)//','//nl// &
+        '  "lambda_pos": '//finite_or_null(res%lambda_pos)//','//nl// &
+        '  "lambda_neg": '//finite_or_null(res%lambda_neg)//','//nl// &
+        '  "hinges_pos": '//hinge_json(res%hinges_pos(1:res%n_hinges_pos), res%sides_pos(1:res%n_hinges_pos))// &
+        ','//nl// &
+        '  "hinges_neg": '//hinge_json(res%hinges_neg(1:res%n_hinges_neg), res%sides_neg(1:res%n_hinges_neg))// &
+        ','//nl// &
+        '  "bounds_meet_pos": '//json_bool(res%bounds_meet_pos)//','//nl// &
+        '  "bounds_meet_neg": '//json_bool(res%bounds_meet_neg)//','//nl
+      if (tmin%computed) then
+        text = text// &
+          '  "min_thickness_ratio_ext": '//fmt_json_real(tmin%ratio_ext)//','//nl// &
+          '  "min_thickness_ratio_mean": '//fmt_json_real(tmin%ratio_mean)//','//nl// &
+          '  "min_thickness_m": '//fmt_json_real(tmin%ratio_ext*a%r_ext_m)//','//nl// &
+          '  "hinges_min_thickness": '//hinge_json(tmin%hinges, tmin%sides)//','//nl
+      else
+        text = text// &
+          '  "min_thickness_ratio_ext": null,'//nl//'  "min_thickness_ratio_mean": null,'//nl// &
+          '  "min_thickness_m": null,'//nl//'  "hinges_min_thickness": [],'//nl
+      end if
+      text = text// &
+        '  "friction": '//fmt_json_real(a%friction)//','//nl// &
+        '  "sliding": ['//int_list(sliding)//'],'//nl// &
+        '  "sliding_pos": ['//int_list(res%sliding_joints_pos)//'],'//nl// &
+        '  "sliding_neg": ['//int_list(res%sliding_joints_neg)//'],'//nl// &
+        '  "max_shear_ratio_pos": '//finite_or_null(maxval(res%shear_ratio_pos))//','//nl// &
+        '  "max_shear_ratio_neg": '//finite_or_null(maxval(res%shear_ratio_neg))//','//nl// &
+        '  "arch": {'//nl// &
+        '    "n_voussoirs": '//itoa(a%n_voussoirs)//','//nl// &
+        '    "embrace_deg": '//fmt_json_real(a%embrace_deg)//','//nl// &
+        '    "r_ext_m": '//fmt_json_real(a%r_ext_m)//','//nl// &
+        '    "thickness_m": '//fmt_json_real(a%thickness_m)//','//nl// &
+        '    "contact_inset_m": '//fmt_json_real(opts%inset_m)//','//nl// &
+        '    "joint_intrados_xy_m": ['
+      do j = 0, a%n_voussoirs
+        if (j > 0) text = text//', '
+        text = text//'['//fmt_json_real(arch%joint_intrados_xy(1, j))//', '// &
+               fmt_json_real(arch%joint_intrados_xy(2, j))//']'
+      end do
+      text = text//'],'//nl//'    "joint_extrados_xy_m": ['
+      do j = 0, a%n_voussoirs
+        if (j > 0) text = text//', '
+        text = text//'['//fmt_json_real(arch%joint_extrados_xy(1, j))//', '// &
+               fmt_json_real(arch%joint_extrados_xy(2, j))//']'
+      end do
+      text = text//']'//nl//'  }'//nl//'}'
+    end associate
+    write (u, '(a)') text
+  end subroutine write_json
+
+  !> A number, or null for the module's `huge` (no admissible mechanism, joint not in
+  !> compression).
+  function finite_or_null(x) result(text)
+    real(dp), intent(in) :: x
+    character(len=:), allocatable :: text
+    if (x == huge(1.0_dp)) then
+      text = 'null'
+    else
+      text = fmt_json_real(x)
+    end if
+  end function finite_or_null
+
+  function hinge_json(hinges, sides) result(text)
+    integer, intent(in) :: hinges(:), sides(:)
+    character(len=:), allocatable :: text
+    integer :: k
+    text = '['
+    do k = 1, size(hinges)
+      if (k > 1) text = text//', '
+      text = text//'{"joint": '//itoa(hinges(k))//', "side": "'//side_name(sides(k))//'"}'
+    end do
+    text = text//']'
+  end function hinge_json
+
+
+
+end module voussoir_limit_output

@@ -1,0 +1,108 @@
+!> The limit analysis a voussoir-limit input asks for: the optional &limit group
+!> (docs/limit_analysis.md) and the analyses of the &arch it describes.
+module voussoir_limit_study
+  use, intrinsic :: iso_fortran_env, only: iostat_end
+  use voussoir_kinds, only: dp
+  use voussoir_status, only: status_t, fail
+  use voussoir_config, only: config_t
+  use voussoir_text, only: itoa, fmt_significant
+  use voussoir_assembly, only: assembly_t, build_arch
+  use voussoir_limit, only: limit_result_t, horizontal_capacity
+  use voussoir_minimum_thickness, only: thickness_search => minimum_thickness
+  implicit none
+  private
+
+  public :: limit_options_t, thickness_result_t, read_limit_group, analyse
+
+  !> The &limit group.
+  type :: limit_options_t
+    logical :: minimum_thickness = .true.  !! compute the minimum thickness
+    real(dp) :: inset_m = 0.0_dp           !! pivot inset of the analysis [m]
+  end type limit_options_t
+
+  !> The minimum thickness of the arch's shape (embrace, voussoirs, r_ext, inset).
+  type :: thickness_result_t
+    logical :: computed = .false.
+    real(dp) :: ratio_ext = 0.0_dp, ratio_mean = 0.0_dp
+    integer, allocatable :: hinges(:), sides(:)
+  end type thickness_result_t
+
+contains
+
+  !> Read the optional &limit group of `path`; the inset defaults to &arch contact_inset_m.
+  subroutine read_limit_group(path, cfg, opts, status)
+    character(len=*), intent(in) :: path
+    type(config_t), intent(in) :: cfg
+    type(limit_options_t), intent(out) :: opts
+    type(status_t), intent(inout) :: status
+    real(dp), parameter :: unset = -huge(1.0_dp)
+    logical :: minimum_thickness
+    real(dp) :: inset_m
+    integer :: unit, ios
+    character(len=512) :: iomsg
+    namelist /limit/ minimum_thickness, inset_m
+
+    minimum_thickness = opts%minimum_thickness
+    inset_m = unset
+    open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
+    if (ios /= 0) then
+      call fail(status, path//': cannot open input: '//trim(iomsg))
+      return
+    end if
+    read (unit, nml=limit, iostat=ios, iomsg=iomsg)
+    close (unit)
+    ! End of file: the group is absent and the defaults hold.
+    if (ios /= 0 .and. ios /= iostat_end) then
+      call fail(status, path//': in namelist group &limit: '//trim(iomsg))
+      return
+    end if
+    opts%minimum_thickness = minimum_thickness
+    opts%inset_m = merge(cfg%arch%contact_inset_m, inset_m, inset_m == unset)
+    if (.not. (opts%inset_m >= 0.0_dp .and. opts%inset_m < 0.5_dp*cfg%arch%thickness_m)) &
+      call fail(status, path//': &limit inset_m = '//fmt_significant(inset_m)// &
+                ' is outside the allowed range 0 <= inset_m < thickness_m/2 = '// &
+                fmt_significant(0.5_dp*cfg%arch%thickness_m))
+  end subroutine read_limit_group
+
+  !> Build the arch of &arch and run the analyses; refuse what the limit analysis does not model.
+  subroutine analyse(cfg, opts, arch, res, tmin, status)
+    type(config_t), intent(in) :: cfg
+    type(limit_options_t), intent(in) :: opts
+    type(assembly_t), intent(out) :: arch
+    type(limit_result_t), intent(out) :: res
+    type(thickness_result_t), intent(out) :: tmin
+    type(status_t), intent(inout) :: status
+    character(len=:), allocatable :: f
+
+    f = trim(cfg%source_file)
+    associate (a => cfg%arch)
+      if (len_trim(a%polygon_file) > 0) then
+        call fail(status, f//": &arch polygon_file = '"//trim(a%polygon_file)//"': voussoir-limit "// &
+                  'analyses the arch of embrace_deg, n_voussoirs, r_ext_m and thickness_m only; '// &
+                  'a polygon assembly has no joints to hinge (remove polygon_file)')
+      else if (a%restrained_springings /= 'none') then
+        call fail(status, f//": &arch restrained_springings = '"//trim(a%restrained_springings)// &
+                  "': the limit analysis does not model restraint brackets (its mechanisms hinge "// &
+                  "freely at the springings); set restrained_springings = 'none'")
+      else if (a%n_voussoirs < 3) then
+        call fail(status, f//': &arch n_voussoirs = '//itoa(a%n_voussoirs)// &
+                  ' is outside the allowed range n_voussoirs >= 3 (a four-hinge mechanism needs 3 voussoirs)')
+      else if (opts%minimum_thickness .and. a%n_voussoirs < 4) then
+        call fail(status, f//': &arch n_voussoirs = 3: the minimum thickness needs n_voussoirs >= 4 '// &
+                  '(an arch of 3 voussoirs stands at vanishing thickness); set &limit minimum_thickness = .false.')
+      end if
+      if (.not. status%ok) return
+      call build_arch(a%embrace_deg, a%n_voussoirs, a%r_ext_m, a%thickness_m, arch)
+      call horizontal_capacity(arch, opts%inset_m, a%friction, res, status)
+      if (status%ok .and. opts%minimum_thickness) then
+        call thickness_search(a%embrace_deg, a%n_voussoirs, a%r_ext_m, opts%inset_m, tmin%ratio_ext, &
+                              tmin%ratio_mean, tmin%hinges, tmin%sides, status)
+        tmin%computed = status%ok
+        if (.not. status%ok) status%message = trim(status%message)// &
+          ' (set &limit minimum_thickness = .false. to skip it)'
+      end if
+    end associate
+    if (.not. status%ok) status%message = f//': '//trim(status%message)
+  end subroutine analyse
+
+end module voussoir_limit_study
