@@ -9,7 +9,7 @@ module voussoir_config
   use, intrinsic :: iso_fortran_env, only: iostat_end
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
-  use voussoir_text, only: lower, fmt_real
+  use voussoir_text, only: lower, fmt_real, itoa
   implicit none
   private
 
@@ -18,6 +18,8 @@ module voussoir_config
   public :: check_groups, resolve_path, fmt_real
 
   integer, parameter :: path_len = 512
+  integer, parameter :: max_joint = 255               !! highest joint index of joint_friction
+  real(dp), parameter :: unset_friction = -huge(1.0_dp) !! a joint_friction entry left at the default
 
   !> &arch: the arch (or a polygon file) and its material.
   type :: arch_config_t
@@ -31,6 +33,8 @@ module voussoir_config
     real(dp) :: contact_inset_m = 0.0_dp      !! contact points set in from face ends [m]
     character(len=16) :: restrained_springings = 'none'  !! none, left, right, both
     character(len=path_len) :: polygon_file = ''          !! assembly instead of an arch
+    !> Coulomb coefficient of joint j (0..n_voussoirs) where set, e.g. joint_friction(0) = 0.3
+    real(dp) :: joint_friction(0:max_joint) = unset_friction
   end type arch_config_t
 
   !> &motion: the base motion.
@@ -102,6 +106,7 @@ contains
     type(solver_config_t) :: s
     type(output_config_t) :: o
     real(dp) :: embrace_deg, r_ext_m, thickness_m, width_m, density_kg_m3, friction, contact_inset_m
+    real(dp) :: joint_friction(0:max_joint)
     integer :: n_voussoirs
     character(len=16) :: restrained_springings, waveform
     character(len=path_len) :: polygon_file, record_file, file
@@ -112,7 +117,7 @@ contains
                 stop_after_collapse_s
     logical :: allow_nonconvergence
     namelist /arch/ embrace_deg, n_voussoirs, r_ext_m, thickness_m, width_m, density_kg_m3, &
-      friction, contact_inset_m, restrained_springings, polygon_file
+      friction, contact_inset_m, restrained_springings, polygon_file, joint_friction
     namelist /motion/ waveform, frequency_hz, amplitude_m, n_attack, n_full, n_decay, &
       record_file, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s, table_gain, table_delay_s
     namelist /solver/ dt_s, theta, tol, max_iter, alert_m, allow_nonconvergence
@@ -132,10 +137,11 @@ contains
     thickness_m = a%thickness_m; width_m = a%width_m; density_kg_m3 = a%density_kg_m3
     friction = a%friction; contact_inset_m = a%contact_inset_m
     restrained_springings = a%restrained_springings; polygon_file = a%polygon_file
+    joint_friction = a%joint_friction
     read (unit, nml=arch, iostat=ios, iomsg=iomsg)
     if (.not. group_ok('arch')) return
     a = arch_config_t(embrace_deg, n_voussoirs, r_ext_m, thickness_m, width_m, density_kg_m3, &
-                      friction, contact_inset_m, restrained_springings, polygon_file)
+                      friction, contact_inset_m, restrained_springings, polygon_file, joint_friction)
 
     waveform = m%waveform; frequency_hz = m%frequency_hz; amplitude_m = m%amplitude_m
     n_attack = m%n_attack; n_full = m%n_full; n_decay = m%n_decay; record_file = m%record_file
@@ -199,7 +205,8 @@ contains
     case ('arch')
       text = 'embrace_deg (real, deg), n_voussoirs (integer), r_ext_m, thickness_m, width_m (real, m), '// &
              'density_kg_m3 (real), friction (real), contact_inset_m (real, m), '// &
-             "restrained_springings ('none'|'left'|'right'|'both'), polygon_file (text)"
+             "restrained_springings ('none'|'left'|'right'|'both'), polygon_file (text), "// &
+             'joint_friction(j) (real, the friction of joint j = 0..n_voussoirs)'
     case ('motion')
       text = "waveform ('afd'|'ramp'|'record'), frequency_hz (real), amplitude_m (real), n_attack, n_full, "// &
              'n_decay (integer), record_file (text), record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s, '// &
@@ -276,6 +283,7 @@ contains
     type(status_t), intent(inout) :: status
     character(len=:), allocatable :: f
     logical :: exists
+    integer :: j
 
     f = trim(cfg%source_file)
     ! Each check records the first failure only, so the user sees the first bad value.
@@ -309,6 +317,18 @@ contains
       call need(a%density_kg_m3 > 0.0_dp, &
           'arch', 'density_kg_m3', a%density_kg_m3, 'density_kg_m3 > 0')
       call need(a%friction >= 0.0_dp, 'arch', 'friction', a%friction, 'friction >= 0')
+      do j = 0, max_joint
+        if (a%joint_friction(j) == unset_friction) cycle
+        call need(a%joint_friction(j) >= 0.0_dp .and. a%joint_friction(j) <= huge(1.0_dp), &
+                  'arch', 'joint_friction('//itoa(j)//')', a%joint_friction(j), 'joint_friction >= 0')
+        if (len_trim(a%polygon_file) > 0) then
+          call need(.false., 'arch', 'joint_friction('//itoa(j)//')', a%joint_friction(j), &
+                    'none: a polygon_file assembly has no numbered joints')
+        else
+          call need(j <= a%n_voussoirs, 'arch', 'joint_friction('//itoa(j)//')', a%joint_friction(j), &
+                    'none: the joints are 0..n_voussoirs = '//itoa(a%n_voussoirs))
+        end if
+      end do
       call need(a%contact_inset_m >= 0.0_dp .and. a%contact_inset_m < 0.5_dp*a%thickness_m, &
           'arch', 'contact_inset_m', a%contact_inset_m, &
                    '0 <= contact_inset_m < thickness_m/2 = '//fmt_real(0.5_dp*a%thickness_m))
@@ -390,6 +410,7 @@ contains
   function config_entries(cfg) result(e)
     type(config_t), intent(in) :: cfg
     type(config_entry_t), allocatable :: e(:)
+    integer :: j
     allocate (e(0))
     associate (a => cfg%arch, m => cfg%motion, s => cfg%solver, o => cfg%output)
       call r('arch', 'embrace_deg', a%embrace_deg)
@@ -402,6 +423,9 @@ contains
       call r('arch', 'contact_inset_m', a%contact_inset_m)
       call t('arch', 'restrained_springings', a%restrained_springings)
       call t('arch', 'polygon_file', a%polygon_file)
+      do j = 0, max_joint
+        if (a%joint_friction(j) /= unset_friction) call r('arch', 'joint_friction('//itoa(j)//')', a%joint_friction(j))
+      end do
       call t('motion', 'waveform', m%waveform)
       call r('motion', 'frequency_hz', m%frequency_hz)
       call r('motion', 'amplitude_m', m%amplitude_m)

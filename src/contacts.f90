@@ -10,16 +10,11 @@ module voussoir_contacts
   use voussoir_kinds, only: dp
   use voussoir_geometry, only: cross2
   use voussoir_bodies, only: bodies_t
+  use voussoir_contact_law, only: contact_law_t, pair_friction_of
   implicit none
   private
 
-  public :: contact_set_t, detect_contacts, polygon_contact, pair_friction_t
-
-  !> A friction coefficient for one pair of bodies, overriding the default.
-  type :: pair_friction_t
-    integer :: body_a = 0, body_b = 0
-    real(dp) :: friction = 0.0_dp
-  end type pair_friction_t
+  public :: contact_set_t, detect_contacts, polygon_contact
 
   !> The contact points of one step, structure of arrays. Body `a` is the candidate,
   !> body `b` the antagonist that owns the reference face; the normal points from b to a.
@@ -91,11 +86,11 @@ contains
   !> The broad phase keeps a list of the pairs whose boxes, grown by `alert_m` plus a
   !> margin of `alert_m`, overlap (a Verlet list); it is rebuilt only once some body has
   !> moved by more than half the margin since, so most steps run the narrow phase only.
-  subroutine detect_contacts(bodies, q, alert_m, inset_m, default_friction, pair_friction, set)
+  subroutine detect_contacts(bodies, q, alert_m, law, set)
     type(bodies_t), intent(in) :: bodies
     real(dp), intent(in) :: q(:, :)           !! (3, n) configuration of the vertices
-    real(dp), intent(in) :: alert_m, inset_m, default_friction
-    type(pair_friction_t), intent(in) :: pair_friction(:)
+    real(dp), intent(in) :: alert_m
+    type(contact_law_t), intent(in) :: law
     type(contact_set_t), intent(inout) :: set
     integer :: p, nb
     real(dp) :: moved_m
@@ -131,7 +126,7 @@ contains
       associate (ni => bodies%n_vertices(i), nj => bodies%n_vertices(j))
         call polygon_contact_normals(bodies%vertex(:, 1:ni, i), bodies%face_normal(:, 1:ni, i), &
                                      bodies%vertex(:, 1:nj, j), bodies%face_normal(:, 1:nj, j), &
-                                     alert_m, inset_m, n_points, points, gaps, normal, i_is_candidate)
+                                     alert_m, law%inset_m, n_points, points, gaps, normal, i_is_candidate)
       end associate
       if (n_points == 0) return
       if (i_is_candidate) then
@@ -141,12 +136,7 @@ contains
         a = j
         b = i
       end if
-      mu = default_friction
-      do m = 1, size(pair_friction)
-        if ((pair_friction(m)%body_a == a .and. pair_friction(m)%body_b == b) .or. &
-            (pair_friction(m)%body_a == b .and. pair_friction(m)%body_b == a)) &
-          mu = pair_friction(m)%friction
-      end do
+      mu = pair_friction_of(law, a, b)
       call reserve(set, set%n + 2)
       do p = 1, 2
         if (gaps(p) > alert_m) cycle

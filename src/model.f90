@@ -8,7 +8,8 @@ module voussoir_model
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
   use voussoir_bodies, only: bodies_t, update_world_vertices
-  use voussoir_contacts, only: contact_set_t, detect_contacts, pair_friction_t
+  use voussoir_contacts, only: contact_set_t, detect_contacts
+  use voussoir_contact_law, only: contact_law_t
   use voussoir_nlgs, only: nlgs_work_t, nlgs_prepare, nlgs_solve, warm_start, i_arm_at, i_arm_an, &
                            i_arm_bt, i_arm_bn
   use voussoir_motion, only: motion_t, motion_eval, waveform_ramp
@@ -23,9 +24,7 @@ module voussoir_model
     real(dp) :: theta = 0.5_dp
     real(dp) :: tol = 1.0e-4_dp
     integer :: max_iter = 10000
-    real(dp) :: alert_m = 1.0e-3_dp
-    real(dp) :: contact_inset_m = 0.0_dp
-    real(dp) :: friction = 0.5_dp
+    real(dp) :: alert_m = 0.0_dp              !! 0: automatic, as in the config
     logical :: allow_nonconvergence = .false.
   end type solver_settings_t
 
@@ -36,7 +35,7 @@ module voussoir_model
     type(nlgs_work_t) :: work
     type(motion_t) :: motion
     type(solver_settings_t) :: solver
-    type(pair_friction_t), allocatable :: pair_friction(:)
+    type(contact_law_t) :: law
     real(dp) :: t_s = 0.0_dp
     integer :: step = 0
     ! Of the last step:
@@ -80,8 +79,7 @@ contains
       end do
       model%q_pred = b%q + (1.0_dp - theta)*h*b%v
       call update_world_vertices(b, model%q_pred)
-      call detect_contacts(b, model%q_pred, model%solver%alert_m, model%solver%contact_inset_m, &
-                           model%solver%friction, model%pair_friction, model%contacts)
+      call detect_contacts(b, model%q_pred, model%solver%alert_m, model%law, model%contacts)
       call nlgs_prepare(b, model%contacts, theta*h, model%work)
       call warm_start(model%work, model%contacts, nb, remember=.false.)
       b%v = model%v_free

@@ -6,6 +6,7 @@ module voussoir_setup
   use voussoir_assembly, only: assembly_t, build_arch, read_polygon_file
   use voussoir_bodies, only: bodies_t, bodies_init
   use voussoir_model, only: model_t, solver_settings_t
+  use voussoir_contact_law, only: contact_law_t, contact_law_init
   use voussoir_motion, only: motion_afd, motion_ramp, motion_record, motion_duration_s
   use voussoir_simulation, only: monitor_t, monitor_init, run_result_t, simulate
   implicit none
@@ -25,6 +26,7 @@ contains
     type(status_t), intent(inout) :: status
     logical :: restrained(2)
     type(solver_settings_t) :: settings
+    type(contact_law_t) :: law
     real(dp) :: hinge_gap_m, collapse_drop_m
 
     duration_s = 0.0_dp
@@ -42,11 +44,14 @@ contains
       settings%theta = s%theta
       settings%tol = s%tol
       settings%max_iter = s%max_iter
-      settings%friction = a%friction
-      settings%contact_inset_m = a%contact_inset_m
       settings%allow_nonconvergence = s%allow_nonconvergence
       settings%alert_m = s%alert_m
-      call init_model(assembly, a%density_kg_m3, a%width_m, settings, model, status)
+      call contact_law_init(a%friction, a%contact_inset_m, a%joint_friction, assembly, law, status)
+      if (.not. status%ok) then
+        status%message = trim(cfg%source_file)//': &arch '//trim(status%message)
+        return
+      end if
+      call init_model(assembly, a%density_kg_m3, a%width_m, settings, law, model, status)
       if (.not. status%ok) return
 
       select case (m%waveform)
@@ -78,19 +83,21 @@ contains
     call monitor_init(assembly, model, collapse_drop_m, cfg%output%collapse_rotation_rad, hinge_gap_m, mon)
   end subroutine build_model
 
-  !> A model of `assembly` at rest with the given solver settings and no table motion
-  !> (set `model%motion` afterwards); an alert distance of 0 is made automatic.
-  subroutine init_model(assembly, density_kg_m3, width_m, settings, model, status)
+  !> A model of `assembly` at rest with the given solver settings and contact law and no
+  !> table motion (set `model%motion` afterwards); an alert distance of 0 is made automatic.
+  subroutine init_model(assembly, density_kg_m3, width_m, settings, law, model, status)
     type(assembly_t), intent(in) :: assembly
     real(dp), intent(in) :: density_kg_m3, width_m
     type(solver_settings_t), intent(in) :: settings
+    type(contact_law_t), intent(in) :: law
     type(model_t), intent(out) :: model
     type(status_t), intent(inout) :: status
     call bodies_init(assembly, density_kg_m3, width_m, model%bodies, status)
     if (.not. status%ok) return
     model%solver = settings
+    model%law = law
+    if (.not. allocated(model%law%pairs)) allocate (model%law%pairs(0))
     if (settings%alert_m == 0.0_dp) model%solver%alert_m = automatic_alert_m(model%bodies)
-    allocate (model%pair_friction(0))
   end subroutine init_model
 
   !> Default alert distance: 4 % of the smallest free body's circumradius.

@@ -38,6 +38,10 @@ case_ density           "density_kg_m3 = -700.*density_kg_m3 > 0" "&arch density
 $o"
 case_ friction          "friction = -0.1.*friction >= 0" "&arch friction = -0.1 /
 $o"
+case_ joint_friction_neg "joint_friction\\(3\\) = -0.2.*joint_friction >= 0" "&arch joint_friction(3) = -0.2 /
+$o"
+case_ joint_friction_far "joint_friction\\(14\\) = 0.3.*joints are 0..n_voussoirs = 13" "&arch n_voussoirs = 13, joint_friction(14) = 0.3 /
+$o"
 case_ width             "width_m = -1.*width_m > 0" "&arch width_m = -1 /
 $o"
 case_ inset             "contact_inset_m = 0.05.*contact_inset_m < thickness_m/2" "&arch contact_inset_m = 0.05 /

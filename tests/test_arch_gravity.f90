@@ -13,6 +13,7 @@ program test_arch_gravity
   use voussoir_assembly, only: assembly_t, build_arch
   use voussoir_model, only: model_t, solver_settings_t
   use voussoir_motion, only: motion_afd
+  use voussoir_contact_law, only: contact_law_t, pair_friction_t
   use voussoir_setup, only: init_model
   use voussoir_simulation, only: monitor_t, monitor_init, run_result_t, simulate
   use voussoir_assert, only: assert_true, assert_close, assert_summary
@@ -45,12 +46,13 @@ contains
     type(monitor_t) :: mon
     type(status_t) :: status
     type(solver_settings_t) :: s
+    type(pair_friction_t) :: no_pairs(0)
     call build_arch(embrace_deg, n, r_ext_m, thickness_m, arch)
     s%dt_s = 1.0e-3_dp
-    s%friction = 0.6_dp
     s%tol = tol
     s%max_iter = 20000
-    call init_model(arch, 2000.0_dp, 0.1_dp, s, model, status)
+    s%alert_m = 1.0e-3_dp
+    call init_model(arch, 2000.0_dp, 0.1_dp, s, contact_law_t(friction=0.6_dp, pairs=no_pairs), model, status)
     model%motion = motion_afd(1.0_dp, 0.0_dp, 1, 1, 1)
     call monitor_init(arch, model, 0.5_dp*thickness_m, 0.5_dp, 0.01_dp*thickness_m, mon)
     call simulate(model, mon, duration_s, 10, 0.0_dp, res, status)

@@ -1,6 +1,7 @@
 !> Single blocks against closed-form answers (shared/DESIGN.md):
 !> a block on an incline sticks when tan(slope) <= mu and otherwise slides with
-!> a = g (sin - mu cos); a block of half-width b and half-height h starts to rock at a
+!> a = g (sin - mu cos), also when mu is given to its joint alone (joint_friction) and
+!> every other contact is rougher; a block of half-width b and half-height h starts to rock at a
 !> horizontal acceleration g b / h; in free rocking its amplitudes follow Housner's exact
 !> recursion cos(alpha - th_k+1) - cos(alpha) = r^2 (cos(alpha - th_k) - cos(alpha)) with
 !> r = 1 - 1.5 sin^2(alpha), alpha = atan(b / h).
@@ -12,12 +13,16 @@ program test_block_physics
   use voussoir_model, only: model_t, model_step, solver_settings_t
   use voussoir_motion, only: motion_ramp
   use voussoir_setup, only: init_model
+  use voussoir_contact_law, only: contact_law_t, contact_law_init
   use voussoir_assert, only: assert_true, assert_close, assert_summary
   implicit none
 
   call incline(slope_deg=20.0_dp, mu=0.5_dp)
   call incline(slope_deg=35.0_dp, mu=0.5_dp)
   call incline(slope_deg=30.0_dp, mu=0.2_dp)
+  ! The same slope with a rough default (0.9, it would stick) and 0.2 on joint 0 only.
+  call incline(slope_deg=30.0_dp, mu=0.2_dp, default_mu=0.9_dp)
+  call incline(slope_deg=30.0_dp, mu=0.7_dp, default_mu=0.1_dp)
   call uplift(half_width_m=0.1_dp, half_height_m=0.5_dp)
   call uplift(half_width_m=0.15_dp, half_height_m=0.3_dp)
   call free_rocking()
@@ -39,7 +44,8 @@ contains
     end do
   end function block
 
-  !> An assembly of one free block on one driven ground polygon.
+  !> An assembly of one free block on one driven ground polygon, numbered as a one-voussoir
+  !> arch: joint 0 between the ground and the block (joint 1 the same pair).
   function two_bodies(free_block, ground) result(a)
     type(polygon_t), intent(in) :: free_block, ground
     type(assembly_t) :: a
@@ -47,19 +53,45 @@ contains
     a%polygon = [free_block, ground]
     a%driven = [.false., .true.]
     a%role = [role_voussoir, role_foundation]
+    a%n_voussoirs = 1
+    allocate (a%joint_bodies(2, 0:1))
+    a%joint_bodies(:, 0) = [2, 1]
+    a%joint_bodies(:, 1) = [1, 2]
   end function two_bodies
 
-  function settings(dt_s, mu) result(s)
-    real(dp), intent(in) :: dt_s, mu
+  function settings(dt_s) result(s)
+    real(dp), intent(in) :: dt_s
     type(solver_settings_t) :: s
     s%dt_s = dt_s
-    s%friction = mu
     s%tol = 1.0e-8_dp
     s%max_iter = 5000
+    s%alert_m = 1.0e-3_dp
   end function settings
 
-  subroutine incline(slope_deg, mu)
+  !> Friction `mu` everywhere, or `default_mu` everywhere but `mu` on joint 0.
+  function law(mu, default_mu) result(l)
+    real(dp), intent(in) :: mu
+    real(dp), intent(in), optional :: default_mu
+    type(contact_law_t) :: l
+    real(dp) :: joint_friction(0:1)
+    type(assembly_t) :: numbering
+    type(status_t) :: status
+    type(polygon_t) :: none
+    allocate (none%xy(2, 0))
+    numbering = two_bodies(none, none)
+    joint_friction = -1.0_dp
+    if (.not. present(default_mu)) then
+      call contact_law_init(mu, 0.0_dp, joint_friction, numbering, l, status)
+    else
+      joint_friction(0) = mu
+      call contact_law_init(default_mu, 0.0_dp, joint_friction, numbering, l, status)
+    end if
+    call assert_true(status%ok, 'contact law: '//trim(status%message))
+  end function law
+
+  subroutine incline(slope_deg, mu, default_mu)
     real(dp), intent(in) :: slope_deg, mu
+    real(dp), intent(in), optional :: default_mu   !! other contacts; mu then on joint 0 only
     type(model_t) :: model
     type(status_t) :: status
     type(polygon_t) :: ground
@@ -73,7 +105,7 @@ contains
                          length*cos(alpha), length*sin(alpha), 0.0_dp, 0.0_dp], [2, 4])
     along = [cos(alpha), sin(alpha)]
     call init_model(two_bodies(block(0.2_dp, 0.05_dp, 0.5_dp*length*along, alpha), ground), &
-                    2000.0_dp, 1.0_dp, settings(1.0e-3_dp, mu), model, status)
+                    2000.0_dp, 1.0_dp, settings(1.0e-3_dp), law(mu, default_mu), model, status)
     call assert_true(status%ok, 'incline model builds')
     start = model%bodies%q(1:2, 1)
     t_end = 1.0_dp
@@ -85,6 +117,7 @@ contains
     ! Distance travelled down the slope.
     s_m = -dot_product(model%bodies%q(1:2, 1) - start, along)
     write (label, '(a,f0.1,a,f0.2)') 'incline ', slope_deg, ' deg, mu ', mu
+    if (present(default_mu)) write (label, '(a,a,f0.2)') trim(label), ' on joint 0, elsewhere ', default_mu
     if (tan(alpha) <= mu) then
       call assert_true(abs(s_m) < 1.0e-6_dp, trim(label)//': block sticks')
     else
@@ -109,7 +142,7 @@ contains
 
     ground%xy = reshape([-2.0_dp, -0.5_dp, 2.0_dp, -0.5_dp, 2.0_dp, 0.0_dp, -2.0_dp, 0.0_dp], [2, 4])
     call init_model(two_bodies(block(half_width_m, half_height_m, [0.0_dp, 0.0_dp], 0.0_dp), ground), &
-                    2000.0_dp, 1.0_dp, settings(1.0e-3_dp, 0.9_dp), model, status)
+                    2000.0_dp, 1.0_dp, settings(1.0e-3_dp), law(0.9_dp), model, status)
     model%motion = motion_ramp(rate_m_s3)
     lambda_sim = -1.0_dp
     do k = 1, nint(2.0_dp*half_width_m/half_height_m*g_m_s2/rate_m_s3/model%solver%dt_s)
@@ -148,7 +181,7 @@ contains
     ground%xy = reshape([-2.0_dp, -0.5_dp, 2.0_dp, -0.5_dp, 2.0_dp, 0.0_dp, -2.0_dp, 0.0_dp], [2, 4])
     ! Tilted by theta0 about its left corner (-b, 0).
     call init_model(two_bodies(block(b, h, [-b + b*cos(theta0), b*sin(theta0)], theta0), ground), &
-                    2000.0_dp, 1.0_dp, settings(1.0e-4_dp, 0.8_dp), model, status)
+                    2000.0_dp, 1.0_dp, settings(1.0e-4_dp), law(0.8_dp), model, status)
     n_found = 0
     peak = 0.0_dp
     previous_sign = 1.0_dp

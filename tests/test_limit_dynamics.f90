@@ -43,6 +43,7 @@ program test_limit_dynamics
   use voussoir_assembly, only: assembly_t, build_arch
   use voussoir_model, only: model_t, solver_settings_t
   use voussoir_motion, only: motion_ramp, motion_afd
+  use voussoir_contact_law, only: contact_law_t, pair_friction_t
   use voussoir_setup, only: init_model
   use voussoir_simulation, only: monitor_t, monitor_init, run_result_t, simulate
   use voussoir_hinge_side, only: side_intrados, side_extrados
@@ -111,6 +112,7 @@ contains
     type(run_result_t) :: res
     type(status_t) :: status
     type(solver_settings_t) :: settings
+    type(pair_friction_t) :: no_pairs(0)
     character(len=80) :: name
     real(dp) :: lambda_g_m_s2, onset_m_s2, duration_s
     integer :: joints(4), sides(4), n_found, k, hinges(4), hinge_sides(4)
@@ -139,12 +141,11 @@ contains
     settings%dt_s = dt_s
     settings%tol = nlgs_tol
     settings%max_iter = 20000
-    settings%friction = friction
-    settings%contact_inset_m = inset_m
     settings%alert_m = 0.0_dp                 ! automatic
     ! A rare step stalls just above tol 1e-6; it is counted and bounded below.
     settings%allow_nonconvergence = .true.
-    call init_model(arch, density_kg_m3, width_m, settings, model, status)
+    call init_model(arch, density_kg_m3, width_m, settings, &
+                    contact_law_t(friction=friction, inset_m=inset_m, pairs=no_pairs), model, status)
     model%motion = motion_ramp(direction*ramp_rate_m_s3)
     call monitor_init(arch, model, 0.1_dp*thickness_m, 0.5_dp, hinge_gap_m, mon)
     duration_s = max_load_factor*lambda_g_m_s2/ramp_rate_m_s3
@@ -234,14 +235,14 @@ contains
     type(monitor_t) :: mon
     type(status_t) :: status
     type(solver_settings_t) :: settings
+    type(pair_friction_t) :: no_pairs(0)
     call build_arch(180.0_dp, 20, 1.0_dp, thickness_m, arch)
     settings%dt_s = dt_s
     settings%tol = 1.0e-4_dp
     settings%max_iter = 20000
-    settings%friction = friction
-    settings%contact_inset_m = inset_m
     settings%alert_m = 0.0_dp
-    call init_model(arch, density_kg_m3, width_m, settings, model, status)
+    call init_model(arch, density_kg_m3, width_m, settings, &
+                    contact_law_t(friction=friction, inset_m=inset_m, pairs=no_pairs), model, status)
     model%motion = motion_afd(1.0_dp, 0.0_dp, 1, 1, 1)   ! the table stays at rest
     call monitor_init(arch, model, 0.5_dp*thickness_m, 0.5_dp, 0.01_dp*thickness_m, mon)
     call simulate(model, mon, 6.0_dp, 100, 0.0_dp, res, status)
