@@ -24,6 +24,7 @@ module voussoir_sweep_master
   use voussoir_sweep_output, only: sweep_table_t, sweep_header_t, results_table, runs_table, table_init, &
                                    table_append, table_value, table_sort, table_row, table_set, write_sweep_file, &
                                    read_sweep_file, write_sweep_csv, csv_path_of
+  use voussoir_ordering, only: stable_order
   use voussoir_sweep_plan, only: sweep_plan_t, job_param_set, job_frequency_hz, job_amplitude_m, &
                                  job_run_config, job_cost, set_description
   use voussoir_sweep_comm, only: sweep_comm_t, comm_abort, comm_send, comm_poll, comm_recv, wall_s, nap, &
@@ -70,7 +71,6 @@ contains
     integer, intent(in) :: n_ranks
     type(master_t), intent(out) :: m
     type(status_t), intent(inout) :: status
-    type(sweep_table_t) :: by_cost
     logical :: exists
     integer :: job
     character(len=:), allocatable :: written_by
@@ -85,17 +85,11 @@ contains
     m%started = .false.
     m%outstanding = 0
     if (plan%mode == 'threshold') allocate (m%search(0:plan%n_jobs - 1))
-    ! Costliest first, ties by job index (the sort is stable).
-    call table_init(by_cost, ['minus_cost', 'job       '], [.false., .true.])
+    ! Costliest first, ties by job index (the order is stable).
     do job = 0, plan%n_jobs - 1
       m%cost(job) = job_cost(plan, job)
-      call table_append(by_cost, [-m%cost(job), real(job, dp)])
     end do
-    call table_sort(by_cost, ['minus_cost'])
-    allocate (m%order(plan%n_jobs))
-    do job = 1, plan%n_jobs
-      m%order(job) = nint(table_value(by_cost, 'job', job))
-    end do
+    m%order = stable_order(reshape(-m%cost, [1, plan%n_jobs])) - 1
     m%front = 1
     m%back = plan%n_jobs
 

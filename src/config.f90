@@ -10,15 +10,17 @@ module voussoir_config
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: lower, fmt_real, itoa
+  use voussoir_namelist_check, only: check_groups, check_names
   implicit none
   private
 
   public :: config_t, arch_config_t, motion_config_t, solver_config_t, output_config_t
   public :: config_entry_t, read_config, validate_config, config_entries, config_to_nml
-  public :: check_groups, resolve_path, fmt_real
+  public :: resolve_path, fmt_real, arch_rule, arch_rule_text
 
   integer, parameter :: path_len = 512
   integer, parameter :: max_joint = 255               !! highest joint index of joint_friction
+  integer, parameter :: max_voussoirs = 1000          !! beyond, a run or a limit analysis takes hours
   real(dp), parameter :: unset_friction = -huge(1.0_dp) !! a joint_friction entry left at the default
 
   !> &arch: the arch (or a polygon file) and its material.
@@ -138,6 +140,20 @@ contains
     friction = a%friction; contact_inset_m = a%contact_inset_m
     restrained_springings = a%restrained_springings; polygon_file = a%polygon_file
     joint_friction = a%joint_friction
+    call check_names(path, 'arch', [character(len=24) :: 'embrace_deg', 'n_voussoirs', 'r_ext_m', &
+      'thickness_m', 'width_m', 'density_kg_m3', 'friction', 'contact_inset_m', 'restrained_springings', &
+      'polygon_file', 'joint_friction'], status)
+    call check_names(path, 'motion', [character(len=24) :: 'waveform', 'frequency_hz', 'amplitude_m', &
+      'n_attack', 'n_full', 'n_decay', 'record_file', 'record_cutoff_hz', 'ramp_rate_m_s3', 'rest_s', &
+      'duration_s', 'table_gain', 'table_delay_s'], status)
+    call check_names(path, 'solver', [character(len=24) :: 'dt_s', 'theta', 'tol', 'max_iter', 'alert_m', &
+      'allow_nonconvergence'], status)
+    call check_names(path, 'output', [character(len=24) :: 'file', 'every', 'hinge_gap_m', 'collapse_drop_m', &
+      'collapse_rotation_rad', 'stop_after_collapse_s'], status)
+    if (.not. status%ok) then
+      close (unit)
+      return
+    end if
     read (unit, nml=arch, iostat=ios, iomsg=iomsg)
     if (.not. group_ok('arch')) return
     a = arch_config_t(embrace_deg, n_voussoirs, r_ext_m, thickness_m, width_m, density_kg_m3, &
@@ -221,50 +237,40 @@ contains
     end select
   end function group_variables
 
-  !> Fail if `path` has a namelist group not in `allowed` (names without '&').
-  subroutine check_groups(path, allowed, status)
-    character(len=*), intent(in) :: path
-    character(len=*), intent(in) :: allowed(:)
-    type(status_t), intent(inout) :: status
-    integer :: unit, ios, line_no, k, e
-    character(len=1024) :: line
-    character(len=512) :: iomsg, list
-    character(len=64) :: name
-    character(len=16) :: num
+  !> Whether `value` of the &arch variable `name` is in its own range (the range that
+  !> does not depend on other variables); the one rule for &arch and the sweep's lists.
+  pure logical function arch_rule(name, value)
+    character(len=*), intent(in) :: name
+    real(dp), intent(in) :: value
+    select case (name)
+    case ('embrace_deg')
+      arch_rule = value > 0.0_dp .and. value <= 180.0_dp
+    case ('n_voussoirs')
+      arch_rule = value >= 2.0_dp .and. value <= real(max_voussoirs, dp)
+    case ('thickness_m', 'r_ext_m', 'width_m', 'density_kg_m3')
+      arch_rule = value > 0.0_dp .and. value <= huge(1.0_dp)
+    case ('friction', 'contact_inset_m')
+      arch_rule = value >= 0.0_dp .and. value <= huge(1.0_dp)
+    case default
+      arch_rule = .false.
+    end select
+  end function arch_rule
 
-    open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
-    if (ios /= 0) then
-      call fail(status, trim(path)//': cannot open input: '//trim(iomsg))
-      return
-    end if
-    list = ''
-    do k = 1, size(allowed)
-      list = trim(list)//' &'//trim(allowed(k))
-    end do
-    line_no = 0
-    do
-      read (unit, '(a)', iostat=ios) line
-      if (ios /= 0) exit
-      line_no = line_no + 1
-      line = adjustl(line)
-      if (line(1:1) /= '&') cycle
-      e = scan(line(2:), ' ,/!'//achar(9))
-      if (e == 0) then
-        name = line(2:)
-      else
-        name = line(2:e)
-      end if
-      if (name == 'end' .or. len_trim(name) == 0) cycle
-      if (.not. any(allowed == lower(name))) then
-        write (num, '(i0)') line_no
-        call fail(status, trim(path)//':'//trim(num)//': unknown namelist group &'//trim(name)// &
-                  ' (allowed:'//trim(list)//')')
-        exit
-      end if
-    end do
-    close (unit)
-  end subroutine check_groups
-
+  !> The range `arch_rule` checks, as text for messages.
+  function arch_rule_text(name) result(text)
+    character(len=*), intent(in) :: name
+    character(len=:), allocatable :: text
+    select case (name)
+    case ('embrace_deg')
+      text = '0 < embrace_deg <= 180'
+    case ('n_voussoirs')
+      text = '2 <= n_voussoirs <= '//itoa(max_voussoirs)
+    case ('friction', 'contact_inset_m')
+      text = trim(name)//' >= 0 (finite)'
+    case default
+      text = trim(name)//' > 0 (finite)'
+    end select
+  end function arch_rule_text
 
   !> A file named in an input file: absolute, or relative to that input file's folder.
   function resolve_path(input_path, name) result(full)
@@ -291,9 +297,9 @@ contains
       a%restrained_springings = lower(a%restrained_springings)
       m%waveform = lower(m%waveform)
       if (len_trim(a%polygon_file) == 0) then
-        call need(a%embrace_deg > 0.0_dp .and. a%embrace_deg <= 180.0_dp, &
-          'arch', 'embrace_deg', a%embrace_deg, '0 < embrace_deg <= 180')
-        call need_int(a%n_voussoirs >= 2, 'arch', 'n_voussoirs', a%n_voussoirs, 'n_voussoirs >= 2')
+        call need_rule('embrace_deg', a%embrace_deg)
+        call need_int(arch_rule('n_voussoirs', real(a%n_voussoirs, dp)), 'arch', 'n_voussoirs', a%n_voussoirs, &
+                      arch_rule_text('n_voussoirs'))
         call need(a%r_ext_m > 0.0_dp, 'arch', 'r_ext_m', a%r_ext_m, 'r_ext_m > 0')
         call need(a%thickness_m > 0.0_dp .and. a%thickness_m < a%r_ext_m, &
           'arch', 'thickness_m', a%thickness_m, '0 < thickness_m < r_ext_m = '//fmt_real(a%r_ext_m))
@@ -311,12 +317,12 @@ contains
           call fail(status, f//": &arch polygon_file = '"//trim(a%polygon_file)//"': no such file")
           return
         end if
-        call need(a%thickness_m > 0.0_dp, 'arch', 'thickness_m', a%thickness_m, 'thickness_m > 0')
+        call need_rule('thickness_m', a%thickness_m)
       end if
       call need(a%width_m > 0.0_dp, 'arch', 'width_m', a%width_m, 'width_m > 0')
       call need(a%density_kg_m3 > 0.0_dp, &
           'arch', 'density_kg_m3', a%density_kg_m3, 'density_kg_m3 > 0')
-      call need(a%friction >= 0.0_dp, 'arch', 'friction', a%friction, 'friction >= 0')
+      call need_rule('friction', a%friction)
       do j = 0, max_joint
         if (a%joint_friction(j) == unset_friction) cycle
         call need(a%joint_friction(j) >= 0.0_dp .and. a%joint_friction(j) <= huge(1.0_dp), &
@@ -391,6 +397,12 @@ contains
       call fail(status, f//': &'//group//' '//name//' = '//fmt_real(value)// &
                 ' is outside the allowed range '//allowed)
     end subroutine need
+
+    subroutine need_rule(name, value)
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: value
+      call need(arch_rule(name, value), 'arch', name, value, arch_rule_text(name))
+    end subroutine need_rule
 
     subroutine need_int(good, group, name, value, allowed)
       logical, intent(in) :: good

@@ -5,6 +5,7 @@ module voussoir_limit_study
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
   use voussoir_config, only: config_t
+  use voussoir_namelist_check, only: check_names
   use voussoir_text, only: itoa, fmt_significant
   use voussoir_assembly, only: assembly_t, build_arch
   use voussoir_limit, only: limit_result_t, horizontal_capacity
@@ -44,6 +45,8 @@ contains
 
     minimum_thickness = opts%minimum_thickness
     inset_m = unset
+    call check_names(path, 'limit', [character(len=24) :: 'minimum_thickness', 'inset_m'], status)
+    if (.not. status%ok) return
     open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
     if (ios /= 0) then
       call fail(status, path//': cannot open input: '//trim(iomsg))

@@ -5,7 +5,8 @@ module voussoir_sweep_plan
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: lower, itoa, int_list, join_words, fmt_exact_list
   use voussoir_config, only: config_t, config_entry_t, config_entries, config_to_nml, validate_config, &
-                             fmt_real
+                             fmt_real, arch_rule, arch_rule_text
+  use voussoir_namelist_check, only: check_names
   use voussoir_threshold, only: threshold_settings_t, search_run_config
   implicit none
   private
@@ -64,7 +65,7 @@ contains
       friction_list, contact_inset_list_m
     type(threshold_settings_t) :: defaults
     real(dp) :: lists(max_list, n_kinds), f_max_hz
-    integer :: lengths(n_kinds), unit, ios, k, n_freq, n_amp
+    integer :: lengths(n_kinds), unit, ios, j, k, n_freq, n_amp
     character(len=512) :: iomsg
 
     mode = plan%mode
@@ -174,22 +175,13 @@ contains
       lengths(k) = list_length(lists(:, k), trim(list_names(k)))
     end do
     if (.not. status%ok) return
-    do k = 1, lengths(1)
-      call need(lists(k, 1) > 0.0_dp .and. lists(k, 1) <= 180.0_dp, 'embrace_list_deg', k, lists(k, 1), &
-                '0 < embrace_deg <= 180')
-    end do
-    do k = 1, lengths(2)
-      call need(n_voussoirs_list(k) >= 3 .and. n_voussoirs_list(k) <= 1000, 'n_voussoirs_list', k, lists(k, 2), &
-                '3 <= n_voussoirs <= 1000')
-    end do
-    do k = 1, lengths(3)
-      call need(lists(k, 3) > 0.0_dp, 'thickness_list_m', k, lists(k, 3), 'thickness_m > 0')
-    end do
-    do k = 1, lengths(4)
-      call need(lists(k, 4) >= 0.0_dp, 'friction_list', k, lists(k, 4), 'friction >= 0')
-    end do
-    do k = 1, lengths(5)
-      call need(lists(k, 5) >= 0.0_dp, 'contact_inset_list_m', k, lists(k, 5), 'contact_inset_m >= 0')
+    ! Each entry in the range &arch allows for that variable (config's one rule); what
+    ! depends on other variables is checked on each set's whole case below.
+    do j = 1, n_kinds
+      do k = 1, lengths(j)
+        call need(arch_rule(param_kinds(j), lists(k, j)), trim(list_names(j)), k, lists(k, j), &
+                  arch_rule_text(param_kinds(j)))
+      end do
     end do
     if (.not. status%ok) return
     if (len_trim(base%arch%polygon_file) > 0 .and. any(lengths(1:3) > 0)) then
@@ -383,88 +375,6 @@ contains
     end subroutine make_texts
 
   end subroutine read_sweep_plan
-
-  !> Fail on a variable of namelist group `group` in `path` that is not in `known`: the
-  !> compiler's own message for it names another variable.
-  subroutine check_names(path, group, known, status)
-    character(len=*), intent(in) :: path, group
-    character(len=*), intent(in) :: known(:)
-    type(status_t), intent(inout) :: status
-    character(len=1024) :: line
-    character(len=:), allocatable :: text, name
-    character(len=1) :: quote
-    integer :: unit, ios, i, j, k
-    logical :: inside
-
-    open (newunit=unit, file=path, status='old', action='read', iostat=ios)
-    if (ios /= 0) return   ! reported by the namelist read
-    text = ''
-    inside = .false.
-    quote = ' '
-    do
-      read (unit, '(a)', iostat=ios) line
-      if (ios /= 0) exit
-      if (.not. inside) then
-        line = adjustl(line)
-        if (lower(line(1:len(group) + 1)) /= '&'//group .or. &
-            verify(line(len(group) + 2:len(group) + 2), ' ,/!'//achar(9)) /= 0) cycle
-        inside = .true.
-        line = line(len(group) + 2:)
-      end if
-      ! Keep the group's text up to its closing '/', without comments and quoted text.
-      do i = 1, len_trim(line)
-        if (quote /= ' ') then
-          if (line(i:i) == quote) quote = ' '
-          cycle
-        end if
-        select case (line(i:i))
-        case ("'", '"')
-          quote = line(i:i)
-          text = text//' '
-        case ('!')
-          exit
-        case ('/')
-          inside = .false.
-          exit
-        case default
-          text = text//line(i:i)
-        end select
-      end do
-      if (.not. inside .and. len(text) > 0) exit
-      text = text//' '
-    end do
-    close (unit)
-    ! A name is the identifier before each '=' (after an optional (index)).
-    do k = 1, len(text)
-      if (text(k:k) /= '=') cycle
-      j = k - 1
-      do while (j > 0)
-        if (text(j:j) /= ' ') exit
-        j = j - 1
-      end do
-      if (j > 0) then
-        if (text(j:j) == ')') then
-          j = index(text(1:j), '(', back=.true.) - 1
-          do while (j > 0)
-            if (text(j:j) /= ' ') exit
-            j = j - 1
-          end do
-        end if
-      end if
-      i = j
-      do while (i > 0)
-        if (verify(lower(text(i:i)), 'abcdefghijklmnopqrstuvwxyz0123456789_') /= 0) exit
-        i = i - 1
-      end do
-      if (j <= i) cycle
-      name = lower(text(i + 1:j))
-      if (.not. any(known == name)) then
-        call fail(status, path//': &'//group//" has no variable '"//name//"' (known: "// &
-                  join_words(known)//')')
-        return
-      end if
-    end do
-  end subroutine check_names
 
   !> "name = value, ..." of parameter set `s` (0-based), or "base case".
   function set_description(plan, s) result(text)

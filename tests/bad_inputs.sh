@@ -28,7 +28,9 @@ case_ wrong_type        "&arch"                    "&arch n_voussoirs = 'many' /
 $o"
 case_ thick             "thickness_m = 0.6.*0 < thickness_m < r_ext_m" "&arch thickness_m = 0.6, r_ext_m = 0.5 /
 $o"
-case_ few_voussoirs     "n_voussoirs = 1 .*n_voussoirs >= 2" "&arch n_voussoirs = 1 /
+case_ few_voussoirs     "n_voussoirs = 1 .*2 <= n_voussoirs <= 1000" "&arch n_voussoirs = 1 /
+$o"
+case_ many_voussoirs    "n_voussoirs = 100000 .*2 <= n_voussoirs <= 1000" "&arch n_voussoirs = 100000 /
 $o"
 case_ embrace_big       "embrace_deg = 190.*0 < embrace_deg <= 180" "&arch embrace_deg = 190 /
 $o"

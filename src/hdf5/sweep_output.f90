@@ -9,6 +9,7 @@
 module voussoir_sweep_output
   use voussoir_kinds, only: dp
   use voussoir_text, only: itoa, fmt_exact
+  use voussoir_ordering, only: stable_order
   use voussoir_status, only: status_t, fail
   use voussoir_config, only: config_t, config_entries, config_to_nml
   use voussoir_h5, only: hid_t, h5_create, h5_commit, h5_open_ro, h5_close, h5_group, h5_group_close, h5_write, &
@@ -147,61 +148,16 @@ contains
   subroutine table_sort(t, keys)
     type(sweep_table_t), intent(inout) :: t
     character(len=*), intent(in) :: keys(:)
-    integer, allocatable :: order(:), tmp(:), key_col(:)
-    integer :: k, width, lo, mid, hi, i, j, m, n
+    integer, allocatable :: key_col(:)
+    integer :: k, n
     n = t%n_rows
     if (n < 2) return
     allocate (key_col(size(keys)))
     do k = 1, size(keys)
       key_col(k) = column_index(t, keys(k))
     end do
-    order = [(i, i=1, n)]
-    allocate (tmp(n))
-    ! Bottom-up merge sort of the row order.
-    width = 1
-    do while (width < n)
-      lo = 1
-      do while (lo <= n)
-        mid = min(lo + width - 1, n)
-        hi = min(lo + 2*width - 1, n)
-        i = lo
-        j = mid + 1
-        m = lo
-        do while (i <= mid .and. j <= hi)
-          if (before(order(j), order(i))) then
-            tmp(m) = order(j)
-            j = j + 1
-          else
-            tmp(m) = order(i)
-            i = i + 1
-          end if
-          m = m + 1
-        end do
-        tmp(m:m + mid - i) = order(i:mid)
-        m = m + mid - i + 1
-        tmp(m:m + hi - j) = order(j:hi)
-        order(lo:hi) = tmp(lo:hi)
-        lo = lo + 2*width
-      end do
-      width = 2*width
-    end do
-    t%values(:, 1:n) = t%values(:, order)
-  contains
-    !> Row a strictly before row b.
-    logical function before(a, b)
-      integer, intent(in) :: a, b
-      integer :: q
-      before = .false.
-      do q = 1, size(key_col)
-        if (key_col(q) == 0) cycle
-        if (t%values(key_col(q), a) < t%values(key_col(q), b)) then
-          before = .true.
-          return
-        else if (t%values(key_col(q), a) > t%values(key_col(q), b)) then
-          return
-        end if
-      end do
-    end function before
+    key_col = pack(key_col, key_col > 0)
+    t%values(:, 1:n) = t%values(:, stable_order(t%values(key_col, 1:n)))
   end subroutine table_sort
 
   !> Write the whole sweep file `path` through `path`.part. `runs` may have no columns

@@ -403,7 +403,7 @@ BAD = [
     ("grid_amp_neg", "&sweep mode = 'grid', frequencies_hz = 1, amplitudes_m = -0.01 /", r"amplitudes_m\(1\) = -0.01 is outside the allowed range amplitudes_m >= 0"),
     ("threshold_amp", "&sweep frequencies_hz = 1, amplitudes_m = 0.01 /", r"amplitudes_m is set but mode = 'threshold'"),
     ("friction", "&sweep frequencies_hz = 1, friction_list = 0.5, -0.1 /", r"friction_list\(2\) = -0.1 is outside the allowed range friction >= 0"),
-    ("n_voussoirs", "&sweep frequencies_hz = 1, n_voussoirs_list = 13, 2 /", r"n_voussoirs_list\(2\) = 2 is outside the allowed range 3 <= n_voussoirs"),
+    ("n_voussoirs", "&sweep frequencies_hz = 1, n_voussoirs_list = 13, 1 /", r"n_voussoirs_list\(2\) = 1 is outside the allowed range 2 <= n_voussoirs <= 1000"),
     ("paired", "&sweep frequencies_hz = 1, combine = 'paired', embrace_list_deg = 180, 156, n_voussoirs_list = 15 /", r"combine = 'paired' needs swept lists of equal length"),
     ("pair_freq", "&sweep frequencies_hz = 1, 2, pair_frequencies = .true. /", r"pair_frequencies = .true. needs one frequency per parameter set"),
     ("set_inset", "&sweep frequencies_hz = 1, thickness_list_m = 0.071, 0.02, contact_inset_list_m = 0.015 /", r"parameter set 1 \(thickness_m = 0.02, contact_inset_m = 0.015\): &arch contact_inset_m = 0.015 is outside the allowed range"),

@@ -1,0 +1,127 @@
+!> The sweep plan without MPI: namelist files written here are read into plans whose
+!> parameter sets, jobs and run configurations are checked against what the &sweep group
+!> says (docs/sweep.md: the first swept parameter varies slowest; a job is a parameter
+!> set x a frequency [x an amplitude]); bad groups are refused with the variable named.
+program test_sweep_plan
+  use voussoir_kinds, only: dp
+  use voussoir_status, only: status_t
+  use voussoir_config, only: config_t, read_config
+  use voussoir_sweep_plan, only: sweep_plan_t, read_sweep_plan, job_param_set, job_frequency_hz, &
+                                 job_amplitude_m, job_run_config
+  use voussoir_assert, only: assert_true, assert_close, assert_summary
+  implicit none
+
+  character(len=*), parameter :: base_groups = &
+    "&arch embrace_deg = 156, n_voussoirs = 13 /"//new_line('a')// &
+    "&motion waveform = 'afd', rest_s = 0.5 /"//new_line('a')// &
+    "&output file = 'plan.h5' /"//new_line('a')
+
+  call test_product()
+  call test_paired_with_frequencies()
+  call test_grid_jobs()
+  call test_refusals()
+  call assert_summary()
+
+contains
+
+  subroutine plan_of(name, sweep_group, plan, status)
+    character(len=*), intent(in) :: name, sweep_group
+    type(sweep_plan_t), intent(out) :: plan
+    type(status_t), intent(out) :: status
+    type(config_t) :: cfg
+    integer :: unit
+    open (newunit=unit, file=name//'.nml', status='replace', action='write')
+    write (unit, '(a)') base_groups//sweep_group
+    close (unit)
+    call read_config(name//'.nml', [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'sweep'], &
+                     cfg, status)
+    if (status%ok) call read_sweep_plan(name//'.nml', cfg, plan, status)
+  end subroutine plan_of
+
+  !> Two thicknesses x two frictions x two frequencies: 4 sets, 8 jobs.
+  subroutine test_product()
+    type(sweep_plan_t) :: plan
+    type(status_t) :: status
+    type(config_t) :: run
+    integer :: job, seen(0:3, 2)
+    call plan_of('product', "&sweep mode = 'threshold', frequencies_hz = 1.0, 2.0, "// &
+                 "friction_list = 0.4, 0.6, thickness_list_m = 0.071, 0.065 /", plan, status)
+    call assert_true(status%ok, 'product plan reads: '//trim(status%message))
+    if (.not. status%ok) return
+    call assert_true(plan%n_sets == 4 .and. plan%n_jobs == 8, 'product: 2 x 2 sets, x 2 frequencies = 8 jobs')
+    call assert_true(all(plan%param_names == [character(len=16) :: 'thickness_m', 'friction']), &
+                     'product: swept parameters in the column order of docs/sweep.md')
+    ! The first swept parameter (thickness) varies slowest.
+    call assert_close(plan%set_cfg(1)%arch%thickness_m, 0.071_dp, 'set 1 thickness [m]')
+    call assert_close(plan%set_cfg(1)%arch%friction, 0.6_dp, 'set 1 friction')
+    call assert_close(plan%set_cfg(2)%arch%thickness_m, 0.065_dp, 'set 2 thickness [m]')
+    call assert_close(plan%set_cfg(2)%arch%friction, 0.4_dp, 'set 2 friction')
+    call assert_close(plan%set_cfg(3)%arch%embrace_deg, 156.0_dp, 'unswept variables keep the base case')
+    seen = 0
+    do job = 0, plan%n_jobs - 1
+      seen(job_param_set(plan, job), nint(job_frequency_hz(plan, job))) = &
+        seen(job_param_set(plan, job), nint(job_frequency_hz(plan, job))) + 1
+    end do
+    call assert_true(all(seen == 1), 'product: every (set, frequency) is exactly one job')
+    run = job_run_config(plan, 5, 0.03_dp)
+    call assert_close(run%motion%amplitude_m, 0.03_dp, 'a run of a job has the amplitude asked [m]')
+    call assert_close(run%motion%frequency_hz, job_frequency_hz(plan, 5), 'and the frequency of its job [Hz]')
+    call assert_close(run%arch%friction, plan%set_cfg(job_param_set(plan, 5))%arch%friction, &
+                      'and the friction of its parameter set')
+  end subroutine test_product
+
+  !> Paired lists and one frequency per set: the seed arches each at its own frequency.
+  subroutine test_paired_with_frequencies()
+    type(sweep_plan_t) :: plan
+    type(status_t) :: status
+    call plan_of('paired', "&sweep frequencies_hz = 1.0, 1.25, combine = 'paired', pair_frequencies = .true., "// &
+                 "embrace_list_deg = 180, 156, n_voussoirs_list = 15, 13 /", plan, status)
+    call assert_true(status%ok, 'paired plan reads: '//trim(status%message))
+    if (.not. status%ok) return
+    call assert_true(plan%n_sets == 2 .and. plan%n_jobs == 2, 'paired: 2 sets, one frequency each')
+    call assert_true(plan%set_cfg(1)%arch%n_voussoirs == 13, 'paired: set 1 has the second entry of each list')
+    call assert_close(job_frequency_hz(plan, 1), 1.25_dp, 'paired: set 1 runs at the second frequency [Hz]')
+  end subroutine test_paired_with_frequencies
+
+  subroutine test_grid_jobs()
+    type(sweep_plan_t) :: plan
+    type(status_t) :: status
+    integer :: job, k
+    logical :: all_found
+    call plan_of('grid', "&sweep mode = 'grid', frequencies_hz = 1.0, 2.0, 3.0, amplitudes_m = 0.01, 0.02 /", &
+                 plan, status)
+    call assert_true(status%ok, 'grid plan reads: '//trim(status%message))
+    if (.not. status%ok) return
+    call assert_true(plan%n_jobs == 6, 'grid: 3 frequencies x 2 amplitudes = 6 jobs')
+    ! Key of a job: 1000 x amplitude [m] + frequency [Hz] (10, 20 + 1..3: all distinct).
+    all_found = .true.
+    do job = 0, plan%n_jobs - 1
+      all_found = all_found .and. count(abs([(job_amplitude_m(plan, k)*1000.0_dp + job_frequency_hz(plan, k), &
+                                              k = 0, plan%n_jobs - 1)] - (job_amplitude_m(plan, job)*1000.0_dp &
+                                              + job_frequency_hz(plan, job))) < 1.0e-9_dp) == 1
+    end do
+    call assert_true(all_found, 'grid: every (frequency, amplitude) is exactly one job')
+  end subroutine test_grid_jobs
+
+  subroutine test_refusals()
+    call refused('bad_n', '&sweep frequencies_hz = 1, n_voussoirs_list = 13, 1 /', &
+                 'n_voussoirs_list(2) = 1 is outside the allowed range 2 <= n_voussoirs <= 1000')
+    call refused('unknown', '&sweep frequencies_hz = 1, frequency_list = 2 /', "has no variable 'frequency_list'")
+    call refused('no_amp', "&sweep mode = 'grid', frequencies_hz = 1 /", "mode = 'grid' needs at least one amplitude")
+    call refused('fast', '&sweep frequencies_hz = 60 /', 'frequencies_hz(1) = 60 is outside the allowed range')
+    call refused('gap', '&sweep frequencies_hz = 1, friction_list(2) = 0.4 /', 'friction_list(1) is unset')
+    call refused('set', '&sweep frequencies_hz = 1, thickness_list_m = 0.6 /', &
+                 'parameter set 0 (thickness_m = 0.6): &arch thickness_m = 0.6 is outside the allowed range')
+  end subroutine test_refusals
+
+  subroutine refused(name, sweep_group, expected)
+    character(len=*), intent(in) :: name, sweep_group, expected
+    type(sweep_plan_t) :: plan
+    type(status_t) :: status
+    call plan_of(name, sweep_group, plan, status)
+    call assert_true(.not. status%ok .and. index(status%message, expected) > 0 .and. &
+                     index(status%message, name//'.nml') > 0, &
+                     'refused '//name//': got "'//trim(status%message)//'"')
+  end subroutine refused
+
+end program test_sweep_plan
