@@ -18,7 +18,6 @@ import csv
 import json
 import os
 import shutil
-import subprocess
 import sys
 from pathlib import Path
 
@@ -27,6 +26,7 @@ sys.path.insert(0, str(ROOT / "postproc"))
 
 from voussoir_post.campaign import measured_thresholds, read_campaign  # noqa: E402
 from voussoir_post.diagnosis import DiagnosisSettings, diagnose  # noqa: E402
+from voussoir_post.runner import Runner  # noqa: E402
 
 SEED = ROOT.parent / "shared" / "data" / "seed_2013"
 OUT = ROOT / "docs" / "seed_2013"
@@ -35,32 +35,16 @@ OUT = ROOT / "docs" / "seed_2013"
 def sweep_thresholds(spec, frequency_hz: float, inset_list_m: list[float], restrained: str, thickness_m: float,
                      work: Path, name: str, n_ranks: int, bin_dir: Path) -> list[float]:
     """Threshold [m] of one specimen at one frequency for each inset, by voussoir-sweep."""
-    nml = f"""&arch
-  embrace_deg = {spec.embrace_deg!r}, n_voussoirs = {spec.n_voussoirs}, r_ext_m = {spec.r_ext_m!r},
-  thickness_m = {thickness_m!r}, width_m = {spec.width_m!r}, density_kg_m3 = {spec.density_kg_m3!r},
-  friction = {spec.friction!r}, restrained_springings = '{restrained}'
-/
-&motion
-  waveform = 'afd', n_attack = 1, n_full = 1, n_decay = 1, rest_s = 1.0
-/
-&solver
-  allow_nonconvergence = .true.
-/
-&output
-  file = '{name}.h5'
-/
-&sweep
-  mode = 'threshold', frequencies_hz = {frequency_hz!r}, amp_tol_m = 2.5e-4, amp_max_m = 0.5,
-  progress_every_s = 1.0e9,
-  contact_inset_list_m = {', '.join(repr(x) for x in inset_list_m)}
-/
-"""
-    (work / f"{name}.nml").write_text(nml)
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    subprocess.run(["mpirun", "--oversubscribe", "-np", str(n_ranks), str(bin_dir / "voussoir-sweep"), f"{name}.nml"],
-                   cwd=work, check=True, capture_output=True, env=env)
-    with open(work / f"{name}.csv") as fh:
-        rows = [r for r in csv.DictReader(line for line in fh if not line.startswith("#"))]
+    groups = {"arch": {"embrace_deg": float(spec.embrace_deg), "n_voussoirs": spec.n_voussoirs,
+                       "r_ext_m": float(spec.r_ext_m), "thickness_m": float(thickness_m),
+                       "width_m": float(spec.width_m), "density_kg_m3": float(spec.density_kg_m3),
+                       "friction": float(spec.friction), "restrained_springings": restrained},
+              "motion": {"waveform": "afd", "n_attack": 1, "n_full": 1, "n_decay": 1, "rest_s": 1.0},
+              "solver": {"allow_nonconvergence": True},
+              "sweep": {"mode": "threshold", "frequencies_hz": float(frequency_hz), "amp_tol_m": 2.5e-4,
+                        "amp_max_m": 0.5, "progress_every_s": 1.0e9,
+                        "contact_inset_list_m": [float(x) for x in inset_list_m]}}
+    _, rows = Runner(bin_dir, work, n_ranks=n_ranks).run_sweep(groups, name, reuse=False)
     rows.sort(key=lambda r: int(r["param_set"]))
     return [float(r["threshold_m"]) for r in rows]
 

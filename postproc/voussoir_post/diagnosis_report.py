@@ -7,23 +7,16 @@ from pathlib import Path
 
 import numpy as np
 
+from .actuator import afd_command
 from .drawing import new_figure, save_png
+from .effects import EFFECTS_BY_ID, Variant
+from .selection import mean_error
 
 __all__ = ["write_report"]
 
 
 def _pct(x: float | None) -> str:
     return "-" if x is None or not math.isfinite(x) else f"{100 * x:.1f} %"
-
-
-def _value_text(c) -> str:
-    if c.effect == "contact_edges":
-        return f"inset {1e3 * float(c.value):.1f} mm ({1e3 * float(c.low):.1f} to {1e3 * float(c.high):.1f})"
-    if c.effect == "friction":
-        return f"friction {float(c.value):.3f} ({float(c.low):.3f} to {float(c.high):.3f})"
-    if c.effect == "base_restraint":
-        return f"restrained: {c.value}"
-    return f"gain {float(c.value):.3f} ({float(c.low):.3f} to {float(c.high):.3f})"
 
 
 def _md_table(headers, rows) -> str:
@@ -33,7 +26,6 @@ def _md_table(headers, rows) -> str:
 
 
 def _figure_thresholds(out: Path, pairs, cands, decision) -> str:
-    from .diagnosis import Variant
     fig = new_figure(max(6.0, 1.1 * len(pairs) + 2), 4.2)
     ax = fig.subplots()
     x = np.arange(len(pairs))
@@ -58,14 +50,13 @@ def _figure_thresholds(out: Path, pairs, cands, decision) -> str:
 
 
 def _figure_candidates(out: Path, pairs, cands, settings) -> str:
-    from .diagnosis import _candidate_values, _mean_error
-    fig = new_figure(12.0, 3.6)
-    axes = fig.subplots(1, 3)
-    specs = [("contact_edges", 1e3, "contact inset [mm]"), ("friction", 1.0, "friction coefficient"),
-             ("table_motion", 1.0, "table gain (measured / commanded)")]
-    for ax, (effect, scale, label) in zip(axes, specs):
-        values = _candidate_values(effect, pairs, settings)
-        err = [100 * _mean_error(pairs, effect, v) for v in values]
+    drawn = sorted((e for e in EFFECTS_BY_ID.values() if e.figure_axis is not None), key=lambda e: e.figure_axis[0])
+    fig = new_figure(4.0 * len(drawn), 3.6)
+    axes = fig.subplots(1, len(drawn))
+    for ax, e in zip(axes, drawn):
+        effect, (_, scale, label) = e.id, e.figure_axis
+        values = e.candidate_values(pairs, settings)
+        err = [100 * mean_error(pairs, effect, v) for v in values]
         ax.plot(np.array(values, float) * scale, err, "-", color="tab:blue")
         c = cands[effect]
         ax.axvline(float(c.value) * scale, color="tab:green", ls="--", label="fitted")
@@ -82,7 +73,6 @@ def _figure_candidates(out: Path, pairs, cands, settings) -> str:
 def _figure_table(out: Path, campaign, table) -> str | None:
     if table.source != "records" or not table.per_test:
         return None
-    from .diagnosis import afd_command
     tid = max(table.per_test, key=lambda r: campaign.tests[r[0]].amplitude_m)[0]
     rec = campaign.records[tid]
     test = campaign.tests[tid]
@@ -110,7 +100,6 @@ def _figure_table(out: Path, campaign, table) -> str | None:
 
 def write_report(out: Path, campaign, pairs, cands, decision, table, baseline_error, resolution, result, info
                  ) -> None:
-    from .diagnosis import Variant
     figs = [_figure_thresholds(out, pairs, cands, decision), _figure_candidates(out, pairs, cands, info["settings"])]
     tfig = _figure_table(out, campaign, table)
     lines = [f"# Diagnosis of campaign `{campaign.name}`", "",
@@ -139,7 +128,7 @@ def write_report(out: Path, campaign, pairs, cands, decision, table, baseline_er
               "Each effect's parameter is fitted on all specimens but one and judged on the one left out "
               "(leave-one-specimen-out; leave-one-pair-out with a single specimen).", "",
               _md_table(["effect", "held-out error", "in-sample error", "fitted", "hinge match", "status"],
-                        [(e, _pct(c.cv_error), _pct(c.in_sample_error), _value_text(c),
+                        [(e, _pct(c.cv_error), _pct(c.in_sample_error), EFFECTS_BY_ID[c.effect].value_text(c),
                           _pct(c.hinge_match) if c.hinge_match is not None else "-",
                           "admissible" if c.admissible else f"excluded: {c.reason}") for e, c in cands.items()]),
               "", f"![candidates]({figs[1]})", ""]

@@ -77,8 +77,8 @@ class Runner:
     timeout_s: float | None = None
 
     def __post_init__(self):
-        self.bin_dir = Path(self.bin_dir)
-        self.work_dir = Path(self.work_dir)
+        self.bin_dir = Path(self.bin_dir).resolve()  # the programs run in the work folder
+        self.work_dir = Path(self.work_dir).resolve()
         self.work_dir.mkdir(parents=True, exist_ok=True)
         self.n_runs = 0  #: executables started
         self.reused = 0  #: results found already made from the same input

@@ -14,16 +14,16 @@ Used by the diagnosis tests; also a tool for planning a campaign.
 
 from __future__ import annotations
 
-import json
 import math
 import os
-import subprocess
 import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
-import h5py
 import numpy as np
+
+from .results import RunResult
+from .runner import Runner
 
 __all__ = ["SyntheticSpecimen", "Truth", "write_synthetic_campaign", "SEED_LIKE_SPECIMENS"]
 
@@ -72,39 +72,27 @@ class _Noise:
     sample_hz: float = 200.0
 
 
-def _nml(spec: SyntheticSpecimen, truth: Truth, frequency_hz: float, amplitude_m: float,
-         gain: float, file: str, dt_s: float) -> str:
+def _groups(spec: SyntheticSpecimen, truth: Truth, frequency_hz: float, amplitude_m: float,
+            gain: float, dt_s: float) -> dict:
     friction = spec.friction if truth.friction is None else truth.friction
-    every = max(1, int(round(1.0 / (200.0 * dt_s))))
-    return f"""&arch
-  embrace_deg = {spec.embrace_deg}, n_voussoirs = {spec.n_voussoirs}, r_ext_m = {spec.r_ext_m},
-  thickness_m = {spec.thickness_m}, width_m = {spec.width_m}, density_kg_m3 = {spec.density_kg_m3},
-  friction = {friction}, contact_inset_m = {truth.inset_m},
-  restrained_springings = '{truth.restrained_springings}'
-/
-&motion
-  waveform = 'afd', frequency_hz = {frequency_hz}, amplitude_m = {amplitude_m},
-  n_attack = 1, n_full = 1, n_decay = 1, rest_s = 1.0,
-  table_gain = {gain}, table_delay_s = {truth.delay_s}
-/
-&solver
-  dt_s = {dt_s}, allow_nonconvergence = .true.
-/
-&output
-  file = '{file}', every = {every}, stop_after_collapse_s = 0.3
-/
-"""
+    return {"arch": {"embrace_deg": float(spec.embrace_deg), "n_voussoirs": spec.n_voussoirs,
+                     "r_ext_m": float(spec.r_ext_m), "thickness_m": float(spec.thickness_m),
+                     "width_m": float(spec.width_m), "density_kg_m3": float(spec.density_kg_m3),
+                     "friction": float(friction), "contact_inset_m": float(truth.inset_m),
+                     "restrained_springings": truth.restrained_springings},
+            "motion": {"waveform": "afd", "frequency_hz": float(frequency_hz), "amplitude_m": float(amplitude_m),
+                       "n_attack": 1, "n_full": 1, "n_decay": 1, "rest_s": 1.0, "table_gain": float(gain),
+                       "table_delay_s": float(truth.delay_s)},
+            "solver": {"dt_s": float(dt_s), "allow_nonconvergence": True},
+            "output": {"every": max(1, int(round(1.0 / (200.0 * dt_s)))), "stop_after_collapse_s": 0.3}}
 
 
-def _static_onset_m(bin_dir: Path, spec: SyntheticSpecimen, frequency_hz: float, work: Path) -> float:
+def _static_onset_m(runner: Runner, spec: SyntheticSpecimen, frequency_hz: float) -> float:
     """Amplitude whose peak acceleration equals the nominal arch's static capacity."""
-    path = work / f"limit_{spec.specimen_id}.nml"
-    path.write_text(f"&arch embrace_deg = {spec.embrace_deg}, n_voussoirs = {spec.n_voussoirs}, "
-                    f"r_ext_m = {spec.r_ext_m}, thickness_m = {spec.thickness_m} /\n")
-    out = subprocess.run([str(bin_dir / "voussoir-limit"), str(path), "--json"], capture_output=True,
-                         text=True, check=True)
-    lam = json.loads(out.stdout)["lambda_pos"]
-    return lam * 9.81 / (2.0 * math.pi * frequency_hz) ** 2
+    limit = runner.run_limit({"arch": {"embrace_deg": float(spec.embrace_deg), "n_voussoirs": spec.n_voussoirs,
+                                       "r_ext_m": float(spec.r_ext_m), "thickness_m": float(spec.thickness_m)}},
+                             f"limit_{spec.specimen_id}")
+    return limit.lambda_pos * 9.81 / (2.0 * math.pi * frequency_hz) ** 2
 
 
 def _butter_filtfilt(x: np.ndarray, cutoff_hz: float, fs_hz: float) -> np.ndarray:
@@ -147,24 +135,20 @@ def write_synthetic_campaign(folder: str | os.PathLike, truth: Truth, bin_dir: s
     summary = {}
     spec_rows, test_rows = [], []
     with tempfile.TemporaryDirectory() as tmp:
-        work = Path(tmp)
+        runner = Runner(bin_dir, Path(tmp))
         for spec in specimens:
             spec_rows.append(f"{spec.specimen_id},{spec.embrace_deg:g},{spec.n_voussoirs},{spec.r_ext_m:g},"
                              f"{spec.thickness_m:g},{spec.width_m:g},{spec.density_kg_m3:g},{spec.friction:g}")
             for f in spec.frequencies_hz:
-                onset = _static_onset_m(bin_dir, spec, f, work)
+                onset = _static_onset_m(runner, spec, f)
                 step = max(5e-4, round(step_fraction * onset / 5e-4) * 5e-4)
                 amp = max(step, round(start_fraction * onset / 5e-4) * 5e-4)
                 n_written = 0
                 for k in range(max_steps):
                     test_id = f"{spec.specimen_id}_f{f:g}_A{1e3 * amp:.1f}"
                     gain = truth.accel_gain * (1.0 + noise.test_gain_sd * rng.standard_normal())
-                    h5 = work / f"{test_id}.h5"
-                    nml = work / f"{test_id}.nml"
-                    nml.write_text(_nml(spec, truth, f, amp, gain, str(h5), dt_s))
-                    subprocess.run([str(bin_dir / "voussoir-run"), str(nml)], capture_output=True, text=True,
-                                   check=True)
-                    row = _write_test(folder, spec, test_id, f, amp, h5, rng, noise, records, hinges)
+                    run = runner.run_single(_groups(spec, truth, f, amp, gain, dt_s), test_id, keep=False)
+                    row = _write_test(folder, spec, test_id, f, amp, run, rng, noise, records, hinges)
                     test_rows.append(row)
                     n_written += 1
                     if row.split(",")[8] == "collapse":
@@ -184,18 +168,11 @@ def write_synthetic_campaign(folder: str | os.PathLike, truth: Truth, bin_dir: s
     return summary
 
 
-def _write_test(folder: Path, spec: SyntheticSpecimen, test_id: str, f: float, amp: float, h5: Path,
+def _write_test(folder: Path, spec: SyntheticSpecimen, test_id: str, f: float, amp: float, run: RunResult,
                 rng, noise: _Noise, records: bool, hinges: bool) -> str:
-    with h5py.File(h5, "r") as run:
-        collapsed = bool(run["result"].attrs["collapsed"])
-        t_collapse = float(run["result"].attrs["collapse_time_s"])
-        t = run["time_s"][:]
-        table = run["table/x_m"][:]
-        crown_dx = run["crown/dx_m"][:]
-        crown_dy = run["crown/dy_m"][:]
-        h_t = run["hinges/time_s"][:]
-        h_j = run["hinges/joint"][:]
-        h_s = run["hinges/side"][:]
+    collapsed, t_collapse = run.collapsed, run.collapse_time_s
+    t, table, crown_dx, crown_dy = run.time_s, run.table_x_m, run.crown_dx_m, run.crown_dy_m
+    h_t, h_j, h_s = run.hinge_time_s, run.hinge_joint, run.hinge_side
     fs = noise.sample_hz
     ts = np.arange(0.0, t[-1] + 1e-9, 1.0 / fs)
     x = np.interp(ts, t, table) + noise.record_sd_m * rng.standard_normal(ts.size)
@@ -215,7 +192,7 @@ def _write_test(folder: Path, spec: SyntheticSpecimen, test_id: str, f: float, a
         for tt, j, s in zip(h_t, h_j, h_s):
             if tt <= end:
                 rows.append(f"{max(0.0, tt + noise.hinge_time_sd_s * rng.standard_normal()):.3f},{int(j)},"
-                            f"{'intrados' if s == 0 else 'extrados'}")
+                            f"{run.hinge_side_names[int(s)]}")
         if len(rows) > 1:
             (folder / "hinges" / f"{test_id}.csv").write_text("\n".join(rows) + "\n")
     outcome = "collapse" if collapsed else "stand"

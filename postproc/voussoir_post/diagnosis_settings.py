@@ -1,0 +1,24 @@
+"""How the diagnosis simulates and judges: its settings, with the project's defaults."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+
+__all__ = ["DiagnosisSettings"]
+
+
+@dataclass
+class DiagnosisSettings:
+    """How the diagnosis simulates; the defaults are the project's defaults."""
+
+    bin_dir: Path
+    n_ranks: int = 2
+    dt_s: float = 1.0e-3
+    amp_tol_fraction: float = 0.005  #: threshold search tolerance, fraction of the threshold
+    inset_grid_m: tuple[float, ...] = (0.0005, 0.001, 0.002, 0.003, 0.004, 0.005, 0.006, 0.008, 0.010)
+    friction_steps: tuple[float, ...] = (0.05, 0.10, 0.15, 0.20, 0.25)  #: below nominal
+    min_friction: float = 0.15
+    default_resolution: float = 0.05  #: relative resolution when a pair has no stand row below
+    model_floor: float = 0.03  #: relative scatter of a threshold beyond the bracket (table scatter, dynamics)
+    log: object = print
