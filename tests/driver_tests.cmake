@@ -4,7 +4,7 @@ foreach(input ${INPUT_FILES})
   get_filename_component(name ${input} NAME_WE)
   add_test(NAME input_${name}
            COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/run_input.sh ${input}
-                   ${CMAKE_BINARY_DIR}/drivers ${CMAKE_CURRENT_BINARY_DIR}/inputs/${name})
+                   ${CMAKE_BINARY_DIR}/drivers ${CMAKE_CURRENT_BINARY_DIR}/inputs/${name} ${Python3_EXECUTABLE})
   if(name MATCHES "^sweep_")
     set_tests_properties(input_${name} PROPERTIES PROCESSORS 2)
   endif()
