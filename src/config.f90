@@ -41,17 +41,20 @@ module voussoir_config
 
   !> &motion: the base motion.
   type :: motion_config_t
-    character(len=16) :: waveform = 'afd'     !! afd, ramp or record
+    character(len=16) :: waveform = 'afd'     !! afd, ramp, record or accelerogram
     real(dp) :: frequency_hz = 1.25_dp
     real(dp) :: amplitude_m = 0.046_dp        !! commanded amplitude of the full cycles
     integer :: n_attack = 1, n_full = 1, n_decay = 1
-    character(len=path_len) :: record_file = ''  !! CSV with t_s, table_x_m
+    !> record: CSV with t_s, table_x_m; accelerogram: PEER .AT2 (g) or CSV with t_s, accel_m_s2
+    character(len=path_len) :: record_file = ''
     real(dp) :: record_cutoff_hz = 20.0_dp    !! low-pass cut-off of the record
     real(dp) :: ramp_rate_m_s3 = 0.1_dp       !! growth of the ramp's load acceleration
-    real(dp) :: rest_s = 1.0_dp               !! simulated time after the motion ends
+    !> simulated time after the motion ends; accelerogram: time at rest before its first sample
+    real(dp) :: rest_s = 1.0_dp
     real(dp) :: duration_s = 0.0_dp           !! total simulated time; 0: motion + rest
     real(dp) :: table_gain = 1.0_dp           !! actuator model: table / commanded amplitude
     real(dp) :: table_delay_s = 0.0_dp        !! actuator model: lag of the table [s]
+    real(dp) :: record_scale = 1.0_dp         !! accelerogram: factor on the acceleration
   end type motion_config_t
 
   !> &solver: time stepping and contact solve.
@@ -113,7 +116,7 @@ contains
     character(len=16) :: restrained_springings, waveform
     character(len=path_len) :: polygon_file, record_file, file
     real(dp) :: frequency_hz, amplitude_m, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s, &
-                table_gain, table_delay_s
+                table_gain, table_delay_s, record_scale
     integer :: n_attack, n_full, n_decay, max_iter, every
     real(dp) :: dt_s, theta, tol, alert_m, hinge_gap_m, collapse_drop_m, collapse_rotation_rad, &
                 stop_after_collapse_s
@@ -121,7 +124,8 @@ contains
     namelist /arch/ embrace_deg, n_voussoirs, r_ext_m, thickness_m, width_m, density_kg_m3, &
       friction, contact_inset_m, restrained_springings, polygon_file, joint_friction
     namelist /motion/ waveform, frequency_hz, amplitude_m, n_attack, n_full, n_decay, &
-      record_file, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s, table_gain, table_delay_s
+      record_file, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s, table_gain, table_delay_s, &
+      record_scale
     namelist /solver/ dt_s, theta, tol, max_iter, alert_m, allow_nonconvergence
     namelist /output/ file, every, hinge_gap_m, collapse_drop_m, collapse_rotation_rad, &
       stop_after_collapse_s
@@ -145,7 +149,7 @@ contains
       'polygon_file', 'joint_friction'], status)
     call check_names(path, 'motion', [character(len=24) :: 'waveform', 'frequency_hz', 'amplitude_m', &
       'n_attack', 'n_full', 'n_decay', 'record_file', 'record_cutoff_hz', 'ramp_rate_m_s3', 'rest_s', &
-      'duration_s', 'table_gain', 'table_delay_s'], status)
+      'duration_s', 'table_gain', 'table_delay_s', 'record_scale'], status)
     call check_names(path, 'solver', [character(len=24) :: 'dt_s', 'theta', 'tol', 'max_iter', 'alert_m', &
       'allow_nonconvergence'], status)
     call check_names(path, 'output', [character(len=24) :: 'file', 'every', 'hinge_gap_m', 'collapse_drop_m', &
@@ -163,12 +167,13 @@ contains
     n_attack = m%n_attack; n_full = m%n_full; n_decay = m%n_decay; record_file = m%record_file
     record_cutoff_hz = m%record_cutoff_hz; ramp_rate_m_s3 = m%ramp_rate_m_s3; rest_s = m%rest_s
     duration_s = m%duration_s; table_gain = m%table_gain; table_delay_s = m%table_delay_s
+    record_scale = m%record_scale
     rewind (unit)
     read (unit, nml=motion, iostat=ios, iomsg=iomsg)
     if (.not. group_ok('motion')) return
     m = motion_config_t(waveform, frequency_hz, amplitude_m, n_attack, n_full, n_decay, &
                         record_file, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s, &
-                        table_gain, table_delay_s)
+                        table_gain, table_delay_s, record_scale)
 
     dt_s = s%dt_s; theta = s%theta; tol = s%tol; max_iter = s%max_iter; alert_m = s%alert_m
     allow_nonconvergence = s%allow_nonconvergence
@@ -224,8 +229,9 @@ contains
              "restrained_springings ('none'|'left'|'right'|'both'), polygon_file (text), "// &
              'joint_friction(j) (real, the friction of joint j = 0..n_voussoirs)'
     case ('motion')
-      text = "waveform ('afd'|'ramp'|'record'), frequency_hz (real), amplitude_m (real), n_attack, n_full, "// &
-             'n_decay (integer), record_file (text), record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s, '// &
+      text = "waveform ('afd'|'ramp'|'record'|'accelerogram'), frequency_hz (real), amplitude_m (real), "// &
+             'n_attack, n_full, n_decay (integer), record_file (text), record_cutoff_hz, record_scale, '// &
+             'ramp_rate_m_s3, rest_s, duration_s, '// &
              'table_gain, table_delay_s (real)'
     case ('solver')
       text = 'dt_s, theta, tol (real), max_iter (integer), alert_m (real, m), allow_nonconvergence (logical)'
@@ -362,8 +368,22 @@ contains
         end if
         call need(m%record_cutoff_hz >= 0.0_dp, &
           'motion', 'record_cutoff_hz', m%record_cutoff_hz, 'record_cutoff_hz >= 0 (0: no filter)')
+      case ('accelerogram')
+        if (len_trim(m%record_file) == 0) then
+          call fail(status, f//": &motion record_file is empty: waveform = 'accelerogram' needs a PEER .AT2 "// &
+                    'file or a CSV with columns t_s, accel_m_s2')
+          return
+        end if
+        inquire (file=m%record_file, exist=exists)
+        if (.not. exists) then
+          call fail(status, f//": &motion record_file = '"//trim(m%record_file)//"': no such file")
+          return
+        end if
+        call need(m%record_scale > 0.0_dp .and. m%record_scale <= huge(1.0_dp), &
+          'motion', 'record_scale', m%record_scale, 'record_scale > 0 (finite)')
       case default
-        call fail(status, f//": &motion waveform = '"//trim(m%waveform)//"' is not one of 'afd', 'ramp', 'record'")
+        call fail(status, f//": &motion waveform = '"//trim(m%waveform)// &
+                  "' is not one of 'afd', 'ramp', 'record', 'accelerogram'")
         return
       end select
       call need(m%rest_s >= 0.0_dp, 'motion', 'rest_s', m%rest_s, 'rest_s >= 0')
@@ -451,6 +471,7 @@ contains
       call r('motion', 'duration_s', m%duration_s)
       call r('motion', 'table_gain', m%table_gain)
       call r('motion', 'table_delay_s', m%table_delay_s)
+      call r('motion', 'record_scale', m%record_scale)
       call r('solver', 'dt_s', s%dt_s)
       call r('solver', 'theta', s%theta)
       call r('solver', 'tol', s%tol)

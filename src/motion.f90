@@ -6,16 +6,23 @@
 !> Butterworth), velocity and acceleration by central differences of the filtered record.
 !> `ramp`: no table motion; an inertial horizontal load whose acceleration grows at a
 !> constant rate (the quasi-static capacity test, in the frame of the table).
+!> `accelerogram`: a ground-motion record drives the table by its acceleration, linear
+!> between samples, after a time at rest; velocity and displacement are its exact
+!> integrals (piecewise quadratic and cubic), and after the last sample the table keeps
+!> its final velocity (the exact integral of a zero acceleration).
 module voussoir_motion
   use voussoir_kinds, only: dp, pi
   use voussoir_status, only: status_t, fail
+  use voussoir_numeric_csv, only: read_csv_columns
+  use voussoir_ground_record, only: record_intensity_t, record_intensity, integrate_linear_accel
   implicit none
   private
 
-  public :: motion_t, motion_afd, motion_ramp, motion_record, motion_eval, motion_duration_s
-  public :: waveform_afd, waveform_ramp, waveform_record
+  public :: motion_t, motion_afd, motion_ramp, motion_record, motion_accelerogram, motion_eval
+  public :: motion_duration_s
+  public :: waveform_afd, waveform_ramp, waveform_record, waveform_accelerogram
 
-  integer, parameter :: waveform_afd = 1, waveform_ramp = 2, waveform_record = 3
+  integer, parameter :: waveform_afd = 1, waveform_ramp = 2, waveform_record = 3, waveform_accelerogram = 4
 
   !> A table motion, ready to evaluate at any time.
   type :: motion_t
@@ -26,9 +33,13 @@ module voussoir_motion
     real(dp) :: ramp_rate_m_s3 = 0.0_dp  !! d(load acceleration)/dt, towards +x if > 0
     real(dp) :: gain = 1.0_dp            !! actuator model: table / command amplitude
     real(dp) :: delay_s = 0.0_dp         !! actuator model: lag of the table [s]
-    ! Record: filtered samples.
+    ! Record (filtered samples) or accelerogram (samples and their exact integrals).
     real(dp) :: dt_record_s = 0.0_dp
     real(dp), allocatable :: x_m(:), v_m_s(:), a_m_s2(:)
+    real(dp) :: start_s = 0.0_dp                 !! accelerogram: time of its first sample
+    type(record_intensity_t) :: intensity        !! accelerogram: of the acceleration as played
+    character(len=512) :: record_name = ''        !! accelerogram: its file name without extension
+    character(len=512) :: record_description = '' !! accelerogram: event and station, if the file says
   end type motion_t
 
 contains
@@ -58,6 +69,20 @@ contains
     m%ramp_rate_m_s3 = ramp_rate_m_s3
   end function motion_ramp
 
+  !> The table driven by the acceleration samples `accel_m_s2` (already scaled), `dt_s`
+  !> apart, the first one at `start_s` after a rest.
+  pure function motion_accelerogram(accel_m_s2, dt_s, start_s) result(m)
+    real(dp), intent(in) :: accel_m_s2(:), dt_s, start_s
+    type(motion_t) :: m
+    m%waveform = waveform_accelerogram
+    m%dt_record_s = dt_s
+    m%start_s = start_s
+    allocate (m%a_m_s2, source=accel_m_s2)
+    allocate (m%v_m_s(size(accel_m_s2)), m%x_m(size(accel_m_s2)))
+    call integrate_linear_accel(m%a_m_s2, dt_s, m%v_m_s, m%x_m)
+    m%intensity = record_intensity(m%a_m_s2, dt_s)
+  end function motion_accelerogram
+
   !> Length [s] of the motion itself (0 for the ramp, which has no end).
   pure real(dp) function motion_duration_s(m)
     type(motion_t), intent(in) :: m
@@ -66,6 +91,8 @@ contains
       motion_duration_s = m%t_attack_s + m%t_full_s + m%t_decay_s + m%delay_s
     case (waveform_record)
       motion_duration_s = (size(m%x_m) - 1)*m%dt_record_s
+    case (waveform_accelerogram)
+      motion_duration_s = m%start_s + (size(m%a_m_s2) - 1)*m%dt_record_s
     case default
       motion_duration_s = 0.0_dp
     end select
@@ -77,8 +104,8 @@ contains
     type(motion_t), intent(in) :: m
     real(dp), intent(in) :: t_s
     real(dp), intent(out) :: x, v, a
-    real(dp) :: e, de, d2e, w, s, c, tau, f, t
-    integer :: i
+    real(dp) :: e, de, d2e, w, s, c, tau, f, t, slope
+    integer :: i, n
 
     x = 0.0_dp
     v = 0.0_dp
@@ -128,6 +155,23 @@ contains
       x = (1.0_dp - f)*m%x_m(i) + f*m%x_m(i + 1)
       v = (1.0_dp - f)*m%v_m_s(i) + f*m%v_m_s(i + 1)
       a = (1.0_dp - f)*m%a_m_s2(i) + f*m%a_m_s2(i + 1)
+    case (waveform_accelerogram)
+      t = t_s - m%start_s
+      if (t < 0.0_dp) return
+      n = size(m%a_m_s2)
+      i = min(int(t/m%dt_record_s) + 1, n)
+      tau = t - (i - 1)*m%dt_record_s
+      if (i == n) then
+        ! After the last sample (or on it): no acceleration, constant velocity.
+        x = m%x_m(n) + m%v_m_s(n)*tau
+        v = m%v_m_s(n)
+        if (tau == 0.0_dp) a = m%a_m_s2(n)
+        return
+      end if
+      slope = (m%a_m_s2(i + 1) - m%a_m_s2(i))/m%dt_record_s
+      a = m%a_m_s2(i) + slope*tau
+      v = m%v_m_s(i) + m%a_m_s2(i)*tau + slope*tau*tau/2.0_dp
+      x = m%x_m(i) + m%v_m_s(i)*tau + m%a_m_s2(i)*tau*tau/2.0_dp + slope*tau**3/6.0_dp
     end select
   end subroutine motion_eval
 
@@ -138,12 +182,15 @@ contains
     real(dp), intent(in) :: cutoff_hz
     type(motion_t), intent(out) :: m
     type(status_t), intent(inout) :: status
-    real(dp), allocatable :: t(:), x(:)
+    real(dp), allocatable :: t(:), x(:), columns(:, :)
+    integer, allocatable :: lines(:)
     real(dp) :: dt
     integer :: n, i
 
-    call read_record_csv(path, t, x, status)
+    call read_csv_columns(path, [character(len=16) :: 't_s', 'table_x_m'], columns, lines, status)
     if (.not. status%ok) return
+    t = columns(1, :)
+    x = columns(2, :)
     n = size(t)
     if (n < 3) then
       call fail(status, trim(path)//': a record needs at least 3 samples')
@@ -209,101 +256,5 @@ contains
       end do
     end subroutine pass
   end subroutine filtfilt_butter2
-
-  !> The t_s and table_x_m columns of a record CSV.
-  subroutine read_record_csv(path, t, x, status)
-    character(len=*), intent(in) :: path
-    real(dp), allocatable, intent(out) :: t(:), x(:)
-    type(status_t), intent(inout) :: status
-    character(len=4096) :: line
-    character(len=512) :: iomsg
-    character(len=64), allocatable :: fields(:)
-    integer :: unit, ios, col_t, col_x, line_no, n, i
-    real(dp), allocatable :: values(:)
-    character(len=32) :: where
-
-    open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
-    if (ios /= 0) then
-      call fail(status, trim(path)//': cannot open record: '//trim(iomsg))
-      return
-    end if
-    col_t = 0
-    col_x = 0
-    line_no = 0
-    n = 0
-    allocate (t(1024), x(1024))
-    do
-      read (unit, '(a)', iostat=ios) line
-      if (ios /= 0) exit
-      line_no = line_no + 1
-      if (len_trim(line) == 0) cycle
-      if (adjustl(line(1:1)) == '#') cycle
-      call split_csv(line, fields)
-      if (col_t == 0) then
-        do i = 1, size(fields)
-          if (fields(i) == 't_s') col_t = i
-          if (fields(i) == 'table_x_m') col_x = i
-        end do
-        if (col_t == 0 .or. col_x == 0) then
-          write (where, '(a,i0)') ':', line_no
-          call fail(status, trim(path)//trim(where)//': header lacks t_s or table_x_m')
-          exit
-        end if
-        cycle
-      end if
-      allocate (values(2))
-      if (size(fields) < max(col_t, col_x)) then
-        ios = 1
-      else
-        read (fields(col_t), *, iostat=ios) values(1)
-        if (ios == 0) read (fields(col_x), *, iostat=ios) values(2)
-      end if
-      if (ios /= 0) then
-        write (where, '(a,i0)') ':', line_no
-        call fail(status, trim(path)//trim(where)//': t_s or table_x_m is not a number')
-        exit
-      end if
-      n = n + 1
-      if (n > size(t)) then
-        t = [t, t]
-        x = [x, x]
-      end if
-      t(n) = values(1)
-      x(n) = values(2)
-      deallocate (values)
-    end do
-    close (unit)
-    if (status%ok .and. col_t == 0) call fail(status, trim(path)//': empty record')
-    t = t(1:n)
-    x = x(1:n)
-  end subroutine read_record_csv
-
-  !> Split a CSV line at commas (no quoting in numeric records), trimming blanks and CR.
-  pure subroutine split_csv(line, fields)
-    character(len=*), intent(in) :: line
-    character(len=64), allocatable, intent(out) :: fields(:)
-    integer :: i, start, n, lt
-    lt = len_trim(line)
-    if (lt > 0) then
-      if (line(lt:lt) == achar(13)) lt = lt - 1
-    end if
-    n = 1
-    do i = 1, lt
-      if (line(i:i) == ',') n = n + 1
-    end do
-    allocate (fields(n))
-    n = 0
-    start = 1
-    do i = 1, lt + 1
-      if (i == lt + 1) then
-        n = n + 1
-        fields(n) = adjustl(line(start:lt))
-      else if (line(i:i) == ',') then
-        n = n + 1
-        fields(n) = adjustl(line(start:i - 1))
-        start = i + 1
-      end if
-    end do
-  end subroutine split_csv
 
 end module voussoir_motion

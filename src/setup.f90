@@ -7,7 +7,8 @@ module voussoir_setup
   use voussoir_bodies, only: bodies_t, bodies_init
   use voussoir_model, only: model_t, solver_settings_t
   use voussoir_contact_law, only: contact_law_t, contact_law_init
-  use voussoir_motion, only: motion_afd, motion_ramp, motion_record, motion_duration_s
+  use voussoir_motion, only: motion_afd, motion_ramp, motion_record, motion_accelerogram, motion_duration_s
+  use voussoir_ground_record, only: ground_record_t, read_ground_record
   use voussoir_simulation, only: monitor_t, monitor_init, run_result_t, simulate
   implicit none
   private
@@ -27,6 +28,7 @@ contains
     logical :: restrained(2)
     type(solver_settings_t) :: settings
     type(contact_law_t) :: law
+    type(ground_record_t) :: rec
     real(dp) :: hinge_gap_m, collapse_drop_m
 
     duration_s = 0.0_dp
@@ -63,12 +65,23 @@ contains
       case ('record')
         call motion_record(trim(m%record_file), m%record_cutoff_hz, model%motion, status)
         if (.not. status%ok) return
+      case ('accelerogram')
+        call read_ground_record(trim(m%record_file), rec, status)
+        if (.not. status%ok) then
+          status%message = trim(cfg%source_file)//': &motion record_file: '//trim(status%message)
+          return
+        end if
+        model%motion = motion_accelerogram(m%record_scale*rec%accel_m_s2, rec%dt_s, m%rest_s)
+        model%motion%record_name = rec%name
+        model%motion%record_description = rec%description
       case default
         call fail(status, 'unknown waveform '//trim(m%waveform))
         return
       end select
       duration_s = m%duration_s
-      if (duration_s == 0.0_dp) duration_s = motion_duration_s(model%motion) + m%rest_s
+      ! The rest comes after the motion, but before an accelerogram (already in its duration).
+      if (duration_s == 0.0_dp) duration_s = motion_duration_s(model%motion) + &
+                                             merge(0.0_dp, m%rest_s, m%waveform == 'accelerogram')
       if (duration_s <= 0.0_dp) then
         call fail(status, trim(cfg%source_file)//': nothing to simulate: set &motion rest_s or duration_s > 0')
         return

@@ -64,6 +64,17 @@ case_ waveform          "waveform = 'square'" "&motion waveform = 'square' /
 $o"
 case_ record_missing    "record_file = .*no such file" "&motion waveform = 'record', record_file = 'nothere.csv' /
 $o"
+printf 't_s,accel_m_s2\n0.0,0.1\n0.01,0.2\n' > good_record.csv
+case_ accel_missing     "record_file = .*no such file" "&motion waveform = 'accelerogram', record_file = 'nothere.AT2' /
+$o"
+case_ accel_empty       "record_file is empty.*accelerogram" "&motion waveform = 'accelerogram' /
+$o"
+case_ accel_scale       "record_scale = 0.*record_scale > 0" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', record_scale = 0 /
+$o"
+case_ accel_scale_neg   "record_scale = -2.*record_scale > 0" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', record_scale = -2 /
+$o"
+case_ accel_rest        "rest_s = -1.*rest_s >= 0" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', rest_s = -1 /
+$o"
 case_ polygon_missing   "polygon_file = .*no such file" "&arch polygon_file = 'nothere.txt' /
 $o"
 case_ ramp_no_duration  "duration_s = 0.*duration_s > 0" "&motion waveform = 'ramp' /

@@ -15,8 +15,10 @@ dynamic code; this script verifies the rule's premise independently and then the
   ramp_capacity    a slow ramp of horizontal load collapses the arch once the load passes
                    lambda g, and before 1.15 lambda g (the fall after the onset).
   uplift           a block of half-width b and half-height h lifts off when the table
-                   acceleration passes g b / h (DESIGN.md): the commanded peak exceeds it,
-                   and the block must have rotated by more than 1 mrad.
+                   acceleration passes g b / h (DESIGN.md): the commanded peak (afd), or
+                   record_scale times the peak of the accelerogram's samples (read here
+                   from its CSV), exceeds it, and the block must have rotated by more
+                   than 1 mrad.
   static_bound     a sweep: no threshold can lie below the static capacity, so the peak
                    commanded acceleration at every threshold amplitude is >= lambda g
                    (less 1 %, the search tolerance).
@@ -137,7 +139,12 @@ def main() -> int:
         free = re.search(r"block free\n((?:\s*[-\d.]+\s+[-\d.]+\n)+)", blocks).group(1).split()
         xy = np.array(free, float).reshape(-1, 2)
         b, h = (xy[:, 0].max() - xy[:, 0].min()) / 2, (xy[:, 1].max() - xy[:, 1].min()) / 2
-        peak = afd_peak_accel(motion["frequency_hz"], motion["amplitude_m"])
+        if motion.get("waveform") == "accelerogram":
+            rows = csv.DictReader(line for line in open(nml_path.parent / motion["record_file"])
+                                  if not line.startswith("#"))
+            peak = float(motion.get("record_scale", 1.0)) * max(abs(float(r["accel_m_s2"])) for r in rows)
+        else:
+            peak = afd_peak_accel(motion["frequency_hz"], motion["amplitude_m"])
         result = re.search(r"result (\S+)", printed).group(1)
         with h5py.File(run_dir / result, "r") as f:
             rotation = float(np.abs(f["bodies/position"][:, 0, 2]).max())

@@ -1,12 +1,13 @@
 !> The result file of one run (layout: docs/results_format.md).
 module voussoir_run_output
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
-  use voussoir_kinds, only: dp
+  use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t
   use voussoir_version, only: code_version
   use voussoir_config, only: config_t, config_entry_t, config_entries, config_to_nml
   use voussoir_assembly, only: assembly_t
   use voussoir_model, only: model_t
+  use voussoir_motion, only: waveform_accelerogram
   use voussoir_simulation, only: run_result_t
   use voussoir_hinge_side, only: side_file_code
   use voussoir_h5, only: hid_t, h5_create, h5_close, h5_group, h5_group_close, h5_write, h5_attr, &
@@ -107,6 +108,27 @@ contains
     call h5_write(g, 'n_vertices', model%bodies%n_vertices, status)
     call h5_write(g, 'role', model%bodies%role, status)
     call h5_group_close(g, status)
+
+    if (model%motion%waveform == waveform_accelerogram) then
+      call h5_group(file_id, 'record', g, status)
+      call h5_attr(g, 'name', trim(model%motion%record_name), status)
+      call h5_attr(g, 'description', trim(model%motion%record_description), status)
+      call h5_attr(g, 'file', trim(cfg%motion%record_file), status)
+      call h5_attr(g, 'scale', cfg%motion%record_scale, status)
+      call h5_attr(g, 'n_samples', size(model%motion%a_m_s2), status)
+      call h5_attr(g, 'dt_s', model%motion%dt_record_s, status)
+      call h5_attr(g, 'start_s', model%motion%start_s, status)
+      associate (im => model%motion%intensity)
+        call h5_attr(g, 'pga_m_s2', im%pga_m_s2, status)
+        call h5_attr(g, 'pga_g', im%pga_m_s2/g_m_s2, status)
+        call h5_attr(g, 'pgv_m_s', im%pgv_m_s, status)
+        call h5_attr(g, 'arias_m_s', im%arias_m_s, status)
+        call h5_attr(g, 't5_s', im%t5_s, status)
+        call h5_attr(g, 't95_s', im%t95_s, status)
+        call h5_attr(g, 'significant_duration_s', im%significant_duration_s, status)
+      end associate
+      call h5_group_close(g, status)
+    end if
 
     call h5_group(file_id, 'contacts', g, status)
     call h5_write(g, 'count', res%contact_count, status)
