@@ -21,6 +21,7 @@ import numpy as np
 __all__ = [
     "ResultsError",
     "ArchGeometry",
+    "GroundMotion",
     "RunResult",
     "SweepResult",
     "LimitResult",
@@ -232,6 +233,37 @@ class ArchGeometry:
 
 
 @dataclass
+class GroundMotion:
+    """The ``/record`` group of a run driven by an accelerogram: the record and the
+    intensity measures of its acceleration as the table played it (scaled)."""
+
+    name: str  #: file name without folder and extension
+    description: str  #: event and station line of a PEER .AT2 file ('' for a CSV)
+    file: str  #: the record file as resolved by the program
+    scale: float  #: record_scale, the factor on the acceleration
+    n_samples: int
+    dt_s: float
+    start_s: float  #: time of the first sample (the rest before it)
+    pga_m_s2: float
+    pga_g: float
+    pgv_m_s: float
+    arias_m_s: float
+    t5_s: float  #: 5 % of the Arias intensity, from the first sample
+    t95_s: float
+    significant_duration_s: float  #: t95 - t5
+
+
+def _ground_motion(h5: h5py.File) -> GroundMotion:
+    g = h5["record"]
+    return GroundMotion(
+        name=_attr(g, "name", str), description=_attr(g, "description", str), file=_attr(g, "file", str),
+        scale=_attr(g, "scale"), n_samples=_attr(g, "n_samples", int), dt_s=_attr(g, "dt_s"),
+        start_s=_attr(g, "start_s"), pga_m_s2=_attr(g, "pga_m_s2"), pga_g=_attr(g, "pga_g"),
+        pgv_m_s=_attr(g, "pgv_m_s"), arias_m_s=_attr(g, "arias_m_s"), t5_s=_attr(g, "t5_s"),
+        t95_s=_attr(g, "t95_s"), significant_duration_s=_attr(g, "significant_duration_s"))
+
+
+@dataclass
 class RunResult:
     """One ``voussoir-run`` result file (see docs/results_format.md)."""
 
@@ -273,6 +305,7 @@ class RunResult:
     hinge_side: np.ndarray  #: 0 intrados, 1 extrados
     hinge_side_names: tuple = SIDE_NAMES
     arch: ArchGeometry | None = None
+    record: GroundMotion | None = None  #: runs driven by an accelerogram only
 
     @property
     def n_samples(self) -> int:
@@ -386,6 +419,7 @@ def read_run(path: str | os.PathLike) -> RunResult:
             hinge_side=hinge_side,
             hinge_side_names=side_names,
             arch=arch,
+            record=_ground_motion(h5) if "record" in h5 else None,
         )
 
 
