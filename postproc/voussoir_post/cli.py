@@ -9,6 +9,7 @@ input files are reported on stderr with exit status 2.
 from __future__ import annotations
 
 import argparse
+import json
 import math
 import os
 import sys
@@ -16,7 +17,9 @@ import sys
 from .campaign import CampaignError, read_campaign
 from .compare import MatchError, plot_compare
 from .envelope import plot_envelope
+from .fragility_plot import plot_fragility
 from .history import plot_history
+from .ida import read_ida
 from .mechanism import plot_mechanism
 from .results import ResultsError, read_limit_json, read_run, read_sweep
 from .sequence import default_frame_times, plot_sequence, write_sequence_gif
@@ -141,6 +144,32 @@ def cmd_mechanism(args) -> int:
     return 0
 
 
+def cmd_fragility(args) -> int:
+    ida = read_ida(args.ida)
+    png = output_path(args.ida, "fragility", args.out)
+    data = plot_fragility(ida, png, n_bootstrap=args.bootstrap, seed=args.seed)
+    stem = os.path.splitext(data.png_path)[0]
+    curve_csv = write_csv(data.curve_table, stem + ".csv")
+    points_csv = write_csv(data.table, stem + "_points.csv")
+    summary = data.summary()
+    if args.json:
+        print(json.dumps(summary, indent=1))
+        return 0
+    print(format_table(data.table))
+    pga, pgv = data.pga, data.pgv
+    pct = int(round(100 * pga.band.level))
+    print(f"PGA: median {summary['median_pga_g']:.4g} g ({pga.fit.median:.4g} m/s2), {pct} % band "
+          f"[{summary['median_pga_g_band'][0]:.4g}, {summary['median_pga_g_band'][1]:.4g}] g; "
+          f"beta {pga.fit.beta:.3f} [{pga.band.beta_low:.3f}, {pga.band.beta_high:.3f}]")
+    print(f"PGV: median {pgv.fit.median:.4g} m/s, {pct} % band [{pgv.band.median_low:.4g}, "
+          f"{pgv.band.median_high:.4g}] m/s; beta {pgv.fit.beta:.3f} [{pgv.band.beta_low:.3f}, {pgv.band.beta_high:.3f}]")
+    print(f"{pga.fit.n} rows, {pga.fit.n_censored} censored (no collapse up to scale_max)")
+    print(f"wrote {data.png_path}")
+    print(f"wrote {curve_csv}")
+    print(f"wrote {points_csv}")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="voussoir-post",
@@ -194,6 +223,17 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--every", type=int, default=1, metavar="N", help="export every N-th sample (default 1)")
     p.add_argument("--out", help="output .xmf file or folder (default: beside the run)")
     p.set_defaults(func=cmd_xdmf)
+
+    p = sub.add_parser("fragility", help="lognormal fragility of collapse from an IDA sweep (&sweep mode = 'ida')")
+    p.add_argument("ida", metavar="IDA.h5|IDA.csv", help="the IDA sweep's HDF5 file, or its CSV summary")
+    p.add_argument("--out", help="output .png file, or a folder (default: beside the input); the fit's "
+                                 "curve and points are written beside it as <stem>.csv and <stem>_points.csv")
+    p.add_argument("--json", action="store_true",
+                   help="print the fit as JSON (median_pga_g, beta, ...) instead of the tables")
+    p.add_argument("--bootstrap", type=int, default=400, metavar="N",
+                   help="bootstrap resamples of the band (default 400)")
+    p.add_argument("--seed", type=int, default=20261124, help="seed of the bootstrap (default 20261124)")
+    p.set_defaults(func=cmd_fragility)
 
     p = sub.add_parser("mechanism", help="limit-analysis mechanisms (voussoir-limit --json)")
     p.add_argument("limit", metavar="LIMIT.json")
