@@ -13,20 +13,25 @@
 !> has its history proposes the same next amplitude) and tells rank 0 so with the result.
 module voussoir_sweep_master
   use, intrinsic :: iso_fortran_env, only: output_unit
-  use voussoir_kinds, only: dp
+  use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
   use voussoir_version, only: code_version
   use voussoir_config, only: config_t
+  use voussoir_assembly, only: assembly_t
+  use voussoir_model, only: model_t
+  use voussoir_simulation, only: run_result_t
+  use voussoir_setup, only: run_config
   use voussoir_text, only: fmt_real, fmt_fixed, itoa, join_words
-  use voussoir_threshold, only: threshold_search_t, threshold_result_t, run_outcome_t, threshold_init, &
+  use voussoir_threshold, only: threshold_search_t, threshold_result_t, run_outcome_t, &
                                 threshold_next, threshold_record, threshold_result, threshold_done, &
                                 outcome_of_run
-  use voussoir_sweep_output, only: sweep_table_t, sweep_header_t, results_table, runs_table, table_init, &
+  use voussoir_sweep_output, only: sweep_table_t, sweep_header_t, results_table, runs_table, dt_check_table, &
+                                   table_init, &
                                    table_append, table_value, table_sort, table_row, table_set, write_sweep_file, &
                                    read_sweep_file, write_sweep_csv, csv_path_of
   use voussoir_ordering, only: stable_order
   use voussoir_sweep_plan, only: sweep_plan_t, job_param_set, job_frequency_hz, job_amplitude_m, &
-                                 job_run_config, job_cost, set_description
+                                 job_run_config, job_cost, set_description, job_record, job_search_init
   use voussoir_sweep_comm, only: sweep_comm_t, comm_abort, comm_send, comm_poll, comm_recv, wall_s, nap, &
                                  tag_task, tag_result, tag_stop
   use voussoir_sweep_tasks, only: simulate_job, outcome_of_msg, prefetch, task_head, history_width, result_len
@@ -53,6 +58,7 @@ module voussoir_sweep_master
     integer, allocatable :: outstanding(:)                 !! (1:n_ranks-1) tasks held by a worker
     integer :: front = 1, back = 0                         !! grid: no ready job outside order(front:back)
     type(sweep_table_t) :: results, runs
+    type(sweep_table_t) :: dt_check                        !! ida: runs redone at dt/2
     type(sweep_header_t) :: header
     character(len=:), allocatable :: path, csv_path
     character(len=:), allocatable :: finished_by          !! code version of a finished file
@@ -84,7 +90,7 @@ contains
     m%n_ready = plan%n_jobs
     m%started = .false.
     m%outstanding = 0
-    if (plan%mode == 'threshold') allocate (m%search(0:plan%n_jobs - 1))
+    if (plan%mode /= 'grid') allocate (m%search(0:plan%n_jobs - 1))
     ! Costliest first, ties by job index (the order is stable).
     do job = 0, plan%n_jobs - 1
       m%cost(job) = job_cost(plan, job)
@@ -103,9 +109,14 @@ contains
     m%header%parameter_values = plan%param_values
     m%header%frequencies_hz = plan%frequencies_hz
     m%header%amplitudes_m = plan%amplitudes_m
+    if (plan%mode == 'ida') then
+      m%header%record_files = plan%records%given
+      m%header%record_pga_m_s2 = plan%records%pga_m_s2
+      m%header%record_pgv_m_s = plan%records%pgv_m_s
+    end if
 
     m%results = results_table(plan%mode)
-    if (plan%mode == 'threshold') m%runs = runs_table()
+    if (plan%mode /= 'grid') m%runs = runs_table(value_name(plan))
     inquire (file=m%path, exist=exists)
     if (.not. exists) return
     call read_sweep_file(m%path, plan%signature, m%results, m%runs, written_by, status)
@@ -146,7 +157,7 @@ contains
       call set_state(m, job, job_done)
       m%n_done = m%n_done + 1
     end do
-    if (plan%mode == 'threshold') then
+    if (plan%mode /= 'grid') then
       ! Replay the runs of each unfinished search in its own order: the search asks for
       ! the same amplitudes again, and continues where it stopped.
       call table_sort(m%runs, ['job', 'run'])
@@ -161,7 +172,7 @@ contains
         call start_search(plan, m, job, status)
         if (.not. status%ok) return
         call threshold_next(m%search(job), amp_m, done)
-        o = outcome_from_row(m%runs, r)
+        o = outcome_from_row(m%runs, r, value_name(plan))
         if (done .or. seq /= m%search(job)%n_runs .or. o%amplitude_m /= amp_m) then
           call fail(status, m%path//': run '//itoa(seq)//' of job '//itoa(job)// &
                     ' does not follow the search of this input; the file cannot be continued')
@@ -195,6 +206,7 @@ contains
       amps = itoa(plan%n_sets)//' parameter sets x '//itoa(plan%n_freq)//' frequencies'
     end if
     if (plan%mode == 'grid') amps = amps//' x '//itoa(plan%n_amp)//' amplitudes'
+    if (plan%mode == 'ida') amps = itoa(plan%n_sets)//' model samples x '//itoa(plan%records%n)//' records'
     write (output_unit, '(a)') 'voussoir-sweep: '//trim(plan%mode)//' sweep of '//itoa(plan%n_jobs)//' jobs ('// &
       amps//') on '//itoa(net%size)//' ranks -> '//m%path
     if (m%n_done > 0 .or. m%n_runs_resumed > 0) write (output_unit, '(a)') 'voussoir-sweep: resuming '// &
@@ -231,7 +243,11 @@ contains
     end do
 
     call table_sort(m%results, ['job'])
-    if (plan%mode == 'threshold') call table_sort(m%runs, ['job', 'run'])
+    if (plan%mode /= 'grid') call table_sort(m%runs, ['job', 'run'])
+    if (plan%mode == 'ida' .and. plan%dt_check_rows > 0) then
+      call check_time_step(plan, m, status)
+      if (.not. status%ok) call die(status%message)
+    end if
     call write_state(m, .true.)
     call write_sweep_csv(m%csv_path, m%header, m%results, status)
     if (.not. status%ok) call die(status%message)
@@ -256,7 +272,11 @@ contains
     subroutine write_state(mm, complete)
       type(master_t), intent(in) :: mm
       logical, intent(in) :: complete
-      call write_sweep_file(mm%path, mm%header, mm%results, mm%runs, complete, status)
+      if (allocated(mm%dt_check%names)) then
+        call write_sweep_file(mm%path, mm%header, mm%results, mm%runs, complete, status, mm%dt_check)
+      else
+        call write_sweep_file(mm%path, mm%header, mm%results, mm%runs, complete, status)
+      end if
       if (.not. status%ok) call die(status%message)
     end subroutine write_state
 
@@ -267,6 +287,56 @@ contains
     end subroutine die
 
   end subroutine master_run
+
+  !> Time-step check of an IDA (rank 0, after the searches): the runs at scale_stood and
+  !> at scale_threshold of `dt_check_rows` rows (evenly spread over the rows that
+  !> collapsed) are redone at half the time step; an outcome that changes says the
+  !> threshold depends on the step.
+  subroutine check_time_step(plan, m, status)
+    type(sweep_plan_t), intent(in) :: plan
+    type(master_t), intent(inout) :: m
+    type(status_t), intent(inout) :: status
+    integer, allocatable :: rows(:)
+    integer :: k, r, job, side, n_changed
+    real(dp) :: scale
+    real(dp), allocatable :: row(:)
+    type(config_t) :: cfg
+    type(assembly_t) :: assembly
+    type(model_t) :: model
+    type(run_result_t) :: res
+    character(len=*), parameter :: sides(2) = ['scale_stood    ', 'scale_threshold']
+
+    m%dt_check = dt_check_table()
+    rows = pack([(r, r = 1, m%results%n_rows)], [(nint(table_value(m%results, 'censored', r)) == 0, &
+                                                  r = 1, m%results%n_rows)])
+    n_changed = 0
+    do k = 1, min(plan%dt_check_rows, size(rows))
+      r = rows(1 + ((k - 1)*size(rows))/min(plan%dt_check_rows, size(rows)))
+      job = nint(table_value(m%results, 'job', r))
+      do side = 1, 2
+        scale = table_value(m%results, trim(sides(side)), r)
+        if (.not. scale > 0.0_dp) cycle
+        cfg = job_run_config(plan, job, scale)
+        cfg%solver%dt_s = 0.5_dp*cfg%solver%dt_s
+        call run_config(cfg, assembly, model, res, status)
+        if (.not. status%ok) then
+          status%message = 'dt/2 check of job '//itoa(job)//': '//trim(status%message)
+          return
+        end if
+        call table_row(m%dt_check, row)
+        call table_set(m%dt_check, row, 'job', real(job, dp))
+        call table_set(m%dt_check, row, 'scale', scale)
+        call table_set(m%dt_check, row, 'collapsed', merge(1.0_dp, 0.0_dp, side == 2))
+        call table_set(m%dt_check, row, 'collapsed_half_dt', merge(1.0_dp, 0.0_dp, res%collapsed))
+        call table_append(m%dt_check, row)
+        if (res%collapsed .neqv. side == 2) n_changed = n_changed + 1
+      end do
+    end do
+    write (output_unit, '(a)') 'voussoir-sweep: dt/2 check: '//itoa(n_changed)//' of '//itoa(m%dt_check%n_rows)// &
+      ' outcomes changed at dt_s = '//fmt_real(0.5_dp*plan%set_cfg(0)%solver%dt_s)//' (runs at scale_stood and '// &
+      'scale_threshold of '//itoa(min(plan%dt_check_rows, size(rows)))//' rows)'
+    flush (output_unit)
+  end subroutine check_time_step
 
   !> Receive every result that has arrived, then refill the workers.
   subroutine serve(plan, net, m, got)
@@ -405,8 +475,7 @@ contains
     integer, intent(in) :: job
     type(status_t), intent(inout) :: status
     if (m%started(job)) return
-    call threshold_init(m%search(job), plan%set_cfg(job_param_set(plan, job)), job_frequency_hz(plan, job), &
-                        plan%search, status)
+    call job_search_init(plan, job, m%search(job), status)
     m%started(job) = .true.
   end subroutine start_search
 
@@ -447,7 +516,7 @@ contains
     call table_row(m%runs, row)
     call table_set(m%runs, row, 'job', real(job, dp))
     call table_set(m%runs, row, 'run', real(seq, dp))
-    call table_set(m%runs, row, 'amplitude_m', o%amplitude_m)
+    call table_set(m%runs, row, value_name(plan), o%amplitude_m)
     call table_set(m%runs, row, 'collapsed', merge(1.0_dp, 0.0_dp, o%collapsed))
     call table_set(m%runs, row, 'collapse_time_s', o%collapse_time_s)
     call table_set(m%runs, row, 'peak_crown_disp_m', o%peak_crown_disp_m)
@@ -476,6 +545,13 @@ contains
     real(dp), allocatable :: row(:)
     r = threshold_result(m%search(job))
     call table_row(m%results, row)
+    if (plan%mode == 'ida') then
+      call ida_row()
+      call table_append(m%results, row)
+      call set_state(m, job, job_done)
+      m%n_done = m%n_done + 1
+      return
+    end if
     call table_set(m%results, row, 'job', real(job, dp))
     call table_set(m%results, row, 'param_set', real(job_param_set(plan, job), dp))
     call table_set(m%results, row, 'frequency_hz', job_frequency_hz(plan, job))
@@ -490,7 +566,40 @@ contains
     call table_append(m%results, row)
     call set_state(m, job, job_done)
     m%n_done = m%n_done + 1
+
+  contains
+
+    !> The IDA row: a search with no collapse up to scale_max is censored, its
+    !> threshold columns at scale_max (a lower bound).
+    subroutine ida_row()
+      real(dp) :: scale
+      logical :: censored
+      integer :: rec
+      rec = job_record(plan, job)
+      censored = .not. (r%threshold_m == r%threshold_m)
+      scale = merge(plan%search%amp_max_m, r%threshold_m, censored)
+      call table_set(m%results, row, 'job', real(job, dp))
+      call table_set(m%results, row, 'param_set', real(job_param_set(plan, job), dp))
+      call table_set(m%results, row, 'record', real(rec - 1, dp))
+      call table_set(m%results, row, 'scale_stood', merge(plan%search%amp_max_m, r%stand_below_m, censored))
+      call table_set(m%results, row, 'scale_threshold', scale)
+      call table_set(m%results, row, 'pga_threshold_m_s2', scale*plan%records%pga_m_s2(rec))
+      call table_set(m%results, row, 'pgv_threshold_m_s', scale*plan%records%pgv_m_s(rec))
+      call table_set(m%results, row, 'censored', merge(1.0_dp, 0.0_dp, censored))
+      call table_set(m%results, row, 'non_monotonic', merge(1.0_dp, 0.0_dp, r%non_monotonic))
+      call table_set(m%results, row, 'n_runs', real(r%n_runs, dp))
+      call table_set(m%results, row, 'mean_iterations', r%mean_iterations)
+      call table_set(m%results, row, 'wall_time_s', r%wall_time_s)
+    end subroutine ida_row
+
   end subroutine finish_search
+
+  !> The searched variable's name in /runs.
+  pure function value_name(plan) result(name)
+    type(sweep_plan_t), intent(in) :: plan
+    character(len=:), allocatable :: name
+    name = trim(merge('scale      ', 'amplitude_m', plan%mode == 'ida'))
+  end function value_name
 
   !> A progress line every `progress_every_s` (and the last one): jobs and runs done,
   !> elapsed time, and the time left estimated from the cost of the runs still to come.
@@ -518,7 +627,7 @@ contains
     end if
     ! Work left, in run costs; a search is expected to take as many runs as the finished ones.
     runs_per_search = first_guess_runs
-    if (plan%mode == 'threshold' .and. m%results%n_rows > 0) then
+    if (plan%mode /= 'grid' .and. m%results%n_rows > 0) then
       runs_per_search = 0.0_dp
       do r = 1, m%results%n_rows
         runs_per_search = runs_per_search + table_value(m%results, 'n_runs', r)/m%results%n_rows
@@ -566,9 +675,22 @@ contains
     real(dp) :: thr
     integer :: r, job, n_runs
     character(len=160) :: line
-    if (plan%mode /= 'threshold' .or. plan%n_jobs > max_listed_jobs) return
+    if (plan%mode == 'grid' .or. plan%n_jobs > max_listed_jobs) return
     do r = 1, m%results%n_rows
       job = nint(table_value(m%results, 'job', r))
+      if (plan%mode == 'ida') then
+        n_runs = nint(table_value(m%results, 'n_runs', r))
+        if (nint(table_value(m%results, 'censored', r)) == 1) then
+          write (line, '(a,i3,a)') ': stands up to scale_max, ', n_runs, ' runs'
+        else
+          write (line, '(a,f9.4,a,f8.3,a,i3,a)') ': threshold scale ', table_value(m%results, 'scale_threshold', r), &
+            ' (PGA ', table_value(m%results, 'pga_threshold_m_s2', r)/g_m_s2, ' g), ', n_runs, ' runs'
+        end if
+        if (nint(table_value(m%results, 'non_monotonic', r)) == 1) line = trim(line)//', non-monotonic'
+        write (output_unit, '(a)') '  '//trim(plan%records%given(job_record(plan, job)))//trim(line)//'  ['// &
+          set_description(plan, job_param_set(plan, job))//']'
+        cycle
+      end if
       thr = table_value(m%results, 'threshold_m', r)
       n_runs = nint(table_value(m%results, 'n_runs', r))
       if (thr == thr) then
@@ -587,11 +709,12 @@ contains
 
   !> A worker: run the tasks rank 0 sends and return each outcome, until told to stop.
   !> The outcome stored in row `r` of a /runs table.
-  function outcome_from_row(t, r) result(o)
+  function outcome_from_row(t, r, searched) result(o)
     type(sweep_table_t), intent(in) :: t
     integer, intent(in) :: r
+    character(len=*), intent(in) :: searched   !! name of the searched variable's column
     type(run_outcome_t) :: o
-    o%amplitude_m = value('amplitude_m')
+    o%amplitude_m = value(searched)
     o%collapsed = nint(value('collapsed')) == 1
     o%collapse_time_s = value('collapse_time_s')
     o%peak_crown_disp_m = value('peak_crown_disp_m')

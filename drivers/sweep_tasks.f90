@@ -6,13 +6,13 @@
 module voussoir_sweep_tasks
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t
-  use voussoir_text, only: fmt_real, itoa
+  use voussoir_text, only: fmt_real
   use voussoir_assembly, only: assembly_t
   use voussoir_model, only: model_t
   use voussoir_simulation, only: run_result_t
   use voussoir_setup, only: run_config
   use voussoir_threshold, only: run_outcome_t, outcome_of_run
-  use voussoir_sweep_plan, only: sweep_plan_t, job_param_set, job_frequency_hz, job_run_config
+  use voussoir_sweep_plan, only: sweep_plan_t, job_label, job_run_config
   implicit none
   private
 
@@ -29,7 +29,7 @@ module voussoir_sweep_tasks
 
 contains
 
-  !> One simulation of job `job` at `amp_m`.
+  !> One simulation of job `job` at `amp_m` (ida: the scale of its record).
   subroutine simulate_job(plan, job, amp_m, o, status)
     type(sweep_plan_t), intent(in) :: plan
     integer, intent(in) :: job
@@ -41,9 +41,8 @@ contains
     type(run_result_t) :: res
     call run_config(job_run_config(plan, job, amp_m), assembly, model, res, status)
     if (.not. status%ok) then
-      status%message = 'job '//itoa(job)//' (parameter set '//itoa(job_param_set(plan, job))//', '// &
-                       fmt_real(job_frequency_hz(plan, job))//' Hz, amplitude '//fmt_real(amp_m)//' m): '// &
-                       trim(status%message)
+      status%message = job_label(plan, job)//' at '//trim(merge('scale       ', 'amplitude_m ', &
+                       plan%mode == 'ida'))//' '//fmt_real(amp_m)//': '//trim(status%message)
       return
     end if
     o = outcome_of_run(amp_m, res)

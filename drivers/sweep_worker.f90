@@ -4,9 +4,9 @@ module voussoir_sweep_worker
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t
   use voussoir_text, only: itoa
-  use voussoir_threshold, only: threshold_search_t, run_outcome_t, threshold_init, threshold_next, &
+  use voussoir_threshold, only: threshold_search_t, run_outcome_t, threshold_next, &
                                 threshold_record, threshold_done
-  use voussoir_sweep_plan, only: sweep_plan_t, job_param_set, job_frequency_hz
+  use voussoir_sweep_plan, only: sweep_plan_t, job_search_init
   use voussoir_sweep_comm, only: sweep_comm_t, comm_abort, comm_send, comm_poll, comm_recv, nap, &
                                  tag_result, tag_stop
   use voussoir_sweep_tasks, only: queued_task_t, simulate_job, msg_of_outcome, prefetch, task_head, history_width
@@ -17,7 +17,7 @@ module voussoir_sweep_worker
 
 contains
 
-  !> With nothing queued after a run of a threshold search, go on with that search.
+  !> With nothing queued after a run of a search (threshold or ida), go on with that search.
   subroutine worker_run(plan, net)
     type(sweep_plan_t), intent(in) :: plan
     type(sweep_comm_t), intent(in) :: net
@@ -31,7 +31,7 @@ contains
     type(run_outcome_t) :: o
     type(status_t) :: status
 
-    if (plan%mode == 'threshold') allocate (replica(0:plan%n_jobs - 1))
+    if (plan%mode /= 'grid') allocate (replica(0:plan%n_jobs - 1))
     allocate (known(0:plan%n_jobs - 1))
     known = .false.
     n_queued = 0
@@ -51,13 +51,13 @@ contains
         job = nint(msg(1))
         seq = nint(msg(2))
         amp_m = msg(3)
-        if (plan%mode == 'threshold') call sync_replica(msg)
+        if (plan%mode /= 'grid') call sync_replica(msg)
         busy = .true.
       end if
       call simulate_job(plan, job, amp_m, o, status)
       if (.not. status%ok) call die('rank '//itoa(net%rank)//', '//trim(status%message))
       continuing = .false.
-      if (plan%mode == 'threshold') then
+      if (plan%mode /= 'grid') then
         call threshold_record(replica(job), o, status)
         if (.not. status%ok) call die(status%message)
         call receive_all()
@@ -99,8 +99,7 @@ contains
       if (known(job)) then
         if (replica(job)%n_runs == n) return   ! this rank made the runs since it last synced
       end if
-      call threshold_init(replica(job), plan%set_cfg(job_param_set(plan, job)), job_frequency_hz(plan, job), &
-                          plan%search, status)
+      call job_search_init(plan, job, replica(job), status)
       do k = 1, n
         past%amplitude_m = task(task_head + history_width*(k - 1) + 1)
         past%collapsed = task(task_head + history_width*(k - 1) + 2) == 1.0_dp

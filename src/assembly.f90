@@ -7,10 +7,11 @@ module voussoir_assembly
   use voussoir_kinds, only: dp, pi
   use voussoir_status, only: status_t, fail
   use voussoir_geometry, only: polygon_area, is_convex_ccw
+  use voussoir_random_stream, only: random_stream_t, stream_init, stream_uniform
   implicit none
   private
 
-  public :: polygon_t, assembly_t, build_arch, read_polygon_file, arch_joint_angle_deg
+  public :: polygon_t, assembly_t, build_arch, read_polygon_file, arch_joint_angle_deg, voussoir_angle_factors
   public :: role_voussoir, role_foundation, role_restraint
 
   integer, parameter :: role_voussoir = 1    !! a free block of the arch
@@ -46,18 +47,38 @@ contains
     arch_joint_angle_deg = 90.0_dp + 0.5_dp*embrace_deg - real(j, dp)*embrace_deg/real(n_voussoirs, dp)
   end function arch_joint_angle_deg
 
+  !> Relative angles of the n voussoirs of an imperfect arch: 1 + `amplitude` (2 u - 1),
+  !> u uniform from the stream `seed`, less their mean, so that they still fill the
+  !> embrace (each differs from 1 by less than 2 `amplitude`); all 1 for amplitude 0.
+  function voussoir_angle_factors(n_voussoirs, amplitude, seed) result(f)
+    integer, intent(in) :: n_voussoirs, seed
+    real(dp), intent(in) :: amplitude
+    real(dp) :: f(n_voussoirs)
+    type(random_stream_t) :: s
+    real(dp) :: u
+    integer :: i
+    s = stream_init(seed)
+    do i = 1, n_voussoirs
+      call stream_uniform(s, u)
+      f(i) = 2.0_dp*u - 1.0_dp
+    end do
+    f = 1.0_dp + amplitude*(f - sum(f)/n_voussoirs)
+  end function voussoir_angle_factors
+
   !> The arch of shared/MEASURED_DATA.md: n equal voussoirs with radial joints and chord
   !> faces, centre of the circle at the origin, on two foundation blocks whose top faces
   !> are the springing joints. Bodies 1..n are the voussoirs from left to right, n+1 the
   !> left foundation, n+2 the right one. With `restrained`, a bracket carried by the
   !> table stands against the outer face of the bottom voussoir on that side
-  !> (restrained(1) left, restrained(2) right).
-  subroutine build_arch(embrace_deg, n_voussoirs, r_ext_m, thickness_m, arch, restrained)
+  !> (restrained(1) left, restrained(2) right). With `angle_factors` (n values of mean 1,
+  !> see `voussoir_angle_factors`), voussoir i embraces angle_factors(i) embrace/n.
+  subroutine build_arch(embrace_deg, n_voussoirs, r_ext_m, thickness_m, arch, restrained, angle_factors)
     real(dp), intent(in) :: embrace_deg, r_ext_m, thickness_m
     integer, intent(in) :: n_voussoirs
     type(assembly_t), intent(out) :: arch
     logical, intent(in), optional :: restrained(2)
-    real(dp) :: r_int, ang, inner(2, 0:n_voussoirs), outer(2, 0:n_voussoirs)
+    real(dp), intent(in), optional :: angle_factors(n_voussoirs)
+    real(dp) :: r_int, ang, inner(2, 0:n_voussoirs), outer(2, 0:n_voussoirs), swept
     logical :: bracket(2)
     integer :: j, n, nb, side
 
@@ -66,8 +87,14 @@ contains
     if (present(restrained)) bracket = restrained
     nb = n + 2 + count(bracket)
     r_int = r_ext_m - thickness_m
+    swept = 0.0_dp
     do j = 0, n
       ang = arch_joint_angle_deg(embrace_deg, n, j)*pi/180.0_dp
+      if (present(angle_factors)) then
+        ! The springings stay where they are; the joints between move.
+        if (j > 0) swept = swept + angle_factors(j)
+        if (j > 0 .and. j < n) ang = (90.0_dp + 0.5_dp*embrace_deg - swept*embrace_deg/n)*pi/180.0_dp
+      end if
       inner(:, j) = r_int*[cos(ang), sin(ang)]
       outer(:, j) = r_ext_m*[cos(ang), sin(ang)]
     end do

@@ -37,6 +37,9 @@ module voussoir_config
     character(len=path_len) :: polygon_file = ''          !! assembly instead of an arch
     !> Coulomb coefficient of joint j (0..n_voussoirs) where set, e.g. joint_friction(0) = 0.3
     real(dp) :: joint_friction(0:max_joint) = unset_friction
+    !> voussoir sizes vary by up to this fraction of the nominal angle (random pattern)
+    real(dp) :: size_imperfection = 0.0_dp
+    integer :: imperfection_seed = 1          !! the pattern of the size imperfection
   end type arch_config_t
 
   !> &motion: the base motion.
@@ -111,8 +114,8 @@ contains
     type(solver_config_t) :: s
     type(output_config_t) :: o
     real(dp) :: embrace_deg, r_ext_m, thickness_m, width_m, density_kg_m3, friction, contact_inset_m
-    real(dp) :: joint_friction(0:max_joint)
-    integer :: n_voussoirs
+    real(dp) :: joint_friction(0:max_joint), size_imperfection
+    integer :: n_voussoirs, imperfection_seed
     character(len=16) :: restrained_springings, waveform
     character(len=path_len) :: polygon_file, record_file, file
     real(dp) :: frequency_hz, amplitude_m, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s, &
@@ -122,7 +125,8 @@ contains
                 stop_after_collapse_s
     logical :: allow_nonconvergence
     namelist /arch/ embrace_deg, n_voussoirs, r_ext_m, thickness_m, width_m, density_kg_m3, &
-      friction, contact_inset_m, restrained_springings, polygon_file, joint_friction
+      friction, contact_inset_m, restrained_springings, polygon_file, joint_friction, size_imperfection, &
+      imperfection_seed
     namelist /motion/ waveform, frequency_hz, amplitude_m, n_attack, n_full, n_decay, &
       record_file, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s, table_gain, table_delay_s, &
       record_scale
@@ -144,9 +148,10 @@ contains
     friction = a%friction; contact_inset_m = a%contact_inset_m
     restrained_springings = a%restrained_springings; polygon_file = a%polygon_file
     joint_friction = a%joint_friction
+    size_imperfection = a%size_imperfection; imperfection_seed = a%imperfection_seed
     call check_names(path, 'arch', [character(len=24) :: 'embrace_deg', 'n_voussoirs', 'r_ext_m', &
       'thickness_m', 'width_m', 'density_kg_m3', 'friction', 'contact_inset_m', 'restrained_springings', &
-      'polygon_file', 'joint_friction'], status)
+      'polygon_file', 'joint_friction', 'size_imperfection', 'imperfection_seed'], status)
     call check_names(path, 'motion', [character(len=24) :: 'waveform', 'frequency_hz', 'amplitude_m', &
       'n_attack', 'n_full', 'n_decay', 'record_file', 'record_cutoff_hz', 'ramp_rate_m_s3', 'rest_s', &
       'duration_s', 'table_gain', 'table_delay_s', 'record_scale'], status)
@@ -161,7 +166,8 @@ contains
     read (unit, nml=arch, iostat=ios, iomsg=iomsg)
     if (.not. group_ok('arch')) return
     a = arch_config_t(embrace_deg, n_voussoirs, r_ext_m, thickness_m, width_m, density_kg_m3, &
-                      friction, contact_inset_m, restrained_springings, polygon_file, joint_friction)
+                      friction, contact_inset_m, restrained_springings, polygon_file, joint_friction, &
+                      size_imperfection, imperfection_seed)
 
     waveform = m%waveform; frequency_hz = m%frequency_hz; amplitude_m = m%amplitude_m
     n_attack = m%n_attack; n_full = m%n_full; n_decay = m%n_decay; record_file = m%record_file
@@ -227,7 +233,8 @@ contains
       text = 'embrace_deg (real, deg), n_voussoirs (integer), r_ext_m, thickness_m, width_m (real, m), '// &
              'density_kg_m3 (real), friction (real), contact_inset_m (real, m), '// &
              "restrained_springings ('none'|'left'|'right'|'both'), polygon_file (text), "// &
-             'joint_friction(j) (real, the friction of joint j = 0..n_voussoirs)'
+             'joint_friction(j) (real, the friction of joint j = 0..n_voussoirs), size_imperfection (real), '// &
+             'imperfection_seed (integer)'
     case ('motion')
       text = "waveform ('afd'|'ramp'|'record'|'accelerogram'), frequency_hz (real), amplitude_m (real), "// &
              'n_attack, n_full, n_decay (integer), record_file (text), record_cutoff_hz, record_scale, '// &
@@ -257,6 +264,8 @@ contains
       arch_rule = value > 0.0_dp .and. value <= huge(1.0_dp)
     case ('friction', 'contact_inset_m')
       arch_rule = value >= 0.0_dp .and. value <= huge(1.0_dp)
+    case ('size_imperfection')
+      arch_rule = value >= 0.0_dp .and. value < 0.5_dp
     case default
       arch_rule = .false.
     end select
@@ -273,6 +282,8 @@ contains
       text = '2 <= n_voussoirs <= '//itoa(max_voussoirs)
     case ('friction', 'contact_inset_m')
       text = trim(name)//' >= 0 (finite)'
+    case ('size_imperfection')
+      text = '0 <= size_imperfection < 0.5'
     case default
       text = trim(name)//' > 0 (finite)'
     end select
@@ -341,6 +352,11 @@ contains
                     'none: the joints are 0..n_voussoirs = '//itoa(a%n_voussoirs))
         end if
       end do
+      call need(a%size_imperfection >= 0.0_dp .and. a%size_imperfection < 0.5_dp, 'arch', 'size_imperfection', &
+                a%size_imperfection, '0 <= size_imperfection < 0.5')
+      call need_int(a%imperfection_seed >= 0, 'arch', 'imperfection_seed', a%imperfection_seed, 'imperfection_seed >= 0')
+      if (a%size_imperfection > 0.0_dp .and. len_trim(a%polygon_file) > 0) &
+        call need(.false., 'arch', 'size_imperfection', a%size_imperfection, '0: a polygon_file assembly has no voussoirs')
       call need(a%contact_inset_m >= 0.0_dp .and. a%contact_inset_m < 0.5_dp*a%thickness_m, &
           'arch', 'contact_inset_m', a%contact_inset_m, &
                    '0 <= contact_inset_m < thickness_m/2 = '//fmt_real(0.5_dp*a%thickness_m))
@@ -458,6 +474,8 @@ contains
       do j = 0, max_joint
         if (a%joint_friction(j) /= unset_friction) call r('arch', 'joint_friction('//itoa(j)//')', a%joint_friction(j))
       end do
+      call r('arch', 'size_imperfection', a%size_imperfection)
+      call i('arch', 'imperfection_seed', a%imperfection_seed)
       call t('motion', 'waveform', m%waveform)
       call r('motion', 'frequency_hz', m%frequency_hz)
       call r('motion', 'amplitude_m', m%amplitude_m)

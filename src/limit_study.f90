@@ -7,7 +7,7 @@ module voussoir_limit_study
   use voussoir_config, only: config_t
   use voussoir_namelist_check, only: check_names
   use voussoir_text, only: itoa, fmt_significant
-  use voussoir_assembly, only: assembly_t, build_arch
+  use voussoir_assembly, only: assembly_t, build_arch, voussoir_angle_factors
   use voussoir_limit, only: limit_result_t, horizontal_capacity
   use voussoir_minimum_thickness, only: thickness_search => minimum_thickness
   implicit none
@@ -95,7 +95,8 @@ contains
                   '(an arch of 3 voussoirs stands at vanishing thickness); set &limit minimum_thickness = .false.')
       end if
       if (.not. status%ok) return
-      call build_arch(a%embrace_deg, a%n_voussoirs, a%r_ext_m, a%thickness_m, arch)
+      call build_arch(a%embrace_deg, a%n_voussoirs, a%r_ext_m, a%thickness_m, arch, &
+                      angle_factors=voussoir_angle_factors(a%n_voussoirs, a%size_imperfection, a%imperfection_seed))
       call horizontal_capacity(arch, opts%inset_m, a%friction, res, status)
       if (status%ok .and. opts%minimum_thickness) then
         call thickness_search(a%embrace_deg, a%n_voussoirs, a%r_ext_m, opts%inset_m, tmin%ratio_ext, &

@@ -3,7 +3,7 @@ module voussoir_setup
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
   use voussoir_config, only: config_t
-  use voussoir_assembly, only: assembly_t, build_arch, read_polygon_file
+  use voussoir_assembly, only: assembly_t, build_arch, read_polygon_file, voussoir_angle_factors
   use voussoir_bodies, only: bodies_t, bodies_init
   use voussoir_model, only: model_t, solver_settings_t
   use voussoir_contact_law, only: contact_law_t, contact_law_init
@@ -40,7 +40,8 @@ contains
       else
         restrained = [a%restrained_springings == 'left' .or. a%restrained_springings == 'both', &
                       a%restrained_springings == 'right' .or. a%restrained_springings == 'both']
-        call build_arch(a%embrace_deg, a%n_voussoirs, a%r_ext_m, a%thickness_m, assembly, restrained)
+        call build_arch(a%embrace_deg, a%n_voussoirs, a%r_ext_m, a%thickness_m, assembly, restrained, &
+                        voussoir_angle_factors(a%n_voussoirs, a%size_imperfection, a%imperfection_seed))
       end if
       settings%dt_s = s%dt_s
       settings%theta = s%theta

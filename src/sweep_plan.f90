@@ -1,4 +1,9 @@
 !> The sweep definition: the &sweep group, its parameter sets and its jobs.
+!>
+!> Modes: `threshold` (the smallest afd amplitude that collapses the arch, per
+!> parameter set and frequency), `grid` (stand or collapse at given amplitudes) and `ida`
+!> (the smallest scale of each record that collapses it, per parameter set and record;
+!> the model samples and the records: src/sweep_ida.f90).
 module voussoir_sweep_plan
   use, intrinsic :: iso_fortran_env, only: iostat_end
   use voussoir_kinds, only: dp
@@ -7,37 +12,44 @@ module voussoir_sweep_plan
   use voussoir_config, only: config_t, config_entry_t, config_entries, config_to_nml, validate_config, &
                              fmt_real, arch_rule, arch_rule_text
   use voussoir_namelist_check, only: check_names
-  use voussoir_threshold, only: threshold_settings_t, search_run_config
+  use voussoir_threshold, only: threshold_settings_t, threshold_search_t, search_run_config, threshold_init, &
+                                threshold_init_onset, static_capacity_m_s2
+  use voussoir_sweep_ida, only: ida_records_t, read_ida_records, sample_sets, n_sampled, range_names
   implicit none
   private
 
   public :: sweep_plan_t, read_sweep_plan, job_param_set, job_frequency_hz, job_amplitude_m, &
-            job_run_config, job_cost, set_description
+            job_run_config, job_cost, set_description, job_record, job_search_init, job_label
 
   integer, parameter :: max_list = 256              !! entries of every &sweep list
   real(dp), parameter :: unset_real = -huge(1.0_dp) !! sentinel of an unset list entry
   integer, parameter :: unset_int = -huge(1)
   real(dp), parameter :: max_jobs = 1.0e7_dp
+  integer, parameter :: path_len = 512
   integer, parameter :: n_kinds = 5                 !! model parameters that can be swept
   character(len=*), parameter :: nl = achar(10)
   !> Swept parameters in the order of their columns, and their &sweep list names.
-  character(len=16), parameter :: param_kinds(n_kinds) = [character(len=16) :: &
+  character(len=24), parameter :: param_kinds(n_kinds) = [character(len=24) :: &
     'embrace_deg', 'n_voussoirs', 'thickness_m', 'friction', 'contact_inset_m']
   character(len=24), parameter :: list_names(n_kinds) = [character(len=24) :: &
     'embrace_list_deg', 'n_voussoirs_list', 'thickness_list_m', 'friction_list', 'contact_inset_list_m']
 
   !> Everything a rank needs to turn a job index into a run.
   type :: sweep_plan_t
-    character(len=16) :: mode = 'threshold'       !! threshold or grid
+    character(len=16) :: mode = 'threshold'       !! threshold, grid or ida
     character(len=16) :: combine = 'product'      !! product or paired
     logical :: pair_frequencies = .false.         !! frequency k goes with parameter set k only
     real(dp), allocatable :: frequencies_hz(:)
     real(dp), allocatable :: amplitudes_m(:)      !! grid mode
-    type(threshold_settings_t) :: search          !! threshold mode
+    type(threshold_settings_t) :: search          !! threshold and ida modes (ida: over the scale)
+    type(ida_records_t) :: records                !! ida mode
+    integer :: n_samples = 0                      !! ida: Latin hypercube model samples (0: the lists)
+    integer :: sample_seed = 1                    !! ida: seed of the samples
+    integer :: dt_check_rows = 0                  !! ida: rows whose two bracketing runs are redone at dt/2
     real(dp) :: progress_every_s = 10.0_dp        !! seconds between progress lines
     integer :: n_params = 0, n_sets = 1, n_freq = 0, n_amp = 1, n_jobs = 0
-    integer :: n_freq_per_set = 0                 !! n_freq, or 1 with pair_frequencies
-    character(len=16), allocatable :: param_names(:)
+    integer :: n_freq_per_set = 0                 !! n_freq, or 1 with pair_frequencies; ida: the records
+    character(len=24), allocatable :: param_names(:)
     real(dp), allocatable :: param_values(:, :)   !! (n_params, n_sets)
     type(config_t), allocatable :: set_cfg(:)     !! (0:n_sets-1) the validated case of each set
     character(len=:), allocatable :: sweep_nml    !! the effective &sweep group
@@ -60,9 +72,16 @@ contains
     real(dp) :: embrace_list_deg(max_list), thickness_list_m(max_list), friction_list(max_list), &
                 contact_inset_list_m(max_list)
     integer :: n_voussoirs_list(max_list)
+    character(len=path_len) :: record_files(max_list)
+    real(dp) :: scale_tol, scale_max, friction_range(2), contact_inset_range_m(2), thickness_range_m(2), &
+                size_imperfection_range(2)
+    integer :: n_samples, sample_seed, dt_check_rows
     namelist /sweep/ mode, combine, pair_frequencies, frequencies_hz, amplitudes_m, amp_tol_m, amp_max_m, scan_step, &
       refine_factor, n_confirm, progress_every_s, embrace_list_deg, n_voussoirs_list, thickness_list_m, &
-      friction_list, contact_inset_list_m
+      friction_list, contact_inset_list_m, record_files, scale_tol, scale_max, n_samples, sample_seed, &
+      friction_range, contact_inset_range_m, thickness_range_m, size_imperfection_range, dt_check_rows
+    real(dp) :: ranges(2, n_sampled)
+    integer :: n_records
     type(threshold_settings_t) :: defaults
     real(dp) :: lists(max_list, n_kinds), f_max_hz
     integer :: lengths(n_kinds), unit, ios, j, k, n_freq, n_amp
@@ -84,10 +103,21 @@ contains
     friction_list = unset_real
     contact_inset_list_m = unset_real
     n_voussoirs_list = unset_int
+    record_files = ''
+    scale_tol = 0.05_dp
+    scale_max = 20.0_dp
+    n_samples = 0
+    sample_seed = 1
+    dt_check_rows = 0
+    friction_range = unset_real
+    contact_inset_range_m = unset_real
+    thickness_range_m = unset_real
+    size_imperfection_range = unset_real
 
     call check_names(path, 'sweep', [character(len=24) :: 'mode', 'combine', 'pair_frequencies', &
       'frequencies_hz', 'amplitudes_m', 'amp_tol_m', 'amp_max_m', 'scan_step', 'refine_factor', 'n_confirm', &
-      'progress_every_s', list_names], status)
+      'progress_every_s', list_names, 'record_files', 'scale_tol', 'scale_max', 'n_samples', 'sample_seed', &
+      range_names, 'dt_check_rows'], status)
     if (.not. status%ok) return
     open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
     if (ios /= 0) then
@@ -108,9 +138,9 @@ contains
     plan%mode = lower(mode)
     plan%combine = lower(combine)
     select case (plan%mode)
-    case ('threshold', 'grid')
+    case ('threshold', 'grid', 'ida')
     case default
-      call fail(status, path//": &sweep mode = '"//trim(mode)//"' is not one of 'threshold', 'grid'")
+      call fail(status, path//": &sweep mode = '"//trim(mode)//"' is not one of 'threshold', 'grid', 'ida'")
       return
     end select
     select case (plan%combine)
@@ -119,7 +149,20 @@ contains
       call fail(status, path//": &sweep combine = '"//trim(combine)//"' is not one of 'product', 'paired'")
       return
     end select
-    if (base%motion%waveform /= 'afd') then
+    ranges = reshape([friction_range, contact_inset_range_m, thickness_range_m, size_imperfection_range], &
+                     [2, n_sampled])
+    if (plan%mode == 'ida') then
+      call read_ida_part()
+      if (.not. status%ok) return
+    else
+      if (any(ranges /= unset_real) .or. n_samples /= 0 .or. len_trim(record_files(1)) > 0 .or. &
+          dt_check_rows /= 0) then
+        call fail(status, path//": &sweep record_files, scale_tol, scale_max, n_samples, the sampling ranges "// &
+                  "and dt_check_rows belong to mode = 'ida', not '"//trim(plan%mode)//"'")
+        return
+      end if
+    end if
+    if (plan%mode /= 'ida' .and. base%motion%waveform /= 'afd') then
       call fail(status, path//": &motion waveform = '"//trim(base%motion%waveform)// &
                 "': a sweep sets the frequency and amplitude of the 'afd' waveform; use waveform = 'afd'")
       return
@@ -128,7 +171,12 @@ contains
     ! Frequencies: at least one, each resolved by at least 20 steps per cycle.
     n_freq = list_length(frequencies_hz, 'frequencies_hz')
     if (.not. status%ok) return
-    if (n_freq == 0) then
+    if (plan%mode == 'ida') then
+      if (n_freq > 0) then
+        call fail(status, path//": &sweep frequencies_hz is set but mode = 'ida' plays records: remove it")
+        return
+      end if
+    else if (n_freq == 0) then
       call fail(status, path//': &sweep frequencies_hz is not set: give at least one frequency')
       return
     end if
@@ -139,7 +187,14 @@ contains
     end do
     n_amp = list_length(amplitudes_m, 'amplitudes_m')
     if (.not. status%ok) return
-    if (plan%mode == 'grid') then
+    if (plan%mode == 'ida') then
+      if (n_amp > 0) then
+        call fail(status, path//": &sweep amplitudes_m is set but mode = 'ida' searches the scale of each "// &
+                  'record: remove it')
+        return
+      end if
+      n_amp = 1
+    else if (plan%mode == 'grid') then
       if (n_amp == 0) then
         call fail(status, path//": &sweep amplitudes_m is not set: mode = 'grid' needs at least one amplitude")
         return
@@ -201,6 +256,7 @@ contains
     plan%n_freq = n_freq
     plan%pair_frequencies = pair_frequencies
     plan%n_freq_per_set = merge(1, n_freq, pair_frequencies)
+    if (plan%mode == 'ida') plan%n_freq_per_set = plan%records%n
     plan%n_amp = n_amp
     if (plan%mode == 'grid') then
       plan%amplitudes_m = amplitudes_m(1:n_amp)
@@ -213,8 +269,26 @@ contains
     plan%search%refine_factor = refine_factor
     plan%search%n_confirm = n_confirm
     plan%progress_every_s = progress_every_s
+    if (plan%mode == 'ida') then
+      plan%search%amp_tol_m = scale_tol
+      plan%search%amp_max_m = scale_max
+      plan%search%relative_tol = .true.
+    end if
 
-    call build_sets(lists, lengths)
+    if (plan%n_samples > 0) then
+      if (any(lengths > 0)) then
+        call fail(status, path//': &sweep n_samples = '//itoa(n_samples)//' draws the model samples; the '// &
+                  'lists ('//lengths_text(lengths)//') cannot be combined with it')
+        return
+      end if
+      call sample_sets(path, base, n_samples, sample_seed, ranges, ranges(1, :) /= unset_real, &
+                       plan%param_names, plan%param_values, plan%set_cfg, status)
+      if (.not. status%ok) return
+      plan%n_params = size(plan%param_names)
+      plan%n_sets = n_samples
+    else
+      call build_sets(lists, lengths)
+    end if
     if (.not. status%ok) return
     if (pair_frequencies .and. n_freq /= plan%n_sets) then
       call fail(status, path//': &sweep pair_frequencies = .true. needs one frequency per parameter set: '// &
@@ -226,9 +300,61 @@ contains
       return
     end if
     plan%n_jobs = plan%n_sets*plan%n_freq_per_set*plan%n_amp
-    call make_texts(lists, lengths)
+    call make_texts(lists, lengths, ranges)
 
   contains
+
+    !> The records, the scale search and the sampling of mode = 'ida'.
+    subroutine read_ida_part()
+      integer :: v
+      n_records = 0
+      do k = 1, max_list
+        if (len_trim(record_files(k)) == 0) exit
+        n_records = k
+      end do
+      if (n_records == 0) then
+        call fail(status, path//": &sweep record_files is not set: mode = 'ida' needs at least one record "// &
+                  '(a PEER .AT2 file or a CSV with t_s, accel_m_s2)')
+        return
+      end if
+      if (any(len_trim(record_files(n_records + 1:)) > 0)) then
+        call fail(status, path//': &sweep record_files('//itoa(n_records + 1)//') is empty but a later entry '// &
+                  'is set: give the list without gaps')
+        return
+      end if
+      do k = 1, n_records
+        if (scan(record_files(k), ','//achar(10)) > 0) then
+          call fail(status, path//': &sweep record_files('//itoa(k)//") = '"//trim(record_files(k))// &
+                    "' has a comma or a line break, which the CSV summary cannot hold: rename the file")
+          return
+        end if
+      end do
+      call need(scale_tol > 0.0_dp .and. scale_tol < 1.0_dp, 'scale_tol', 0, scale_tol, &
+                '0 < scale_tol < 1 (relative width of the final bracket)')
+      call need(scale_max > 0.0_dp .and. scale_max <= huge(1.0_dp), 'scale_max', 0, scale_max, 'scale_max > 0')
+      call need(n_samples >= 0 .and. n_samples <= 100000, 'n_samples', 0, real(n_samples, dp), &
+                '0 <= n_samples <= 100000 (0: the parameter lists, or the base case)')
+      call need(sample_seed >= 0, 'sample_seed', 0, real(sample_seed, dp), 'sample_seed >= 0')
+      call need(dt_check_rows >= 0, 'dt_check_rows', 0, real(dt_check_rows, dp), 'dt_check_rows >= 0')
+      do v = 1, n_sampled
+        if (count(ranges(:, v) /= unset_real) == 1) call fail(status, path//': &sweep '//trim(range_names(v))// &
+          ' needs two values, the low and the high bound')
+        if (ranges(1, v) /= unset_real .and. n_samples == 0) call fail(status, path//': &sweep '// &
+          trim(range_names(v))//' is set but n_samples = 0: set n_samples to draw model samples')
+      end do
+      if (n_samples > 0 .and. all(ranges == unset_real)) call fail(status, path//': &sweep n_samples = '// &
+        itoa(n_samples)//' but no range to sample: give one or more of '//join_words(range_names, ', '))
+      if (.not. status%ok) return
+      if (base%motion%waveform /= 'afd' .and. base%motion%waveform /= 'accelerogram') then
+        call fail(status, path//": &motion waveform = '"//trim(base%motion%waveform)//"': mode = 'ida' "// &
+                  'drives the table with each record of &sweep record_files; leave waveform unset')
+        return
+      end if
+      call read_ida_records(path, record_files(1:n_records), plan%records, status)
+      plan%n_samples = n_samples
+      plan%sample_seed = sample_seed
+      plan%dt_check_rows = dt_check_rows
+    end subroutine read_ida_part
 
     !> Entries set from the start of `x`, with no gap.
     integer function list_length(x, name) result(n)
@@ -340,17 +466,33 @@ contains
     end subroutine build_sets
 
     !> The effective &sweep group and the signature of the sweep definition.
-    subroutine make_texts(lists, lengths)
-      real(dp), intent(in) :: lists(:, :)
+    subroutine make_texts(lists, lengths, ranges)
+      real(dp), intent(in) :: lists(:, :), ranges(:, :)
       integer, intent(in) :: lengths(:)
       character(len=:), allocatable :: body
       type(config_entry_t), allocatable :: e(:)
       integer :: j
       body = "&sweep"//nl//"  mode = '"//trim(plan%mode)//"'"//nl// &
              "  combine = '"//trim(plan%combine)//"'"//nl// &
-             '  pair_frequencies = '//trim(merge('.true. ', '.false.', plan%pair_frequencies))//nl// &
-             '  frequencies_hz = '//fmt_exact_list(plan%frequencies_hz)//nl
-      if (plan%mode == 'grid') then
+             '  pair_frequencies = '//trim(merge('.true. ', '.false.', plan%pair_frequencies))//nl
+      if (plan%mode /= 'ida') body = body//'  frequencies_hz = '//fmt_exact_list(plan%frequencies_hz)//nl
+      if (plan%mode == 'ida') then
+        body = body//'  record_files = '
+        do j = 1, plan%records%n
+          body = body//"'"//trim(plan%records%given(j))//"'"//trim(merge(', ', '  ', j < plan%records%n))
+        end do
+        body = trim(body)//nl//'  scale_tol = '//fmt_exact_list([plan%search%amp_tol_m])//nl// &
+               '  scale_max = '//fmt_exact_list([plan%search%amp_max_m])//nl// &
+               '  scan_step = '//fmt_exact_list([plan%search%scan_step])//nl// &
+               '  refine_factor = '//itoa(plan%search%refine_factor)//nl// &
+               '  n_confirm = '//itoa(plan%search%n_confirm)//nl// &
+               '  n_samples = '//itoa(plan%n_samples)//nl//'  sample_seed = '//itoa(plan%sample_seed)//nl// &
+               '  dt_check_rows = '//itoa(plan%dt_check_rows)//nl
+        do j = 1, n_sampled
+          if (ranges(1, j) /= unset_real) body = body//'  '//trim(range_names(j))//' = '// &
+                                                 fmt_exact_list(ranges(:, j))//nl
+        end do
+      else if (plan%mode == 'grid') then
         body = body//'  amplitudes_m = '//fmt_exact_list(plan%amplitudes_m)//nl
       else
         body = body//'  amp_tol_m = '//fmt_exact_list([plan%search%amp_tol_m])//nl// &
@@ -390,6 +532,43 @@ contains
     if (plan%n_params == 0) text = 'base case'
   end function set_description
 
+  !> Record (1-based, into plan%records) of an IDA job.
+  pure integer function job_record(plan, job)
+    type(sweep_plan_t), intent(in) :: plan
+    integer, intent(in) :: job
+    job_record = modulo(job, plan%records%n) + 1
+  end function job_record
+
+  !> What job `job` is, for messages: its parameter set and frequency or record.
+  function job_label(plan, job) result(text)
+    type(sweep_plan_t), intent(in) :: plan
+    integer, intent(in) :: job
+    character(len=:), allocatable :: text
+    text = 'job '//itoa(job)//' (parameter set '//itoa(job_param_set(plan, job))//', '
+    if (plan%mode == 'ida') then
+      text = text//'record '//trim(plan%records%given(job_record(plan, job)))//')'
+    else
+      text = text//fmt_real(job_frequency_hz(plan, job))//' Hz)'
+    end if
+  end function job_label
+
+  !> A new search for job `job` (threshold and ida modes). An IDA search starts from
+  !> the scale at which the record's PGA equals the arch's static capacity lambda g.
+  subroutine job_search_init(plan, job, search, status)
+    type(sweep_plan_t), intent(in) :: plan
+    integer, intent(in) :: job
+    type(threshold_search_t), intent(out) :: search
+    type(status_t), intent(inout) :: status
+    associate (c => plan%set_cfg(job_param_set(plan, job)))
+      if (plan%mode == 'ida') then
+        call threshold_init_onset(search, c, static_capacity_m_s2(c)/plan%records%pga_m_s2(job_record(plan, job)), &
+                                  plan%search, status)
+      else
+        call threshold_init(search, c, job_frequency_hz(plan, job), plan%search, status)
+      end if
+    end associate
+  end subroutine job_search_init
+
   !> Parameter set (0-based) of job `job` (0-based).
   pure integer function job_param_set(plan, job)
     type(sweep_plan_t), intent(in) :: plan
@@ -400,7 +579,9 @@ contains
   pure real(dp) function job_frequency_hz(plan, job)
     type(sweep_plan_t), intent(in) :: plan
     integer, intent(in) :: job
-    if (plan%pair_frequencies) then
+    if (plan%mode == 'ida') then
+      job_frequency_hz = 0.0_dp
+    else if (plan%pair_frequencies) then
       job_frequency_hz = plan%frequencies_hz(job_param_set(plan, job) + 1)
     else
       job_frequency_hz = plan%frequencies_hz(modulo(job/plan%n_amp, plan%n_freq) + 1)
@@ -415,15 +596,21 @@ contains
     if (plan%mode == 'grid') job_amplitude_m = plan%amplitudes_m(modulo(job, plan%n_amp) + 1)
   end function job_amplitude_m
 
-  !> The configuration of one run of job `job` at `amplitude_m`: a threshold search run
-  !> stops at the collapse; a grid run keeps the base case's stop_after_collapse_s. No
-  !> time series is kept.
+  !> The configuration of one run of job `job` at `amplitude_m` (ida: the scale of its
+  !> record): a search run stops at the collapse; a grid run keeps the base case's
+  !> stop_after_collapse_s. No time series is kept.
   pure function job_run_config(plan, job, amplitude_m) result(cfg)
     type(sweep_plan_t), intent(in) :: plan
     integer, intent(in) :: job
     real(dp), intent(in) :: amplitude_m
     type(config_t) :: cfg
     cfg = search_run_config(plan%set_cfg(job_param_set(plan, job)), job_frequency_hz(plan, job), amplitude_m)
+    if (plan%mode == 'ida') then
+      cfg%motion%waveform = 'accelerogram'
+      cfg%motion%record_file = plan%records%files(job_record(plan, job))
+      cfg%motion%record_scale = amplitude_m
+      cfg%motion%amplitude_m = 0.0_dp
+    end if
     if (plan%mode == 'grid') cfg%output%stop_after_collapse_s = &
       plan%set_cfg(job_param_set(plan, job))%output%stop_after_collapse_s
   end function job_run_config
@@ -436,8 +623,11 @@ contains
     f_hz = job_frequency_hz(plan, job)
     associate (c => plan%set_cfg(job_param_set(plan, job)))
       duration_s = c%motion%duration_s
-      if (duration_s == 0.0_dp) duration_s = (c%motion%n_attack + c%motion%n_full + c%motion%n_decay)/f_hz &
-                                             + c%motion%rest_s
+      if (duration_s == 0.0_dp .and. plan%mode == 'ida') then
+        duration_s = c%motion%rest_s + plan%records%duration_s(job_record(plan, job))
+      else if (duration_s == 0.0_dp) then
+        duration_s = (c%motion%n_attack + c%motion%n_full + c%motion%n_decay)/f_hz + c%motion%rest_s
+      end if
       job_cost = duration_s/c%solver%dt_s*(c%arch%n_voussoirs + 2)
     end associate
   end function job_cost

@@ -34,7 +34,7 @@ module voussoir_threshold
   use voussoir_kinds, only: dp, pi, g_m_s2
   use voussoir_status, only: status_t, fail
   use voussoir_config, only: config_t, fmt_real
-  use voussoir_assembly, only: assembly_t, build_arch
+  use voussoir_assembly, only: assembly_t, build_arch, voussoir_angle_factors
   use voussoir_limit, only: limit_result_t, horizontal_capacity
   use voussoir_motion, only: motion_t, motion_afd, motion_eval, motion_duration_s
   use voussoir_model, only: model_t
@@ -46,7 +46,8 @@ module voussoir_threshold
   public :: threshold_settings_t, run_outcome_t, threshold_search_t, threshold_result_t
   public :: check_threshold_settings, threshold_init, threshold_next, threshold_record
   public :: threshold_result, threshold_done, find_threshold, search_run_config
-  public :: outcome_of_run, static_onset_amplitude_m, afd_peak_accel_per_m
+  public :: outcome_of_run, static_onset_amplitude_m, afd_peak_accel_per_m, static_capacity_m_s2
+  public :: threshold_init_onset
   public :: phase_start, phase_descend, phase_scan, phase_refine, phase_confirm, phase_done
 
   integer, parameter :: phase_start = 1    !! first run, just below the static onset
@@ -70,6 +71,9 @@ module voussoir_threshold
     real(dp) :: start_fraction = 0.95_dp   !! first run, fraction of the static onset
     real(dp) :: descend_ratio = 2.0_dp     !! divisor of the downward search
     integer :: n_confirm = 2               !! probes just above the threshold
+    !> amp_tol_m is relative to the collapsing end of the bracket (the scale of a record,
+    !> which has no unit); the smallest value tried is then amp_max_m / 1000
+    logical :: relative_tol = .false.
   end type threshold_settings_t
 
   !> What one run tells the search (and what a sweep records of it).
@@ -125,7 +129,10 @@ contains
     associate (s => settings)
       if (.not. (s%amp_tol_m > 0.0_dp)) then
         call fail(status, 'threshold search: amp_tol_m = '//fmt_real(s%amp_tol_m)//' must be > 0')
-      else if (.not. (s%amp_max_m > s%amp_tol_m)) then
+      else if (s%relative_tol .and. .not. (s%amp_tol_m < 1.0_dp .and. s%amp_max_m > 0.0_dp)) then
+        call fail(status, 'threshold search: a relative tolerance '//fmt_real(s%amp_tol_m)// &
+                  ' must be < 1, and the largest value '//fmt_real(s%amp_max_m)//' > 0')
+      else if (.not. s%relative_tol .and. .not. (s%amp_max_m > s%amp_tol_m)) then
         call fail(status, 'threshold search: amp_max_m = '//fmt_real(s%amp_max_m)// &
                   ' must be > amp_tol_m = '//fmt_real(s%amp_tol_m))
       else if (.not. (s%scan_step > 0.0_dp .and. s%scan_step <= 1.0_dp)) then
@@ -195,21 +202,32 @@ contains
   real(dp) function static_onset_amplitude_m(cfg, frequency_hz) result(amp_m)
     type(config_t), intent(in) :: cfg
     real(dp), intent(in) :: frequency_hz
+    amp_m = static_capacity_m_s2(cfg)
+    if (amp_m > 0.0_dp) amp_m = amp_m/afd_peak_accel_per_m(cfg, frequency_hz)
+  end function static_onset_amplitude_m
+
+  !> The horizontal collapse capacity lambda g [m/s2] of the arch of `cfg` (limit
+  !> analysis, the weaker direction); 0 when it does not apply (polygon assemblies,
+  !> restraint brackets, no capacity).
+  real(dp) function static_capacity_m_s2(cfg) result(capacity)
+    type(config_t), intent(in) :: cfg
     type(assembly_t) :: arch
     type(limit_result_t) :: limit
     type(status_t) :: status
     real(dp) :: lambda
 
-    amp_m = 0.0_dp
+    capacity = 0.0_dp
     if (len_trim(cfg%arch%polygon_file) > 0 .or. cfg%arch%restrained_springings /= 'none') return
     if (cfg%arch%n_voussoirs < 3) return
-    call build_arch(cfg%arch%embrace_deg, cfg%arch%n_voussoirs, cfg%arch%r_ext_m, cfg%arch%thickness_m, arch)
+    call build_arch(cfg%arch%embrace_deg, cfg%arch%n_voussoirs, cfg%arch%r_ext_m, cfg%arch%thickness_m, arch, &
+                    angle_factors=voussoir_angle_factors(cfg%arch%n_voussoirs, cfg%arch%size_imperfection, &
+                                                         cfg%arch%imperfection_seed))
     call horizontal_capacity(arch, cfg%arch%contact_inset_m, cfg%arch%friction, limit, status)
     if (.not. status%ok) return
     lambda = min(limit%lambda_pos, limit%lambda_neg)
     if (.not. (lambda > 0.0_dp .and. lambda < huge(1.0_dp))) return
-    amp_m = lambda*g_m_s2/afd_peak_accel_per_m(cfg, frequency_hz)
-  end function static_onset_amplitude_m
+    capacity = lambda*g_m_s2
+  end function static_capacity_m_s2
 
   !> A new search for the case `cfg` (an afd motion) at `frequency_hz`.
   subroutine threshold_init(search, cfg, frequency_hz, settings, status)
@@ -230,11 +248,24 @@ contains
       call fail(status, 'threshold search: frequency_hz = '//fmt_real(frequency_hz)//' must be > 0')
       return
     end if
-    search%settings = settings
+    call threshold_init_onset(search, cfg, static_onset_amplitude_m(cfg, frequency_hz), settings, status)
     search%frequency_hz = frequency_hz
+  end subroutine threshold_init
+
+  !> A new search for the case `cfg` over a variable (an amplitude, a scale) below
+  !> `onset` of which the arch does not move (0: unknown).
+  subroutine threshold_init_onset(search, cfg, onset, settings, status)
+    type(threshold_search_t), intent(out) :: search
+    type(config_t), intent(in) :: cfg
+    real(dp), intent(in) :: onset
+    type(threshold_settings_t), intent(in) :: settings
+    type(status_t), intent(inout) :: status
+    call check_threshold_settings(settings, status)
+    if (.not. status%ok) return
+    search%settings = settings
     search%quiet_disp_m = cfg%output%hinge_gap_m
     if (search%quiet_disp_m <= 0.0_dp) search%quiet_disp_m = 0.01_dp*cfg%arch%thickness_m
-    search%onset_amp_m = static_onset_amplitude_m(cfg, frequency_hz)
+    search%onset_amp_m = onset
     allocate (search%runs(16))
     if (search%onset_amp_m > 0.0_dp) then
       search%phase = phase_start
@@ -244,7 +275,7 @@ contains
       search%phase = phase_descend
       search%next_m = settings%amp_max_m
     end if
-  end subroutine threshold_init
+  end subroutine threshold_init_onset
 
   !> Whether the search has its answer.
   pure logical function threshold_done(search)
@@ -292,7 +323,7 @@ contains
         if (quiet) then
           search%lo_m = a
           call enter_scan()
-        else if (a/s%descend_ratio < s%amp_tol_m) then
+        else if (a/s%descend_ratio < smallest_value()) then
           ! Moving even at the smallest amplitude worth trying.
           if (outcome%collapsed) then
             search%lo_m = 0.0_dp
@@ -345,7 +376,7 @@ contains
           return
         end if
         next_m = min(search%lo_m*(1.0_dp + s%scan_step), s%amp_max_m)
-        if (search%lo_m == 0.0_dp) next_m = s%amp_tol_m
+        if (search%lo_m == 0.0_dp) next_m = smallest_value()
         known_m = smallest_collapse_above(search%lo_m)
         if (known_m > 0.0_dp .and. next_m >= known_m) then
           ! A collapse met on the way down bounds the scan.
@@ -357,12 +388,20 @@ contains
       end associate
     end subroutine enter_scan
 
+    !> The smallest amplitude worth trying: the tolerance, or amp_max_m / 1000 for a
+    !> relative one.
+    real(dp) function smallest_value()
+      smallest_value = merge(1.0e-3_dp*search%settings%amp_max_m, search%settings%amp_tol_m, &
+                             search%settings%relative_tol)
+    end function smallest_value
+
     !> A new level on the bracket (lo_m, hi_m), or the confirmation once it is narrow.
     subroutine enter_refine()
-      real(dp) :: width_m
+      real(dp) :: width_m, tol_m
       search%phase = phase_refine
       width_m = search%hi_m - search%lo_m
-      if (width_m <= search%settings%amp_tol_m) then
+      tol_m = merge(search%settings%amp_tol_m*search%hi_m, search%settings%amp_tol_m, search%settings%relative_tol)
+      if (width_m <= tol_m) then
         call enter_confirm()
         return
       end if
@@ -370,7 +409,7 @@ contains
       search%level_hi_m = search%hi_m
       ! Never finer than needed to reach the tolerance in this level.
       search%level_parts = int(min(real(search%settings%refine_factor, dp), &
-                                   real(ceiling(width_m/search%settings%amp_tol_m - 1.0e-9_dp), dp)))
+                                   real(ceiling(width_m/tol_m - 1.0e-9_dp), dp)))
       search%level_parts = max(2, search%level_parts)
       search%level_point = 1
       search%next_m = refine_point()

@@ -1,13 +1,14 @@
 !> The sweep plan without MPI: namelist files written here are read into plans whose
 !> parameter sets, jobs and run configurations are checked against what the &sweep group
 !> says (docs/sweep.md: the first swept parameter varies slowest; a job is a parameter
-!> set x a frequency [x an amplitude]); bad groups are refused with the variable named.
+!> set x a frequency [x an amplitude]; in an IDA a model sample x a record); bad groups
+!> are refused with the variable named.
 program test_sweep_plan
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t
   use voussoir_config, only: config_t, read_config
   use voussoir_sweep_plan, only: sweep_plan_t, read_sweep_plan, job_param_set, job_frequency_hz, &
-                                 job_amplitude_m, job_run_config
+                                 job_amplitude_m, job_run_config, job_record
   use voussoir_assert, only: assert_true, assert_close, assert_summary
   implicit none
 
@@ -20,6 +21,8 @@ program test_sweep_plan
   call test_paired_with_frequencies()
   call test_grid_jobs()
   call test_refusals()
+  call test_ida()
+  call test_ida_refusals()
   call assert_summary()
 
 contains
@@ -113,6 +116,92 @@ contains
     call refused('set', '&sweep frequencies_hz = 1, thickness_list_m = 0.6 /', &
                  'parameter set 0 (thickness_m = 0.6): &arch thickness_m = 0.6 is outside the allowed range')
   end subroutine test_refusals
+
+  !> Two small records written here (PGA 2 and 4 m/s2), 5 Latin hypercube samples of
+  !> friction and thickness: 10 jobs, records varying fastest.
+  subroutine test_ida()
+    type(sweep_plan_t) :: plan
+    type(status_t) :: status
+    type(config_t) :: run
+    integer :: job, k
+    logical :: one_each
+    call write_records()
+    call plan_of('ida', "&sweep mode = 'ida', record_files = 'rec_a.csv', 'rec_b.csv', scale_tol = 0.02, "// &
+                 'scale_max = 12, n_samples = 5, sample_seed = 3, friction_range = 0.4, 0.7, '// &
+                 'thickness_range_m = 0.065, 0.075, dt_check_rows = 2 /', plan, status)
+    call assert_true(status%ok, 'ida plan reads: '//trim(status%message))
+    if (.not. status%ok) return
+    call assert_true(plan%n_sets == 5 .and. plan%n_jobs == 10 .and. plan%records%n == 2, &
+                     'ida: 5 samples x 2 records = 10 jobs')
+    call assert_close(plan%records%pga_m_s2(2), 4.0_dp, 'ida: PGA of record b [m/s2]', rtol=1.0e-12_dp)
+    call assert_true(plan%search%relative_tol .and. plan%search%amp_tol_m == 0.02_dp .and. &
+                     plan%search%amp_max_m == 12.0_dp, 'ida: the search is over the scale, relative tolerance')
+    call assert_true(all(plan%param_names == [character(len=24) :: 'friction', 'thickness_m']), &
+                     'ida: the sampled variables, in their fixed order')
+    one_each = .true.
+    do k = 0, 4
+      one_each = one_each .and. count(floor((plan%param_values(1, :) - 0.4_dp)/0.06_dp) == k) == 1 .and. &
+                 count(floor((plan%param_values(2, :) - 0.065_dp)/0.002_dp) == k) == 1
+    end do
+    call assert_true(one_each, 'ida: one sample in each fifth of each range')
+    call assert_close(plan%set_cfg(3)%arch%friction, plan%param_values(1, 4), 'ida: sample 3 carries its friction')
+    do job = 0, plan%n_jobs - 1
+      call assert_true(job_param_set(plan, job) == job/2 .and. job_record(plan, job) == modulo(job, 2) + 1, &
+                       'ida: job -> (sample, record)')
+    end do
+    run = job_run_config(plan, 7, 2.5_dp)
+    call assert_true(run%motion%waveform == 'accelerogram' .and. index(run%motion%record_file, 'rec_b.csv') > 0 &
+                     .and. run%motion%record_scale == 2.5_dp .and. run%arch%thickness_m == plan%param_values(2, 4), &
+                     'ida: a run plays its record at the scale, on its sample')
+  end subroutine test_ida
+
+  subroutine test_ida_refusals()
+    call write_records()
+    call refused('ida_none', "&sweep mode = 'ida' /", "mode = 'ida' needs at least one record")
+    call refused('ida_tol', "&sweep mode = 'ida', record_files = 'rec_a.csv', scale_tol = 1.5 /", &
+                 'scale_tol = 1.5 is outside the allowed range 0 < scale_tol < 1')
+    call refused('ida_max', "&sweep mode = 'ida', record_files = 'rec_a.csv', scale_max = 0 /", &
+                 'scale_max = 0 is outside the allowed range scale_max > 0')
+    call refused('ida_freq', "&sweep mode = 'ida', record_files = 'rec_a.csv', frequencies_hz = 1 /", &
+                 "frequencies_hz is set but mode = 'ida' plays records")
+    call refused('ida_half', "&sweep mode = 'ida', record_files = 'rec_a.csv', n_samples = 4, friction_range = 0.4 /", &
+                 'friction_range needs two values')
+    call refused('ida_order', "&sweep mode = 'ida', record_files = 'rec_a.csv', n_samples = 4, "// &
+                 'friction_range = 0.7, 0.4 /', 'the low bound must not exceed the high one')
+    call refused('ida_range', "&sweep mode = 'ida', record_files = 'rec_a.csv', n_samples = 4, "// &
+                 'size_imperfection_range = 0.1, 0.6 /', 'outside the allowed range 0 <= size_imperfection < 0.5')
+    call refused('ida_nosample', "&sweep mode = 'ida', record_files = 'rec_a.csv', friction_range = 0.4, 0.6 /", &
+                 'friction_range is set but n_samples = 0')
+    call refused('ida_norange', "&sweep mode = 'ida', record_files = 'rec_a.csv', n_samples = 4 /", &
+                 'no range to sample')
+    call refused('ida_lists', "&sweep mode = 'ida', record_files = 'rec_a.csv', n_samples = 4, "// &
+                 'friction_range = 0.4, 0.6, thickness_list_m = 0.07 /', 'cannot be combined with it')
+    call refused('ida_badrec', "&sweep mode = 'ida', record_files = 'rec_bad.csv' /", &
+                 "record_files(1): rec_bad.csv:3: accel_m_s2 = 'nan' is not a finite number")
+    call refused('ida_missing', "&sweep mode = 'ida', record_files = 'rec_a.csv', 'nowhere.AT2' /", &
+                 'record_files(2): nowhere.AT2: cannot open')
+    call refused('ida_comma', "&sweep mode = 'ida', record_files = 'rec,a.csv' /", 'a comma')
+    call refused('ida_in_threshold', "&sweep frequencies_hz = 1, record_files = 'rec_a.csv' /", &
+                 "belong to mode = 'ida'")
+    call refused('ida_samples_max', "&sweep mode = 'ida', record_files = 'rec_a.csv', n_samples = -1 /", &
+                 'n_samples = -1 is outside the allowed range')
+  end subroutine test_ida_refusals
+
+  subroutine write_records()
+    integer :: unit
+    open (newunit=unit, file='rec_a.csv', status='replace', action='write')
+    write (unit, '(a)') 't_s,accel_m_s2', '0.00,0.0', '0.01,2.0', '0.02,-1.0', '0.03,0.0'
+    close (unit)
+    open (newunit=unit, file='rec_b.csv', status='replace', action='write')
+    write (unit, '(a)') 't_s,accel_m_s2', '0.00,0.0', '0.01,-4.0', '0.02,1.0', '0.03,0.0'
+    close (unit)
+    open (newunit=unit, file='rec_bad.csv', status='replace', action='write')
+    write (unit, '(a)') 't_s,accel_m_s2', '0.00,0.0', '0.01,nan'
+    close (unit)
+    open (newunit=unit, file='rec,a.csv', status='replace', action='write')
+    write (unit, '(a)') 't_s,accel_m_s2', '0.00,0.0', '0.01,1.0'
+    close (unit)
+  end subroutine write_records
 
   subroutine refused(name, sweep_group, expected)
     character(len=*), intent(in) :: name, sweep_group, expected

@@ -20,7 +20,7 @@ module voussoir_sweep_output
   private
 
   public :: sweep_table_t, sweep_header_t
-  public :: results_table, runs_table, table_init, table_append, table_sort, table_row, table_set, table_value
+  public :: results_table, runs_table, dt_check_table, table_init, table_append, table_sort, table_row, table_set, table_value
   public :: write_sweep_file, read_sweep_file, write_sweep_csv, csv_path_of
 
   integer, parameter :: name_len = 32
@@ -36,7 +36,7 @@ module voussoir_sweep_output
   !> What the file says about the sweep besides its rows.
   type :: sweep_header_t
     type(config_t) :: cfg                           !! the base case (/config, config_nml)
-    character(len=16) :: mode = 'threshold'         !! threshold or grid
+    character(len=16) :: mode = 'threshold'         !! threshold, grid or ida
     character(len=:), allocatable :: signature      !! identifies the sweep definition
     character(len=:), allocatable :: sweep_nml      !! the effective &sweep group
     integer :: n_jobs = 0
@@ -44,15 +44,23 @@ module voussoir_sweep_output
     real(dp), allocatable :: parameter_values(:, :)   !! (n_params, n_sets)
     real(dp), allocatable :: frequencies_hz(:)
     real(dp), allocatable :: amplitudes_m(:)          !! grid mode
+    character(len=512), allocatable :: record_files(:)  !! ida mode: as given in &sweep record_files
+    real(dp), allocatable :: record_pga_m_s2(:), record_pgv_m_s(:)  !! ida mode: of each record, unscaled
   end type sweep_header_t
 
 contains
 
-  !> An empty /results table with the columns of `mode` ('threshold' or 'grid').
+  !> An empty /results table with the columns of `mode` ('threshold', 'grid' or 'ida').
   function results_table(mode) result(t)
     character(len=*), intent(in) :: mode
     type(sweep_table_t) :: t
-    if (mode == 'grid') then
+    if (mode == 'ida') then
+      call table_init(t, [character(len=name_len) :: 'job', 'param_set', 'record', 'scale_stood', &
+                          'scale_threshold', 'pga_threshold_m_s2', 'pgv_threshold_m_s', 'censored', &
+                          'non_monotonic', 'n_runs', 'mean_iterations', 'wall_time_s'], &
+                      [.true., .true., .true., .false., .false., .false., .false., .true., .true., .true., &
+                       .false., .false.])
+    else if (mode == 'grid') then
       call table_init(t, [character(len=name_len) :: 'job', 'param_set', 'frequency_hz', 'amplitude_m', &
                           'collapsed', 'collapse_time_s', 'peak_crown_disp_m', 'mean_iterations', &
                           'nonconverged_steps', 'wall_time_s'], &
@@ -66,14 +74,23 @@ contains
     end if
   end function results_table
 
-  !> An empty /runs table: every simulation of the threshold searches.
-  function runs_table() result(t)
+  !> An empty /runs table: every simulation of the searches; `value_name` is the
+  !> searched variable ('amplitude_m', or 'scale' in an IDA).
+  function runs_table(value_name) result(t)
+    character(len=*), intent(in) :: value_name
     type(sweep_table_t) :: t
-    call table_init(t, [character(len=name_len) :: 'job', 'run', 'amplitude_m', 'collapsed', &
+    call table_init(t, [character(len=name_len) :: 'job', 'run', value_name, 'collapsed', &
                         'collapse_time_s', 'peak_crown_disp_m', 'mean_iterations', 'n_steps', &
                         'nonconverged_steps', 'wall_time_s'], &
                     [.true., .true., .false., .true., .false., .false., .false., .true., .true., .false.])
   end function runs_table
+
+  !> An empty /dt_check table: runs of an IDA redone at half the time step.
+  function dt_check_table() result(t)
+    type(sweep_table_t) :: t
+    call table_init(t, [character(len=name_len) :: 'job', 'scale', 'collapsed', 'collapsed_half_dt'], &
+                    [.true., .false., .true., .true.])
+  end function dt_check_table
 
   !> An empty table with the columns `names` (integer where `is_int`).
   subroutine table_init(t, names, is_int)
@@ -162,12 +179,14 @@ contains
 
   !> Write the whole sweep file `path` through `path`.part. `runs` may have no columns
   !> (grid mode): then there is no /runs group. `complete` marks a finished sweep.
-  subroutine write_sweep_file(path, header, results, runs, complete, status)
+  !> `dt_check`, when given, is the time-step check of an IDA (/dt_check).
+  subroutine write_sweep_file(path, header, results, runs, complete, status, dt_check)
     character(len=*), intent(in) :: path
     type(sweep_header_t), intent(in) :: header
     type(sweep_table_t), intent(in) :: results, runs
     logical, intent(in) :: complete
     type(status_t), intent(inout) :: status
+    type(sweep_table_t), intent(in), optional :: dt_check
     integer(hid_t) :: file_id, g
 
     call h5_create(trim(path), file_id, status)
@@ -181,7 +200,13 @@ contains
     call h5_attr(file_id, 'complete', merge(1, 0, complete), status)
 
     call h5_group(file_id, 'sweep', g, status)
-    call h5_write(g, 'frequencies_hz', header%frequencies_hz, status)
+    if (header%mode == 'ida') then
+      call h5_attr(file_id, 'record_files', join_lines(header%record_files), status)
+      call h5_write(g, 'record_pga_m_s2', header%record_pga_m_s2, status)
+      call h5_write(g, 'record_pgv_m_s', header%record_pgv_m_s, status)
+    else
+      call h5_write(g, 'frequencies_hz', header%frequencies_hz, status)
+    end if
     if (header%mode == 'grid') call h5_write(g, 'amplitudes_m', header%amplitudes_m, status)
     call h5_group_close(g, status)
     if (size(header%parameter_values, 1) > 0) then
@@ -193,8 +218,26 @@ contains
     if (allocated(runs%names)) then
       if (size(runs%names) > 0) call write_table(file_id, 'runs', runs, status)
     end if
+    if (present(dt_check)) then
+      call write_table(file_id, 'dt_check', dt_check, status)
+      call h5_attr(file_id, 'dt_check_runs', dt_check%n_rows, status)
+      call h5_attr(file_id, 'dt_check_changed', count(dt_check%values(3, 1:dt_check%n_rows) /= &
+                                                      dt_check%values(4, 1:dt_check%n_rows)), status)
+    end if
     call h5_commit(file_id, trim(path), status)
   end subroutine write_sweep_file
+
+  !> The entries of `lines`, trimmed, one per line.
+  function join_lines(lines) result(text)
+    character(len=*), intent(in) :: lines(:)
+    character(len=:), allocatable :: text
+    integer :: k
+    text = ''
+    do k = 1, size(lines)
+      text = text//trim(lines(k))
+      if (k < size(lines)) text = text//achar(10)
+    end do
+  end function join_lines
 
   subroutine write_table(file_id, name, t, status)
     integer(hid_t), intent(in) :: file_id
@@ -367,7 +410,10 @@ contains
     n_params = size(header%parameter_values, 1)
     names = ''
     if (n_params > 0) names = ','//header%parameter_names
-    if (header%mode == 'grid') then
+    if (header%mode == 'ida') then
+      text = 'record,param_set'//names//',scale_stood,scale_threshold,pga_threshold_m_s2,pgv_threshold_m_s,'// &
+             'censored,non_monotonic,n_runs'//nl
+    else if (header%mode == 'grid') then
       text = 'param_set'//names//',frequency_hz,amplitude_m,outcome,collapse_time_s,peak_crown_disp_m,'// &
              'mean_iterations'//nl
     else
@@ -376,9 +422,17 @@ contains
     do r = 1, results%n_rows
       set = nint(col('param_set'))
       line = itoa(set)
+      if (header%mode == 'ida') line = trim(header%record_files(nint(col('record')) + 1))//','//line
       do k = 1, n_params
         line = line//','//fmt_exact(header%parameter_values(k, set + 1))
       end do
+      if (header%mode == 'ida') then
+        line = line//','//fmt_exact(col('scale_stood'))//','//fmt_exact(col('scale_threshold'))//','// &
+               fmt_exact(col('pga_threshold_m_s2'))//','//fmt_exact(col('pgv_threshold_m_s'))//','// &
+               itoa(nint(col('censored')))//','//itoa(nint(col('non_monotonic')))//','//itoa(nint(col('n_runs')))
+        text = text//line//nl
+        cycle
+      end if
       line = line//','//fmt_exact(col('frequency_hz'))
       if (header%mode == 'grid') then
         line = line//','//fmt_exact(col('amplitude_m'))//','// &

@@ -1,0 +1,133 @@
+!> The parts of a sweep plan that belong to an incremental dynamic analysis (`&sweep
+!> mode = 'ida'`): the records and their intensity measures, and the model samples
+!> drawn by a seeded Latin hypercube from uniform distributions between bounds.
+!>
+!> Sampled variables (each sampled when its `&sweep` range is given, in this order):
+!> friction (`friction_range`), contact inset (`contact_inset_range_m`), ring thickness
+!> (`thickness_range_m`) and voussoir-size imperfection (`size_imperfection_range`: the
+!> amplitude of a random variation of the voussoirs' angles, see
+!> voussoir_assembly's `voussoir_angle_factors`; sample s gets the pattern of seed
+!> `sample_seed + s`).
+module voussoir_sweep_ida
+  use voussoir_kinds, only: dp
+  use voussoir_status, only: status_t, fail
+  use voussoir_text, only: itoa
+  use voussoir_config, only: config_t, validate_config, resolve_path, fmt_real, arch_rule, arch_rule_text
+  use voussoir_ground_record, only: ground_record_t, record_intensity_t, read_ground_record, record_intensity
+  use voussoir_latin_hypercube, only: latin_hypercube
+  implicit none
+  private
+
+  public :: n_sampled, sampled_names, range_names, ida_records_t, read_ida_records, sample_sets
+
+  integer, parameter :: n_sampled = 4                 !! variables that can be sampled
+  character(len=24), parameter :: sampled_names(n_sampled) = [character(len=24) :: &
+    'friction', 'contact_inset_m', 'thickness_m', 'size_imperfection']
+  character(len=24), parameter :: range_names(n_sampled) = [character(len=24) :: &
+    'friction_range', 'contact_inset_range_m', 'thickness_range_m', 'size_imperfection_range']
+
+  !> The records of an IDA and what the plan needs of each.
+  type :: ida_records_t
+    integer :: n = 0
+    character(len=512), allocatable :: files(:)     !! as resolved (relative to the input's folder)
+    character(len=512), allocatable :: given(:)     !! as written in record_files
+    real(dp), allocatable :: pga_m_s2(:), pgv_m_s(:), duration_s(:)
+  end type ida_records_t
+
+contains
+
+  !> Read every record of `given` (names relative to the folder of `path`), refusing a
+  !> bad one with its file and line.
+  subroutine read_ida_records(path, given, records, status)
+    character(len=*), intent(in) :: path
+    character(len=*), intent(in) :: given(:)
+    type(ida_records_t), intent(out) :: records
+    type(status_t), intent(inout) :: status
+    type(ground_record_t) :: rec
+    type(record_intensity_t) :: im
+    integer :: k
+    records%n = size(given)
+    allocate (records%files(records%n), records%given(records%n), records%pga_m_s2(records%n), &
+              records%pgv_m_s(records%n), records%duration_s(records%n))
+    do k = 1, records%n
+      records%given(k) = given(k)
+      records%files(k) = resolve_path(path, given(k))
+      call read_ground_record(trim(records%files(k)), rec, status)
+      if (.not. status%ok) then
+        status%message = path//': &sweep record_files('//itoa(k)//'): '//trim(status%message)
+        return
+      end if
+      im = record_intensity(rec%accel_m_s2, rec%dt_s)
+      if (.not. im%pga_m_s2 > 0.0_dp) then
+        call fail(status, path//': &sweep record_files('//itoa(k)//') = '//trim(given(k))// &
+                  ': the record is all zeros (no scale can make it shake)')
+        return
+      end if
+      records%pga_m_s2(k) = im%pga_m_s2
+      records%pgv_m_s(k) = im%pgv_m_s
+      records%duration_s(k) = (size(rec%accel_m_s2) - 1)*rec%dt_s
+    end do
+  end subroutine read_ida_records
+
+  !> `n_samples` model samples of the base case: for every variable whose range
+  !> (`ranges(:, v)`, low and high; unset where `given(v)` is false) is given, a Latin
+  !> hypercube draw between the bounds. `names` and `values(n_params, n_samples)` are the
+  !> sampled variables; `set_cfg(0:n_samples-1)` the validated case of each sample.
+  subroutine sample_sets(path, base, n_samples, seed, ranges, given, names, values, set_cfg, status)
+    character(len=*), intent(in) :: path
+    type(config_t), intent(in) :: base
+    integer, intent(in) :: n_samples, seed
+    real(dp), intent(in) :: ranges(2, n_sampled)
+    logical, intent(in) :: given(n_sampled)
+    character(len=24), allocatable, intent(out) :: names(:)
+    real(dp), allocatable, intent(out) :: values(:, :)
+    type(config_t), allocatable, intent(out) :: set_cfg(:)
+    type(status_t), intent(inout) :: status
+    real(dp), allocatable :: u(:, :)
+    type(status_t) :: check
+    integer :: v, p, s
+
+    do v = 1, n_sampled
+      if (.not. given(v)) cycle
+      if (.not. (ranges(1, v) <= ranges(2, v))) then
+        call fail(status, path//': &sweep '//trim(range_names(v))//' = '//fmt_real(ranges(1, v))//', '// &
+                  fmt_real(ranges(2, v))//': the low bound must not exceed the high one')
+        return
+      end if
+      if (.not. (arch_rule(sampled_names(v), ranges(1, v)) .and. arch_rule(sampled_names(v), ranges(2, v)))) then
+        call fail(status, path//': &sweep '//trim(range_names(v))//' = '//fmt_real(ranges(1, v))//', '// &
+                  fmt_real(ranges(2, v))//' is outside the allowed range '//arch_rule_text(sampled_names(v)))
+        return
+      end if
+    end do
+    names = pack(sampled_names, given)
+    allocate (values(size(names), n_samples), set_cfg(0:n_samples - 1))
+    u = latin_hypercube(n_samples, size(names), seed)
+    do s = 0, n_samples - 1
+      set_cfg(s) = base
+      p = 0
+      do v = 1, n_sampled
+        if (.not. given(v)) cycle
+        p = p + 1
+        values(p, s + 1) = ranges(1, v) + u(p, s + 1)*(ranges(2, v) - ranges(1, v))
+        select case (v)
+        case (1)
+          set_cfg(s)%arch%friction = values(p, s + 1)
+        case (2)
+          set_cfg(s)%arch%contact_inset_m = values(p, s + 1)
+        case (3)
+          set_cfg(s)%arch%thickness_m = values(p, s + 1)
+        case (4)
+          set_cfg(s)%arch%size_imperfection = values(p, s + 1)
+          set_cfg(s)%arch%imperfection_seed = seed + s
+        end select
+      end do
+      call validate_config(set_cfg(s), check)
+      if (.not. check%ok) then
+        call fail(status, path//': &sweep model sample '//itoa(s)//': '//trim(check%message))
+        return
+      end if
+    end do
+  end subroutine sample_sets
+
+end module voussoir_sweep_ida
