@@ -237,3 +237,15 @@ def test_suite_lists_the_eight_horizontal_records():
         assert not re.search(r"(UP|DWN|up)\.AT2$", rec.path.name)  # horizontal components only
         npts = int(re.search(r"NPTS=\s*(\d+)", lines[3]).group(1))
         assert sum(len(line.split()) for line in lines[4:]) == npts
+
+
+def test_records_command_prints_the_suite_as_a_namelist_line(capsys):
+    from voussoir_post.cli import main
+
+    assert main(["records", "--namelist"]) == 0
+    line = capsys.readouterr().out.strip()
+    paths = re.findall(r"'([^']+)'", line)
+    assert line.startswith("record_files = ") and len(paths) == 8
+    assert all(Path(p).is_file() and p.endswith(".AT2") for p in paths)
+    assert main(["records", "NOPE"]) == 2
+    assert "no record NOPE in the suite" in capsys.readouterr().err

