@@ -289,15 +289,16 @@ contains
   end subroutine master_run
 
   !> Time-step check of an IDA (rank 0, after the searches): the runs at scale_stood and
-  !> at scale_threshold of `dt_check_rows` rows (evenly spread over the rows that
-  !> collapsed) are redone at half the time step; an outcome that changes says the
-  !> threshold depends on the step.
+  !> at scale_threshold of `dt_check_rows` rows (spread over the rows that collapsed by
+  !> the golden-ratio sequence, so that they mix records and samples whatever the
+  !> numbers of each) are redone at half the time step; an outcome that changes says
+  !> the threshold depends on the step.
   subroutine check_time_step(plan, m, status)
     type(sweep_plan_t), intent(in) :: plan
     type(master_t), intent(inout) :: m
     type(status_t), intent(inout) :: status
-    integer, allocatable :: rows(:)
-    integer :: k, r, job, side, n_changed
+    integer, allocatable :: rows(:), picked(:)
+    integer :: k, r, job, side, n_changed, n_pick
     real(dp) :: scale
     real(dp), allocatable :: row(:)
     type(config_t) :: cfg
@@ -310,8 +311,16 @@ contains
     rows = pack([(r, r = 1, m%results%n_rows)], [(nint(table_value(m%results, 'censored', r)) == 0, &
                                                   r = 1, m%results%n_rows)])
     n_changed = 0
-    do k = 1, min(plan%dt_check_rows, size(rows))
-      r = rows(1 + ((k - 1)*size(rows))/min(plan%dt_check_rows, size(rows)))
+    n_pick = min(plan%dt_check_rows, size(rows))
+    allocate (picked(0))
+    k = 0
+    do while (size(picked) < n_pick)
+      k = k + 1
+      r = rows(1 + int(modulo(k*0.6180339887498949_dp, 1.0_dp)*size(rows)))
+      if (.not. any(picked == r)) picked = [picked, r]
+    end do
+    do k = 1, n_pick
+      r = picked(k)
       job = nint(table_value(m%results, 'job', r))
       do side = 1, 2
         scale = table_value(m%results, trim(sides(side)), r)
@@ -334,7 +343,7 @@ contains
     end do
     write (output_unit, '(a)') 'voussoir-sweep: dt/2 check: '//itoa(n_changed)//' of '//itoa(m%dt_check%n_rows)// &
       ' outcomes changed at dt_s = '//fmt_real(0.5_dp*plan%set_cfg(0)%solver%dt_s)//' (runs at scale_stood and '// &
-      'scale_threshold of '//itoa(min(plan%dt_check_rows, size(rows)))//' rows)'
+      'scale_threshold of '//itoa(n_pick)//' rows)'
     flush (output_unit)
   end subroutine check_time_step
 

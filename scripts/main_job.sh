@@ -61,7 +61,7 @@ echo "== 6. Fragility of the 156-degree arch under the record suite (IDA, 2 MPI 
   echo "  size_imperfection_range = 0.0, 0.05, progress_every_s = 60 /"
   echo "&output file = 'ida_156.h5' /"
 } > results/ida_156.nml
-(cd results && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156.nml | tail -n 1)
+(cd results && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156.nml | grep -E 'done|nothing to do')
 "$post" fragility results/ida_156.h5 --out results/ | tail -n 6 | sed 's/^/   /'
 
 ls results/*.png | sed 's/^/   /'

@@ -74,8 +74,9 @@ def _title(ida: IdaResult) -> str:
                 f"(r_ext {arch.get('r_ext_m')} m, t {arch.get('thickness_m')} m)")
     else:
         what = os.path.basename(ida.path)
-    return (f"Probability of collapse of the {what} under {len(ida.records)} scaled ground-motion records "
-            f"x {ida.n_sets} model sample(s) ({ida.n_rows} IDA rows, {int(ida.censored.sum())} without collapse)")
+    return (f"Probability of collapse of the {what}\nunder {len(ida.records)} scaled ground-motion records "
+            f"x {ida.n_sets} model sample(s): {ida.n_rows} IDA rows, {int(ida.censored.sum())} without collapse "
+            "up to scale_max")
 
 
 def _draw(ax, frag: IntensityFragility, scale: float, unit_label: str, unit: str) -> list:
@@ -96,6 +97,8 @@ def _draw(ax, frag: IntensityFragility, scale: float, unit_label: str, unit: str
     ax.set_xlabel(unit_label)
     ax.grid(True, which="both", alpha=0.3)
     pct = int(round(100 * band.level))
+    censored = [Line2D([], [], color="tab:red", marker=">", linestyle="none", markersize=7,
+                       label="no collapse up to scale_max: lower bound of the collapse intensity")]
     return [
         Line2D([], [], color="tab:blue", linewidth=2,
                label=f"lognormal fit by maximum likelihood: median {fit.median / scale:.3g} {unit}, "
@@ -103,10 +106,8 @@ def _draw(ax, frag: IntensityFragility, scale: float, unit_label: str, unit: str
         Patch(color="tab:blue", alpha=0.2, label=f"{pct} % bootstrap band ({band.n_resamples} resamples of the rows)"),
         Line2D([], [], color="black", marker="o", linestyle="none", markersize=4,
                label="IDA points: fraction of records collapsed at or below (Kaplan-Meier)"),
-        Line2D([], [], color="tab:red", marker=">", linestyle="none", markersize=7,
-               label="no collapse up to scale_max: lower bound of the collapse intensity"),
-        Line2D([], [], color="tab:blue", linestyle=":", label=f"median: 50 % probability of collapse"),
-    ]
+        Line2D([], [], color="tab:blue", linestyle=":", label="median: 50 % probability of collapse"),
+    ] + (censored if frag.censored.any() else [])
 
 
 def plot_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootstrap: int = 400,
