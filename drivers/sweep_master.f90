@@ -17,21 +17,18 @@ module voussoir_sweep_master
   use voussoir_status, only: status_t, fail
   use voussoir_version, only: code_version
   use voussoir_config, only: config_t
-  use voussoir_assembly, only: assembly_t
-  use voussoir_model, only: model_t
-  use voussoir_simulation, only: run_result_t
-  use voussoir_setup, only: run_config
+  use voussoir_sweep_dt_check, only: check_time_step
   use voussoir_text, only: fmt_real, fmt_fixed, itoa, join_words
   use voussoir_threshold, only: threshold_search_t, threshold_result_t, run_outcome_t, &
                                 threshold_next, threshold_record, threshold_result, threshold_done, &
                                 outcome_of_run
-  use voussoir_sweep_output, only: sweep_table_t, sweep_header_t, results_table, runs_table, dt_check_table, &
-                                   table_init, &
+  use voussoir_sweep_output, only: sweep_table_t, sweep_header_t, results_table, runs_table, table_init, &
                                    table_append, table_value, table_sort, table_row, table_set, write_sweep_file, &
                                    read_sweep_file, write_sweep_csv, csv_path_of
   use voussoir_ordering, only: stable_order
-  use voussoir_sweep_plan, only: sweep_plan_t, job_param_set, job_frequency_hz, job_amplitude_m, &
-                                 job_run_config, job_cost, set_description, job_record, job_search_init
+  use voussoir_sweep_plan, only: sweep_plan_t, set_description
+  use voussoir_sweep_jobs, only: job_param_set, job_frequency_hz, job_amplitude_m, job_run_config, job_cost, &
+                                 job_record, job_search_init
   use voussoir_sweep_comm, only: sweep_comm_t, comm_abort, comm_send, comm_poll, comm_recv, wall_s, nap, &
                                  tag_task, tag_result, tag_stop
   use voussoir_sweep_tasks, only: simulate_job, outcome_of_msg, prefetch, task_head, history_width, result_len
@@ -194,7 +191,7 @@ contains
     type(sweep_comm_t), intent(in) :: net
     type(master_t), intent(inout) :: m
     type(status_t) :: status
-    integer :: job, w
+    integer :: job, w, n_rows, n_changed
     logical :: found, got
     character(len=:), allocatable :: amps
 
@@ -245,8 +242,12 @@ contains
     call table_sort(m%results, ['job'])
     if (plan%mode /= 'grid') call table_sort(m%runs, ['job', 'run'])
     if (plan%mode == 'ida' .and. plan%dt_check_rows > 0) then
-      call check_time_step(plan, m, status)
+      call check_time_step(plan, m%results, m%dt_check, n_rows, n_changed, status)
       if (.not. status%ok) call die(status%message)
+      write (output_unit, '(a)') 'voussoir-sweep: dt/2 check: '//itoa(n_changed)//' of '//itoa(m%dt_check%n_rows)// &
+        ' outcomes changed at dt_s = '//fmt_real(0.5_dp*plan%set_cfg(0)%solver%dt_s)//' (runs at scale_stood and '// &
+        'scale_threshold of '//itoa(n_rows)//' rows)'
+      flush (output_unit)
     end if
     call write_state(m, .true.)
     call write_sweep_csv(m%csv_path, m%header, m%results, status)
@@ -287,65 +288,6 @@ contains
     end subroutine die
 
   end subroutine master_run
-
-  !> Time-step check of an IDA (rank 0, after the searches): the runs at scale_stood and
-  !> at scale_threshold of `dt_check_rows` rows (spread over the rows that collapsed by
-  !> the golden-ratio sequence, so that they mix records and samples whatever the
-  !> numbers of each) are redone at half the time step; an outcome that changes says
-  !> the threshold depends on the step.
-  subroutine check_time_step(plan, m, status)
-    type(sweep_plan_t), intent(in) :: plan
-    type(master_t), intent(inout) :: m
-    type(status_t), intent(inout) :: status
-    integer, allocatable :: rows(:), picked(:)
-    integer :: k, r, job, side, n_changed, n_pick
-    real(dp) :: scale
-    real(dp), allocatable :: row(:)
-    type(config_t) :: cfg
-    type(assembly_t) :: assembly
-    type(model_t) :: model
-    type(run_result_t) :: res
-    character(len=*), parameter :: sides(2) = ['scale_stood    ', 'scale_threshold']
-
-    m%dt_check = dt_check_table()
-    rows = pack([(r, r = 1, m%results%n_rows)], [(nint(table_value(m%results, 'censored', r)) == 0, &
-                                                  r = 1, m%results%n_rows)])
-    n_changed = 0
-    n_pick = min(plan%dt_check_rows, size(rows))
-    allocate (picked(0))
-    k = 0
-    do while (size(picked) < n_pick)
-      k = k + 1
-      r = rows(1 + int(modulo(k*0.6180339887498949_dp, 1.0_dp)*size(rows)))
-      if (.not. any(picked == r)) picked = [picked, r]
-    end do
-    do k = 1, n_pick
-      r = picked(k)
-      job = nint(table_value(m%results, 'job', r))
-      do side = 1, 2
-        scale = table_value(m%results, trim(sides(side)), r)
-        if (.not. scale > 0.0_dp) cycle
-        cfg = job_run_config(plan, job, scale)
-        cfg%solver%dt_s = 0.5_dp*cfg%solver%dt_s
-        call run_config(cfg, assembly, model, res, status)
-        if (.not. status%ok) then
-          status%message = 'dt/2 check of job '//itoa(job)//': '//trim(status%message)
-          return
-        end if
-        call table_row(m%dt_check, row)
-        call table_set(m%dt_check, row, 'job', real(job, dp))
-        call table_set(m%dt_check, row, 'scale', scale)
-        call table_set(m%dt_check, row, 'collapsed', merge(1.0_dp, 0.0_dp, side == 2))
-        call table_set(m%dt_check, row, 'collapsed_half_dt', merge(1.0_dp, 0.0_dp, res%collapsed))
-        call table_append(m%dt_check, row)
-        if (res%collapsed .neqv. side == 2) n_changed = n_changed + 1
-      end do
-    end do
-    write (output_unit, '(a)') 'voussoir-sweep: dt/2 check: '//itoa(n_changed)//' of '//itoa(m%dt_check%n_rows)// &
-      ' outcomes changed at dt_s = '//fmt_real(0.5_dp*plan%set_cfg(0)%solver%dt_s)//' (runs at scale_stood and '// &
-      'scale_threshold of '//itoa(n_pick)//' rows)'
-    flush (output_unit)
-  end subroutine check_time_step
 
   !> Receive every result that has arrived, then refill the workers.
   subroutine serve(plan, net, m, got)

@@ -3,7 +3,7 @@
 !> Modes: `threshold` (the smallest afd amplitude that collapses the arch, per
 !> parameter set and frequency), `grid` (stand or collapse at given amplitudes) and `ida`
 !> (the smallest scale of each record that collapses it, per parameter set and record;
-!> the model samples and the records: src/sweep_ida.f90).
+!> the model samples and the records: src/sweep_ida.f90). What a job is: src/sweep_jobs.f90.
 module voussoir_sweep_plan
   use, intrinsic :: iso_fortran_env, only: iostat_end
   use voussoir_kinds, only: dp
@@ -12,20 +12,19 @@ module voussoir_sweep_plan
   use voussoir_config, only: config_t, config_entry_t, config_entries, config_to_nml, validate_config, &
                              fmt_real, arch_rule, arch_rule_text
   use voussoir_namelist_check, only: check_names
-  use voussoir_threshold, only: threshold_settings_t, threshold_search_t, search_run_config, threshold_init, &
-                                threshold_init_onset, static_capacity_m_s2
+  use voussoir_threshold, only: threshold_settings_t
   use voussoir_sweep_ida, only: ida_records_t, read_ida_records, sample_sets, n_sampled, range_names
   implicit none
   private
 
-  public :: sweep_plan_t, read_sweep_plan, job_param_set, job_frequency_hz, job_amplitude_m, &
-            job_run_config, job_cost, set_description, job_record, job_search_init, job_label
+  public :: sweep_plan_t, read_sweep_plan, set_description
 
   integer, parameter :: max_list = 256              !! entries of every &sweep list
   real(dp), parameter :: unset_real = -huge(1.0_dp) !! sentinel of an unset list entry
   integer, parameter :: unset_int = -huge(1)
   real(dp), parameter :: max_jobs = 1.0e7_dp
-  integer, parameter :: path_len = 512
+  integer, parameter :: max_records = 128          !! entries of &sweep record_files
+  integer, parameter :: record_len = 256            !! characters of one record file name
   integer, parameter :: n_kinds = 5                 !! model parameters that can be swept
   character(len=*), parameter :: nl = achar(10)
   !> Swept parameters in the order of their columns, and their &sweep list names.
@@ -72,7 +71,7 @@ contains
     real(dp) :: embrace_list_deg(max_list), thickness_list_m(max_list), friction_list(max_list), &
                 contact_inset_list_m(max_list)
     integer :: n_voussoirs_list(max_list)
-    character(len=path_len) :: record_files(max_list)
+    character(len=record_len) :: record_files(max_records)
     real(dp) :: scale_tol, scale_max, friction_range(2), contact_inset_range_m(2), thickness_range_m(2), &
                 size_imperfection_range(2)
     integer :: n_samples, sample_seed, dt_check_rows
@@ -308,7 +307,7 @@ contains
     subroutine read_ida_part()
       integer :: v
       n_records = 0
-      do k = 1, max_list
+      do k = 1, max_records
         if (len_trim(record_files(k)) == 0) exit
         n_records = k
       end do
@@ -531,109 +530,4 @@ contains
     end do
     if (plan%n_params == 0) text = 'base case'
   end function set_description
-
-  !> Record (1-based, into plan%records) of an IDA job.
-  pure integer function job_record(plan, job)
-    type(sweep_plan_t), intent(in) :: plan
-    integer, intent(in) :: job
-    job_record = modulo(job, plan%records%n) + 1
-  end function job_record
-
-  !> What job `job` is, for messages: its parameter set and frequency or record.
-  function job_label(plan, job) result(text)
-    type(sweep_plan_t), intent(in) :: plan
-    integer, intent(in) :: job
-    character(len=:), allocatable :: text
-    text = 'job '//itoa(job)//' (parameter set '//itoa(job_param_set(plan, job))//', '
-    if (plan%mode == 'ida') then
-      text = text//'record '//trim(plan%records%given(job_record(plan, job)))//')'
-    else
-      text = text//fmt_real(job_frequency_hz(plan, job))//' Hz)'
-    end if
-  end function job_label
-
-  !> A new search for job `job` (threshold and ida modes). An IDA search starts from
-  !> the scale at which the record's PGA equals the arch's static capacity lambda g.
-  subroutine job_search_init(plan, job, search, status)
-    type(sweep_plan_t), intent(in) :: plan
-    integer, intent(in) :: job
-    type(threshold_search_t), intent(out) :: search
-    type(status_t), intent(inout) :: status
-    associate (c => plan%set_cfg(job_param_set(plan, job)))
-      if (plan%mode == 'ida') then
-        call threshold_init_onset(search, c, static_capacity_m_s2(c)/plan%records%pga_m_s2(job_record(plan, job)), &
-                                  plan%search, status)
-      else
-        call threshold_init(search, c, job_frequency_hz(plan, job), plan%search, status)
-      end if
-    end associate
-  end subroutine job_search_init
-
-  !> Parameter set (0-based) of job `job` (0-based).
-  pure integer function job_param_set(plan, job)
-    type(sweep_plan_t), intent(in) :: plan
-    integer, intent(in) :: job
-    job_param_set = job/(plan%n_freq_per_set*plan%n_amp)
-  end function job_param_set
-
-  pure real(dp) function job_frequency_hz(plan, job)
-    type(sweep_plan_t), intent(in) :: plan
-    integer, intent(in) :: job
-    if (plan%mode == 'ida') then
-      job_frequency_hz = 0.0_dp
-    else if (plan%pair_frequencies) then
-      job_frequency_hz = plan%frequencies_hz(job_param_set(plan, job) + 1)
-    else
-      job_frequency_hz = plan%frequencies_hz(modulo(job/plan%n_amp, plan%n_freq) + 1)
-    end if
-  end function job_frequency_hz
-
-  !> Commanded amplitude of a grid job (0 in threshold mode).
-  pure real(dp) function job_amplitude_m(plan, job)
-    type(sweep_plan_t), intent(in) :: plan
-    integer, intent(in) :: job
-    job_amplitude_m = 0.0_dp
-    if (plan%mode == 'grid') job_amplitude_m = plan%amplitudes_m(modulo(job, plan%n_amp) + 1)
-  end function job_amplitude_m
-
-  !> The configuration of one run of job `job` at `amplitude_m` (ida: the scale of its
-  !> record): a search run stops at the collapse; a grid run keeps the base case's
-  !> stop_after_collapse_s. No time series is kept.
-  pure function job_run_config(plan, job, amplitude_m) result(cfg)
-    type(sweep_plan_t), intent(in) :: plan
-    integer, intent(in) :: job
-    real(dp), intent(in) :: amplitude_m
-    type(config_t) :: cfg
-    cfg = search_run_config(plan%set_cfg(job_param_set(plan, job)), job_frequency_hz(plan, job), amplitude_m)
-    if (plan%mode == 'ida') then
-      cfg%motion%waveform = 'accelerogram'
-      cfg%motion%record_file = plan%records%files(job_record(plan, job))
-      cfg%motion%record_scale = amplitude_m
-      cfg%motion%amplitude_m = 0.0_dp
-    end if
-    if (plan%mode == 'grid') cfg%output%stop_after_collapse_s = &
-      plan%set_cfg(job_param_set(plan, job))%output%stop_after_collapse_s
-  end function job_run_config
-
-  !> Relative cost of one run of job `job`: steps x bodies.
-  pure real(dp) function job_cost(plan, job)
-    type(sweep_plan_t), intent(in) :: plan
-    integer, intent(in) :: job
-    real(dp) :: duration_s, f_hz
-    f_hz = job_frequency_hz(plan, job)
-    associate (c => plan%set_cfg(job_param_set(plan, job)))
-      duration_s = c%motion%duration_s
-      if (duration_s == 0.0_dp .and. plan%mode == 'ida') then
-        duration_s = c%motion%rest_s + plan%records%duration_s(job_record(plan, job))
-      else if (duration_s == 0.0_dp) then
-        duration_s = (c%motion%n_attack + c%motion%n_full + c%motion%n_decay)/f_hz + c%motion%rest_s
-      end if
-      job_cost = duration_s/c%solver%dt_s*(c%arch%n_voussoirs + 2)
-    end associate
-  end function job_cost
-
-
-
-
-
 end module voussoir_sweep_plan

@@ -106,3 +106,23 @@ def test_the_fragility_of_the_ida(ida, capsys):
     assert out["n_censored"] == 2 and out["n_rows"] == 6
     # The arch cannot fall below its static capacity (lambda g = 0.376 g, limit analysis).
     assert out["median_pga_g"] > 0.376
+
+
+def test_the_same_ida_on_1_and_3_ranks(voussoir_sweep_exe, tmp_path):
+    """The searches are deterministic: the rows do not depend on how many ranks ran them."""
+    files = ", ".join(f"'{record_path(k)}'" for k in ("ELC270", "PUL254"))
+    text = (ARCH + "&motion rest_s = 0.5, duration_s = 4.0 /\n"
+            f"&sweep mode = 'ida', record_files = {files}, scale_tol = 0.1, scale_max = {SCALE_MAX}, "
+            "n_samples = 2, friction_range = 0.5, 0.6, size_imperfection_range = 0.0, 0.04 /\n"
+            "&output file = 'ida.h5' /\n")
+    tables = {}
+    for n in (1, 3):
+        folder = tmp_path / f"ranks{n}"
+        folder.mkdir()
+        (folder / "ida.nml").write_text(text)
+        proc = subprocess.run(["mpirun", "--oversubscribe", "-np", str(n), str(voussoir_sweep_exe), "ida.nml"],
+                              cwd=folder, capture_output=True, text=True, env=mpi_env(), timeout=600)
+        assert proc.returncode == 0, proc.stdout + proc.stderr
+        tables[n] = (folder / "ida.csv").read_text()
+    assert tables[1] == tables[3]
+    assert tables[1].count("\n") == 5  # header + 2 records x 2 samples
