@@ -55,14 +55,31 @@ def test_campaign_hides_the_truth(diagnosed):
             assert not any(w in text for w in words), f"{path} gives the truth away"
 
 
+#: Causes that thresholds and hinges cannot tell apart on these campaigns, by physics: a
+#: ring thinner by a factor (geometry) lowers the thresholds like a contact inset and
+#: opens the same four hinges (issue 13). For them the spec's answer is `inconclusive`
+#: with both among the rivals, never the other one named.
+INDISTINGUISHABLE = {"contact_edges": {"geometry"}}
+
+
+def _named_or_honest_rivals(name, result) -> bool:
+    if result["verdict"] == name:
+        return True
+    allowed = INDISTINGUISHABLE.get(name)
+    return (allowed is not None and result["verdict"] == "inconclusive" and name in result["rivals"]
+            and set(result["rivals"]) <= {name} | allowed)
+
+
 def test_verdict_names_the_hidden_effect(diagnosed):
     name, truth, folder, out, result = diagnosed
-    assert result["verdict"] == name, result["notes"]
+    assert _named_or_honest_rivals(name, result), result["notes"]
 
 
 def test_parameter_is_recovered(diagnosed):
     name, truth, folder, out, result = diagnosed
     params = result["parameters"]
+    if result["verdict"] == "inconclusive" and name != "none":  # the rival's own fit must hold the truth
+        params = next(c["parameters"] for c in result["candidates"] if c["effect"] == name)
     if name == "none":
         assert params == {}
     elif name == "contact_edges":
@@ -96,14 +113,20 @@ def test_outputs_follow_the_spec(diagnosed):
     name, truth, folder, out, result = diagnosed
     on_disk = json.loads((out / "diagnosis.json").read_text())
     assert on_disk == json.loads(json.dumps(result))
-    assert set(on_disk) == {"campaign", "verdict", "parameters", "baseline", "extended", "candidates", "notes"}
+    assert set(on_disk) == {"campaign", "verdict", "effects", "rivals", "parameters", "baseline", "extended",
+                            "candidates", "notes"}
     assert on_disk["campaign"] == "campaign"
     assert {c["effect"] for c in on_disk["candidates"]} == {"contact_edges", "table_motion", "base_restraint",
-                                                             "friction"}
+                                                             "friction", "geometry"}
     for key in ("baseline", "extended"):
         assert set(on_disk[key]) == {"threshold_error_pct", "hinge_match"}
+    # effects and rivals follow the verdict (shared/MEASURED_DATA.md)
+    if on_disk["verdict"] in ("none", "inconclusive"):
+        assert on_disk["effects"] == []
+    else:
+        assert on_disk["effects"] == [on_disk["verdict"]] and on_disk["rivals"] == []
     report = (out / "report.md").read_text()
-    assert f"`{name}`" in report
+    assert (f"`{name}`" if result["verdict"] == name else name) in report
     assert "## Crown motion" in report and "## Hinges" in report
     for png in ("thresholds.png", "candidates.png"):
         assert png in report and (out / png).stat().st_size > 1000
@@ -148,10 +171,12 @@ def test_decide_inconclusive_when_two_effects_explain_equally():
     meas = [0.050, 0.030, 0.040, 0.060]
     pairs = [_pair(m, nominal_m=1.25 * m) for m in meas]
     cands = {"contact_edges": _cand("contact_edges", [1.01 * m for m in meas], 0.01),
-             "friction": _cand("friction", [0.99 * m for m in meas], 0.01)}
+             "friction": _cand("friction", [0.995 * m for m in meas], 0.005)}
     d = decide(pairs, 0.03, cands, TableEvidence("none"))
     assert d.verdict == "inconclusive"
     assert "contact_edges" in d.notes and "friction" in d.notes
+    # The rivals, best first: friction's predictions are the closer ones here.
+    assert d.rivals == ["friction", "contact_edges"] and d.best_rival.effect == "friction"
 
 
 def test_decide_names_the_clear_winner():

@@ -20,8 +20,9 @@ __all__ = ["Decision", "decide", "hinge_match"]
 class Decision:
     verdict: str
     chosen: CandidateResult | None
-    rivals: list[str]
+    rivals: list[str]  #: for `inconclusive`: the effects the data cannot separate, best first
     notes: str
+    best_rival: CandidateResult | None = None  #: the first of the rivals (its held-out result is `extended`)
 
 
 def hinge_match(observed: dict[str, set], simulated: dict[str, set]) -> float | None:
@@ -70,11 +71,11 @@ def decide(pairs: list[PairData], resolution: float, cands: dict[str, CandidateR
         if all(c is top or (c.hinge_match is not None and c.hinge_match <= top.hinge_match - 0.15) for c in group):
             best, rivals = top, []
     if rivals:
-        group = [best] + rivals
+        group = sorted([best] + rivals, key=lambda c: loss[c.effect])
         names = ", ".join(c.effect for c in group)
-        return Decision("inconclusive", None, [c.effect for c in rivals], (
+        return Decision("inconclusive", None, [c.effect for c in group], (
             f"The nominal model is off by {pct(baseline_error)}; {names} each bring the held-out error down "
             f"({', '.join(f'{c.effect} {pct(c.cv_error)}' for c in group)}), none of them is preferred to the "
             f"others by strong evidence, and neither the records nor the hinges separate them: the data cannot "
-            f"tell which it is."))
+            f"tell which it is."), group[0])
     return Decision(best.effect, best, [], "")

@@ -34,7 +34,7 @@ from .campaign import Campaign, MeasuredThreshold, Specimen, measured_thresholds
 from .decision import Decision, decide, hinge_match
 from .diagnosis_settings import DiagnosisSettings
 from .effects import EFFECTS, Variant, effect
-from .selection import CandidateResult, PairData, evaluate_candidate, mean_error
+from .selection import CandidateResult, PairData, evaluate_candidate, held_out_loss, mean_error
 from .simulator import Simulator
 
 __all__ = ["DiagnosisSettings", "diagnose", "fit_actuator", "afd_command", "EFFECTS", "CandidateResult",
@@ -67,20 +67,27 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     measured = [m for m in measured_thresholds(campaign) if m.has_collapse]
     if not measured:
         raise ValueError(f"{campaign.path}: no (specimen, frequency) pair has a collapse: no threshold to compare")
-    pairs = []
+    all_pairs = []
     for m in measured:
         res = (m.high_m - m.low_m) / 2.0 / m.threshold_m if math.isfinite(m.low_m) else settings.default_resolution
-        pairs.append(PairData(m, campaign.specimens[m.specimen_id], res,
-                              math.hypot(res + settings.amp_tol_fraction, settings.model_floor)))
+        all_pairs.append(PairData(m, campaign.specimens[m.specimen_id], res,
+                                  math.hypot(res + settings.amp_tol_fraction, settings.model_floor)))
+    # Specimens whose set-up is not known are simulated and reported apart: they neither
+    # fit a parameter nor count in the errors that decide (shared/MEASURED_DATA.md).
+    pairs = [p for p in all_pairs if p.spec.setup_certain]
+    apart = [p for p in all_pairs if not p.spec.setup_certain]
+    if not pairs:
+        raise ValueError(f"{campaign.path}: every specimen with a collapse has setup_certain = 0: "
+                         "nothing can fit or judge a cause")
     resolution = float(np.mean([p.resolution for p in pairs])) + settings.amp_tol_fraction
     table = table_evidence(campaign)
     log(f"[diagnose] {campaign.name}: {len(campaign.specimens)} specimens, {len(campaign.tests)} tests, "
-        f"{len(pairs)} pairs with a collapse; resolution {100 * resolution:.1f} %; table evidence: {table.source}"
+        f"{len(pairs)} pairs with a collapse and a certain set-up ({len(apart)} apart); resolution {100 * resolution:.1f} %; table evidence: {table.source}"
         + (f" gain {table.gain:.3f}" if table.source != "none" else ""))
 
     sim = Simulator(settings, out_dir / "work")
     groups: dict[tuple[str, tuple[int, int, int]], list[PairData]] = {}
-    for p in pairs:
+    for p in all_pairs:
         groups.setdefault((p.spec.specimen_id, _cycles(campaign, p.measured)), []).append(p)
     for (sid, cycles), ps in groups.items():
         log(f"[diagnose] simulating thresholds of {sid} ({len(ps)} frequencies, {len(variants(ps[0].spec, settings))} models)")
@@ -123,15 +130,27 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
 
     decision = decide(pairs, resolution, cands, table)
     chosen = decision.chosen
-    extended_error = chosen.cv_error if chosen else baseline_error
-    extended_hinges = chosen.hinge_match if chosen else baseline_hinges
-    notes = decision.notes or notes_named(chosen, baseline_error, resolution, cands, table)
+    suggestion = None
+    if decision.verdict == "inconclusive" and len(decision.rivals) > 1:
+        log(f"[diagnose] looking for the test that separates {', '.join(decision.rivals)}")
+        suggestion = separating_test(pairs, [cands[e] for e in decision.rivals], sim, campaign, settings, table)
+        decision.notes += " " + suggestion["sentence"]
+    # The extended model: the named cause, or for `inconclusive` the best rival.
+    shown = chosen or decision.best_rival
+    extended_error = shown.cv_error if shown else baseline_error
+    extended_hinges = shown.hinge_match if shown else baseline_hinges
+    notes = decision.notes or notes_named(chosen, baseline_error, resolution, cands, table, pairs)
+    uncertain = uncertain_specimens(apart, chosen, settings)
+    if uncertain:
+        notes += " " + " ".join(u["sentence"] for u in uncertain)
     crown = crown_comparison(campaign, sim, [("nominal", Variant(), {})]
                              + ([(chosen.effect, *effect(chosen.effect).model(chosen.value, table))] if chosen else []))
     elapsed = time.time() - t0
     result = {
         "campaign": campaign.name,
         "verdict": decision.verdict,
+        "effects": [chosen.effect] if chosen else [],
+        "rivals": list(decision.rivals),
         "parameters": parameters(chosen, table),
         "baseline": {"threshold_error_pct": 100 * baseline_error, "hinge_match": baseline_hinges},
         "extended": {"threshold_error_pct": 100 * extended_error, "hinge_match": extended_hinges},
@@ -144,7 +163,7 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     write_report(out_dir, campaign, pairs, cands, decision, table, baseline_error, resolution, result,
                  {"elapsed_s": elapsed, "sweeps": sim.n_sweeps, "runs": sim.n_runs, "settings": settings,
                   "code_version": sim.code_version,
-                  "crown": crown})
+                  "crown": crown, "uncertain": uncertain, "next_test": suggestion})
     log(f"[diagnose] verdict: {decision.verdict} ({elapsed:.0f} s, {sim.n_sweeps} sweeps, {sim.n_runs} single runs)")
     return result
 
@@ -177,13 +196,92 @@ def crown_comparison(campaign: Campaign, sim: Simulator, models: list, max_tests
     return out
 
 
-def notes_named(c: CandidateResult, baseline_error: float, resolution: float, cands: dict, table: TableEvidence
-                 ) -> str:
+def notes_named(c: CandidateResult, baseline_error: float, resolution: float, cands: dict, table: TableEvidence,
+                pairs: list[PairData]) -> str:
+    """The plain-words paragraph of a named cause. The others are ranked as the decision
+    ranks them (held-out likelihood), so a smaller mean error of a weaker rival is said
+    as it is."""
     pct = lambda x: f"{100 * x:.1f} %"
     what = effect(c.effect).sentence(c, table)
-    others = ", ".join(f"{e} {pct(x.cv_error)}" + ("" if x.admissible else f" (excluded: {x.reason})")
-                       for e, x in cands.items() if e != c.effect)
+    others = sorted((x for e, x in cands.items() if e != c.effect), key=lambda x: held_out_loss(x, pairs))
+    listed = ", ".join(f"{x.effect} {pct(x.cv_error)}" + ("" if x.admissible else f" (excluded: {x.reason})")
+                       for x in others)
     return (f"The nominal model misses the measured collapse thresholds by {pct(baseline_error)} on average "
             f"(resolution {pct(resolution)}). The data are best explained if {what}: with that one change, "
             f"fitted without the specimen it predicts, the error falls to {pct(c.cv_error)}. The other causes "
-            f"leave larger held-out errors ({others}).")
+            f"explain the held-out thresholds less well by strong evidence (likelihood of the held-out "
+            f"predictions; their mean held-out errors: {listed}).")
+
+
+def separating_test(pairs: list[PairData], rivals: list[CandidateResult], sim: Simulator, campaign: Campaign,
+                    settings: DiagnosisSettings, table: TableEvidence) -> dict:
+    """The test (a specimen with a certain set-up, at a frequency it was tested at or a new
+    one) whose thresholds predicted by the rivals, each at its fitted value, differ most
+    relative to the smallest: what the laboratory should run next. New frequencies are
+    simulated here with each rival's model."""
+    options = []  # (spread, specimen, frequency, {effect: threshold_m}, new)
+    for p in pairs:
+        preds = {c.effect: effect(c.effect).predict(p, c.value) for c in rivals}
+        options.append((p.spec, p.measured.frequency_hz, preds, False))
+    by_specimen: dict[str, list[PairData]] = {}
+    for p in pairs:
+        by_specimen.setdefault(p.spec.specimen_id, []).append(p)
+    for sid, ps in by_specimen.items():
+        spec = ps[0].spec
+        tested = {p.measured.frequency_hz for p in ps}
+        new = [f for f in settings.probe_frequencies_hz if min(abs(f - t) for t in tested) > 0.05]
+        if not new:
+            continue
+        # Constant peak acceleration sets the scale of the amplitudes at other frequencies.
+        accel = max(p.measured.threshold_accel_m_s2 for p in ps)
+        amp_max = max(4.0 * accel / (2 * math.pi * f) ** 2 for f in new)
+        amp_tol = max(1e-5, settings.amp_tol_fraction * min(0.25 * accel / (2 * math.pi * f) ** 2 for f in new))
+        models = {c.effect: effect(c.effect).model(c.value, table) for c in rivals}
+        variants_needed = [Variant()] + [v for v, motion in models.values() if v != Variant()]
+        thr = sim.thresholds_at(spec, new, _cycles(campaign, ps[0].measured), variants_needed, amp_max, amp_tol)
+        for f in new:
+            preds = {}
+            for c in rivals:
+                variant, motion = models[c.effect]
+                base = thr.get((variant, min(new, key=lambda x: abs(x - f))), math.nan)
+                preds[c.effect] = base / motion.get("table_gain", 1.0)
+            options.append((spec, f, preds, True))
+    def spread(preds):
+        vals = [v for v in preds.values() if math.isfinite(v)]
+        return (max(vals) - min(vals)) / min(vals) if len(vals) > 1 else -1.0
+    spec, f, preds, new = max(options, key=lambda o: spread(o[2]))
+    listed = ", ".join(f"{e} {1e3 * v:.1f} mm" for e, v in preds.items())
+    sentence = (f"The test that would best separate them: specimen {spec.specimen_id} at {f:g} Hz"
+                + (" (a frequency not tested yet)" if new else "")
+                + f", where the rivals predict collapse thresholds of {listed} "
+                  f"({100 * spread(preds):.0f} % apart).")
+    return {"specimen": spec.specimen_id, "frequency_hz": f, "new_frequency": new,
+            "predicted_threshold_m": preds, "spread": spread(preds), "sentence": sentence}
+
+
+def uncertain_specimens(apart: list[PairData], chosen: CandidateResult | None, settings: DiagnosisSettings
+                        ) -> list[dict]:
+    """How far off each pair of a specimen with an uncertain set-up is, under the nominal
+    model and the named cause, and which single effect value would reproduce it alone."""
+    out = []
+    for p in apart:
+        meas = p.measured.threshold_m
+        nominal = p.simulated.get(Variant(), math.nan)
+        extended = effect(chosen.effect).predict(p, chosen.value) if chosen else math.nan
+        explain = []
+        for e in EFFECTS:
+            eff = effect(e)
+            best = min(eff.candidate_values([p], settings), key=lambda v: abs(eff.predict(p, v) - meas)
+                       if math.isfinite(eff.predict(p, v)) else math.inf)
+            err = (eff.predict(p, best) - meas) / meas
+            if math.isfinite(err) and abs(err) <= 0.05:
+                explain.append(eff.label(best))
+        pct = lambda x: "n/a" if not math.isfinite(x) else f"{100 * x:+.0f} %"
+        sentence = (f"{p.spec.specimen_id} at {p.measured.frequency_hz:g} Hz (set-up not certain, not used): the "
+                    f"nominal model is {pct((nominal - meas) / meas)} off"
+                    + (f", the named cause {pct((extended - meas) / meas)}" if chosen else "")
+                    + ("; it would be reproduced alone by " + " or ".join(explain) if explain
+                       else "; no single effect of the catalogue reproduces it") + ".")
+        out.append({"specimen": p.spec.specimen_id, "frequency_hz": p.measured.frequency_hz, "measured_m": meas,
+                    "nominal_m": nominal, "extended_m": extended, "explained_by": explain, "sentence": sentence})
+    return out

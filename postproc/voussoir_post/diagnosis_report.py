@@ -36,9 +36,10 @@ def _figure_thresholds(out: Path, pairs, cands, decision) -> str:
                 label="measured (bracket: last stand, first collapse)")
     base = [1e3 * p.simulated.get(Variant(), math.nan) for p in pairs]
     ax.plot(x - 0.15, base, "s", color="tab:red", label="nominal model")
-    if decision.chosen is not None:
-        ax.plot(x + 0.15, [1e3 * h for h in decision.chosen.per_pair], "D", color="tab:blue",
-                label=f"{decision.chosen.effect}, held out")
+    shown = decision.chosen or decision.best_rival
+    if shown is not None:
+        ax.plot(x + 0.15, [1e3 * h for h in shown.per_pair], "D", color="tab:blue",
+                label=f"{shown.effect}, held out" + ("" if decision.chosen else " (best of the rivals)"))
     ax.set_xticks(x)
     ax.set_xticklabels([f"{p.spec.specimen_id}\n{p.measured.frequency_hz:g} Hz" for p in pairs], fontsize=8)
     ax.set_ylabel("collapse threshold amplitude [mm]")
@@ -59,12 +60,14 @@ def _figure_candidates(out: Path, pairs, cands, settings) -> str:
         err = [100 * mean_error(pairs, effect, v) for v in values]
         ax.plot(np.array(values, float) * scale, err, "-", color="tab:blue")
         c = cands[effect]
-        ax.axvline(float(c.value) * scale, color="tab:green", ls="--", label="fitted")
+        ax.axvline(float(c.value) * scale, color="tab:green", ls="--", label="fitted (max. held-in likelihood)")
         ax.set_xlabel(label)
         ax.set_ylabel("mean threshold error [%]")
         ax.set_title(f"{effect}: held-out {100 * c.cv_error:.1f} %" + ("" if c.admissible else " (excluded)"),
                      fontsize=9)
         ax.legend(fontsize=8)
+    fig.suptitle("Each candidate cause: mean error of the simulated collapse thresholds against its parameter "
+                 "(all pairs with a certain set-up)", fontsize=10)
     name = "candidates.png"
     save_png(fig, out / name)
     return name
@@ -116,7 +119,8 @@ def write_report(out: Path, campaign, pairs, cands, decision, table, baseline_er
     rows = []
     for k, p in enumerate(pairs):
         base = p.simulated.get(Variant(), math.nan)
-        ext = decision.chosen.per_pair[k] if decision.chosen else math.nan
+        shown = decision.chosen or decision.best_rival
+        ext = shown.per_pair[k] if shown else math.nan
         rows.append((p.spec.specimen_id, f"{p.measured.frequency_hz:g}",
                      "-" if not math.isfinite(p.measured.low_m) else f"{1e3 * p.measured.low_m:.1f}",
                      f"{1e3 * p.measured.high_m:.1f}", f"{1e3 * p.measured.threshold_m:.1f}",
@@ -152,6 +156,26 @@ def write_report(out: Path, campaign, pairs, cands, decision, table, baseline_er
         lines.append(f"Fraction of observed hinges (joint and side) that the model reproduces in the same test: "
                      f"nominal {_pct(result['baseline']['hinge_match'])}, extended "
                      f"{_pct(result['extended']['hinge_match'])}.")
+    suggestion = info.get("next_test")
+    if suggestion:
+        lines += ["", "## The test to run next", "",
+                  f"The rivals ({', '.join(decision.rivals)}) each at its fitted value, on every specimen with a "
+                  f"certain set-up at its tested frequencies and at new ones: the largest relative difference of "
+                  f"their predicted thresholds is at **{suggestion['specimen']}, {suggestion['frequency_hz']:g} Hz**"
+                  + (" (not tested yet)" if suggestion["new_frequency"] else "") + ": "
+                  + ", ".join(f"{e} {1e3 * v:.1f} mm" for e, v in suggestion["predicted_threshold_m"].items())
+                  + ". A ramp of that test with amplitude steps finer than that difference tells them apart."]
+    uncertain = info.get("uncertain") or []
+    if uncertain:
+        lines += ["", "## Specimens with an uncertain set-up", "",
+                  "Declared `setup_certain = 0` in specimens.csv: simulated with their declared set-up, but "
+                  "they neither fit a parameter nor count in the errors above.", "",
+                  _md_table(["specimen", "f [Hz]", "measured [mm]", "nominal [mm]", "named cause [mm]",
+                             "reproduced alone by (within 5 %)"],
+                            [(u["specimen"], f"{u['frequency_hz']:g}", f"{1e3 * u['measured_m']:.1f}",
+                              f"{1e3 * u['nominal_m']:.1f}",
+                              "-" if not math.isfinite(u["extended_m"]) else f"{1e3 * u['extended_m']:.1f}",
+                              ", ".join(u["explained_by"]) or "no single effect") for u in uncertain])]
     crown = info.get("crown") or {}
     lines += ["", "## Crown motion", ""]
     if crown.get("models"):

@@ -18,7 +18,7 @@ from .actuator import TableEvidence
 from .campaign import Specimen
 from .diagnosis_settings import DiagnosisSettings
 
-__all__ = ["Variant", "Effect", "ContactEdges", "TableMotion", "BaseRestraint", "Friction", "EFFECTS",
+__all__ = ["Variant", "Effect", "ContactEdges", "TableMotion", "BaseRestraint", "Friction", "Geometry", "EFFECTS",
            "EFFECTS_BY_ID", "RESTRAINTS", "effect", "arch_group"]
 
 RESTRAINTS = ("left", "right", "both")
@@ -37,13 +37,14 @@ class Variant:
 
 
 def arch_group(spec: Specimen, variant: Variant) -> dict:
-    """The &arch group of a specimen under a variant."""
+    """The &arch group of a specimen under a variant; the specimen's declared set-up
+    (brackets) is part of its nominal model."""
     group = {"embrace_deg": float(spec.embrace_deg), "n_voussoirs": int(spec.n_voussoirs),
              "r_ext_m": float(spec.r_ext_m), "thickness_m": float(spec.thickness_m), "width_m": float(spec.width_m),
              "density_kg_m3": float(spec.density_kg_m3), "friction": float(spec.friction), "contact_inset_m": 0.0,
-             "restrained_springings": "none"}
+             "restrained_springings": spec.restrained_springings}
     if variant.effect is not None:
-        group.update(EFFECTS_BY_ID[variant.effect].arch_changes(variant.value))
+        group.update(EFFECTS_BY_ID[variant.effect].arch_changes(variant.value, spec))
     return group
 
 
@@ -62,7 +63,7 @@ class Effect:
         """The variants simulated for this effect on one specimen."""
         return []
 
-    def arch_changes(self, value) -> dict:
+    def arch_changes(self, value, spec: Specimen) -> dict:
         return {}
 
     def nominal(self, spec: Specimen):
@@ -85,9 +86,11 @@ class Effect:
             return math.nan
         return float(np.interp(value, x[good], y[good]))
 
-    def choose(self, close: list):
-        """Among values the data cannot tell apart, the smallest change from nominal."""
-        return close[0]
+    def choose(self, close: list, pairs):
+        """Among values the data cannot tell apart, the smallest change from the nominal
+        model of `pairs`."""
+        nominal = self.nominal(pairs[0].spec)
+        return close[0] if nominal is None else min(close, key=lambda v: abs(float(v) - float(nominal)))
 
     def fixed_value(self, table: TableEvidence):
         """A value measured elsewhere (not fitted), or None."""
@@ -124,7 +127,7 @@ class ContactEdges(Effect):
     def simulated(self, spec, settings):
         return [Variant(self.id, e) for e in settings.inset_grid_m if e < 0.45 * spec.thickness_m]
 
-    def arch_changes(self, value):
+    def arch_changes(self, value, spec):
         return {"contact_inset_m": float(value)}
 
     def nominal(self, spec):
@@ -148,24 +151,32 @@ class ContactEdges(Effect):
 
 
 class Friction(Effect):
+    """The joints' Coulomb coefficient, lower or higher than nominal."""
+
     id = "friction"
     sweep_list = "friction_list"
     figure_axis = (1, 1.0, "friction coefficient")
 
-    def simulated(self, spec, settings):
-        return [Variant(self.id, round(spec.friction - d, 6)) for d in settings.friction_steps
-                if spec.friction - d >= settings.min_friction - 1e-12]
+    @staticmethod
+    def _range(spec, settings) -> tuple[float, float]:
+        return (max(settings.min_friction, spec.friction - max(settings.friction_steps)),
+                min(settings.max_friction, spec.friction + max(settings.friction_steps)))
 
-    def arch_changes(self, value):
+    def simulated(self, spec, settings):
+        low, high = self._range(spec, settings)
+        values = [spec.friction + s * d for d in settings.friction_steps for s in (-1.0, 1.0)]
+        return [Variant(self.id, round(v, 6)) for v in sorted(values) if low - 1e-12 <= v <= high + 1e-12]
+
+    def arch_changes(self, value, spec):
         return {"friction": float(value)}
 
     def nominal(self, spec):
         return spec.friction
 
     def candidate_values(self, pairs, settings):
-        nominal = pairs[0].spec.friction
-        low = max(settings.min_friction, nominal - max(settings.friction_steps))
-        return list(np.linspace(nominal, low, int(round((nominal - low) / 0.005)) + 1))
+        low, high = self._range(pairs[0].spec, settings)
+        return list(np.linspace(low, high, int(round((high - low) / 0.005)) + 1))
+
 
     def parameters(self, c, table):
         return {"friction": {"value": float(c.value), "low": float(c.low), "high": float(c.high), "unit": ""}}
@@ -181,21 +192,26 @@ class Friction(Effect):
 
 
 class BaseRestraint(Effect):
+    """Brackets not declared in specimens.csv; a specimen whose brackets are declared
+    (its `restrained_springings`) is not changed by this effect."""
+
     id = "base_restraint"
 
     def simulated(self, spec, settings):
-        return [Variant(self.id, r) for r in RESTRAINTS]
+        return [] if spec.restrained_springings != "none" else [Variant(self.id, r) for r in RESTRAINTS]
 
-    def arch_changes(self, value):
+    def arch_changes(self, value, spec):
         return {"restrained_springings": str(value)}
 
     def candidate_values(self, pairs, settings):
         return list(RESTRAINTS)
 
     def predict(self, pair, value):
+        if pair.spec.restrained_springings != "none":
+            return pair.simulated[Variant()]
         return pair.simulated.get(Variant(self.id, value), math.nan)
 
-    def choose(self, close):
+    def choose(self, close, pairs):
         order = {"left": 1, "right": 1, "both": 2}  # one bracket is the smaller change
         return min(close, key=lambda v: order[v])
 
@@ -210,10 +226,15 @@ class BaseRestraint(Effect):
         return f"restrained {value}"
 
     def value_text(self, c):
+        if c.value in ("left", "right"):
+            return f"restrained: {c.value} (or its mirror image: an arch is symmetric, the afd motion too)"
         return f"restrained: {c.value}"
 
     def sentence(self, c, table):
-        return f"rotation at the {'springings' if c.value == 'both' else c.value + ' springing'} is blocked"
+        if c.value == "both":
+            return "rotation at both springings is blocked"
+        return (f"rotation at one springing is blocked (named {c.value}; the other side would do the same, "
+                f"the arch and its motion being symmetric)")
 
 
 class TableMotion(Effect):
@@ -264,8 +285,45 @@ class TableMotion(Effect):
                 + (f", {1e3 * table.delay_s:.0f} ms late" if table.source == "records" else ""))
 
 
+class Geometry(Effect):
+    """The ring effectively thinner or thicker than nominal, about its mean radius (the
+    seed paper's calibration: thickness x 0.82): thickness f t, extrados R_mean + f t / 2."""
+
+    id = "geometry"
+    figure_axis = (3, 1.0, "thickness factor")
+
+    def simulated(self, spec, settings):
+        return [Variant(self.id, f) for f in settings.thickness_factors]
+
+    def arch_changes(self, value, spec):
+        r_mean = spec.r_ext_m - 0.5 * spec.thickness_m
+        return {"thickness_m": float(value) * spec.thickness_m,
+                "r_ext_m": r_mean + 0.5 * float(value) * spec.thickness_m}
+
+    def nominal(self, spec):
+        return 1.0
+
+    def candidate_values(self, pairs, settings):
+        low, high = min(settings.thickness_factors), max(settings.thickness_factors)
+        return list(np.linspace(low, high, int(round((high - low) / 0.005)) + 1))
+
+    def parameters(self, c, table):
+        return {"thickness_factor": {"value": float(c.value), "low": float(c.low), "high": float(c.high),
+                                     "unit": ""}}
+
+    def label(self, value):
+        return f"thickness x {float(value):.3g}"
+
+    def value_text(self, c):
+        return f"thickness x {float(c.value):.3f} ({float(c.low):.3f} to {float(c.high):.3f})"
+
+    def sentence(self, c, table):
+        return (f"the ring acts as if {float(c.value):.2f} times as thick as nominal (about its mean radius)")
+
+
 #: The candidates, in the order of diagnosis.json's `candidates`.
-EFFECTS_BY_ID: dict[str, Effect] = {e.id: e for e in (ContactEdges(), TableMotion(), BaseRestraint(), Friction())}
+EFFECTS_BY_ID: dict[str, Effect] = {e.id: e for e in (ContactEdges(), TableMotion(), BaseRestraint(), Friction(),
+                                                      Geometry())}
 EFFECTS = tuple(EFFECTS_BY_ID)
 
 

@@ -99,7 +99,7 @@ def fit(pairs: list[PairData], effect_id: str, settings: DiagnosisSettings, fixe
     losses = np.array([loss(pairs, effect_id, v) for v in values])
     best = float(np.nanmin(losses))
     # Parsimony: among the values within a hair of the best, the one closest to nominal.
-    choice = e.choose([v for v, x in zip(values, losses) if x <= best + 1e-6])
+    choice = e.choose([v for v, x in zip(values, losses) if x <= best + 1e-6], pairs)
     # The values the data cannot tell from the best (log-likelihood within 1/2: about
     # one standard deviation).
     near = [v for v, x in zip(values, losses) if x <= best + 0.5]

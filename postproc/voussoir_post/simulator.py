@@ -36,10 +36,17 @@ class Simulator:
         values of an effect with a &sweep list go into one sweep; each other variant is
         a sweep of its own. A finished sweep of the same input in the work folder is
         reused."""
-        out: dict[tuple[Variant, float], float] = {}
         freqs = sorted({p.frequency_hz for p in pairs})
         amp_max = 4.0 * max(p.high_m for p in pairs)
         amp_tol = max(1e-5, self.s.amp_tol_fraction * min(p.threshold_m for p in pairs))
+        return self.thresholds_at(spec, freqs, cycles, variants, amp_max, amp_tol)
+
+    def thresholds_at(self, spec: Specimen, freqs: list[float], cycles: tuple[int, int, int],
+                      variants: list[Variant], amp_max: float, amp_tol: float) -> dict[tuple[Variant, float], float]:
+        """Simulated threshold [m] of every (variant, frequency), searched up to `amp_max`
+        to `amp_tol` [m]."""
+        out: dict[tuple[Variant, float], float] = {}
+        freqs = sorted(freqs)
         groups: dict[str, list[Variant]] = {}
         for v in variants:
             listed = v.effect is not None and effect(v.effect).sweep_list is not None
