@@ -9,8 +9,6 @@ dataset or attribute.
 
 from __future__ import annotations
 
-import json
-import math
 import os
 import re
 from dataclasses import dataclass, field
@@ -32,17 +30,7 @@ __all__ = [
     "SIDE_NAMES",
 ]
 
-#: Hinge side codes of /hinges/side: 0 intrados, 1 extrados.
-SIDE_NAMES = ("intrados", "extrados")
-
-
-class ResultsError(Exception):
-    """A result file cannot be read; the message names the file and the problem."""
-
-    def __init__(self, path: str | os.PathLike, message: str):
-        self.path = os.fspath(path)
-        self.message = message
-        super().__init__(f"{self.path}: {message}")
+from .results_common import SIDE_NAMES, ResultsError
 
 
 # --------------------------------------------------------------------------- helpers
@@ -520,100 +508,5 @@ def read_sweep(path: str | os.PathLike) -> SweepResult:
         )
 
 
-# ----------------------------------------------------------------------- limit JSON
-
-
-@dataclass
-class LimitResult:
-    """The JSON written by ``voussoir-limit --json``."""
-
-    path: str
-    lambda_pos: float
-    lambda_neg: float
-    hinges_pos: list[tuple[int, str]]  #: (joint, side) from the left
-    hinges_neg: list[tuple[int, str]]
-    min_thickness_ratio_ext: float
-    min_thickness_ratio_mean: float
-    n_voussoirs: int
-    embrace_deg: float
-    r_ext_m: float
-    thickness_m: float
-    contact_inset_m: float
-    joint_intrados_xy_m: np.ndarray  #: (n+1, 2)
-    joint_extrados_xy_m: np.ndarray  #: (n+1, 2)
-    sliding: list  #: joints where friction does not carry the collapse thrust
-    sliding_pos: list | None = None  #: the same per direction, when the JSON has it
-    sliding_neg: list | None = None
-    friction: float = math.nan
-    g_m_s2: float = 9.81  #: gravity used for lambda (JSON 'g_m_s2', else the kernel's 9.81)
-    code_version: str = ""
-
-
-def _json_float(value) -> float:
-    return math.nan if value is None else float(value)
-
-
-def read_limit_json(path: str | os.PathLike) -> LimitResult:
-    """Read the ``voussoir-limit --json`` output; ResultsError on a missing file, bad JSON
-    or a missing key."""
-    path = os.fspath(path)
-    if not os.path.exists(path):
-        raise ResultsError(path, "no such file")
-    try:
-        with open(path, encoding="utf-8") as f:
-            data = json.load(f)
-    except (json.JSONDecodeError, UnicodeDecodeError) as exc:
-        raise ResultsError(path, f"not a JSON file: {exc}") from exc
-    if not isinstance(data, dict):
-        raise ResultsError(path, "expected one JSON object")
-    producer = data.get("producer", "voussoir-limit")
-    if producer != "voussoir-limit":
-        raise ResultsError(path, f"written by '{producer}', but this command reads 'voussoir-limit' files")
-
-    def need(obj, key, where=""):
-        if key not in obj:
-            raise ResultsError(path, f"missing key '{where}{key}'")
-        return obj[key]
-
-    def hinges(key):
-        out = []
-        for k, h in enumerate(need(data, key)):
-            try:
-                side = str(h["side"])
-                joint = int(h["joint"])
-            except (KeyError, TypeError, ValueError) as exc:
-                raise ResultsError(path, f"'{key}[{k}]' must be {{\"joint\": j, \"side\": ...}}") from exc
-            if side not in SIDE_NAMES:
-                raise ResultsError(path, f"'{key}[{k}].side' is '{side}', expected intrados or extrados")
-            out.append((joint, side))
-        return out
-
-    arch = need(data, "arch")
-    n = int(need(arch, "n_voussoirs", "arch."))
-    intr = np.asarray(need(arch, "joint_intrados_xy_m", "arch."), dtype=float)
-    extr = np.asarray(need(arch, "joint_extrados_xy_m", "arch."), dtype=float)
-    for name, arr in (("joint_intrados_xy_m", intr), ("joint_extrados_xy_m", extr)):
-        if arr.shape != (n + 1, 2):
-            raise ResultsError(path, f"'arch.{name}' has shape {arr.shape}, expected ({n + 1}, 2)")
-    return LimitResult(
-        path=path,
-        lambda_pos=_json_float(need(data, "lambda_pos")),
-        lambda_neg=_json_float(need(data, "lambda_neg")),
-        hinges_pos=hinges("hinges_pos"),
-        hinges_neg=hinges("hinges_neg"),
-        min_thickness_ratio_ext=_json_float(data.get("min_thickness_ratio_ext")),
-        min_thickness_ratio_mean=_json_float(data.get("min_thickness_ratio_mean")),
-        n_voussoirs=n,
-        embrace_deg=float(need(arch, "embrace_deg", "arch.")),
-        r_ext_m=float(need(arch, "r_ext_m", "arch.")),
-        thickness_m=float(need(arch, "thickness_m", "arch.")),
-        contact_inset_m=float(arch.get("contact_inset_m", 0.0) or 0.0),
-        joint_intrados_xy_m=intr,
-        joint_extrados_xy_m=extr,
-        sliding=list(data.get("sliding", []) or []),
-        sliding_pos=list(data["sliding_pos"]) if data.get("sliding_pos") is not None else None,
-        sliding_neg=list(data["sliding_neg"]) if data.get("sliding_neg") is not None else None,
-        friction=_json_float(data.get("friction")),
-        g_m_s2=_json_float(data.get("g_m_s2", 9.81)),
-        code_version=str(data.get("code_version", "")),
-    )
+# The limit JSON reader lives in limit_results.py; its names stay importable from here.
+from .limit_results import LimitResult, read_limit_json  # noqa: E402
