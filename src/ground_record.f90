@@ -16,7 +16,7 @@
 module voussoir_ground_record
   use voussoir_kinds, only: dp, pi, g_m_s2
   use voussoir_status, only: status_t, fail
-  use voussoir_text, only: lower, itoa, fmt_real
+  use voussoir_text, only: lower, upper, itoa, fmt_real
   use voussoir_numeric_csv, only: read_csv_columns, parse_number, number_ok, number_not_finite
   implicit none
   private
@@ -236,15 +236,6 @@ contains
     if (k > 0) word = word(:k - 1)
   end function first_word
 
-  pure function upper(s) result(t)
-    character(len=*), intent(in) :: s
-    character(len=len(s)) :: t
-    integer :: i
-    t = s
-    do i = 1, len(s)
-      if (s(i:i) >= 'a' .and. s(i:i) <= 'z') t(i:i) = achar(iachar(s(i:i)) - 32)
-    end do
-  end function upper
 
   !> A CSV record: columns t_s and accel_m_s2, uniformly sampled, time increasing.
   subroutine read_accel_csv(path, rec, status)

@@ -6,7 +6,7 @@ module voussoir_text
   implicit none
   private
 
-  public :: lower, itoa, int_list, join_words, fmt_real, fmt_fixed, fmt_significant, fmt_exact, &
+  public :: lower, upper, itoa, int_list, join_words, fmt_real, fmt_fixed, fmt_significant, fmt_exact, &
             fmt_exact_list, fmt_json_real, json_string, json_bool
 
 contains
@@ -21,6 +21,17 @@ contains
       if (s(i:i) >= 'A' .and. s(i:i) <= 'Z') t(i:i) = achar(iachar(s(i:i)) + 32)
     end do
   end function lower
+
+  !> `s` in upper case (ASCII).
+  pure function upper(s) result(t)
+    character(len=*), intent(in) :: s
+    character(len=len(s)) :: t
+    integer :: i
+    t = s
+    do i = 1, len(s)
+      if (s(i:i) >= 'a' .and. s(i:i) <= 'z') t(i:i) = achar(iachar(s(i:i)) - 32)
+    end do
+  end function upper
 
   !> An integer as text, without blanks.
   pure function itoa(i) result(text)
