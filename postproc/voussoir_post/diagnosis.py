@@ -31,7 +31,9 @@ import numpy as np
 
 from .actuator import TableEvidence, afd_command, fit_actuator, table_evidence
 from .campaign import Campaign, MeasuredThreshold, Specimen, measured_thresholds, read_campaign
-from .decision import Decision, decide, hinge_match
+from .combined import all_pairs, screen_pairs
+from .decision import Decision, decide, hinge_match, hinge_score
+from .nested import admissibility, mean_relative_error, nested_held_out
 from .diagnosis_settings import DiagnosisSettings
 from .effects import EFFECTS, Variant, effect
 from .selection import CandidateResult, PairData, evaluate_candidate, held_out_loss, mean_error
@@ -48,7 +50,58 @@ def variants(spec: Specimen, settings: DiagnosisSettings) -> list[Variant]:
 
 def parameters(c: CandidateResult | None, table: TableEvidence) -> dict:
     """The `parameters` object of diagnosis.json for a candidate (empty for none)."""
-    return {} if c is None else effect(c.effect).parameters(c, table)
+    return {} if c is None else c.eff.parameters(c, table)
+
+
+def candidate_entry(c: CandidateResult, table: TableEvidence) -> dict:
+    """One entry of diagnosis.json's `candidates`; a pair is `combined` with its `effects`."""
+    entry = {"effect": c.effect if len(c.members) == 1 else "combined"}
+    if len(c.members) > 1:
+        entry["effects"] = list(c.members)
+    entry.update({"cv_error_pct": 100 * c.cv_error, "parameters": parameters(c, table)})
+    return entry
+
+
+def _store(ps: list[PairData], thr: dict) -> None:
+    """File simulated thresholds {(variant, frequency): m} with their pairs."""
+    for p in ps:
+        for (v, f), t in thr.items():
+            if abs(f - p.measured.frequency_hz) < 1e-9:
+                p.simulated[v] = t
+
+
+def simulate_pairs(pairs: list[PairData], groups: dict, singles: dict, sim: Simulator, settings: DiagnosisSettings,
+                   table: TableEvidence) -> dict:
+    """The pairs of effects worth simulating (combined.py: screened by the additive rule),
+    simulated about their fits and judged with the simulated correction. Two rounds at
+    most: a refit that leaves the simulated grid is simulated again."""
+    out = {}
+    combos = all_pairs(singles, settings, table)
+    for (sid, cycles), ps in groups.items():
+        variants = [v for ce in combos
+                    for v in ce.calibration(ps[0].spec, tuple(singles[m].value for m in ce.member_ids))]
+        if variants:
+            settings.log(f"[diagnose] simulating {len(variants)} pairs of effects on {sid}, each at its fits alone")
+            _store(ps, sim.thresholds(ps[0].spec, [p.measured for p in ps], cycles, variants))
+    for ce, screened in screen_pairs(pairs, singles, combos, settings, table):
+        c = screened
+        for _ in range(2):
+            fits = [c.value] + list(c.fold_values)
+            needed = 0
+            for (sid, cycles), ps in groups.items():
+                variants = [v for v in ce.variants_to_simulate(ps[0].spec, fits) if v not in ps[0].simulated]
+                if not variants:
+                    continue
+                needed += len(variants)
+                settings.log(f"[diagnose] simulating {ce.id} on {sid}: {len(variants)} combinations")
+                _store(ps, sim.thresholds(ps[0].spec, [p.measured for p in ps], cycles, variants))
+            if not needed:
+                break
+            c = evaluate_candidate(pairs, ce, settings, table)
+        settings.log(f"[diagnose] pair {ce.id}: screened held-out {100 * screened.cv_error:.1f} %, "
+                     f"simulated {100 * c.cv_error:.1f} %")
+        out[ce.id] = c
+    return out
 
 
 def _cycles(campaign: Campaign, m: MeasuredThreshold) -> tuple[int, int, int]:
@@ -81,6 +134,12 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
                          "nothing can fit or judge a cause")
     resolution = float(np.mean([p.resolution for p in pairs])) + settings.amp_tol_fraction
     table = table_evidence(campaign)
+    if table.source == "records":
+        gains = {tid: g for tid, g, _, _ in table.per_test}
+        for p in all_pairs:
+            own = [gains[t] for t in p.measured.test_ids if t in gains]
+            if own:
+                p.gain_shape = float(np.mean(own)) / table.gain
     log(f"[diagnose] {campaign.name}: {len(campaign.specimens)} specimens, {len(campaign.tests)} tests, "
         f"{len(pairs)} pairs with a collapse and a certain set-up ({len(apart)} apart); resolution {100 * resolution:.1f} %; table evidence: {table.source}"
         + (f" gain {table.gain:.3f}" if table.source != "none" else ""))
@@ -91,25 +150,12 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
         groups.setdefault((p.spec.specimen_id, _cycles(campaign, p.measured)), []).append(p)
     for (sid, cycles), ps in groups.items():
         log(f"[diagnose] simulating thresholds of {sid} ({len(ps)} frequencies, {len(variants(ps[0].spec, settings))} models)")
-        thr = sim.thresholds(ps[0].spec, [p.measured for p in ps], cycles, variants(ps[0].spec, settings))
-        for p in ps:
-            for (v, f), t in thr.items():
-                if abs(f - p.measured.frequency_hz) < 1e-9:
-                    p.simulated[v] = t
+        _store(ps, sim.thresholds(ps[0].spec, [p.measured for p in ps], cycles, variants(ps[0].spec, settings)))
 
     baseline_error = mean_error(pairs, None, None)
-    cands = {e: evaluate_candidate(pairs, e, settings, table) for e in EFFECTS}
-    if table.source == "records" and not table.deviates:
-        cands["table_motion"].admissible = False
-        cands["table_motion"].reason = (f"the records show the table followed the command (gain {table.gain:.3f}"
-                                        f" +- {2 * table.gain_se:.3f})")
-    if table.source == "peak_accel":
-        c = cands["table_motion"]
-        tol = max(0.05, 3.0 * (table.gain_se if math.isfinite(table.gain_se) else 0.0))
-        if abs(float(c.value) - table.gain) > tol:
-            c.admissible = False
-            c.reason = (f"it needs a gain of {float(c.value):.2f}, but the measured peak accelerations are "
-                        f"{table.gain:.2f} times the commanded ones")
+    cands = {e: evaluate_candidate(pairs, effect(e), settings, table) for e in EFFECTS}
+    admissibility(cands, table)
+    cands.update(simulate_pairs(pairs, groups, cands, sim, settings, table))
 
     # Hinges: every test with observed hinges, simulated with the nominal model and with
     # each candidate's fitted model.
@@ -119,43 +165,50 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     baseline_hinges = None
     if hinge_tests:
         log(f"[diagnose] simulating {len(hinge_tests)} tests with observed hinges, {1 + len(cands)} models")
-        models = [(None, Variant(), {})] + [(e, *effect(e).model(c.value, table)) for e, c in cands.items()]
+        models = [(None, Variant(), {})] + [(e, *c.eff.model(c.value, table)) for e, c in cands.items()]
         for name, variant, motion in models:
             runs = sim.run_tests([(campaign.specimens[t.specimen_id], t, variant, motion) for t in hinge_tests])
-            match = hinge_match(observed, {t.test_id: r["hinges"] for t, r in zip(hinge_tests, runs)})
+            simulated = {t.test_id: r["hinges"] for t, r in zip(hinge_tests, runs)}
             if name is None:
-                baseline_hinges = match
+                baseline_hinges = hinge_match(observed, simulated)
             else:
-                cands[name].hinge_match = match
+                cands[name].hinge_match = hinge_match(observed, simulated)
+                cands[name].hinge_score = hinge_score(observed, simulated)
 
     decision = decide(pairs, resolution, cands, table)
     chosen = decision.chosen
     suggestion = None
-    if decision.verdict == "inconclusive" and len(decision.rivals) > 1:
-        log(f"[diagnose] looking for the test that separates {', '.join(decision.rivals)}")
-        suggestion = separating_test(pairs, [cands[e] for e in decision.rivals], sim, campaign, settings, table)
+    if decision.verdict == "inconclusive" and len(decision.rival_results) > 1:
+        log(f"[diagnose] looking for the test that separates {', '.join(c.effect for c in decision.rival_results)}")
+        suggestion = separating_test(pairs, decision.rival_results, sim, campaign, settings, table)
         decision.notes += " " + suggestion["sentence"]
-    # The extended model: the named cause, or for `inconclusive` the best rival.
+    # The extended model: the named cause, or for `inconclusive` the best rival; its error
+    # by nested cross-validation (nested.py), never on the data that chose it.
     shown = chosen or decision.best_rival
-    extended_error = shown.cv_error if shown else baseline_error
+    log("[diagnose] nested cross-validation of the whole choice")
+    nested, fold_verdicts = nested_held_out(pairs, [c.eff for c in cands.values()], settings, table)
+    extended_error = mean_relative_error(nested, pairs) if shown else baseline_error
     extended_hinges = shown.hinge_match if shown else baseline_hinges
     notes = decision.notes or notes_named(chosen, baseline_error, resolution, cands, table, pairs)
+    if shown:
+        notes += (f" Measured by nested cross-validation (the choice itself redone without each specimen), the "
+                  f"extended model's error on the specimens held out is {100 * extended_error:.1f} %"
+                  + (f" (the folds chose {', '.join(fold_verdicts)})." if fold_verdicts else "."))
     uncertain = uncertain_specimens(apart, chosen, settings)
     if uncertain:
         notes += " " + " ".join(u["sentence"] for u in uncertain)
     crown = crown_comparison(campaign, sim, [("nominal", Variant(), {})]
-                             + ([(chosen.effect, *effect(chosen.effect).model(chosen.value, table))] if chosen else []))
+                             + ([(chosen.effect, *chosen.eff.model(chosen.value, table))] if chosen else []))
     elapsed = time.time() - t0
     result = {
         "campaign": campaign.name,
         "verdict": decision.verdict,
-        "effects": [chosen.effect] if chosen else [],
+        "effects": list(chosen.members) if chosen else [],
         "rivals": list(decision.rivals),
         "parameters": parameters(chosen, table),
         "baseline": {"threshold_error_pct": 100 * baseline_error, "hinge_match": baseline_hinges},
         "extended": {"threshold_error_pct": 100 * extended_error, "hinge_match": extended_hinges},
-        "candidates": [{"effect": e, "cv_error_pct": 100 * c.cv_error, "parameters": parameters(c, table)}
-                       for e, c in cands.items()],
+        "candidates": [candidate_entry(c, table) for c in cands.values()],
         "notes": notes,
     }
     (out_dir / "diagnosis.json").write_text(json.dumps(result, indent=2) + "\n")
@@ -163,7 +216,8 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     write_report(out_dir, campaign, pairs, cands, decision, table, baseline_error, resolution, result,
                  {"elapsed_s": elapsed, "sweeps": sim.n_sweeps, "runs": sim.n_runs, "settings": settings,
                   "code_version": sim.code_version,
-                  "crown": crown, "uncertain": uncertain, "next_test": suggestion})
+                  "crown": crown, "uncertain": uncertain, "next_test": suggestion,
+                  "nested": nested, "fold_verdicts": fold_verdicts})
     log(f"[diagnose] verdict: {decision.verdict} ({elapsed:.0f} s, {sim.n_sweeps} sweeps, {sim.n_runs} single runs)")
     return result
 
@@ -202,7 +256,7 @@ def notes_named(c: CandidateResult, baseline_error: float, resolution: float, ca
     ranks them (held-out likelihood), so a smaller mean error of a weaker rival is said
     as it is."""
     pct = lambda x: f"{100 * x:.1f} %"
-    what = effect(c.effect).sentence(c, table)
+    what = c.eff.sentence(c, table)
     others = sorted((x for e, x in cands.items() if e != c.effect), key=lambda x: held_out_loss(x, pairs))
     listed = ", ".join(f"{x.effect} {pct(x.cv_error)}" + ("" if x.admissible else f" (excluded: {x.reason})")
                        for x in others)
@@ -221,7 +275,7 @@ def separating_test(pairs: list[PairData], rivals: list[CandidateResult], sim: S
     simulated here with each rival's model."""
     options = []  # (spread, specimen, frequency, {effect: threshold_m}, new)
     for p in pairs:
-        preds = {c.effect: effect(c.effect).predict(p, c.value) for c in rivals}
+        preds = {c.effect: c.eff.predict(p, c.value) for c in rivals}
         options.append((p.spec, p.measured.frequency_hz, preds, False))
     by_specimen: dict[str, list[PairData]] = {}
     for p in pairs:
@@ -236,7 +290,7 @@ def separating_test(pairs: list[PairData], rivals: list[CandidateResult], sim: S
         accel = max(p.measured.threshold_accel_m_s2 for p in ps)
         amp_max = max(4.0 * accel / (2 * math.pi * f) ** 2 for f in new)
         amp_tol = max(1e-5, settings.amp_tol_fraction * min(0.25 * accel / (2 * math.pi * f) ** 2 for f in new))
-        models = {c.effect: effect(c.effect).model(c.value, table) for c in rivals}
+        models = {c.effect: c.eff.model(c.value, table) for c in rivals}
         variants_needed = [Variant()] + [v for v, motion in models.values() if v != Variant()]
         thr = sim.thresholds_at(spec, new, _cycles(campaign, ps[0].measured), variants_needed, amp_max, amp_tol)
         for f in new:
@@ -267,7 +321,7 @@ def uncertain_specimens(apart: list[PairData], chosen: CandidateResult | None, s
     for p in apart:
         meas = p.measured.threshold_m
         nominal = p.simulated.get(Variant(), math.nan)
-        extended = effect(chosen.effect).predict(p, chosen.value) if chosen else math.nan
+        extended = chosen.eff.predict(p, chosen.value) if chosen else math.nan
         explain = []
         for e in EFFECTS:
             eff = effect(e)

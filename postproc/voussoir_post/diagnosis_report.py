@@ -10,7 +10,7 @@ import numpy as np
 from .actuator import afd_command
 from .drawing import new_figure, save_png
 from .effects import EFFECTS_BY_ID, Variant
-from .selection import mean_error
+from .selection import loss, mean_error
 
 __all__ = ["write_report"]
 
@@ -25,7 +25,7 @@ def _md_table(headers, rows) -> str:
     return "\n".join(out)
 
 
-def _figure_thresholds(out: Path, pairs, cands, decision) -> str:
+def _figure_thresholds(out: Path, pairs, cands, decision, nested) -> str:
     fig = new_figure(max(6.0, 1.1 * len(pairs) + 2), 4.2)
     ax = fig.subplots()
     x = np.arange(len(pairs))
@@ -37,9 +37,10 @@ def _figure_thresholds(out: Path, pairs, cands, decision) -> str:
     base = [1e3 * p.simulated.get(Variant(), math.nan) for p in pairs]
     ax.plot(x - 0.15, base, "s", color="tab:red", label="nominal model")
     shown = decision.chosen or decision.best_rival
-    if shown is not None:
-        ax.plot(x + 0.15, [1e3 * h for h in shown.per_pair], "D", color="tab:blue",
-                label=f"{shown.effect}, held out" + ("" if decision.chosen else " (best of the rivals)"))
+    if shown is not None and nested:
+        ax.plot(x + 0.15, [1e3 * h for h in nested], "D", color="tab:blue",
+                label=f"extended ({shown.effect}" + ("" if decision.chosen else ", best of the rivals")
+                + "), nested held out")
     ax.set_xticks(x)
     ax.set_xticklabels([f"{p.spec.specimen_id}\n{p.measured.frequency_hz:g} Hz" for p in pairs], fontsize=8)
     ax.set_ylabel("collapse threshold amplitude [mm]")
@@ -57,10 +58,16 @@ def _figure_candidates(out: Path, pairs, cands, settings) -> str:
     for ax, e in zip(axes, drawn):
         effect, (_, scale, label) = e.id, e.figure_axis
         values = e.candidate_values(pairs, settings)
-        err = [100 * mean_error(pairs, effect, v) for v in values]
-        ax.plot(np.array(values, float) * scale, err, "-", color="tab:blue")
+        err = [100 * mean_error(pairs, e, v) for v in values]
+        x = np.array(values, float) * scale
+        ax.plot(x, err, "-", color="tab:blue", label="mean threshold error")
+        nll = ax.twinx()
+        nll.plot(x, [loss(pairs, e, v) for v in values], ":", color="tab:orange")
+        nll.set_ylabel("-log likelihood (fit criterion)", color="tab:orange", fontsize=8)
+        ax.plot([], [], ":", color="tab:orange", label="-log likelihood (right axis)")
         c = cands[effect]
-        ax.axvline(float(c.value) * scale, color="tab:green", ls="--", label="fitted (max. held-in likelihood)")
+        ax.axvline(float(c.value) * scale, color="tab:green", ls="--",
+                   label="fitted: least -log likelihood\n(the change nearest nominal among ties)")
         ax.set_xlabel(label)
         ax.set_ylabel("mean threshold error [%]")
         ax.set_title(f"{effect}: held-out {100 * c.cv_error:.1f} %" + ("" if c.admissible else " (excluded)"),
@@ -103,7 +110,8 @@ def _figure_table(out: Path, campaign, table) -> str | None:
 
 def write_report(out: Path, campaign, pairs, cands, decision, table, baseline_error, resolution, result, info
                  ) -> None:
-    figs = [_figure_thresholds(out, pairs, cands, decision), _figure_candidates(out, pairs, cands, info["settings"])]
+    nested = info.get("nested") or []
+    figs = [_figure_thresholds(out, pairs, cands, decision, nested), _figure_candidates(out, pairs, cands, info["settings"])]
     tfig = _figure_table(out, campaign, table)
     lines = [f"# Diagnosis of campaign `{campaign.name}`", "",
              f"**Verdict: `{result['verdict']}`.** {result['notes']}", ""]
@@ -114,26 +122,31 @@ def write_report(out: Path, campaign, pairs, cands, decision, table, baseline_er
         lines.append("")
     lines += ["## Thresholds", "",
               f"Mean absolute error of the nominal model: {_pct(baseline_error)}; of the extended model, held out: "
-              f"{result['extended']['threshold_error_pct']:.1f} %. Measurement resolution (half the amplitude "
+              f"{result['extended']['threshold_error_pct']:.1f} % (nested cross-validation: the choice of the cause "
+              f"itself redone without each specimen it then predicts). Measurement resolution (half the amplitude "
               f"steps, plus the search tolerance): {_pct(resolution)}.", "", f"![thresholds]({figs[0]})", ""]
     rows = []
     for k, p in enumerate(pairs):
         base = p.simulated.get(Variant(), math.nan)
         shown = decision.chosen or decision.best_rival
-        ext = shown.per_pair[k] if shown else math.nan
+        ext = nested[k] if shown and nested else math.nan
         rows.append((p.spec.specimen_id, f"{p.measured.frequency_hz:g}",
                      "-" if not math.isfinite(p.measured.low_m) else f"{1e3 * p.measured.low_m:.1f}",
                      f"{1e3 * p.measured.high_m:.1f}", f"{1e3 * p.measured.threshold_m:.1f}",
                      f"{1e3 * base:.1f}", _pct((base - p.measured.threshold_m) / p.measured.threshold_m),
                      "-" if not math.isfinite(ext) else f"{1e3 * ext:.1f}"))
     lines.append(_md_table(["specimen", "f [Hz]", "last stand [mm]", "first collapse [mm]", "measured [mm]",
-                            "nominal [mm]", "nominal error", "extended, held out [mm]"], rows))
+                            "nominal [mm]", "nominal error", "extended, nested held out [mm]"], rows))
     lines += ["", "## Candidate causes", "",
               "Each effect's parameter is fitted on all specimens but one and judged on the one left out "
-              "(leave-one-specimen-out; leave-one-pair-out with a single specimen).", "",
-              _md_table(["effect", "held-out error", "in-sample error", "fitted", "hinge match", "status"],
-                        [(e, _pct(c.cv_error), _pct(c.in_sample_error), EFFECTS_BY_ID[c.effect].value_text(c),
+              "(leave-one-specimen-out; leave-one-pair-out with a single specimen). A pair of effects "
+              "(`a+b`) is listed when the additive screen (combined.py) found it promising; it was then "
+              "simulated about its fit.", "",
+              _md_table(["effect", "held-out error", "in-sample error", "fitted", "hinge match (recall)",
+                         "hinge F1 (false hinges count)", "status"],
+                        [(e, _pct(c.cv_error), _pct(c.in_sample_error), c.eff.value_text(c),
                           _pct(c.hinge_match) if c.hinge_match is not None else "-",
+                          f"{c.hinge_score:.2f}" if c.hinge_score is not None else "-",
                           "admissible" if c.admissible else f"excluded: {c.reason}") for e, c in cands.items()]),
               "", f"![candidates]({figs[1]})", ""]
     lines += ["## The table", ""]

@@ -18,22 +18,35 @@ from .actuator import TableEvidence
 from .campaign import Specimen
 from .diagnosis_settings import DiagnosisSettings
 
-__all__ = ["Variant", "Effect", "ContactEdges", "TableMotion", "BaseRestraint", "Friction", "Geometry", "EFFECTS",
+__all__ = ["COMBINED", "Variant", "Effect", "ContactEdges", "TableMotion", "BaseRestraint", "Friction", "Geometry", "EFFECTS",
            "EFFECTS_BY_ID", "RESTRAINTS", "effect", "arch_group"]
 
 RESTRAINTS = ("left", "right", "both")
+#: The Variant effect of two effects acting together.
+COMBINED = "combined"
 
 
 @dataclass(frozen=True)
 class Variant:
-    """One simulated model: the nominal one (effect None) or one effect at one value."""
+    """One simulated model: the nominal one (effect None), one effect at one value, or two
+    effects together (effect COMBINED, value ((id1, value1), (id2, value2)))."""
 
     effect: str | None = None
-    value: float | str | None = None
+    value: float | str | tuple | None = None
 
     @property
     def label(self) -> str:
-        return "nominal" if self.effect is None else EFFECTS_BY_ID[self.effect].label(self.value)
+        if self.effect is None:
+            return "nominal"
+        if self.effect == COMBINED:
+            return " + ".join(EFFECTS_BY_ID[e].label(v) for e, v in self.value)
+        return EFFECTS_BY_ID[self.effect].label(self.value)
+
+    def parts(self) -> tuple:
+        """The (effect id, value) of each effect of the variant."""
+        if self.effect is None:
+            return ()
+        return tuple(self.value) if self.effect == COMBINED else ((self.effect, self.value),)
 
 
 def arch_group(spec: Specimen, variant: Variant) -> dict:
@@ -43,8 +56,8 @@ def arch_group(spec: Specimen, variant: Variant) -> dict:
              "r_ext_m": float(spec.r_ext_m), "thickness_m": float(spec.thickness_m), "width_m": float(spec.width_m),
              "density_kg_m3": float(spec.density_kg_m3), "friction": float(spec.friction), "contact_inset_m": 0.0,
              "restrained_springings": spec.restrained_springings}
-    if variant.effect is not None:
-        group.update(EFFECTS_BY_ID[variant.effect].arch_changes(variant.value, spec))
+    for effect_id, value in variant.parts():
+        group.update(EFFECTS_BY_ID[effect_id].arch_changes(value, spec))
     return group
 
 
@@ -100,6 +113,31 @@ class Effect:
         vals = [float(v) for v in fold_values] + [float(v) for v in near]
         return min(vals), max(vals)
 
+    #: Whether the effect combines with another exactly, with nothing to simulate (a
+    #: table gain divides any model's threshold).
+    exact_in_combination: bool = False
+    #: A change of the parameter that counts as one unit when changes of two effects are
+    #: weighed against each other (parsimony of a pair); None: categorical.
+    change_scale: float | None = None
+
+    def pair_values(self, pairs, settings: DiagnosisSettings, table: TableEvidence) -> list:
+        """The values tried for this effect inside a pair of effects: the fit's values, at
+        most about 25 of them (a pair's grid is their product)."""
+        fixed = self.fixed_value(table)
+        if fixed is not None:
+            return [fixed]
+        values = self.candidate_values(pairs, settings)
+        step = max(1, len(values) // 24)
+        picked = values[::step]
+        return picked if picked[-1] == values[-1] else picked + [values[-1]]
+
+    def simulated_values(self, spec: Specimen, settings: DiagnosisSettings) -> list:
+        """The values simulated for one specimen, the nominal one included (sorted)."""
+        values = {float(v.value) for v in self.simulated(spec, settings)}
+        if self.nominal(spec) is not None:
+            values.add(float(self.nominal(spec)))
+        return sorted(values)
+
     def model(self, value, table: TableEvidence) -> tuple[Variant, dict]:
         """The model (variant, extra &motion settings) that a fitted value describes."""
         return Variant(self.id, value), {}
@@ -121,6 +159,7 @@ class Effect:
 
 class ContactEdges(Effect):
     id = "contact_edges"
+    change_scale = 0.01
     sweep_list = "contact_inset_list_m"
     figure_axis = (0, 1e3, "contact inset [mm]")
 
@@ -154,6 +193,7 @@ class Friction(Effect):
     """The joints' Coulomb coefficient, lower or higher than nominal."""
 
     id = "friction"
+    change_scale = 0.25
     sweep_list = "friction_list"
     figure_axis = (1, 1.0, "friction coefficient")
 
@@ -201,7 +241,8 @@ class BaseRestraint(Effect):
         return [] if spec.restrained_springings != "none" else [Variant(self.id, r) for r in RESTRAINTS]
 
     def arch_changes(self, value, spec):
-        return {"restrained_springings": str(value)}
+        # Declared brackets are the specimen's own: this effect leaves them as they are.
+        return {} if spec.restrained_springings != "none" else {"restrained_springings": str(value)}
 
     def candidate_values(self, pairs, settings):
         return list(RESTRAINTS)
@@ -217,6 +258,12 @@ class BaseRestraint(Effect):
 
     def interval(self, value, fold_values, near, table):
         return value, value
+
+    def pair_values(self, pairs, settings, table):
+        return list(RESTRAINTS)
+
+    def simulated_values(self, spec, settings):
+        return [] if spec.restrained_springings != "none" else list(RESTRAINTS)
 
     def parameters(self, c, table):
         sides = ["left", "right"] if c.value == "both" else [str(c.value)]
@@ -239,9 +286,13 @@ class BaseRestraint(Effect):
 
 class TableMotion(Effect):
     """A table gain g scales the threshold in commanded amplitude exactly by 1/g (rigid
-    blocks); a pure delay does not change it: nothing to simulate."""
+    blocks); a pure delay does not change it: nothing to simulate. With records, each
+    pair's own measured gain relative to the campaign's mean (its `gain_shape`) scales
+    the fitted one: an actuator's gain changes with the frequency."""
 
     id = "table_motion"
+    exact_in_combination = True
+    change_scale = 0.3
     figure_axis = (2, 1.0, "table gain (measured / commanded)")
 
     def nominal(self, spec):
@@ -251,7 +302,7 @@ class TableMotion(Effect):
         return list(np.linspace(0.7, 1.4, 141))
 
     def predict(self, pair, value):
-        return pair.simulated[Variant()] / float(value)
+        return pair.simulated[Variant()] / (float(value) * pair.gain_shape)
 
     def fixed_value(self, table):
         return table.gain if table.source == "records" else None
@@ -290,6 +341,7 @@ class Geometry(Effect):
     seed paper's calibration: thickness x 0.82): thickness f t, extrados R_mean + f t / 2."""
 
     id = "geometry"
+    change_scale = 0.24
     figure_axis = (3, 1.0, "thickness factor")
 
     def simulated(self, spec, settings):

@@ -17,10 +17,10 @@ import numpy as np
 from .actuator import TableEvidence
 from .campaign import MeasuredThreshold, Specimen
 from .diagnosis_settings import DiagnosisSettings
-from .effects import Variant, effect
+from .effects import Effect, Variant
 
 __all__ = ["PairData", "CandidateResult", "T_DOF", "STRONG_EVIDENCE", "neg_log_likelihood", "predictions",
-           "mean_error", "held_out_loss", "clearly_better", "evaluate_candidate", "folds"]
+           "errors", "mean_error", "fit", "held_out_loss", "clearly_better", "evaluate_candidate", "folds"]
 
 #: Degrees of freedom of the Student-t likelihood of a threshold: heavy tails, so that
 #: one odd pair (a safe island, a chaotic run) cannot carry the verdict alone.
@@ -38,11 +38,14 @@ class PairData:
     resolution: float  #: relative half-width of the bracket (or the default)
     sigma: float = 0.05  #: relative uncertainty of the measured threshold (resolution and floor)
     simulated: dict = field(default_factory=dict)  #: Variant -> threshold [m]
+    #: The table gain measured on this pair's own records over the campaign's mean gain
+    #: (1 without records): an actuator's gain depends on the frequency.
+    gain_shape: float = 1.0
 
 
 @dataclass
 class CandidateResult:
-    effect: str
+    effect: str  #: an effect id, or "id1+id2" for two effects together
     value: object  #: fitted on all pairs
     low: object
     high: object
@@ -51,8 +54,15 @@ class CandidateResult:
     fold_values: list
     admissible: bool = True
     reason: str = ""
-    hinge_match: float | None = None
+    hinge_match: float | None = None  #: fraction of the observed hinges reproduced
+    hinge_score: float | None = None  #: F1 of observed and simulated hinges (false ones count)
     per_pair: list = field(default_factory=list)  #: held-out predictions [m]
+    eff: Effect | None = None  #: the effect (or pair of effects) the result is of
+
+    @property
+    def members(self) -> tuple[str, ...]:
+        """The effect ids: one, or two for a pair."""
+        return tuple(self.effect.split("+"))
 
 
 def rel_error(pred_m: float, meas_m: float) -> float:
@@ -67,36 +77,38 @@ def neg_log_likelihood(pred_m, meas_m, sigma) -> float:
     return 0.5 * (T_DOF + 1.0) * math.log1p(z * z / T_DOF)
 
 
-def predictions(pairs: list[PairData], effect_id, value) -> list[float]:
+def predictions(pairs: list[PairData], eff: Effect | None, value) -> list[float]:
     """Threshold [m] of every pair under one model (effect None: the nominal one)."""
-    if effect_id is None:
+    if eff is None:
         return [p.simulated[Variant()] for p in pairs]
-    e = effect(effect_id)
-    return [e.predict(p, value) for p in pairs]
+    return [eff.predict(p, value) for p in pairs]
 
 
-def mean_error(pairs: list[PairData], effect_id, value) -> float:
-    """Mean relative threshold error of one model (a prediction without collapse counts 1)."""
-    errs = [rel_error(pred, p.measured.threshold_m) if math.isfinite(pred) else 1.0
-            for pred, p in zip(predictions(pairs, effect_id, value), pairs)]
+def errors(preds: list[float], pairs: list[PairData]) -> list[float]:
+    """Relative threshold errors (a prediction without collapse counts 1)."""
+    return [rel_error(pred, p.measured.threshold_m) if math.isfinite(pred) else 1.0 for pred, p in zip(preds, pairs)]
+
+
+def mean_error(pairs: list[PairData], eff: Effect | None, value) -> float:
+    """Mean relative threshold error of one model."""
+    errs = errors(predictions(pairs, eff, value), pairs)
     return float(np.mean(errs)) if errs else math.nan
 
 
-def loss(pairs: list[PairData], effect_id, value) -> float:
+def loss(pairs: list[PairData], eff: Effect | None, value) -> float:
     """Negative log-likelihood of the measured thresholds under one model."""
     return sum(neg_log_likelihood(pred, p.measured.threshold_m, p.sigma)
-               for pred, p in zip(predictions(pairs, effect_id, value), pairs))
+               for pred, p in zip(predictions(pairs, eff, value), pairs))
 
 
-def fit(pairs: list[PairData], effect_id: str, settings: DiagnosisSettings, fixed=None):
+def fit(pairs: list[PairData], e: Effect, settings: DiagnosisSettings, fixed=None):
     """Best parameter on `pairs` (or `fixed`, measured elsewhere) and the near-optimal
     set. Ties are broken towards the nominal model (the smallest change that explains
     the data)."""
     if fixed is not None:
         return fixed, [fixed]
-    e = effect(effect_id)
     values = e.candidate_values(pairs, settings)
-    losses = np.array([loss(pairs, effect_id, v) for v in values])
+    losses = np.array([loss(pairs, e, v) for v in values])
     best = float(np.nanmin(losses))
     # Parsimony: among the values within a hair of the best, the one closest to nominal.
     choice = e.choose([v for v, x in zip(values, losses) if x <= best + 1e-6], pairs)
@@ -118,24 +130,22 @@ def folds(pairs: list[PairData]) -> list[tuple[list[int], list[int]]]:
     return [([0], [0])]
 
 
-def evaluate_candidate(pairs: list[PairData], effect_id: str, settings: DiagnosisSettings,
+def evaluate_candidate(pairs: list[PairData], e: Effect, settings: DiagnosisSettings,
                        table: TableEvidence) -> CandidateResult:
-    """Fit one effect in every fold and predict the pairs held out of it."""
-    e = effect(effect_id)
+    """Fit one effect (or pair) in every fold and predict the pairs held out of it."""
     fixed = e.fixed_value(table)
     held = [math.nan] * len(pairs)
     fold_values = []
     for train, test in folds(pairs):
-        value, _ = fit([pairs[i] for i in train], effect_id, settings, fixed)
+        value, _ = fit([pairs[i] for i in train], e, settings, fixed)
         fold_values.append(value)
         for i in test:
             held[i] = e.predict(pairs[i], value)
-    value, near = fit(pairs, effect_id, settings, fixed)
-    cv = float(np.mean([rel_error(h, p.measured.threshold_m) if math.isfinite(h) else 1.0
-                        for h, p in zip(held, pairs)]))
+    value, near = fit(pairs, e, settings, fixed)
+    cv = float(np.mean(errors(held, pairs)))
     low, high = e.interval(value, fold_values, near, table)
-    return CandidateResult(effect_id, value, low, high, cv, mean_error(pairs, effect_id, value), fold_values,
-                           per_pair=held)
+    return CandidateResult(e.id, value, low, high, cv, mean_error(pairs, e, value), fold_values,
+                           per_pair=held, eff=e)
 
 
 def held_out_loss(c: CandidateResult | None, pairs: list[PairData]) -> float:

@@ -47,18 +47,24 @@ class Simulator:
         to `amp_tol` [m]."""
         out: dict[tuple[Variant, float], float] = {}
         freqs = sorted(freqs)
-        groups: dict[str, list[Variant]] = {}
+        # Variants whose first effect has a &sweep list go in one sweep per value of the
+        # rest (the fixed part, in the &arch group); every other variant is a sweep.
+        groups: dict[tuple, list[Variant]] = {}
         for v in variants:
-            listed = v.effect is not None and effect(v.effect).sweep_list is not None
-            groups.setdefault(v.effect if listed else f"{v.effect}:{v.value}", []).append(v)
-        for vs in groups.values():
+            parts = v.parts()
+            listed = bool(parts) and effect(parts[0][0]).sweep_list is not None
+            groups.setdefault((parts[0][0], parts[1:]) if listed else ("single", v), []).append(v)
+        for key, vs in groups.items():
             self._count += 1
             name = f"sweep_{self._count:03d}_{spec.specimen_id}"
             sweep = {"mode": "threshold", "frequencies_hz": [float(f) for f in freqs], "amp_tol_m": float(amp_tol),
                      "amp_max_m": float(amp_max), "progress_every_s": 1.0e9}
-            base = vs[0] if len(vs) == 1 else Variant()
-            if len(vs) > 1:
-                sweep[effect(vs[0].effect).sweep_list] = [float(v.value) for v in vs]
+            listed = key[0] != "single"
+            if listed:
+                base = Variant(*key[1][0]) if key[1] else Variant()
+                sweep[effect(key[0]).sweep_list] = [float(v.parts()[0][1]) for v in vs]
+            else:
+                base = vs[0]
             groups_nml = {"arch": arch_group(spec, base),
                           "motion": {"waveform": "afd", "n_attack": cycles[0], "n_full": cycles[1],
                                      "n_decay": cycles[2], "rest_s": 1.0},
@@ -70,7 +76,7 @@ class Simulator:
             if not self.code_version:
                 self.code_version = result.code_version
             for row in rows:
-                v = vs[int(row["param_set"])] if len(vs) > 1 else vs[0]
+                v = vs[int(row["param_set"])] if listed else vs[0]
                 f = min(freqs, key=lambda x: abs(x - float(row["frequency_hz"])))
                 text = row["threshold_m"].strip()
                 out[(v, f)] = math.nan if text in ("", "nan", "NaN") else float(text)
