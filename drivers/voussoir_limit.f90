@@ -13,6 +13,7 @@ program voussoir_limit_main
   use voussoir_limit, only: limit_result_t
   use voussoir_limit_study, only: limit_options_t, thickness_result_t, read_limit_group, analyse
   use voussoir_limit_output, only: write_table, write_json
+  use voussoir_command_line, only: input_argument
   implicit none
 
   type(config_t) :: cfg
@@ -45,25 +46,12 @@ contains
   subroutine parse_arguments(path, json)
     character(len=*), intent(out) :: path
     logical, intent(out) :: json
-    character(len=1024) :: arg
-    integer :: k
-    path = ''
-    json = .false.
-    do k = 1, command_argument_count()
-      call get_command_argument(k, arg)
-      if (arg == '--json') then
-        json = .true.
-      else if (arg(1:1) == '-' .or. len_trim(path) > 0) then
-        path = ''
-        exit
-      else
-        path = arg
-      end if
-    end do
-    if (len_trim(path) == 0) then
-      write (error_unit, '(a)') 'usage: voussoir-limit FILE.nml [--json]'
-      stop 2, quiet=.true.
-    end if
+    logical :: given(1)
+    call input_argument('voussoir-limit', 'voussoir-limit FILE.nml [--json]', &
+      'Limit analysis of the discrete arch of &arch in FILE.nml: the horizontal acceleration (in g) that '// &
+      'brings it down statically, its four-hinge mechanism, and optionally the minimum thickness '// &
+      '(&limit; docs/limit_analysis.md). --json prints the result as JSON.', path, ['--json'], given)
+    json = given(1)
   end subroutine parse_arguments
 
 end program voussoir_limit_main

@@ -11,6 +11,7 @@ program voussoir_run
   use voussoir_simulation, only: run_result_t
   use voussoir_setup, only: run_config
   use voussoir_run_output, only: write_run_file
+  use voussoir_command_line, only: input_argument
   implicit none
   type(config_t) :: cfg
   type(assembly_t) :: assembly
@@ -19,11 +20,11 @@ program voussoir_run
   type(status_t) :: status
   character(len=1024) :: path
 
-  if (command_argument_count() /= 1) then
-    write (error_unit, '(a)') 'usage: voussoir-run FILE.nml'
-    stop 2, quiet=.true.
-  end if
-  call get_command_argument(1, path)
+  call input_argument('voussoir-run', 'voussoir-run FILE.nml', &
+    'One simulation of a masonry arch (or a polygon assembly) under base motion: the groups &arch, '// &
+    '&motion, &solver and &output of FILE.nml (README.md and docs/ list every variable, with units). '// &
+    'Writes one HDF5 result file and prints one line whose first word is stood or collapsed. '// &
+    'Exit 0 on success, 1 with a one-line message naming the file, the variable and the allowed range.', path)
   call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output'], cfg, status)
   if (status%ok) call run_config(cfg, assembly, model, res, status)
   if (status%ok) call write_run_file(cfg, assembly, model, res, status)

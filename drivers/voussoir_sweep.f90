@@ -21,6 +21,7 @@ program voussoir_sweep
   use voussoir_sweep_comm, only: sweep_comm_t, comm_start, comm_end, comm_agree
   use voussoir_sweep_master, only: master_t, master_prepare, master_run
   use voussoir_sweep_worker, only: worker_run
+  use voussoir_command_line, only: input_argument
   implicit none
   type(sweep_comm_t) :: net
   type(config_t) :: cfg
@@ -29,13 +30,12 @@ program voussoir_sweep
   type(status_t) :: status
   character(len=1024) :: path
 
+  call input_argument('voussoir-sweep', 'mpirun -np N voussoir-sweep FILE.nml', &
+    'A sweep of simulations over MPI ranks (rank 0 schedules, the others run): collapse envelopes over '// &
+    'frequencies and amplitudes, threshold searches, lists of arch parameters, or an incremental dynamic '// &
+    'analysis under records (&sweep mode; docs/sweep.md, docs/earthquakes.md). Writes an HDF5 file and a CSV '// &
+    'beside it, updated as jobs finish; a rerun continues a killed sweep.', path)
   call comm_start(net)
-  if (command_argument_count() /= 1) then
-    if (net%rank == 0) write (output_unit, '(a)') 'usage: mpirun -np N voussoir-sweep FILE.nml'
-    call comm_end(net)
-    stop 2, quiet=.true.
-  end if
-  call get_command_argument(1, path)
   call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'sweep'], cfg, status)
   if (status%ok) call read_sweep_plan(trim(path), cfg, plan, status)
   if (status%ok .and. net%rank == 0) call master_prepare(plan, cfg, net%size, master, status)

@@ -260,8 +260,10 @@ contains
       arch_rule = value > 0.0_dp .and. value <= 180.0_dp
     case ('n_voussoirs')
       arch_rule = value >= 2.0_dp .and. value <= real(max_voussoirs, dp)
-    case ('thickness_m', 'r_ext_m', 'width_m', 'density_kg_m3')
-      arch_rule = value > 0.0_dp .and. value <= huge(1.0_dp)
+    case ('thickness_m', 'r_ext_m', 'width_m')
+      arch_rule = value > 0.0_dp .and. value <= 1.0e3_dp
+    case ('density_kg_m3')
+      arch_rule = value > 0.0_dp .and. value <= 1.0e5_dp
     case ('friction', 'contact_inset_m')
       arch_rule = value >= 0.0_dp .and. value <= huge(1.0_dp)
     case ('size_imperfection')
@@ -284,10 +286,25 @@ contains
       text = trim(name)//' >= 0 (finite)'
     case ('size_imperfection')
       text = '0 <= size_imperfection < 0.5'
+    case ('thickness_m', 'r_ext_m', 'width_m')
+      text = '0 < '//trim(name)//' <= 1000 m'
+    case ('density_kg_m3')
+      text = '0 < density_kg_m3 <= 1e5'
     case default
       text = trim(name)//' > 0 (finite)'
     end select
   end function arch_rule_text
+
+  !> A path without leading './' (to compare two names of one file given alike).
+  pure function plain_path(path) result(p)
+    character(len=*), intent(in) :: path
+    character(len=:), allocatable :: p
+    p = trim(adjustl(path))
+    do while (len(p) > 2)
+      if (p(1:2) /= './') exit
+      p = p(3:)
+    end do
+  end function plain_path
 
   !> A file named in an input file: absolute, or relative to that input file's folder.
   function resolve_path(input_path, name) result(full)
@@ -309,6 +326,20 @@ contains
     integer :: j
 
     f = trim(cfg%source_file)
+    ! No real of any group may be infinite or NaN (each would run one step, or poison
+    ! the solve, and print an answer).
+    block
+      type(config_entry_t), allocatable :: e(:)
+      e = config_entries(cfg)
+      do j = 1, size(e)
+        if (e(j)%kind /= 'r') cycle
+        if (index(lower(e(j)%value), 'inf') > 0 .or. index(lower(e(j)%value), 'nan') > 0) then
+          call fail(status, f//': &'//trim(e(j)%group)//' '//trim(e(j)%name)//' = '//trim(e(j)%value)// &
+                    ' is not a finite number')
+          return
+        end if
+      end do
+    end block
     ! Each check records the first failure only, so the user sees the first bad value.
     associate (a => cfg%arch, m => cfg%motion, s => cfg%solver, o => cfg%output)
       a%restrained_springings = lower(a%restrained_springings)
@@ -317,7 +348,7 @@ contains
         call need_rule('embrace_deg', a%embrace_deg)
         call need_int(arch_rule('n_voussoirs', real(a%n_voussoirs, dp)), 'arch', 'n_voussoirs', a%n_voussoirs, &
                       arch_rule_text('n_voussoirs'))
-        call need(a%r_ext_m > 0.0_dp, 'arch', 'r_ext_m', a%r_ext_m, 'r_ext_m > 0')
+        call need_rule('r_ext_m', a%r_ext_m)
         call need(a%thickness_m > 0.0_dp .and. a%thickness_m < a%r_ext_m, &
           'arch', 'thickness_m', a%thickness_m, '0 < thickness_m < r_ext_m = '//fmt_real(a%r_ext_m))
         if (.not. status%ok) return
@@ -336,9 +367,8 @@ contains
         end if
         call need_rule('thickness_m', a%thickness_m)
       end if
-      call need(a%width_m > 0.0_dp, 'arch', 'width_m', a%width_m, 'width_m > 0')
-      call need(a%density_kg_m3 > 0.0_dp, &
-          'arch', 'density_kg_m3', a%density_kg_m3, 'density_kg_m3 > 0')
+      call need_rule('width_m', a%width_m)
+      call need_rule('density_kg_m3', a%density_kg_m3)
       call need_rule('friction', a%friction)
       do j = 0, max_joint
         if (a%joint_friction(j) == unset_friction) cycle
@@ -409,12 +439,18 @@ contains
       call need(s%theta >= 0.5_dp .and. s%theta <= 1.0_dp, 'solver', 'theta', s%theta, '0.5 <= theta <= 1')
       call need(s%tol > 0.0_dp .and. s%tol < 1.0_dp, 'solver', 'tol', s%tol, '0 < tol < 1')
       call need_int(s%max_iter >= 1, 'solver', 'max_iter', s%max_iter, 'max_iter >= 1')
+      ! The sinusoid must be resolved: at least 20 steps per period (as the sweep asks).
+      if (m%waveform == 'afd' .and. s%dt_s > 0.0_dp) &
+        call need(m%frequency_hz <= 1.0_dp/(20.0_dp*s%dt_s), 'motion', 'frequency_hz', m%frequency_hz, &
+                  '0 < frequency_hz <= 1/(20 dt_s) = '//fmt_real(1.0_dp/(20.0_dp*s%dt_s)))
       call need(s%alert_m >= 0.0_dp, 'solver', 'alert_m', s%alert_m, 'alert_m >= 0 (0: automatic)')
 
       if (len_trim(o%file) == 0) then
         call fail(status, f//': &output file is empty')
         return
       end if
+      call check_output_file()
+      if (.not. status%ok) return
       call need_int(o%every >= 1, 'output', 'every', o%every, 'every >= 1')
       call need(o%hinge_gap_m >= 0.0_dp, 'output', 'hinge_gap_m', o%hinge_gap_m, 'hinge_gap_m >= 0')
       call need(o%collapse_drop_m >= 0.0_dp, &
@@ -424,6 +460,30 @@ contains
     end associate
 
   contains
+
+    !> The result file can be written where it is named: its folder exists, it is not a
+    !> folder itself, and it is not the input (checked before any simulation).
+    subroutine check_output_file()
+      character(len=:), allocatable :: out, folder
+      integer :: k
+      out = trim(cfg%output%file)
+      k = index(out, '/', back=.true.)
+      if (k > 1) then
+        folder = out(:k - 1)
+        inquire (file=folder//'/.', exist=exists)
+        if (.not. exists) then
+          call fail(status, f//": &output file = '"//out//"': the folder '"//folder//"' does not exist")
+          return
+        end if
+      end if
+      inquire (file=out//'/.', exist=exists)
+      if (exists) then
+        call fail(status, f//": &output file = '"//out//"' is a folder: name a file in it")
+        return
+      end if
+      if (plain_path(out) == plain_path(f)) &
+        call fail(status, f//": &output file = '"//out//"' is the input file itself: it would be overwritten")
+    end subroutine check_output_file
 
     subroutine need(good, group, name, value, allowed)
       logical, intent(in) :: good

@@ -17,10 +17,11 @@ contains
     character(len=*), intent(in) :: allowed(:)
     type(status_t), intent(inout) :: status
     integer :: unit, ios, line_no, k, e
+    integer :: first_line(size(allowed))
     character(len=1024) :: line
     character(len=512) :: iomsg, list
     character(len=64) :: name
-    character(len=16) :: num
+    character(len=16) :: num, num0
 
     open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
     if (ios /= 0) then
@@ -32,6 +33,7 @@ contains
       list = trim(list)//' &'//trim(allowed(k))
     end do
     line_no = 0
+    first_line = 0
     do
       read (unit, '(a)', iostat=ios) line
       if (ios /= 0) exit
@@ -51,6 +53,16 @@ contains
                   ' (allowed:'//trim(list)//')')
         exit
       end if
+      ! A second group of the same name would be silently ignored by the read.
+      k = findloc(allowed, lower(name), dim=1)
+      if (first_line(k) > 0) then
+        write (num, '(i0)') line_no
+        write (num0, '(i0)') first_line(k)
+        call fail(status, trim(path)//':'//trim(num)//': namelist group &'//trim(lower(name))// &
+                  ' appears a second time (first at line '//trim(num0)//'): write each group once')
+        exit
+      end if
+      first_line(k) = line_no
     end do
     close (unit)
   end subroutine check_groups

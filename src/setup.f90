@@ -2,6 +2,7 @@
 module voussoir_setup
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
+  use voussoir_text, only: fmt_significant, itoa
   use voussoir_config, only: config_t
   use voussoir_assembly, only: assembly_t, build_arch, read_polygon_file, voussoir_angle_factors
   use voussoir_bodies, only: bodies_t, bodies_init
@@ -87,6 +88,8 @@ contains
         call fail(status, trim(cfg%source_file)//': nothing to simulate: set &motion rest_s or duration_s > 0')
         return
       end if
+      call check_work(cfg, duration_s, assembly%n_bodies, status)
+      if (.not. status%ok) return
     end associate
     ! Monitors left automatic (0) follow the thickness: hinges open at 1 % of it, a
     ! voussoir has fallen when it drops by half of it.
@@ -96,6 +99,32 @@ contains
     if (collapse_drop_m == 0.0_dp) collapse_drop_m = 0.5_dp*cfg%arch%thickness_m
     call monitor_init(assembly, model, collapse_drop_m, cfg%output%collapse_rotation_rad, hinge_gap_m, mon)
   end subroutine build_model
+
+  !> Refuse a run whose step count or stored record is out of reach, before it starts:
+  !> at most `max_steps` steps, and at most `max_record_bytes` of samples in memory.
+  subroutine check_work(cfg, duration_s, n_bodies, status)
+    type(config_t), intent(in) :: cfg
+    real(dp), intent(in) :: duration_s
+    integer, intent(in) :: n_bodies
+    type(status_t), intent(inout) :: status
+    real(dp), parameter :: max_steps = 1.0e8_dp, max_record_bytes = 4.0e9_dp
+    real(dp) :: steps, bytes
+    character(len=:), allocatable :: f
+    f = trim(cfg%source_file)
+    steps = duration_s/cfg%solver%dt_s
+    if (.not. (steps <= max_steps)) then
+      call fail(status, f//': the run would take '//fmt_significant(steps, 3)//' steps (simulated time '// &
+                fmt_significant(duration_s, 4)//' s from &motion duration_s, rest_s and the motion itself, over &solver dt_s = '// &
+                fmt_significant(cfg%solver%dt_s, 4)//' s): more than the limit of 1e8; shorten the motion or raise dt_s')
+      return
+    end if
+    ! Stored per sample: the bodies' x, y, rotation; per step: time, norm, iterations.
+    bytes = 24.0_dp*n_bodies*steps/cfg%output%every + 24.0_dp*steps
+    if (bytes > max_record_bytes) &
+      call fail(status, f//': the run would keep '//fmt_significant(bytes/1.0e9_dp, 3)//' GB of samples in memory ('// &
+                fmt_significant(steps, 3)//' steps, '//itoa(n_bodies)//' bodies, &output every = '//itoa(cfg%output%every)// &
+                '): more than 4 GB; raise &output every or dt_s')
+  end subroutine check_work
 
   !> A model of `assembly` at rest with the given solver settings and contact law and no
   !> table motion (set `model%motion` afterwards); an alert distance of 0 is made automatic.

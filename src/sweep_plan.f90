@@ -199,7 +199,8 @@ contains
         return
       end if
       do k = 1, n_amp
-        call need(amplitudes_m(k) >= 0.0_dp, 'amplitudes_m', k, amplitudes_m(k), 'amplitudes_m >= 0')
+        call need(amplitudes_m(k) >= 0.0_dp .and. amplitudes_m(k) <= huge(1.0_dp), 'amplitudes_m', k, &
+                  amplitudes_m(k), '0 <= amplitudes_m (finite)')
       end do
     else
       if (n_amp > 0) then
@@ -208,8 +209,11 @@ contains
         return
       end if
       n_amp = 1
-      call need(amp_tol_m > 0.0_dp, 'amp_tol_m', 0, amp_tol_m, 'amp_tol_m > 0')
-      call need(amp_max_m > amp_tol_m, 'amp_max_m', 0, amp_max_m, 'amp_max_m > amp_tol_m = '//fmt_real(amp_tol_m))
+      ! A search ends: at most about 60 halvings from amp_max_m down to amp_tol_m.
+      call need(amp_tol_m >= 1.0e-7_dp .and. amp_tol_m <= huge(1.0_dp), 'amp_tol_m', 0, amp_tol_m, &
+                '1e-7 m (0.1 micrometre) <= amp_tol_m (finite)')
+      call need(amp_max_m > amp_tol_m .and. amp_max_m <= 1.0e3_dp, 'amp_max_m', 0, amp_max_m, &
+                'amp_tol_m = '//fmt_real(amp_tol_m)//' < amp_max_m <= 1000 m')
       call need(scan_step > 0.0_dp .and. scan_step <= 1.0_dp, 'scan_step', 0, scan_step, '0 < scan_step <= 1')
       call need(refine_factor >= 2 .and. refine_factor <= 64, 'refine_factor', 0, real(refine_factor, dp), &
                 '2 <= refine_factor <= 64 (2: bisection)')

@@ -76,7 +76,7 @@ contains
       if (text(1:1) == '.') text = '0'//text
       if (text(1:2) == '-.') text = '-0'//text(2:)
     else
-      write (buf, '(es12.5)') x
+      write (buf, '(es14.5e3)') x  ! three exponent digits: 1.00000E-300
       text = trim(adjustl(buf))
     end if
   end function fmt_real

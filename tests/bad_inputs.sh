@@ -36,7 +36,7 @@ case_ embrace_big       "embrace_deg = 190.*0 < embrace_deg <= 180" "&arch embra
 $o"
 case_ embrace_zero      "embrace_deg = 0.*0 < embrace_deg <= 180" "&arch embrace_deg = 0 /
 $o"
-case_ density           "density_kg_m3 = -700.*density_kg_m3 > 0" "&arch density_kg_m3 = -700 /
+case_ density           "density_kg_m3 = -700.*0 < density_kg_m3 <= 1e5" "&arch density_kg_m3 = -700 /
 $o"
 case_ friction          "friction = -0.1.*friction >= 0" "&arch friction = -0.1 /
 $o"
@@ -44,7 +44,7 @@ case_ joint_friction_neg "joint_friction\\(3\\) = -0.2.*joint_friction >= 0" "&a
 $o"
 case_ joint_friction_far "joint_friction\\(14\\) = 0.3.*joints are 0..n_voussoirs = 13" "&arch n_voussoirs = 13, joint_friction(14) = 0.3 /
 $o"
-case_ width             "width_m = -1.*width_m > 0" "&arch width_m = -1 /
+case_ width             "width_m = -1.*0 < width_m <= 1000 m" "&arch width_m = -1 /
 $o"
 case_ inset             "contact_inset_m = 0.05.*contact_inset_m < thickness_m/2" "&arch contact_inset_m = 0.05 /
 $o"
@@ -82,6 +82,62 @@ $o"
 case_ every             "every = 0 .*every >= 1" "&output file = 'out.h5', every = 0 /"
 case_ restrained        "restrained_springings = 'middle'" "&arch restrained_springings = 'middle' /
 $o"
+
+# Non-finite and absurd values (issue 12): refused, never run to a NaN or a "stood".
+case_ r_ext_inf         "&arch r_ext_m = Infinity is not a finite number" "&arch r_ext_m = Inf /
+$o"
+case_ r_ext_huge        "r_ext_m = 1.00000E\+300.*0 < r_ext_m <= 1000 m" "&arch r_ext_m = 1e300 /
+$o"
+case_ width_inf         "&arch width_m = Infinity is not a finite number" "&arch width_m = Inf /
+$o"
+case_ density_inf       "&arch density_kg_m3 = Infinity is not a finite number" "&arch density_kg_m3 = Inf /
+$o"
+case_ amplitude_inf     "&motion amplitude_m = Infinity is not a finite number" "&motion amplitude_m = Inf /
+$o"
+case_ table_gain_inf    "&motion table_gain = Infinity is not a finite number" "&motion table_gain = Inf /
+$o"
+case_ frequency_inf     "&motion frequency_hz = Infinity is not a finite number" "&motion frequency_hz = Inf /
+$o"
+case_ alert_inf         "&solver alert_m = Infinity is not a finite number" "&solver alert_m = Inf /
+$o"
+case_ stop_nan          "&output stop_after_collapse_s = NaN is not a finite number" "&output file = 'out.h5', stop_after_collapse_s = NaN /"
+case_ frequency_high    "frequency_hz = 1000000 .*frequency_hz <= 1/\(20 dt_s\) = 50" "&motion frequency_hz = 1e6 /
+$o"
+case_ dt_vs_frequency   "frequency_hz = 1.25 .*1/\(20 dt_s\) = 0.5" "&motion frequency_hz = 1.25 /
+&solver dt_s = 0.1 /
+$o"
+case_ duration_huge     "1.00E\+12 steps.*duration_s.*dt_s.*limit of 1e8" "&motion duration_s = 1e9 /
+$o"
+case_ rest_huge         "steps.*limit of 1e8" "&motion rest_s = 1e9 /
+$o"
+case_ n_attack_huge     "steps.*limit of 1e8" "&motion n_attack = 2000000000 /
+$o"
+case_ dt_tiny           "steps.*dt_s = 1.000E-300.*limit of 1e8" "&solver dt_s = 1e-300 /
+$o"
+case_ every_memory      "GB of samples in memory.*every" "&arch n_voussoirs = 1000 /
+&motion duration_s = 90 /
+&solver dt_s = 1e-6 /
+&output file = 'out.h5', every = 1 /"
+case_ repeated_group    ":2: namelist group &arch appears a second time \(first at line 1\)" "&arch n_voussoirs = 13 /
+&arch n_voussoirs = 9 /
+$o"
+# The output named where it cannot be written: refused before the run, nothing left.
+case_ output_is_input   "&output file = 'output_is_input.nml' is the input file itself" "&output file = 'output_is_input.nml' /"
+case_ output_no_folder  "&output file = 'no_folder/out.h5': the folder 'no_folder' does not exist" "&output file = 'no_folder/out.h5' /"
+mkdir -p a_folder
+case_ output_is_folder  "&output file = 'a_folder' is a folder" "&output file = 'a_folder' /"
+[[ -z $(ls a_folder) && ! -e no_folder && $(head -c 1 output_is_input.nml) == "&" ]] \
+  && { passed=$((passed+1)); echo "PASS  output_left_alone"; } || { failed=$((failed+1)); echo "FAIL  output_left_alone"; }
+
+# The command line: --help and --version answer and exit 0; a stray argument is refused.
+for d in voussoir-run voussoir-limit; do
+  h=$("$bin/$d" --help 2>&1); rc1=$?
+  v=$("$bin/$d" --version 2>&1); rc2=$?
+  "$bin/$d" a.nml b.nml >/dev/null 2>&1; rc3=$?
+  if [[ $rc1 -eq 0 && $h == usage:* && $rc2 -eq 0 && $v == "$d (voussoir "* && $rc3 -eq 2 ]]; then
+    passed=$((passed+1)); echo "PASS  $d command line"
+  else failed=$((failed+1)); echo "FAIL  $d command line: $rc1 $rc2 $rc3 $h $v"; fi
+done
 
 # A missing input file.
 out=$("$bin/voussoir-run" no_such_input.nml 2>&1); rc=$?
