@@ -41,7 +41,8 @@ contains
     character(len=*), parameter :: sides(2) = ['scale_stood    ', 'scale_threshold']
 
     dt_check = dt_check_table()
-    rows = pack([(r, r = 1, results%n_rows)], [(nint(table_value(results, 'censored', r)) == 0, &
+    rows = pack([(r, r = 1, results%n_rows)], [(nint(table_value(results, 'censored', r)) == 0 .and. &
+                                                  nint(table_value(results, 'failed', r)) == 0, &
                                                   r = 1, results%n_rows)])
     n_changed = 0
     n_pick = min(plan%dt_check_rows, size(rows))

@@ -32,6 +32,7 @@ module voussoir_sweep_master
   use voussoir_sweep_comm, only: sweep_comm_t, comm_abort, comm_send, comm_poll, comm_recv, wall_s, nap, &
                                  tag_task, tag_result, tag_stop
   use voussoir_sweep_tasks, only: simulate_job, outcome_of_msg, prefetch, task_head, history_width, result_len
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   implicit none
   private
 
@@ -61,6 +62,7 @@ module voussoir_sweep_master
     character(len=:), allocatable :: finished_by          !! code version of a finished file
     integer :: n_ready = 0                                 !! jobs in state ready
     integer :: n_done = 0, n_runs = 0, n_runs_resumed = 0
+    integer :: n_failed = 0   !! jobs ended by a failed run (recorded, not retried)
     real(dp) :: t0_s = 0.0_dp, last_report_s = 0.0_dp, cost_done = 0.0_dp
     real(dp) :: busy_s = 0.0_dp                            !! wall time of the runs of this session
   end type master_t
@@ -186,10 +188,14 @@ contains
         if (.not. status%ok) return
         call threshold_next(m%search(job), amp_m, done)
         o = outcome_from_row(m%runs, r, value_name(plan))
-        if (done .or. seq /= m%search(job)%n_runs .or. o%amplitude_m /= amp_m) then
+        if (done .or. seq /= m%search(job)%n_runs .or. o%amplitude_m /= amp_m .and. .not. o%failed) then
           call fail(status, m%path//': run '//itoa(seq)//' of job '//itoa(job)// &
                     ' does not follow the search of this input; the file cannot be continued')
           return
+        end if
+        if (o%failed) then
+          call finish_search(plan, m, job, failed=.true.)
+          cycle
         end if
         call threshold_record(m%search(job), o, status)
         if (.not. status%ok) return
@@ -471,7 +477,9 @@ contains
       call table_set(m%results, row, 'mean_iterations', o%mean_iterations)
       call table_set(m%results, row, 'nonconverged_steps', real(o%nonconverged_steps, dp))
       call table_set(m%results, row, 'wall_time_s', o%wall_time_s)
+      call table_set(m%results, row, 'failed', merge(1.0_dp, 0.0_dp, o%failed))
       call table_append(m%results, row)
+      if (o%failed) m%n_failed = m%n_failed + 1
       call set_state(m, job, job_done)
       m%n_done = m%n_done + 1
       return
@@ -491,7 +499,12 @@ contains
     call table_set(m%runs, row, 'n_steps', real(o%n_steps, dp))
     call table_set(m%runs, row, 'nonconverged_steps', real(o%nonconverged_steps, dp))
     call table_set(m%runs, row, 'wall_time_s', o%wall_time_s)
+    call table_set(m%runs, row, 'failed', merge(1.0_dp, 0.0_dp, o%failed))
     call table_append(m%runs, row)
+    if (o%failed) then
+      call finish_search(plan, m, job, failed=.true.)
+      return
+    end if
     call threshold_record(m%search(job), o, status)
     if (.not. status%ok) return
     if (threshold_done(m%search(job))) then
@@ -503,15 +516,30 @@ contains
     end if
   end subroutine take_result
 
-  !> The /results row of a finished search.
-  subroutine finish_search(plan, m, job)
+  !> The /results row of a finished search; `failed`: ended by a run that failed (its
+  !> threshold columns NaN, its `failed` column 1).
+  subroutine finish_search(plan, m, job, failed)
     type(sweep_plan_t), intent(in) :: plan
     type(master_t), intent(inout) :: m
     integer, intent(in) :: job
+    logical, intent(in), optional :: failed
     type(threshold_result_t) :: r
     real(dp), allocatable :: row(:)
+    logical :: broken
+    real(dp) :: nan
+    broken = .false.
+    if (present(failed)) broken = failed
     r = threshold_result(m%search(job))
+    if (broken) then
+      nan = ieee_value(1.0_dp, ieee_quiet_nan)
+      r%threshold_m = nan
+      r%peak_accel_m_s2 = nan
+      r%stand_below_m = nan
+      r%n_runs = r%n_runs + 1
+      m%n_failed = m%n_failed + 1
+    end if
     call table_row(m%results, row)
+    call table_set(m%results, row, 'failed', merge(1.0_dp, 0.0_dp, broken))
     if (plan%mode == 'ida') then
       call ida_row()
       call table_append(m%results, row)
@@ -543,8 +571,9 @@ contains
       logical :: censored
       integer :: rec
       rec = job_record(plan, job)
-      censored = .not. (r%threshold_m == r%threshold_m)
+      censored = .not. (r%threshold_m == r%threshold_m) .and. .not. broken
       scale = merge(plan%search%amp_max_m, r%threshold_m, censored)
+      if (broken) scale = r%threshold_m
       call table_set(m%results, row, 'job', real(job, dp))
       call table_set(m%results, row, 'param_set', real(job_param_set(plan, job), dp))
       call table_set(m%results, row, 'record', real(rec - 1, dp))
@@ -582,6 +611,7 @@ contains
     o%n_steps = nint(value('n_steps'))
     o%nonconverged_steps = nint(value('nonconverged_steps'))
     o%wall_time_s = value('wall_time_s')
+    o%failed = nint(value('failed')) == 1
   contains
     real(dp) function value(name)
       character(len=*), intent(in) :: name

@@ -25,6 +25,8 @@ contains
         itoa(m%n_runs)//' runs in '//fmt_fixed(elapsed_s, 2)//' s on '//itoa(n_ranks)//' ranks (busy '// &
         fmt_fixed(100.0_dp*m%busy_s/max(n_ranks*elapsed_s, tiny(1.0_dp)), 1)//' %; '//itoa(m%n_runs_resumed)// &
         ' runs kept from the file); '//m%path//', '//m%csv_path
+      if (m%n_failed > 0) write (output_unit, '(a)') 'voussoir-sweep: warning: '//itoa(m%n_failed)// &
+        ' jobs ended by a run that failed (column failed = 1 in the results; the reasons are printed above)'
       flush (output_unit)
       return
     end if
@@ -83,7 +85,9 @@ contains
       job = nint(table_value(m%results, 'job', r))
       if (plan%mode == 'ida') then
         n_runs = nint(table_value(m%results, 'n_runs', r))
-        if (nint(table_value(m%results, 'censored', r)) == 1) then
+        if (nint(table_value(m%results, 'failed', r)) == 1) then
+          write (line, '(a,i3,a)') ': FAILED (a run stopped with an error, see above), ', n_runs, ' runs'
+        else if (nint(table_value(m%results, 'censored', r)) == 1) then
           write (line, '(a,i3,a)') ': stands up to scale_max, ', n_runs, ' runs'
         else
           write (line, '(a,f9.4,a,f8.3,a,i3,a)') ': threshold scale ', table_value(m%results, 'scale_threshold', r), &
@@ -96,7 +100,10 @@ contains
       end if
       thr = table_value(m%results, 'threshold_m', r)
       n_runs = nint(table_value(m%results, 'n_runs', r))
-      if (thr == thr) then
+      if (nint(table_value(m%results, 'failed', r)) == 1) then
+        write (line, '(a,f7.3,a,i3,a)') '  f = ', job_frequency_hz(plan, job), ' Hz: FAILED (a run stopped with an '// &
+          'error, see above), ', n_runs, ' runs'
+      else if (thr == thr) then
         write (line, '(a,f7.3,a,f9.3,a,f8.3,a,i3,a)') '  f = ', job_frequency_hz(plan, job), &
           ' Hz: threshold ', 1.0e3_dp*thr, ' mm (', table_value(m%results, 'peak_accel_m_s2', r), &
           ' m/s2), ', n_runs, ' runs'

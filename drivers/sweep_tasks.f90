@@ -4,6 +4,8 @@
 !> collapsed, peak_crown_disp_m) of the search's earlier runs]; a result is
 !> [job, run, continuing, then the outcome].
 module voussoir_sweep_tasks
+  use, intrinsic :: iso_fortran_env, only: output_unit
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t
   use voussoir_text, only: fmt_real
@@ -21,7 +23,7 @@ module voussoir_sweep_tasks
   public :: prefetch, task_head, history_width, result_len
 
   integer, parameter :: prefetch = 2                        !! tasks a worker may hold
-  integer, parameter :: task_head = 4, history_width = 3, result_len = 11
+  integer, parameter :: task_head = 4, history_width = 3, result_len = 12
 
   !> A task waiting on a worker.
   type :: queued_task_t
@@ -30,7 +32,10 @@ module voussoir_sweep_tasks
 
 contains
 
-  !> One simulation of job `job` at `amp_m` (ida: the scale of its record).
+  !> One simulation of job `job` at `amp_m` (ida: the scale of its record). A run that
+  !> stops with an error (e.g. a step without NLGS convergence) is an outcome too,
+  !> `o%failed`: its reason, labelled with the job, is printed as a warning and the sweep
+  !> goes on (`status` stays ok).
   subroutine simulate_job(plan, job, amp_m, o, status)
     type(sweep_plan_t), intent(in) :: plan
     integer, intent(in) :: job
@@ -42,8 +47,16 @@ contains
     type(run_result_t) :: res
     call run_config(job_run_config(plan, job, amp_m), assembly, model, res, status)
     if (.not. status%ok) then
-      status%message = job_label(plan, job)//' at '//trim(merge('scale       ', 'amplitude_m ', &
-                       plan%mode == 'ida'))//' '//fmt_real(amp_m)//': '//trim(status%message)
+      write (output_unit, '(a)') 'voussoir-sweep: warning: run failed, recorded as such: '//job_label(plan, job)// &
+        ' at '//trim(merge('scale       ', 'amplitude_m ', plan%mode == 'ida'))//' '//fmt_real(amp_m)//': '// &
+        trim(status%message)
+      flush (output_unit)
+      status = status_t()
+      o%amplitude_m = amp_m
+      o%failed = .true.
+      o%collapse_time_s = ieee_value(1.0_dp, ieee_quiet_nan)
+      o%peak_crown_disp_m = o%collapse_time_s
+      o%mean_iterations = o%collapse_time_s
       return
     end if
     o = outcome_of_run(amp_m, res)
@@ -56,7 +69,7 @@ contains
     real(dp) :: msg(result_len)
     msg = [real(job, dp), real(seq, dp), merge(1.0_dp, 0.0_dp, continuing), o%amplitude_m, &
            merge(1.0_dp, 0.0_dp, o%collapsed), o%collapse_time_s, o%peak_crown_disp_m, o%mean_iterations, &
-           real(o%n_steps, dp), real(o%nonconverged_steps, dp), o%wall_time_s]
+           real(o%n_steps, dp), real(o%nonconverged_steps, dp), o%wall_time_s, merge(1.0_dp, 0.0_dp, o%failed)]
   end function msg_of_outcome
 
   pure function outcome_of_msg(msg) result(o)
@@ -70,6 +83,7 @@ contains
     o%n_steps = nint(msg(9))
     o%nonconverged_steps = nint(msg(10))
     o%wall_time_s = msg(11)
+    o%failed = msg(12) == 1.0_dp
   end function outcome_of_msg
 
 end module voussoir_sweep_tasks

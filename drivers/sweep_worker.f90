@@ -58,7 +58,7 @@ contains
       call simulate_job(plan, job, amp_m, o, status)
       if (.not. status%ok) call die('rank '//itoa(net%rank)//', '//trim(status%message))
       continuing = .false.
-      if (plan%mode /= 'grid') then
+      if (plan%mode /= 'grid' .and. .not. o%failed) then
         call threshold_record(replica(job), o, status)
         if (.not. status%ok) call die(status%message)
         call receive_all()

@@ -86,6 +86,7 @@ module voussoir_threshold
     integer :: n_steps = 0
     integer :: nonconverged_steps = 0
     real(dp) :: wall_time_s = 0.0_dp
+    logical :: failed = .false.             !! the run stopped with an error (the sweep goes on)
   end type run_outcome_t
 
   !> The state of one search.

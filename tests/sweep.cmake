@@ -7,6 +7,7 @@
 #   sweep_refuse            another sweep's file, or a run's file, is refused untouched
 #   sweep_threshold_vs_run  voussoir-run stands at threshold - amp_tol, falls at threshold
 #   sweep_bad_inputs        bad &sweep values: clear errors, no result file
+#   sweep_failing_job       a job whose run fails is recorded as failed, the others finish
 # The input files input/sweep_*.nml are run by driver_tests.cmake.
 if(NOT TARGET voussoir-sweep)
   return()
@@ -15,7 +16,7 @@ if(NOT MPIEXEC_EXECUTABLE)
   message(FATAL_ERROR "voussoir-sweep is built but no mpiexec was found: its MPI tests cannot run")
 endif()
 
-foreach(case ranks grid resume refuse threshold_vs_run bad_inputs)
+foreach(case ranks grid resume refuse threshold_vs_run bad_inputs failing_job)
   add_test(NAME sweep_${case}
            COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/sweep/sweep_test.py ${case}
                    --mpiexec ${MPIEXEC_EXECUTABLE} --bin $<TARGET_FILE_DIR:voussoir-sweep>

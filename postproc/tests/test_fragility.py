@@ -150,6 +150,24 @@ def test_cli_fits_the_csv_of_an_uncensored_ida(tmp_path, capsys):
     assert (tmp_path / "ida_fragility.csv").is_file() and (tmp_path / "ida_fragility_points.csv").is_file()
 
 
+def test_failed_rows_are_left_out_and_said(tmp_path, capsys):
+    """A search ended by a failed run is neither a collapse nor a censored row: the fit
+    leaves it out (the same fit as without it) and the command says so."""
+    scales = np.array([[1.2, 0.61, 0.33], [1.5, 0.55, 0.29]])
+    path = csv_fixture(tmp_path / "ida.csv", scales)
+    lines = path.read_text().splitlines()
+    lines[1] += ",failed"
+    lines[2:] = [line + ",0" for line in lines[2:]]
+    lines.append(f"{RECORDS[0]},1,0.6,nan,nan,nan,nan,0,0,1,1")
+    path.write_text("\n".join(lines) + "\n")
+    ida = read_ida(str(path))
+    assert ida.n_failed == 1 and ida.n_rows == 6 and "failed" not in ida.parameters
+    assert main(["fragility", str(path), "--json", "--bootstrap", "20"]) == 0
+    captured = capsys.readouterr()
+    assert json.loads(captured.out)["n_rows"] == 6
+    assert "1 rows left out" in captured.err
+
+
 def h5_fixture(path, scales, censored, scale_max):
     """An IDA sweep file as docs/results_format.md describes it."""
     n_sets, n_rec = scales.shape

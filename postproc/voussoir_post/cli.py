@@ -147,6 +147,9 @@ def cmd_mechanism(args) -> int:
 
 def cmd_fragility(args) -> int:
     ida = read_ida(args.ida)
+    if ida.n_failed:
+        print(f"warning: {args.ida}: {ida.n_failed} rows left out: their search ended by a run that failed "
+              "(column failed = 1; voussoir-sweep printed why)", file=sys.stderr)
     png = output_path(args.ida, "fragility", args.out)
     data = plot_fragility(ida, png, n_bootstrap=args.bootstrap, seed=args.seed)
     stem = os.path.splitext(data.png_path)[0]

@@ -27,7 +27,7 @@ __all__ = ["IdaResult", "IDA_COLUMNS", "read_ida"]
 #: The columns every IDA CSV has (others, e.g. the sampled parameters, are kept apart).
 IDA_COLUMNS = ("record", "param_set", "scale_stood", "scale_threshold", "pga_threshold_m_s2",
                "pgv_threshold_m_s", "censored")
-_OPTIONAL_INT = ("non_monotonic", "n_runs")
+_OPTIONAL_INT = ("non_monotonic", "n_runs", "failed")
 
 
 @dataclass
@@ -46,6 +46,9 @@ class IdaResult:
     n_runs: np.ndarray | None = None
     parameters: dict[str, np.ndarray] = field(default_factory=dict)  #: sampled model parameters per row
     config: dict = field(default_factory=dict)  #: the base case {group: {var: value}} when known
+    #: Rows left out because their search ended by a run that failed (no threshold, not
+    #: a censored one either: a numerical failure tells nothing of the arch).
+    n_failed: int = 0
 
     @property
     def n_rows(self) -> int:
@@ -119,15 +122,19 @@ def _read_csv(path: str) -> IdaResult:
             except ValueError:
                 raise ResultsError(path, f"line {line_no}, column {name}: '{text}' is not a number") from None
             if name in ("param_set", "censored") + _OPTIONAL_INT:
-                if value != int(value) or value < 0 or (name in ("censored", "non_monotonic") and value > 1):
-                    allowed = "0 or 1" if name in ("censored", "non_monotonic") else "an integer >= 0"
+                flags = ("censored", "non_monotonic", "failed")
+                if value != int(value) or value < 0 or (name in flags and value > 1):
+                    allowed = "0 or 1" if name in flags else "an integer >= 0"
                     raise ResultsError(path, f"line {line_no}, column {name}: '{text}' is not {allowed}")
             data[name].append(value)
     if len(rows) < 2:
         raise ResultsError(path, "no data rows")
     arr = {name: np.asarray(v, dtype=float) for name, v in data.items() if name != "record"}
+    keep = arr["failed"] == 0 if "failed" in arr else np.ones(len(data["record"]), bool)
+    arr = {name: v[keep] for name, v in arr.items()}
+    data["record"] = [r for r, k in zip(data["record"], keep) if k]
     return IdaResult(
-        path=path, record=data["record"], param_set=arr["param_set"].astype(int),
+        n_failed=int((~keep).sum()), path=path, record=data["record"], param_set=arr["param_set"].astype(int),
         scale_stood=arr["scale_stood"], scale_threshold=arr["scale_threshold"],
         pga_m_s2=arr["pga_threshold_m_s2"], pgv_m_s=arr["pgv_threshold_m_s"],
         censored=arr["censored"].astype(bool),
@@ -162,6 +169,13 @@ def _read_h5(path: str) -> IdaResult:
         for name, values in columns.items():
             if values.shape[0] != n:
                 raise ResultsError(path, f"'/results/{name}' has {values.shape[0]} rows, '/results/param_set' {n}")
+        if "failed" in columns:
+            keep = columns["failed"] == 0
+            n_failed = int((~keep).sum())
+            columns = {name: v[keep] for name, v in columns.items()}
+            n = int(keep.sum())
+        else:
+            n_failed = 0
         index = columns["record"].astype(int)
         if n and (index.min() < 0 or index.max() >= len(files)):
             raise ResultsError(path, f"'/results/record' refers to a record that 'record_files' "
@@ -180,7 +194,7 @@ def _read_h5(path: str) -> IdaResult:
         censored=columns["censored"].astype(bool),
         non_monotonic=columns["non_monotonic"].astype(bool) if "non_monotonic" in columns else None,
         n_runs=columns["n_runs"].astype(int) if "n_runs" in columns else None,
-        parameters=parameters, config=config)
+        parameters=parameters, config=config, n_failed=n_failed)
 
 
 def _text(value) -> str:

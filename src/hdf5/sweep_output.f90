@@ -57,20 +57,20 @@ contains
     if (mode == 'ida') then
       call table_init(t, [character(len=name_len) :: 'job', 'param_set', 'record', 'scale_stood', &
                           'scale_threshold', 'pga_threshold_m_s2', 'pgv_threshold_m_s', 'censored', &
-                          'non_monotonic', 'n_runs', 'mean_iterations', 'wall_time_s'], &
+                          'non_monotonic', 'n_runs', 'mean_iterations', 'wall_time_s', 'failed'], &
                       [.true., .true., .true., .false., .false., .false., .false., .true., .true., .true., &
-                       .false., .false.])
+                       .false., .false., .true.])
     else if (mode == 'grid') then
       call table_init(t, [character(len=name_len) :: 'job', 'param_set', 'frequency_hz', 'amplitude_m', &
                           'collapsed', 'collapse_time_s', 'peak_crown_disp_m', 'mean_iterations', &
-                          'nonconverged_steps', 'wall_time_s'], &
-                      [.true., .true., .false., .false., .true., .false., .false., .false., .true., .false.])
+                          'nonconverged_steps', 'wall_time_s', 'failed'], &
+                      [.true., .true., .false., .false., .true., .false., .false., .false., .true., .false., .true.])
     else
       call table_init(t, [character(len=name_len) :: 'job', 'param_set', 'frequency_hz', 'threshold_m', &
                           'peak_accel_m_s2', 'non_monotonic', 'n_runs', 'mean_iterations', &
-                          'stand_below_m', 'static_onset_m', 'wall_time_s'], &
+                          'stand_below_m', 'static_onset_m', 'wall_time_s', 'failed'], &
                       [.true., .true., .false., .false., .false., .true., .true., .false., .false., &
-                       .false., .false.])
+                       .false., .false., .true.])
     end if
   end function results_table
 
@@ -81,8 +81,8 @@ contains
     type(sweep_table_t) :: t
     call table_init(t, [character(len=name_len) :: 'job', 'run', value_name, 'collapsed', &
                         'collapse_time_s', 'peak_crown_disp_m', 'mean_iterations', 'n_steps', &
-                        'nonconverged_steps', 'wall_time_s'], &
-                    [.true., .true., .false., .true., .false., .false., .false., .true., .true., .false.])
+                        'nonconverged_steps', 'wall_time_s', 'failed'], &
+                    [.true., .true., .false., .true., .false., .false., .false., .true., .true., .false., .true.])
   end function runs_table
 
   !> An empty /dt_check table: runs of an IDA redone at half the time step.
@@ -412,12 +412,12 @@ contains
     if (n_params > 0) names = ','//header%parameter_names
     if (header%mode == 'ida') then
       text = 'record,param_set'//names//',scale_stood,scale_threshold,pga_threshold_m_s2,pgv_threshold_m_s,'// &
-             'censored,non_monotonic,n_runs'//nl
+             'censored,non_monotonic,n_runs,failed'//nl
     else if (header%mode == 'grid') then
       text = 'param_set'//names//',frequency_hz,amplitude_m,outcome,collapse_time_s,peak_crown_disp_m,'// &
              'mean_iterations'//nl
     else
-      text = 'param_set'//names//',frequency_hz,threshold_m,peak_accel_m_s2,non_monotonic'//nl
+      text = 'param_set'//names//',frequency_hz,threshold_m,peak_accel_m_s2,non_monotonic,failed'//nl
     end if
     do r = 1, results%n_rows
       set = nint(col('param_set'))
@@ -429,19 +429,20 @@ contains
       if (header%mode == 'ida') then
         line = line//','//fmt_exact(col('scale_stood'))//','//fmt_exact(col('scale_threshold'))//','// &
                fmt_exact(col('pga_threshold_m_s2'))//','//fmt_exact(col('pgv_threshold_m_s'))//','// &
-               itoa(nint(col('censored')))//','//itoa(nint(col('non_monotonic')))//','//itoa(nint(col('n_runs')))
+               itoa(nint(col('censored')))//','//itoa(nint(col('non_monotonic')))//','//itoa(nint(col('n_runs')))// &
+               ','//itoa(nint(col('failed')))
         text = text//line//nl
         cycle
       end if
       line = line//','//fmt_exact(col('frequency_hz'))
       if (header%mode == 'grid') then
         line = line//','//fmt_exact(col('amplitude_m'))//','// &
-               trim(merge('collapse', 'stand   ', nint(col('collapsed')) == 1))//','// &
+               trim(outcome_word())//','// &
                fmt_exact(col('collapse_time_s'))//','//fmt_exact(col('peak_crown_disp_m'))//','// &
                fmt_exact(col('mean_iterations'))
       else
         line = line//','//fmt_exact(col('threshold_m'))//','//fmt_exact(col('peak_accel_m_s2'))//','// &
-               itoa(nint(col('non_monotonic')))
+               itoa(nint(col('non_monotonic')))//','//itoa(nint(col('failed')))
       end if
       text = text//line//nl
     end do
@@ -453,6 +454,18 @@ contains
       character(len=*), intent(in) :: name
       col = results%values(column_index(results, name), r)
     end function col
+
+    !> A grid run's outcome: collapse, stand, or failed (the run stopped with an error).
+    function outcome_word() result(word)
+      character(len=:), allocatable :: word
+      if (nint(col('failed')) == 1) then
+        word = 'failed'
+      else if (nint(col('collapsed')) == 1) then
+        word = 'collapse'
+      else
+        word = 'stand'
+      end if
+    end function outcome_word
 
   end subroutine write_sweep_csv
 
