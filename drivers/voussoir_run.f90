@@ -12,6 +12,7 @@ program voussoir_run
   use voussoir_setup, only: run_config
   use voussoir_run_output, only: write_run_file
   use voussoir_command_line, only: input_argument
+  use voussoir_interrupt, only: catch_stop_signals
   implicit none
   type(config_t) :: cfg
   type(assembly_t) :: assembly
@@ -26,11 +27,19 @@ program voussoir_run
     'Writes one HDF5 result file and prints one line whose first word is stood or collapsed. '// &
     'Exit 0 on success, 1 with a one-line message naming the file, the variable and the allowed range.', path)
   call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output'], cfg, status)
+  if (status%ok .and. .not. catch_stop_signals()) &
+    write (error_unit, '(a)') 'voussoir-run: warning: cannot catch Ctrl-C / SIGTERM: an interrupted run writes nothing'
   if (status%ok) call run_config(cfg, assembly, model, res, status)
   if (status%ok) call write_run_file(cfg, assembly, model, res, status)
   if (.not. status%ok) then
     write (error_unit, '(a)') 'voussoir-run: error: '//trim(status%message)
     stop 1, quiet=.true.
+  end if
+  if (res%interrupted_by /= 0) then
+    write (*, '(a,f0.3,a,i0,a)') 'interrupted at t = ', res%time_s(size(res%time_s)), ' s by signal ', &
+      res%interrupted_by, ': the result holds the run until then (/result interrupted_by_signal), '// &
+      trim(merge('collapsed so far', 'stood so far    ', res%collapsed))//'; result '//trim(cfg%output%file)
+    stop 128 + res%interrupted_by, quiet=.true.
   end if
   if (res%collapsed) then
     write (*, '(a,f0.3,a)', advance='no') 'collapsed at ', res%collapse_time_s, ' s;'

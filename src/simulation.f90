@@ -6,6 +6,7 @@ module voussoir_simulation
   use voussoir_assembly, only: assembly_t, role_voussoir
   use voussoir_model, only: model_t, model_step
   use voussoir_hinge_side, only: side_intrados, side_extrados
+  use voussoir_interrupt, only: stop_signal
   implicit none
   private
 
@@ -40,6 +41,7 @@ module voussoir_simulation
     integer, allocatable :: hinge_joint(:), hinge_side(:)
     logical :: collapsed = .false.
     real(dp) :: collapse_time_s = 0.0_dp
+    integer :: interrupted_by = 0        !! the signal that stopped the run early (0: it ran to its end)
     real(dp) :: peak_crown_disp_m = 0.0_dp
     real(dp) :: mean_iterations = 0.0_dp
     integer :: max_iterations = 0
@@ -136,6 +138,8 @@ contains
       if (res%collapsed .and. stop_after_collapse_s >= 0.0_dp) then
         if (model%t_s >= res%collapse_time_s + stop_after_collapse_s) exit
       end if
+      res%interrupted_by = stop_signal()
+      if (res%interrupted_by /= 0) exit
     end do
     if (res%n_steps > 0) then
       if (modulo(res%n_steps, every) /= 0) call sample()

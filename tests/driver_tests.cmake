@@ -18,3 +18,7 @@ add_test(NAME disk_full
          COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/disk_full.sh ${CMAKE_BINARY_DIR}/drivers
                  ${CMAKE_CURRENT_BINARY_DIR}/disk_full)
 set_tests_properties(disk_full PROPERTIES PROCESSORS 2)
+# Ctrl-C or SIGTERM of a long run: what was computed is written, marked interrupted.
+add_test(NAME interrupt
+         COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/interrupt.sh ${CMAKE_BINARY_DIR}/drivers
+                 ${CMAKE_CURRENT_BINARY_DIR}/interrupt ${Python3_EXECUTABLE})

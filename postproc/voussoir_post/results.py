@@ -294,6 +294,8 @@ class RunResult:
     hinge_side_names: tuple = SIDE_NAMES
     arch: ArchGeometry | None = None
     record: GroundMotion | None = None  #: runs driven by an accelerogram only
+    #: The signal that stopped the run early (2 SIGINT, 15 SIGTERM; 0: it ran to its end).
+    interrupted_by_signal: int = 0
 
     @property
     def n_samples(self) -> int:
@@ -388,6 +390,8 @@ def read_run(path: str | os.PathLike) -> RunResult:
             nonconverged_steps=_attr(res, "nonconverged_steps", int),
             n_steps=_attr(res, "n_steps", int),
             wall_time_s=_attr(res, "wall_time_s"),
+            interrupted_by_signal=(_attr(res, "interrupted_by_signal", int)
+                                   if "interrupted_by_signal" in res.attrs else 0),
             time_s=time_s,
             table_x_m=samples["table/x_m"],
             table_v_m_s=samples["table/v_m_s"],

@@ -82,6 +82,9 @@ contains
     call h5_attr(g, 'nonconverged_steps', res%nonconverged_steps, status)
     call h5_attr(g, 'n_steps', res%n_steps, status)
     call h5_attr(g, 'wall_time_s', res%wall_time_s, status)
+    ! 0: the run went to its end; else the signal (2 SIGINT, 15 SIGTERM) that stopped it
+    ! early: the file holds what was computed until then.
+    call h5_attr(g, 'interrupted_by_signal', res%interrupted_by, status)
     call h5_group_close(g, status)
 
     call h5_write(file_id, 'time_s', res%time_s, status)
