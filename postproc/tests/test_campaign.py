@@ -286,15 +286,26 @@ def test_test_row_errors(tmp_path, row, column_index, column_name, fragment):
     expect_error(folder, "tests.csv", 8, column_index, column_name, fragment)
 
 
-def test_cycle_counts_must_be_non_negative_integers(tmp_path):
+def test_cycle_counts_must_be_integers_the_simulation_accepts(tmp_path):
     tests = ("test_id,specimen_id,waveform,frequency_hz,amplitude_m,n_attack,n_full,n_decay,outcome\n"
              "T1,S1,afd,1,0.01,2,3,,stand\nT2,S1,afd,1,0.02,1,1.5,1,stand\n")
     folder = make_campaign(tmp_path / "c", tests=tests)
     expect_error(folder, "tests.csv", 3, 7, "n_full", "not an integer")
     tests = tests.replace("1,1.5,1", "1,1,-1")
-    expect_error(make_campaign(tmp_path / "d", tests=tests), "tests.csv", 3, 8, "n_decay", "integer >= 0")
-    c = read_campaign(make_campaign(tmp_path / "e", tests=tests.replace("1,1,-1", "1,1,1")))
+    expect_error(make_campaign(tmp_path / "d", tests=tests), "tests.csv", 3, 8, "n_decay", "integer >= 1")
+    # No attack (or decay) cycle is no afd motion: the simulation refuses it, so does check.
+    expect_error(make_campaign(tmp_path / "f", tests=tests.replace("1,1,-1", "0,1,1")), "tests.csv", 3, 6,
+                 "n_attack", "integer >= 1")
+    c = read_campaign(make_campaign(tmp_path / "e", tests=tests.replace("1,1,-1", "1,0,1")))
     assert (c.tests["T1"].n_attack, c.tests["T1"].n_full, c.tests["T1"].n_decay) == (2, 3, 1)
+    assert c.tests["T2"].n_full == 0
+
+
+def test_a_folder_in_records_is_refused(tmp_path):
+    folder = make_campaign(tmp_path / "c")
+    (folder / "records" / "T1.csv").mkdir(parents=True)
+    with pytest.raises(CampaignError, match=r"records/T1.csv: not a readable file \(a folder"):
+        read_campaign(folder)
 
 
 def test_afd_test_without_frequency_column(tmp_path):

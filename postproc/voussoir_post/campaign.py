@@ -267,7 +267,9 @@ def _read_tests(path: str, specimens: dict[str, Specimen], folder: str,
         amplitude = c.number("amplitude_m", required=afd, length=True)
         cycles = {}
         for name in ("n_attack", "n_full", "n_decay"):
-            value = c.integer(name, required=False, low=0, rule="integer >= 0")
+            # The attack and decay envelopes last n cycles each: none is no afd at all.
+            low = 0 if name == "n_full" else 1
+            value = c.integer(name, required=False, low=low, rule=f"integer >= {low}")
             cycles[name] = DEFAULT_CYCLES if value is None else value
         outcome = c.enum("outcome", OUTCOMES)
         collapse_time = c.number("collapse_time_s", required=False, low=0.0, rule="collapse_time_s >= 0")
@@ -342,11 +344,16 @@ def _read_hinges(path: str, n_voussoirs: int, warn_list: list[str]) -> list[Hing
 
 
 def _csv_files(folder: str) -> list[str]:
-    """Names of the .csv files directly in ``folder`` (sorted), [] when it is absent."""
+    """Names of the .csv files directly in ``folder`` (sorted), [] when it is absent. An
+    entry named like a CSV that is not a file (a folder, a broken link) is refused."""
     if not os.path.isdir(folder):
         return []
-    return sorted(f for f in os.listdir(folder)
-                  if f.endswith(".csv") and os.path.isfile(os.path.join(folder, f)))
+    names = sorted(f for f in os.listdir(folder) if f.endswith(".csv"))
+    for f in names:
+        if not os.path.isfile(os.path.join(folder, f)):
+            raise CampaignError(os.path.join(folder, f), "not a readable file (a folder or a broken link): "
+                                                         "records/ and hinges/ hold one CSV file per test")
+    return names
 
 
 def read_campaign(folder: str | os.PathLike) -> Campaign:

@@ -20,6 +20,7 @@ import sys
 import warnings
 
 from .campaign import Campaign, CampaignError, CampaignWarning, measured_thresholds, read_campaign
+from .runner import RunError
 from .tables import Table, format_table
 
 __all__ = ["main", "build_parser", "campaign_summary"]
@@ -169,6 +170,12 @@ def main(argv: list[str] | None = None) -> int:
     except CampaignError as exc:
         print(str(exc), file=sys.stderr)
         return 2
+    except RunError as exc:  # an executable failed: its own message says why
+        print(f"voussoir-diagnose: error: a simulation failed: {exc}", file=sys.stderr)
+        return 1
+    except ValueError as exc:  # e.g. no pair with a collapse: nothing to compare
+        print(f"voussoir-diagnose: error: {exc}", file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":  # pragma: no cover
