@@ -6,8 +6,9 @@
 module voussoir_assembly
   use voussoir_kinds, only: dp, pi
   use voussoir_status, only: status_t, fail
-  use voussoir_geometry, only: polygon_area, is_convex_ccw
+  use voussoir_geometry, only: polygon_area, is_convex_ccw, overlap_depth
   use voussoir_random_stream, only: random_stream_t, stream_init, stream_uniform
+  use voussoir_text, only: itoa, fmt_significant
   implicit none
   private
 
@@ -228,6 +229,17 @@ contains
     end if
     call close_polygon()
     if (.not. status%ok) return
+    if (all(driven)) then
+      call fail(status, trim(path)//': every block is driven: nothing is free to move (mark blocks `block free`)')
+      return
+    end if
+    if (.not. any(driven)) then
+      call fail(status, trim(path)//': no block is driven: nothing carries the assembly on the table '// &
+                '(mark the table or foundation blocks `block driven`)')
+      return
+    end if
+    call check_overlaps()
+    if (.not. status%ok) return
     assembly%n_bodies = nb
     call move_alloc(polys, assembly%polygon)
     call move_alloc(driven, assembly%driven)
@@ -235,6 +247,31 @@ contains
     assembly%role = merge(role_foundation, role_voussoir, assembly%driven)
 
   contains
+
+    !> Blocks may touch but not interpenetrate (by more than 1 micrometre).
+    subroutine check_overlaps()
+      real(dp), parameter :: tol_m = 1.0e-6_dp
+      real(dp), allocatable :: box(:, :)
+      real(dp) :: depth
+      integer :: i, j
+      allocate (box(4, nb))
+      do i = 1, nb
+        box(:, i) = [minval(polys(i)%xy(1, :)), maxval(polys(i)%xy(1, :)), minval(polys(i)%xy(2, :)), &
+                     maxval(polys(i)%xy(2, :))]
+      end do
+      do i = 1, nb - 1
+        do j = i + 1, nb
+          if (box(1, j) >= box(2, i) - tol_m .or. box(1, i) >= box(2, j) - tol_m .or. &
+              box(3, j) >= box(4, i) - tol_m .or. box(3, i) >= box(4, j) - tol_m) cycle
+          depth = overlap_depth(polys(i)%xy, polys(j)%xy)
+          if (depth > tol_m) then
+            call fail(status, trim(path)//': blocks '//itoa(i)//' and '//itoa(j)//' overlap by '// &
+                      fmt_significant(depth, 3)//' m: blocks may touch but not interpenetrate')
+            return
+          end if
+        end do
+      end do
+    end subroutine check_overlaps
 
     subroutine close_polygon()
       character(len=16) :: id

@@ -7,7 +7,7 @@ module voussoir_geometry
   private
 
   public :: polygon_area, polygon_centroid, polygon_polar_moment, cross2, rotate2, &
-            is_convex_ccw
+            is_convex_ccw, overlap_depth, polygon_min_width
 
 contains
 
@@ -87,5 +87,45 @@ contains
       end if
     end do
   end function is_convex_ccw
+
+  !> The smallest width of a convex polygon (counter-clockwise) [m]: its least extent
+  !> across any of its edges (the width between the tightest pair of parallel supports).
+  pure real(dp) function polygon_min_width(xy)
+    real(dp), intent(in) :: xy(:, :)
+    integer :: i, n
+    real(dp) :: e(2), nrm(2)
+    n = size(xy, 2)
+    polygon_min_width = huge(1.0_dp)
+    do i = 1, n
+      e = xy(:, modulo(i, n) + 1) - xy(:, i)
+      if (norm2(e) == 0.0_dp) cycle
+      nrm = [e(2), -e(1)]/norm2(e)
+      polygon_min_width = min(polygon_min_width, maxval(matmul(nrm, xy)) - minval(matmul(nrm, xy)))
+    end do
+  end function polygon_min_width
+
+  !> How deep two convex polygons (counter-clockwise) interpenetrate [m]: the smallest
+  !> overlap of their projections over the edge normals of both (separating axes). Zero
+  !> or negative when they touch or are apart.
+  pure real(dp) function overlap_depth(a, b)
+    real(dp), intent(in) :: a(:, :), b(:, :)
+    overlap_depth = min(axes_of(a), axes_of(b))
+  contains
+    pure real(dp) function axes_of(p)
+      real(dp), intent(in) :: p(:, :)
+      integer :: i, n
+      real(dp) :: e(2), nrm(2), pa(2), pb(2)
+      n = size(p, 2)
+      axes_of = huge(1.0_dp)
+      do i = 1, n
+        e = p(:, modulo(i, n) + 1) - p(:, i)
+        if (norm2(e) == 0.0_dp) cycle
+        nrm = [e(2), -e(1)]/norm2(e)
+        pa = [minval(matmul(nrm, a)), maxval(matmul(nrm, a))]
+        pb = [minval(matmul(nrm, b)), maxval(matmul(nrm, b))]
+        axes_of = min(axes_of, min(pa(2), pb(2)) - max(pa(1), pb(1)))
+      end do
+    end function axes_of
+  end function overlap_depth
 
 end module voussoir_geometry

@@ -5,6 +5,7 @@ module voussoir_setup
   use voussoir_text, only: fmt_significant, itoa
   use voussoir_config, only: config_t
   use voussoir_assembly, only: assembly_t, build_arch, read_polygon_file, voussoir_angle_factors
+  use voussoir_geometry, only: polygon_min_width
   use voussoir_bodies, only: bodies_t, bodies_init
   use voussoir_model, only: model_t, solver_settings_t
   use voussoir_contact_law, only: contact_law_t, contact_law_init
@@ -30,7 +31,8 @@ contains
     type(solver_settings_t) :: settings
     type(contact_law_t) :: law
     type(ground_record_t) :: rec
-    real(dp) :: hinge_gap_m, collapse_drop_m
+    real(dp) :: hinge_gap_m, collapse_drop_m, size_m
+    integer :: k
 
     duration_s = 0.0_dp
     associate (a => cfg%arch, m => cfg%motion, s => cfg%solver)
@@ -91,12 +93,20 @@ contains
       call check_work(cfg, duration_s, assembly%n_bodies, status)
       if (.not. status%ok) return
     end associate
-    ! Monitors left automatic (0) follow the thickness: hinges open at 1 % of it, a
-    ! voussoir has fallen when it drops by half of it.
+    ! Monitors left automatic (0) follow the size of the blocks: the ring's thickness, or
+    ! for a polygon assembly the smallest width of its free blocks. Hinges open at 1 % of
+    ! it, a block has fallen when it drops by half of it.
+    size_m = cfg%arch%thickness_m
+    if (assembly%n_voussoirs == 0) then
+      size_m = huge(1.0_dp)
+      do k = 1, assembly%n_bodies
+        if (.not. assembly%driven(k)) size_m = min(size_m, polygon_min_width(assembly%polygon(k)%xy))
+      end do
+    end if
     hinge_gap_m = cfg%output%hinge_gap_m
-    if (hinge_gap_m == 0.0_dp) hinge_gap_m = 0.01_dp*cfg%arch%thickness_m
+    if (hinge_gap_m == 0.0_dp) hinge_gap_m = 0.01_dp*size_m
     collapse_drop_m = cfg%output%collapse_drop_m
-    if (collapse_drop_m == 0.0_dp) collapse_drop_m = 0.5_dp*cfg%arch%thickness_m
+    if (collapse_drop_m == 0.0_dp) collapse_drop_m = 0.5_dp*size_m
     call monitor_init(assembly, model, collapse_drop_m, cfg%output%collapse_rotation_rad, hinge_gap_m, mon)
   end subroutine build_model
 
