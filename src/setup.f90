@@ -38,7 +38,10 @@ contains
     associate (a => cfg%arch, m => cfg%motion, s => cfg%solver)
       if (len_trim(a%polygon_file) > 0) then
         call read_polygon_file(trim(a%polygon_file), assembly, status)
-        if (.not. status%ok) return
+        if (.not. status%ok) then
+          status%message = trim(cfg%source_file)//': &arch polygon_file: '//trim(status%message)
+          return
+        end if
         assembly%thickness_m = a%thickness_m
       else
         restrained = [a%restrained_springings == 'left' .or. a%restrained_springings == 'both', &

@@ -121,6 +121,17 @@ case_ every_memory      "GB of samples in memory.*every" "&arch n_voussoirs = 10
 case_ repeated_group    ":2: namelist group &arch appears a second time \(first at line 1\)" "&arch n_voussoirs = 13 /
 &arch n_voussoirs = 9 /
 $o"
+# Polygon files that cannot be an assembly.
+printf 'block free\n0 0\n1 0\n1 1\n0 1\n' > all_free.txt
+printf 'block driven\n0 0\n1 0\n1 1\n0 1\n' > all_driven.txt
+printf 'block free\n0 0\n1 0\n1 1\n0 1\nblock driven\n-1 -0.5\n2 -0.5\n2 0.01\n-1 0.01\n' > overlap.txt
+case_ polygon_no_driven "all_free.txt: no block is driven" "&arch polygon_file = 'all_free.txt' /
+$o"
+case_ polygon_no_free   "all_driven.txt: every block is driven" "&arch polygon_file = 'all_driven.txt' /
+$o"
+case_ polygon_overlap   "overlap.txt: blocks 1 and 2 overlap by 0.01 m" "&arch polygon_file = 'overlap.txt' /
+$o"
+
 # The output named where it cannot be written: refused before the run, nothing left.
 case_ output_is_input   "&output file = 'output_is_input.nml' is the input file itself" "&output file = 'output_is_input.nml' /"
 case_ output_no_folder  "&output file = 'no_folder/out.h5': the folder 'no_folder' does not exist" "&output file = 'no_folder/out.h5' /"
