@@ -33,6 +33,7 @@ module voussoir_sweep_master
                                  tag_task, tag_result, tag_stop
   use voussoir_sweep_tasks, only: simulate_job, outcome_of_msg, prefetch, task_head, history_width, result_len
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
+  use voussoir_file_lock, only: lock_file, unlock_file
   implicit none
   private
 
@@ -63,6 +64,7 @@ module voussoir_sweep_master
     integer :: n_ready = 0                                 !! jobs in state ready
     integer :: n_done = 0, n_runs = 0, n_runs_resumed = 0
     integer :: n_failed = 0   !! jobs ended by a failed run (recorded, not retried)
+    integer :: lock_fd = -1   !! the lock on path.lock, held while the sweep runs
     real(dp) :: t0_s = 0.0_dp, last_report_s = 0.0_dp, cost_done = 0.0_dp
     real(dp) :: busy_s = 0.0_dp                            !! wall time of the runs of this session
   end type master_t
@@ -85,19 +87,32 @@ module voussoir_sweep_master
 
 contains
 
-  !> Set up rank 0: the file to write, and what an earlier run of the same sweep left in it.
+  !> Set up rank 0: the lock of the result file (one sweep per file), the file to write,
+  !> and what an earlier run of the same sweep left in it.
   subroutine master_prepare(plan, base, n_ranks, m, status)
     type(sweep_plan_t), intent(in) :: plan
     type(config_t), intent(in) :: base
     integer, intent(in) :: n_ranks
     type(master_t), intent(out) :: m
     type(status_t), intent(inout) :: status
+    m%path = trim(base%output%file)
+    if (m%path == 'voussoir_run.h5') m%path = 'voussoir_sweep.h5'   ! the default is voussoir-run's
+    call lock_file(m%path//'.lock', m%path, m%lock_fd, status)
+    if (.not. status%ok) return
+    call prepare_file(plan, base, n_ranks, m, status)
+    if (.not. status%ok) call unlock_file(m%lock_fd, m%path//'.lock')
+  end subroutine master_prepare
+
+  subroutine prepare_file(plan, base, n_ranks, m, status)
+    type(sweep_plan_t), intent(in) :: plan
+    type(config_t), intent(in) :: base
+    integer, intent(in) :: n_ranks
+    type(master_t), intent(inout) :: m
+    type(status_t), intent(inout) :: status
     logical :: exists
     integer :: job
     character(len=:), allocatable :: written_by
 
-    m%path = trim(base%output%file)
-    if (m%path == 'voussoir_run.h5') m%path = 'voussoir_sweep.h5'   ! the default is voussoir-run's
     m%csv_path = csv_path_of(m%path)
     allocate (m%state(0:plan%n_jobs - 1), m%started(0:plan%n_jobs - 1), m%cost(0:plan%n_jobs - 1), &
               m%outstanding(1:max(1, n_ranks - 1)))
@@ -148,7 +163,7 @@ contains
       return
     end if
     call restore(plan, m, status)
-  end subroutine master_prepare
+  end subroutine prepare_file
 
   !> Mark the jobs the file holds as done and replay the runs of unfinished searches.
   subroutine restore(plan, m, status)
@@ -276,6 +291,7 @@ contains
     if (.not. status%ok) call die(status%message)
     call report(plan, m, net%size, .true.)
     call summary(plan, m)
+    call unlock_file(m%lock_fd, m%path//'.lock')
 
   contains
 

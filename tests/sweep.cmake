@@ -8,6 +8,7 @@
 #   sweep_threshold_vs_run  voussoir-run stands at threshold - amp_tol, falls at threshold
 #   sweep_bad_inputs        bad &sweep values: clear errors, no result file
 #   sweep_failing_job       a job whose run fails is recorded as failed, the others finish
+#   sweep_lock              a second sweep on the same file is refused while the first runs
 # The input files input/sweep_*.nml are run by driver_tests.cmake.
 if(NOT TARGET voussoir-sweep)
   return()
@@ -16,7 +17,7 @@ if(NOT MPIEXEC_EXECUTABLE)
   message(FATAL_ERROR "voussoir-sweep is built but no mpiexec was found: its MPI tests cannot run")
 endif()
 
-foreach(case ranks grid resume refuse threshold_vs_run bad_inputs failing_job)
+foreach(case ranks grid resume refuse threshold_vs_run bad_inputs failing_job lock)
   add_test(NAME sweep_${case}
            COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/sweep/sweep_test.py ${case}
                    --mpiexec ${MPIEXEC_EXECUTABLE} --bin $<TARGET_FILE_DIR:voussoir-sweep>

@@ -462,6 +462,26 @@ def case_failing_job(r, work):
             check(sorted(failed) == [0, 1], f"{mode}: /results/failed = {failed}")
 
 
+def case_lock(r, work):
+    """Two sweeps on one result file: the second is refused while the first runs, the
+    first finishes untouched, and no lock file is left (issue 12)."""
+    write_nml("a.nml", "shared.h5", THRESHOLD_SWEEP)
+    log = open("a.txt", "w")
+    first = r.start(1, "a.nml", log)
+    deadline = time.time() + 60
+    while not os.path.exists("shared.h5.lock") and time.time() < deadline and first.poll() is None:
+        time.sleep(0.05)
+    check(os.path.exists("shared.h5.lock"), "the first sweep holds shared.h5.lock")
+    rc, out = r.sweep_run(1, "a.nml", expect_ok=False)
+    check(rc != 0 and "shared.h5: another sweep is writing it now" in out, f"the second is refused: {out.strip()[:300]}")
+    check(first.wait() == 0, "the first sweep finishes")
+    log.close()
+    check(not os.path.exists("shared.h5.lock"), "no lock file left")
+    consistent_threshold_file("shared.h5", 1.0e-3)
+    rc, out = r.sweep_run(1, "a.nml")  # once it is done, the same input reads the finished file
+    check(rc == 0 and "resuming" in out, "a rerun after it reads the finished file")
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("case")
