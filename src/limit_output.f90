@@ -175,6 +175,8 @@ contains
         '  "sliding_neg": ['//int_list(res%sliding_joints_neg)//'],'//nl// &
         '  "max_shear_ratio_pos": '//finite_or_null(maxval(res%shear_ratio_pos))//','//nl// &
         '  "max_shear_ratio_neg": '//finite_or_null(maxval(res%shear_ratio_neg))//','//nl// &
+        '  "thrust_fraction_pos": '//fraction_list(res%thrust_fraction_pos)//','//nl// &
+        '  "thrust_fraction_neg": '//fraction_list(res%thrust_fraction_neg)//','//nl// &
         '  "arch": {'//nl// &
         '    "n_voussoirs": '//itoa(a%n_voussoirs)//','//nl// &
         '    "embrace_deg": '//fmt_json_real(a%embrace_deg)//','//nl// &
@@ -209,6 +211,24 @@ contains
       text = fmt_json_real(x)
     end if
   end function finite_or_null
+
+  !> Where the thrust crosses each joint (0 intrados pivot, 1 extrados pivot) as a JSON
+  !> list; null where there is no thrust line (no mechanism in that direction).
+  function fraction_list(f) result(text)
+    real(dp), allocatable, intent(in) :: f(:)
+    character(len=:), allocatable :: text
+    integer :: k
+    if (.not. allocated(f)) then
+      text = 'null'
+      return
+    end if
+    text = '['
+    do k = lbound(f, 1), ubound(f, 1)
+      if (k > lbound(f, 1)) text = text//', '
+      text = text//finite_or_null(f(k))
+    end do
+    text = text//']'
+  end function fraction_list
 
   function hinge_json(hinges, sides) result(text)
     integer, intent(in) :: hinges(:), sides(:)

@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .campaign import Campaign, measured_thresholds
-from .drawing import COLORS, new_figure, save_png
+from .drawing import COLORS, new_figure, provenance, save_png
 from .envelope import grid_maps
 from .results import SweepResult
 from .tables import Table
@@ -189,22 +189,27 @@ def plot_compare(sweep: SweepResult, campaign: Campaign, out_png: str | os.PathL
     fig = new_figure(max(6.5, 1.6 * len(pairs) + 3.0), 7.2)
     ax_a, ax_e = fig.subplots(2, 1, sharex=True)
     x = np.arange(len(pairs))
-    width = 0.8 / (1 + len(sets))
+    # Each (specimen, frequency) gets the measured bar and a bar for each parameter set
+    # simulated there only (the seed arches are one set each: no empty slots).
+    present = {p: [ps for ps in sets if any(r.param_set == ps and (r.specimen_id, r.frequency_hz) == p
+                                            for r in rows)] for p in pairs}
+    width = 0.8 / (1 + max(len(v) for v in present.values()))
     measured = {(r.specimen_id, r.frequency_hz): r for r in rows}
     meas = np.array([1e3 * measured[p].measured_m for p in pairs])
     low = np.array([1e3 * measured[p].low_m for p in pairs])
     high = np.array([1e3 * measured[p].high_m for p in pairs])
     yerr = np.vstack([np.where(np.isfinite(low), meas - low, 0.0), np.where(np.isfinite(low), high - meas, 0.0)])
-    x0 = x - 0.4 + 0.5 * width
-    ax_a.bar(x0, meas, width, color="0.35", label="measured threshold", yerr=yerr, capsize=3,
+    starts = np.array([x[i] - 0.5 * width * (1 + len(present[p])) for i, p in enumerate(pairs)])
+    ax_a.bar(starts + 0.5 * width, meas, width, color="0.35", label="measured threshold", yerr=yerr, capsize=3,
              error_kw={"elinewidth": 1})
     for k, ps in enumerate(sets):
         sel = {(r.specimen_id, r.frequency_hz): r for r in rows if r.param_set == ps}
-        sim = np.array([1e3 * sel[p].simulated_m if p in sel else math.nan for p in pairs])
-        err = np.array([sel[p].error_pct if p in sel else math.nan for p in pairs])
+        where = [i for i, p in enumerate(pairs) if p in sel]
+        xs = np.array([starts[i] + (1.5 + present[pairs[i]].index(ps)) * width for i in where])
+        sim = np.array([1e3 * sel[pairs[i]].simulated_m for i in where])
+        err = np.array([sel[pairs[i]].error_pct for i in where])
         colour = COLORS[k % len(COLORS)]
         label = rows[[r.param_set for r in rows].index(ps)].label
-        xs = x0 + (k + 1) * width
         ax_a.bar(xs, np.nan_to_num(sim), width, color=colour, label=f"simulated: {label}")
         ax_e.bar(xs, np.nan_to_num(err), width, color=colour,
                  label=f"{label}: mean |error| {mean_err[ps]:.1f} %")
@@ -213,8 +218,8 @@ def plot_compare(sweep: SweepResult, campaign: Campaign, out_png: str | os.PathL
                 ax_e.annotate(f"{e:+.0f}%", (xi, e), textcoords="offset points",
                               xytext=(0, 3 if e >= 0 else -10), ha="center", fontsize=7)
             else:
-                ax_e.annotate("n/a", (xi, 0), textcoords="offset points", xytext=(0, 3), ha="center",
-                              fontsize=7)
+                ax_e.annotate("no collapse\nsimulated", (xi, 0), textcoords="offset points", xytext=(0, 3),
+                              ha="center", fontsize=7)
     ax_e.axhline(0.0, color="black", linewidth=0.8)
     ax_e.margins(y=0.15)
     ax_e.set_xlim(-0.5 - 0.3 * (len(pairs) < 3), len(pairs) - 0.5 + 0.3 * (len(pairs) < 3))
@@ -227,8 +232,9 @@ def plot_compare(sweep: SweepResult, campaign: Campaign, out_png: str | os.PathL
     for ax in (ax_a, ax_e):
         ax.grid(True, axis="y", alpha=0.3)
         ax.legend(fontsize=8)
-    fig.suptitle(f"{os.path.basename(sweep.path)} against {campaign.name}", fontsize=11)
-    png = save_png(fig, out_png)
+    fig.suptitle(f"Collapse thresholds under sinusoidal shaking: simulation against the shaking-table tests of "
+                 f"{campaign.name}", fontsize=11)
+    png = save_png(fig, out_png, note=provenance(sweep.code_version, os.path.basename(sweep.path), campaign.path))
     table = Table(["param_set", "parameters", "specimen_id", "frequency_hz", "measured_mm", "low_mm",
                    "high_mm", "simulated_mm", "error_pct", "measured_accel_m_s2", "simulated_accel_m_s2"],
                   [(r.param_set, r.label, r.specimen_id, r.frequency_hz, 1e3 * r.measured_m, 1e3 * r.low_m,

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from .actuator import afd_command
-from .drawing import new_figure, save_png
+from .drawing import new_figure, provenance, save_png
 from .effects import EFFECTS_BY_ID, Variant
 from .selection import loss, mean_error
 
@@ -25,7 +25,7 @@ def _md_table(headers, rows) -> str:
     return "\n".join(out)
 
 
-def _figure_thresholds(out: Path, pairs, cands, decision, nested) -> str:
+def _figure_thresholds(out: Path, pairs, cands, decision, nested, note: str) -> str:
     fig = new_figure(max(6.0, 1.1 * len(pairs) + 2), 4.2)
     ax = fig.subplots()
     x = np.arange(len(pairs))
@@ -47,11 +47,11 @@ def _figure_thresholds(out: Path, pairs, cands, decision, nested) -> str:
     ax.set_title("Measured and simulated collapse thresholds")
     ax.legend(fontsize=8)
     name = "thresholds.png"
-    save_png(fig, out / name)
+    save_png(fig, out / name, note=note)
     return name
 
 
-def _figure_candidates(out: Path, pairs, cands, settings) -> str:
+def _figure_candidates(out: Path, pairs, cands, settings, note: str) -> str:
     drawn = sorted((e for e in EFFECTS_BY_ID.values() if e.figure_axis is not None), key=lambda e: e.figure_axis[0])
     fig = new_figure(4.0 * len(drawn), 3.6)
     axes = fig.subplots(1, len(drawn))
@@ -76,11 +76,11 @@ def _figure_candidates(out: Path, pairs, cands, settings) -> str:
     fig.suptitle("Each candidate cause: mean error of the simulated collapse thresholds against its parameter "
                  "(all pairs with a certain set-up)", fontsize=10)
     name = "candidates.png"
-    save_png(fig, out / name)
+    save_png(fig, out / name, note=note)
     return name
 
 
-def _figure_table(out: Path, campaign, table) -> str | None:
+def _figure_table(out: Path, campaign, table, note: str) -> str | None:
     if table.source != "records" or not table.per_test:
         return None
     tid = max(table.per_test, key=lambda r: campaign.tests[r[0]].amplitude_m)[0]
@@ -104,15 +104,17 @@ def _figure_table(out: Path, campaign, table) -> str | None:
     axes[1].set_ylabel("fitted gain")
     axes[1].set_title("Actuator fit of every record", fontsize=9)
     name = "table_records.png"
-    save_png(fig, out / name)
+    save_png(fig, out / name, note=note)
     return name
 
 
 def write_report(out: Path, campaign, pairs, cands, decision, table, baseline_error, resolution, result, info
                  ) -> None:
+    note = provenance(info.get("code_version", ""), f"voussoir-diagnose on {campaign.path}")
     nested = info.get("nested") or []
-    figs = [_figure_thresholds(out, pairs, cands, decision, nested), _figure_candidates(out, pairs, cands, info["settings"])]
-    tfig = _figure_table(out, campaign, table)
+    figs = [_figure_thresholds(out, pairs, cands, decision, nested, note),
+            _figure_candidates(out, pairs, cands, info["settings"], note)]
+    tfig = _figure_table(out, campaign, table, note)
     lines = [f"# Diagnosis of campaign `{campaign.name}`", "",
              f"**Verdict: `{result['verdict']}`.** {result['notes']}", ""]
     if result["parameters"]:

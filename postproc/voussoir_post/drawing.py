@@ -2,12 +2,17 @@
 
 from __future__ import annotations
 
+import math
 import os
 
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-__all__ = ["new_figure", "save_png", "MARKERS", "COLORS"]
+__all__ = ["new_figure", "save_png", "MARKERS", "COLORS", "G_M_S2", "provenance", "add_g_axis", "run_caption",
+           "arch_caption"]
+
+#: Standard gravity [m/s2] for accelerations read in g (the kernel's value).
+G_M_S2 = 9.81
 
 #: Marker style per specimen or parameter set, in order.
 MARKERS = ("o", "s", "^", "D", "v", "P", "X", "<", ">", "h")
@@ -23,8 +28,51 @@ def new_figure(width_in: float, height_in: float) -> Figure:
     return fig
 
 
-def save_png(fig: Figure, path: str | os.PathLike, dpi: int = 120) -> str:
-    """Save ``fig`` as PNG at ``path`` (parent folders created); returns the path."""
+def provenance(code_version: str, *sources: str) -> str:
+    """The small print of a figure: the code version and what it was made from."""
+    made_from = "; ".join(s for s in sources if s)
+    return f"{code_version or 'voussoir (version unknown)'}" + (f" | from {made_from}" if made_from else "")
+
+
+def add_g_axis(ax, label: str = "[g]") -> None:
+    """A right-hand axis reading the left one's m/s2 in g (engineers read g)."""
+    right = ax.secondary_yaxis("right", functions=(lambda a: a / G_M_S2, lambda g: g * G_M_S2))
+    right.set_ylabel(label)
+
+
+def arch_caption(arch: dict, n_blocks: int | None = None) -> str:
+    """The structure of an &arch group, in words."""
+    if arch.get("polygon_file"):
+        blocks = f"{n_blocks} blocks" if n_blocks else "blocks"
+        return f"assembly of {blocks} ({os.path.basename(str(arch['polygon_file']))})"
+    return (f"{float(arch.get('embrace_deg', math.nan)):g}° arch of {arch.get('n_voussoirs', '?')} voussoirs "
+            f"(t = {1e3 * float(arch.get('thickness_m', math.nan)):g} mm, "
+            f"R_ext = {1e3 * float(arch.get('r_ext_m', math.nan)):g} mm)")
+
+
+def run_caption(run, sep: str = ", ") -> str:
+    """What a run simulated, in words: the structure and the shaking (joined by `sep`)."""
+    arch = run.config.get("arch", {})
+    motion = run.config.get("motion", {})
+    what = arch_caption(arch, len(run.body_role))
+    wave = motion.get("waveform", "")
+    if wave == "afd":
+        f, a = float(motion.get("frequency_hz", math.nan)), float(motion.get("amplitude_m", math.nan))
+        peak = a * (2 * math.pi * f) ** 2
+        shake = f"sinusoid {f:g} Hz, A = {1e3 * a:g} mm (peak {peak:.2f} m/s² = {peak / G_M_S2:.3f} g)"
+    elif wave == "accelerogram":
+        shake = (f"record {os.path.basename(str(motion.get('record_file', '')))} x "
+                 f"{float(motion.get('record_scale', 1.0)):g}")
+    else:
+        shake = f"{wave} motion" if wave else ""
+    return what + (f"{sep}{shake}" if shake else "")
+
+
+def save_png(fig: Figure, path: str | os.PathLike, dpi: int = 120, note: str | None = None) -> str:
+    """Save ``fig`` as PNG at ``path`` (parent folders created); returns the path.
+    ``note`` (see :func:`provenance`) is printed small in the bottom right corner."""
+    if note:
+        fig.text(0.995, 0.002, note, ha="right", va="bottom", fontsize=6, color="#777777")
     path = os.fspath(path)
     parent = os.path.dirname(os.path.abspath(path))
     os.makedirs(parent, exist_ok=True)

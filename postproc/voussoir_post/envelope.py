@@ -17,7 +17,7 @@ import numpy as np
 from matplotlib.lines import Line2D
 
 from .campaign import Campaign, MeasuredThreshold, measured_thresholds
-from .drawing import COLORS, MARKERS, new_figure, save_png
+from .drawing import COLORS, MARKERS, add_g_axis, arch_caption, new_figure, provenance, save_png
 from .results import SweepResult
 from .tables import Table
 
@@ -207,13 +207,15 @@ def _plot_threshold(sweep: SweepResult, overlays, out_png) -> EnvelopeData:
     ax_a.set_title("Collapse threshold (commanded displacement amplitude)", fontsize=10)
     ax_g.set_xlabel("frequency [Hz]")
     ax_g.set_ylabel("peak acceleration [m/s²]")
+    add_g_axis(ax_g)
     ax_g.set_title("Commanded peak acceleration A(2πf)² at threshold", fontsize=10)
     for ax in (ax_a, ax_g):
         ax.grid(True, alpha=0.3)
         ax.set_ylim(bottom=0)
     fig.legend(handles=handles + _measured_legend(overlays, accel=True), fontsize=8, loc="outside lower center",
                ncols=3)
-    fig.suptitle(f"{os.path.basename(sweep.path)}: threshold sweep", fontsize=11)
+    fig.suptitle(f"Collapse envelope under sinusoidal shaking: {arch_caption(sweep.config.get('arch', {}))}",
+                 fontsize=11)
     rows = []
     for cv in curves:
         for f, a, g, nm, n in zip(cv.frequency_hz, cv.threshold_m, cv.peak_accel_m_s2, cv.non_monotonic,
@@ -221,8 +223,8 @@ def _plot_threshold(sweep: SweepResult, overlays, out_png) -> EnvelopeData:
             rows.append((cv.param_set, cv.label, float(f), 1e3 * float(a), float(g), bool(nm), int(n)))
     table = Table(["param_set", "parameters", "frequency_hz", "threshold_mm", "peak_accel_m_s2",
                    "non_monotonic", "n_runs"], rows, title=f"Thresholds of {sweep.path}")
-    return EnvelopeData("threshold", curves=curves, measured=overlays, png_path=save_png(fig, out_png),
-                        table=table)
+    return EnvelopeData("threshold", curves=curves, measured=overlays,
+                        png_path=save_png(fig, out_png, note=_note(sweep)), table=table)
 
 
 def _plot_grid(sweep: SweepResult, overlays, out_png) -> EnvelopeData:
@@ -247,7 +249,8 @@ def _plot_grid(sweep: SweepResult, overlays, out_png) -> EnvelopeData:
                   loc="upper right")
     for ax in axes[len(maps):]:
         ax.set_visible(False)
-    fig.suptitle(f"{os.path.basename(sweep.path)}: stand/collapse grid", fontsize=11)
+    fig.suptitle(f"Stand or collapse under sinusoidal shaking, frequency by amplitude: "
+                 f"{arch_caption(sweep.config.get('arch', {}))}", fontsize=11)
     rows = []
     for gm in maps:
         for f, a in zip(gm.envelope_frequency_hz, gm.envelope_amplitude_m):
@@ -256,7 +259,13 @@ def _plot_grid(sweep: SweepResult, overlays, out_png) -> EnvelopeData:
                          1e3 * float(a), float(a * _omega2(f))))
     table = Table(["param_set", "parameters", "frequency_hz", "n_runs", "n_collapse", "envelope_mm",
                    "envelope_accel_m_s2"], rows, title=f"Grid envelope of {sweep.path}")
-    return EnvelopeData("grid", maps=maps, measured=overlays, png_path=save_png(fig, out_png), table=table)
+    return EnvelopeData("grid", maps=maps, measured=overlays, png_path=save_png(fig, out_png, note=_note(sweep)),
+                        table=table)
+
+
+def _note(sweep: SweepResult) -> str:
+    inp = str(sweep.config.get("output", {}).get("file", ""))
+    return provenance(sweep.code_version, os.path.basename(sweep.path) if not inp else os.path.basename(inp))
 
 
 def plot_envelope(sweep: SweepResult, out_png: str | os.PathLike, campaign: Campaign | None = None,

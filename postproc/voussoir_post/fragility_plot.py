@@ -12,7 +12,7 @@ import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from .drawing import new_figure, save_png
+from .drawing import new_figure, provenance, save_png
 from .fragility import FragilityBand, FragilityFit, bootstrap_band, empirical_collapse_fraction, fit_lognormal, \
     fragility
 from .ida import IdaResult
@@ -128,7 +128,7 @@ def plot_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootstrap: int 
     handles_v[0].set_label("PGV: " + handles_v[0].get_label())
     fig.legend(handles=[handles[0], handles_v[0]] + handles[1:], fontsize=8, loc="outside lower center", ncol=2)
     fig.suptitle(_title(ida), fontsize=10)
-    png = save_png(fig, out_png)
+    png = save_png(fig, out_png, note=provenance(getattr(ida, "code_version", ""), os.path.basename(ida.path)))
 
     rows = []
     for k in range(ida.n_rows):

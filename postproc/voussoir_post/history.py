@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .drawing import new_figure, save_png
+from .drawing import add_g_axis, new_figure, provenance, run_caption, save_png
 from .results import RunResult
 from .tables import Table
 
@@ -90,9 +90,18 @@ def plot_history(run: RunResult, out_png: str | os.PathLike) -> HistoryData:
     axes[1].set_ylabel("table v [m/s]")
     axes[2].plot(data.time_s, data.table_a_m_s2, color="tab:blue")
     axes[2].set_ylabel("table a [m/s²]")
-    axes[3].plot(data.time_s, data.crown_dx_mm, label="dx", color="tab:orange")
-    axes[3].plot(data.time_s, data.crown_dy_mm, label="dy", color="tab:green")
+    add_g_axis(axes[2])
+    axes[3].plot(data.time_s, data.crown_dx_mm, label="dx (horizontal)", color="tab:orange")
+    axes[3].plot(data.time_s, data.crown_dy_mm, label="dy (vertical)", color="tab:green")
     axes[3].set_ylabel("crown rel. table [mm]")
+    if math.isfinite(data.collapse_time_s):
+        # The rocking before the collapse is what an engineer reads; the fall after it
+        # runs to metres and would flatten it: the panel is scaled on the motion before.
+        before = data.time_s <= data.collapse_time_s
+        peak = max(1.0, float(np.abs(np.concatenate([data.crown_dx_mm[before], data.crown_dy_mm[before]])).max()))
+        axes[3].set_ylim(-1.5 * peak, 1.5 * peak)
+        axes[3].text(0.99, 0.04, "after the collapse the crown falls off this scale", transform=axes[3].transAxes,
+                     ha="right", fontsize=7, color="tab:red")
     axes[3].legend(loc="upper left", fontsize=8)
     axes[4].plot(data.step_time_s, data.step_iterations, color="tab:purple", linewidth=0.7)
     axes[4].set_ylabel("NLGS iterations")
@@ -108,9 +117,10 @@ def plot_history(run: RunResult, out_png: str | os.PathLike) -> HistoryData:
     for ax in axes:
         ax.grid(True, alpha=0.3)
     status = f"collapsed at {run.collapse_time_s:.3f} s" if run.collapsed else "stood"
-    fig.suptitle(f"{os.path.basename(run.path)}: {status}; mean {run.mean_iterations:.1f} "
-                 f"NLGS iterations/step, {run.nonconverged_steps} non-converged steps", fontsize=10)
-    data.png_path = save_png(fig, out_png)
+    fig.suptitle(f"Time histories: {run_caption(run, sep=chr(10))}\n{status}; mean {run.mean_iterations:.1f} "
+                 f"NLGS iterations/step, {run.nonconverged_steps} non-converged steps", fontsize=9)
+    data.png_path = save_png(fig, out_png, note=provenance(run.code_version, run.input_file,
+                                                           os.path.basename(run.path)))
     data.summary = _summary(data)
     data.summary.title = f"History of {run.path}"
     return data

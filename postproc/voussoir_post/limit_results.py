@@ -39,6 +39,11 @@ class LimitResult:
     friction: float = math.nan
     g_m_s2: float = 9.81  #: gravity used for lambda (JSON 'g_m_s2', else the kernel's 9.81)
     code_version: str = ""
+    #: Where the collapse thrust crosses each joint 0..n (0 intrados pivot, 1 extrados
+    #: pivot), per direction, when the JSON has it (NaN where there is none).
+    thrust_fraction_pos: np.ndarray | None = None
+    thrust_fraction_neg: np.ndarray | None = None
+    input_file: str = ""
 
 
 def _json_float(value) -> float:
@@ -108,4 +113,13 @@ def read_limit_json(path: str | os.PathLike) -> LimitResult:
         friction=_json_float(data.get("friction")),
         g_m_s2=_json_float(data.get("g_m_s2", 9.81)),
         code_version=str(data.get("code_version", "")),
+        thrust_fraction_pos=_fractions(data.get("thrust_fraction_pos")),
+        thrust_fraction_neg=_fractions(data.get("thrust_fraction_neg")),
+        input_file=str(data.get("input_file", "")),
     )
+
+
+def _fractions(values) -> np.ndarray | None:
+    if values is None:
+        return None
+    return np.array([math.nan if v is None else float(v) for v in values])

@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from matplotlib.patches import Polygon
 
-from .drawing import new_figure, save_png
+from .drawing import new_figure, provenance, save_png
 from .results import LimitResult
 from .tables import Table
 
@@ -46,6 +46,7 @@ class MechanismPanel:
     hinge_xy_m: np.ndarray  #: (n_hinges, 2) drawn points
     sliding_joints: list[int]  #: joints where friction does not carry the collapse thrust
     g_m_s2: float = G_M_S2
+    thrust_xy_m: np.ndarray | None = None  #: (n+1, 2) where the collapse thrust crosses each joint
 
     @property
     def accel_m_s2(self) -> float:
@@ -68,7 +69,19 @@ def _capacity_text(panel: MechanismPanel) -> str:
         return "no admissible mechanism"
     if panel.load_factor < 0:
         return f"λ = {panel.load_factor:.4g}: the arch cannot carry its own weight"
-    return f"λ = {panel.load_factor:.4g} (a = {panel.accel_m_s2:.3g} m/s²)"
+    return f"collapses at {panel.load_factor:.3g} g (λ; a = {panel.accel_m_s2:.3g} m/s²)"
+
+
+def thrust_points(limit: LimitResult, fraction: np.ndarray | None) -> np.ndarray | None:
+    """Where the thrust crosses each joint [m]: between the joint's two pivots (its ends,
+    moved in by the contact inset), at `fraction` from the intrados one."""
+    if fraction is None or not np.all(np.isfinite(fraction)):
+        return None
+    intr, extr = limit.joint_intrados_xy_m, limit.joint_extrados_xy_m
+    along = (extr - intr) / np.linalg.norm(extr - intr, axis=1)[:, None]
+    pivot_i = intr + limit.contact_inset_m * along
+    pivot_e = extr - limit.contact_inset_m * along
+    return pivot_i + fraction[:, None] * (pivot_e - pivot_i)
 
 
 def plot_mechanism(limit: LimitResult, out_png: str | os.PathLike) -> MechanismData:
@@ -78,13 +91,14 @@ def plot_mechanism(limit: LimitResult, out_png: str | os.PathLike) -> MechanismD
     voussoirs = voussoir_polygons(intr, extr)
     foundations = foundation_polygons(intr, extr, limit.thickness_m)
     panels = []
-    for direction, lam, hinges, sliding in (
-            ("+x", limit.lambda_pos, limit.hinges_pos, limit.sliding_pos),
-            ("-x", limit.lambda_neg, limit.hinges_neg, limit.sliding_neg)):
+    for direction, lam, hinges, sliding, fraction in (
+            ("+x", limit.lambda_pos, limit.hinges_pos, limit.sliding_pos, limit.thrust_fraction_pos),
+            ("-x", limit.lambda_neg, limit.hinges_neg, limit.sliding_neg, limit.thrust_fraction_neg)):
         xy = np.array([intr[j] if side == "intrados" else extr[j] for j, side in hinges]).reshape(-1, 2)
         sliding = limit.sliding if sliding is None else sliding
         panels.append(MechanismPanel(direction, lam, list(hinges), xy,
-                                     [int(j) for j in sliding if isinstance(j, (int, float))], limit.g_m_s2))
+                                     [int(j) for j in sliding if isinstance(j, (int, float))], limit.g_m_s2,
+                                     thrust_points(limit, fraction)))
 
     pts = np.vstack(voussoirs + foundations)
     lo, hi = pts.min(axis=0), pts.max(axis=0)
@@ -105,6 +119,8 @@ def plot_mechanism(limit: LimitResult, out_png: str | os.PathLike) -> MechanismD
             offset = (radial if side == "extrados" else -radial) * 14
             ax.annotate(f"{j}{side[0]}", (x, y), textcoords="offset points", xytext=tuple(offset),
                         ha="center", va="center", fontsize=9, color=colour, fontweight="bold")
+        if panel.thrust_xy_m is not None:
+            ax.plot(*panel.thrust_xy_m.T, "-", color="black", linewidth=1.2, zorder=4)
         for j in panel.sliding_joints:
             if 0 <= j < intr.shape[0]:
                 ax.plot(*np.array([intr[j], extr[j]]).T, "-", color="tab:purple", linewidth=3, zorder=4)
@@ -120,16 +136,21 @@ def plot_mechanism(limit: LimitResult, out_png: str | os.PathLike) -> MechanismD
         ax.grid(True, alpha=0.2)
     handles = [axes[0].plot([], [], "o", color=c, label=f"hinge pivoting on the {s} ({s[0]})")[0]
                for c, s in (("tab:red", "intrados"), ("tab:blue", "extrados"))]
+    if any(p.thrust_xy_m is not None for p in panels):
+        handles.append(axes[0].plot([], [], "-", color="black", linewidth=1.2,
+                                    label="line of thrust at collapse (its crossing of each joint): it must "
+                                          "touch the four hinges and stay in the ring")[0])
     if any(p.sliding_joints for p in panels):
         friction = "" if math.isnan(limit.friction) else f" (friction {limit.friction:g})"
         handles.append(axes[0].plot([], [], "-", color="tab:purple", linewidth=3,
                                     label=f"joint that would slide: |T|/N above the friction{friction}")[0])
     fig.legend(handles=handles, loc="outside lower center", ncols=2, fontsize=8)
     sliding = f"; sliding governs at joints {', '.join(map(str, limit.sliding))}" if limit.sliding else ""
-    fig.suptitle(f"{os.path.basename(limit.path)}: {limit.n_voussoirs} voussoirs, "
-                 f"{limit.embrace_deg:g}°, t = {limit.thickness_m * 1e3:.4g} mm, "
+    fig.suptitle(f"Static collapse mechanisms under horizontal acceleration (limit analysis): "
+                 f"{limit.embrace_deg:g}° arch of {limit.n_voussoirs} voussoirs, t = {limit.thickness_m * 1e3:.4g} mm, "
                  f"R_ext = {limit.r_ext_m * 1e3:.4g} mm{sliding}", fontsize=10)
-    png = save_png(fig, out_png)
+    png = save_png(fig, out_png, note=provenance(limit.code_version, limit.input_file,
+                                                 os.path.basename(limit.path)))
     rows = []
     for panel in panels:
         for (j, side), (x, y) in zip(panel.hinges, panel.hinge_xy_m):

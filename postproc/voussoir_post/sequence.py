@@ -10,7 +10,7 @@ import numpy as np
 from matplotlib.animation import FuncAnimation, PillowWriter
 from matplotlib.patches import Polygon
 
-from .drawing import new_figure, save_png
+from .drawing import new_figure, provenance, run_caption, save_png
 from .kinematics import (ROLE_FOUNDATION, ROLE_RESTRAINT, JointState, block_polygons,
                          default_open_tol_m, joint_states)
 from .results import RunResult
@@ -31,6 +31,7 @@ class SequenceFrame:
     time_s: float
     polygons_m: list[np.ndarray]  #: (nv, 2) per body, amplified
     open_joints: list[JointState]
+    amplify: float = 1.0  #: the exaggeration drawn (1 after a collapse: the true fall)
 
     def hinge_labels(self) -> str:
         """'4i 9e ...': joint index and side letter of every open joint."""
@@ -66,11 +67,14 @@ def _nearest_samples(run: RunResult, times_s) -> list[int]:
 
 def sequence_frames(run: RunResult, times_s, amplify: float = 1.0,
                     open_tol_m: float | None = None) -> list[SequenceFrame]:
-    """Frames at the samples nearest to ``times_s``."""
+    """Frames at the samples nearest to ``times_s``. Displacements are exaggerated by
+    ``amplify`` until the collapse only: a falling block is drawn where it really is."""
     frames = []
     for k in _nearest_samples(run, times_s):
-        states = joint_states(run, k, open_tol_m, amplify) if run.arch is not None else []
-        frames.append(SequenceFrame(k, float(run.time_s[k]), block_polygons(run, k, amplify), states))
+        fallen = run.collapsed and math.isfinite(run.collapse_time_s) and run.time_s[k] >= run.collapse_time_s
+        gain = 1.0 if fallen else amplify
+        states = joint_states(run, k, open_tol_m, gain) if run.arch is not None else []
+        frames.append(SequenceFrame(k, float(run.time_s[k]), block_polygons(run, k, gain), states, gain))
     return frames
 
 
@@ -97,7 +101,9 @@ def _draw_frame(ax, run: RunResult, frame: SequenceFrame, limits, label_hinges: 
     ax.set_xlim(*limits[0])
     ax.set_ylim(*limits[1])
     ax.set_aspect("equal")
-    ax.set_title(f"t = {frame.time_s:.3f} s", fontsize=9)
+    scale = "" if frame.amplify == 1.0 else f", displacements x{frame.amplify:g}"
+    after = " (collapsed: true scale)" if run.collapsed and frame.time_s >= run.collapse_time_s else scale
+    ax.set_title(f"t = {frame.time_s:.3f} s{after}", fontsize=9)
     ax.tick_params(labelsize=7)
 
 
@@ -126,10 +132,15 @@ def plot_sequence(run: RunResult, out_png: str | os.PathLike, times_s=None, n_fr
     for ax in axes[(nrows - 1) * ncols:]:
         ax.set_xlabel("x [m]", fontsize=8)
     status = (f"collapsed at {run.collapse_time_s:.3f} s" if run.collapsed else "did not collapse")
-    hinges = (f"; hinges (red, i/e = pivot side) open above {tol * 1e3:.2g} mm"
-              if run.arch is not None else "")
-    fig.suptitle(f"{os.path.basename(run.path)}: {status}; displacements x{amplify:g}{hinges}", fontsize=9)
-    png = save_png(fig, out_png)
+    fig.suptitle(f"Collapse sequence: {run_caption(run)}; {status}", fontsize=9)
+    if run.arch is not None:
+        handles = [axes[0].plot([], [], "o", color="tab:red", markeredgecolor="white",
+                                label=f"hinge: the joint opens (more than {tol * 1e3:.2g} mm) and pivots on its "
+                                      "intrados (i) or extrados (e) edge")[0],
+                   axes[0].plot([], [], "o", color="tab:purple", markeredgecolor="white",
+                                label="separated joint (s): both edges open, the blocks part or slide")[0]]
+        fig.legend(handles=handles, loc="outside lower center", ncols=2, fontsize=7)
+    png = save_png(fig, out_png, note=provenance(run.code_version, run.input_file, os.path.basename(run.path)))
     table = Table(["frame", "sample", "time_s", "crown_dx_mm", "crown_dy_mm", "open_joints"],
                   [(i + 1, f.sample, f.time_s, 1e3 * float(run.crown_dx_m[f.sample]),
                     1e3 * float(run.crown_dy_m[f.sample]), f.hinge_labels() or "-")
