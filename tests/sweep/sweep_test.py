@@ -202,7 +202,7 @@ def case_ranks(r, work):
     csv = [open(f"ranks_{n}.csv").read() for n in (1, 2, 3)]
     check(csv[0] == csv[1] == csv[2], "the CSV summaries are identical on 1, 2 and 3 ranks")
     header = csv[0].splitlines()[0]
-    check(header == "param_set,thickness_m,frequency_hz,threshold_m,peak_accel_m_s2,non_monotonic",
+    check(header == "param_set,thickness_m,frequency_hz,threshold_m,peak_accel_m_s2,non_monotonic,failed",
           f"CSV header as in docs/results_format.md ({header})")
     check(len(csv[0].splitlines()) == 5, "CSV: one row per job")
 
