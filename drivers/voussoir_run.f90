@@ -46,9 +46,10 @@ program voussoir_run
   else
     write (*, '(a)', advance='no') 'stood;'
   end if
-  write (*, '(a,f0.3,a,f0.1,a,f0.2,a,a)') ' peak crown displacement ', 1.0e3_dp*res%peak_crown_disp_m, &
-    ' mm; mean NLGS iterations ', res%mean_iterations, '; wall time ', res%wall_time_s, ' s; result ', &
-    trim(cfg%output%file)
+  write (*, '(a,f0.3,a,f0.3,a,i0,a,f0.1,a,f0.2,a,a)') ' peak crown displacement ', &
+    1.0e3_dp*res%peak_crown_disp_m, ' mm; largest final block displacement ', 1.0e3_dp*res%max_residual_disp_m, &
+    ' mm (body ', res%max_residual_body, '); mean NLGS iterations ', res%mean_iterations, '; wall time ', &
+    res%wall_time_s, ' s; result ', trim(cfg%output%file)
   if (res%nonconverged_steps > 0) write (*, '(a,i0,a)') 'warning: ', res%nonconverged_steps, &
     ' steps ended without NLGS convergence'
 end program voussoir_run

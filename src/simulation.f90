@@ -43,6 +43,10 @@ module voussoir_simulation
     real(dp) :: collapse_time_s = 0.0_dp
     integer :: interrupted_by = 0        !! the signal that stopped the run early (0: it ran to its end)
     real(dp) :: peak_crown_disp_m = 0.0_dp
+    !> Where the free blocks ended up: the largest displacement of one of them relative to
+    !> the table at the end of the run [m], and which (a wall that slid has not just "stood").
+    real(dp) :: max_residual_disp_m = 0.0_dp
+    integer :: max_residual_body = 0
     real(dp) :: mean_iterations = 0.0_dp
     integer :: max_iterations = 0
     integer :: nonconverged_steps = 0
@@ -147,6 +151,7 @@ contains
       res%max_iterations = maxval(res%step_iterations(1:res%n_steps))
     end if
     res%nonconverged_steps = model%nonconverged_steps
+    call residual_displacement()
     res%time_s = res%time_s(1:res%n_samples)
     res%table = res%table(:, 1:res%n_samples)
     res%crown = res%crown(:, 1:res%n_samples)
@@ -187,6 +192,21 @@ contains
       if (mon%table_body > 0) d(1) = d(1) - (model%bodies%q(1, mon%table_body) &
                                              - model%bodies%q_ref(1, mon%table_body))
     end function crown_displacement
+
+    subroutine residual_displacement()
+      integer :: i
+      real(dp) :: table(2), d
+      table = 0.0_dp
+      if (mon%table_body > 0) table = model%bodies%q(1:2, mon%table_body) - model%bodies%q_ref(1:2, mon%table_body)
+      do i = 1, nb
+        if (model%bodies%driven(i)) cycle
+        d = norm2(model%bodies%q(1:2, i) - model%bodies%q_ref(1:2, i) - table)
+        if (d > res%max_residual_disp_m) then
+          res%max_residual_disp_m = d
+          res%max_residual_body = i
+        end if
+      end do
+    end subroutine residual_displacement
 
     subroutine watch()
       integer :: i, j, side

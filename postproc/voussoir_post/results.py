@@ -296,6 +296,10 @@ class RunResult:
     record: GroundMotion | None = None  #: runs driven by an accelerogram only
     #: The signal that stopped the run early (2 SIGINT, 15 SIGTERM; 0: it ran to its end).
     interrupted_by_signal: int = 0
+    #: The largest final displacement of a free block relative to the table [m] (NaN in
+    #: files written before it was recorded), and that block's body index (1-based).
+    max_residual_disp_m: float = float("nan")
+    max_residual_body: int = 0
 
     @property
     def n_samples(self) -> int:
@@ -392,6 +396,9 @@ def read_run(path: str | os.PathLike) -> RunResult:
             wall_time_s=_attr(res, "wall_time_s"),
             interrupted_by_signal=(_attr(res, "interrupted_by_signal", int)
                                    if "interrupted_by_signal" in res.attrs else 0),
+            max_residual_disp_m=(_attr(res, "max_residual_disp_m") if "max_residual_disp_m" in res.attrs
+                                 else float("nan")),
+            max_residual_body=(_attr(res, "max_residual_body", int) if "max_residual_body" in res.attrs else 0),
             time_s=time_s,
             table_x_m=samples["table/x_m"],
             table_v_m_s=samples["table/v_m_s"],

@@ -85,6 +85,9 @@ contains
     ! 0: the run went to its end; else the signal (2 SIGINT, 15 SIGTERM) that stopped it
     ! early: the file holds what was computed until then.
     call h5_attr(g, 'interrupted_by_signal', res%interrupted_by, status)
+    ! The largest final displacement of a free block relative to the table, and its body.
+    call h5_attr(g, 'max_residual_disp_m', res%max_residual_disp_m, status)
+    call h5_attr(g, 'max_residual_body', res%max_residual_body, status)
     call h5_group_close(g, status)
 
     call h5_write(file_id, 'time_s', res%time_s, status)
