@@ -6,6 +6,7 @@ module voussoir_setup
   use voussoir_config, only: config_t
   use voussoir_assembly, only: assembly_t, build_arch, read_polygon_file, voussoir_angle_factors
   use voussoir_geometry, only: polygon_min_width
+  use voussoir_wall, only: build_wall
   use voussoir_bodies, only: bodies_t, bodies_init
   use voussoir_model, only: model_t, solver_settings_t
   use voussoir_contact_law, only: contact_law_t, contact_law_init
@@ -36,7 +37,9 @@ contains
 
     duration_s = 0.0_dp
     associate (a => cfg%arch, m => cfg%motion, s => cfg%solver)
-      if (len_trim(a%polygon_file) > 0) then
+      if (cfg%wall%courses > 0) then
+        call build_wall(cfg%wall, assembly)
+      else if (len_trim(a%polygon_file) > 0) then
         call read_polygon_file(trim(a%polygon_file), assembly, status)
         if (.not. status%ok) then
           status%message = trim(cfg%source_file)//': &arch polygon_file: '//trim(status%message)

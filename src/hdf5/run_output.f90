@@ -30,6 +30,7 @@ contains
     integer :: k, ival
     real(dp) :: rval
 
+    allocate (e(0))   ! (gfortran warns of an unset descriptor otherwise)
     e = config_entries(cfg)
     call h5_attr(file_id, 'producer', producer, status)
     call h5_attr(file_id, 'code_version', code_version, status)
