@@ -69,6 +69,15 @@ def _rival_ids(group: list[CandidateResult]) -> list[str]:
     return out
 
 
+def _shared(group: list[CandidateResult]) -> str:
+    """What every rival has in common: that part of the story the data do establish."""
+    common = set(group[0].members).intersection(*(set(c.members) for c in group[1:]))
+    if not common:
+        return ""
+    names = " and ".join(sorted(common))
+    return (f" Every rival includes {names}: that cause is established; what acts with it is not.")
+
+
 def _partial(best: CandidateResult, resolution: float) -> str:
     """A warning when even the best candidate leaves more than twice the resolution."""
     if best.cv_error <= 2.0 * resolution:
@@ -135,5 +144,5 @@ def decide(pairs: list[PairData], resolution: float, cands: dict[str, CandidateR
             f"The nominal model is off by {pct(baseline_error)}; {names} each bring the held-out error down "
             f"({', '.join(f'{c.effect} {pct(c.cv_error)}' for c in group)}), none of them is preferred to the "
             f"others by strong evidence, and neither the records nor the hinges separate them: the data cannot "
-            f"tell which it is." + _partial(group[0], resolution)), group[0], group)
+            f"tell which it is." + _shared(group) + _partial(group[0], resolution)), group[0], group)
     return Decision(verdict_of(best), best, [], "")

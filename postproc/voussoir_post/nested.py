@@ -4,8 +4,9 @@ The held-out error of the candidate that the decision chose would still be measu
 the data that chose it (among several candidates, the one whose held-out error happens to
 be lowest is favoured). So the whole procedure is cross-validated: in each outer fold
 (leave one specimen out) the candidates are fitted and judged, and the verdict decided,
-on the other specimens alone, with their own inner folds, and the model with the best
-inner held-out likelihood (the nominal one among them; a pair only where it beats each
+on the other specimens alone, with their own inner folds (leave one pair out: a choice
+made from two specimens by leaving one of them out would rest on fits to a single
+arch), and the model with the best inner held-out likelihood (the nominal one among them; a pair only where it beats each
 of its members by strong evidence, as in the decision), fitted on those specimens,
 predicts the specimen held out. The mean error of those predictions is the extended
 model's `threshold_error_pct`: the gain of choosing a cause and fitting it, measured on
@@ -55,7 +56,7 @@ def nested_held_out(pairs: list[PairData], effects: list[Effect], settings: Diag
         if train == test:  # one pair: nothing to hold out
             return [p.simulated.get(Variant(), math.nan) for p in pairs], []
         sub = [pairs[i] for i in train]
-        cands = {e.id: evaluate_candidate(sub, e, settings, table) for e in effects}
+        cands = {e.id: evaluate_candidate(sub, e, settings, table, by_pair=True) for e in effects}
         admissibility(cands, table)
         loss = {k: held_out_loss(c, sub) for k, c in cands.items()}
         allowed = [c for k, c in cands.items() if c.admissible and (

@@ -118,11 +118,11 @@ def fit(pairs: list[PairData], e: Effect, settings: DiagnosisSettings, fixed=Non
     return choice, near
 
 
-def folds(pairs: list[PairData]) -> list[tuple[list[int], list[int]]]:
-    """Leave one specimen out; with one specimen, leave one pair out; with one pair,
-    no hold-out (train = test)."""
+def folds(pairs: list[PairData], by_pair: bool = False) -> list[tuple[list[int], list[int]]]:
+    """Leave one specimen out; with one specimen (or `by_pair`), leave one pair out; with
+    one pair, no hold-out (train = test)."""
     specimens = sorted({p.spec.specimen_id for p in pairs})
-    if len(specimens) > 1:
+    if len(specimens) > 1 and not by_pair:
         return [([i for i, p in enumerate(pairs) if p.spec.specimen_id != s],
                  [i for i, p in enumerate(pairs) if p.spec.specimen_id == s]) for s in specimens]
     if len(pairs) > 1:
@@ -131,12 +131,12 @@ def folds(pairs: list[PairData]) -> list[tuple[list[int], list[int]]]:
 
 
 def evaluate_candidate(pairs: list[PairData], e: Effect, settings: DiagnosisSettings,
-                       table: TableEvidence) -> CandidateResult:
+                       table: TableEvidence, by_pair: bool = False) -> CandidateResult:
     """Fit one effect (or pair) in every fold and predict the pairs held out of it."""
     fixed = e.fixed_value(table)
     held = [math.nan] * len(pairs)
     fold_values = []
-    for train, test in folds(pairs):
+    for train, test in folds(pairs, by_pair):
         value, _ = fit([pairs[i] for i in train], e, settings, fixed)
         fold_values.append(value)
         for i in test:
