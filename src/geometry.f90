@@ -88,19 +88,33 @@ contains
     end do
   end function is_convex_ccw
 
+  !> Outward unit normals of the edges of a convex polygon (counter-clockwise), edge i
+  !> from vertex i to i+1; zero for an edge of zero length.
+  pure function edge_normals(xy) result(nrm)
+    real(dp), intent(in) :: xy(:, :)
+    real(dp) :: nrm(2, size(xy, 2))
+    integer :: i, n
+    real(dp) :: e(2)
+    n = size(xy, 2)
+    do i = 1, n
+      e = xy(:, modulo(i, n) + 1) - xy(:, i)
+      nrm(:, i) = 0.0_dp
+      if (norm2(e) > 0.0_dp) nrm(:, i) = [e(2), -e(1)]/norm2(e)
+    end do
+  end function edge_normals
+
   !> The smallest width of a convex polygon (counter-clockwise) [m]: its least extent
   !> across any of its edges (the width between the tightest pair of parallel supports).
   pure real(dp) function polygon_min_width(xy)
     real(dp), intent(in) :: xy(:, :)
-    integer :: i, n
-    real(dp) :: e(2), nrm(2)
-    n = size(xy, 2)
+    real(dp) :: nrm(2, size(xy, 2)), along(size(xy, 2))
+    integer :: i
+    nrm = edge_normals(xy)
     polygon_min_width = huge(1.0_dp)
-    do i = 1, n
-      e = xy(:, modulo(i, n) + 1) - xy(:, i)
-      if (norm2(e) == 0.0_dp) cycle
-      nrm = [e(2), -e(1)]/norm2(e)
-      polygon_min_width = min(polygon_min_width, maxval(matmul(nrm, xy)) - minval(matmul(nrm, xy)))
+    do i = 1, size(xy, 2)
+      if (all(nrm(:, i) == 0.0_dp)) cycle
+      along = matmul(nrm(:, i), xy)
+      polygon_min_width = min(polygon_min_width, maxval(along) - minval(along))
     end do
   end function polygon_min_width
 
@@ -109,23 +123,16 @@ contains
   !> or negative when they touch or are apart.
   pure real(dp) function overlap_depth(a, b)
     real(dp), intent(in) :: a(:, :), b(:, :)
-    overlap_depth = min(axes_of(a), axes_of(b))
-  contains
-    pure real(dp) function axes_of(p)
-      real(dp), intent(in) :: p(:, :)
-      integer :: i, n
-      real(dp) :: e(2), nrm(2), pa(2), pb(2)
-      n = size(p, 2)
-      axes_of = huge(1.0_dp)
-      do i = 1, n
-        e = p(:, modulo(i, n) + 1) - p(:, i)
-        if (norm2(e) == 0.0_dp) cycle
-        nrm = [e(2), -e(1)]/norm2(e)
-        pa = [minval(matmul(nrm, a)), maxval(matmul(nrm, a))]
-        pb = [minval(matmul(nrm, b)), maxval(matmul(nrm, b))]
-        axes_of = min(axes_of, min(pa(2), pb(2)) - max(pa(1), pb(1)))
-      end do
-    end function axes_of
+    real(dp) :: axes(2, size(a, 2) + size(b, 2)), pa(size(a, 2)), pb(size(b, 2))
+    integer :: i
+    axes = reshape([edge_normals(a), edge_normals(b)], shape(axes))
+    overlap_depth = huge(1.0_dp)
+    do i = 1, size(axes, 2)
+      if (all(axes(:, i) == 0.0_dp)) cycle
+      pa = matmul(axes(:, i), a)
+      pb = matmul(axes(:, i), b)
+      overlap_depth = min(overlap_depth, min(maxval(pa), maxval(pb)) - max(minval(pa), minval(pb)))
+    end do
   end function overlap_depth
 
 end module voussoir_geometry

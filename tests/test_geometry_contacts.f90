@@ -2,7 +2,8 @@
 !> a hand computation.
 program test_geometry_contacts
   use voussoir_kinds, only: dp, pi
-  use voussoir_geometry, only: polygon_area, polygon_centroid, polygon_polar_moment, is_convex_ccw
+  use voussoir_geometry, only: polygon_area, polygon_centroid, polygon_polar_moment, is_convex_ccw, &
+                               overlap_depth, polygon_min_width
   use voussoir_assembly, only: assembly_t, build_arch
   use voussoir_contacts, only: polygon_contact
   use voussoir_nlgs, only: coulomb_local
@@ -37,6 +38,19 @@ contains
     c = polygon_centroid(tri)
     call assert_close(c(1), 1.0_dp, 'triangle centroid x [m]', rtol=1.0e-14_dp)
     call assert_close(c(2), 4.0_dp/3.0_dp, 'triangle centroid y [m]', rtol=1.0e-14_dp)
+    ! Widths: the rectangle's short side; the triangle's smallest altitude, 3 * 4 / 5.
+    call assert_close(polygon_min_width(rect), 1.0_dp, 'rectangle min width [m]', rtol=1.0e-14_dp)
+    call assert_close(polygon_min_width(tri), 2.4_dp, 'triangle min width [m]', rtol=1.0e-14_dp)
+    ! Overlap: the rectangle shifted by (1.9, 0) overlaps it by 0.1 m; by (2, 0) it
+    ! touches (0); by (0.5, 0.8) the shallowest axis is y, 0.2 m.
+    call assert_close(overlap_depth(rect, rect + spread([1.9_dp, 0.0_dp], 2, 4)), 0.1_dp, &
+                      'overlap of rectangles shifted by 1.9 m [m]', rtol=1.0e-12_dp)
+    call assert_true(abs(overlap_depth(rect, rect + spread([2.0_dp, 0.0_dp], 2, 4))) < 1.0e-14_dp, &
+                     'rectangles side by side touch (depth 0)')
+    call assert_close(overlap_depth(rect, rect + spread([0.5_dp, 0.8_dp], 2, 4)), 0.2_dp, &
+                      'overlap of rectangles shifted by (0.5, 0.8) m [m]', rtol=1.0e-12_dp)
+    call assert_true(overlap_depth(rect, tri + spread([5.0_dp, 0.0_dp], 2, 3)) < 0.0_dp, &
+                     'a triangle 2 m away does not overlap')
   end subroutine polygons
 
   subroutine arch_geometry()
