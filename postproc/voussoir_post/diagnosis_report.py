@@ -51,7 +51,7 @@ def _figure_thresholds(out: Path, pairs, cands, decision, nested, note: str) -> 
     return name
 
 
-def _figure_candidates(out: Path, pairs, cands, settings, note: str) -> str:
+def _figure_candidates(out: Path, pairs, cands, settings, table, note: str) -> str:
     drawn = sorted((e for e in EFFECTS_BY_ID.values() if e.figure_axis is not None), key=lambda e: e.figure_axis[0])
     fig = new_figure(4.0 * len(drawn), 3.6)
     axes = fig.subplots(1, len(drawn))
@@ -66,8 +66,10 @@ def _figure_candidates(out: Path, pairs, cands, settings, note: str) -> str:
         nll.set_ylabel("-log likelihood (fit criterion)", color="tab:orange", fontsize=8)
         ax.plot([], [], ":", color="tab:orange", label="-log likelihood (right axis)")
         c = cands[effect]
+        measured = e.fixed_value(table) is not None
         ax.axvline(float(c.value) * scale, color="tab:green", ls="--",
-                   label="fitted: least -log likelihood\n(the change nearest nominal among ties)")
+                   label="measured on the table records (not fitted)" if measured
+                   else "fitted: least -log likelihood\n(the change nearest nominal among ties)")
         ax.set_xlabel(label)
         ax.set_ylabel("mean threshold error [%]")
         ax.set_title(f"{effect}: held-out {100 * c.cv_error:.1f} %" + ("" if c.admissible else " (excluded)"),
@@ -113,7 +115,7 @@ def write_report(out: Path, campaign, pairs, cands, decision, table, baseline_er
     note = provenance(info.get("code_version", ""), f"voussoir-diagnose on {campaign.path}")
     nested = info.get("nested") or []
     figs = [_figure_thresholds(out, pairs, cands, decision, nested, note),
-            _figure_candidates(out, pairs, cands, info["settings"], note)]
+            _figure_candidates(out, pairs, cands, info["settings"], table, note)]
     tfig = _figure_table(out, campaign, table, note)
     lines = [f"# Diagnosis of campaign `{campaign.name}`", "",
              f"**Verdict: `{result['verdict']}`.** {result['notes']}", ""]
