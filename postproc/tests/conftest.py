@@ -89,6 +89,18 @@ def voussoir_limit_exe() -> Path:
     return required_executable("voussoir-limit")
 
 
+#: Lines the diagnosis tests report (the verdict each campaign got), printed at the end
+#: of the session whatever the output capture.
+VERDICTS: list[str] = []
+
+
+def pytest_terminal_summary(terminalreporter, exitstatus, config):
+    if VERDICTS:
+        terminalreporter.section("diagnosis verdicts on the independent campaigns")
+        for line in VERDICTS:
+            terminalreporter.write_line(line)
+
+
 def pytest_sessionfinish(session, exitstatus):
     """No test may be skipped: a skipped test fails the session."""
     reporter = session.config.pluginmanager.get_plugin("terminalreporter")

@@ -24,7 +24,7 @@ from voussoir_post.diagnosis import (CandidateResult, DiagnosisSettings, PairDat
                                      decide, diagnose, fit_actuator)
 from voussoir_post.decision import hinge_match, hinge_score
 
-from conftest import bin_dir, executable
+from conftest import VERDICTS, bin_dir, executable
 from independent_campaigns import ARCHES, Truth, actuator_record, ring_blocks, write_campaign, write_polygon_file
 
 EDGES_OR_GEOMETRY = {"contact_edges", "geometry"}  # same hinges, same threshold drop (issue 13)
@@ -83,9 +83,11 @@ def diagnosed(request, tmp_path_factory, voussoir_run_exe):
     write_campaign(folder, truth, bin_dir(), seed=seed)
     out = root / "diagnosis"
     result = diagnose(folder, out, DiagnosisSettings(bin_dir=bin_dir(), n_ranks=2, log=lambda m: None))
-    print(f"\n[{name}] verdict {result['verdict']} effects {result['effects']} rivals {result['rivals']} "
-          f"parameters {json.dumps(result['parameters'])}; error {result['baseline']['threshold_error_pct']:.1f} % "
-          f"-> {result['extended']['threshold_error_pct']:.1f} % (nested held out)")
+    line = (f"[{name}] verdict {result['verdict']} effects {result['effects']} rivals {result['rivals']} "
+            f"parameters {json.dumps(result['parameters'])}; error {result['baseline']['threshold_error_pct']:.1f} % "
+            f"-> {result['extended']['threshold_error_pct']:.1f} % (nested held out)")
+    print("\n" + line)
+    VERDICTS.append(line)
     return name, truth, expect, folder, out, result
 
 
