@@ -65,6 +65,7 @@ echo "== 6. Fragility of the 156-degree arch under the record suite (IDA, 2 MPI 
 "$post" fragility results/ida_156.h5 --out results/ | tail -n 6 | sed 's/^/   /'
 
 # An index of everything the job made, with what each shows (results/index.md).
+rm -f results/.missing
 {
   echo "# Results of the main job ($(date -u +%Y-%m-%dT%H:%MZ), $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo 'no git'))"
   echo
@@ -72,12 +73,12 @@ echo "== 6. Fragility of the 156-degree arch under the record suite (IDA, 2 MPI 
   echo
   echo "| file | what it shows |"
   echo "|---|---|"
-  describe() { [[ -e results/$1 ]] && echo "| [$1]($1) | $2 |"; }
+  describe() { if [[ -e results/$1 ]]; then echo "| [$1]($1) | $2 |"; else echo "$1" >> results/.missing; fi; }
   describe seed_156_A46mm.h5 "run at 1.25 Hz, 46 mm (the amplitude that brought the real arch down): the model stands"
   describe seed_156_A66mm.h5 "run at 1.25 Hz, 66 mm (where the paper's LMGC90 fell): the model collapses"
   describe seed_156_A66mm_history.png "that run against time: table motion (acceleration in m/s2 and g), crown, NLGS iterations, contacts"
   describe seed_156_A66mm_sequence.png "its collapse sequence: hinges (red, i/e) and separated joints (purple), x5 until the collapse"
-  describe seed_156_A66mm.xdmf "the same run for ParaView"
+  describe seed_156_A66mm.xmf "the same run for ParaView (XDMF; its data in seed_156_A66mm.vtk.h5)"
   describe limit_seed_156.json "limit analysis: static capacity (in g), hinges, line of thrust, minimum thickness"
   describe limit_seed_156_mechanism.png "the two static mechanisms with their lines of thrust"
   describe sweep_envelope_156.h5 "collapse thresholds from 0.5 to 4 Hz (MPI sweep); CSV beside it"
@@ -88,5 +89,9 @@ echo "== 6. Fragility of the 156-degree arch under the record suite (IDA, 2 MPI 
   describe ida_156_fragility.png "the fragility curve: probability of collapse against PGA (g) and PGV, with its bootstrap band"
   describe ida_156_fragility.csv "the fitted curve, and ida_156_fragility_points.csv the points"
 } > results/index.md
+if [[ -s results/.missing ]]; then
+  echo "[main] error: the job did not make $(paste -sd ' ' results/.missing) (see the log above)" >&2
+  rm -f results/.missing; exit 1
+fi
 ls results/*.png | sed 's/^/   /'
 echo "[main] results in $root/results/ (index: results/index.md)"
