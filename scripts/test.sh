@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Build and run the whole test suite: the Fortran CTest programs, the runs of every
 # input file, the MPI sweep tests, and the Python tests (pytest). No test may be
-# skipped or left unrun: either counts as a failure.
+# skipped or left unrun: either counts as a failure. Then the main job, end to end.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
@@ -16,3 +16,11 @@ if grep -Eq '\*\*\*Skipped|Not Run|Disabled' "$log"; then
 fi
 echo "[test] pytest"
 VOUSSOIR_BIN_DIR="$root/build/drivers" .venv/bin/python -m pytest -q postproc/tests
+# The README's first command, end to end (its index lists every file it must make).
+echo "[test] main job (scripts/main_job.sh)"
+if ! bash scripts/main_job.sh > build/main_job.log 2>&1; then
+  tail -n 30 build/main_job.log
+  echo "[test] FAIL: the main job (README's first command) failed; its log: build/main_job.log"
+  exit 1
+fi
+tail -n 1 build/main_job.log
