@@ -174,6 +174,7 @@ def h5_fixture(path, scales, censored, scale_max):
     with h5py.File(path, "w") as h5:
         h5.attrs["producer"] = "voussoir-sweep"
         h5.attrs["mode"] = "ida"
+        h5.attrs["code_version"] = "voussoir 9.9.9+test"
         h5.attrs["record_files"] = "\n".join(RECORDS)
         h5.attrs["parameter_names"] = "friction,thickness_m"
         h5.attrs["config_nml"] = "&arch\n  embrace_deg = 156.0\n  n_voussoirs = 13\n  r_ext_m = 0.508\n" \
@@ -204,6 +205,7 @@ def test_hdf5_ida_with_censored_rows(tmp_path, capsys):
     ida = read_ida(path)
     assert ida.n_rows == 24 and ida.records == RECORDS and ida.n_sets == 8
     assert ida.record[4] == RECORDS[1] and ida.param_set[4] == 1
+    assert ida.code_version == "voussoir 9.9.9+test"  # the figure's small print names it
     np.testing.assert_allclose(ida.parameters["friction"][3:6], 0.55)
     np.testing.assert_array_equal(ida.censored, censored.reshape(-1))
     expected = fit_lognormal(ida.pga_m_s2, ida.censored)

@@ -49,6 +49,7 @@ class IdaResult:
     #: Rows left out because their search ended by a run that failed (no threshold, not
     #: a censored one either: a numerical failure tells nothing of the arch).
     n_failed: int = 0
+    code_version: str = ""  #: the version of voussoir-sweep that wrote the file (HDF5 only)
 
     @property
     def n_rows(self) -> int:
@@ -187,6 +188,7 @@ def _read_h5(path: str) -> IdaResult:
             sets = columns["param_set"].astype(int)
             parameters = {name: values[sets, k] for k, name in enumerate(names)}
         config = parse_namelist(_text(h5.attrs.get("config_nml", "")))
+        code_version = _text(h5.attrs.get("code_version", ""))
     return IdaResult(
         path=path, record=[files[i] for i in index], param_set=columns["param_set"].astype(int),
         scale_stood=columns["scale_stood"].astype(float), scale_threshold=columns["scale_threshold"].astype(float),
@@ -194,7 +196,7 @@ def _read_h5(path: str) -> IdaResult:
         censored=columns["censored"].astype(bool),
         non_monotonic=columns["non_monotonic"].astype(bool) if "non_monotonic" in columns else None,
         n_runs=columns["n_runs"].astype(int) if "n_runs" in columns else None,
-        parameters=parameters, config=config, n_failed=n_failed)
+        parameters=parameters, config=config, n_failed=n_failed, code_version=code_version)
 
 
 def _text(value) -> str:
