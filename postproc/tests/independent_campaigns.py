@@ -65,6 +65,7 @@ class Truth:
     thickness_factor: float = 1.0  #: ring thickness about its mean radius
     friction: float | None = None  #: true Coulomb coefficient (None: nominal)
     bracket_gap_m: float | None = None  #: driven brackets beside both bottom voussoirs, this far off
+    bracket_specimens: tuple[str, ...] | None = None  #: the specimens that have them (None: all)
     actuator_hz: float | None = None  #: natural frequency of a second-order actuator
     actuator_damping: float = 0.2  #: its damping ratio
 
@@ -123,7 +124,8 @@ def ring_blocks(arch: Arch, truth: Truth) -> tuple[list[tuple[str, list[np.ndarr
         tangent = sign * np.array([-math.sin(a), math.cos(a)])  # away from the ring
         depth = max(t, 0.1)
         blocks.append(("driven", [p_in, p_out, p_out + depth * tangent, p_in + depth * tangent]))
-    if truth.bracket_gap_m is not None:
+    if truth.bracket_gap_m is not None and (truth.bracket_specimens is None
+                                            or arch.specimen_id in truth.bracket_specimens):
         # Brackets carried by the table, standing off the extrados of each bottom
         # voussoir by the gap, over its outer half.
         for j, k0, k1 in ((1, 0, 1), (n, n, n - 1)):

@@ -37,6 +37,7 @@ from .nested import admissibility, mean_relative_error, nested_held_out
 from .diagnosis_settings import DiagnosisSettings
 from .effects import EFFECTS, Variant, effect
 from .selection import CandidateResult, PairData, evaluate_candidate, held_out_loss, mean_error
+from .setup_screen import specimen_restraints
 from .simulator import Simulator
 
 __all__ = ["DiagnosisSettings", "diagnose", "fit_actuator", "afd_command", "EFFECTS", "CandidateResult",
@@ -197,6 +198,9 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     uncertain = uncertain_specimens(apart, chosen, settings)
     if uncertain:
         notes += " " + " ".join(u["sentence"] for u in uncertain)
+    restrained_alone = specimen_restraints(pairs, shown)
+    if restrained_alone:
+        notes += " " + " ".join(r["sentence"] for r in restrained_alone)
     crown = crown_comparison(campaign, sim, [("nominal", Variant(), {})]
                              + ([(chosen.effect, *chosen.eff.model(chosen.value, table))] if chosen else []))
     elapsed = time.time() - t0
@@ -216,7 +220,7 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     write_report(out_dir, campaign, pairs, cands, decision, table, baseline_error, resolution, result,
                  {"elapsed_s": elapsed, "sweeps": sim.n_sweeps, "runs": sim.n_runs, "settings": settings,
                   "code_version": sim.code_version,
-                  "crown": crown, "uncertain": uncertain, "next_test": suggestion,
+                  "crown": crown, "uncertain": uncertain, "next_test": suggestion, "restrained_alone": restrained_alone,
                   "nested": nested, "fold_verdicts": fold_verdicts})
     log(f"[diagnose] verdict: {decision.verdict} ({elapsed:.0f} s, {sim.n_sweeps} sweeps, {sim.n_runs} single runs)")
     return result

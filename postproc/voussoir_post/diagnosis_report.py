@@ -193,6 +193,16 @@ def write_report(out: Path, campaign, pairs, cands, decision, table, baseline_er
                               f"{1e3 * u['nominal_m']:.1f}",
                               "-" if not math.isfinite(u["extended_m"]) else f"{1e3 * u['extended_m']:.1f}",
                               ", ".join(u["explained_by"]) or "no single effect") for u in uncertain])]
+    alone = info.get("restrained_alone") or []
+    if alone:
+        lines += ["", "## A specimen restrained on its own", "",
+                  "Brackets on one specimen only cannot be judged leaving that specimen out (nothing else "
+                  "predicts them); each specimen with two or more frequencies is therefore also screened on its "
+                  "own data: the restraint fitted on its other frequencies predicts each one held out. Where "
+                  "that beats the campaign's model by strong evidence:", "",
+                  _md_table(["specimen", "restraint", "its held-out error", "campaign model's error"],
+                            [(r["specimen"], r["restraint"], _pct(r["held_out_error"]), _pct(r["reference_error"]))
+                             for r in alone]), "", *[r["sentence"] for r in alone]]
     crown = info.get("crown") or {}
     lines += ["", "## Crown motion", ""]
     if crown.get("models"):
