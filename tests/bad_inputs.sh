@@ -36,6 +36,12 @@ case_ embrace_big       "embrace_deg = 190.*0 < embrace_deg <= 180" "&arch embra
 $o"
 case_ embrace_zero      "embrace_deg = 0.*0 < embrace_deg <= 180" "&arch embrace_deg = 0 /
 $o"
+# A voussoir a hundred times deeper than long is a sliver (issue 12: embrace_deg = 1e-6
+# "collapsed" under its own weight).
+case_ embrace_sliver    "embrace_deg = 1.00000E-006 is outside the allowed range 1.22 <= embrace_deg <= 180 for n_voussoirs = 13.*thickness_m/100" "&arch embrace_deg = 1e-6 /
+$o"
+case_ voussoirs_sliver  "n_voussoirs = 1000 is outside the allowed range 2 <= n_voussoirs <= 78 for embrace_deg = 180.*thickness_m/100" "&arch n_voussoirs = 1000, embrace_deg = 180, r_ext_m = 0.5, thickness_m = 0.4 /
+$o"
 case_ density           "density_kg_m3 = -700.*0 < density_kg_m3 <= 1e5" "&arch density_kg_m3 = -700 /
 $o"
 case_ friction          "friction = -0.1.*friction >= 0" "&arch friction = -0.1 /

@@ -412,6 +412,7 @@ BAD = [
     ("paired", "&sweep frequencies_hz = 1, combine = 'paired', embrace_list_deg = 180, 156, n_voussoirs_list = 15 /", r"combine = 'paired' needs swept lists of equal length"),
     ("pair_freq", "&sweep frequencies_hz = 1, 2, pair_frequencies = .true. /", r"pair_frequencies = .true. needs one frequency per parameter set"),
     ("set_inset", "&sweep frequencies_hz = 1, thickness_list_m = 0.071, 0.02, contact_inset_list_m = 0.015 /", r"parameter set 1 \(thickness_m = 0.02, contact_inset_m = 0.015\): &arch contact_inset_m = 0.015 is outside the allowed range"),
+    ("set_sliver", "&sweep frequencies_hz = 1, embrace_list_deg = 156, 1 /", r"parameter set 1 \(embrace_deg = 1\): &arch embrace_deg = 1 is outside the allowed range 1.22 <= embrace_deg <= 180 .*thickness_m/100"),
     ("waveform", "&motion waveform = 'ramp', duration_s = 1 /\n&sweep frequencies_hz = 1 /", r"waveform = 'ramp': a sweep sets the frequency and amplitude of the 'afd' waveform"),
     ("group", "&geometry r = 1 /\n&sweep frequencies_hz = 1 /", r"unknown namelist group &geometry"),
 ]
