@@ -24,6 +24,9 @@ case_ unknown_group     "unknown namelist group &geometry" "&geometry r = 1 /
 $o"
 case_ unknown_variable  "&arch.*thicknes"          "&arch thicknes = 0.1 /
 $o"
+pad=$(printf '%*s' 1100 '')
+case_ long_line         "&arch has no variable 'thicknes'" "&arch embrace_deg = 156,$pad thicknes = 0.1 /
+$o"
 case_ wrong_type        "&arch"                    "&arch n_voussoirs = 'many' /
 $o"
 case_ thick             "thickness_m = 0.6.*0 < thickness_m < r_ext_m" "&arch thickness_m = 0.6, r_ext_m = 0.5 /
