@@ -134,6 +134,26 @@ $o"
 printf 'block free\n0 0\n1 0\n1 1\n0 1\n' > all_free.txt
 printf 'block driven\n0 0\n1 0\n1 1\n0 1\n' > all_driven.txt
 printf 'block free\n0 0\n1 0\n1 1\n0 1\nblock driven\n-1 -0.5\n2 -0.5\n2 0.01\n-1 0.01\n' > overlap.txt
+# Polygons that cannot be blocks (issue 12: a NaN vertex ran and "stood").
+table='block driven\n-1 -0.2\n1 -0.2\n1 0\n-1 0\n'
+printf "block free\n-0.1 0\n0.1 0\nnan 1\n-0.1 1\n$table" > vertex_nan.txt
+printf "block free\n-0.1 0\n0.1 0\n0.1 Inf\n-0.1 1\n$table" > vertex_inf.txt
+printf "block free\n-1e200 0\n1e200 0\n1e200 1\n-1e200 1\n$table" > vertex_far.txt
+printf "block free\n0 0.1\n0.1 0.1\n0.2 0.1\n$table" > flat.txt
+printf "# a pentagram\nblock free\n0.2 0.1\n0.0191 0.1588\n0.1309 0.0049\n0.1309 0.1951\n0.0191 0.0412\n$table" > star.txt
+printf "block free\n0 0\n1e-9 0\n1e-9 1e-9\n0 1e-9\n$table" > speck.txt
+case_ polygon_nan       "vertex_nan.txt:4: vertex x = NaN is not a finite number" "&arch polygon_file = 'vertex_nan.txt' /
+$o"
+case_ polygon_inf       "vertex_inf.txt:4: vertex y = Infinity is not a finite number" "&arch polygon_file = 'vertex_inf.txt' /
+$o"
+case_ polygon_far       "vertex_far.txt:2: vertex x = -1.00000E\+200 m is outside the allowed range -1000 m <= x <= 1000 m" "&arch polygon_file = 'vertex_far.txt' /
+$o"
+case_ polygon_flat      "flat.txt:1: block 1 has zero area" "&arch polygon_file = 'flat.txt' /
+$o"
+case_ polygon_star      "star.txt:2: block 1 is not a convex polygon" "&arch polygon_file = 'star.txt' /
+$o"
+case_ polygon_speck     "speck.txt:1: block 1 is 1.00E-9 m wide at its narrowest: the allowed range is width >= 1e-4 m" "&arch polygon_file = 'speck.txt' /
+$o"
 case_ polygon_no_driven "all_free.txt: no block is driven" "&arch polygon_file = 'all_free.txt' /
 $o"
 case_ polygon_no_free   "all_driven.txt: every block is driven" "&arch polygon_file = 'all_driven.txt' /
