@@ -154,6 +154,10 @@ case_ polygon_star      "star.txt:2: block 1 is not a convex polygon" "&arch pol
 $o"
 case_ polygon_speck     "speck.txt:1: block 1 is 1.00E-9 m wide at its narrowest: the allowed range is width >= 1e-4 m" "&arch polygon_file = 'speck.txt' /
 $o"
+case_ wall_speck        "&wall block_width_m = 1.00000E-009 is outside the allowed range 1e-4 m <= block_width_m <= 100 m" "&wall courses = 3, blocks_per_course = 3, block_width_m = 1e-9 /
+$o"
+case_ wall_wrong_type   "&wall.*The variables of &wall are: courses, blocks_per_course \(integer\)" "&wall courses = 'x' /
+$o"
 case_ polygon_no_driven "all_free.txt: no block is driven" "&arch polygon_file = 'all_free.txt' /
 $o"
 case_ polygon_no_free   "all_driven.txt: every block is driven" "&arch polygon_file = 'all_driven.txt' /
