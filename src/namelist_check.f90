@@ -245,6 +245,7 @@ contains
         if (index(separators, values(i:i)) > 0) exit
         i = i + 1
       end do
+      if (values(start:start) == '&') cycle   ! an '&end' closing the group
       repeat = 1
       star = index(values(start:i - 1), '*')
       if (star > 1) then
