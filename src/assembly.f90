@@ -6,9 +6,11 @@
 module voussoir_assembly
   use voussoir_kinds, only: dp, pi
   use voussoir_status, only: status_t, fail
-  use voussoir_geometry, only: polygon_area, is_convex_ccw, overlap_depth
+  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+  use voussoir_geometry, only: polygon_area, is_convex_ccw, overlap_depth, polygon_min_width
+  use voussoir_line_reader, only: read_line
   use voussoir_random_stream, only: random_stream_t, stream_init, stream_uniform
-  use voussoir_text, only: itoa, fmt_significant
+  use voussoir_text, only: itoa, fmt_significant, fmt_real
   implicit none
   private
 
@@ -169,14 +171,18 @@ contains
   !>
   !> Format: lines `block free` or `block driven` start a polygon, followed by one vertex
   !> `x y` [m] a line; `#` starts a comment; blank lines are ignored. Vertices may be in
-  !> either orientation; the polygon must be convex.
+  !> either orientation; the polygon must be convex. Every coordinate is finite and
+  !> within `max_coordinate_m` of the origin, every block at least `min_width_m` wide.
   subroutine read_polygon_file(path, assembly, status)
     character(len=*), intent(in) :: path
     type(assembly_t), intent(out) :: assembly
     type(status_t), intent(inout) :: status
-    character(len=512) :: line, iomsg
+    real(dp), parameter :: max_coordinate_m = 1.0e3_dp   !! as r_ext_m and width_m of &arch
+    real(dp), parameter :: min_width_m = 1.0e-4_dp       !! 100 times the overlap tolerance
+    character(len=:), allocatable :: line
+    character(len=512) :: iomsg
     character(len=16) :: word, mode
-    integer :: unit, ios, line_no, nb, nv, k
+    integer :: unit, ios, line_no, nb, nv, k, block_line
     real(dp) :: x, y
     real(dp), allocatable :: xy(:, :)
     type(polygon_t), allocatable :: polys(:)
@@ -192,13 +198,14 @@ contains
     nb = 0
     line_no = 0
     do
-      read (unit, '(a)', iostat=ios) line
+      call read_line(unit, line, ios)
       if (ios /= 0) exit
       line_no = line_no + 1
       write (where, '(a,i0)') ':', line_no
       k = index(line, '#')
       if (k > 0) line = line(:k - 1)
       if (len_trim(line) == 0) cycle
+      word = ''
       read (line, *, iostat=ios) word
       if (word == 'block') then
         if (nb > 0) call close_polygon()
@@ -209,6 +216,7 @@ contains
           exit
         end if
         nb = nb + 1
+        block_line = line_no
         driven = [driven, mode == 'driven']
         deallocate (xy)
         allocate (xy(2, 0))
@@ -218,6 +226,9 @@ contains
           call fail(status, trim(path)//trim(where)//": expected a vertex 'x y' in m after a 'block' line")
           exit
         end if
+        call check_coordinate('x', x)
+        call check_coordinate('y', y)
+        if (.not. status%ok) exit
         xy = reshape([xy, x, y], [2, size(xy, 2) + 1])
       end if
     end do
@@ -273,17 +284,43 @@ contains
       end do
     end subroutine check_overlaps
 
+    !> A vertex coordinate [m] is a finite number within max_coordinate_m of the origin.
+    subroutine check_coordinate(name, value)
+      character(len=*), intent(in) :: name
+      real(dp), intent(in) :: value
+      if (ieee_is_finite(value)) then
+        if (abs(value) <= max_coordinate_m) return
+        call fail(status, trim(path)//trim(where)//': vertex '//name//' = '//fmt_real(value)// &
+                  ' m is outside the allowed range -1000 m <= '//name//' <= 1000 m')
+      else
+        call fail(status, trim(path)//trim(where)//': vertex '//name//' = '//fmt_real(value)// &
+                  ' is not a finite number (allowed: -1000 m <= '//name//' <= 1000 m)')
+      end if
+    end subroutine check_coordinate
+
     subroutine close_polygon()
-      character(len=16) :: id
+      character(len=:), allocatable :: id
+      real(dp) :: width
       nv = size(xy, 2)
-      write (id, '(i0)') nb
+      id = trim(path)//':'//itoa(block_line)//': block '//itoa(nb)
       if (nv < 3) then
-        call fail(status, trim(path)//': block '//trim(id)//' has fewer than 3 vertices')
+        call fail(status, id//' has fewer than 3 vertices')
+        return
+      end if
+      if (polygon_area(xy) == 0.0_dp) then
+        call fail(status, id//' has zero area (its vertices are on one line)')
         return
       end if
       if (polygon_area(xy) < 0.0_dp) xy = xy(:, nv:1:-1)
       if (.not. is_convex_ccw(xy)) then
-        call fail(status, trim(path)//': block '//trim(id)//' is not a convex polygon')
+        call fail(status, id//' is not a convex polygon (a vertex turns inwards, repeats, or the '// &
+                  'edges cross): split it into convex blocks')
+        return
+      end if
+      width = polygon_min_width(xy)
+      if (width < min_width_m) then
+        call fail(status, id//' is '//fmt_significant(width, 3)//' m wide at its narrowest: '// &
+                  'the allowed range is width >= 1e-4 m (0.1 mm; blocks touch within 1 micrometre)')
         return
       end if
       polys = [polys, polygon_t(xy)]

@@ -1,6 +1,8 @@
 !> The checks of every &arch, &motion, &solver and &output value (voussoir_config's
 !> validate_config), apart from the reading.
 submodule (voussoir_config) voussoir_config_validate
+  use voussoir_kinds, only: pi
+  use voussoir_text, only: fmt_significant
   implicit none
 
 contains
@@ -44,6 +46,8 @@ contains
         call need_rule('r_ext_m', a%r_ext_m)
         call need(a%thickness_m > 0.0_dp .and. a%thickness_m < a%r_ext_m, &
           'arch', 'thickness_m', a%thickness_m, '0 < thickness_m < r_ext_m = '//fmt_real(a%r_ext_m))
+        if (.not. status%ok) return
+        call check_voussoir_length()
         if (.not. status%ok) return
         select case (a%restrained_springings)
         case ('none', 'left', 'right', 'both')
@@ -153,6 +157,37 @@ contains
     end associate
 
   contains
+
+    !> Each voussoir is at least thickness_m/100 long at the intrados: a block a hundred
+    !> times deeper than long is a sliver, not a voussoir, and the kernel's answer for
+    !> slivers is wrong (a flat arch of slivers "collapses" under its own weight).
+    subroutine check_voussoir_length()
+      real(dp), parameter :: max_depth_over_length = 100.0_dp
+      real(dp) :: r_int_m, length_m, min_embrace_deg
+      integer :: max_n
+      associate (a => cfg%arch)
+        r_int_m = a%r_ext_m - a%thickness_m
+        length_m = r_int_m*a%embrace_deg*pi/180.0_dp/a%n_voussoirs
+        if (length_m >= a%thickness_m/max_depth_over_length) return
+        min_embrace_deg = a%n_voussoirs*a%thickness_m/(max_depth_over_length*r_int_m)*180.0_dp/pi
+        ! Rounded up to 3 digits, so that the bound printed passes.
+        min_embrace_deg = 0.01_dp*ceiling(100.0_dp*min_embrace_deg)
+        if (min_embrace_deg <= 180.0_dp) then
+          call fail(status, f//': &arch embrace_deg = '//fmt_real(a%embrace_deg)// &
+                    ' is outside the allowed range '//fmt_significant(min_embrace_deg, 6)//' <= embrace_deg <= 180'// &
+                    ' for n_voussoirs = '//itoa(a%n_voussoirs)//', thickness_m = '//fmt_real(a%thickness_m)// &
+                    ', r_ext_m = '//fmt_real(a%r_ext_m)//': each voussoir must be at least thickness_m/100'// &
+                    ' long at the intrados (these would be '//fmt_significant(length_m, 4)//' m)')
+        else
+          max_n = floor(r_int_m*a%embrace_deg*pi/180.0_dp*max_depth_over_length/a%thickness_m)
+          call fail(status, f//': &arch n_voussoirs = '//itoa(a%n_voussoirs)// &
+                    ' is outside the allowed range 2 <= n_voussoirs <= '//itoa(max_n)// &
+                    ' for embrace_deg = '//fmt_real(a%embrace_deg)//', thickness_m = '//fmt_real(a%thickness_m)// &
+                    ', r_ext_m = '//fmt_real(a%r_ext_m)//': each voussoir must be at least thickness_m/100'// &
+                    ' long at the intrados (these would be '//fmt_significant(length_m, 4)//' m)')
+        end if
+      end associate
+    end subroutine check_voussoir_length
 
     !> The result file can be written where it is named: its folder exists, it is not a
     !> folder itself, and it is not the input (checked before any simulation).

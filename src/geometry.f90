@@ -2,7 +2,7 @@
 !>
 !> Polygons are (2, n) arrays of vertices in counter-clockwise order.
 module voussoir_geometry
-  use voussoir_kinds, only: dp
+  use voussoir_kinds, only: dp, pi
   implicit none
   private
 
@@ -72,20 +72,28 @@ contains
     polygon_polar_moment = polygon_polar_moment/12.0_dp
   end function polygon_polar_moment
 
-  !> True when the polygon is strictly convex with counter-clockwise vertices.
+  !> True when the polygon is strictly convex with counter-clockwise vertices: every
+  !> turn is to the left and the turns add up to one revolution (a star polygon, whose
+  !> edges cross, turns left at every vertex too but goes round twice or more).
   pure logical function is_convex_ccw(xy)
     real(dp), intent(in) :: xy(:, :)
     integer :: i, n
+    real(dp) :: e_in(2), e_out(2), turning_rad
     n = size(xy, 2)
     is_convex_ccw = n >= 3
     if (.not. is_convex_ccw) return
+    turning_rad = 0.0_dp
     do i = 1, n
-      if (cross2(xy(:, modulo(i, n) + 1) - xy(:, i), &
-                 xy(:, modulo(i + 1, n) + 1) - xy(:, modulo(i, n) + 1)) <= 0.0_dp) then
+      e_in = xy(:, modulo(i, n) + 1) - xy(:, i)
+      e_out = xy(:, modulo(i + 1, n) + 1) - xy(:, modulo(i, n) + 1)
+      if (.not. (cross2(e_in, e_out) > 0.0_dp)) then   ! (also false for a NaN)
         is_convex_ccw = .false.
         return
       end if
+      turning_rad = turning_rad + atan2(cross2(e_in, e_out), dot_product(e_in, e_out))
     end do
+    ! The turns of a simple polygon add up to 2 pi, those of a star to 4 pi or more.
+    is_convex_ccw = turning_rad < 3.0_dp*pi
   end function is_convex_ccw
 
   !> Outward unit normals of the edges of a convex polygon (counter-clockwise), edge i

@@ -15,6 +15,10 @@ module voussoir_limit_study
 
   public :: limit_options_t, thickness_result_t, read_limit_group, analyse
 
+  !> The exhaustive four-hinge search costs n^4: 0.5 s at 100 voussoirs, 9 s at 200,
+  !> 40 s at 300 (docs/limit_analysis.md); beyond 200 the answer hardly moves.
+  integer, parameter :: max_limit_voussoirs = 200
+
   !> The &limit group.
   type :: limit_options_t
     logical :: minimum_thickness = .true.  !! compute the minimum thickness
@@ -56,7 +60,8 @@ contains
     close (unit)
     ! End of file: the group is absent and the defaults hold.
     if (ios /= 0 .and. ios /= iostat_end) then
-      call fail(status, path//': in namelist group &limit: '//trim(iomsg))
+      call fail(status, path//': in namelist group &limit: '//trim(iomsg)// &
+                '. The variables of &limit are: minimum_thickness (logical), inset_m (real, m)')
       return
     end if
     opts%minimum_thickness = minimum_thickness
@@ -90,6 +95,12 @@ contains
       else if (a%n_voussoirs < 3) then
         call fail(status, f//': &arch n_voussoirs = '//itoa(a%n_voussoirs)// &
                   ' is outside the allowed range n_voussoirs >= 3 (a four-hinge mechanism needs 3 voussoirs)')
+      else if (a%n_voussoirs > max_limit_voussoirs) then
+        call fail(status, f//': &arch n_voussoirs = '//itoa(a%n_voussoirs)// &
+                  ' is outside the allowed range 3 <= n_voussoirs <= '//itoa(max_limit_voussoirs)// &
+                  ' of voussoir-limit: its exhaustive four-hinge search grows as n^4 (9 s at 200 voussoirs, '// &
+                  '40 s at 300, minutes beyond), and a semicircle of 50 or 200 voussoirs has the same '// &
+                  'minimum thickness to 4 digits')
       else if (opts%minimum_thickness .and. a%n_voussoirs < 4) then
         call fail(status, f//': &arch n_voussoirs = 3: the minimum thickness needs n_voussoirs >= 4 '// &
                   '(an arch of 3 voussoirs stands at vanishing thickness); set &limit minimum_thickness = .false.')

@@ -3,11 +3,12 @@
 !> one). Every driver checks every group of its input with these.
 module voussoir_namelist_check
   use voussoir_status, only: status_t, fail
-  use voussoir_text, only: lower, join_words
+  use voussoir_text, only: lower, join_words, itoa
+  use voussoir_line_reader, only: read_line
   implicit none
   private
 
-  public :: check_groups, check_names
+  public :: check_groups, check_names, check_list_lengths
 
 contains
 
@@ -18,7 +19,7 @@ contains
     type(status_t), intent(inout) :: status
     integer :: unit, ios, line_no, k, e
     integer :: first_line(size(allowed))
-    character(len=1024) :: line
+    character(len=:), allocatable :: line
     character(len=512) :: iomsg, list
     character(len=64) :: name
     character(len=16) :: num, num0
@@ -35,10 +36,11 @@ contains
     line_no = 0
     first_line = 0
     do
-      read (unit, '(a)', iostat=ios) line
+      call read_line(unit, line, ios)
       if (ios /= 0) exit
       line_no = line_no + 1
-      line = adjustl(line)
+      line = trim(adjustl(line))
+      if (len(line) == 0) cycle
       if (line(1:1) /= '&') cycle
       e = scan(line(2:), ' ,/!'//achar(9))
       if (e == 0) then
@@ -73,29 +75,98 @@ contains
     character(len=*), intent(in) :: path, group
     character(len=*), intent(in) :: known(:)
     type(status_t), intent(inout) :: status
-    character(len=1024) :: line
     character(len=:), allocatable :: text, name
-    character(len=1) :: quote
-    integer :: unit, ios, i, j, k
-    logical :: inside
+    integer :: k, first, last, first_entry
 
     if (.not. status%ok) return
+    text = group_text(path, group)
+    do k = 1, len(text)
+      if (text(k:k) /= '=') cycle
+      call name_before(text, k, first, last, first_entry)
+      if (last < first) cycle
+      name = lower(text(first:last))
+      if (.not. any(known == name)) then
+        call fail(status, path//': &'//group//" has no variable '"//name//"' (known: "// &
+                  join_words(known)//')')
+        return
+      end if
+    end do
+  end subroutine check_names
+
+  !> Fail if list `names(m)` of group `group` in `path` is given more than
+  !> `max_values(m)` values (the compiler's message for it names the first value too
+  !> many as an unknown variable). Counts `r*value` as r values, and `name(k) = ...`
+  !> from entry k.
+  subroutine check_list_lengths(path, group, names, max_values, status)
+    character(len=*), intent(in) :: path, group
+    character(len=*), intent(in) :: names(:)
+    integer, intent(in) :: max_values(:)
+    type(status_t), intent(inout) :: status
+    character(len=:), allocatable :: text
+    integer :: k, first, last, first_entry, list, list_first_entry, values_from, values_to, last_entry
+
+    if (.not. status%ok) return
+    text = group_text(path, group)
+    list = 0   ! the list whose values follow (0: another variable)
+    list_first_entry = 1
+    values_from = 1
+    do k = 1, len(text) + 1
+      first = len(text) + 1
+      if (k <= len(text)) then
+        if (text(k:k) /= '=') cycle
+        call name_before(text, k, first, last, first_entry)
+        if (last < first) cycle
+      end if
+      ! The values of the previous variable end where this name begins.
+      if (list > 0) then
+        values_to = first - 1
+        last_entry = list_first_entry - 1 + count_values(text(values_from:values_to))
+        if (last_entry > max_values(list)) then
+          if (list_first_entry == 1) then
+            call fail(status, path//': &'//group//' '//trim(names(list))//' has '//itoa(last_entry)// &
+                      ' values; at most '//itoa(max_values(list)))
+          else
+            call fail(status, path//': &'//group//' '//trim(names(list))//' has values up to entry '// &
+                      itoa(last_entry)//'; at most '//itoa(max_values(list)))
+          end if
+          return
+        end if
+      end if
+      if (k > len(text)) exit
+      list = findloc(names, lower(text(first:last)), dim=1)
+      list_first_entry = first_entry
+      values_from = k + 1
+    end do
+  end subroutine check_list_lengths
+
+  !> The text of group `group` in `path` up to its closing '/', without comments, each
+  !> quoted string as one 'q' (a value, never taken for a name); '' if absent.
+  function group_text(path, group) result(text)
+    character(len=*), intent(in) :: path, group
+    character(len=:), allocatable :: text
+    character(len=:), allocatable :: line
+    character(len=1) :: quote
+    integer :: unit, ios, i
+    logical :: inside
+
+    text = ''
     open (newunit=unit, file=path, status='old', action='read', iostat=ios)
     if (ios /= 0) return   ! reported by the namelist read
-    text = ''
     inside = .false.
     quote = ' '
     do
-      read (unit, '(a)', iostat=ios) line
+      call read_line(unit, line, ios)
       if (ios /= 0) exit
       if (.not. inside) then
-        line = adjustl(line)
-        if (lower(line(1:len(group) + 1)) /= '&'//group .or. &
-            verify(line(len(group) + 2:len(group) + 2), ' ,/!'//achar(9)) /= 0) cycle
+        line = trim(adjustl(line))
+        if (len(line) < len(group) + 1) cycle
+        if (lower(line(1:len(group) + 1)) /= '&'//group) cycle
+        if (len(line) > len(group) + 1) then
+          if (verify(line(len(group) + 2:len(group) + 2), ' ,/!'//achar(9)) /= 0) cycle
+        end if
         inside = .true.
         line = line(len(group) + 2:)
       end if
-      ! Keep the group's text up to its closing '/', without comments and quoted text.
       do i = 1, len_trim(line)
         if (quote /= ' ') then
           if (line(i:i) == quote) quote = ' '
@@ -104,7 +175,7 @@ contains
         select case (line(i:i))
         case ("'", '"')
           quote = line(i:i)
-          text = text//' '
+          text = text//'q'
         case ('!')
           exit
         case ('/')
@@ -118,36 +189,71 @@ contains
       text = text//' '
     end do
     close (unit)
-    ! A name is the identifier before each '=' (after an optional (index)).
-    do k = 1, len(text)
-      if (text(k:k) /= '=') cycle
-      j = k - 1
-      do while (j > 0)
-        if (text(j:j) /= ' ') exit
-        j = j - 1
-      end do
-      if (j > 0) then
-        if (text(j:j) == ')') then
-          j = index(text(1:j), '(', back=.true.) - 1
-          do while (j > 0)
-            if (text(j:j) /= ' ') exit
-            j = j - 1
-          end do
-        end if
-      end if
-      i = j
-      do while (i > 0)
-        if (verify(lower(text(i:i)), 'abcdefghijklmnopqrstuvwxyz0123456789_') /= 0) exit
-        i = i - 1
-      end do
-      if (j <= i) cycle
-      name = lower(text(i + 1:j))
-      if (.not. any(known == name)) then
-        call fail(status, path//': &'//group//" has no variable '"//name//"' (known: "// &
-                  join_words(known)//')')
-        return
-      end if
+  end function group_text
+
+  !> The name text(first:last) assigned by the '=' at text(k:k) (last < first if none),
+  !> and the entry its values start at: k of `name(k) =`, else 1.
+  pure subroutine name_before(text, k, first, last, first_entry)
+    character(len=*), intent(in) :: text
+    integer, intent(in) :: k
+    integer, intent(out) :: first, last, first_entry
+    integer :: j, open_at, ios
+
+    first_entry = 1
+    j = k - 1
+    do while (j > 0)
+      if (text(j:j) /= ' ') exit
+      j = j - 1
     end do
-  end subroutine check_names
+    if (j > 0) then
+      if (text(j:j) == ')') then
+        open_at = index(text(1:j), '(', back=.true.)
+        if (open_at > 0) then
+          read (text(open_at + 1:j - 1), *, iostat=ios) first_entry
+          if (ios /= 0) first_entry = 1
+        end if
+        j = open_at - 1
+        do while (j > 0)
+          if (text(j:j) /= ' ') exit
+          j = j - 1
+        end do
+      end if
+    end if
+    last = j
+    first = j + 1
+    do while (first > 1)
+      if (verify(lower(text(first - 1:first - 1)), 'abcdefghijklmnopqrstuvwxyz0123456789_') /= 0) exit
+      first = first - 1
+    end do
+  end subroutine name_before
+
+  !> How many values a namelist value list holds (`r*value` and `r*` count r).
+  pure integer function count_values(values) result(n)
+    character(len=*), intent(in) :: values
+    integer :: i, start, star, repeat, ios
+    character(len=*), parameter :: separators = ' ,'//achar(9)
+
+    n = 0
+    i = 1
+    do while (i <= len(values))
+      if (index(separators, values(i:i)) > 0) then
+        i = i + 1
+        cycle
+      end if
+      start = i
+      do while (i <= len(values))
+        if (index(separators, values(i:i)) > 0) exit
+        i = i + 1
+      end do
+      if (values(start:start) == '&') cycle   ! an '&end' closing the group
+      repeat = 1
+      star = index(values(start:i - 1), '*')
+      if (star > 1) then
+        read (values(start:start + star - 2), *, iostat=ios) repeat
+        if (ios /= 0 .or. repeat < 1) repeat = 1
+      end if
+      n = n + repeat
+    end do
+  end function count_values
 
 end module voussoir_namelist_check

@@ -11,7 +11,7 @@ module voussoir_sweep_plan
   use voussoir_text, only: lower, itoa, int_list, join_words, fmt_exact_list
   use voussoir_config, only: config_t, config_entry_t, config_entries, config_to_nml, validate_config, &
                              fmt_real, arch_rule, arch_rule_text
-  use voussoir_namelist_check, only: check_names
+  use voussoir_namelist_check, only: check_names, check_list_lengths
   use voussoir_threshold, only: threshold_settings_t
   use voussoir_sweep_ida, only: ida_records_t, read_ida_records, sample_sets, n_sampled, range_names
   implicit none
@@ -117,6 +117,9 @@ contains
       'frequencies_hz', 'amplitudes_m', 'amp_tol_m', 'amp_max_m', 'scan_step', 'refine_factor', 'n_confirm', &
       'progress_every_s', list_names, 'record_files', 'scale_tol', 'scale_max', 'n_samples', 'sample_seed', &
       range_names, 'dt_check_rows'], status)
+    call check_list_lengths(path, 'sweep', [character(len=24) :: 'frequencies_hz', 'amplitudes_m', list_names, &
+      'record_files', range_names], [max_list, max_list, spread(max_list, 1, n_kinds), max_records, &
+      spread(2, 1, size(range_names))], status)
     if (.not. status%ok) return
     open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
     if (ios /= 0) then

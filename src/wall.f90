@@ -58,7 +58,9 @@ contains
     read (unit, nml=wall, iostat=ios, iomsg=iomsg)
     close (unit)
     if (ios /= 0 .and. ios /= iostat_end) then
-      call fail(status, trim(path)//': in namelist group &wall: '//trim(iomsg))
+      call fail(status, trim(path)//': in namelist group &wall: '//trim(iomsg)// &
+                ". The variables of &wall are: courses, blocks_per_course (integer), block_width_m, "// &
+                "block_height_m (real, m), bond ('running'|'stack')")
       return
     end if
     w = wall_config_t(courses, blocks_per_course, block_width_m, block_height_m, lower(bond))
@@ -66,10 +68,11 @@ contains
     call need(w%courses >= 1 .and. w%courses <= 10000, 'courses', real(w%courses, dp), '1 <= courses <= 10000')
     call need(w%blocks_per_course >= 1 .and. w%blocks_per_course <= 10000, 'blocks_per_course', &
               real(w%blocks_per_course, dp), '1 <= blocks_per_course <= 10000')
-    call need(w%block_width_m > 0.0_dp .and. w%block_width_m <= 100.0_dp, 'block_width_m', w%block_width_m, &
-              '0 < block_width_m <= 100 m')
-    call need(w%block_height_m > 0.0_dp .and. w%block_height_m <= 100.0_dp, 'block_height_m', w%block_height_m, &
-              '0 < block_height_m <= 100 m')
+    ! At least 0.1 mm, as the blocks of a polygon file (a 1e-9 m wall "collapsed" at once).
+    call need(w%block_width_m >= 1.0e-4_dp .and. w%block_width_m <= 100.0_dp, 'block_width_m', w%block_width_m, &
+              '1e-4 m <= block_width_m <= 100 m')
+    call need(w%block_height_m >= 1.0e-4_dp .and. w%block_height_m <= 100.0_dp, 'block_height_m', &
+              w%block_height_m, '1e-4 m <= block_height_m <= 100 m')
     if (.not. status%ok) return
     if (w%bond /= 'running' .and. w%bond /= 'stack') then
       call fail(status, trim(path)//": &wall bond = '"//trim(w%bond)//"' is not one of 'running', 'stack'")

@@ -24,6 +24,9 @@ case_ unknown_group     "unknown namelist group &geometry" "&geometry r = 1 /
 $o"
 case_ unknown_variable  "&arch.*thicknes"          "&arch thicknes = 0.1 /
 $o"
+pad=$(printf '%*s' 1100 '')
+case_ long_line         "&arch has no variable 'thicknes'" "&arch embrace_deg = 156,$pad thicknes = 0.1 /
+$o"
 case_ wrong_type        "&arch"                    "&arch n_voussoirs = 'many' /
 $o"
 case_ thick             "thickness_m = 0.6.*0 < thickness_m < r_ext_m" "&arch thickness_m = 0.6, r_ext_m = 0.5 /
@@ -35,6 +38,12 @@ $o"
 case_ embrace_big       "embrace_deg = 190.*0 < embrace_deg <= 180" "&arch embrace_deg = 190 /
 $o"
 case_ embrace_zero      "embrace_deg = 0.*0 < embrace_deg <= 180" "&arch embrace_deg = 0 /
+$o"
+# A voussoir a hundred times deeper than long is a sliver (issue 12: embrace_deg = 1e-6
+# "collapsed" under its own weight).
+case_ embrace_sliver    "embrace_deg = 1.00000E-006 is outside the allowed range 1.22 <= embrace_deg <= 180 for n_voussoirs = 13.*thickness_m/100" "&arch embrace_deg = 1e-6 /
+$o"
+case_ voussoirs_sliver  "n_voussoirs = 1000 is outside the allowed range 2 <= n_voussoirs <= 78 for embrace_deg = 180.*thickness_m/100" "&arch n_voussoirs = 1000, embrace_deg = 180, r_ext_m = 0.5, thickness_m = 0.4 /
 $o"
 case_ density           "density_kg_m3 = -700.*0 < density_kg_m3 <= 1e5" "&arch density_kg_m3 = -700 /
 $o"
@@ -125,6 +134,30 @@ $o"
 printf 'block free\n0 0\n1 0\n1 1\n0 1\n' > all_free.txt
 printf 'block driven\n0 0\n1 0\n1 1\n0 1\n' > all_driven.txt
 printf 'block free\n0 0\n1 0\n1 1\n0 1\nblock driven\n-1 -0.5\n2 -0.5\n2 0.01\n-1 0.01\n' > overlap.txt
+# Polygons that cannot be blocks (issue 12: a NaN vertex ran and "stood").
+table='block driven\n-1 -0.2\n1 -0.2\n1 0\n-1 0\n'
+printf "block free\n-0.1 0\n0.1 0\nnan 1\n-0.1 1\n$table" > vertex_nan.txt
+printf "block free\n-0.1 0\n0.1 0\n0.1 Inf\n-0.1 1\n$table" > vertex_inf.txt
+printf "block free\n-1e200 0\n1e200 0\n1e200 1\n-1e200 1\n$table" > vertex_far.txt
+printf "block free\n0 0.1\n0.1 0.1\n0.2 0.1\n$table" > flat.txt
+printf "# a pentagram\nblock free\n0.2 0.1\n0.0191 0.1588\n0.1309 0.0049\n0.1309 0.1951\n0.0191 0.0412\n$table" > star.txt
+printf "block free\n0 0\n1e-9 0\n1e-9 1e-9\n0 1e-9\n$table" > speck.txt
+case_ polygon_nan       "vertex_nan.txt:4: vertex x = NaN is not a finite number" "&arch polygon_file = 'vertex_nan.txt' /
+$o"
+case_ polygon_inf       "vertex_inf.txt:4: vertex y = Infinity is not a finite number" "&arch polygon_file = 'vertex_inf.txt' /
+$o"
+case_ polygon_far       "vertex_far.txt:2: vertex x = -1.00000E\+200 m is outside the allowed range -1000 m <= x <= 1000 m" "&arch polygon_file = 'vertex_far.txt' /
+$o"
+case_ polygon_flat      "flat.txt:1: block 1 has zero area" "&arch polygon_file = 'flat.txt' /
+$o"
+case_ polygon_star      "star.txt:2: block 1 is not a convex polygon" "&arch polygon_file = 'star.txt' /
+$o"
+case_ polygon_speck     "speck.txt:1: block 1 is 1.00E-9 m wide at its narrowest: the allowed range is width >= 1e-4 m" "&arch polygon_file = 'speck.txt' /
+$o"
+case_ wall_speck        "&wall block_width_m = 1.00000E-009 is outside the allowed range 1e-4 m <= block_width_m <= 100 m" "&wall courses = 3, blocks_per_course = 3, block_width_m = 1e-9 /
+$o"
+case_ wall_wrong_type   "&wall.*The variables of &wall are: courses, blocks_per_course \(integer\)" "&wall courses = 'x' /
+$o"
 case_ polygon_no_driven "all_free.txt: no block is driven" "&arch polygon_file = 'all_free.txt' /
 $o"
 case_ polygon_no_free   "all_driven.txt: every block is driven" "&arch polygon_file = 'all_driven.txt' /

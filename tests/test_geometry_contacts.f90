@@ -1,6 +1,7 @@
 !> Unit checks of the geometry, the detection and the local Coulomb solve, each against
 !> a hand computation.
 program test_geometry_contacts
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use voussoir_kinds, only: dp, pi
   use voussoir_geometry, only: polygon_area, polygon_centroid, polygon_polar_moment, is_convex_ccw, &
                                overlap_depth, polygon_min_width
@@ -21,7 +22,8 @@ program test_geometry_contacts
 contains
 
   subroutine polygons()
-    real(dp) :: rect(2, 4), tri(2, 3), c(2)
+    real(dp) :: rect(2, 4), tri(2, 3), c(2), star(2, 5), nan_rect(2, 4)
+    integer :: k
     ! 2 x 1 rectangle with a corner at (1, 1): area 2, centroid (2, 1.5),
     ! polar moment (a^2 + b^2) A / 12 = 5 * 2 / 12.
     rect = reshape([1.0_dp, 1.0_dp, 3.0_dp, 1.0_dp, 3.0_dp, 2.0_dp, 1.0_dp, 2.0_dp], [2, 4])
@@ -32,6 +34,17 @@ contains
     call assert_close(polygon_polar_moment(rect), 10.0_dp/12.0_dp, 'rectangle polar moment [m4]', rtol=1.0e-14_dp)
     call assert_true(is_convex_ccw(rect), 'rectangle is convex ccw')
     call assert_true(.not. is_convex_ccw(rect(:, 4:1:-1)), 'clockwise rectangle is rejected')
+    ! A pentagram (every second vertex of a regular pentagon) turns left at every vertex
+    ! and has a positive area, but its edges cross: it goes round twice.
+    do k = 0, 4
+      star(:, k + 1) = [cos(4.0_dp*pi*k/5.0_dp), sin(4.0_dp*pi*k/5.0_dp)]
+    end do
+    call assert_true(polygon_area(star) > 0.0_dp, 'pentagram has a positive signed area')
+    call assert_true(.not. is_convex_ccw(star), 'pentagram (edges crossing) is rejected')
+    call assert_true(is_convex_ccw(star(:, [1, 4, 2, 5, 3])), 'regular pentagon is convex ccw')
+    nan_rect = rect
+    nan_rect(1, 3) = ieee_value(1.0_dp, ieee_quiet_nan)
+    call assert_true(.not. is_convex_ccw(nan_rect), 'rectangle with a NaN vertex is rejected')
     ! Right triangle legs 3 and 4: area 6, centroid (1, 4/3).
     tri = reshape([0.0_dp, 0.0_dp, 3.0_dp, 0.0_dp, 0.0_dp, 4.0_dp], [2, 3])
     call assert_close(polygon_area(tri), 6.0_dp, 'triangle area [m2]', rtol=1.0e-14_dp)

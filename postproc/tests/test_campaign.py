@@ -214,6 +214,7 @@ HEADER_T = "test_id,specimen_id,waveform,frequency_hz,amplitude_m,outcome\n"
     ("S1,0,13,0.508,0.071,0.145,700,0.5", 2, "embrace_deg", "0 < embrace_deg <= 180"),
     ("S1,180.5,13,0.508,0.071,0.145,700,0.5", 2, "embrace_deg", "out of range"),
     ("S1,156,1,0.508,0.071,0.145,700,0.5", 3, "n_voussoirs", "integer >= 2"),
+    ("S1,1e-6,13,0.508,0.071,0.145,700,0.5", 2, "embrace_deg", "1.22 <= embrace_deg <= 180 for n_voussoirs = 13"),
     ("S1,156,12.5,0.508,0.071,0.145,700,0.5", 3, "n_voussoirs", "not an integer"),
     ("S1,156,13,0.508,0.508,0.145,700,0.5", 5, "thickness_m", "thickness_m < r_ext_m"),
     ("S1,156,13,0.508,0,0.145,700,0.5", 5, "thickness_m", "out of range"),

@@ -237,6 +237,16 @@ def _read_specimens(path: str, warn_list: list[str]) -> dict[str, Specimen]:
         if thickness is not None and r_ext is not None and thickness >= r_ext:
             c.error("thickness_m", f"{row.cells['thickness_m']} is out of range: "
                                    f"0 < thickness_m < r_ext_m = {row.cells['r_ext_m']}")
+        elif None not in (embrace, n, r_ext, thickness) and n >= 2 and 0.0 < embrace <= 180.0 and thickness > 0.0:
+            # The rule of voussoir-run: every voussoir at least thickness_m/100 long at the
+            # intrados (a block a hundred times deeper than long is a sliver).
+            length = (r_ext - thickness) * math.radians(embrace) / n
+            if length < thickness / 100.0:
+                low = math.ceil(100.0 * math.degrees(n * thickness / (100.0 * (r_ext - thickness)))) / 100.0
+                c.error("embrace_deg", f"{row.cells['embrace_deg']} is out of range: {low:g} <= embrace_deg "
+                                       f"<= 180 for n_voussoirs = {n}, thickness_m = {row.cells['thickness_m']}, "
+                                       f"r_ext_m = {row.cells['r_ext_m']} (each voussoir at least thickness_m/100 "
+                                       f"long at the intrados; these would be {length:.3g} m)")
         c.raise_first()
         specimens[sid] = Specimen(sid, embrace, n, r_ext, thickness, width, density,
                                   DEFAULT_FRICTION if friction is None else friction,

@@ -122,7 +122,13 @@ elif case == "bad_inputs":
     poly = os.path.join(os.path.dirname(os.path.abspath(nml)), "blocks", "rocking_block.txt")
     cases = [
         ("unknown_limit_variable", "&limit", "&arch /\n&limit minimum_thicknes = .false. /\n"),
-        ("limit_wrong_type", "&limit", "&arch /\n&limit inset_m = 'wide' /\n"),
+        ("limit_wrong_type", r"&limit.*The variables of &limit are: minimum_thickness \(logical\), inset_m \(real, m\)",
+         "&arch /\n&limit inset_m = 'wide' /\n"),
+        ("limit_wrong_type_thickness", r"&limit.*The variables of &limit are: minimum_thickness \(logical\)",
+         "&arch /\n&limit minimum_thickness = 'x' /\n"),
+        # The four-hinge search grows as n^4: 600 voussoirs ran for minutes without a word.
+        ("many_voussoirs", r"n_voussoirs = 600 is outside the allowed range 3 <= n_voussoirs <= 200 of voussoir-limit.*n\^4",
+         "&arch n_voussoirs = 600 /\n"),
         ("limit_inset_too_big", "inset_m = 0.04.*thickness_m/2", "&arch /\n&limit inset_m = 0.04 /\n"),
         ("limit_inset_negative", "inset_m = -0.001", "&arch /\n&limit inset_m = -0.001 /\n"),
         ("restrained", "restrained_springings = 'left'.*restraint", "&arch restrained_springings = 'left' /\n"),

@@ -412,6 +412,11 @@ BAD = [
     ("paired", "&sweep frequencies_hz = 1, combine = 'paired', embrace_list_deg = 180, 156, n_voussoirs_list = 15 /", r"combine = 'paired' needs swept lists of equal length"),
     ("pair_freq", "&sweep frequencies_hz = 1, 2, pair_frequencies = .true. /", r"pair_frequencies = .true. needs one frequency per parameter set"),
     ("set_inset", "&sweep frequencies_hz = 1, thickness_list_m = 0.071, 0.02, contact_inset_list_m = 0.015 /", r"parameter set 1 \(thickness_m = 0.02, contact_inset_m = 0.015\): &arch contact_inset_m = 0.015 is outside the allowed range"),
+    ("set_sliver", "&sweep frequencies_hz = 1, embrace_list_deg = 156, 1 /", r"parameter set 1 \(embrace_deg = 1\): &arch embrace_deg = 1 is outside the allowed range 1.22 <= embrace_deg <= 180 .*thickness_m/100"),
+    ("list_long", "&sweep frequencies_hz = " + ", ".join(f"{0.5 + 0.01 * k:.2f}" for k in range(300)) + " /", r"&sweep frequencies_hz has 300 values; at most 256"),
+    ("list_repeat", "&sweep frequencies_hz = 1,\n  thickness_list_m = 256*0.07, 0.06 /", r"&sweep thickness_list_m has 257 values; at most 256"),
+    ("list_entry", "&sweep frequencies_hz(250) = 1, 2, 3, 4, 5, 6, 7, 8 /", r"&sweep frequencies_hz has values up to entry 257; at most 256"),
+    ("range_long", "&sweep frequencies_hz = 1, friction_range = 0.1, 0.2, 0.3 /", r"&sweep friction_range has 3 values; at most 2"),
     ("waveform", "&motion waveform = 'ramp', duration_s = 1 /\n&sweep frequencies_hz = 1 /", r"waveform = 'ramp': a sweep sets the frequency and amplitude of the 'afd' waveform"),
     ("group", "&geometry r = 1 /\n&sweep frequencies_hz = 1 /", r"unknown namelist group &geometry"),
 ]
