@@ -14,6 +14,9 @@ import math
 import os
 import sys
 
+import numpy as np
+
+from .assembly_joints import run_joints
 from .campaign import CampaignError, read_campaign
 from .compare import MatchError, plot_compare
 from .envelope import plot_envelope
@@ -190,6 +193,24 @@ def cmd_records(args) -> int:
     return 0
 
 
+def cmd_joints(args) -> int:
+    run = read_run(args.run)
+    motions = run_joints(run, args.tol_mm * 1e-3)
+    if not motions:
+        raise ValueError(f"{args.run}: no two blocks touch in the reference configuration (within {args.tol_mm:g} mm)")
+    columns = ["body_a", "body_b", "length_mm", "max_opening_mm", "final_opening_mm", "max_sliding_mm",
+               "final_sliding_mm"]
+    rows = [(m.joint.a + 1, m.joint.b + 1, 1e3 * float(np.linalg.norm(m.joint.ends_m[1] - m.joint.ends_m[0])),
+             1e3 * m.max_opening_m, 1e3 * m.final_opening_m, 1e3 * m.max_sliding_m, 1e3 * m.final_sliding_m)
+            for m in motions]
+    title = (f"joints of {os.path.basename(args.run)}: {len(motions)} faces where two blocks touch at t = 0 "
+             f"(bodies numbered as in /bodies, from 1), the largest final sliding first")
+    print(format_table(Table(columns, rows if args.top <= 0 else rows[: args.top], title)))
+    if args.csv:
+        print(f"wrote {write_csv(Table(columns, rows, title), output_path(args.run, 'joints', args.out, '.csv'))}")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="voussoir-post",
@@ -259,6 +280,17 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("keys", nargs="*", metavar="KEY", help="only these records (e.g. ELC180 CLS000)")
     p.add_argument("--namelist", action="store_true", help="print them as a &sweep record_files line")
     p.set_defaults(func=cmd_records)
+
+    p = sub.add_parser("joints", help="every joint of any assembly (a wall, polygon blocks): opening and sliding "
+                                      "over the run and at its end")
+    p.add_argument("run", metavar="RUN.h5")
+    p.add_argument("--top", type=int, default=20, metavar="N", help="print the N joints that slid most (0: all; "
+                                                                    "default 20)")
+    p.add_argument("--tol-mm", type=float, default=0.1, metavar="MM",
+                   help="two faces closer than this at t = 0 touch (default 0.1 mm)")
+    p.add_argument("--out", help="CSV file or folder for --csv (default: beside the run)")
+    p.add_argument("--csv", action="store_true", help="also write the table as CSV (<stem>_joints.csv)")
+    p.set_defaults(func=cmd_joints)
 
     p = sub.add_parser("mechanism", help="limit-analysis mechanisms (voussoir-limit --json)")
     p.add_argument("limit", metavar="LIMIT.json")
