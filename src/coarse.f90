@@ -28,7 +28,7 @@ module voussoir_coarse
   public :: coarse_t, coarse_init, coarse_correct
 
   !> Sweeps between two coarse corrections (the first follows the first sweep).
-  integer, parameter, public :: coarse_period = 4
+  integer, parameter, public :: coarse_period = 8
   !> Coarse unknowns per bed joint (the patterns 1 to 3 above).
   integer, parameter :: n_modes = 3
   !> An unloaded contact opens when its normal velocity exceeds this fraction of the
