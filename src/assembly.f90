@@ -32,6 +32,7 @@ module voussoir_assembly
     type(polygon_t), allocatable :: polygon(:)
     logical, allocatable :: driven(:)       !! velocity imposed by the table
     integer, allocatable :: role(:)
+    integer, allocatable :: course(:)       !! a wall's course of each body, 0 the foundation (else unallocated)
     ! Arch description (n_voussoirs = 0 for a generic assembly).
     integer :: n_voussoirs = 0
     real(dp) :: thickness_m = 0.0_dp

@@ -13,6 +13,7 @@ module voussoir_model
   use voussoir_nlgs, only: nlgs_work_t, nlgs_prepare, nlgs_solve, warm_start, i_arm_at, i_arm_an, &
                            i_arm_bt, i_arm_bn
   use voussoir_motion, only: motion_t, motion_eval, waveform_ramp
+  use voussoir_coarse, only: coarse_t
   implicit none
   private
 
@@ -36,6 +37,7 @@ module voussoir_model
     type(motion_t) :: motion
     type(solver_settings_t) :: solver
     type(contact_law_t) :: law
+    type(coarse_t) :: coarse            !! the courses of a wall (none: plain NLGS)
     real(dp) :: t_s = 0.0_dp
     integer :: step = 0
     ! Of the last step:
@@ -85,7 +87,7 @@ contains
       b%v = model%v_free
       call model_apply_impulses(model)
       call nlgs_solve(model%contacts, model%work, b%v, model%solver%tol, model%solver%max_iter, &
-                      model%iterations, model%norm, model%converged)
+                      model%iterations, model%norm, model%converged, model%coarse)
       call warm_start(model%work, model%contacts, nb, remember=.true.)
     end associate
 

@@ -9,18 +9,16 @@ module voussoir_nlgs
   use voussoir_geometry, only: cross2
   use voussoir_bodies, only: bodies_t
   use voussoir_contacts, only: contact_set_t
+  use voussoir_contact_rows, only: i_t, i_n, i_arm_at, i_arm_an, i_arm_bt, i_arm_bn, i_w_tt, i_w_tn, &
+                                   i_w_nn, i_det, i_shift, i_mu, i_ima, i_iia, i_imb, i_iib, n_rows
+  use voussoir_coarse, only: coarse_t, coarse_correct
   implicit none
   private
 
   public :: nlgs_work_t, nlgs_prepare, nlgs_solve, coulomb_local, warm_start
-
-  ! Rows of the packed per-contact data: tangent, normal, cross(arm, t or n) of bodies a
-  ! and b, the Delassus block and its determinant, the gap shift max(0, gap)/(theta h)
-  ! [m/s], the friction coefficient and the inverse masses and inertias of a and b.
-  integer, parameter, public :: i_t = 1, i_n = 3, i_arm_at = 5, i_arm_an = 6, i_arm_bt = 7, &
-                                i_arm_bn = 8, i_w_tt = 9, i_w_tn = 10, i_w_nn = 11, i_det = 12, &
-                                i_shift = 13, i_mu = 14, i_ima = 15, i_iia = 16, i_imb = 17, &
-                                i_iib = 18, n_rows = 18
+  ! The packed data's rows, for the callers that read it (voussoir_contact_rows).
+  public :: i_t, i_n, i_arm_at, i_arm_an, i_arm_bt, i_arm_bn, i_w_tt, i_w_tn, i_w_nn, i_det, i_shift, &
+            i_mu, i_ima, i_iia, i_imb, i_iib, n_rows
 
   !> Per-contact data of the solve, packed contact by contact for the hot loop.
   type :: nlgs_work_t
@@ -155,7 +153,10 @@ contains
   !> free velocities plus the effect of the impulses already in `set` and leave as the
   !> end-of-step velocities. Convergence: the 'Quad' norm
   !> sqrt(sum dr.W.dr / sum r.W.r) of one sweep's change of impulses below `tol`.
-  subroutine nlgs_solve(set, work, v, tol, max_iter, iterations, norm, converged)
+  !> With `coarse` (a wall's courses), a coarse correction of the impulses per bed joint after
+  !> the first sweep and every `coarse%period` sweeps after it (voussoir_coarse); the
+  !> test of convergence is always that of a sweep.
+  subroutine nlgs_solve(set, work, v, tol, max_iter, iterations, norm, converged, coarse)
     type(contact_set_t), intent(inout) :: set
     type(nlgs_work_t), intent(in) :: work
     real(dp), intent(inout) :: v(:, :)
@@ -164,14 +165,18 @@ contains
     integer, intent(out) :: iterations
     real(dp), intent(out) :: norm
     logical, intent(out) :: converged
+    type(coarse_t), intent(inout), optional :: coarse
     integer :: it
     real(dp) :: sum_change, sum_energy
+    logical :: with_coarse
 
     iterations = 0
     norm = 0.0_dp
     converged = .true.
     if (set%n == 0) return
     converged = .false.
+    with_coarse = .false.
+    if (present(coarse)) with_coarse = coarse%n_joints > 0
     do it = 1, max_iter
       call gauss_seidel_sweep(set%n, size(v, 2), work%pair, work%data, set%impulse, v, &
                               sum_change, sum_energy)
@@ -185,6 +190,10 @@ contains
       if (norm < tol) then
         converged = .true.
         return
+      end if
+      if (with_coarse) then
+        if (mod(it - 1, coarse%period) == 0) &
+          call coarse_correct(coarse, set%n, size(v, 2), work%pair, work%data, set%point, set%impulse, v)
       end if
     end do
   end subroutine nlgs_solve

@@ -9,6 +9,7 @@ module voussoir_setup
   use voussoir_wall, only: build_wall
   use voussoir_bodies, only: bodies_t, bodies_init
   use voussoir_model, only: model_t, solver_settings_t
+  use voussoir_coarse, only: coarse_init
   use voussoir_contact_law, only: contact_law_t, contact_law_init
   use voussoir_motion, only: motion_afd, motion_ramp, motion_record, motion_accelerogram, motion_duration_s
   use voussoir_ground_record, only: ground_record_t, read_ground_record
@@ -65,6 +66,8 @@ contains
       end if
       call init_model(assembly, a%density_kg_m3, a%width_m, settings, law, model, status)
       if (.not. status%ok) return
+      if (s%coarse_correction .and. allocated(assembly%course)) &
+        call coarse_init(model%coarse, assembly%course, model%bodies%inv_mass, model%bodies%inv_inertia)
 
       select case (m%waveform)
       case ('afd')

@@ -109,13 +109,14 @@ contains
     bh = w%block_height_m
     length = w%blocks_per_course*bw
     nb = 1 + wall_block_count(w)
-    allocate (assembly%polygon(nb), assembly%driven(nb), assembly%role(nb))
+    allocate (assembly%polygon(nb), assembly%driven(nb), assembly%role(nb), assembly%course(nb))
     assembly%n_bodies = nb
     assembly%polygon(1)%xy = box(-bw, length + bw, -bh, 0.0_dp)
     assembly%driven = .false.
     assembly%driven(1) = .true.
     assembly%role = role_voussoir
     assembly%role(1) = role_foundation
+    assembly%course(1) = 0
     b = 1
     do c = 0, w%courses - 1
       y0 = c*bh
@@ -132,6 +133,7 @@ contains
         end if
         b = b + 1
         assembly%polygon(b)%xy = box(x0, x1, y0, y1)
+        assembly%course(b) = c + 1
       end do
     end do
 
