@@ -342,10 +342,21 @@ def test_a_specimen_restrained_alone_is_found_on_its_own_frequencies():
     pairs = (specimen("A", [0.050, 0.040, 0.030], like_a)
              + specimen("B", [0.045, 0.035], {None: 1.0, "left": 1.1, "right": 1.1, "both": 1.2})
              + specimen("C", [0.040], like_a))
-    found = specimen_restraints(pairs, None)
+    settings = DiagnosisSettings(bin_dir=".", log=lambda m: None)
+    found = specimen_restraints(pairs, None, settings)
     assert [f["specimen"] for f in found] == ["A"]
     assert found[0]["restraint"] == "both" and found[0]["held_out_error"] < 1e-9
-    assert found[0]["reference_error"] == pytest.approx(0.25)
-    # Against a campaign model that already predicts A's thresholds, nothing is flagged.
-    model = _cand("friction", [p.measured.threshold_m for p in pairs], 0.0)
-    assert specimen_restraints(pairs, model) == []
+    assert found[0]["other_errors"]["the nominal model"] == pytest.approx(0.25)
+    # Against a campaign model whose fit (on every specimen) already gives A's
+    # thresholds, nothing is flagged.
+    class Exact:
+        def predict(self, pair, value):
+            return pair.measured.threshold_m
+    model = _cand("friction", [], 0.0)
+    model.eff = Exact()
+    assert specimen_restraints(pairs, model, settings) == []
+    # Nor when another effect fitted to A alone tells the same story: here friction, whose
+    # simulated grid (one value below nominal) reaches A's thresholds.
+    for p in pairs[:3]:
+        p.simulated[Variant("friction", 0.4)] = p.measured.threshold_m
+    assert specimen_restraints(pairs, None, settings) == []

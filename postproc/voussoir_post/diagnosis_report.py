@@ -198,11 +198,14 @@ def write_report(out: Path, campaign, pairs, cands, decision, table, baseline_er
         lines += ["", "## A specimen restrained on its own", "",
                   "Brackets on one specimen only cannot be judged leaving that specimen out (nothing else "
                   "predicts them); each specimen with two or more frequencies is therefore also screened on its "
-                  "own data: the restraint fitted on its other frequencies predicts each one held out. Where "
-                  "that beats the campaign's model by strong evidence:", "",
-                  _md_table(["specimen", "restraint", "its held-out error", "campaign model's error"],
-                            [(r["specimen"], r["restraint"], _pct(r["held_out_error"]), _pct(r["reference_error"]))
-                             for r in alone]), "", *[r["sentence"] for r in alone]]
+                  "own data: the restraint fitted on its other frequencies predicts each one held out, and must "
+                  "beat by strong evidence the nominal model, the campaign's model and each other effect fitted "
+                  "to that specimen alone the same way. Where it does:", "",
+                  _md_table(["specimen", "restraint", "its held-out error"]
+                            + list(alone[0]["other_errors"]),
+                            [(r["specimen"], r["restraint"], _pct(r["held_out_error"]))
+                             + tuple(_pct(x) for x in r["other_errors"].values()) for r in alone]),
+                  "", *[r["sentence"] for r in alone]]
     crown = info.get("crown") or {}
     lines += ["", "## Crown motion", ""]
     if crown.get("models"):
