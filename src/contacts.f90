@@ -386,7 +386,9 @@ contains
   !> Largest separation of `q`'s vertices from a face of `p` (separating-axis test):
   !> for every face of p, the smallest signed distance of q's vertices along the face's
   !> outward normal; the largest of these over p's faces, and that face. Stops as soon
-  !> as a face separates by more than `alert_m`.
+  !> as a face separates by more than `alert_m`. A face is left as soon as one vertex
+  !> of q is no further than the best separation so far (the face cannot beat it), so
+  !> the result is that of the full search.
   pure subroutine max_separation(p, normals, q, alert_m, separation, face)
     real(dp), intent(in) :: p(:, :), normals(:, :), q(:, :), alert_m
     real(dp), intent(out) :: separation
@@ -395,17 +397,18 @@ contains
     integer :: i, k
     separation = -huge(1.0_dp)
     face = 1
-    do i = 1, size(p, 2)
+    faces: do i = 1, size(p, 2)
       s = huge(1.0_dp)
       do k = 1, size(q, 2)
         s = min(s, normals(1, i)*(q(1, k) - p(1, i)) + normals(2, i)*(q(2, k) - p(2, i)))
+        if (s <= separation) cycle faces
       end do
       if (s > separation) then
         separation = s
         face = i
         if (s > alert_m) return
       end if
-    end do
+    end do faces
   end subroutine max_separation
 
 end module voussoir_contacts
