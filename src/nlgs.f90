@@ -207,7 +207,7 @@ contains
     real(dp), intent(inout) :: r(2, n), v(3, n_bodies)
     real(dp), intent(out) :: sum_change, sum_energy
     integer :: k, a, b
-    real(dp) :: u_t, u_n, r_t, r_n, dr_t, dr_n, dvx, dvy, px, py, w_tt, w_tn, w_nn, new(2)
+    real(dp) :: u_t, u_n, r_t, r_n, dr_t, dr_n, dvx, dvy, px, py, w_tt, w_tn, w_nn
 
     sum_change = 0.0_dp
     sum_energy = 0.0_dp
@@ -231,11 +231,8 @@ contains
       else
         r_t = -(w_nn*u_t - w_tn*u_n)/c(i_det, k)
         r_n = -(w_tt*u_n - w_tn*u_t)/c(i_det, k)
-        if (.not. (r_n >= 0.0_dp .and. abs(r_t) <= c(i_mu, k)*r_n)) then
-          call coulomb_local(w_tt, w_tn, w_nn, c(i_det, k), u_t, u_n, c(i_mu, k), new)
-          r_t = new(1)
-          r_n = new(2)
-        end if
+        if (.not. (r_n >= 0.0_dp .and. abs(r_t) <= c(i_mu, k)*r_n)) &
+          call coulomb_slide(w_tt, w_tn, w_nn, u_t, u_n, c(i_mu, k), r_t, r_n)
       end if
       dr_t = r_t - r(1, k)
       dr_n = r_n - r(2, k)
@@ -262,20 +259,29 @@ contains
   pure subroutine coulomb_local(w_tt, w_tn, w_nn, det, u_t_free, u_n_free, mu, r)
     real(dp), intent(in) :: w_tt, w_tn, w_nn, det, u_t_free, u_n_free, mu
     real(dp), intent(out) :: r(2)
-    real(dp) :: r_t, r_n, sigma, denom, u_t
-    integer :: attempt
+    real(dp) :: r_t, r_n
 
     r = 0.0_dp
     if (u_n_free >= 0.0_dp) return
     ! Stick: u = 0.
     r_t = -(w_nn*u_t_free - w_tn*u_n_free)/det
     r_n = -(w_tt*u_n_free - w_tn*u_t_free)/det
-    if (r_n >= 0.0_dp .and. abs(r_t) <= mu*r_n) then
-      r = [r_t, r_n]
-      return
-    end if
-    ! Slide with u_t of sign sigma and r_t = -sigma mu r_n; try the direction the
-    ! stick trial points to first.
+    if (.not. (r_n >= 0.0_dp .and. abs(r_t) <= mu*r_n)) &
+      call coulomb_slide(w_tt, w_tn, w_nn, u_t_free, u_n_free, mu, r_t, r_n)
+    r = [r_t, r_n]
+  end subroutine coulomb_local
+
+  !> The sliding (or, for a degenerate W, frictionless) solution of the local problem of
+  !> `coulomb_local` once the stick trial (r_t, r_n) has left the cone: on entry that
+  !> trial, on return the solution. Slide with u_t of sign sigma and r_t = -sigma mu r_n;
+  !> the direction the stick trial points to is tried first. (Private, so that the
+  !> compiler inlines it into the sweep, which then keeps its values in registers.)
+  pure subroutine coulomb_slide(w_tt, w_tn, w_nn, u_t_free, u_n_free, mu, r_t, r_n)
+    real(dp), value :: w_tt, w_tn, w_nn, u_t_free, u_n_free, mu
+    real(dp), intent(inout) :: r_t, r_n
+    real(dp) :: sigma, denom, u_t
+    integer :: attempt
+
     sigma = -sign(1.0_dp, r_t)
     do attempt = 1, 2
       denom = w_nn - sigma*mu*w_tn
@@ -283,14 +289,15 @@ contains
         r_n = -u_n_free/denom
         u_t = u_t_free + r_n*(w_tn - sigma*mu*w_tt)
         if (r_n >= 0.0_dp .and. sigma*u_t >= 0.0_dp) then
-          r = [-sigma*mu*r_n, r_n]
+          r_t = -sigma*mu*r_n
           return
         end if
       end if
       sigma = -sigma
     end do
     ! Degenerate W (should not happen for a positive definite block): frictionless push.
-    r = [0.0_dp, max(0.0_dp, -u_n_free/w_nn)]
-  end subroutine coulomb_local
+    r_t = 0.0_dp
+    r_n = max(0.0_dp, -u_n_free/w_nn)
+  end subroutine coulomb_slide
 
 end module voussoir_nlgs
