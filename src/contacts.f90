@@ -274,7 +274,8 @@ contains
   !> from vertex k to vertex k+1).
   pure subroutine polygon_contact_normals(pa, na, pb, nb, alert_m, inset_m, n_points, points, gaps, &
                                           normal, a_is_candidate)
-    real(dp), intent(in) :: pa(:, :), na(:, :), pb(:, :), nb(:, :), alert_m, inset_m
+    real(dp), intent(in), contiguous :: pa(:, :), na(:, :), pb(:, :), nb(:, :)
+    real(dp), intent(in) :: alert_m, inset_m
     integer, intent(out) :: n_points
     real(dp), intent(out) :: points(2, 2), gaps(2), normal(2)
     logical, intent(out) :: a_is_candidate
@@ -303,7 +304,8 @@ contains
   !> Contact points of the incident face of `cand` (outward unit face normals
   !> `cand_normals`) on face `ref_face` of `ref`.
   pure subroutine clip(cand, cand_normals, ref, ref_normals, ref_face, inset_m, n_points, points, gaps, normal)
-    real(dp), intent(in) :: cand(:, :), cand_normals(:, :), ref(:, :), ref_normals(:, :), inset_m
+    real(dp), intent(in), contiguous :: cand(:, :), cand_normals(:, :), ref(:, :), ref_normals(:, :)
+    real(dp), intent(in) :: inset_m
     integer, intent(in) :: ref_face
     integer, intent(inout) :: n_points
     real(dp), intent(inout) :: points(2, 2), gaps(2), normal(2)
@@ -390,7 +392,8 @@ contains
   !> of q is no further than the best separation so far (the face cannot beat it), so
   !> the result is that of the full search.
   pure subroutine max_separation(p, normals, q, alert_m, separation, face)
-    real(dp), intent(in) :: p(:, :), normals(:, :), q(:, :), alert_m
+    real(dp), intent(in), contiguous :: p(:, :), normals(:, :), q(:, :)
+    real(dp), intent(in) :: alert_m
     real(dp), intent(out) :: separation
     integer, intent(out) :: face
     real(dp) :: s
