@@ -206,23 +206,32 @@ contains
     real(dp), intent(in) :: c(n_rows, n)
     real(dp), intent(inout) :: r(2, n), v(3, n_bodies)
     real(dp), intent(out) :: sum_change, sum_energy
-    integer :: k, a, b
-    real(dp) :: u_t, u_n, r_t, r_n, dr_t, dr_n, dvx, dvy, px, py, w_tt, w_tn, w_nn
+    integer :: k, a, b, a_held, b_held
+    real(dp) :: u_t, u_n, r_t, r_n, dr_t, dr_n, dvx, dvy, px, py, w_tt, w_tn, w_nn, va(3), vb(3)
 
     sum_change = 0.0_dp
     sum_energy = 0.0_dp
+    a_held = 0
+    b_held = 0
     do k = 1, n
       a = pair(1, k)
       b = pair(2, k)
+      ! The two points of a pair follow each other: keep their bodies' velocities at hand.
+      if (a /= a_held .or. b /= b_held) then
+        va = v(:, a)
+        vb = v(:, b)
+        a_held = a
+        b_held = b
+      end if
       w_tt = c(i_w_tt, k)
       w_tn = c(i_w_tn, k)
       w_nn = c(i_w_nn, k)
-      dvx = v(1, a) - v(1, b)
-      dvy = v(2, a) - v(2, b)
+      dvx = va(1) - vb(1)
+      dvy = va(2) - vb(2)
       ! Free local velocity: the present one less this contact's own contribution.
-      u_t = c(1, k)*dvx + c(2, k)*dvy + c(i_arm_at, k)*v(3, a) - c(i_arm_bt, k)*v(3, b) &
+      u_t = c(1, k)*dvx + c(2, k)*dvy + c(i_arm_at, k)*va(3) - c(i_arm_bt, k)*vb(3) &
             - w_tt*r(1, k) - w_tn*r(2, k)
-      u_n = c(3, k)*dvx + c(4, k)*dvy + c(i_arm_an, k)*v(3, a) - c(i_arm_bn, k)*v(3, b) &
+      u_n = c(3, k)*dvx + c(4, k)*dvy + c(i_arm_an, k)*va(3) - c(i_arm_bn, k)*vb(3) &
             - w_tn*r(1, k) - w_nn*r(2, k) + c(i_shift, k)
       ! The two common cases inline (open, stick); the local solve handles the rest.
       if (u_n >= 0.0_dp) then
@@ -240,12 +249,14 @@ contains
       r(2, k) = r_n
       px = dr_t*c(1, k) + dr_n*c(3, k)
       py = dr_t*c(2, k) + dr_n*c(4, k)
-      v(1, a) = v(1, a) + c(i_ima, k)*px
-      v(2, a) = v(2, a) + c(i_ima, k)*py
-      v(3, a) = v(3, a) + c(i_iia, k)*(dr_t*c(i_arm_at, k) + dr_n*c(i_arm_an, k))
-      v(1, b) = v(1, b) - c(i_imb, k)*px
-      v(2, b) = v(2, b) - c(i_imb, k)*py
-      v(3, b) = v(3, b) - c(i_iib, k)*(dr_t*c(i_arm_bt, k) + dr_n*c(i_arm_bn, k))
+      va(1) = va(1) + c(i_ima, k)*px
+      va(2) = va(2) + c(i_ima, k)*py
+      va(3) = va(3) + c(i_iia, k)*(dr_t*c(i_arm_at, k) + dr_n*c(i_arm_an, k))
+      vb(1) = vb(1) - c(i_imb, k)*px
+      vb(2) = vb(2) - c(i_imb, k)*py
+      vb(3) = vb(3) - c(i_iib, k)*(dr_t*c(i_arm_bt, k) + dr_n*c(i_arm_bn, k))
+      v(:, a) = va
+      v(:, b) = vb
       sum_change = sum_change + w_tt*dr_t*dr_t + 2.0_dp*w_tn*dr_t*dr_n + w_nn*dr_n*dr_n
       sum_energy = sum_energy + w_tt*r_t*r_t + 2.0_dp*w_tn*r_t*r_n + w_nn*r_n*r_n
     end do
