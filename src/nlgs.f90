@@ -207,7 +207,7 @@ contains
     real(dp), intent(inout) :: r(2, n), v(3, n_bodies)
     real(dp), intent(out) :: sum_change, sum_energy
     integer :: k, a, b, a_held, b_held
-    real(dp) :: u_t, u_n, r_t, r_n, dr_t, dr_n, dvx, dvy, px, py, w_tt, w_tn, w_nn, va(3), vb(3)
+    real(dp) :: u_t, u_n, r_t, r_n, dr_t, dr_n, dvx, dvy, px, py, w_tt, w_tn, w_nn, va(3), vb(3), va_next(3)
 
     sum_change = 0.0_dp
     sum_energy = 0.0_dp
@@ -216,13 +216,23 @@ contains
     do k = 1, n
       a = pair(1, k)
       b = pair(2, k)
-      ! The two points of a pair follow each other: keep their bodies' velocities at hand.
-      if (a /= a_held .or. b /= b_held) then
-        va = v(:, a)
-        vb = v(:, b)
-        a_held = a
-        b_held = b
+      ! Consecutive contacts share bodies (the two points of a face, the pairs of one
+      ! body): keep the last contact's velocities at hand (v is always up to date).
+      if (a == a_held) then
+        va_next = va
+      else if (a == b_held) then
+        va_next = vb
+      else
+        va_next = v(:, a)
       end if
+      if (b == a_held) then
+        vb = va
+      else if (b /= b_held) then
+        vb = v(:, b)
+      end if
+      va = va_next
+      a_held = a
+      b_held = b
       w_tt = c(i_w_tt, k)
       w_tn = c(i_w_tn, k)
       w_nn = c(i_w_nn, k)
