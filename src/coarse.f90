@@ -81,7 +81,7 @@ contains
     real(dp), intent(inout) :: r(2, n), v(3, n_bodies)
     integer, parameter :: kd = 2*n_modes - 1   ! band width of P^T W P
     integer :: k, a, b, j, p, q, course_a, course_b, info, n_unknowns, slot_a, slot_b, row, col
-    real(dp) :: u_t, u_n, r_t, r_n, dr_t, dr_n, px, py, im, ii, x_mid, x_half, shear, moment, opening
+    real(dp) :: u_t, u_n, r_t, r_n, dr_t, dr_n, px, py, im, ii, x_min, x_max, x_mid, x_half, shear, moment, opening
     real(dp) :: fa(3, n_modes), fb(3, n_modes)
 
     n_unknowns = coarse%n_joints*n_modes
@@ -91,9 +91,16 @@ contains
     end if
     if (.not. allocated(coarse%joint)) &
       allocate (coarse%joint(max(64, 2*n)), coarse%shear(max(64, 2*n)), coarse%moment(max(64, 2*n)))
-    ! The moment pattern's abscissa runs from -1 to 1 over the contacts.
-    x_mid = 0.5_dp*(maxval(point(1, :)) + minval(point(1, :)))
-    x_half = max(0.5_dp*(maxval(point(1, :)) - minval(point(1, :))), tiny(1.0_dp))
+    ! The moment pattern's abscissa runs from -1 to 1 over the contacts (the extreme
+    ! abscissae in one pass: the first of equal values, as maxval and minval take them).
+    x_max = point(1, 1)
+    x_min = point(1, 1)
+    do k = 2, n
+      if (point(1, k) > x_max) x_max = point(1, k)
+      if (point(1, k) < x_min) x_min = point(1, k)
+    end do
+    x_mid = 0.5_dp*(x_max + x_min)
+    x_half = max(0.5_dp*(x_max - x_min), tiny(1.0_dp))
     opening = opening_fraction*maxval(abs(v(1:2, :)))
 
     ! Restriction: P^T u, and P^T H^T body by body (the generalised force of each unknown).

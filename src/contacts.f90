@@ -274,7 +274,8 @@ contains
   !> from vertex k to vertex k+1).
   pure subroutine polygon_contact_normals(pa, na, pb, nb, alert_m, inset_m, n_points, points, gaps, &
                                           normal, a_is_candidate)
-    real(dp), intent(in) :: pa(:, :), na(:, :), pb(:, :), nb(:, :), alert_m, inset_m
+    real(dp), intent(in), contiguous :: pa(:, :), na(:, :), pb(:, :), nb(:, :)
+    real(dp), intent(in) :: alert_m, inset_m
     integer, intent(out) :: n_points
     real(dp), intent(out) :: points(2, 2), gaps(2), normal(2)
     logical, intent(out) :: a_is_candidate
@@ -294,15 +295,17 @@ contains
     ! the choice does not flip between parallel faces from one step to the next.
     if (sep_a > sep_b + 1.0e-3_dp*alert_m) then
       a_is_candidate = .false.
-      call clip(pb, pa, na, face_a, inset_m, n_points, points, gaps, normal)
+      call clip(pb, nb, pa, na, face_a, inset_m, n_points, points, gaps, normal)
     else
-      call clip(pa, pb, nb, face_b, inset_m, n_points, points, gaps, normal)
+      call clip(pa, na, pb, nb, face_b, inset_m, n_points, points, gaps, normal)
     end if
   end subroutine polygon_contact_normals
 
-  !> Contact points of the incident face of `cand` on face `ref_face` of `ref`.
-  pure subroutine clip(cand, ref, ref_normals, ref_face, inset_m, n_points, points, gaps, normal)
-    real(dp), intent(in) :: cand(:, :), ref(:, :), ref_normals(:, :), inset_m
+  !> Contact points of the incident face of `cand` (outward unit face normals
+  !> `cand_normals`) on face `ref_face` of `ref`.
+  pure subroutine clip(cand, cand_normals, ref, ref_normals, ref_face, inset_m, n_points, points, gaps, normal)
+    real(dp), intent(in), contiguous :: cand(:, :), cand_normals(:, :), ref(:, :), ref_normals(:, :)
+    real(dp), intent(in) :: inset_m
     integer, intent(in) :: ref_face
     integer, intent(inout) :: n_points
     real(dp), intent(inout) :: points(2, 2), gaps(2), normal(2)
@@ -313,25 +316,23 @@ contains
     nr = size(ref, 2)
     nc = size(cand, 2)
     r1 = ref(:, ref_face)
-    r2 = ref(:, modulo(ref_face, nr) + 1)
-    t = r2 - r1
+    r2 = ref(:, next_vertex(ref_face, nr))
     normal = ref_normals(:, ref_face)
     t = [-normal(2), normal(1)]
     len_ref = dot_product(r2 - r1, t)
-    ! Incident face: the candidate's face most opposed to the normal.
+    ! Incident face: the candidate's face most opposed to the normal (its stored unit
+    ! normal, not one recomputed from the edge: only the choice of face is used).
     best = huge(1.0_dp)
     inc = 1
     do k = 1, nc
-      e = cand(:, modulo(k, nc) + 1) - cand(:, k)
-      ! n . outward normal of face k, which is (e2, -e1)/|e| for a ccw polygon
-      d = (normal(1)*e(2) - normal(2)*e(1))/norm2(e)
+      d = normal(1)*cand_normals(1, k) + normal(2)*cand_normals(2, k)
       if (d < best) then
         best = d
         inc = k
       end if
     end do
     c1 = cand(:, inc)
-    c2 = cand(:, modulo(inc, nc) + 1)
+    c2 = cand(:, next_vertex(inc, nc))
     ! Parametrise the incident face by its projection on the reference tangent.
     s1 = dot_product(c1 - r1, t)
     s2 = dot_product(c2 - r1, t)
@@ -364,6 +365,13 @@ contains
     gaps(2) = dot_product(points(:, 2) - r1, normal)
   end subroutine clip
 
+  !> The vertex after vertex `k` of a polygon of `n` vertices (without an integer division).
+  pure integer function next_vertex(k, n)
+    integer, intent(in) :: k, n
+    next_vertex = k + 1
+    if (k == n) next_vertex = 1
+  end function next_vertex
+
   !> Outward unit normals of the faces of a counter-clockwise polygon.
   pure subroutine face_normals(p, normals)
     real(dp), intent(in) :: p(:, :)
@@ -380,26 +388,30 @@ contains
   !> Largest separation of `q`'s vertices from a face of `p` (separating-axis test):
   !> for every face of p, the smallest signed distance of q's vertices along the face's
   !> outward normal; the largest of these over p's faces, and that face. Stops as soon
-  !> as a face separates by more than `alert_m`.
+  !> as a face separates by more than `alert_m`. A face is left as soon as one vertex
+  !> of q is no further than the best separation so far (the face cannot beat it), so
+  !> the result is that of the full search.
   pure subroutine max_separation(p, normals, q, alert_m, separation, face)
-    real(dp), intent(in) :: p(:, :), normals(:, :), q(:, :), alert_m
+    real(dp), intent(in), contiguous :: p(:, :), normals(:, :), q(:, :)
+    real(dp), intent(in) :: alert_m
     real(dp), intent(out) :: separation
     integer, intent(out) :: face
     real(dp) :: s
     integer :: i, k
     separation = -huge(1.0_dp)
     face = 1
-    do i = 1, size(p, 2)
+    faces: do i = 1, size(p, 2)
       s = huge(1.0_dp)
       do k = 1, size(q, 2)
         s = min(s, normals(1, i)*(q(1, k) - p(1, i)) + normals(2, i)*(q(2, k) - p(2, i)))
+        if (s <= separation) cycle faces
       end do
       if (s > separation) then
         separation = s
         face = i
         if (s > alert_m) return
       end if
-    end do
+    end do faces
   end subroutine max_separation
 
 end module voussoir_contacts

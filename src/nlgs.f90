@@ -206,23 +206,42 @@ contains
     real(dp), intent(in) :: c(n_rows, n)
     real(dp), intent(inout) :: r(2, n), v(3, n_bodies)
     real(dp), intent(out) :: sum_change, sum_energy
-    integer :: k, a, b
-    real(dp) :: u_t, u_n, r_t, r_n, dr_t, dr_n, dvx, dvy, px, py, w_tt, w_tn, w_nn, new(2)
+    integer :: k, a, b, a_held, b_held
+    real(dp) :: u_t, u_n, r_t, r_n, dr_t, dr_n, dvx, dvy, px, py, w_tt, w_tn, w_nn, va(3), vb(3), va_next(3)
 
     sum_change = 0.0_dp
     sum_energy = 0.0_dp
+    a_held = 0
+    b_held = 0
     do k = 1, n
       a = pair(1, k)
       b = pair(2, k)
+      ! Consecutive contacts share bodies (the two points of a face, the pairs of one
+      ! body): keep the last contact's velocities at hand (v is always up to date).
+      if (a == a_held) then
+        va_next = va
+      else if (a == b_held) then
+        va_next = vb
+      else
+        va_next = v(:, a)
+      end if
+      if (b == a_held) then
+        vb = va
+      else if (b /= b_held) then
+        vb = v(:, b)
+      end if
+      va = va_next
+      a_held = a
+      b_held = b
       w_tt = c(i_w_tt, k)
       w_tn = c(i_w_tn, k)
       w_nn = c(i_w_nn, k)
-      dvx = v(1, a) - v(1, b)
-      dvy = v(2, a) - v(2, b)
+      dvx = va(1) - vb(1)
+      dvy = va(2) - vb(2)
       ! Free local velocity: the present one less this contact's own contribution.
-      u_t = c(1, k)*dvx + c(2, k)*dvy + c(i_arm_at, k)*v(3, a) - c(i_arm_bt, k)*v(3, b) &
+      u_t = c(1, k)*dvx + c(2, k)*dvy + c(i_arm_at, k)*va(3) - c(i_arm_bt, k)*vb(3) &
             - w_tt*r(1, k) - w_tn*r(2, k)
-      u_n = c(3, k)*dvx + c(4, k)*dvy + c(i_arm_an, k)*v(3, a) - c(i_arm_bn, k)*v(3, b) &
+      u_n = c(3, k)*dvx + c(4, k)*dvy + c(i_arm_an, k)*va(3) - c(i_arm_bn, k)*vb(3) &
             - w_tn*r(1, k) - w_nn*r(2, k) + c(i_shift, k)
       ! The two common cases inline (open, stick); the local solve handles the rest.
       if (u_n >= 0.0_dp) then
@@ -231,11 +250,8 @@ contains
       else
         r_t = -(w_nn*u_t - w_tn*u_n)/c(i_det, k)
         r_n = -(w_tt*u_n - w_tn*u_t)/c(i_det, k)
-        if (.not. (r_n >= 0.0_dp .and. abs(r_t) <= c(i_mu, k)*r_n)) then
-          call coulomb_local(w_tt, w_tn, w_nn, c(i_det, k), u_t, u_n, c(i_mu, k), new)
-          r_t = new(1)
-          r_n = new(2)
-        end if
+        if (.not. (r_n >= 0.0_dp .and. abs(r_t) <= c(i_mu, k)*r_n)) &
+          call coulomb_slide(w_tt, w_tn, w_nn, u_t, u_n, c(i_mu, k), r_t, r_n)
       end if
       dr_t = r_t - r(1, k)
       dr_n = r_n - r(2, k)
@@ -243,12 +259,14 @@ contains
       r(2, k) = r_n
       px = dr_t*c(1, k) + dr_n*c(3, k)
       py = dr_t*c(2, k) + dr_n*c(4, k)
-      v(1, a) = v(1, a) + c(i_ima, k)*px
-      v(2, a) = v(2, a) + c(i_ima, k)*py
-      v(3, a) = v(3, a) + c(i_iia, k)*(dr_t*c(i_arm_at, k) + dr_n*c(i_arm_an, k))
-      v(1, b) = v(1, b) - c(i_imb, k)*px
-      v(2, b) = v(2, b) - c(i_imb, k)*py
-      v(3, b) = v(3, b) - c(i_iib, k)*(dr_t*c(i_arm_bt, k) + dr_n*c(i_arm_bn, k))
+      va(1) = va(1) + c(i_ima, k)*px
+      va(2) = va(2) + c(i_ima, k)*py
+      va(3) = va(3) + c(i_iia, k)*(dr_t*c(i_arm_at, k) + dr_n*c(i_arm_an, k))
+      vb(1) = vb(1) - c(i_imb, k)*px
+      vb(2) = vb(2) - c(i_imb, k)*py
+      vb(3) = vb(3) - c(i_iib, k)*(dr_t*c(i_arm_bt, k) + dr_n*c(i_arm_bn, k))
+      v(:, a) = va
+      v(:, b) = vb
       sum_change = sum_change + w_tt*dr_t*dr_t + 2.0_dp*w_tn*dr_t*dr_n + w_nn*dr_n*dr_n
       sum_energy = sum_energy + w_tt*r_t*r_t + 2.0_dp*w_tn*r_t*r_n + w_nn*r_n*r_n
     end do
@@ -262,20 +280,29 @@ contains
   pure subroutine coulomb_local(w_tt, w_tn, w_nn, det, u_t_free, u_n_free, mu, r)
     real(dp), intent(in) :: w_tt, w_tn, w_nn, det, u_t_free, u_n_free, mu
     real(dp), intent(out) :: r(2)
-    real(dp) :: r_t, r_n, sigma, denom, u_t
-    integer :: attempt
+    real(dp) :: r_t, r_n
 
     r = 0.0_dp
     if (u_n_free >= 0.0_dp) return
     ! Stick: u = 0.
     r_t = -(w_nn*u_t_free - w_tn*u_n_free)/det
     r_n = -(w_tt*u_n_free - w_tn*u_t_free)/det
-    if (r_n >= 0.0_dp .and. abs(r_t) <= mu*r_n) then
-      r = [r_t, r_n]
-      return
-    end if
-    ! Slide with u_t of sign sigma and r_t = -sigma mu r_n; try the direction the
-    ! stick trial points to first.
+    if (.not. (r_n >= 0.0_dp .and. abs(r_t) <= mu*r_n)) &
+      call coulomb_slide(w_tt, w_tn, w_nn, u_t_free, u_n_free, mu, r_t, r_n)
+    r = [r_t, r_n]
+  end subroutine coulomb_local
+
+  !> The sliding (or, for a degenerate W, frictionless) solution of the local problem of
+  !> `coulomb_local` once the stick trial (r_t, r_n) has left the cone: on entry that
+  !> trial, on return the solution. Slide with u_t of sign sigma and r_t = -sigma mu r_n;
+  !> the direction the stick trial points to is tried first. (Private, so that the
+  !> compiler inlines it into the sweep, which then keeps its values in registers.)
+  pure subroutine coulomb_slide(w_tt, w_tn, w_nn, u_t_free, u_n_free, mu, r_t, r_n)
+    real(dp), value :: w_tt, w_tn, w_nn, u_t_free, u_n_free, mu
+    real(dp), intent(inout) :: r_t, r_n
+    real(dp) :: sigma, denom, u_t
+    integer :: attempt
+
     sigma = -sign(1.0_dp, r_t)
     do attempt = 1, 2
       denom = w_nn - sigma*mu*w_tn
@@ -283,14 +310,15 @@ contains
         r_n = -u_n_free/denom
         u_t = u_t_free + r_n*(w_tn - sigma*mu*w_tt)
         if (r_n >= 0.0_dp .and. sigma*u_t >= 0.0_dp) then
-          r = [-sigma*mu*r_n, r_n]
+          r_t = -sigma*mu*r_n
           return
         end if
       end if
       sigma = -sigma
     end do
     ! Degenerate W (should not happen for a positive definite block): frictionless push.
-    r = [0.0_dp, max(0.0_dp, -u_n_free/w_nn)]
-  end subroutine coulomb_local
+    r_t = 0.0_dp
+    r_n = max(0.0_dp, -u_n_free/w_nn)
+  end subroutine coulomb_slide
 
 end module voussoir_nlgs
