@@ -7,20 +7,19 @@
 # that of a 0.2 s run, over 1000 steps. Also: NLGS sweeps per step in that second, the
 # most sweeps one settling step took, and the peak resident memory of the 1.2 s run.
 # VOUSSOIR_COARSE=false runs without the coarse correction of the NLGS (&solver
-# coarse_correction, default true), for comparison; VOUSSOIR_COARSE_SEGMENT=S sets its
-# aggregates to segments of S blocks along a course (&solver coarse_segment; 0: whole courses).
+# coarse_correction, default true), for comparison.
 #   bash bench/walls.sh [SIZES...]      (default 10 20 40; 80 takes a few minutes)
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 py=python3; [[ -x "$root/.venv/bin/python" ]] && py="$root/.venv/bin/python"
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 sizes=("$@"); ((${#sizes[@]})) || sizes=(10 20 40)
-"$py" - "${VOUSSOIR_BIN_DIR:-$root/build/drivers}/voussoir-run" "$work" "${VOUSSOIR_COARSE:-true}" "${VOUSSOIR_COARSE_SEGMENT:-}" "${sizes[@]}" <<'PY'
+"$py" - "${VOUSSOIR_BIN_DIR:-$root/build/drivers}/voussoir-run" "$work" "${VOUSSOIR_COARSE:-true}" "${sizes[@]}" <<'PY'
 import os, subprocess, sys, time
 import h5py
 import numpy as np
 
-exe, work, coarse, segment, sizes = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], [int(s) for s in sys.argv[5:]]
+exe, work, coarse, sizes = sys.argv[1], sys.argv[2], sys.argv[3], [int(s) for s in sys.argv[4:]]
 REFERENCE_US = {10: 1968, 20: 9989, 40: 47437, 80: 248732}  # LMGC90 3.0, us per step
 
 
@@ -32,7 +31,7 @@ def run(n, duration_s):
                 f"&motion waveform = 'afd', frequency_hz = 2.0, amplitude_m = 0.00621, table_delay_s = 0.2, "
                 f"duration_s = {duration_s} /\n"
                 f"&solver dt_s = 1.0e-3, tol = 1.0e-4, max_iter = 100000, allow_nonconvergence = .true., "
-                f"coarse_correction = .{coarse.strip('.').lower()}.{', coarse_segment = ' + segment if segment else ''} /\n"
+                f"coarse_correction = .{coarse.strip('.').lower()}. /\n"
                 f"&output file = '{name}.h5', every = 100 /\n")
     t0 = time.perf_counter()
     p = subprocess.Popen([exe, name + ".nml"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
@@ -47,7 +46,7 @@ def run(n, duration_s):
     return wall, usage.ru_maxrss / 1024.0, t, it, blocks
 
 
-print(f"coarse_correction = {coarse}" + (f", coarse_segment = {segment}" if segment else ""))
+print(f"coarse_correction = {coarse}")
 print(f"{'wall':>8} {'blocks':>6} {'reference us/step':>18} {'Voussoir us/step':>17} {'ratio':>6} "
       f"{'sweeps/step':>11} {'max settling sweeps':>19} {'peak RSS MB':>11}")
 for n in sizes:

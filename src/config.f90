@@ -70,7 +70,6 @@ module voussoir_config
     real(dp) :: alert_m = 0.0_dp              !! 0: 2 % of the smallest free block
     logical :: allow_nonconvergence = .false.
     logical :: coarse_correction = .true.     !! walls: coarse correction of the normal impulses per course
-    integer :: coarse_segment = 4             !! walls: blocks per coarse aggregate along a course (0: whole course)
   end type solver_config_t
 
   !> &output: the result file and the monitors.
@@ -132,7 +131,7 @@ contains
     character(len=path_len) :: polygon_file, record_file, file
     real(dp) :: frequency_hz, amplitude_m, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s, &
                 table_gain, table_delay_s, record_scale
-    integer :: n_attack, n_full, n_decay, max_iter, every, coarse_segment
+    integer :: n_attack, n_full, n_decay, max_iter, every
     real(dp) :: dt_s, theta, tol, alert_m, hinge_gap_m, collapse_drop_m, collapse_rotation_rad, &
                 stop_after_collapse_s
     logical :: allow_nonconvergence, coarse_correction
@@ -142,8 +141,7 @@ contains
     namelist /motion/ waveform, frequency_hz, amplitude_m, n_attack, n_full, n_decay, &
       record_file, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s, table_gain, table_delay_s, &
       record_scale
-    namelist /solver/ dt_s, theta, tol, max_iter, alert_m, allow_nonconvergence, coarse_correction, &
-      coarse_segment
+    namelist /solver/ dt_s, theta, tol, max_iter, alert_m, allow_nonconvergence, coarse_correction
     namelist /output/ file, every, hinge_gap_m, collapse_drop_m, collapse_rotation_rad, &
       stop_after_collapse_s
 
@@ -169,7 +167,7 @@ contains
       'n_attack', 'n_full', 'n_decay', 'record_file', 'record_cutoff_hz', 'ramp_rate_m_s3', 'rest_s', &
       'duration_s', 'table_gain', 'table_delay_s', 'record_scale'], status)
     call check_names(path, 'solver', [character(len=24) :: 'dt_s', 'theta', 'tol', 'max_iter', 'alert_m', &
-      'allow_nonconvergence', 'coarse_correction', 'coarse_segment'], status)
+      'allow_nonconvergence', 'coarse_correction'], status)
     call check_names(path, 'output', [character(len=24) :: 'file', 'every', 'hinge_gap_m', 'collapse_drop_m', &
       'collapse_rotation_rad', 'stop_after_collapse_s'], status)
     if (.not. status%ok) then
@@ -196,12 +194,10 @@ contains
 
     dt_s = s%dt_s; theta = s%theta; tol = s%tol; max_iter = s%max_iter; alert_m = s%alert_m
     allow_nonconvergence = s%allow_nonconvergence; coarse_correction = s%coarse_correction
-    coarse_segment = s%coarse_segment
     rewind (unit)
     read (unit, nml=solver, iostat=ios, iomsg=iomsg)
     if (.not. group_ok('solver')) return
-    s = solver_config_t(dt_s, theta, tol, max_iter, alert_m, allow_nonconvergence, coarse_correction, &
-                        coarse_segment)
+    s = solver_config_t(dt_s, theta, tol, max_iter, alert_m, allow_nonconvergence, coarse_correction)
 
     file = o%file; every = o%every; hinge_gap_m = o%hinge_gap_m; collapse_drop_m = o%collapse_drop_m
     collapse_rotation_rad = o%collapse_rotation_rad; stop_after_collapse_s = o%stop_after_collapse_s
@@ -259,7 +255,7 @@ contains
              'table_gain, table_delay_s (real)'
     case ('solver')
       text = 'dt_s, theta, tol (real), max_iter (integer), alert_m (real, m), allow_nonconvergence, '// &
-             'coarse_correction (logical), coarse_segment (integer, blocks)'
+             'coarse_correction (logical)'
     case ('output')
       text = 'file (text), every (integer), hinge_gap_m, collapse_drop_m, collapse_rotation_rad, '// &
              'stop_after_collapse_s (real)'
@@ -370,7 +366,6 @@ contains
       call r('solver', 'alert_m', s%alert_m)
       call l('solver', 'allow_nonconvergence', s%allow_nonconvergence)
       call l('solver', 'coarse_correction', s%coarse_correction)
-      call i('solver', 'coarse_segment', s%coarse_segment)
       call t('output', 'file', o%file)
       call i('output', 'every', o%every)
       call r('output', 'hinge_gap_m', o%hinge_gap_m)

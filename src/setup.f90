@@ -67,8 +67,7 @@ contains
       call init_model(assembly, a%density_kg_m3, a%width_m, settings, law, model, status)
       if (.not. status%ok) return
       if (s%coarse_correction .and. allocated(assembly%course)) &
-        call coarse_init(model%coarse, assembly%course, model%bodies%inv_mass, model%bodies%inv_inertia, &
-                         s%coarse_segment)
+        call coarse_init(model%coarse, assembly%course, model%bodies%inv_mass, model%bodies%inv_inertia)
 
       select case (m%waveform)
       case ('afd')
