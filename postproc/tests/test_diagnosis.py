@@ -343,7 +343,7 @@ def test_a_specimen_restrained_alone_is_found_on_its_own_frequencies():
              + specimen("B", [0.045, 0.035], {None: 1.0, "left": 1.1, "right": 1.1, "both": 1.2})
              + specimen("C", [0.040], like_a))
     settings = DiagnosisSettings(bin_dir=".", log=lambda m: None)
-    found = specimen_restraints(pairs, None, settings)
+    found = specimen_restraints(pairs, None, settings, TableEvidence("none"))
     assert [f["specimen"] for f in found] == ["A"]
     assert found[0]["restraint"] == "both" and found[0]["held_out_error"] < 1e-9
     assert found[0]["other_errors"]["the nominal model"] == pytest.approx(0.25)
@@ -354,9 +354,9 @@ def test_a_specimen_restrained_alone_is_found_on_its_own_frequencies():
             return pair.measured.threshold_m
     model = _cand("friction", [], 0.0)
     model.eff = Exact()
-    assert specimen_restraints(pairs, model, settings) == []
+    assert specimen_restraints(pairs, model, settings, TableEvidence("none")) == []
     # Nor when another effect fitted to A alone tells the same story: here friction, whose
     # simulated grid (one value below nominal) reaches A's thresholds.
     for p in pairs[:3]:
         p.simulated[Variant("friction", 0.4)] = p.measured.threshold_m
-    assert specimen_restraints(pairs, None, settings) == []
+    assert specimen_restraints(pairs, None, settings, TableEvidence("none")) == []

@@ -198,7 +198,7 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     uncertain = uncertain_specimens(apart, chosen, settings)
     if uncertain:
         notes += " " + " ".join(u["sentence"] for u in uncertain)
-    restrained_alone = specimen_restraints(pairs, shown, settings)
+    restrained_alone = specimen_restraints(pairs, shown, settings, table)
     if restrained_alone:
         notes += " " + " ".join(r["sentence"] for r in restrained_alone)
     crown = crown_comparison(campaign, sim, [("nominal", Variant(), {})]

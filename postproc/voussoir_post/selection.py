@@ -20,7 +20,7 @@ from .diagnosis_settings import DiagnosisSettings
 from .effects import Effect, Variant
 
 __all__ = ["PairData", "CandidateResult", "T_DOF", "STRONG_EVIDENCE", "neg_log_likelihood", "predictions",
-           "errors", "mean_error", "fit", "held_out_loss", "clearly_better", "evaluate_candidate", "folds"]
+           "errors", "mean_error", "fit", "predictions_loss", "held_out_loss", "clearly_better", "evaluate_candidate", "folds"]
 
 #: Degrees of freedom of the Student-t likelihood of a threshold: heavy tails, so that
 #: one odd pair (a safe island, a chaotic run) cannot carry the verdict alone.
@@ -95,10 +95,17 @@ def mean_error(pairs: list[PairData], eff: Effect | None, value) -> float:
     return float(np.mean(errs)) if errs else math.nan
 
 
+def predictions_loss(preds: list[float], pairs: list[PairData]) -> float:
+    """Negative log-likelihood of the measured thresholds under predictions `preds` [m]."""
+    total = 0.0
+    for pred, p in zip(preds, pairs):
+        total += neg_log_likelihood(pred, p.measured.threshold_m, p.sigma)
+    return total
+
+
 def loss(pairs: list[PairData], eff: Effect | None, value) -> float:
     """Negative log-likelihood of the measured thresholds under one model."""
-    return sum(neg_log_likelihood(pred, p.measured.threshold_m, p.sigma)
-               for pred, p in zip(predictions(pairs, eff, value), pairs))
+    return predictions_loss(predictions(pairs, eff, value), pairs)
 
 
 def fit(pairs: list[PairData], e: Effect, settings: DiagnosisSettings, fixed=None):
@@ -151,11 +158,8 @@ def evaluate_candidate(pairs: list[PairData], e: Effect, settings: DiagnosisSett
 def held_out_loss(c: CandidateResult | None, pairs: list[PairData]) -> float:
     """Negative log-likelihood of the measured thresholds under a candidate's held-out
     predictions (None: the nominal model)."""
-    total = 0.0
-    for k, p in enumerate(pairs):
-        pred = p.simulated.get(Variant(), math.nan) if c is None else c.per_pair[k]
-        total += neg_log_likelihood(pred, p.measured.threshold_m, p.sigma)
-    return total
+    preds = [p.simulated.get(Variant(), math.nan) for p in pairs] if c is None else c.per_pair
+    return predictions_loss(preds, pairs)
 
 
 def clearly_better(better: float, worse: float) -> bool:

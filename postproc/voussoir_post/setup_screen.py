@@ -19,9 +19,11 @@ from __future__ import annotations
 
 import math
 
+from .actuator import TableEvidence
 from .diagnosis_settings import DiagnosisSettings
-from .effects import RESTRAINTS, Effect, Variant, effect
-from .selection import CandidateResult, PairData, clearly_better, neg_log_likelihood
+from .effects import RESTRAINTS, Variant, effect
+from .nested import mean_relative_error
+from .selection import CandidateResult, PairData, clearly_better, evaluate_candidate, predictions_loss
 
 __all__ = ["specimen_restraints", "RIVAL_STORIES"]
 
@@ -29,38 +31,8 @@ __all__ = ["specimen_restraints", "RIVAL_STORIES"]
 RIVAL_STORIES = ("contact_edges", "friction", "geometry")
 
 
-def _loss(preds: list[float], ps: list[PairData]) -> float:
-    return sum(neg_log_likelihood(x, p.measured.threshold_m, p.sigma) for x, p in zip(preds, ps))
-
-
-def _mean_error(preds: list[float], ps: list[PairData]) -> float:
-    errs = [abs(x - p.measured.threshold_m) / p.measured.threshold_m for x, p in zip(preds, ps) if math.isfinite(x)]
-    return sum(errs) / len(errs) if errs else math.nan
-
-
-def _leave_one_out(ps: list[PairData], options: list, predict) -> tuple[list[float], list]:
-    """Each pair predicted by the option that best fits the specimen's other pairs (the
-    first of equal ones: options are listed from the smallest change)."""
-    held, chosen = [], []
-    for i in range(len(ps)):
-        train = [q for j, q in enumerate(ps) if j != i]
-        losses = [_loss([predict(q, v) for q in train], train) for v in options]
-        best = options[min(range(len(options)), key=lambda k: (losses[k], k))]
-        chosen.append(best)
-        held.append(predict(ps[i], best))
-    return held, chosen
-
-
-def _effect_alone(ps: list[PairData], eff: Effect, settings: DiagnosisSettings) -> list[float]:
-    values = eff.candidate_values(ps, settings)
-    nominal = eff.nominal(ps[0].spec)
-    if nominal is not None:  # the smallest change first
-        values = sorted(values, key=lambda v: abs(float(v) - float(nominal)))
-    return _leave_one_out(ps, values, eff.predict)[0]
-
-
-def specimen_restraints(pairs: list[PairData], model: CandidateResult | None,
-                        settings: DiagnosisSettings) -> list[dict]:
+def specimen_restraints(pairs: list[PairData], model: CandidateResult | None, settings: DiagnosisSettings,
+                        table: TableEvidence) -> list[dict]:
     """The specimens (certain set-up, no declared brackets, two or more frequencies) whose
     own thresholds a restraint of that specimen alone predicts better, by strong
     evidence, than any other story of it (module docstring), with the numbers."""
@@ -76,27 +48,34 @@ def specimen_restraints(pairs: list[PairData], model: CandidateResult | None,
     for sid, ps in by_specimen.items():
         if len(ps) < 2 or ps[0].spec.restrained_springings != "none":
             continue
-        held, chosen = _leave_one_out(ps, [None, *RESTRAINTS], restrained)
+        # The restraint of this specimen alone, leaving one of its frequencies out (none
+        # first: of equal fits, the smaller change).
+        held, chosen = [], []
+        for i in range(len(ps)):
+            train = [q for j, q in enumerate(ps) if j != i]
+            best = min([None, *RESTRAINTS], key=lambda r: predictions_loss([restrained(q, r) for q in train], train))
+            chosen.append(best)
+            held.append(restrained(ps[i], best))
         if any(not math.isfinite(x) for x in held):
             continue
         stories = {"the nominal model": [restrained(p, None) for p in ps]}
         if model is not None:
             stories[f"the campaign's model ({model.effect}, fitted on all specimens)"] = \
                 [model.eff.predict(p, model.value) for p in ps]
-        for e in RIVAL_STORIES:
-            stories[f"{e} fitted to it alone"] = _effect_alone(ps, effect(e), settings)
-        loss = _loss(held, ps)
-        if not all(clearly_better(loss, _loss(preds, ps)) for preds in stories.values()):
+        for e in RIVAL_STORIES:  # one specimen: its folds leave one pair out
+            stories[f"{e} fitted to it alone"] = evaluate_candidate(ps, effect(e), settings, table).per_pair
+        loss = predictions_loss(held, ps)
+        if not all(clearly_better(loss, predictions_loss(preds, ps)) for preds in stories.values()):
             continue
-        fitted = min(RESTRAINTS, key=lambda r: _loss([restrained(q, r) for q in ps], ps))
-        errors = {name: _mean_error(preds, ps) for name, preds in stories.items()}
+        fitted = min(RESTRAINTS, key=lambda r: predictions_loss([restrained(q, r) for q in ps], ps))
+        errors = {name: mean_relative_error(preds, ps) for name, preds in stories.items()}
         best_other = min(errors, key=lambda k: errors[k] if math.isfinite(errors[k]) else math.inf)
         sentence = (f"On its own data, specimen {sid} behaves as if its springings were restrained ({fitted}): fitted "
                     f"on its other frequencies, that restraint predicts each of its {len(ps)} tested frequencies within "
-                    f"{100 * _mean_error(held, ps):.1f} % on average, better by strong evidence than any other story "
+                    f"{100 * mean_relative_error(held, ps):.1f} % on average, better by strong evidence than any other story "
                     f"of it (the best, {best_other}, {100 * errors[best_other]:.1f} %). Check that specimen's set-up "
                     f"(brackets, a support against the bottom voussoirs) and declare it in specimens.csv "
                     f"(restrained_springings).")
         found.append({"specimen": sid, "restraint": fitted, "fold_choices": chosen,
-                      "held_out_error": _mean_error(held, ps), "other_errors": errors, "sentence": sentence})
+                      "held_out_error": mean_relative_error(held, ps), "other_errors": errors, "sentence": sentence})
     return found
