@@ -46,9 +46,10 @@ def _polygons(centroids: np.ndarray, vertices: list[np.ndarray]) -> list[np.ndar
     return [c + v for c, v in zip(centroids, vertices)]
 
 
-def _edges(poly: np.ndarray):
+def _edges(poly: np.ndarray) -> list[tuple]:
     """(start, end, unit outward normal, unit direction) of each edge of a convex polygon."""
     centre = poly.mean(axis=0)
+    edges = []
     for k in range(len(poly)):
         p, q = poly[k], poly[(k + 1) % len(poly)]
         d = q - p
@@ -59,7 +60,8 @@ def _edges(poly: np.ndarray):
         n = np.array([t[1], -t[0]])
         if np.dot(n, 0.5 * (p + q) - centre) < 0.0:
             n = -n
-        yield p, q, n, t
+        edges.append((p, q, n, t))
+    return edges
 
 
 def find_joints(centroids_m: np.ndarray, vertices_local_m: list[np.ndarray], tol_m: float = 1e-4) -> list[Joint]:
@@ -68,12 +70,13 @@ def find_joints(centroids_m: np.ndarray, vertices_local_m: list[np.ndarray], tol
     polys = _polygons(centroids_m, vertices_local_m)
     lo = np.array([p.min(axis=0) for p in polys]) - tol_m
     hi = np.array([p.max(axis=0) for p in polys]) + tol_m
+    edges = [_edges(p) for p in polys]
     joints = []
     for a in range(len(polys)):
         near = np.nonzero(np.all(lo[a + 1:] <= hi[a], axis=1) & np.all(hi[a + 1:] >= lo[a], axis=1))[0] + a + 1
         for b in near:
-            for p, q, n, t in _edges(polys[a]):
-                for r, s, m, _ in _edges(polys[b]):
+            for p, q, n, t in edges[a]:
+                for r, s, m, _ in edges[b]:
                     if np.dot(n, m) > -1.0 + 1e-6:
                         continue
                     if abs(np.dot(r - p, n)) > tol_m or abs(np.dot(s - p, n)) > tol_m:
