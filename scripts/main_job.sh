@@ -15,6 +15,9 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
 bash scripts/setup.sh
 mkdir -p results
+# The job remakes its sweeps: a sweep file left by an earlier version holds another
+# sweep (its signature differs) and voussoir-sweep rightly refuses to mix them.
+rm -f results/sweep_envelope_156.h5 results/sweep_seed_tests.h5 results/ida_156.h5
 bin=$root/build/drivers
 post=$root/.venv/bin/voussoir-post
 seed=$root/../shared/data/seed_2013
@@ -65,7 +68,7 @@ echo "== 6. Fragility of the 156-degree arch under the record suite (IDA, 2 MPI 
 "$post" fragility results/ida_156.h5 --out results/ | tail -n 6 | sed 's/^/   /'
 
 # An index of everything the job made, with what each shows (results/index.md).
-rm -f results/.missing
+missing=()  # files the job should have made and did not
 {
   echo "# Results of the main job ($(date -u +%Y-%m-%dT%H:%MZ), $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo 'no git'))"
   echo
@@ -73,7 +76,7 @@ rm -f results/.missing
   echo
   echo "| file | what it shows |"
   echo "|---|---|"
-  describe() { if [[ -e results/$1 ]]; then echo "| [$1]($1) | $2 |"; else echo "$1" >> results/.missing; fi; }
+  describe() { if [[ -e results/$1 ]]; then echo "| [$1]($1) | $2 |"; else missing+=("$1"); fi; }
   describe seed_156_A46mm.h5 "run at 1.25 Hz, 46 mm (the amplitude that brought the real arch down): the model stands"
   describe seed_156_A66mm.h5 "run at 1.25 Hz, 66 mm (where the paper's LMGC90 fell): the model collapses"
   describe seed_156_A66mm_history.png "that run against time: table motion (acceleration in m/s2 and g), crown, NLGS iterations, contacts"
@@ -89,9 +92,9 @@ rm -f results/.missing
   describe ida_156_fragility.png "the fragility curve: probability of collapse against PGA (g) and PGV, with its bootstrap band"
   describe ida_156_fragility.csv "the fitted curve, and ida_156_fragility_points.csv the points"
 } > results/index.md
-if [[ -s results/.missing ]]; then
-  echo "[main] error: the job did not make $(paste -sd ' ' results/.missing) (see the log above)" >&2
-  rm -f results/.missing; exit 1
+if (( ${#missing[@]} )); then
+  echo "[main] error: the job did not make ${missing[*]} (see the log above)" >&2
+  exit 1
 fi
 ls results/*.png | sed 's/^/   /'
 echo "[main] results in $root/results/ (index: results/index.md)"
