@@ -29,6 +29,10 @@ module voussoir_coarse
 
   !> Sweeps between two coarse corrections (the first follows the first sweep).
   integer, parameter, public :: coarse_period = 8
+  !> No correction after this many sweeps of one step: where the projection on the cone
+  !> and the sweeps undo each other (a wall sliding on its foundation), the plain sweeps
+  !> then converge as without the correction (the corrections only shorten the way).
+  integer, parameter, public :: coarse_last_sweep = 64
   !> Coarse unknowns per bed joint (the patterns 1 to 3 above).
   integer, parameter :: n_modes = 3
   !> An unloaded contact opens when its normal velocity exceeds this fraction of the
@@ -38,7 +42,6 @@ module voussoir_coarse
   !> The aggregates of a wall and the work arrays of the coarse solve.
   type :: coarse_t
     integer :: n_joints = 0                 !! bed joints; 0: no correction
-    integer :: period = coarse_period       !! sweeps between two corrections
     integer, allocatable :: course(:)       !! (n_bodies) course of each body, 0 the foundation, -1 none
     real(dp), allocatable :: inv_mass(:), inv_inertia(:)  !! (n_bodies) [1/kg], [1/(kg m2)]
     !> (3, 2 n_modes, n_bodies) generalised force on a body of a unit coarse unknown of the

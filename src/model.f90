@@ -10,8 +10,8 @@ module voussoir_model
   use voussoir_bodies, only: bodies_t, update_world_vertices
   use voussoir_contacts, only: contact_set_t, detect_contacts
   use voussoir_contact_law, only: contact_law_t
-  use voussoir_nlgs, only: nlgs_work_t, nlgs_prepare, nlgs_solve, warm_start, i_arm_at, i_arm_an, &
-                           i_arm_bt, i_arm_bn
+  use voussoir_nlgs, only: nlgs_work_t, nlgs_prepare, nlgs_solve, warm_start
+  use voussoir_contact_rows, only: i_arm_at, i_arm_an, i_arm_bt, i_arm_bn
   use voussoir_motion, only: motion_t, motion_eval, waveform_ramp
   use voussoir_coarse, only: coarse_t
   implicit none

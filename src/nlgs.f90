@@ -11,14 +11,11 @@ module voussoir_nlgs
   use voussoir_contacts, only: contact_set_t
   use voussoir_contact_rows, only: i_t, i_n, i_arm_at, i_arm_an, i_arm_bt, i_arm_bn, i_w_tt, i_w_tn, &
                                    i_w_nn, i_det, i_shift, i_mu, i_ima, i_iia, i_imb, i_iib, n_rows
-  use voussoir_coarse, only: coarse_t, coarse_correct
+  use voussoir_coarse, only: coarse_t, coarse_correct, coarse_period, coarse_last_sweep
   implicit none
   private
 
   public :: nlgs_work_t, nlgs_prepare, nlgs_solve, coulomb_local, warm_start
-  ! The packed data's rows, for the callers that read it (voussoir_contact_rows).
-  public :: i_t, i_n, i_arm_at, i_arm_an, i_arm_bt, i_arm_bn, i_w_tt, i_w_tn, i_w_nn, i_det, i_shift, &
-            i_mu, i_ima, i_iia, i_imb, i_iib, n_rows
 
   !> Per-contact data of the solve, packed contact by contact for the hot loop.
   type :: nlgs_work_t
@@ -153,9 +150,10 @@ contains
   !> free velocities plus the effect of the impulses already in `set` and leave as the
   !> end-of-step velocities. Convergence: the 'Quad' norm
   !> sqrt(sum dr.W.dr / sum r.W.r) of one sweep's change of impulses below `tol`.
-  !> With `coarse` (a wall's courses), a coarse correction of the impulses per bed joint after
-  !> the first sweep and every `coarse%period` sweeps after it (voussoir_coarse); the
-  !> test of convergence is always that of a sweep.
+  !> With `coarse` (a wall's courses), a coarse correction of the impulses per bed joint
+  !> after the first sweep and every `coarse_period` sweeps after it, up to sweep
+  !> `coarse_last_sweep` (voussoir_coarse); the test of convergence is always that of a
+  !> sweep.
   subroutine nlgs_solve(set, work, v, tol, max_iter, iterations, norm, converged, coarse)
     type(contact_set_t), intent(inout) :: set
     type(nlgs_work_t), intent(in) :: work
@@ -192,7 +190,7 @@ contains
         return
       end if
       if (with_coarse) then
-        if (mod(it - 1, coarse%period) == 0) &
+        if (mod(it - 1, coarse_period) == 0 .and. it <= coarse_last_sweep) &
           call coarse_correct(coarse, set%n, size(v, 2), work%pair, work%data, set%point, set%impulse, v)
       end if
     end do
