@@ -87,3 +87,5 @@ def test_no_joint_is_refused_clearly(voussoir_run_exe, tmp_path, capsys):
     run_executable([voussoir_run_exe, "apart.nml"], tmp_path)
     assert main(["joints", str(tmp_path / "apart.h5"), "--tol-mm", "0.1"]) == 2
     assert "no two blocks touch" in capsys.readouterr().err
+    assert main(["joints", str(tmp_path / "apart.h5"), "--tol-mm", "-1"]) == 2
+    assert "--tol-mm -1: the touching tolerance must be > 0 mm" in capsys.readouterr().err

@@ -194,6 +194,8 @@ def cmd_records(args) -> int:
 
 
 def cmd_joints(args) -> int:
+    if not args.tol_mm > 0.0:
+        raise ValueError(f"--tol-mm {args.tol_mm:g}: the touching tolerance must be > 0 mm (default 0.1)")
     run = read_run(args.run)
     motions = run_joints(run, args.tol_mm * 1e-3)
     if not motions:
