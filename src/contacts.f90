@@ -85,7 +85,9 @@ contains
   !>
   !> The broad phase keeps a list of the pairs whose boxes, grown by `alert_m` plus a
   !> margin of `alert_m`, overlap (a Verlet list); it is rebuilt only once some body has
-  !> moved by more than half the margin since, so most steps run the narrow phase only.
+  !> moved by more than half the margin since, apart from a translation common to all
+  !> (the table carries the whole assembly; relative_motion_m), so most steps run the
+  !> narrow phase only.
   subroutine detect_contacts(bodies, q, alert_m, law, set)
     type(bodies_t), intent(in) :: bodies
     real(dp), intent(in) :: q(:, :)           !! (3, n) configuration of the vertices
@@ -103,8 +105,7 @@ contains
     else if (size(set%q_pairs, 2) /= nb) then
       moved_m = huge(1.0_dp)
     else
-      moved_m = maxval(abs(q(1, :) - set%q_pairs(1, :)) + abs(q(2, :) - set%q_pairs(2, :)) &
-                       + bodies%radius_m*abs(q(3, :) - set%q_pairs(3, :)))
+      moved_m = relative_motion_m(q, set%q_pairs, bodies%radius_m)
     end if
     if (moved_m > 0.5_dp*alert_m) then
       call broad_phase(bodies, 2.0_dp*alert_m, set)
@@ -158,6 +159,30 @@ contains
     end subroutine add_pair
 
   end subroutine detect_contacts
+
+  !> The largest motion of a body from `q_ref` to `q` (3, n) apart from a translation
+  !> common to all bodies: |dx - cx| + |dy - cy| + radius |d theta| [m], (cx, cy) the
+  !> middle of the range of the displacements. No vertex of a body has moved by more
+  !> than that relative to the common translation, so the distance between two bodies
+  !> has changed by at most the sum of their two motions so measured.
+  pure function relative_motion_m(q, q_ref, radius_m) result(moved_m)
+    real(dp), intent(in) :: q(:, :), q_ref(:, :), radius_m(:)
+    real(dp) :: moved_m, lo(2), hi(2), common(2)
+    integer :: i
+
+    lo = huge(1.0_dp)
+    hi = -huge(1.0_dp)
+    do i = 1, size(q, 2)
+      lo = min(lo, q(1:2, i) - q_ref(1:2, i))
+      hi = max(hi, q(1:2, i) - q_ref(1:2, i))
+    end do
+    common = 0.5_dp*(lo + hi)
+    moved_m = 0.0_dp
+    do i = 1, size(q, 2)
+      moved_m = max(moved_m, abs(q(1, i) - q_ref(1, i) - common(1)) + abs(q(2, i) - q_ref(2, i) - common(2)) &
+                             + radius_m(i)*abs(q(3, i) - q_ref(3, i)))
+    end do
+  end function relative_motion_m
 
   !> Pairs of bodies (not both driven) whose boxes grown by `reach_m` overlap, found
   !> with a uniform cell grid whose cell is at least the largest box.
