@@ -14,7 +14,7 @@ module voussoir_contacts
   implicit none
   private
 
-  public :: contact_set_t, detect_contacts, polygon_contact
+  public :: contact_set_t, detect_contacts, polygon_contact, relative_motion_m
 
   !> The contact points of one step, structure of arrays. Body `a` is the candidate,
   !> body `b` the antagonist that owns the reference face; the normal points from b to a.
