@@ -314,6 +314,28 @@ def test_a_pair_is_named_only_when_it_beats_each_member_by_strong_evidence():
     assert d.verdict == "contact_edges"
 
 
+def test_a_cause_named_by_its_hinges_is_not_said_to_win_on_the_thresholds():
+    from voussoir_post.diagnosis import notes_named
+    from voussoir_post.effects import effect
+    meas = [0.050, 0.030, 0.040, 0.060]
+    pairs = [_pair(m, nominal_m=1.25 * m) for m in meas]
+    cands = {"contact_edges": _cand("contact_edges", [1.01 * m for m in meas], 0.01),
+             "friction": _cand("friction", [0.995 * m for m in meas], 0.005)}
+    cands["friction"].value, cands["friction"].eff = 0.43, effect("friction")
+    cands["contact_edges"].hinge_score, cands["friction"].hinge_score = 0.60, 0.80  # a margin of 0.2
+    # The thresholds alone do not separate them (the test above); the hinges do.
+    d = decide(pairs, 0.03, cands, TableEvidence("none"))
+    assert d.verdict == "friction" and d.rivals == []
+    assert "the observed hinges do" in d.separation and "contact_edges 0.60" in d.separation
+    notes = notes_named(d.chosen, 0.25, 0.03, cands, TableEvidence("none"), pairs, d.separation)
+    assert "less well by strong evidence" not in notes and "the observed hinges do" in notes
+    # Named on the thresholds, the notes say so.
+    cands["contact_edges"].per_pair = [1.15 * m for m in meas]
+    d = decide(pairs, 0.03, cands, TableEvidence("none"))
+    assert d.verdict == "friction" and d.separation == ""
+    assert "less well by strong evidence" in notes_named(d.chosen, 0.25, 0.03, cands, TableEvidence("none"), pairs)
+
+
 def test_hinge_score_counts_false_hinges_where_the_match_does_not():
     observed = {"t1": {(0, "extrados"), (4, "intrados")}}
     exact = {"t1": {(0, "extrados"), (4, "intrados")}}

@@ -33,6 +33,8 @@ class Decision:
     notes: str
     best_rival: CandidateResult | None = None  #: the first of the rivals (its held-out result is `extended`)
     rival_results: list = field(default_factory=list)  #: the rivals' candidates, best first (a pair is one)
+    #: For a named cause that the thresholds alone did not separate from others: what did.
+    separation: str = ""
 
 
 def hinge_match(observed: dict[str, set], simulated: dict[str, set]) -> float | None:
@@ -130,12 +132,20 @@ def decide(pairs: list[PairData], resolution: float, cands: dict[str, CandidateR
             f"likely outside it (or several at once)."), best)
     rivals = [c for c in allowed.values() if c is not best and not clearly_better(loss[best.effect], loss[c.effect])]
     # Evidence beyond the thresholds: a table measured to deviate, and the hinges.
+    separation = ""
     if rivals and best.effect == "table_motion" and table.source == "records" and table.deviates:
+        separation = (f"The thresholds alone do not tell it from {', '.join(c.effect for c in rivals)}; the table "
+                      f"records do: they show the table did not follow the command.")
         rivals = []
     if rivals and best.hinge_score is not None:
         group = [best] + rivals
         top = max(group, key=lambda c: -1.0 if c.hinge_score is None else c.hinge_score)
         if all(c is top or (c.hinge_score is not None and c.hinge_score <= top.hinge_score - 0.15) for c in group):
+            others = [c for c in group if c is not top]
+            separation = (f"The thresholds alone do not tell it from {', '.join(c.effect for c in others)} (held-out "
+                          f"errors {', '.join(f'{c.effect} {pct(c.cv_error)}' for c in others)}); the observed hinges "
+                          f"do: hinge F1 {top.hinge_score:.2f} against "
+                          f"{', '.join(f'{c.effect} {c.hinge_score:.2f}' for c in others)}, a margin of 0.15 or more.")
             best, rivals = top, []
     if rivals:
         group = sorted([best] + rivals, key=lambda c: loss[c.effect])
@@ -145,4 +155,4 @@ def decide(pairs: list[PairData], resolution: float, cands: dict[str, CandidateR
             f"({', '.join(f'{c.effect} {pct(c.cv_error)}' for c in group)}), none of them is preferred to the "
             f"others by strong evidence, and neither the records nor the hinges separate them: the data cannot "
             f"tell which it is." + _shared(group) + _partial(group[0], resolution)), group[0], group)
-    return Decision(verdict_of(best), best, [], "")
+    return Decision(verdict_of(best), best, [], "", separation=separation)

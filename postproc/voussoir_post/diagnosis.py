@@ -190,7 +190,8 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     nested, fold_verdicts = nested_held_out(pairs, [c.eff for c in cands.values()], settings, table)
     extended_error = mean_relative_error(nested, pairs) if shown else baseline_error
     extended_hinges = shown.hinge_match if shown else baseline_hinges
-    notes = decision.notes or notes_named(chosen, baseline_error, resolution, cands, table, pairs)
+    notes = decision.notes or notes_named(chosen, baseline_error, resolution, cands, table, pairs,
+                                          decision.separation)
     if shown:
         notes += (f" Measured by nested cross-validation (the choice itself redone without each specimen), the "
                   f"extended model's error on the specimens held out is {100 * extended_error:.1f} %"
@@ -255,10 +256,11 @@ def crown_comparison(campaign: Campaign, sim: Simulator, models: list, max_tests
 
 
 def notes_named(c: CandidateResult, baseline_error: float, resolution: float, cands: dict, table: TableEvidence,
-                pairs: list[PairData]) -> str:
+                pairs: list[PairData], separation: str = "") -> str:
     """The plain-words paragraph of a named cause. The others are ranked as the decision
     ranks them (held-out likelihood), so a smaller mean error of a weaker rival is said
-    as it is."""
+    as it is; `separation` is what told the cause from rivals that the thresholds did not
+    (Decision.separation), said instead of a strong evidence it did not have."""
     pct = lambda x: f"{100 * x:.1f} %"
     what = c.eff.sentence(c, table)
     others = sorted((x for e, x in cands.items() if e != c.effect), key=lambda x: held_out_loss(x, pairs))
@@ -266,9 +268,10 @@ def notes_named(c: CandidateResult, baseline_error: float, resolution: float, ca
                        for x in others)
     return (f"The nominal model misses the measured collapse thresholds by {pct(baseline_error)} on average "
             f"(resolution {pct(resolution)}). The data are best explained if {what}: with that one change, "
-            f"fitted without the specimen it predicts, the error falls to {pct(c.cv_error)}. The other causes "
-            f"explain the held-out thresholds less well by strong evidence (likelihood of the held-out "
-            f"predictions; their mean held-out errors: {listed}).")
+            f"fitted without the specimen it predicts, the error falls to {pct(c.cv_error)}. "
+            + (f"{separation} Mean held-out errors of all the other causes: {listed}." if separation else
+               f"The other causes explain the held-out thresholds less well by strong evidence (likelihood of "
+               f"the held-out predictions; their mean held-out errors: {listed})."))
 
 
 def separating_test(pairs: list[PairData], rivals: list[CandidateResult], sim: Simulator, campaign: Campaign,
