@@ -142,9 +142,8 @@ def decide(pairs: list[PairData], resolution: float, cands: dict[str, CandidateR
         top = max(group, key=lambda c: -1.0 if c.hinge_score is None else c.hinge_score)
         if all(c is top or (c.hinge_score is not None and c.hinge_score <= top.hinge_score - 0.15) for c in group):
             others = [c for c in group if c is not top]
-            separation = (f"The thresholds alone do not tell it from {', '.join(c.effect for c in others)} (held-out "
-                          f"errors {', '.join(f'{c.effect} {pct(c.cv_error)}' for c in others)}); the observed hinges "
-                          f"do: hinge F1 {top.hinge_score:.2f} against "
+            separation = (f"The thresholds alone do not tell it from {', '.join(c.effect for c in others)} (not by "
+                          f"strong evidence); the observed hinges do: hinge F1 {top.hinge_score:.2f} against "
                           f"{', '.join(f'{c.effect} {c.hinge_score:.2f}' for c in others)}, a margin of 0.15 or more.")
             best, rivals = top, []
     if rivals:
