@@ -21,8 +21,10 @@ from .selection import CandidateResult, PairData, clearly_better, held_out_loss,
 #: relative uncertainty of a measured threshold (sigma: resolution, search tolerance and
 #: the 3 % floor): about the 95 % band of a single threshold.
 ADEQUATE_SIGMAS = 2.0
+#: Rivals are separated by their hinges when one's hinge F1 beats every other's by this.
+HINGE_F1_MARGIN = 0.15
 
-__all__ = ["ADEQUATE_SIGMAS", "Decision", "decide", "hinge_match", "hinge_score", "verdict_of"]
+__all__ = ["ADEQUATE_SIGMAS", "HINGE_F1_MARGIN", "Decision", "decide", "hinge_match", "hinge_score", "verdict_of"]
 
 
 @dataclass
@@ -140,11 +142,13 @@ def decide(pairs: list[PairData], resolution: float, cands: dict[str, CandidateR
     if rivals and best.hinge_score is not None:
         group = [best] + rivals
         top = max(group, key=lambda c: -1.0 if c.hinge_score is None else c.hinge_score)
-        if all(c is top or (c.hinge_score is not None and c.hinge_score <= top.hinge_score - 0.15) for c in group):
+        if all(c is top or (c.hinge_score is not None and c.hinge_score <= top.hinge_score - HINGE_F1_MARGIN)
+               for c in group):
             others = [c for c in group if c is not top]
             separation = (f"The thresholds alone do not tell it from {', '.join(c.effect for c in others)} (not by "
                           f"strong evidence); the observed hinges do: hinge F1 {top.hinge_score:.2f} against "
-                          f"{', '.join(f'{c.effect} {c.hinge_score:.2f}' for c in others)}, a margin of 0.15 or more.")
+                          f"{', '.join(f'{c.effect} {c.hinge_score:.2f}' for c in others)}, a margin of "
+                          f"{HINGE_F1_MARGIN:g} or more.")
             best, rivals = top, []
     if rivals:
         group = sorted([best] + rivals, key=lambda c: loss[c.effect])
