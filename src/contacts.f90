@@ -111,6 +111,8 @@ contains
       call broad_phase(bodies, 2.0_dp*alert_m, set)
       set%q_pairs = q
     end if
+    ! Room for two points per pair once, not a test per pair.
+    call reserve(set, 2*set%n_pairs)
     do p = 1, set%n_pairs
       call add_pair(set%pairs(1, p), set%pairs(2, p))
     end do
@@ -138,7 +140,6 @@ contains
         b = i
       end if
       mu = pair_friction_of(law, a, b)
-      call reserve(set, set%n + 2)
       do p = 1, 2
         if (gaps(p) > alert_m) cycle
         if (p == 2 .and. n_points == 1) cycle
@@ -147,14 +148,21 @@ contains
         set%body_a(m) = a
         set%body_b(m) = b
         set%slot(m) = p
-        set%normal(:, m) = normal
-        set%tangent(:, m) = [-normal(2), normal(1)]
-        set%point(:, m) = points(:, p)
-        set%arm_a(:, m) = points(:, p) - q(1:2, a)
-        set%arm_b(:, m) = points(:, p) - q(1:2, b)
+        ! Element by element: two-element array assignments compile to library calls.
+        set%normal(1, m) = normal(1)
+        set%normal(2, m) = normal(2)
+        set%tangent(1, m) = -normal(2)
+        set%tangent(2, m) = normal(1)
+        set%point(1, m) = points(1, p)
+        set%point(2, m) = points(2, p)
+        set%arm_a(1, m) = points(1, p) - q(1, a)
+        set%arm_a(2, m) = points(2, p) - q(2, a)
+        set%arm_b(1, m) = points(1, p) - q(1, b)
+        set%arm_b(2, m) = points(2, p) - q(2, b)
         set%gap_m(m) = gaps(p)
         set%friction(m) = mu
-        set%impulse(:, m) = 0.0_dp
+        set%impulse(1, m) = 0.0_dp
+        set%impulse(2, m) = 0.0_dp
       end do
     end subroutine add_pair
 

@@ -102,7 +102,8 @@ contains
         a = set%body_a(k)
         do m = work%prev_first(a), work%prev_first(a + 1) - 1
           if (work%prev_b(m) == set%body_b(k) .and. work%prev_slot(m) == set%slot(k)) then
-            set%impulse(:, k) = work%prev_impulse(:, m)
+            set%impulse(1, k) = work%prev_impulse(1, m)
+            set%impulse(2, k) = work%prev_impulse(2, m)
             exit
           end if
         end do
@@ -137,7 +138,8 @@ contains
       pos = work%prev_first(a + 1)
       work%prev_b(pos) = set%body_b(k)
       work%prev_slot(pos) = set%slot(k)
-      work%prev_impulse(:, pos) = set%impulse(:, k)
+      work%prev_impulse(1, pos) = set%impulse(1, k)
+      work%prev_impulse(2, pos) = set%impulse(2, k)
     end do
     do a = 1, n_bodies
       work%prev_first(a) = work%prev_first(a + 1)
