@@ -20,8 +20,8 @@
 !> so v = v_free + M^-1 H^T r holds and the sweeps converge to the same solution.
 module voussoir_coarse
   use voussoir_kinds, only: dp
-  use voussoir_contact_rows, only: i_t, i_n, i_arm_at, i_arm_an, i_arm_bt, i_arm_bn, i_shift, i_mu, &
-                                   i_ima, i_iia, i_imb, i_iib, n_rows
+  use voussoir_contact_rows, only: i_t, i_n, i_arm_at, i_arm_an, i_arm_bt, i_arm_bn, i_shift, i_mu, n_rows, &
+                                   apply_impulse_change
   implicit none
   private
 
@@ -84,7 +84,7 @@ contains
     real(dp), intent(inout) :: r(2, n), v(3, n_bodies)
     integer, parameter :: kd = 2*n_modes - 1   ! band width of P^T W P
     integer :: k, a, b, j, p, q, course_a, course_b, info, n_unknowns, slot_a, slot_b, row, col
-    real(dp) :: u_t, u_n, r_t, r_n, dr_t, dr_n, px, py, im, ii, x_min, x_max, x_mid, x_half, shear, moment, opening
+    real(dp) :: u_t, u_n, r_t, r_n, dr_t, dr_n, im, ii, x_min, x_max, x_mid, x_half, shear, moment, opening
     real(dp) :: fa(3, n_modes), fb(3, n_modes)
 
     n_unknowns = coarse%n_joints*n_modes
@@ -192,14 +192,7 @@ contains
       dr_n = r_n - r(2, k)
       r(1, k) = r_t
       r(2, k) = r_n
-      px = dr_t*c(i_t, k) + dr_n*c(i_n, k)
-      py = dr_t*c(i_t + 1, k) + dr_n*c(i_n + 1, k)
-      v(1, a) = v(1, a) + c(i_ima, k)*px
-      v(2, a) = v(2, a) + c(i_ima, k)*py
-      v(3, a) = v(3, a) + c(i_iia, k)*(dr_t*c(i_arm_at, k) + dr_n*c(i_arm_an, k))
-      v(1, b) = v(1, b) - c(i_imb, k)*px
-      v(2, b) = v(2, b) - c(i_imb, k)*py
-      v(3, b) = v(3, b) - c(i_iib, k)*(dr_t*c(i_arm_bt, k) + dr_n*c(i_arm_bn, k))
+      call apply_impulse_change(c(:, k), dr_t, dr_n, v(:, a), v(:, b))
     end do
   end subroutine coarse_correct
 

@@ -99,7 +99,6 @@ contains
 
     nb = bodies%n
     set%n = 0
-    call reserve(set, 4*nb)
     if (.not. allocated(set%q_pairs)) then
       moved_m = huge(1.0_dp)
     else if (size(set%q_pairs, 2) /= nb) then

@@ -11,7 +11,7 @@ module voussoir_model
   use voussoir_contacts, only: contact_set_t, detect_contacts
   use voussoir_contact_law, only: contact_law_t
   use voussoir_nlgs, only: nlgs_work_t, nlgs_prepare, nlgs_solve, warm_start
-  use voussoir_contact_rows, only: i_arm_at, i_arm_an, i_arm_bt, i_arm_bn
+  use voussoir_contact_rows, only: apply_impulse_change
   use voussoir_motion, only: motion_t, motion_eval, waveform_ramp
   use voussoir_coarse, only: coarse_t
   implicit none
@@ -161,26 +161,16 @@ contains
     end do
   end function largest_speed
 
-  !> Velocities of the free bodies plus the effect of the impulses held in the contacts.
+  !> Velocities of the free bodies plus the effect of the impulses held in the contacts
+  !> (their packed data prepared by nlgs_prepare).
   subroutine model_apply_impulses(model)
     type(model_t), intent(inout) :: model
-    integer :: k, a, b
-    real(dp) :: r_t, r_n, px, py
+    integer :: k
     associate (c => model%contacts, bd => model%bodies, w => model%work)
       do k = 1, c%n
-        r_t = c%impulse(1, k)
-        r_n = c%impulse(2, k)
-        if (r_t == 0.0_dp .and. r_n == 0.0_dp) cycle
-        a = c%body_a(k)
-        b = c%body_b(k)
-        px = r_t*c%tangent(1, k) + r_n*c%normal(1, k)
-        py = r_t*c%tangent(2, k) + r_n*c%normal(2, k)
-        bd%v(1, a) = bd%v(1, a) + bd%inv_mass(a)*px
-        bd%v(2, a) = bd%v(2, a) + bd%inv_mass(a)*py
-        bd%v(3, a) = bd%v(3, a) + bd%inv_inertia(a)*(r_t*w%data(i_arm_at, k) + r_n*w%data(i_arm_an, k))
-        bd%v(1, b) = bd%v(1, b) - bd%inv_mass(b)*px
-        bd%v(2, b) = bd%v(2, b) - bd%inv_mass(b)*py
-        bd%v(3, b) = bd%v(3, b) - bd%inv_inertia(b)*(r_t*w%data(i_arm_bt, k) + r_n*w%data(i_arm_bn, k))
+        if (c%impulse(1, k) == 0.0_dp .and. c%impulse(2, k) == 0.0_dp) cycle
+        call apply_impulse_change(w%data(:, k), c%impulse(1, k), c%impulse(2, k), bd%v(:, c%body_a(k)), &
+                                  bd%v(:, c%body_b(k)))
       end do
     end associate
   end subroutine model_apply_impulses
