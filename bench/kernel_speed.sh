@@ -12,10 +12,13 @@
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 n=${1:-7}
+[[ "$n" =~ ^[1-9][0-9]*$ ]] || { echo "kernel_speed.sh: N (repeats) must be a positive whole number, not '$n'" >&2; exit 2; }
+exe="${VOUSSOIR_BIN_DIR:-$root/build/drivers}/voussoir-run"
+[[ -x "$exe" ]] || { echo "kernel_speed.sh: no $exe (build first: README, or set VOUSSOIR_BIN_DIR)" >&2; exit 2; }
 py=python3; [[ -x "$root/.venv/bin/python" ]] && py="$root/.venv/bin/python"
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
-"$py" - "${VOUSSOIR_BIN_DIR:-$root/build/drivers}/voussoir-run" "$root/bench/arch_180_1hz.nml" "$n" <<'PY'
+"$py" - "$exe" "$root/bench/arch_180_1hz.nml" "$n" <<'PY'
 import subprocess, sys, time
 import h5py
 import numpy as np
