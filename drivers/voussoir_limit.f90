@@ -10,7 +10,7 @@ program voussoir_limit_main
   use voussoir_status, only: status_t
   use voussoir_config, only: config_t, read_config
   use voussoir_assembly, only: assembly_t
-  use voussoir_limit, only: limit_result_t
+  use voussoir_limit_analysis, only: limit_result_t
   use voussoir_limit_study, only: limit_options_t, thickness_result_t, read_limit_group, analyse
   use voussoir_limit_output, only: write_table, write_json
   use voussoir_command_line, only: input_argument
@@ -47,10 +47,12 @@ contains
     character(len=*), intent(out) :: path
     logical, intent(out) :: json
     logical :: given(1)
+    integer :: exit_code
     call input_argument('voussoir-limit', 'voussoir-limit FILE.nml [--json]', &
       'Limit analysis of the discrete arch of &arch in FILE.nml: the horizontal acceleration (in g) that '// &
       'brings it down statically, its four-hinge mechanism, and optionally the minimum thickness '// &
-      '(&limit; docs/limit_analysis.md). --json prints the result as JSON.', path, ['--json'], given)
+      '(&limit; docs/limit_analysis.md). --json prints the result as JSON.', path, exit_code, ['--json'], given)
+    if (exit_code >= 0) stop exit_code, quiet=.true.
     json = given(1)
   end subroutine parse_arguments
 

@@ -20,12 +20,14 @@ program voussoir_run
   type(run_result_t) :: res
   type(status_t) :: status
   character(len=1024) :: path
+  integer :: exit_code
 
   call input_argument('voussoir-run', 'voussoir-run FILE.nml', &
     'One simulation of a masonry arch (or a polygon assembly) under base motion: the groups &arch, '// &
     '&motion, &solver and &output of FILE.nml (README.md and docs/ list every variable, with units). '// &
     'Writes one HDF5 result file and prints one line whose first word is stood or collapsed. '// &
-    'Exit 0 on success, 1 with a one-line message naming the file, the variable and the allowed range.', path)
+    'Exit 0 on success, 1 with a one-line message naming the file, the variable and the allowed range.', path, exit_code)
+  if (exit_code >= 0) stop exit_code, quiet=.true.
   call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'wall'], cfg, status)
   if (status%ok .and. .not. catch_stop_signals()) &
     write (error_unit, '(a)') 'voussoir-run: warning: cannot catch Ctrl-C / SIGTERM: an interrupted run writes nothing'

@@ -29,12 +29,14 @@ program voussoir_sweep
   type(master_t) :: master
   type(status_t) :: status
   character(len=1024) :: path
+  integer :: exit_code
 
   call input_argument('voussoir-sweep', 'mpirun -np N voussoir-sweep FILE.nml', &
     'A sweep of simulations over MPI ranks (rank 0 schedules, the others run): collapse envelopes over '// &
     'frequencies and amplitudes, threshold searches, lists of arch parameters, or an incremental dynamic '// &
     'analysis under records (&sweep mode; docs/sweep.md, docs/earthquakes.md). Writes an HDF5 file and a CSV '// &
-    'beside it, updated as jobs finish; a rerun continues a killed sweep.', path)
+    'beside it, updated as jobs finish; a rerun continues a killed sweep.', path, exit_code)
+  if (exit_code >= 0) stop exit_code, quiet=.true.
   call comm_start(net)
   call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'sweep'], cfg, status)
   if (status%ok) call read_sweep_plan(trim(path), cfg, plan, status)

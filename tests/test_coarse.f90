@@ -10,7 +10,8 @@ program test_coarse
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t
   use voussoir_assembly, only: assembly_t
-  use voussoir_wall, only: wall_config_t, build_wall
+  use voussoir_wall_config, only: wall_config_t
+  use voussoir_wall, only: build_wall
   use voussoir_model, only: model_t, model_step, solver_settings_t
   use voussoir_motion, only: motion_afd
   use voussoir_contact_law, only: contact_law_t, pair_friction_t

@@ -1,11 +1,11 @@
-!> Tests of the limit analysis (voussoir_limit): horizontal collapse multipliers of
+!> Tests of the limit analysis (voussoir_limit_analysis): horizontal collapse multipliers of
 !> arches and block chains, minimum thickness, inset pivots and the sliding check.
 program test_limit_analysis
   use voussoir_kinds, only: dp, i8
   use voussoir_status, only: status_t
   use voussoir_assembly, only: assembly_t, build_arch, arch_joint_angle_deg
   use voussoir_hinge_side, only: side_intrados, side_extrados
-  use voussoir_limit, only: block_chain_t, limit_result_t, &
+  use voussoir_limit_analysis, only: block_chain_t, limit_result_t, &
                             chain_capacity, horizontal_capacity
   use voussoir_minimum_thickness, only: minimum_thickness
   use voussoir_assert, only: assert_true, assert_close, assert_summary

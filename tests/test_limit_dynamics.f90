@@ -1,5 +1,5 @@
 !> The dynamic code held against the limit analysis (shared/DESIGN.md, "Checks against
-!> answers that nobody can argue with"): the expected values come from voussoir_limit
+!> answers that nobody can argue with"): the expected values come from voussoir_limit_analysis
 !> (an independent, static method) or from published numbers, never from a simulation.
 !>
 !> 1. A slow ramp of horizontal load acceleration (waveform 'ramp', foundations fixed)
@@ -47,7 +47,7 @@ program test_limit_dynamics
   use voussoir_setup, only: init_model
   use voussoir_simulation, only: monitor_t, monitor_init, run_result_t, simulate
   use voussoir_hinge_side, only: side_intrados, side_extrados
-  use voussoir_limit, only: limit_result_t, horizontal_capacity
+  use voussoir_limit_analysis, only: limit_result_t, horizontal_capacity
   use voussoir_minimum_thickness, only: minimum_thickness
   use voussoir_assert, only: assert_true, assert_close, assert_summary
   implicit none

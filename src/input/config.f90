@@ -11,7 +11,7 @@ module voussoir_config
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: lower, fmt_real, itoa
   use voussoir_namelist_check, only: check_groups, check_names
-  use voussoir_wall, only: wall_config_t, read_wall_config
+  use voussoir_wall_config, only: wall_config_t, read_wall_config
   implicit none
   private
 

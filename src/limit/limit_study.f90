@@ -8,7 +8,7 @@ module voussoir_limit_study
   use voussoir_namelist_check, only: check_names
   use voussoir_text, only: itoa, fmt_significant
   use voussoir_assembly, only: assembly_t, build_arch, voussoir_angle_factors
-  use voussoir_limit, only: limit_result_t, horizontal_capacity
+  use voussoir_limit_analysis, only: limit_result_t, horizontal_capacity
   use voussoir_minimum_thickness, only: thickness_search => minimum_thickness
   implicit none
   private

@@ -35,7 +35,7 @@ module voussoir_threshold
   use voussoir_status, only: status_t, fail
   use voussoir_config, only: config_t, fmt_real
   use voussoir_assembly, only: assembly_t, build_arch, voussoir_angle_factors
-  use voussoir_limit, only: limit_result_t, horizontal_capacity
+  use voussoir_limit_analysis, only: limit_result_t, horizontal_capacity
   use voussoir_motion, only: motion_t, motion_afd, motion_eval, motion_duration_s
   use voussoir_model, only: model_t
   use voussoir_simulation, only: run_result_t

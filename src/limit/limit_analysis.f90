@@ -16,7 +16,7 @@
 !> The shear-to-normal ratio of every joint resultant of that solution is compared with
 !> the friction coefficient: this checks the hinging solution, it is not a limit
 !> analysis with sliding.
-module voussoir_limit
+module voussoir_limit_analysis
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
   use voussoir_geometry, only: polygon_area, polygon_centroid, cross2
@@ -564,4 +564,4 @@ contains
     x = x/col_scale
   end subroutine solve4
 
-end module voussoir_limit
+end module voussoir_limit_analysis

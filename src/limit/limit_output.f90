@@ -5,7 +5,7 @@ module voussoir_limit_output
   use voussoir_config, only: config_t
   use voussoir_text, only: itoa, int_list, fmt_json_real, json_string, json_bool, fmt_significant
   use voussoir_assembly, only: assembly_t
-  use voussoir_limit, only: limit_result_t
+  use voussoir_limit_analysis, only: limit_result_t
   use voussoir_hinge_side, only: side_name
   use voussoir_limit_study, only: limit_options_t, thickness_result_t
   use voussoir_version, only: code_version

@@ -1,5 +1,6 @@
 !> The command line of the drivers: one input file, `--help` and `--version` (used by the
-!> programs in drivers/ only; the kernel itself prints nothing).
+!> programs in drivers/ only; the kernel itself prints nothing). It never stops: it says
+!> with which exit code the program should stop, and the program alone stops.
 module voussoir_command_line
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   use voussoir_version, only: code_version
@@ -10,12 +11,14 @@ module voussoir_command_line
 contains
 
   !> The input file named on the command line, and which of the driver's own `flags`
-  !> were given. `--help` prints `usage` and `about` and stops (exit 0); `--version`
-  !> prints the code version and stops (exit 0); anything but one file name and those
-  !> flags prints the usage on standard error and stops (exit 2).
-  subroutine input_argument(program, usage, about, path, flags, given)
+  !> were given. `exit_code` is -1 when the program should go on; else the program stops
+  !> with it: `--help` prints `usage` and `about` (0); `--version` prints the code
+  !> version (0); anything but one file name and those flags prints the usage on
+  !> standard error (2).
+  subroutine input_argument(program, usage, about, path, exit_code, flags, given)
     character(len=*), intent(in) :: program, usage, about
     character(len=*), intent(out) :: path
+    integer, intent(out) :: exit_code
     character(len=*), intent(in), optional :: flags(:)
     logical, intent(out), optional :: given(:)
     character(len=1024) :: arg
@@ -23,6 +26,7 @@ contains
     logical :: bad
 
     path = ''
+    exit_code = -1
     bad = .false.
     if (present(given)) given = .false.
     do k = 1, command_argument_count()
@@ -30,10 +34,12 @@ contains
       select case (trim(arg))
       case ('--help', '-h')
         write (output_unit, '(a)') 'usage: '//usage, '', about
-        stop 0, quiet=.true.
+        exit_code = 0
+        return
       case ('--version')
         write (output_unit, '(a)') program//' ('//code_version//')'
-        stop 0, quiet=.true.
+        exit_code = 0
+        return
       end select
       j = 0
       if (present(flags)) j = findloc(flags, trim(arg), dim=1)
@@ -47,7 +53,7 @@ contains
     end do
     if (bad .or. len_trim(path) == 0) then
       write (error_unit, '(a)') 'usage: '//usage//'   (--help for more)'
-      stop 2, quiet=.true.
+      exit_code = 2
     end if
   end subroutine input_argument
 
