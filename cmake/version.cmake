@@ -1,4 +1,4 @@
-# Writes the Fortran version module from src/version.f90.in with the project version and
+# Writes the Fortran version module from src/core/version.f90.in with the project version and
 # `git describe` of the source tree; run at every build, so that the version recorded in
 # result files follows the commit (configure_file rewrites only when the text changes).
 #   cmake -DSRC=<source dir> -DOUT=<file> -DVERSION=<x.y.z> -P version.cmake
