@@ -5,7 +5,7 @@
 !> one JSON object on stdout (docs/results_format.md, "voussoir-limit --json").
 !> The optional &limit group is documented in docs/limit_analysis.md. Errors go to
 !> stderr with a non-zero exit code.
-program voussoir_limit_main
+program voussoir_limit
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use voussoir_status, only: status_t
   use voussoir_config, only: config_t, read_config
@@ -56,4 +56,4 @@ contains
     json = given(1)
   end subroutine parse_arguments
 
-end program voussoir_limit_main
+end program voussoir_limit
