@@ -4,7 +4,8 @@ module voussoir_setup
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: fmt_significant, itoa
   use voussoir_config, only: config_t
-  use voussoir_assembly, only: assembly_t, build_arch, read_polygon_file, voussoir_angle_factors
+  use voussoir_assembly, only: assembly_t, build_arch, voussoir_angle_factors
+  use voussoir_polygon_file, only: read_polygon_file
   use voussoir_geometry, only: polygon_min_width
   use voussoir_wall, only: build_wall
   use voussoir_bodies, only: bodies_t, bodies_init
