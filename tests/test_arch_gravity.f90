@@ -15,7 +15,8 @@ program test_arch_gravity
   use voussoir_motion, only: motion_afd
   use voussoir_contact_law, only: contact_law_t, pair_friction_t
   use voussoir_setup, only: init_model
-  use voussoir_simulation, only: monitor_t, monitor_init, run_result_t, simulate
+  use voussoir_monitors, only: monitor_t, monitor_init
+  use voussoir_simulation, only: run_result_t, simulate
   use voussoir_assert, only: assert_true, assert_close, assert_summary
   implicit none
 
@@ -54,7 +55,7 @@ contains
     s%alert_m = 1.0e-3_dp
     call init_model(arch, 2000.0_dp, 0.1_dp, s, contact_law_t(friction=0.6_dp, pairs=no_pairs), model, status)
     model%motion = motion_afd(1.0_dp, 0.0_dp, 1, 1, 1)
-    call monitor_init(arch, model, 0.5_dp*thickness_m, 0.5_dp, 0.01_dp*thickness_m, mon)
+    call monitor_init(arch, model%bodies, 0.5_dp*thickness_m, 0.5_dp, 0.01_dp*thickness_m, mon)
     call simulate(model, mon, duration_s, 10, 0.0_dp, res, status)
     call assert_true(status%ok, 'run: '//trim(status%message))
   end subroutine run

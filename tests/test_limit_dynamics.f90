@@ -45,7 +45,8 @@ program test_limit_dynamics
   use voussoir_motion, only: motion_ramp, motion_afd
   use voussoir_contact_law, only: contact_law_t, pair_friction_t
   use voussoir_setup, only: init_model
-  use voussoir_simulation, only: monitor_t, monitor_init, run_result_t, simulate
+  use voussoir_monitors, only: monitor_t, monitor_init
+  use voussoir_simulation, only: run_result_t, simulate
   use voussoir_hinge_side, only: side_intrados, side_extrados
   use voussoir_limit_analysis, only: limit_result_t, horizontal_capacity
   use voussoir_minimum_thickness, only: minimum_thickness
@@ -147,7 +148,7 @@ contains
     call init_model(arch, density_kg_m3, width_m, settings, &
                     contact_law_t(friction=friction, inset_m=inset_m, pairs=no_pairs), model, status)
     model%motion = motion_ramp(direction*ramp_rate_m_s3)
-    call monitor_init(arch, model, 0.1_dp*thickness_m, 0.5_dp, hinge_gap_m, mon)
+    call monitor_init(arch, model%bodies, 0.1_dp*thickness_m, 0.5_dp, hinge_gap_m, mon)
     duration_s = max_load_factor*lambda_g_m_s2/ramp_rate_m_s3
     call simulate(model, mon, duration_s, huge(1), 0.2_dp, res, status)
     call assert_true(status%ok, trim(name)//': simulation ran '//trim(status%message))
@@ -244,7 +245,7 @@ contains
     call init_model(arch, density_kg_m3, width_m, settings, &
                     contact_law_t(friction=friction, inset_m=inset_m, pairs=no_pairs), model, status)
     model%motion = motion_afd(1.0_dp, 0.0_dp, 1, 1, 1)   ! the table stays at rest
-    call monitor_init(arch, model, 0.5_dp*thickness_m, 0.5_dp, 0.01_dp*thickness_m, mon)
+    call monitor_init(arch, model%bodies, 0.5_dp*thickness_m, 0.5_dp, 0.01_dp*thickness_m, mon)
     call simulate(model, mon, 6.0_dp, 100, 0.0_dp, res, status)
     call assert_true(status%ok, 'gravity run: '//trim(status%message))
   end subroutine stand_under_gravity

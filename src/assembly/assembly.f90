@@ -1,20 +1,16 @@
-!> Assemblies of rigid polygons: the arch builder and the plain-text polygon reader.
+!> Assemblies of rigid polygons and the arch builder (polygon files: voussoir_polygon_file,
+!> walls: voussoir_wall).
 !>
 !> An assembly is geometry only (vertices, which bodies are driven by the table, and for
 !> arches the joint numbering of shared/MEASURED_DATA.md); the dynamic state lives in
 !> `bodies_t`.
 module voussoir_assembly
   use voussoir_kinds, only: dp, pi
-  use voussoir_status, only: status_t, fail
-  use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
-  use voussoir_geometry, only: polygon_area, is_convex_ccw, overlap_depth, polygon_min_width
-  use voussoir_line_reader, only: read_line
   use voussoir_random_stream, only: random_stream_t, stream_init, stream_uniform
-  use voussoir_text, only: itoa, fmt_significant, fmt_real
   implicit none
   private
 
-  public :: polygon_t, assembly_t, build_arch, read_polygon_file, arch_joint_angle_deg, voussoir_angle_factors
+  public :: polygon_t, assembly_t, build_arch, arch_joint_angle_deg, voussoir_angle_factors
   public :: role_voussoir, role_foundation, role_restraint
 
   integer, parameter :: role_voussoir = 1    !! a free block of the arch
@@ -167,166 +163,5 @@ contains
       xy = reshape([p0, [p0(1) + thickness_m, p0(2)], [p0(1) + thickness_m, mid(2)], mid], [2, 4])
     end if
   end function bracket_block
-
-  !> Read an assembly of convex polygons from a plain text file.
-  !>
-  !> Format: lines `block free` or `block driven` start a polygon, followed by one vertex
-  !> `x y` [m] a line; `#` starts a comment; blank lines are ignored. Vertices may be in
-  !> either orientation; the polygon must be convex. Every coordinate is finite and
-  !> within `max_coordinate_m` of the origin, every block at least `min_width_m` wide.
-  subroutine read_polygon_file(path, assembly, status)
-    character(len=*), intent(in) :: path
-    type(assembly_t), intent(out) :: assembly
-    type(status_t), intent(inout) :: status
-    real(dp), parameter :: max_coordinate_m = 1.0e3_dp   !! as r_ext_m and width_m of &arch
-    real(dp), parameter :: min_width_m = 1.0e-4_dp       !! 100 times the overlap tolerance
-    character(len=:), allocatable :: line
-    character(len=512) :: iomsg
-    character(len=16) :: word, mode
-    integer :: unit, ios, line_no, nb, nv, k, block_line
-    real(dp) :: x, y
-    real(dp), allocatable :: xy(:, :)
-    type(polygon_t), allocatable :: polys(:)
-    logical, allocatable :: driven(:)
-    character(len=32) :: where
-
-    open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
-    if (ios /= 0) then
-      call fail(status, trim(path)//': cannot open polygon file: '//trim(iomsg))
-      return
-    end if
-    allocate (polys(0), driven(0), xy(2, 0))
-    nb = 0
-    line_no = 0
-    do
-      call read_line(unit, line, ios)
-      if (ios /= 0) exit
-      line_no = line_no + 1
-      write (where, '(a,i0)') ':', line_no
-      k = index(line, '#')
-      if (k > 0) line = line(:k - 1)
-      if (len_trim(line) == 0) cycle
-      word = ''
-      read (line, *, iostat=ios) word
-      if (word == 'block') then
-        if (nb > 0) call close_polygon()
-        if (.not. status%ok) exit
-        read (line, *, iostat=ios) word, mode
-        if (ios /= 0 .or. (mode /= 'free' .and. mode /= 'driven')) then
-          call fail(status, trim(path)//trim(where)//": expected 'block free' or 'block driven'")
-          exit
-        end if
-        nb = nb + 1
-        block_line = line_no
-        driven = [driven, mode == 'driven']
-        deallocate (xy)
-        allocate (xy(2, 0))
-      else
-        read (line, *, iostat=ios) x, y
-        if (ios /= 0 .or. nb == 0) then
-          call fail(status, trim(path)//trim(where)//": expected a vertex 'x y' in m after a 'block' line")
-          exit
-        end if
-        call check_coordinate('x', x)
-        call check_coordinate('y', y)
-        if (.not. status%ok) exit
-        xy = reshape([xy, x, y], [2, size(xy, 2) + 1])
-      end if
-    end do
-    close (unit)
-    if (.not. status%ok) return
-    if (nb == 0) then
-      call fail(status, trim(path)//': no block in polygon file')
-      return
-    end if
-    call close_polygon()
-    if (.not. status%ok) return
-    if (all(driven)) then
-      call fail(status, trim(path)//': every block is driven: nothing is free to move (mark blocks `block free`)')
-      return
-    end if
-    if (.not. any(driven)) then
-      call fail(status, trim(path)//': no block is driven: nothing carries the assembly on the table '// &
-                '(mark the table or foundation blocks `block driven`)')
-      return
-    end if
-    call check_overlaps()
-    if (.not. status%ok) return
-    assembly%n_bodies = nb
-    call move_alloc(polys, assembly%polygon)
-    call move_alloc(driven, assembly%driven)
-    allocate (assembly%role(nb))
-    assembly%role = merge(role_foundation, role_voussoir, assembly%driven)
-
-  contains
-
-    !> Blocks may touch but not interpenetrate (by more than 1 micrometre).
-    subroutine check_overlaps()
-      real(dp), parameter :: tol_m = 1.0e-6_dp
-      real(dp), allocatable :: box(:, :)
-      real(dp) :: depth
-      integer :: i, j
-      allocate (box(4, nb))
-      do i = 1, nb
-        box(:, i) = [minval(polys(i)%xy(1, :)), maxval(polys(i)%xy(1, :)), minval(polys(i)%xy(2, :)), &
-                     maxval(polys(i)%xy(2, :))]
-      end do
-      do i = 1, nb - 1
-        do j = i + 1, nb
-          if (box(1, j) >= box(2, i) - tol_m .or. box(1, i) >= box(2, j) - tol_m .or. &
-              box(3, j) >= box(4, i) - tol_m .or. box(3, i) >= box(4, j) - tol_m) cycle
-          depth = overlap_depth(polys(i)%xy, polys(j)%xy)
-          if (depth > tol_m) then
-            call fail(status, trim(path)//': blocks '//itoa(i)//' and '//itoa(j)//' overlap by '// &
-                      fmt_significant(depth, 3)//' m: blocks may touch but not interpenetrate')
-            return
-          end if
-        end do
-      end do
-    end subroutine check_overlaps
-
-    !> A vertex coordinate [m] is a finite number within max_coordinate_m of the origin.
-    subroutine check_coordinate(name, value)
-      character(len=*), intent(in) :: name
-      real(dp), intent(in) :: value
-      if (ieee_is_finite(value)) then
-        if (abs(value) <= max_coordinate_m) return
-        call fail(status, trim(path)//trim(where)//': vertex '//name//' = '//fmt_real(value)// &
-                  ' m is outside the allowed range -1000 m <= '//name//' <= 1000 m')
-      else
-        call fail(status, trim(path)//trim(where)//': vertex '//name//' = '//fmt_real(value)// &
-                  ' is not a finite number (allowed: -1000 m <= '//name//' <= 1000 m)')
-      end if
-    end subroutine check_coordinate
-
-    subroutine close_polygon()
-      character(len=:), allocatable :: id
-      real(dp) :: width
-      nv = size(xy, 2)
-      id = trim(path)//':'//itoa(block_line)//': block '//itoa(nb)
-      if (nv < 3) then
-        call fail(status, id//' has fewer than 3 vertices')
-        return
-      end if
-      if (polygon_area(xy) == 0.0_dp) then
-        call fail(status, id//' has zero area (its vertices are on one line)')
-        return
-      end if
-      if (polygon_area(xy) < 0.0_dp) xy = xy(:, nv:1:-1)
-      if (.not. is_convex_ccw(xy)) then
-        call fail(status, id//' is not a convex polygon (a vertex turns inwards, repeats, or the '// &
-                  'edges cross): split it into convex blocks')
-        return
-      end if
-      width = polygon_min_width(xy)
-      if (width < min_width_m) then
-        call fail(status, id//' is '//fmt_significant(width, 3)//' m wide at its narrowest: '// &
-                  'the allowed range is width >= 1e-4 m (0.1 mm; blocks touch within 1 micrometre)')
-        return
-      end if
-      polys = [polys, polygon_t(xy)]
-    end subroutine close_polygon
-
-  end subroutine read_polygon_file
 
 end module voussoir_assembly

@@ -66,14 +66,38 @@ contains
     type(status_t), intent(inout) :: status
     integer(hid_t) :: file_id, g
     character(len=:), allocatable :: path
-    real(dp), allocatable :: verts(:, :, :)
-    integer :: nb, i, nv, n
 
     path = trim(cfg%output%file)
     call h5_create(path, file_id, status)
     if (.not. status%ok) return
     call write_provenance(file_id, 'voussoir-run', cfg, status)
+    call write_result_summary(file_id, res, status)
+    call write_samples(file_id, model, res, status)
+    if (model%motion%waveform == waveform_accelerogram) call write_record(file_id, cfg, model, status)
+    call h5_group(file_id, 'contacts', g, status)
+    call h5_write(g, 'count', res%contact_count, status)
+    call h5_group_close(g, status)
+    call h5_group(file_id, 'solver', g, status)
+    call h5_write(g, 'time_s', res%step_time_s, status)
+    call h5_write(g, 'iterations', res%step_iterations, status)
+    call h5_write(g, 'norm', res%step_norm, status)
+    call h5_group_close(g, status)
+    call h5_group(file_id, 'hinges', g, status)
+    call h5_write(g, 'time_s', res%hinge_time_s, status)
+    call h5_write(g, 'joint', res%hinge_joint, status)
+    call h5_write(g, 'side', side_file_code(res%hinge_side), status)
+    call h5_attr(g, 'side_names', '0=intrados,1=extrados', status)
+    call h5_group_close(g, status)
+    if (assembly%n_voussoirs > 0) call write_arch(file_id, cfg, assembly, status)
+    call h5_commit(file_id, path, status)
+  end subroutine write_run_file
 
+  !> /result: what the run found (collapse, peak, residual) and how the solver did.
+  subroutine write_result_summary(file_id, res, status)
+    integer(hid_t), intent(in) :: file_id
+    type(run_result_t), intent(in) :: res
+    type(status_t), intent(inout) :: status
+    integer(hid_t) :: g
     call h5_group(file_id, 'result', g, status)
     call h5_attr(g, 'collapsed', merge(1, 0, res%collapsed), status)
     call h5_attr(g, 'collapse_time_s', res%collapse_time_s, status)
@@ -90,6 +114,17 @@ contains
     call h5_attr(g, 'max_residual_disp_m', res%max_residual_disp_m, status)
     call h5_attr(g, 'max_residual_body', res%max_residual_body, status)
     call h5_group_close(g, status)
+  end subroutine write_result_summary
+
+  !> The samples: /time_s, /table, /crown, and /bodies with the blocks' shapes.
+  subroutine write_samples(file_id, model, res, status)
+    integer(hid_t), intent(in) :: file_id
+    type(model_t), intent(in) :: model
+    type(run_result_t), intent(in) :: res
+    type(status_t), intent(inout) :: status
+    integer(hid_t) :: g
+    real(dp), allocatable :: verts(:, :, :)
+    integer :: nb, i, nv
 
     call h5_write(file_id, 'time_s', res%time_s, status)
     call h5_group(file_id, 'table', g, status)
@@ -115,56 +150,50 @@ contains
     call h5_write(g, 'n_vertices', model%bodies%n_vertices, status)
     call h5_write(g, 'role', model%bodies%role, status)
     call h5_group_close(g, status)
+  end subroutine write_samples
 
-    if (model%motion%waveform == waveform_accelerogram) then
-      call h5_group(file_id, 'record', g, status)
-      call h5_attr(g, 'name', trim(model%motion%record_name), status)
-      call h5_attr(g, 'description', trim(model%motion%record_description), status)
-      call h5_attr(g, 'file', trim(cfg%motion%record_file), status)
-      call h5_attr(g, 'scale', cfg%motion%record_scale, status)
-      call h5_attr(g, 'n_samples', size(model%motion%a_m_s2), status)
-      call h5_attr(g, 'dt_s', model%motion%dt_record_s, status)
-      call h5_attr(g, 'start_s', model%motion%start_s, status)
-      associate (im => model%motion%intensity)
-        call h5_attr(g, 'pga_m_s2', im%pga_m_s2, status)
-        call h5_attr(g, 'pga_g', im%pga_m_s2/g_m_s2, status)
-        call h5_attr(g, 'pgv_m_s', im%pgv_m_s, status)
-        call h5_attr(g, 'arias_m_s', im%arias_m_s, status)
-        call h5_attr(g, 't5_s', im%t5_s, status)
-        call h5_attr(g, 't95_s', im%t95_s, status)
-        call h5_attr(g, 'significant_duration_s', im%significant_duration_s, status)
-      end associate
-      call h5_group_close(g, status)
-    end if
-
-    call h5_group(file_id, 'contacts', g, status)
-    call h5_write(g, 'count', res%contact_count, status)
+  !> /record: the accelerogram a run was driven by and its intensity measures.
+  subroutine write_record(file_id, cfg, model, status)
+    integer(hid_t), intent(in) :: file_id
+    type(config_t), intent(in) :: cfg
+    type(model_t), intent(in) :: model
+    type(status_t), intent(inout) :: status
+    integer(hid_t) :: g
+    call h5_group(file_id, 'record', g, status)
+    call h5_attr(g, 'name', trim(model%motion%record_name), status)
+    call h5_attr(g, 'description', trim(model%motion%record_description), status)
+    call h5_attr(g, 'file', trim(cfg%motion%record_file), status)
+    call h5_attr(g, 'scale', cfg%motion%record_scale, status)
+    call h5_attr(g, 'n_samples', size(model%motion%a_m_s2), status)
+    call h5_attr(g, 'dt_s', model%motion%dt_record_s, status)
+    call h5_attr(g, 'start_s', model%motion%start_s, status)
+    associate (im => model%motion%intensity)
+      call h5_attr(g, 'pga_m_s2', im%pga_m_s2, status)
+      call h5_attr(g, 'pga_g', im%pga_m_s2/g_m_s2, status)
+      call h5_attr(g, 'pgv_m_s', im%pgv_m_s, status)
+      call h5_attr(g, 'arias_m_s', im%arias_m_s, status)
+      call h5_attr(g, 't5_s', im%t5_s, status)
+      call h5_attr(g, 't95_s', im%t95_s, status)
+      call h5_attr(g, 'significant_duration_s', im%significant_duration_s, status)
+    end associate
     call h5_group_close(g, status)
-    call h5_group(file_id, 'solver', g, status)
-    call h5_write(g, 'time_s', res%step_time_s, status)
-    call h5_write(g, 'iterations', res%step_iterations, status)
-    call h5_write(g, 'norm', res%step_norm, status)
-    call h5_group_close(g, status)
-    call h5_group(file_id, 'hinges', g, status)
-    call h5_write(g, 'time_s', res%hinge_time_s, status)
-    call h5_write(g, 'joint', res%hinge_joint, status)
-    call h5_write(g, 'side', side_file_code(res%hinge_side), status)
-    call h5_attr(g, 'side_names', '0=intrados,1=extrados', status)
-    call h5_group_close(g, status)
+  end subroutine write_record
 
-    n = assembly%n_voussoirs
-    if (n > 0) then
-      call h5_group(file_id, 'arch', g, status)
-      call h5_attr(g, 'n_voussoirs', n, status)
-      call h5_attr(g, 'thickness_m', assembly%thickness_m, status)
-      call h5_attr(g, 'r_ext_m', assembly%r_ext_m, status)
-      call h5_attr(g, 'embrace_deg', cfg%arch%embrace_deg, status)
-      call h5_write(g, 'joint_intrados_xy_m', assembly%joint_intrados_xy, status)
-      call h5_write(g, 'joint_extrados_xy_m', assembly%joint_extrados_xy, status)
-      call h5_group_close(g, status)
-    end if
-    call h5_commit(file_id, path, status)
-  end subroutine write_run_file
-
+  !> /arch: the arch's description and the ends of its joints.
+  subroutine write_arch(file_id, cfg, assembly, status)
+    integer(hid_t), intent(in) :: file_id
+    type(config_t), intent(in) :: cfg
+    type(assembly_t), intent(in) :: assembly
+    type(status_t), intent(inout) :: status
+    integer(hid_t) :: g
+    call h5_group(file_id, 'arch', g, status)
+    call h5_attr(g, 'n_voussoirs', assembly%n_voussoirs, status)
+    call h5_attr(g, 'thickness_m', assembly%thickness_m, status)
+    call h5_attr(g, 'r_ext_m', assembly%r_ext_m, status)
+    call h5_attr(g, 'embrace_deg', cfg%arch%embrace_deg, status)
+    call h5_write(g, 'joint_intrados_xy_m', assembly%joint_intrados_xy, status)
+    call h5_write(g, 'joint_extrados_xy_m', assembly%joint_extrados_xy, status)
+    call h5_group_close(g, status)
+  end subroutine write_arch
 
 end module voussoir_run_output

@@ -87,11 +87,10 @@ contains
     character(len=*), intent(in) :: path
     type(ground_record_t), intent(inout) :: rec
     type(status_t), intent(inout) :: status
-    character(len=4096) :: line
     character(len=text_len) :: header(4)
     character(len=512) :: iomsg
-    integer :: unit, ios, line_no, npts, n, start, finish, kind
-    real(dp) :: dt, value
+    integer :: unit, ios, line_no, npts
+    real(dp) :: dt
 
     open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
     if (ios /= 0) then
@@ -108,14 +107,31 @@ contains
       end if
     end do
     rec%description = adjustl(header(2))
-    call check_units(header(3))
-    if (status%ok) call npts_dt(header(4), npts, dt)
+    call check_at2_units(path, header(3), status)
+    if (status%ok) call at2_npts_dt(path, header(4), npts, dt, status)
     if (.not. status%ok) then
       close (unit)
       return
     end if
-
     allocate (rec%accel_m_s2(npts))
+    call read_at2_samples(unit, path, rec%accel_m_s2, status)
+    close (unit)
+    rec%dt_s = dt
+  end subroutine read_at2
+
+  !> The `size(accel_m_s2)` samples [m/s2] that follow the header of the AT2 file `path`
+  !> open on `unit`, any number of them a line (in g in the file).
+  subroutine read_at2_samples(unit, path, accel_m_s2, status)
+    integer, intent(in) :: unit
+    character(len=*), intent(in) :: path
+    real(dp), intent(out) :: accel_m_s2(:)
+    type(status_t), intent(inout) :: status
+    character(len=*), parameter :: separators = ' ,'//achar(9)//achar(13)
+    character(len=4096) :: line
+    integer :: ios, line_no, npts, n, start, finish, kind
+    real(dp) :: value
+
+    npts = size(accel_m_s2)
     n = 0
     line_no = 4
     do
@@ -124,10 +140,10 @@ contains
       line_no = line_no + 1
       finish = 0
       do
-        start = verify(line(finish + 1:), ' ,'//achar(9)//achar(13))
+        start = verify(line(finish + 1:), separators)
         if (start == 0) exit
         start = finish + start
-        finish = scan(line(start:), ' ,'//achar(9)//achar(13))
+        finish = scan(line(start:), separators)
         if (finish == 0) then
           finish = len(line)
         else
@@ -145,86 +161,83 @@ contains
                     ' in the header (line 4)')
           exit
         end if
-        rec%accel_m_s2(n) = value*g_m_s2
+        accel_m_s2(n) = value*g_m_s2
       end do
       if (.not. status%ok) exit
     end do
-    close (unit)
     if (status%ok .and. n < npts) &
       call fail(status, trim(path)//':'//itoa(line_no)//': the file ends after '//itoa(n)// &
                 ' samples, but NPTS = '//itoa(npts)//' in the header (line 4)')
-    rec%dt_s = dt
+  end subroutine read_at2_samples
 
-  contains
+  !> Line 3 of the AT2 file `path` names the units; anything named but g is refused.
+  subroutine check_at2_units(path, text, status)
+    character(len=*), intent(in) :: path, text
+    type(status_t), intent(inout) :: status
+    character(len=len(text)) :: up
+    integer :: k
+    up = upper(text)
+    k = index(up, 'UNITS OF')
+    if (k == 0) return
+    up = adjustl(up(k + 8:))
+    if (up(1:1) == 'G' .and. (up(2:2) == ' ' .or. up(2:2) == ',' .or. up(2:2) == '.')) return
+    call fail(status, trim(path)//":3: units '"//trim(up)//"': a PEER .AT2 record must be in units of g")
+  end subroutine check_at2_units
 
-    !> Line 3 names the units; anything named but g is refused.
-    subroutine check_units(text)
-      character(len=*), intent(in) :: text
-      character(len=len(text)) :: up
-      integer :: k
-      up = upper(text)
-      k = index(up, 'UNITS OF')
-      if (k == 0) return
-      up = adjustl(up(k + 8:))
-      if (up(1:1) == 'G' .and. (up(2:2) == ' ' .or. up(2:2) == ',' .or. up(2:2) == '.')) return
-      call fail(status, trim(path)//":3: units '"//trim(up)//"': a PEER .AT2 record must be in units of g")
-    end subroutine check_units
-
-    !> NPTS and DT of the fourth header line, in either PEER variant.
-    subroutine npts_dt(text, npts, dt)
-      character(len=*), intent(in) :: text
-      integer, intent(out) :: npts
-      real(dp), intent(out) :: dt
-      character(len=len(text)) :: up
-      character(len=64) :: word(2)
-      integer :: k, ios
-      real(dp) :: count
-      up = upper(text)
-      npts = 0
-      dt = 0.0_dp
-      word = ''
-      k = index(up, 'NPTS=')
-      if (k > 0) then
-        word(1) = first_word(up(k + 5:))
-        k = index(up, 'DT=')
-        if (k == 0) then
-          call fail(status, trim(path)//":4: no 'DT=' in the header line '"//trim(text)//"'")
-          return
-        end if
-        word(2) = first_word(up(k + 3:))
-      else
-        k = index(up, 'NPTS')
-        if (k == 0) then
-          call fail(status, trim(path)//":4: no NPTS in the header line '"//trim(text)// &
-                    "' (expected 'NPTS= n, DT= dt SEC' or 'n dt NPTS, DT')")
-          return
-        end if
-        if (index(up(k:), 'DT') == 0) then
-          call fail(status, trim(path)//":4: no DT in the header line '"//trim(text)// &
-                    "' (expected 'n dt NPTS, DT')")
-          return
-        end if
-        read (up(:k - 1), *, iostat=ios) word
-        if (ios /= 0) then
-          call fail(status, trim(path)//":4: the header line '"//trim(text)// &
-                    "' lacks the values before 'NPTS, DT'")
-          return
-        end if
-      end if
-      call parse_number(word(1), count, k)
-      if (k /= number_ok .or. count /= aint(count) .or. count < 2.0_dp .or. count > real(huge(1), dp)) then
-        call fail(status, trim(path)//":4: NPTS = '"//trim(word(1))//"' is not an integer >= 2")
+  !> NPTS and DT of the fourth header line of the AT2 file `path`, in either PEER variant.
+  subroutine at2_npts_dt(path, text, npts, dt, status)
+    character(len=*), intent(in) :: path, text
+    integer, intent(out) :: npts
+    real(dp), intent(out) :: dt
+    type(status_t), intent(inout) :: status
+    character(len=len(text)) :: up
+    character(len=64) :: word(2)
+    integer :: k, ios
+    real(dp) :: count
+    up = upper(text)
+    npts = 0
+    dt = 0.0_dp
+    word = ''
+    k = index(up, 'NPTS=')
+    if (k > 0) then
+      word(1) = first_word(up(k + 5:))
+      k = index(up, 'DT=')
+      if (k == 0) then
+        call fail(status, trim(path)//":4: no 'DT=' in the header line '"//trim(text)//"'")
         return
       end if
-      npts = int(count)
-      call parse_number(word(2), dt, k)
-      if (k /= number_ok .or. .not. dt > 0.0_dp) then
-        call fail(status, trim(path)//":4: DT = '"//trim(word(2))//"' is not a time step > 0 (s)")
+      word(2) = first_word(up(k + 3:))
+    else
+      k = index(up, 'NPTS')
+      if (k == 0) then
+        call fail(status, trim(path)//":4: no NPTS in the header line '"//trim(text)// &
+                  "' (expected 'NPTS= n, DT= dt SEC' or 'n dt NPTS, DT')")
         return
       end if
-    end subroutine npts_dt
-
-  end subroutine read_at2
+      if (index(up(k:), 'DT') == 0) then
+        call fail(status, trim(path)//":4: no DT in the header line '"//trim(text)// &
+                  "' (expected 'n dt NPTS, DT')")
+        return
+      end if
+      read (up(:k - 1), *, iostat=ios) word
+      if (ios /= 0) then
+        call fail(status, trim(path)//":4: the header line '"//trim(text)// &
+                  "' lacks the values before 'NPTS, DT'")
+        return
+      end if
+    end if
+    call parse_number(word(1), count, k)
+    if (k /= number_ok .or. count /= aint(count) .or. count < 2.0_dp .or. count > real(huge(1), dp)) then
+      call fail(status, trim(path)//":4: NPTS = '"//trim(word(1))//"' is not an integer >= 2")
+      return
+    end if
+    npts = int(count)
+    call parse_number(word(2), dt, k)
+    if (k /= number_ok .or. .not. dt > 0.0_dp) then
+      call fail(status, trim(path)//":4: DT = '"//trim(word(2))//"' is not a time step > 0 (s)")
+      return
+    end if
+  end subroutine at2_npts_dt
 
   !> The first blank- or comma-delimited word of `text`.
   pure function first_word(text) result(word)

@@ -78,7 +78,7 @@ contains
         exit
       end if
       n = n + 1
-      if (n > size(lines)) call grow()
+      if (n > size(lines)) call grow_rows(values, lines)
       lines(n) = line_no
       do k = 1, size(names)
         call parse_number(fields(col(k)), values(k, n), kind)
@@ -99,16 +99,6 @@ contains
 
   contains
 
-    subroutine grow()
-      real(dp), allocatable :: v(:, :)
-      integer, allocatable :: l(:)
-      allocate (v(size(names), 2*size(lines)), l(2*size(lines)))
-      v(:, 1:size(lines)) = values
-      l(1:size(lines)) = lines
-      call move_alloc(v, values)
-      call move_alloc(l, lines)
-    end subroutine grow
-
     function name_list() result(text)
       character(len=:), allocatable :: text
       integer :: j
@@ -119,6 +109,19 @@ contains
     end function name_list
 
   end subroutine read_csv_columns
+
+  !> Twice the room for rows in `values` (n_columns, :) and `lines`, the rows kept.
+  pure subroutine grow_rows(values, lines)
+    real(dp), allocatable, intent(inout) :: values(:, :)
+    integer, allocatable, intent(inout) :: lines(:)
+    real(dp), allocatable :: v(:, :)
+    integer, allocatable :: l(:)
+    allocate (v(size(values, 1), 2*size(lines)), l(2*size(lines)))
+    v(:, 1:size(lines)) = values
+    l(1:size(lines)) = lines
+    call move_alloc(v, values)
+    call move_alloc(l, lines)
+  end subroutine grow_rows
 
   !> Split a CSV line at commas (no quoting in numeric tables), trimming blanks and CR.
   pure subroutine split_csv(line, fields)

@@ -35,6 +35,8 @@ module voussoir_coarse
   integer, parameter, public :: coarse_last_sweep = 64
   !> Coarse unknowns per bed joint (the patterns 1 to 3 above).
   integer, parameter :: n_modes = 3
+  !> Band width of P^T W P (superdiagonals).
+  integer, parameter :: kd = 2*n_modes - 1
   !> An unloaded contact opens when its normal velocity exceeds this fraction of the
   !> largest body speed (below it, the velocity is round-off of touching faces).
   real(dp), parameter :: opening_fraction = 1.0e-6_dp
@@ -82,10 +84,7 @@ contains
     integer, intent(in) :: pair(2, n)
     real(dp), intent(in) :: c(n_rows, n), point(2, n)
     real(dp), intent(inout) :: r(2, n), v(3, n_bodies)
-    integer, parameter :: kd = 2*n_modes - 1   ! band width of P^T W P
-    integer :: k, a, b, j, p, q, course_a, course_b, info, n_unknowns, slot_a, slot_b, row, col
-    real(dp) :: u_t, u_n, r_t, r_n, dr_t, dr_n, im, ii, x_min, x_max, x_mid, x_half, shear, moment, opening
-    real(dp) :: fa(3, n_modes), fb(3, n_modes)
+    integer :: info, n_unknowns
 
     n_unknowns = coarse%n_joints*n_modes
     if (n_unknowns == 0 .or. n == 0) return
@@ -94,6 +93,27 @@ contains
     end if
     if (.not. allocated(coarse%joint)) &
       allocate (coarse%joint(max(64, 2*n)), coarse%shear(max(64, 2*n)), coarse%moment(max(64, 2*n)))
+    call restrict(coarse, n, n_bodies, pair, c, point, r, v, n_unknowns)
+    call assemble_galerkin(coarse, n_bodies, n_unknowns)
+    call dpbtrf('U', n_unknowns, kd, coarse%band, kd + 1, info)
+    if (info /= 0) return   ! not positive definite (a degenerate contact set): no correction
+    call dpbtrs('U', n_unknowns, kd, 1, coarse%band, kd + 1, coarse%delta, n_unknowns, info)
+    if (info /= 0) return
+    call prolong(coarse, n, n_bodies, pair, c, r, v)
+  end subroutine coarse_correct
+
+  !> Restriction: the right-hand side -P^T u in `coarse%delta`, the generalised force of
+  !> each unknown on each body (P^T H^T) in `coarse%force`, and per contact its bed joint
+  !> (0: not taking part) and its pattern weights.
+  subroutine restrict(coarse, n, n_bodies, pair, c, point, r, v, n_unknowns)
+    type(coarse_t), intent(inout) :: coarse
+    integer, intent(in) :: n, n_bodies, n_unknowns
+    integer, intent(in) :: pair(2, n)
+    real(dp), intent(in) :: c(n_rows, n), point(2, n), r(2, n), v(3, n_bodies)
+    integer :: k, a, b, j, p, course_a, course_b, slot_a, slot_b
+    real(dp) :: u_t, u_n, x_min, x_max, x_mid, x_half, shear, moment, opening
+    real(dp) :: fa(3, n_modes), fb(3, n_modes)
+
     ! The moment pattern's abscissa runs from -1 to 1 over the contacts (the extreme
     ! abscissae in one pass: the first of equal values, as maxval and minval take them).
     x_max = point(1, 1)
@@ -106,7 +126,6 @@ contains
     x_half = max(0.5_dp*(x_max - x_min), tiny(1.0_dp))
     opening = opening_fraction*maxval(abs(v(1:2, :)))
 
-    ! Restriction: P^T u, and P^T H^T body by body (the generalised force of each unknown).
     coarse%force = 0.0_dp
     coarse%delta(1:n_unknowns) = 0.0_dp
     do k = 1, n
@@ -146,8 +165,16 @@ contains
       coarse%force(:, slot_a + 1:slot_a + n_modes, a) = coarse%force(:, slot_a + 1:slot_a + n_modes, a) + fa
       coarse%force(:, slot_b + 1:slot_b + n_modes, b) = coarse%force(:, slot_b + 1:slot_b + n_modes, b) - fb
     end do
+  end subroutine restrict
 
-    ! Galerkin operator P^T W P = sum over bodies of F^T M^-1 F, banded in the joint.
+  !> The Galerkin operator P^T W P = sum over bodies of F^T M^-1 F, banded in the joint,
+  !> into `coarse%band`; an unknown without active contacts gets delta = 0.
+  subroutine assemble_galerkin(coarse, n_bodies, n_unknowns)
+    type(coarse_t), intent(inout) :: coarse
+    integer, intent(in) :: n_bodies, n_unknowns
+    integer :: b, j, p, q, row, col
+    real(dp) :: im, ii
+
     coarse%band(:, 1:n_unknowns) = 0.0_dp
     do b = 1, n_bodies
       j = coarse%course(b)
@@ -167,19 +194,25 @@ contains
         end do
       end do
     end do
-    ! An unknown without active contacts: delta = 0 there.
     do p = 1, n_unknowns
       if (coarse%band(kd + 1, p) <= 0.0_dp) then
         coarse%band(kd + 1, p) = 1.0_dp
         coarse%delta(p) = 0.0_dp
       end if
     end do
-    call dpbtrf('U', n_unknowns, kd, coarse%band, kd + 1, info)
-    if (info /= 0) return   ! not positive definite (a degenerate contact set): no correction
-    call dpbtrs('U', n_unknowns, kd, 1, coarse%band, kd + 1, coarse%delta, n_unknowns, info)
-    if (info /= 0) return
+  end subroutine assemble_galerkin
 
-    ! Prolongation, projection on the cone, and the velocities of the change made.
+  !> Prolongation of the correction `coarse%delta`, projection on the cone, and the
+  !> velocities of the change made.
+  subroutine prolong(coarse, n, n_bodies, pair, c, r, v)
+    type(coarse_t), intent(in) :: coarse
+    integer, intent(in) :: n, n_bodies
+    integer, intent(in) :: pair(2, n)
+    real(dp), intent(in) :: c(n_rows, n)
+    real(dp), intent(inout) :: r(2, n), v(3, n_bodies)
+    integer :: k, a, b, j, p
+    real(dp) :: r_t, r_n, dr_t, dr_n
+
     do k = 1, n
       j = coarse%joint(k)
       if (j == 0) cycle
@@ -194,6 +227,6 @@ contains
       r(2, k) = r_n
       call apply_impulse_change(c(:, k), dr_t, dr_n, v(:, a), v(:, b))
     end do
-  end subroutine coarse_correct
+  end subroutine prolong
 
 end module voussoir_coarse

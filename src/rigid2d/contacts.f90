@@ -45,40 +45,48 @@ contains
       if (size(set%body_a) >= capacity) return
     end if
     new_cap = max(64, 2*capacity)
-    call grow_int(set%body_a)
-    call grow_int(set%body_b)
-    call grow_int(set%slot)
-    call grow_real2(set%normal)
-    call grow_real2(set%tangent)
-    call grow_real2(set%arm_a)
-    call grow_real2(set%arm_b)
-    call grow_real2(set%point)
-    call grow_real2(set%impulse)
-    call grow_real(set%gap_m)
-    call grow_real(set%friction)
-  contains
-    subroutine grow_int(a)
-      integer, allocatable, intent(inout) :: a(:)
-      integer, allocatable :: b(:)
-      allocate (b(new_cap))
-      if (allocated(a)) b(1:set%n) = a(1:set%n)
-      call move_alloc(b, a)
-    end subroutine grow_int
-    subroutine grow_real(a)
-      real(dp), allocatable, intent(inout) :: a(:)
-      real(dp), allocatable :: b(:)
-      allocate (b(new_cap))
-      if (allocated(a)) b(1:set%n) = a(1:set%n)
-      call move_alloc(b, a)
-    end subroutine grow_real
-    subroutine grow_real2(a)
-      real(dp), allocatable, intent(inout) :: a(:, :)
-      real(dp), allocatable :: b(:, :)
-      allocate (b(2, new_cap))
-      if (allocated(a)) b(:, 1:set%n) = a(:, 1:set%n)
-      call move_alloc(b, a)
-    end subroutine grow_real2
+    call grow_int(set%body_a, set%n, new_cap)
+    call grow_int(set%body_b, set%n, new_cap)
+    call grow_int(set%slot, set%n, new_cap)
+    call grow_real2(set%normal, set%n, new_cap)
+    call grow_real2(set%tangent, set%n, new_cap)
+    call grow_real2(set%arm_a, set%n, new_cap)
+    call grow_real2(set%arm_b, set%n, new_cap)
+    call grow_real2(set%point, set%n, new_cap)
+    call grow_real2(set%impulse, set%n, new_cap)
+    call grow_real(set%gap_m, set%n, new_cap)
+    call grow_real(set%friction, set%n, new_cap)
   end subroutine reserve
+
+  !> `a` with room for `capacity` entries, its first `n_keep` kept (none if unallocated).
+  pure subroutine grow_int(a, n_keep, capacity)
+    integer, allocatable, intent(inout) :: a(:)
+    integer, intent(in) :: n_keep, capacity
+    integer, allocatable :: b(:)
+    allocate (b(capacity))
+    if (allocated(a)) b(1:n_keep) = a(1:n_keep)
+    call move_alloc(b, a)
+  end subroutine grow_int
+
+  !> `a` with room for `capacity` entries, its first `n_keep` kept (none if unallocated).
+  pure subroutine grow_real(a, n_keep, capacity)
+    real(dp), allocatable, intent(inout) :: a(:)
+    integer, intent(in) :: n_keep, capacity
+    real(dp), allocatable :: b(:)
+    allocate (b(capacity))
+    if (allocated(a)) b(1:n_keep) = a(1:n_keep)
+    call move_alloc(b, a)
+  end subroutine grow_real
+
+  !> `a` (2, :) with room for `capacity` columns, its first `n_keep` kept (none if unallocated).
+  pure subroutine grow_real2(a, n_keep, capacity)
+    real(dp), allocatable, intent(inout) :: a(:, :)
+    integer, intent(in) :: n_keep, capacity
+    real(dp), allocatable :: b(:, :)
+    allocate (b(2, capacity))
+    if (allocated(a)) b(:, 1:n_keep) = a(:, 1:n_keep)
+    call move_alloc(b, a)
+  end subroutine grow_real2
 
   !> All contact points within `alert_m` for the current world vertices of `bodies`
   !> (the caller has set them to the predicted configuration `q`).
@@ -113,59 +121,62 @@ contains
     ! Room for two points per pair once, not a test per pair.
     call reserve(set, 2*set%n_pairs)
     do p = 1, set%n_pairs
-      call add_pair(set%pairs(1, p), set%pairs(2, p))
+      call add_pair(bodies, q, alert_m, law, set%pairs(1, p), set%pairs(2, p), set)
     end do
-
-  contains
-
-    subroutine add_pair(i, j)
-      integer, intent(in) :: i, j
-      integer :: n_points, a, b, p, m
-      real(dp) :: points(2, 2), gaps(2), normal(2)
-      logical :: i_is_candidate
-      real(dp) :: mu
-
-      associate (ni => bodies%n_vertices(i), nj => bodies%n_vertices(j))
-        call polygon_contact_normals(bodies%vertex(:, 1:ni, i), bodies%face_normal(:, 1:ni, i), &
-                                     bodies%vertex(:, 1:nj, j), bodies%face_normal(:, 1:nj, j), &
-                                     alert_m, law%inset_m, n_points, points, gaps, normal, i_is_candidate)
-      end associate
-      if (n_points == 0) return
-      if (i_is_candidate) then
-        a = i
-        b = j
-      else
-        a = j
-        b = i
-      end if
-      mu = pair_friction_of(law, a, b)
-      do p = 1, 2
-        if (gaps(p) > alert_m) cycle
-        if (p == 2 .and. n_points == 1) cycle
-        set%n = set%n + 1
-        m = set%n
-        set%body_a(m) = a
-        set%body_b(m) = b
-        set%slot(m) = p
-        ! Element by element: two-element array assignments compile to library calls.
-        set%normal(1, m) = normal(1)
-        set%normal(2, m) = normal(2)
-        set%tangent(1, m) = -normal(2)
-        set%tangent(2, m) = normal(1)
-        set%point(1, m) = points(1, p)
-        set%point(2, m) = points(2, p)
-        set%arm_a(1, m) = points(1, p) - q(1, a)
-        set%arm_a(2, m) = points(2, p) - q(2, a)
-        set%arm_b(1, m) = points(1, p) - q(1, b)
-        set%arm_b(2, m) = points(2, p) - q(2, b)
-        set%gap_m(m) = gaps(p)
-        set%friction(m) = mu
-        set%impulse(1, m) = 0.0_dp
-        set%impulse(2, m) = 0.0_dp
-      end do
-    end subroutine add_pair
-
   end subroutine detect_contacts
+
+  !> The contact points of bodies i and j within `alert_m` in the configuration `q`
+  !> (3, n), added to `set` (none when the polygons are apart).
+  subroutine add_pair(bodies, q, alert_m, law, i, j, set)
+    type(bodies_t), intent(in) :: bodies
+    real(dp), intent(in) :: q(:, :), alert_m
+    type(contact_law_t), intent(in) :: law
+    integer, intent(in) :: i, j
+    type(contact_set_t), intent(inout) :: set
+    integer :: n_points, a, b, p, m
+    real(dp) :: points(2, 2), gaps(2), normal(2)
+    logical :: i_is_candidate
+    real(dp) :: mu
+
+    associate (ni => bodies%n_vertices(i), nj => bodies%n_vertices(j))
+      call polygon_contact_normals(bodies%vertex(:, 1:ni, i), bodies%face_normal(:, 1:ni, i), &
+                                   bodies%vertex(:, 1:nj, j), bodies%face_normal(:, 1:nj, j), &
+                                   alert_m, law%inset_m, n_points, points, gaps, normal, i_is_candidate)
+    end associate
+    if (n_points == 0) return
+    if (i_is_candidate) then
+      a = i
+      b = j
+    else
+      a = j
+      b = i
+    end if
+    mu = pair_friction_of(law, a, b)
+    do p = 1, 2
+      if (gaps(p) > alert_m) cycle
+      if (p == 2 .and. n_points == 1) cycle
+      set%n = set%n + 1
+      m = set%n
+      set%body_a(m) = a
+      set%body_b(m) = b
+      set%slot(m) = p
+      ! Element by element: two-element array assignments compile to library calls.
+      set%normal(1, m) = normal(1)
+      set%normal(2, m) = normal(2)
+      set%tangent(1, m) = -normal(2)
+      set%tangent(2, m) = normal(1)
+      set%point(1, m) = points(1, p)
+      set%point(2, m) = points(2, p)
+      set%arm_a(1, m) = points(1, p) - q(1, a)
+      set%arm_a(2, m) = points(2, p) - q(2, a)
+      set%arm_b(1, m) = points(1, p) - q(1, b)
+      set%arm_b(2, m) = points(2, p) - q(2, b)
+      set%gap_m(m) = gaps(p)
+      set%friction(m) = mu
+      set%impulse(1, m) = 0.0_dp
+      set%impulse(2, m) = 0.0_dp
+    end do
+  end subroutine add_pair
 
   !> The largest motion of a body from `q_ref` to `q` (3, n) apart from a translation
   !> common to all bodies: |dx - cx| + |dy - cy| + radius |d theta| [m], (cx, cy) the
@@ -261,25 +272,28 @@ contains
             if (box(1, i) > box(3, j) .or. box(1, j) > box(3, i)) cycle
             if (box(2, i) > box(4, j) .or. box(2, j) > box(4, i)) cycle
             if (j < i) cycle
-            call push_pair(min(i, j), max(i, j))
+            call push_pair(set, min(i, j), max(i, j), nb)
           end do
         end do
       end do
     end do
-  contains
-    subroutine push_pair(i, j)
-      integer, intent(in) :: i, j
-      integer, allocatable :: grown(:, :)
-      if (.not. allocated(set%pairs)) allocate (set%pairs(2, 4*nb + 16))
-      if (set%n_pairs == size(set%pairs, 2)) then
-        allocate (grown(2, 2*size(set%pairs, 2)))
-        grown(:, 1:set%n_pairs) = set%pairs(:, 1:set%n_pairs)
-        call move_alloc(grown, set%pairs)
-      end if
-      set%n_pairs = set%n_pairs + 1
-      set%pairs(:, set%n_pairs) = [i, j]
-    end subroutine push_pair
   end subroutine broad_phase
+
+  !> Add the pair (i, j) to the broad phase's list of `set`, growing it as needed (its
+  !> first size 4 nb + 16 for `nb` bodies).
+  pure subroutine push_pair(set, i, j, nb)
+    type(contact_set_t), intent(inout) :: set
+    integer, intent(in) :: i, j, nb
+    integer, allocatable :: grown(:, :)
+    if (.not. allocated(set%pairs)) allocate (set%pairs(2, 4*nb + 16))
+    if (set%n_pairs == size(set%pairs, 2)) then
+      allocate (grown(2, 2*size(set%pairs, 2)))
+      grown(:, 1:set%n_pairs) = set%pairs(:, 1:set%n_pairs)
+      call move_alloc(grown, set%pairs)
+    end if
+    set%n_pairs = set%n_pairs + 1
+    set%pairs(:, set%n_pairs) = [i, j]
+  end subroutine push_pair
 
   !> Face-to-face contact of two convex polygons `pa`, `pb` (2, n) counter-clockwise.
   !>

@@ -4,7 +4,8 @@ module voussoir_setup
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: fmt_significant, itoa
   use voussoir_config, only: config_t
-  use voussoir_assembly, only: assembly_t, build_arch, read_polygon_file, voussoir_angle_factors
+  use voussoir_assembly, only: assembly_t, build_arch, voussoir_angle_factors
+  use voussoir_polygon_file, only: read_polygon_file
   use voussoir_geometry, only: polygon_min_width
   use voussoir_wall, only: build_wall
   use voussoir_bodies, only: bodies_t, bodies_init
@@ -13,7 +14,8 @@ module voussoir_setup
   use voussoir_contact_law, only: contact_law_t, contact_law_init
   use voussoir_motion, only: motion_afd, motion_ramp, motion_record, motion_accelerogram, motion_duration_s
   use voussoir_ground_record, only: ground_record_t, read_ground_record
-  use voussoir_simulation, only: monitor_t, monitor_init, run_result_t, simulate
+  use voussoir_monitors, only: monitor_t, monitor_init
+  use voussoir_simulation, only: run_result_t, simulate
   implicit none
   private
 
@@ -116,7 +118,7 @@ contains
     if (hinge_gap_m == 0.0_dp) hinge_gap_m = 0.01_dp*size_m
     collapse_drop_m = cfg%output%collapse_drop_m
     if (collapse_drop_m == 0.0_dp) collapse_drop_m = 0.5_dp*size_m
-    call monitor_init(assembly, model, collapse_drop_m, cfg%output%collapse_rotation_rad, hinge_gap_m, mon)
+    call monitor_init(assembly, model%bodies, collapse_drop_m, cfg%output%collapse_rotation_rad, hinge_gap_m, mon)
   end subroutine build_model
 
   !> Refuse a run whose step count or stored record is out of reach, before it starts:
