@@ -19,9 +19,8 @@ module voussoir_sweep_master
   use voussoir_config, only: config_t
   use voussoir_sweep_dt_check, only: check_time_step
   use voussoir_text, only: fmt_real, fmt_fixed, itoa, join_words
-  use voussoir_threshold, only: threshold_search_t, threshold_result_t, run_outcome_t, &
-                                threshold_next, threshold_record, threshold_result, threshold_done, &
-                                outcome_of_run
+  use voussoir_threshold_search, only: threshold_search_t, threshold_result_t, run_outcome_t, &
+                                       threshold_next, threshold_record, threshold_result, threshold_done
   use voussoir_sweep_output, only: sweep_table_t, sweep_header_t, results_table, runs_table, table_init, &
                                    table_append, table_value, table_sort, table_row, table_set, write_sweep_file, &
                                    read_sweep_file, write_sweep_csv, csv_path_of

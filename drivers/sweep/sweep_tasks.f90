@@ -13,7 +13,8 @@ module voussoir_sweep_tasks
   use voussoir_model, only: model_t
   use voussoir_simulation, only: run_result_t
   use voussoir_setup, only: run_config
-  use voussoir_threshold, only: run_outcome_t, outcome_of_run
+  use voussoir_threshold_search, only: run_outcome_t
+  use voussoir_threshold, only: outcome_of_run
   use voussoir_sweep_plan, only: sweep_plan_t
   use voussoir_sweep_jobs, only: job_label, job_run_config
   implicit none

@@ -4,8 +4,8 @@ module voussoir_sweep_worker
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t
   use voussoir_text, only: itoa
-  use voussoir_threshold, only: threshold_search_t, run_outcome_t, threshold_next, &
-                                threshold_record, threshold_done
+  use voussoir_threshold_search, only: threshold_search_t, run_outcome_t, threshold_next, &
+                                       threshold_record, threshold_done
   use voussoir_sweep_plan, only: sweep_plan_t
   use voussoir_sweep_jobs, only: job_search_init
   use voussoir_sweep_comm, only: sweep_comm_t, comm_abort, comm_send, comm_poll, comm_recv, nap, &

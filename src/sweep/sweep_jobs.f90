@@ -6,8 +6,8 @@ module voussoir_sweep_jobs
   use voussoir_status, only: status_t
   use voussoir_text, only: itoa
   use voussoir_config, only: config_t, fmt_real
-  use voussoir_threshold, only: threshold_search_t, search_run_config, threshold_init, threshold_init_onset, &
-                                static_capacity_m_s2
+  use voussoir_threshold_search, only: threshold_search_t, threshold_init_onset
+  use voussoir_threshold, only: search_run_config, threshold_init, static_capacity_m_s2
   use voussoir_sweep_plan, only: sweep_plan_t
   implicit none
   private

@@ -12,7 +12,7 @@ module voussoir_sweep_plan
   use voussoir_config, only: config_t, config_entry_t, config_entries, config_to_nml, validate_config, &
                              fmt_real, arch_rule, arch_rule_text
   use voussoir_namelist_check, only: check_names, check_list_lengths
-  use voussoir_threshold, only: threshold_settings_t
+  use voussoir_threshold_search, only: threshold_settings_t
   use voussoir_sweep_ida, only: ida_records_t, read_ida_records, sample_sets, n_sampled, range_names
   implicit none
   private
