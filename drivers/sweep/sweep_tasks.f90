@@ -49,7 +49,7 @@ contains
     call run_config(job_run_config(plan, job, amp_m), assembly, model, res, status)
     if (.not. status%ok) then
       write (output_unit, '(a)') 'voussoir-sweep: warning: run failed, recorded as such: '//job_label(plan, job)// &
-        ' at '//trim(merge('scale       ', 'amplitude_m ', plan%mode == 'ida'))//' '//fmt_real(amp_m)//': '// &
+        ' at '//plan%mode%value_name()//' '//fmt_real(amp_m)//': '// &
         trim(status%message)
       flush (output_unit)
       status = status_t()

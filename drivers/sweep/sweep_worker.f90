@@ -18,7 +18,7 @@ module voussoir_sweep_worker
 
 contains
 
-  !> With nothing queued after a run of a search (threshold or ida), go on with that search.
+  !> With nothing queued after a run of a search, go on with that search.
   subroutine worker_run(plan, net)
     type(sweep_plan_t), intent(in) :: plan
     type(sweep_comm_t), intent(in) :: net
@@ -32,7 +32,7 @@ contains
     type(run_outcome_t) :: o
     type(status_t) :: status
 
-    if (plan%mode /= 'grid') allocate (replica(0:plan%n_jobs - 1))
+    if (plan%mode%has_search()) allocate (replica(0:plan%n_jobs - 1))
     allocate (known(0:plan%n_jobs - 1))
     known = .false.
     n_queued = 0
@@ -52,13 +52,13 @@ contains
         job = nint(msg(1))
         seq = nint(msg(2))
         amp_m = msg(3)
-        if (plan%mode /= 'grid') call sync_replica(msg)
+        if (plan%mode%has_search()) call sync_replica(msg)
         busy = .true.
       end if
       call simulate_job(plan, job, amp_m, o, status)
       if (.not. status%ok) call die('rank '//itoa(net%rank)//', '//trim(status%message))
       continuing = .false.
-      if (plan%mode /= 'grid' .and. .not. o%failed) then
+      if (plan%mode%has_search() .and. .not. o%failed) then
         call threshold_record(replica(job), o, status)
         if (.not. status%ok) call die(status%message)
         call receive_all()
