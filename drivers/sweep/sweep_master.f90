@@ -26,7 +26,7 @@ module voussoir_sweep_master
   use voussoir_ordering, only: stable_order
   use voussoir_sweep_plan, only: sweep_plan_t, set_description
   use voussoir_sweep_jobs, only: job_param_set, job_cost, job_search_init
-  use voussoir_sweep_comm, only: sweep_comm_t, comm_abort, comm_send, comm_poll, comm_recv, wall_s, nap, &
+  use voussoir_sweep_comm, only: sweep_comm_t, comm_die, comm_send, comm_poll, comm_recv, wall_s, nap, &
                                  tag_task, tag_result, tag_stop
   use voussoir_sweep_tasks, only: simulate_job, outcome_of_msg, prefetch, task_head, history_width, result_len
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
@@ -68,14 +68,14 @@ module voussoir_sweep_master
 
   interface
     !> A progress line every `progress_every_s` (and the last one): jobs and runs done,
-    !> elapsed time, and the time left (drivers/sweep_master_report.f90).
+    !> elapsed time, and the time left (drivers/sweep/sweep_master_report.f90).
     module subroutine report(plan, m, n_ranks, final)
       type(sweep_plan_t), intent(in) :: plan
       type(master_t), intent(inout) :: m
       integer, intent(in) :: n_ranks
       logical, intent(in) :: final
     end subroutine report
-    !> The table of results at the end of a sweep (drivers/sweep_master_report.f90).
+    !> The table of results at the end of a sweep (drivers/sweep/sweep_master_report.f90).
     module subroutine summary(plan, m)
       type(sweep_plan_t), intent(in) :: plan
       type(master_t), intent(in) :: m
@@ -287,14 +287,14 @@ contains
     call table_sort(m%results, ['job'])
     call table_sort(m%runs, ['job', 'run'])
     call plan%mode%closing_check(plan, m%results, m%dt_check, line, status)
-    if (.not. status%ok) call die(net, status%message)
+    if (.not. status%ok) call comm_die(net, status%message)
     if (len(line) > 0) then
       write (output_unit, '(a)') 'voussoir-sweep: '//line
       flush (output_unit)
     end if
     call write_state(net, m, .true.)
     call write_sweep_csv(m%csv_path, plan, m%results, status)
-    if (.not. status%ok) call die(net, status%message)
+    if (.not. status%ok) call comm_die(net, status%message)
     call report(plan, m, net%size, .true.)
     call summary(plan, m)
     call unlock_file(m%lock_fd, m%path//'.lock')
@@ -313,9 +313,9 @@ contains
     call next_run(plan, m, job, seq, amp_m)
     call set_state(m, job, job_running)
     call simulate_job(plan, job, amp_m, o, status)
-    if (.not. status%ok) call die(net, 'rank 0, '//trim(status%message))
+    if (.not. status%ok) call comm_die(net, 'rank 0, '//trim(status%message))
     call take_result(plan, m, job, seq, o, .false., status)
-    if (.not. status%ok) call die(net, status%message)
+    if (.not. status%ok) call comm_die(net, status%message)
   end subroutine run_own
 
   !> Write the whole file as it stands (`complete`: the sweep is finished).
@@ -329,16 +329,8 @@ contains
     else
       call write_sweep_file(m%path, m%header, m%results, m%runs, complete, status)
     end if
-    if (.not. status%ok) call die(net, status%message)
+    if (.not. status%ok) call comm_die(net, status%message)
   end subroutine write_state
-
-  !> Stop every rank after an error on rank 0.
-  subroutine die(net, message)
-    type(sweep_comm_t), intent(in) :: net
-    character(len=*), intent(in) :: message
-    write (output_unit, '(a)') 'voussoir-sweep: error: '//trim(message)
-    call comm_abort(net, 1)
-  end subroutine die
 
   !> Receive every result that has arrived, then refill the workers.
   subroutine serve(plan, net, m, got)
@@ -360,7 +352,7 @@ contains
       continuing = msg(3) == 1.0_dp
       if (.not. continuing) m%outstanding(sender) = m%outstanding(sender) - 1
       call take_result(plan, m, nint(msg(1)), nint(msg(2)), outcome_of_msg(msg), continuing, status)
-      if (.not. status%ok) call die(net, status%message)
+      if (.not. status%ok) call comm_die(net, status%message)
       got = .true.
     end do
     call hand_out(plan, net, m)

@@ -103,13 +103,7 @@ contains
       size_imperfection_range = g%ranges(:, 4)
     end associate
 
-    call check_names(path, 'sweep', [character(len=24) :: 'mode', 'combine', 'pair_frequencies', &
-      'frequencies_hz', 'amplitudes_m', 'amp_tol_m', 'amp_max_m', 'scan_step', 'refine_factor', 'n_confirm', &
-      'progress_every_s', list_names, 'record_files', 'scale_tol', 'scale_max', 'n_samples', 'sample_seed', &
-      range_names, 'dt_check_rows'], status)
-    call check_list_lengths(path, 'sweep', [character(len=24) :: 'frequencies_hz', 'amplitudes_m', list_names, &
-      'record_files', range_names], [max_list, max_list, spread(max_list, 1, n_kinds), max_records, &
-      spread(2, 1, size(range_names))], status)
+    call check_sweep_names(path, status)
     if (.not. status%ok) return
     open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
     if (ios /= 0) then
@@ -154,6 +148,20 @@ contains
                          [2, n_sampled])
     end associate
   end subroutine read_sweep_group
+
+  !> The names in the &sweep group of `path` are its variables, and no list is given
+  !> more entries than it holds.
+  subroutine check_sweep_names(path, status)
+    character(len=*), intent(in) :: path
+    type(status_t), intent(inout) :: status
+    call check_names(path, 'sweep', [character(len=24) :: 'mode', 'combine', 'pair_frequencies', &
+      'frequencies_hz', 'amplitudes_m', 'amp_tol_m', 'amp_max_m', 'scan_step', 'refine_factor', 'n_confirm', &
+      'progress_every_s', list_names, 'record_files', 'scale_tol', 'scale_max', 'n_samples', 'sample_seed', &
+      range_names, 'dt_check_rows'], status)
+    call check_list_lengths(path, 'sweep', [character(len=24) :: 'frequencies_hz', 'amplitudes_m', list_names, &
+      'record_files', range_names], [max_list, max_list, spread(max_list, 1, n_kinds), max_records, &
+      spread(2, 1, size(range_names))], status)
+  end subroutine check_sweep_names
 
   !> Unless `status` already failed: fail with the standard range message of &sweep
   !> `name`(`index`, if > 0) = `value` when not `good`.

@@ -97,7 +97,7 @@ module voussoir_threshold_search
   contains
     ! The transitions of the state machine (threshold_record calls them); public so that
     ! a test can reach each one.
-    procedure :: after_start, after_refine, enter_scan, enter_refine, enter_confirm
+    procedure :: after_start, after_scan, after_refine, enter_scan, enter_refine, enter_confirm
     procedure :: smallest_value, refine_point, smallest_collapse_above, already_run
   end type threshold_search_t
 
@@ -213,13 +213,7 @@ contains
     case (phase_start, phase_descend)
       call search%after_start(a, quiet, outcome%collapsed)
     case (phase_scan)
-      if (outcome%collapsed) then
-        search%hi_m = a
-        call search%enter_refine()
-      else
-        search%lo_m = a
-        call search%enter_scan()
-      end if
+      call search%after_scan(a, outcome%collapsed)
     case (phase_refine)
       call search%after_refine(a, outcome%collapsed)
     case (phase_confirm)
@@ -239,19 +233,27 @@ contains
       call search%enter_scan()
     else if (a/search%settings%descend_ratio < search%smallest_value()) then
       ! Moving even at the smallest amplitude worth trying.
-      if (collapsed) then
-        search%lo_m = 0.0_dp
-        search%hi_m = a
-        call search%enter_refine()
-      else
-        search%lo_m = a
-        call search%enter_scan()
-      end if
+      if (collapsed) search%lo_m = 0.0_dp
+      call search%after_scan(a, collapsed)
     else
       search%phase = phase_descend
       search%next_m = a/search%settings%descend_ratio
     end if
   end subroutine after_start
+
+  !> Scan: a collapse closes the bracket (refine it), a stand is its new bottom (scan on).
+  subroutine after_scan(search, a, collapsed)
+    class(threshold_search_t), intent(inout) :: search
+    real(dp), intent(in) :: a          !! the value just run
+    logical, intent(in) :: collapsed
+    if (collapsed) then
+      search%hi_m = a
+      call search%enter_refine()
+    else
+      search%lo_m = a
+      call search%enter_scan()
+    end if
+  end subroutine after_scan
 
   !> Refine: a collapse is the new top of the bracket; a stand moves to the next inner
   !> point of the level, or, at the last one, makes the level's top part the bracket.
