@@ -263,16 +263,16 @@ contains
     logical, intent(in) :: collapsed
     if (collapsed) then
       search%hi_m = a
-      call search%enter_refine()
     else
       search%lo_m = a
       if (search%level_point < search%level_parts - 1) then
         search%level_point = search%level_point + 1
         search%next_m = search%refine_point()
-      else
-        call search%enter_refine()   ! the whole level stood: its top part is the bracket
+        return
       end if
+      ! The whole level stood: its top part is the bracket.
     end if
+    call search%enter_refine()
   end subroutine after_refine
 
   !> Next scan amplitude above `lo_m`, or the bracket when it reaches a known collapse.
