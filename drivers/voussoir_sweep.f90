@@ -7,9 +7,10 @@
 !> sets (Cartesian product or paired). Rank 0 writes &output's `file` (HDF5, always
 !> whole) and a CSV summary beside it, and resumes from that file when rerun.
 !>
-!> The sweep plan (no MPI) is src/sweep_plan.f90; the MPI layer drivers/sweep_comm.f90; the
-!> master and the workers drivers/sweep_master.f90 and sweep_worker.f90, the tasks between
-!> them drivers/sweep_tasks.f90.
+!> The sweep plan and its mode (no MPI) are src/sweep/ (sweep_plan.f90, sweep_mode*.f90);
+!> the MPI layer drivers/sweep/sweep_comm.f90; the master and the workers
+!> drivers/sweep/sweep_master.f90 and sweep_worker.f90, the tasks between them
+!> drivers/sweep/sweep_tasks.f90.
 
 !> The program: read the input on every rank, let rank 0 check the result file, then
 !> master and workers.

@@ -8,7 +8,8 @@ program test_sweep_plan
   use voussoir_status, only: status_t
   use voussoir_config, only: config_t, read_config
   use voussoir_sweep_plan, only: sweep_plan_t, read_sweep_plan
-  use voussoir_sweep_jobs, only: job_param_set, job_frequency_hz, job_amplitude_m, job_run_config, job_record
+  use voussoir_sweep_jobs, only: job_param_set, job_frequency_hz, job_amplitude_m, job_run_config
+  use voussoir_sweep_mode_ida, only: job_record
   use voussoir_assert, only: assert_true, assert_close, assert_summary
   implicit none
 

@@ -1,4 +1,4 @@
-!> The collapse threshold search (src/threshold.f90).
+!> The collapse threshold search (src/sweep/threshold_search.f90, the runs src/sweep/threshold.f90).
 !>
 !> The state machine is driven by synthetic outcomes (a known threshold, a safe island,
 !> no estimate of the onset, no collapse at all) so that its answers are exact; then one
@@ -13,9 +13,9 @@ program test_threshold
   use voussoir_model, only: model_t
   use voussoir_simulation, only: run_result_t
   use voussoir_setup, only: run_config
-  use voussoir_threshold, only: threshold_settings_t, threshold_search_t, threshold_result_t, &
-    run_outcome_t, check_threshold_settings, threshold_init, threshold_next, threshold_record, &
-    threshold_result, find_threshold, search_run_config, static_onset_amplitude_m, &
+  use voussoir_threshold_search, only: threshold_settings_t, threshold_search_t, threshold_result_t, &
+    run_outcome_t, check_threshold_settings, threshold_next, threshold_record, threshold_result
+  use voussoir_threshold, only: threshold_init, find_threshold, search_run_config, static_onset_amplitude_m, &
     afd_peak_accel_per_m
   use voussoir_assert, only: assert_true, assert_close, assert_summary
   implicit none

@@ -13,7 +13,7 @@ module voussoir_sweep_comm
   implicit none
   private
 
-  public :: sweep_comm_t, comm_start, comm_end, comm_abort, comm_agree, comm_send, comm_poll, &
+  public :: sweep_comm_t, comm_start, comm_end, comm_abort, comm_die, comm_agree, comm_send, comm_poll, &
             comm_recv, wall_s, nap
   public :: tag_task, tag_result, tag_stop
 
@@ -72,6 +72,14 @@ contains
     flush (output_unit)
     call MPI_Abort(net%comm, code)
   end subroutine comm_abort
+
+  !> Print `message` as the sweep's error and stop every rank.
+  subroutine comm_die(net, message)
+    type(sweep_comm_t), intent(in) :: net
+    character(len=*), intent(in) :: message
+    write (output_unit, '(a)') 'voussoir-sweep: error: '//trim(message)
+    call comm_abort(net, 1)
+  end subroutine comm_die
 
   !> Whether rank 0's `ok` holds, on every rank.
   logical function comm_agree(net, ok)

@@ -1,5 +1,6 @@
 !> The master of a sweep (rank 0: schedules, computes, writes); the workers are
-!> drivers/sweep_worker.f90.
+!> drivers/sweep/sweep_worker.f90. What a job is, its rows and its texts come from the
+!> plan's mode (src/sweep/sweep_mode.f90): the master never asks which mode it runs.
 !>
 !> Scheduling is dynamic and per run: a threshold search is a state machine that asks
 !> for one run at a time, so the unit of work is one simulation whatever the mode, and
@@ -13,23 +14,19 @@
 !> has its history proposes the same next amplitude) and tells rank 0 so with the result.
 module voussoir_sweep_master
   use, intrinsic :: iso_fortran_env, only: output_unit
-  use voussoir_kinds, only: dp, g_m_s2
+  use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
   use voussoir_version, only: code_version
   use voussoir_config, only: config_t
-  use voussoir_sweep_dt_check, only: check_time_step
-  use voussoir_text, only: fmt_real, fmt_fixed, itoa, join_words
-  use voussoir_threshold, only: threshold_search_t, threshold_result_t, run_outcome_t, &
-                                threshold_next, threshold_record, threshold_result, threshold_done, &
-                                outcome_of_run
-  use voussoir_sweep_output, only: sweep_table_t, sweep_header_t, results_table, runs_table, table_init, &
-                                   table_append, table_value, table_sort, table_row, table_set, write_sweep_file, &
-                                   read_sweep_file, write_sweep_csv, csv_path_of
+  use voussoir_text, only: fmt_fixed, itoa, join_words
+  use voussoir_threshold_search, only: threshold_search_t, threshold_result_t, run_outcome_t, &
+                                       threshold_next, threshold_record, threshold_result, threshold_done
+  use voussoir_sweep_table, only: sweep_table_t, table_append, table_value, table_sort, table_row, table_set
+  use voussoir_sweep_output, only: sweep_header_t, write_sweep_file, read_sweep_file, write_sweep_csv, csv_path_of
   use voussoir_ordering, only: stable_order
   use voussoir_sweep_plan, only: sweep_plan_t, set_description
-  use voussoir_sweep_jobs, only: job_param_set, job_frequency_hz, job_amplitude_m, job_run_config, job_cost, &
-                                 job_record, job_search_init
-  use voussoir_sweep_comm, only: sweep_comm_t, comm_abort, comm_send, comm_poll, comm_recv, wall_s, nap, &
+  use voussoir_sweep_jobs, only: job_param_set, job_cost, job_search_init
+  use voussoir_sweep_comm, only: sweep_comm_t, comm_die, comm_send, comm_poll, comm_recv, wall_s, nap, &
                                  tag_task, tag_result, tag_stop
   use voussoir_sweep_tasks, only: simulate_job, outcome_of_msg, prefetch, task_head, history_width, result_len
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
@@ -50,14 +47,14 @@ module voussoir_sweep_master
   !> The state of the sweep on rank 0.
   type :: master_t
     integer, allocatable :: state(:)                       !! (0:n_jobs-1) ready, running, done
-    type(threshold_search_t), allocatable :: search(:)     !! (0:n_jobs-1) threshold mode
+    type(threshold_search_t), allocatable :: search(:)     !! (0:n_jobs-1) when jobs are searches
     logical, allocatable :: started(:)                     !! search initialised
     integer, allocatable :: order(:)                       !! jobs, costliest run first
     real(dp), allocatable :: cost(:)                       !! (0:n_jobs-1) relative cost of a run
     integer, allocatable :: outstanding(:)                 !! (1:n_ranks-1) tasks held by a worker
-    integer :: front = 1, back = 0                         !! grid: no ready job outside order(front:back)
-    type(sweep_table_t) :: results, runs
-    type(sweep_table_t) :: dt_check                        !! ida: runs redone at dt/2
+    integer :: front = 1, back = 0                         !! no ready job outside order(front:back)
+    type(sweep_table_t) :: results, runs                   !! runs: none when jobs are single runs
+    type(sweep_table_t) :: dt_check                        !! the mode's closing check (ida: runs redone at dt/2)
     type(sweep_header_t) :: header
     character(len=:), allocatable :: path, csv_path
     character(len=:), allocatable :: finished_by          !! code version of a finished file
@@ -71,14 +68,14 @@ module voussoir_sweep_master
 
   interface
     !> A progress line every `progress_every_s` (and the last one): jobs and runs done,
-    !> elapsed time, and the time left (drivers/sweep_master_report.f90).
+    !> elapsed time, and the time left (drivers/sweep/sweep_master_report.f90).
     module subroutine report(plan, m, n_ranks, final)
       type(sweep_plan_t), intent(in) :: plan
       type(master_t), intent(inout) :: m
       integer, intent(in) :: n_ranks
       logical, intent(in) :: final
     end subroutine report
-    !> The table of results at the end of a sweep (drivers/sweep_master_report.f90).
+    !> The table of results at the end of a sweep (drivers/sweep/sweep_master_report.f90).
     module subroutine summary(plan, m)
       type(sweep_plan_t), intent(in) :: plan
       type(master_t), intent(in) :: m
@@ -120,7 +117,7 @@ contains
     m%n_ready = plan%n_jobs
     m%started = .false.
     m%outstanding = 0
-    if (plan%mode /= 'grid') allocate (m%search(0:plan%n_jobs - 1))
+    if (plan%mode%has_search()) allocate (m%search(0:plan%n_jobs - 1))
     ! Costliest first, ties by job index (the order is stable).
     do job = 0, plan%n_jobs - 1
       m%cost(job) = job_cost(plan, job)
@@ -131,22 +128,16 @@ contains
 
     m%header%cfg = base
     m%header%cfg%output%file = m%path
-    m%header%mode = plan%mode
+    m%header%mode = plan%mode%name
     m%header%signature = plan%signature
     m%header%sweep_nml = plan%sweep_nml
     m%header%n_jobs = plan%n_jobs
     m%header%parameter_names = join_words(plan%param_names, ',')
     m%header%parameter_values = plan%param_values
-    m%header%frequencies_hz = plan%frequencies_hz
-    m%header%amplitudes_m = plan%amplitudes_m
-    if (plan%mode == 'ida') then
-      m%header%record_files = plan%records%given
-      m%header%record_pga_m_s2 = plan%records%pga_m_s2
-      m%header%record_pgv_m_s = plan%records%pgv_m_s
-    end if
+    call plan%mode%file_items(plan, m%header%datasets, m%header%attributes)
 
-    m%results = results_table(plan%mode)
-    if (plan%mode /= 'grid') m%runs = runs_table(value_name(plan))
+    m%results = plan%mode%results_table()
+    m%runs = plan%mode%runs_table()
     inquire (file=m%path, exist=exists)
     if (.not. exists) return
     call read_sweep_file(m%path, plan%signature, m%results, m%runs, written_by, status)
@@ -170,10 +161,7 @@ contains
     type(sweep_plan_t), intent(in) :: plan
     type(master_t), intent(inout) :: m
     type(status_t), intent(inout) :: status
-    integer :: r, job, seq
-    type(run_outcome_t) :: o
-    real(dp) :: amp_m
-    logical :: done
+    integer :: r, job
 
     do r = 1, m%results%n_rows
       job = nint(table_value(m%results, 'job', r))
@@ -187,66 +175,64 @@ contains
       call set_state(m, job, job_done)
       m%n_done = m%n_done + 1
     end do
-    if (plan%mode /= 'grid') then
-      ! Replay the runs of each unfinished search in its own order: the search asks for
-      ! the same amplitudes again, and continues where it stopped.
-      call table_sort(m%runs, ['job', 'run'])
-      do r = 1, m%runs%n_rows
-        job = nint(table_value(m%runs, 'job', r))
-        seq = nint(table_value(m%runs, 'run', r))
-        if (job < 0 .or. job >= plan%n_jobs) then
-          call fail(status, m%path//': /runs holds job '//itoa(job)//', outside this sweep')
-          return
-        end if
-        if (m%state(job) == job_done) cycle
-        call start_search(plan, m, job, status)
-        if (.not. status%ok) return
-        call threshold_next(m%search(job), amp_m, done)
-        o = outcome_from_row(m%runs, r, value_name(plan))
-        if (done .or. seq /= m%search(job)%n_runs .or. o%amplitude_m /= amp_m .and. .not. o%failed) then
-          call fail(status, m%path//': run '//itoa(seq)//' of job '//itoa(job)// &
-                    ' does not follow the search of this input; the file cannot be continued')
-          return
-        end if
-        if (o%failed) then
-          call finish_search(plan, m, job, failed=.true.)
-          cycle
-        end if
-        call threshold_record(m%search(job), o, status)
-        if (.not. status%ok) return
-        if (threshold_done(m%search(job))) call finish_search(plan, m, job)
-      end do
+    if (plan%mode%has_search()) then
+      call replay_runs(plan, m, status)
       m%n_runs_resumed = m%runs%n_rows
     else
       m%n_runs_resumed = m%results%n_rows
     end if
   end subroutine restore
 
+  !> Replay the runs of each unfinished search in its own order: the search asks for
+  !> the same amplitudes again, and continues where it stopped.
+  subroutine replay_runs(plan, m, status)
+    type(sweep_plan_t), intent(in) :: plan
+    type(master_t), intent(inout) :: m
+    type(status_t), intent(inout) :: status
+    integer :: r, job, seq
+    type(run_outcome_t) :: o
+    real(dp) :: amp_m
+    logical :: done
+
+    call table_sort(m%runs, ['job', 'run'])
+    do r = 1, m%runs%n_rows
+      job = nint(table_value(m%runs, 'job', r))
+      seq = nint(table_value(m%runs, 'run', r))
+      if (job < 0 .or. job >= plan%n_jobs) then
+        call fail(status, m%path//': /runs holds job '//itoa(job)//', outside this sweep')
+        return
+      end if
+      if (m%state(job) == job_done) cycle
+      call start_search(plan, m, job, status)
+      if (.not. status%ok) return
+      call threshold_next(m%search(job), amp_m, done)
+      o = outcome_from_row(m%runs, r, plan%mode%value_name())
+      if (done .or. seq /= m%search(job)%n_runs .or. o%amplitude_m /= amp_m .and. .not. o%failed) then
+        call fail(status, m%path//': run '//itoa(seq)//' of job '//itoa(job)// &
+                  ' does not follow the search of this input; the file cannot be continued')
+        return
+      end if
+      if (o%failed) then
+        call finish_search(plan, m, job, failed=.true.)
+        cycle
+      end if
+      call threshold_record(m%search(job), o, status)
+      if (.not. status%ok) return
+      if (threshold_done(m%search(job))) call finish_search(plan, m, job)
+    end do
+  end subroutine replay_runs
+
   !> The sweep on rank 0: serve the workers, compute, write, report.
   subroutine master_run(plan, net, m)
     type(sweep_plan_t), intent(in) :: plan
     type(sweep_comm_t), intent(in) :: net
     type(master_t), intent(inout) :: m
-    type(status_t) :: status
-    integer :: job, w, n_rows, n_changed
+    integer :: job, w
     logical :: found, got
-    character(len=:), allocatable :: amps
 
     m%t0_s = wall_s()
     m%last_report_s = m%t0_s
-    if (plan%pair_frequencies) then
-      amps = itoa(plan%n_sets)//' parameter sets, each at its frequency'
-    else
-      amps = itoa(plan%n_sets)//' parameter sets x '//itoa(plan%n_freq)//' frequencies'
-    end if
-    if (plan%mode == 'grid') amps = amps//' x '//itoa(plan%n_amp)//' amplitudes'
-    if (plan%mode == 'ida') amps = itoa(plan%n_sets)//' model samples x '//itoa(plan%records%n)//' records'
-    write (output_unit, '(a)') 'voussoir-sweep: '//trim(plan%mode)//' sweep of '//itoa(plan%n_jobs)//' jobs ('// &
-      amps//') on '//itoa(net%size)//' ranks -> '//m%path
-    if (m%n_done > 0 .or. m%n_runs_resumed > 0) write (output_unit, '(a)') 'voussoir-sweep: resuming '// &
-      m%path//': '//itoa(m%n_done)//' of '//itoa(plan%n_jobs)//' jobs done, '//itoa(m%n_runs_resumed)// &
-      ' runs kept'
-    flush (output_unit)
+    call announce(plan, net, m)
     if (allocated(m%finished_by)) then
       write (output_unit, '(a)') 'voussoir-sweep: '//m%path//' is complete, written by '//m%finished_by// &
         '; nothing to do (move it away to recompute it with this build)'
@@ -255,18 +241,18 @@ contains
       end do
       return
     end if
-    if (m%n_done < plan%n_jobs) call write_state(m, .false.)
+    if (m%n_done < plan%n_jobs) call write_state(net, m, .false.)
 
     call hand_out(plan, net, m)
     do while (m%n_done < plan%n_jobs)
       call serve(plan, net, m, got)
-      if (got) call write_state(m, .false.)
+      if (got) call write_state(net, m, .false.)
       if (m%n_done == plan%n_jobs) exit
       found = .false.
-      if (net%size <= max_ranks_computing_master) call pick(plan, m, .false., job, found)
+      if (net%size <= max_ranks_computing_master) call pick(m, .false., job, found)
       if (found) then
-        call run_own(job)
-        call write_state(m, .false.)
+        call run_own(plan, net, m, job)
+        call write_state(net, m, .false.)
       else
         call nap()
       end if
@@ -275,57 +261,76 @@ contains
     do w = 1, net%size - 1
       call comm_send(net, w, tag_stop, [0.0_dp])
     end do
+    call close_sweep(plan, net, m)
+  end subroutine master_run
 
+  !> What the sweep is, on how many ranks, and what a resumed file kept.
+  subroutine announce(plan, net, m)
+    type(sweep_plan_t), intent(in) :: plan
+    type(sweep_comm_t), intent(in) :: net
+    type(master_t), intent(in) :: m
+    write (output_unit, '(a)') 'voussoir-sweep: '//trim(plan%mode%name)//' sweep of '//itoa(plan%n_jobs)// &
+      ' jobs ('//plan%mode%jobs_text(plan)//') on '//itoa(net%size)//' ranks -> '//m%path
+    if (m%n_done > 0 .or. m%n_runs_resumed > 0) write (output_unit, '(a)') 'voussoir-sweep: resuming '// &
+      m%path//': '//itoa(m%n_done)//' of '//itoa(plan%n_jobs)//' jobs done, '//itoa(m%n_runs_resumed)// &
+      ' runs kept'
+    flush (output_unit)
+  end subroutine announce
+
+  !> Every job done: the mode's closing check, the complete file, the CSV, the report.
+  subroutine close_sweep(plan, net, m)
+    type(sweep_plan_t), intent(in) :: plan
+    type(sweep_comm_t), intent(in) :: net
+    type(master_t), intent(inout) :: m
+    type(status_t) :: status
+    character(len=:), allocatable :: line
     call table_sort(m%results, ['job'])
-    if (plan%mode /= 'grid') call table_sort(m%runs, ['job', 'run'])
-    if (plan%mode == 'ida' .and. plan%dt_check_rows > 0) then
-      call check_time_step(plan, m%results, m%dt_check, n_rows, n_changed, status)
-      if (.not. status%ok) call die(status%message)
-      write (output_unit, '(a)') 'voussoir-sweep: dt/2 check: '//itoa(n_changed)//' of '//itoa(m%dt_check%n_rows)// &
-        ' outcomes changed at dt_s = '//fmt_real(0.5_dp*plan%set_cfg(0)%solver%dt_s)//' (runs at scale_stood and '// &
-        'scale_threshold of '//itoa(n_rows)//' rows)'
+    call table_sort(m%runs, ['job', 'run'])
+    call plan%mode%closing_check(plan, m%results, m%dt_check, line, status)
+    if (.not. status%ok) call comm_die(net, status%message)
+    if (len(line) > 0) then
+      write (output_unit, '(a)') 'voussoir-sweep: '//line
       flush (output_unit)
     end if
-    call write_state(m, .true.)
-    call write_sweep_csv(m%csv_path, m%header, m%results, status)
-    if (.not. status%ok) call die(status%message)
+    call write_state(net, m, .true.)
+    call write_sweep_csv(m%csv_path, plan, m%results, status)
+    if (.not. status%ok) call comm_die(net, status%message)
     call report(plan, m, net%size, .true.)
     call summary(plan, m)
     call unlock_file(m%lock_fd, m%path//'.lock')
+  end subroutine close_sweep
 
-  contains
+  !> A run of job `job` on rank 0.
+  subroutine run_own(plan, net, m, job)
+    type(sweep_plan_t), intent(in) :: plan
+    type(sweep_comm_t), intent(in) :: net
+    type(master_t), intent(inout) :: m
+    integer, intent(in) :: job
+    type(status_t) :: status
+    integer :: seq
+    real(dp) :: amp_m
+    type(run_outcome_t) :: o
+    call next_run(plan, m, job, seq, amp_m)
+    call set_state(m, job, job_running)
+    call simulate_job(plan, job, amp_m, o, status)
+    if (.not. status%ok) call comm_die(net, 'rank 0, '//trim(status%message))
+    call take_result(plan, m, job, seq, o, .false., status)
+    if (.not. status%ok) call comm_die(net, status%message)
+  end subroutine run_own
 
-    subroutine run_own(job)
-      integer, intent(in) :: job
-      integer :: seq
-      real(dp) :: amp_m
-      type(run_outcome_t) :: o
-      call next_run(plan, m, job, seq, amp_m)
-      call set_state(m, job, job_running)
-      call simulate_job(plan, job, amp_m, o, status)
-      if (.not. status%ok) call die('rank 0, '//trim(status%message))
-      call take_result(plan, m, job, seq, o, .false., status)
-      if (.not. status%ok) call die(status%message)
-    end subroutine run_own
-
-    subroutine write_state(mm, complete)
-      type(master_t), intent(in) :: mm
-      logical, intent(in) :: complete
-      if (allocated(mm%dt_check%names)) then
-        call write_sweep_file(mm%path, mm%header, mm%results, mm%runs, complete, status, mm%dt_check)
-      else
-        call write_sweep_file(mm%path, mm%header, mm%results, mm%runs, complete, status)
-      end if
-      if (.not. status%ok) call die(status%message)
-    end subroutine write_state
-
-    subroutine die(message)
-      character(len=*), intent(in) :: message
-      write (output_unit, '(a)') 'voussoir-sweep: error: '//trim(message)
-      call comm_abort(net, 1)
-    end subroutine die
-
-  end subroutine master_run
+  !> Write the whole file as it stands (`complete`: the sweep is finished).
+  subroutine write_state(net, m, complete)
+    type(sweep_comm_t), intent(in) :: net
+    type(master_t), intent(in) :: m
+    logical, intent(in) :: complete
+    type(status_t) :: status
+    if (allocated(m%dt_check%names)) then
+      call write_sweep_file(m%path, m%header, m%results, m%runs, complete, status, m%dt_check)
+    else
+      call write_sweep_file(m%path, m%header, m%results, m%runs, complete, status)
+    end if
+    if (.not. status%ok) call comm_die(net, status%message)
+  end subroutine write_state
 
   !> Receive every result that has arrived, then refill the workers.
   subroutine serve(plan, net, m, got)
@@ -347,10 +352,7 @@ contains
       continuing = msg(3) == 1.0_dp
       if (.not. continuing) m%outstanding(sender) = m%outstanding(sender) - 1
       call take_result(plan, m, nint(msg(1)), nint(msg(2)), outcome_of_msg(msg), continuing, status)
-      if (.not. status%ok) then
-        write (output_unit, '(a)') 'voussoir-sweep: error: '//trim(status%message)
-        call comm_abort(net, 1)
-      end if
+      if (.not. status%ok) call comm_die(net, status%message)
       got = .true.
     end do
     call hand_out(plan, net, m)
@@ -370,7 +372,7 @@ contains
       do w = 1, net%size - 1
         if (m%outstanding(w) >= slot) cycle
         if (slot > 1 .and. m%n_ready <= 1) return
-        call pick(plan, m, .true., job, found)
+        call pick(m, .true., job, found)
         if (.not. found) return
         call next_run(plan, m, job, seq, amp_m)
         call set_state(m, job, job_running)
@@ -390,44 +392,30 @@ contains
   end subroutine hand_out
 
   !> A ready job: the costliest (for a worker) or the cheapest (for rank 0).
-  subroutine pick(plan, m, costliest, job, found)
-    type(sweep_plan_t), intent(in) :: plan
+  subroutine pick(m, costliest, job, found)
     type(master_t), intent(inout) :: m
     logical, intent(in) :: costliest
     integer, intent(out) :: job
     logical, intent(out) :: found
     integer :: k
+    ! Done jobs never become ready again: the ends of the order move inwards past them.
+    do while (m%front <= m%back)
+      if (m%state(m%order(m%front)) /= job_done) exit
+      m%front = m%front + 1
+    end do
+    do while (m%back >= m%front)
+      if (m%state(m%order(m%back)) /= job_done) exit
+      m%back = m%back - 1
+    end do
     found = .false.
+    do k = 0, m%back - m%front
+      job = m%order(merge(m%front + k, m%back - k, costliest))
+      if (m%state(job) == job_ready) then
+        found = .true.
+        return
+      end if
+    end do
     job = -1
-    if (plan%mode == 'grid') then
-      ! Grid jobs never become ready again: the ends of the order only move inwards.
-      do while (m%front <= m%back)
-        if (costliest) then
-          k = m%front
-        else
-          k = m%back
-        end if
-        if (m%state(m%order(k)) == job_ready) then
-          job = m%order(k)
-          found = .true.
-          return
-        end if
-        if (costliest) then
-          m%front = m%front + 1
-        else
-          m%back = m%back - 1
-        end if
-      end do
-    else
-      do k = 1, plan%n_jobs
-        job = m%order(merge(k, plan%n_jobs + 1 - k, costliest))
-        if (m%state(job) == job_ready) then
-          found = .true.
-          return
-        end if
-      end do
-      job = -1
-    end if
   end subroutine pick
 
   !> Move job `job` to state `new`, keeping count of the ready ones.
@@ -448,13 +436,13 @@ contains
     real(dp), intent(out) :: amp_m
     logical :: done
     type(status_t) :: status
-    if (plan%mode == 'grid') then
-      seq = 0
-      amp_m = job_amplitude_m(plan, job)
-    else
+    if (plan%mode%has_search()) then
       call start_search(plan, m, job, status)   ! checked when the plan was read
       seq = m%search(job)%n_runs
       call threshold_next(m%search(job), amp_m, done)
+    else
+      seq = 0
+      amp_m = plan%mode%run_value(plan, job)
     end if
   end subroutine next_run
 
@@ -481,23 +469,8 @@ contains
     m%n_runs = m%n_runs + 1
     m%cost_done = m%cost_done + m%cost(job)
     m%busy_s = m%busy_s + o%wall_time_s
-    if (plan%mode == 'grid') then
-      call table_row(m%results, row)
-      call table_set(m%results, row, 'job', real(job, dp))
-      call table_set(m%results, row, 'param_set', real(job_param_set(plan, job), dp))
-      call table_set(m%results, row, 'frequency_hz', job_frequency_hz(plan, job))
-      call table_set(m%results, row, 'amplitude_m', o%amplitude_m)
-      call table_set(m%results, row, 'collapsed', merge(1.0_dp, 0.0_dp, o%collapsed))
-      call table_set(m%results, row, 'collapse_time_s', o%collapse_time_s)
-      call table_set(m%results, row, 'peak_crown_disp_m', o%peak_crown_disp_m)
-      call table_set(m%results, row, 'mean_iterations', o%mean_iterations)
-      call table_set(m%results, row, 'nonconverged_steps', real(o%nonconverged_steps, dp))
-      call table_set(m%results, row, 'wall_time_s', o%wall_time_s)
-      call table_set(m%results, row, 'failed', merge(1.0_dp, 0.0_dp, o%failed))
-      call table_append(m%results, row)
-      if (o%failed) m%n_failed = m%n_failed + 1
-      call set_state(m, job, job_done)
-      m%n_done = m%n_done + 1
+    if (.not. plan%mode%has_search()) then
+      call finish_job(plan, m, job, o, threshold_result_t(), o%failed)
       return
     end if
     if (seq /= m%search(job)%n_runs) then
@@ -507,7 +480,7 @@ contains
     call table_row(m%runs, row)
     call table_set(m%runs, row, 'job', real(job, dp))
     call table_set(m%runs, row, 'run', real(seq, dp))
-    call table_set(m%runs, row, value_name(plan), o%amplitude_m)
+    call table_set(m%runs, row, plan%mode%value_name(), o%amplitude_m)
     call table_set(m%runs, row, 'collapsed', merge(1.0_dp, 0.0_dp, o%collapsed))
     call table_set(m%runs, row, 'collapse_time_s', o%collapse_time_s)
     call table_set(m%runs, row, 'peak_crown_disp_m', o%peak_crown_disp_m)
@@ -540,7 +513,6 @@ contains
     integer, intent(in) :: job
     logical, intent(in), optional :: failed
     type(threshold_result_t) :: r
-    real(dp), allocatable :: row(:)
     logical :: broken
     real(dp) :: nan
     broken = .false.
@@ -552,66 +524,28 @@ contains
       r%peak_accel_m_s2 = nan
       r%stand_below_m = nan
       r%n_runs = r%n_runs + 1
-      m%n_failed = m%n_failed + 1
     end if
-    call table_row(m%results, row)
-    call table_set(m%results, row, 'failed', merge(1.0_dp, 0.0_dp, broken))
-    if (plan%mode == 'ida') then
-      call ida_row()
-      call table_append(m%results, row)
-      call set_state(m, job, job_done)
-      m%n_done = m%n_done + 1
-      return
-    end if
-    call table_set(m%results, row, 'job', real(job, dp))
-    call table_set(m%results, row, 'param_set', real(job_param_set(plan, job), dp))
-    call table_set(m%results, row, 'frequency_hz', job_frequency_hz(plan, job))
-    call table_set(m%results, row, 'threshold_m', r%threshold_m)
-    call table_set(m%results, row, 'peak_accel_m_s2', r%peak_accel_m_s2)
-    call table_set(m%results, row, 'non_monotonic', merge(1.0_dp, 0.0_dp, r%non_monotonic))
-    call table_set(m%results, row, 'n_runs', real(r%n_runs, dp))
-    call table_set(m%results, row, 'mean_iterations', r%mean_iterations)
-    call table_set(m%results, row, 'stand_below_m', r%stand_below_m)
-    call table_set(m%results, row, 'static_onset_m', r%onset_amp_m)
-    call table_set(m%results, row, 'wall_time_s', r%wall_time_s)
-    call table_append(m%results, row)
-    call set_state(m, job, job_done)
-    m%n_done = m%n_done + 1
-
-  contains
-
-    !> The IDA row: a search with no collapse up to scale_max is censored, its
-    !> threshold columns at scale_max (a lower bound).
-    subroutine ida_row()
-      real(dp) :: scale
-      logical :: censored
-      integer :: rec
-      rec = job_record(plan, job)
-      censored = .not. (r%threshold_m == r%threshold_m) .and. .not. broken
-      scale = merge(plan%search%amp_max_m, r%threshold_m, censored)
-      if (broken) scale = r%threshold_m
-      call table_set(m%results, row, 'job', real(job, dp))
-      call table_set(m%results, row, 'param_set', real(job_param_set(plan, job), dp))
-      call table_set(m%results, row, 'record', real(rec - 1, dp))
-      call table_set(m%results, row, 'scale_stood', merge(plan%search%amp_max_m, r%stand_below_m, censored))
-      call table_set(m%results, row, 'scale_threshold', scale)
-      call table_set(m%results, row, 'pga_threshold_m_s2', scale*plan%records%pga_m_s2(rec))
-      call table_set(m%results, row, 'pgv_threshold_m_s', scale*plan%records%pgv_m_s(rec))
-      call table_set(m%results, row, 'censored', merge(1.0_dp, 0.0_dp, censored))
-      call table_set(m%results, row, 'non_monotonic', merge(1.0_dp, 0.0_dp, r%non_monotonic))
-      call table_set(m%results, row, 'n_runs', real(r%n_runs, dp))
-      call table_set(m%results, row, 'mean_iterations', r%mean_iterations)
-      call table_set(m%results, row, 'wall_time_s', r%wall_time_s)
-    end subroutine ida_row
-
+    call finish_job(plan, m, job, run_outcome_t(), r, broken)
   end subroutine finish_search
 
-  !> The searched variable's name in /runs.
-  pure function value_name(plan) result(name)
+  !> Job `job` is done: its /results row, from the outcome `o` of its single run or the
+  !> result `r` of its search (the mode fills it).
+  subroutine finish_job(plan, m, job, o, r, failed)
     type(sweep_plan_t), intent(in) :: plan
-    character(len=:), allocatable :: name
-    name = trim(merge('scale      ', 'amplitude_m', plan%mode == 'ida'))
-  end function value_name
+    type(master_t), intent(inout) :: m
+    integer, intent(in) :: job
+    type(run_outcome_t), intent(in) :: o
+    type(threshold_result_t), intent(in) :: r
+    logical, intent(in) :: failed
+    real(dp), allocatable :: row(:)
+    call table_row(m%results, row)
+    call table_set(m%results, row, 'failed', merge(1.0_dp, 0.0_dp, failed))
+    call plan%mode%result_row(plan, job, o, r, failed, m%results, row)
+    call table_append(m%results, row)
+    if (failed) m%n_failed = m%n_failed + 1
+    call set_state(m, job, job_done)
+    m%n_done = m%n_done + 1
+  end subroutine finish_job
 
   !> The outcome stored in row `r` of a /runs table.
   function outcome_from_row(t, r, searched) result(o)

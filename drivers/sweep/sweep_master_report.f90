@@ -32,7 +32,7 @@ contains
     end if
     ! Work left, in run costs; a search is expected to take as many runs as the finished ones.
     runs_per_search = first_guess_runs
-    if (plan%mode /= 'grid' .and. m%results%n_rows > 0) then
+    if (plan%mode%has_search() .and. m%results%n_rows > 0) then
       runs_per_search = 0.0_dp
       do r = 1, m%results%n_rows
         runs_per_search = runs_per_search + table_value(m%results, 'n_runs', r)/m%results%n_rows
@@ -42,12 +42,12 @@ contains
     runs_left = 0.0_dp
     do job = 0, plan%n_jobs - 1
       if (m%state(job) == job_done) cycle
-      if (plan%mode == 'grid') then
-        runs_left = runs_left + 1.0_dp
-        left = left + m%cost(job)
-      else
+      if (plan%mode%has_search()) then
         runs_left = runs_left + max(1.0_dp, runs_per_search - m%search(job)%n_runs)
         left = left + m%cost(job)*max(1.0_dp, runs_per_search - m%search(job)%n_runs)
+      else
+        runs_left = runs_left + 1.0_dp
+        left = left + m%cost(job)
       end if
     end do
     eta = '?'
@@ -63,56 +63,30 @@ contains
     end if
     ! Runs done / total (a threshold search's total is an estimate until it ends).
     done_runs = m%n_runs + m%n_runs_resumed
-    if (plan%mode == 'grid') then
-      runs = itoa(done_runs)//'/'//itoa(plan%n_jobs)//' runs'
-    else
+    if (plan%mode%has_search()) then
       runs = itoa(m%n_done)//'/'//itoa(plan%n_jobs)//' searches, '//itoa(done_runs)//'/~'// &
              itoa(done_runs + nint(runs_left))//' runs'
+    else
+      runs = itoa(done_runs)//'/'//itoa(plan%n_jobs)//' runs'
     end if
     write (output_unit, '(a)') 'voussoir-sweep: '//runs//', elapsed '//fmt_fixed(elapsed_s, 1)//' s, ETA '//trim(eta)
     flush (output_unit)
   end subroutine report
 
-  !> The thresholds of a short sweep, for the log.
+  !> The results of a short sweep, for the log: a line per row in the words of the mode
+  !> (none for a grid), its parameter set beside it.
   module subroutine summary(plan, m)
     type(sweep_plan_t), intent(in) :: plan
     type(master_t), intent(in) :: m
-    real(dp) :: thr
-    integer :: r, job, n_runs
-    character(len=160) :: line
-    if (plan%mode == 'grid' .or. plan%n_jobs > max_listed_jobs) return
+    integer :: r
+    character(len=:), allocatable :: line
+    if (plan%n_jobs > max_listed_jobs) return
     do r = 1, m%results%n_rows
-      job = nint(table_value(m%results, 'job', r))
-      if (plan%mode == 'ida') then
-        n_runs = nint(table_value(m%results, 'n_runs', r))
-        if (nint(table_value(m%results, 'failed', r)) == 1) then
-          write (line, '(a,i3,a)') ': FAILED (a run stopped with an error, see above), ', n_runs, ' runs'
-        else if (nint(table_value(m%results, 'censored', r)) == 1) then
-          write (line, '(a,i3,a)') ': stands up to scale_max, ', n_runs, ' runs'
-        else
-          write (line, '(a,f9.4,a,f8.3,a,i3,a)') ': threshold scale ', table_value(m%results, 'scale_threshold', r), &
-            ' (PGA ', table_value(m%results, 'pga_threshold_m_s2', r)/g_m_s2, ' g), ', n_runs, ' runs'
-        end if
-        if (nint(table_value(m%results, 'non_monotonic', r)) == 1) line = trim(line)//', non-monotonic'
-        write (output_unit, '(a)') '  '//trim(plan%records%given(job_record(plan, job)))//trim(line)//'  ['// &
-          set_description(plan, job_param_set(plan, job))//']'
-        cycle
-      end if
-      thr = table_value(m%results, 'threshold_m', r)
-      n_runs = nint(table_value(m%results, 'n_runs', r))
-      if (nint(table_value(m%results, 'failed', r)) == 1) then
-        write (line, '(a,f7.3,a,i3,a)') '  f = ', job_frequency_hz(plan, job), ' Hz: FAILED (a run stopped with an '// &
-          'error, see above), ', n_runs, ' runs'
-      else if (thr == thr) then
-        write (line, '(a,f7.3,a,f9.3,a,f8.3,a,i3,a)') '  f = ', job_frequency_hz(plan, job), &
-          ' Hz: threshold ', 1.0e3_dp*thr, ' mm (', table_value(m%results, 'peak_accel_m_s2', r), &
-          ' m/s2), ', n_runs, ' runs'
-      else
-        write (line, '(a,f7.3,a,i3,a)') '  f = ', job_frequency_hz(plan, job), ' Hz: stands up to amp_max_m, ', &
-          n_runs, ' runs'
-      end if
-      if (nint(table_value(m%results, 'non_monotonic', r)) == 1) line = trim(line)//', non-monotonic'
-      write (output_unit, '(a)') trim(line)//'  ['//set_description(plan, job_param_set(plan, job))//']'
+      line = plan%mode%summary_line(plan, m%results, r)
+      if (len(line) == 0) cycle
+      if (nint(table_value(m%results, 'non_monotonic', r)) == 1) line = line//', non-monotonic'
+      write (output_unit, '(a)') line//'  ['// &
+        set_description(plan, job_param_set(plan, nint(table_value(m%results, 'job', r))))//']'
     end do
     flush (output_unit)
   end subroutine summary

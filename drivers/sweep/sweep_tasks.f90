@@ -13,7 +13,8 @@ module voussoir_sweep_tasks
   use voussoir_model, only: model_t
   use voussoir_simulation, only: run_result_t
   use voussoir_setup, only: run_config
-  use voussoir_threshold, only: run_outcome_t, outcome_of_run
+  use voussoir_threshold_search, only: run_outcome_t
+  use voussoir_threshold, only: outcome_of_run
   use voussoir_sweep_plan, only: sweep_plan_t
   use voussoir_sweep_jobs, only: job_label, job_run_config
   implicit none
@@ -48,7 +49,7 @@ contains
     call run_config(job_run_config(plan, job, amp_m), assembly, model, res, status)
     if (.not. status%ok) then
       write (output_unit, '(a)') 'voussoir-sweep: warning: run failed, recorded as such: '//job_label(plan, job)// &
-        ' at '//trim(merge('scale       ', 'amplitude_m ', plan%mode == 'ida'))//' '//fmt_real(amp_m)//': '// &
+        ' at '//plan%mode%value_name()//' '//fmt_real(amp_m)//': '// &
         trim(status%message)
       flush (output_unit)
       status = status_t()

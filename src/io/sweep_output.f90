@@ -8,174 +8,35 @@
 !> reads back.
 module voussoir_sweep_output
   use voussoir_kinds, only: dp
-  use voussoir_text, only: itoa, fmt_exact
-  use voussoir_ordering, only: stable_order
+  use voussoir_text, only: itoa, fmt_exact, join_words
   use voussoir_status, only: status_t, fail
   use voussoir_config, only: config_t, config_entries, config_to_nml
   use voussoir_h5, only: hid_t, h5_create, h5_commit, h5_open_ro, h5_close, h5_group, h5_group_close, h5_write, &
                          h5_attr, commit_text_file, h5_exists, h5_read_real_1d, h5_read_int_1d, &
                          h5_read_attr_string
   use voussoir_run_output, only: write_provenance
+  use voussoir_sweep_table, only: sweep_table_t, named_values_t, named_text_t, table_append, table_value
+  use voussoir_sweep_mode, only: sweep_plan_t
   implicit none
   private
 
-  public :: sweep_table_t, sweep_header_t
-  public :: results_table, runs_table, dt_check_table, table_init, table_append, table_sort, table_row, table_set, table_value
+  public :: sweep_header_t
   public :: write_sweep_file, read_sweep_file, write_sweep_csv, csv_path_of
-
-  integer, parameter :: name_len = 32
-
-  !> Rows of named columns, appended one at a time.
-  type :: sweep_table_t
-    integer :: n_rows = 0
-    character(len=name_len), allocatable :: names(:)
-    logical, allocatable :: is_int(:)
-    real(dp), allocatable :: values(:, :)   !! (n_columns, capacity)
-  end type sweep_table_t
 
   !> What the file says about the sweep besides its rows.
   type :: sweep_header_t
     type(config_t) :: cfg                           !! the base case (/config, config_nml)
-    character(len=16) :: mode = 'threshold'         !! threshold, grid or ida
+    character(len=16) :: mode = ''                  !! the name of the sweep's mode
     character(len=:), allocatable :: signature      !! identifies the sweep definition
     character(len=:), allocatable :: sweep_nml      !! the effective &sweep group
     integer :: n_jobs = 0
     character(len=:), allocatable :: parameter_names  !! comma-separated, possibly empty
     real(dp), allocatable :: parameter_values(:, :)   !! (n_params, n_sets)
-    real(dp), allocatable :: frequencies_hz(:)
-    real(dp), allocatable :: amplitudes_m(:)          !! grid mode
-    character(len=512), allocatable :: record_files(:)  !! ida mode: as given in &sweep record_files
-    real(dp), allocatable :: record_pga_m_s2(:), record_pgv_m_s(:)  !! ida mode: of each record, unscaled
+    type(named_values_t), allocatable :: datasets(:)  !! the mode's lists under /sweep
+    type(named_text_t), allocatable :: attributes(:)  !! the mode's attributes of the file
   end type sweep_header_t
 
 contains
-
-  !> An empty /results table with the columns of `mode` ('threshold', 'grid' or 'ida').
-  function results_table(mode) result(t)
-    character(len=*), intent(in) :: mode
-    type(sweep_table_t) :: t
-    if (mode == 'ida') then
-      call table_init(t, [character(len=name_len) :: 'job', 'param_set', 'record', 'scale_stood', &
-                          'scale_threshold', 'pga_threshold_m_s2', 'pgv_threshold_m_s', 'censored', &
-                          'non_monotonic', 'n_runs', 'mean_iterations', 'wall_time_s', 'failed'], &
-                      [.true., .true., .true., .false., .false., .false., .false., .true., .true., .true., &
-                       .false., .false., .true.])
-    else if (mode == 'grid') then
-      call table_init(t, [character(len=name_len) :: 'job', 'param_set', 'frequency_hz', 'amplitude_m', &
-                          'collapsed', 'collapse_time_s', 'peak_crown_disp_m', 'mean_iterations', &
-                          'nonconverged_steps', 'wall_time_s', 'failed'], &
-                      [.true., .true., .false., .false., .true., .false., .false., .false., .true., .false., .true.])
-    else
-      call table_init(t, [character(len=name_len) :: 'job', 'param_set', 'frequency_hz', 'threshold_m', &
-                          'peak_accel_m_s2', 'non_monotonic', 'n_runs', 'mean_iterations', &
-                          'stand_below_m', 'static_onset_m', 'wall_time_s', 'failed'], &
-                      [.true., .true., .false., .false., .false., .true., .true., .false., .false., &
-                       .false., .false., .true.])
-    end if
-  end function results_table
-
-  !> An empty /runs table: every simulation of the searches; `value_name` is the
-  !> searched variable ('amplitude_m', or 'scale' in an IDA).
-  function runs_table(value_name) result(t)
-    character(len=*), intent(in) :: value_name
-    type(sweep_table_t) :: t
-    call table_init(t, [character(len=name_len) :: 'job', 'run', value_name, 'collapsed', &
-                        'collapse_time_s', 'peak_crown_disp_m', 'mean_iterations', 'n_steps', &
-                        'nonconverged_steps', 'wall_time_s', 'failed'], &
-                    [.true., .true., .false., .true., .false., .false., .false., .true., .true., .false., .true.])
-  end function runs_table
-
-  !> An empty /dt_check table: runs of an IDA redone at half the time step.
-  function dt_check_table() result(t)
-    type(sweep_table_t) :: t
-    call table_init(t, [character(len=name_len) :: 'job', 'scale', 'collapsed', 'collapsed_half_dt'], &
-                    [.true., .false., .true., .true.])
-  end function dt_check_table
-
-  !> An empty table with the columns `names` (integer where `is_int`).
-  subroutine table_init(t, names, is_int)
-    type(sweep_table_t), intent(out) :: t
-    character(len=*), intent(in) :: names(:)
-    logical, intent(in) :: is_int(:)
-    t%names = names
-    t%is_int = is_int
-    allocate (t%values(size(names), 64))
-    t%n_rows = 0
-  end subroutine table_init
-
-  !> Append one row; `row` holds the columns in the table's order.
-  subroutine table_append(t, row)
-    type(sweep_table_t), intent(inout) :: t
-    real(dp), intent(in) :: row(:)
-    real(dp), allocatable :: grown(:, :)
-    if (t%n_rows == size(t%values, 2)) then
-      allocate (grown(size(t%values, 1), 2*size(t%values, 2)))
-      grown(:, 1:t%n_rows) = t%values(:, 1:t%n_rows)
-      call move_alloc(grown, t%values)
-    end if
-    t%n_rows = t%n_rows + 1
-    t%values(:, t%n_rows) = row
-  end subroutine table_append
-
-  !> A row of zeros for `t`, to fill with `table_set`.
-  pure subroutine table_row(t, row)
-    type(sweep_table_t), intent(in) :: t
-    real(dp), allocatable, intent(out) :: row(:)
-    allocate (row(size(t%names)))
-    row = 0.0_dp
-  end subroutine table_row
-
-  !> The value of column `name` in row `r` (0 if there is no such column).
-  pure real(dp) function table_value(t, name, r)
-    type(sweep_table_t), intent(in) :: t
-    character(len=*), intent(in) :: name
-    integer, intent(in) :: r
-    integer :: k
-    k = column_index(t, name)
-    table_value = 0.0_dp
-    if (k > 0) table_value = t%values(k, r)
-  end function table_value
-
-  !> Set column `name` of `row` (a row of `t`) to `x` (a name `t` lacks is ignored).
-  pure subroutine table_set(t, row, name, x)
-    type(sweep_table_t), intent(in) :: t
-    real(dp), intent(inout) :: row(:)
-    character(len=*), intent(in) :: name
-    real(dp), intent(in) :: x
-    integer :: k
-    k = column_index(t, name)
-    if (k > 0) row(k) = x
-  end subroutine table_set
-
-
-  pure integer function column_index(t, name)
-    type(sweep_table_t), intent(in) :: t
-    character(len=*), intent(in) :: name
-    integer :: k
-    column_index = 0
-    do k = 1, size(t%names)
-      if (t%names(k) == name) then
-        column_index = k
-        return
-      end if
-    end do
-  end function column_index
-
-  !> Sort the rows by the columns `keys` (first key first), stably.
-  subroutine table_sort(t, keys)
-    type(sweep_table_t), intent(inout) :: t
-    character(len=*), intent(in) :: keys(:)
-    integer, allocatable :: key_col(:)
-    integer :: k, n
-    n = t%n_rows
-    if (n < 2) return
-    allocate (key_col(size(keys)))
-    do k = 1, size(keys)
-      key_col(k) = column_index(t, keys(k))
-    end do
-    key_col = pack(key_col, key_col > 0)
-    t%values(:, 1:n) = t%values(:, stable_order(t%values(key_col, 1:n)))
-  end subroutine table_sort
 
   !> Write the whole sweep file `path` through `path`.part. `runs` may have no columns
   !> (grid mode): then there is no /runs group. `complete` marks a finished sweep.
@@ -188,6 +49,7 @@ contains
     type(status_t), intent(inout) :: status
     type(sweep_table_t), intent(in), optional :: dt_check
     integer(hid_t) :: file_id, g
+    integer :: k
 
     call h5_create(trim(path), file_id, status)
     if (.not. status%ok) return
@@ -200,14 +62,12 @@ contains
     call h5_attr(file_id, 'complete', merge(1, 0, complete), status)
 
     call h5_group(file_id, 'sweep', g, status)
-    if (header%mode == 'ida') then
-      call h5_attr(file_id, 'record_files', join_lines(header%record_files), status)
-      call h5_write(g, 'record_pga_m_s2', header%record_pga_m_s2, status)
-      call h5_write(g, 'record_pgv_m_s', header%record_pgv_m_s, status)
-    else
-      call h5_write(g, 'frequencies_hz', header%frequencies_hz, status)
-    end if
-    if (header%mode == 'grid') call h5_write(g, 'amplitudes_m', header%amplitudes_m, status)
+    do k = 1, size(header%attributes)
+      call h5_attr(file_id, trim(header%attributes(k)%name), header%attributes(k)%text, status)
+    end do
+    do k = 1, size(header%datasets)
+      call h5_write(g, trim(header%datasets(k)%name), header%datasets(k)%values, status)
+    end do
     call h5_group_close(g, status)
     if (size(header%parameter_values, 1) > 0) then
       call h5_group(file_id, 'parameters', g, status)
@@ -226,18 +86,6 @@ contains
     end if
     call h5_commit(file_id, trim(path), status)
   end subroutine write_sweep_file
-
-  !> The entries of `lines`, trimmed, one per line.
-  function join_lines(lines) result(text)
-    character(len=*), intent(in) :: lines(:)
-    character(len=:), allocatable :: text
-    integer :: k
-    text = ''
-    do k = 1, size(lines)
-      text = text//trim(lines(k))
-      if (k < size(lines)) text = text//achar(10)
-    end do
-  end function join_lines
 
   subroutine write_table(file_id, name, t, status)
     integer(hid_t), intent(in) :: file_id
@@ -396,78 +244,29 @@ contains
     end if
   end function csv_path_of
 
-  !> The plain CSV summary (rows in the order of `results`), written through a
-  !> temporary file and renamed.
-  subroutine write_sweep_csv(path, header, results, status)
+  !> The plain CSV summary (rows in the order of `results`, columns of the plan's
+  !> mode), written through a temporary file and renamed.
+  subroutine write_sweep_csv(path, plan, results, status)
     character(len=*), intent(in) :: path
-    type(sweep_header_t), intent(in) :: header
+    type(sweep_plan_t), intent(in) :: plan
     type(sweep_table_t), intent(in) :: results
     type(status_t), intent(inout) :: status
-    integer :: r, k, set, n_params
-    character(len=:), allocatable :: text, line, names
+    integer :: r, k, set
+    character(len=:), allocatable :: text, set_columns, names
     character(len=*), parameter :: nl = achar(10)
 
-    n_params = size(header%parameter_values, 1)
     names = ''
-    if (n_params > 0) names = ','//header%parameter_names
-    if (header%mode == 'ida') then
-      text = 'record,param_set'//names//',scale_stood,scale_threshold,pga_threshold_m_s2,pgv_threshold_m_s,'// &
-             'censored,non_monotonic,n_runs,failed'//nl
-    else if (header%mode == 'grid') then
-      text = 'param_set'//names//',frequency_hz,amplitude_m,outcome,collapse_time_s,peak_crown_disp_m,'// &
-             'mean_iterations'//nl
-    else
-      text = 'param_set'//names//',frequency_hz,threshold_m,peak_accel_m_s2,non_monotonic,failed'//nl
-    end if
+    if (plan%n_params > 0) names = ','//join_words(plan%param_names, ',')
+    text = plan%mode%csv_header(names)//nl
     do r = 1, results%n_rows
-      set = nint(col('param_set'))
-      line = itoa(set)
-      if (header%mode == 'ida') line = trim(header%record_files(nint(col('record')) + 1))//','//line
-      do k = 1, n_params
-        line = line//','//fmt_exact(header%parameter_values(k, set + 1))
+      set = nint(table_value(results, 'param_set', r))
+      set_columns = itoa(set)
+      do k = 1, plan%n_params
+        set_columns = set_columns//','//fmt_exact(plan%param_values(k, set + 1))
       end do
-      if (header%mode == 'ida') then
-        line = line//','//fmt_exact(col('scale_stood'))//','//fmt_exact(col('scale_threshold'))//','// &
-               fmt_exact(col('pga_threshold_m_s2'))//','//fmt_exact(col('pgv_threshold_m_s'))//','// &
-               itoa(nint(col('censored')))//','//itoa(nint(col('non_monotonic')))//','//itoa(nint(col('n_runs')))// &
-               ','//itoa(nint(col('failed')))
-        text = text//line//nl
-        cycle
-      end if
-      line = line//','//fmt_exact(col('frequency_hz'))
-      if (header%mode == 'grid') then
-        line = line//','//fmt_exact(col('amplitude_m'))//','// &
-               trim(outcome_word())//','// &
-               fmt_exact(col('collapse_time_s'))//','//fmt_exact(col('peak_crown_disp_m'))//','// &
-               fmt_exact(col('mean_iterations'))
-      else
-        line = line//','//fmt_exact(col('threshold_m'))//','//fmt_exact(col('peak_accel_m_s2'))//','// &
-               itoa(nint(col('non_monotonic')))//','//itoa(nint(col('failed')))
-      end if
-      text = text//line//nl
+      text = text//plan%mode%csv_line(plan, results, r, set_columns)//nl
     end do
     call commit_text_file(path, text, status)
-
-  contains
-
-    real(dp) function col(name)
-      character(len=*), intent(in) :: name
-      col = results%values(column_index(results, name), r)
-    end function col
-
-    !> A grid run's outcome: collapse, stand, or failed (the run stopped with an error).
-    function outcome_word() result(word)
-      character(len=:), allocatable :: word
-      if (nint(col('failed')) == 1) then
-        word = 'failed'
-      else if (nint(col('collapsed')) == 1) then
-        word = 'collapse'
-      else
-        word = 'stand'
-      end if
-    end function outcome_word
-
   end subroutine write_sweep_csv
-
 
 end module voussoir_sweep_output
