@@ -4,6 +4,7 @@
 !> A range is written once, as the user reads it ('0 < dt_s <= 0.1', '1e-4 m <=
 !> block_width_m <= 100 m', 'friction >= 0 (finite)', 'ramp_rate_m_s3 /= 0'), and its
 !> bounds are read from that text, so the check and its message cannot disagree.
+!> '(finite)' bounds the value by the largest real; any other note in ( ) is words only.
 module voussoir_input_range
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
@@ -36,12 +37,17 @@ contains
     type(range_t) :: r
     character(len=32) :: words(12)
     integer :: n, at
+    real(dp) :: bound
 
     r%text = text
     call split_words(text, words, n)
     at = findloc(words(:n), name, dim=1)
     r%valid = at > 0
     if (.not. r%valid) return
+    if (index(text, '(finite)') > 0) then   ! no bound above but the largest real
+      r%has_high = .true.
+      r%high = huge(1.0_dp)
+    end if
     if (at > 1) then
       r%has_low = .true.
       r%low_strict = words(at - 1) == '<'
@@ -51,18 +57,19 @@ contains
       if (words(at + 1)(1:1) == '(') return   ! a note only
       r%valid = at + 1 < n
       if (.not. r%valid) return
-      r%valid = number(words(at + 2), r%high)
+      r%valid = number(words(at + 2), bound)
       select case (words(at + 1))
       case ('<', '<=')
         r%has_high = .true.
         r%high_strict = words(at + 1) == '<'
+        r%high = bound
       case ('>', '>=')
         r%has_low = .true.
         r%low_strict = words(at + 1) == '>'
-        r%low = r%high
+        r%low = bound
       case ('/=')
         r%nonzero = .true.
-        r%valid = r%valid .and. r%high == 0.0_dp
+        r%valid = r%valid .and. bound == 0.0_dp
       case default
         r%valid = .false.
       end select
