@@ -121,14 +121,8 @@ contains
   subroutine append(g, v)
     class(nml_group_t), intent(inout) :: g
     type(nml_var_t), intent(in) :: v
-    type(nml_var_t), allocatable :: longer(:)
     if (.not. allocated(g%vars)) allocate (g%vars(0))
-    ! By intrinsic assignment: gfortran 12 frees the allocatable components of an array
-    ! constructor's elements twice ([g%vars, v]).
-    allocate (longer(size(g%vars) + 1))
-    longer(:size(g%vars)) = g%vars
-    longer(size(longer)) = v
-    call move_alloc(longer, g%vars)
+    g%vars = [g%vars, v]
   end subroutine append
 
   subroutine add_real(g, name, x, unit, range, when, about)

@@ -134,10 +134,10 @@ contains
         call end_word()
       case (',', ';')
         call end_word()
-        call push_token(tokens, token_t(comma, ',', line_no))
+        tokens = [tokens, token_t(comma, ',', line_no)]
       case ('=')
         call end_word()
-        call push_token(tokens, token_t(equals, '=', line_no))
+        tokens = [tokens, token_t(equals, '=', line_no)]
       case ('/')
         call end_word()
         ended = .true.
@@ -171,7 +171,7 @@ contains
         call fail(status, path//':'//itoa(line_no)//': group '//current//' begins before &'//group// &
                   " is closed: end &"//group//' with /')
       else
-        call push_token(tokens, token_t(word, current, line_no))
+        tokens = [tokens, token_t(word, current, line_no)]
       end if
       current = ''
     end subroutine end_word
@@ -241,15 +241,15 @@ contains
         end if
         if (tokens(k)%kind == comma) then
           ! A comma right after a value only separates; any other comma is a null value.
-          if (.not. after_value) call push_value(a%values, nml_value_t('', 1, .true.))
+          if (.not. after_value) a%values = [a%values, nml_value_t('', 1, .true.)]
           after_value = .false.
         else
-          call push_value(a%values, value_of(tokens(k)%text))
+          a%values = [a%values, value_of(tokens(k)%text)]
           after_value = .true.
         end if
         k = k + 1
       end do
-      call push_assignment(assignments, a)
+      assignments = [assignments, a]
       deallocate (a%values)
     end do
   end subroutine split_assignments
@@ -302,38 +302,5 @@ contains
     v%text = text(star + 1:)
     v%null = len(v%text) == 0
   end function value_of
-
-  ! Appends by intrinsic assignment: gfortran 12 frees the allocatable components of an
-  ! array constructor's elements twice ([list, item] of these types).
-
-  subroutine push_token(list, item)
-    type(token_t), allocatable, intent(inout) :: list(:)
-    type(token_t), intent(in) :: item
-    type(token_t), allocatable :: longer(:)
-    allocate (longer(size(list) + 1))
-    longer(:size(list)) = list
-    longer(size(longer)) = item
-    call move_alloc(longer, list)
-  end subroutine push_token
-
-  subroutine push_value(list, item)
-    type(nml_value_t), allocatable, intent(inout) :: list(:)
-    type(nml_value_t), intent(in) :: item
-    type(nml_value_t), allocatable :: longer(:)
-    allocate (longer(size(list) + 1))
-    longer(:size(list)) = list
-    longer(size(longer)) = item
-    call move_alloc(longer, list)
-  end subroutine push_value
-
-  subroutine push_assignment(list, item)
-    type(nml_assignment_t), allocatable, intent(inout) :: list(:)
-    type(nml_assignment_t), intent(in) :: item
-    type(nml_assignment_t), allocatable :: longer(:)
-    allocate (longer(size(list) + 1))
-    longer(:size(list)) = list
-    longer(size(longer)) = item
-    call move_alloc(longer, list)
-  end subroutine push_assignment
 
 end module voussoir_namelist_text
