@@ -61,7 +61,7 @@ contains
     type(status_t) :: status
     real(dp) :: x, list(0:5)
     integer :: n, counts(4), unit, ios
-    logical :: on, off
+    logical :: on, off, found
     character(len=16) :: mode
     character(len=64) :: file
     character(len=32) :: names(3)
@@ -91,11 +91,18 @@ contains
     call assert_true(s%mode == 'ramp' .and. mode == 'RAMP', 'a choice is kept in lower case')
     call assert_true(size(g%entries()) == 9 + 5 + 4 - 2, 'entries: a sparse list gives its set entries')
 
-    ! An absent group leaves the values; &end closes a group as / does.
+    ! &end closes a group as / does, and so does the end of the file (as in gfortran).
     call write_file('test_input_end.nml', '&test n = 4'//nl//'&end'//nl)
     s = sample_t()
     call g%read('test_input_end.nml', status)
     call assert_true(status%ok .and. s%n == 4, '&end closes a group')
+    call write_file('test_input_end.nml', '&test n = 5, x = 2')
+    call g%read('test_input_end.nml', status)
+    call assert_true(status%ok .and. s%n == 5 .and. s%x == 2.0_dp, 'the end of the file closes the last group')
+    ! An absent group leaves the values.
+    call write_file('test_input_end.nml', '&other n = 6 /')
+    call g%read('test_input_end.nml', status, found=found)
+    call assert_true(status%ok .and. .not. found .and. s%n == 5, 'an absent group: found = .false., values kept')
   end subroutine test_same_bits_as_namelist
 
   !> A refusal for each malformed value, naming what it expects and what it got.
@@ -112,22 +119,18 @@ contains
     call refused('n = 3 4', '&test n takes one value; it is given 2')
     call refused('n(2) = 3', 'n(2): n is one value, not a list')
     call refused('list(1) = 3 4', 'list(1) takes one value')
-    call refused('list = 7*1', 'list has entries list(0) to list(5); list = ... reaches entry 6')
-    call refused('list(9) = 1', 'reaches entry 9')
+    call refused('list = 7*1', '&test list has 7 values; at most 6')
+    call refused('list(9) = 1', '&test list has values up to entry 9; at most 5')
+    call refused('list(-1) = 1', '&test list(-1): the entries of list are 0 to 5')
     call refused('list = 0*1', 'a repeat count r*value needs r >= 1')
-    call refused('n = 3', "&test has no closing '/'", closed=.false.)
   end subroutine test_refusals
 
-  subroutine refused(body, expected, closed)
+  subroutine refused(body, expected)
     character(len=*), intent(in) :: body, expected
-    logical, intent(in), optional :: closed
     type(sample_t), target :: s
     type(nml_group_t) :: g
     type(status_t) :: status
-    logical :: slash
-    slash = .true.
-    if (present(closed)) slash = closed
-    call write_file('test_input_bad.nml', '&test '//body//merge(' /', '  ', slash))
+    call write_file('test_input_bad.nml', '&test '//body//' /')
     call sample_group(s, g)
     call g%read('test_input_bad.nml', status)
     call assert_true(.not. status%ok .and. index(status%message, expected) > 0, &

@@ -60,9 +60,16 @@ contains
       first = v%first
       last = first + list_size(v) - 1
       pos = merge(a%index, first, a%indexed)
-      if (v%list .and. (pos < first .or. pos + n - 1 > last)) then
-        call fail(status, at//' '//trim(v%name)//' has entries '//trim(v%name)//'('//itoa(first)//') to '// &
-                  trim(v%name)//'('//itoa(last)//'); '//a%written//' = ... reaches entry '//itoa(pos + n - 1))
+      if (v%list .and. pos < first) then
+        call fail(status, at//' '//a%written//': the entries of '//trim(v%name)//' are '//itoa(first)//' to '// &
+                  itoa(last))
+        return
+      else if (v%list .and. pos + n - 1 > last .and. .not. a%indexed) then
+        call fail(status, at//' '//trim(v%name)//' has '//itoa(n)//' values; at most '//itoa(last - first + 1))
+        return
+      else if (v%list .and. pos + n - 1 > last) then
+        call fail(status, at//' '//trim(v%name)//' has values up to entry '//itoa(pos + n - 1)//'; at most '// &
+                  itoa(last))
         return
       end if
       do j = 1, size(a%values)

@@ -2,8 +2,8 @@
 !> `name = values` or `name(k) = value`, its values as written (a repeat count `r*`
 !> kept apart, a null value marked), for voussoir_namelist_group to convert.
 !>
-!> Accepted: `&group` (or `$group`) at the start of a line, ended by `/`, `&end` or
-!> `$end`; values separated by commas, semicolons or blanks over any number of lines;
+!> Accepted: `&group` (or `$group`) at the start of a line, ended by `/`, `&end`,
+!> `$end` or the end of the file; values separated by commas, semicolons or blanks over any number of lines;
 !> `!` comments; strings in ' or " (a doubled quote stands for one); `r*value` and `r*`.
 !> What the project's own rules refuse here, gfortran refuses as well (an unquoted text,
 !> an element with more than one value), but with a message naming the variable.
@@ -93,9 +93,7 @@ contains
       call line_tokens(path, group, line, line_no, tokens, ended, status)
       if (ended .or. .not. status%ok) exit
     end do
-    close (unit)
-    if (found .and. .not. ended .and. status%ok) &
-      call fail(status, path//': &'//group//" has no closing '/' (end the group with /)")
+    close (unit)   ! the end of the file ends the last group, as in gfortran's read
   end subroutine group_tokens
 
   !> Where the text of group `group` starts in `line` (after its name), or 0 when the
