@@ -81,7 +81,7 @@ module voussoir_namelist_group
   end type nml_group_t
 
   interface
-    !> Read group `g%name` of `path` into the table's targets (group_read.f90).
+    !> Read group `g%name` of `path` into the table's targets (namelist_group_read.f90).
     module subroutine read_group(g, path, status, found)
       class(nml_group_t), intent(in) :: g
       character(len=*), intent(in) :: path
