@@ -1,23 +1,38 @@
 !> The input of a run: namelist groups read into validated types.
 !>
 !> Groups: &arch, &motion, &solver, &output (and the drivers' own, e.g. &sweep and
-!> &limit, which they read themselves; `check_groups` refuses any other group). Every value is
-!> checked; a bad one gives an error that names the file, the group, the variable, the
-!> value and the allowed range. `config_entries` lists the effective configuration,
-!> defaults included, for the result files.
+!> &limit, which they read themselves; `check_groups` refuses any other group). Each
+!> group is a table (`config_groups`: every variable once, with its unit and allowed
+!> range) read by voussoir_namelist_group; a bad value gives an error that names the
+!> file, the group, the variable, the value and the allowed range. `config_entries`
+!> lists the effective configuration, defaults included, for the result files.
 module voussoir_config
-  use, intrinsic :: iso_fortran_env, only: iostat_end
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: lower, fmt_real, itoa
-  use voussoir_namelist_check, only: check_groups, check_names
-  use voussoir_wall_config, only: wall_config_t, read_wall_config
+  use voussoir_namelist_check, only: check_groups
+  use voussoir_namelist_group, only: nml_group_t, config_entry_t, checked_apart
+  use voussoir_input_range, only: in_range
+  use voussoir_wall_config, only: wall_config_t, read_wall_config, wall_group
   implicit none
   private
 
   public :: config_t, arch_config_t, motion_config_t, solver_config_t, output_config_t
   public :: config_entry_t, read_config, validate_config, config_entries, config_to_nml
-  public :: resolve_path, fmt_real, arch_rule, arch_rule_text
+  public :: resolve_path, fmt_real, arch_rule, arch_rule_text, config_groups
+
+  !> The waveforms of &motion (the `select case` on them: validate_motion and setup).
+  character(len=*), parameter, public :: waveform_afd = 'afd', waveform_ramp = 'ramp', &
+    waveform_record = 'record', waveform_accelerogram = 'accelerogram'
+  character(len=16), parameter, public :: waveform_names(4) = [character(len=16) :: &
+    waveform_afd, waveform_ramp, waveform_record, waveform_accelerogram]
+  !> &arch restrained_springings: which springing blocks are held against sliding outwards.
+  character(len=*), parameter, public :: springings_none = 'none', springings_left = 'left', &
+    springings_right = 'right', springings_both = 'both'
+  character(len=16), parameter :: springings_names(4) = [character(len=16) :: &
+    springings_none, springings_left, springings_right, springings_both]
+  !> `when` of the &arch ranges that hold for the arch builder only, and for a polygon file only.
+  character(len=*), parameter :: arch_builder = 'arch builder', polygon_assembly = 'polygon file'
 
   integer, parameter :: path_len = 512
   integer, parameter :: max_joint = 255               !! highest joint index of joint_friction
@@ -34,7 +49,7 @@ module voussoir_config
     real(dp) :: density_kg_m3 = 700.0_dp
     real(dp) :: friction = 0.5_dp             !! Coulomb coefficient of every contact
     real(dp) :: contact_inset_m = 0.0_dp      !! contact points set in from face ends [m]
-    character(len=16) :: restrained_springings = 'none'  !! none, left, right, both
+    character(len=16) :: restrained_springings = springings_none  !! one of springings_names
     character(len=path_len) :: polygon_file = ''          !! assembly instead of an arch
     !> Coulomb coefficient of joint j (0..n_voussoirs) where set, e.g. joint_friction(0) = 0.3
     real(dp) :: joint_friction(0:max_joint) = unset_friction
@@ -45,7 +60,7 @@ module voussoir_config
 
   !> &motion: the base motion.
   type :: motion_config_t
-    character(len=16) :: waveform = 'afd'     !! afd, ramp, record or accelerogram
+    character(len=16) :: waveform = waveform_afd  !! one of waveform_names
     real(dp) :: frequency_hz = 1.25_dp
     real(dp) :: amplitude_m = 0.046_dp        !! commanded amplitude of the full cycles
     integer :: n_attack = 1, n_full = 1, n_decay = 1
@@ -92,18 +107,10 @@ module voussoir_config
     character(len=path_len) :: source_file = ''
   end type config_t
 
-  !> One effective setting: group, name, type ('r', 'i', 'l', 's') and value as text.
-  type :: config_entry_t
-    character(len=16) :: group = ''
-    character(len=32) :: name = ''
-    character(len=1) :: kind = 's'
-    character(len=path_len) :: value = ''
-  end type config_entry_t
-
   !> Check every value of `cfg` against its physical range (config_validate.f90).
   interface
     module subroutine validate_config(cfg, status)
-      type(config_t), intent(inout) :: cfg
+      type(config_t), intent(inout), target :: cfg
       type(status_t), intent(inout) :: status
     end subroutine validate_config
   end interface
@@ -115,103 +122,19 @@ contains
   subroutine read_config(path, allowed_groups, cfg, status)
     character(len=*), intent(in) :: path
     character(len=*), intent(in) :: allowed_groups(:)
-    type(config_t), intent(out) :: cfg
+    type(config_t), intent(out), target :: cfg
     type(status_t), intent(inout) :: status
-    integer :: unit, ios
-    character(len=512) :: iomsg
-    ! Namelist objects, initialised from the defaults of the types.
-    type(arch_config_t) :: a
-    type(motion_config_t) :: m
-    type(solver_config_t) :: s
-    type(output_config_t) :: o
-    real(dp) :: embrace_deg, r_ext_m, thickness_m, width_m, density_kg_m3, friction, contact_inset_m
-    real(dp) :: joint_friction(0:max_joint), size_imperfection
-    integer :: n_voussoirs, imperfection_seed
-    character(len=16) :: restrained_springings, waveform
-    character(len=path_len) :: polygon_file, record_file, file
-    real(dp) :: frequency_hz, amplitude_m, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s, &
-                table_gain, table_delay_s, record_scale
-    integer :: n_attack, n_full, n_decay, max_iter, every
-    real(dp) :: dt_s, theta, tol, alert_m, hinge_gap_m, collapse_drop_m, collapse_rotation_rad, &
-                stop_after_collapse_s
-    logical :: allow_nonconvergence, coarse_correction
-    namelist /arch/ embrace_deg, n_voussoirs, r_ext_m, thickness_m, width_m, density_kg_m3, &
-      friction, contact_inset_m, restrained_springings, polygon_file, joint_friction, size_imperfection, &
-      imperfection_seed
-    namelist /motion/ waveform, frequency_hz, amplitude_m, n_attack, n_full, n_decay, &
-      record_file, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s, table_gain, table_delay_s, &
-      record_scale
-    namelist /solver/ dt_s, theta, tol, max_iter, alert_m, allow_nonconvergence, coarse_correction
-    namelist /output/ file, every, hinge_gap_m, collapse_drop_m, collapse_rotation_rad, &
-      stop_after_collapse_s
+    type(nml_group_t) :: groups(4)
+    integer :: k
 
     cfg%source_file = path
     call check_groups(path, allowed_groups, status)
     if (.not. status%ok) return
-    open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
-    if (ios /= 0) then
-      call fail(status, trim(path)//': cannot open input: '//trim(iomsg))
-      return
-    end if
-
-    embrace_deg = a%embrace_deg; n_voussoirs = a%n_voussoirs; r_ext_m = a%r_ext_m
-    thickness_m = a%thickness_m; width_m = a%width_m; density_kg_m3 = a%density_kg_m3
-    friction = a%friction; contact_inset_m = a%contact_inset_m
-    restrained_springings = a%restrained_springings; polygon_file = a%polygon_file
-    joint_friction = a%joint_friction
-    size_imperfection = a%size_imperfection; imperfection_seed = a%imperfection_seed
-    call check_names(path, 'arch', [character(len=24) :: 'embrace_deg', 'n_voussoirs', 'r_ext_m', &
-      'thickness_m', 'width_m', 'density_kg_m3', 'friction', 'contact_inset_m', 'restrained_springings', &
-      'polygon_file', 'joint_friction', 'size_imperfection', 'imperfection_seed'], status)
-    call check_names(path, 'motion', [character(len=24) :: 'waveform', 'frequency_hz', 'amplitude_m', &
-      'n_attack', 'n_full', 'n_decay', 'record_file', 'record_cutoff_hz', 'ramp_rate_m_s3', 'rest_s', &
-      'duration_s', 'table_gain', 'table_delay_s', 'record_scale'], status)
-    call check_names(path, 'solver', [character(len=24) :: 'dt_s', 'theta', 'tol', 'max_iter', 'alert_m', &
-      'allow_nonconvergence', 'coarse_correction'], status)
-    call check_names(path, 'output', [character(len=24) :: 'file', 'every', 'hinge_gap_m', 'collapse_drop_m', &
-      'collapse_rotation_rad', 'stop_after_collapse_s'], status)
-    if (.not. status%ok) then
-      close (unit)
-      return
-    end if
-    read (unit, nml=arch, iostat=ios, iomsg=iomsg)
-    if (.not. group_ok('arch')) return
-    a = arch_config_t(embrace_deg, n_voussoirs, r_ext_m, thickness_m, width_m, density_kg_m3, &
-                      friction, contact_inset_m, restrained_springings, polygon_file, joint_friction, &
-                      size_imperfection, imperfection_seed)
-
-    waveform = m%waveform; frequency_hz = m%frequency_hz; amplitude_m = m%amplitude_m
-    n_attack = m%n_attack; n_full = m%n_full; n_decay = m%n_decay; record_file = m%record_file
-    record_cutoff_hz = m%record_cutoff_hz; ramp_rate_m_s3 = m%ramp_rate_m_s3; rest_s = m%rest_s
-    duration_s = m%duration_s; table_gain = m%table_gain; table_delay_s = m%table_delay_s
-    record_scale = m%record_scale
-    rewind (unit)
-    read (unit, nml=motion, iostat=ios, iomsg=iomsg)
-    if (.not. group_ok('motion')) return
-    m = motion_config_t(waveform, frequency_hz, amplitude_m, n_attack, n_full, n_decay, &
-                        record_file, record_cutoff_hz, ramp_rate_m_s3, rest_s, duration_s, &
-                        table_gain, table_delay_s, record_scale)
-
-    dt_s = s%dt_s; theta = s%theta; tol = s%tol; max_iter = s%max_iter; alert_m = s%alert_m
-    allow_nonconvergence = s%allow_nonconvergence; coarse_correction = s%coarse_correction
-    rewind (unit)
-    read (unit, nml=solver, iostat=ios, iomsg=iomsg)
-    if (.not. group_ok('solver')) return
-    s = solver_config_t(dt_s, theta, tol, max_iter, alert_m, allow_nonconvergence, coarse_correction)
-
-    file = o%file; every = o%every; hinge_gap_m = o%hinge_gap_m; collapse_drop_m = o%collapse_drop_m
-    collapse_rotation_rad = o%collapse_rotation_rad; stop_after_collapse_s = o%stop_after_collapse_s
-    rewind (unit)
-    read (unit, nml=output, iostat=ios, iomsg=iomsg)
-    if (.not. group_ok('output')) return
-    o = output_config_t(file, every, hinge_gap_m, collapse_drop_m, collapse_rotation_rad, &
-                        stop_after_collapse_s)
-    close (unit)
-
-    cfg%arch = a
-    cfg%motion = m
-    cfg%solver = s
-    cfg%output = o
+    call config_groups(cfg, groups)
+    do k = 1, size(groups)
+      call groups(k)%read(path, status)
+      if (.not. status%ok) return
+    end do
     if (any(allowed_groups == 'wall')) call read_wall_config(path, cfg%wall, status)
     if (.not. status%ok) return
     if (len_trim(cfg%arch%polygon_file) > 0) &
@@ -219,97 +142,106 @@ contains
     if (len_trim(cfg%motion%record_file) > 0) &
       cfg%motion%record_file = resolve_path(path, cfg%motion%record_file)
     call validate_config(cfg, status)
-
-  contains
-
-    logical function group_ok(name)
-      character(len=*), intent(in) :: name
-      group_ok = .true.
-      if (ios == iostat_end) then
-        ios = 0   ! group absent: defaults
-      else if (ios /= 0) then
-        call fail(status, trim(path)//': in namelist group &'//name//': '//trim(iomsg)// &
-                  '. The variables of &'//name//' are: '//group_variables(name))
-        close (unit)
-        group_ok = .false.
-      end if
-    end function group_ok
-
   end subroutine read_config
 
-  !> The variables of a group with their types and units, for error messages.
-  function group_variables(name) result(text)
-    character(len=*), intent(in) :: name
-    character(len=:), allocatable :: text
-    select case (name)
-    case ('arch')
-      text = 'embrace_deg (real, deg), n_voussoirs (integer), r_ext_m, thickness_m, width_m (real, m), '// &
-             'density_kg_m3 (real), friction (real), contact_inset_m (real, m), '// &
-             "restrained_springings ('none'|'left'|'right'|'both'), polygon_file (text), "// &
-             'joint_friction(j) (real, the friction of joint j = 0..n_voussoirs), size_imperfection (real), '// &
-             'imperfection_seed (integer)'
-    case ('motion')
-      text = "waveform ('afd'|'ramp'|'record'|'accelerogram'), frequency_hz (real), amplitude_m (real), "// &
-             'n_attack, n_full, n_decay (integer), record_file (text), record_cutoff_hz, record_scale, '// &
-             'ramp_rate_m_s3, rest_s, duration_s, '// &
-             'table_gain, table_delay_s (real)'
-    case ('solver')
-      text = 'dt_s, theta, tol (real), max_iter (integer), alert_m (real, m), allow_nonconvergence, '// &
-             'coarse_correction (logical)'
-    case ('output')
-      text = 'file (text), every (integer), hinge_gap_m, collapse_drop_m, collapse_rotation_rad, '// &
-             'stop_after_collapse_s (real)'
-    case default
-      text = '(see the documentation)'
-    end select
-  end function group_variables
+  !> The tables of &arch, &motion, &solver and &output over `cfg`, in the order of the
+  !> effective settings: each variable once, with its unit and its own allowed range.
+  !> A range with `when` holds in one case only (validate_config asks for it there).
+  subroutine config_groups(cfg, groups)
+    type(config_t), intent(inout), target :: cfg
+    type(nml_group_t), intent(out) :: groups(4)
+    call arch_group(cfg%arch, groups(1))
+    associate (m => cfg%motion, g => groups(2))
+      g%name = 'motion'
+      call g%add('waveform', m%waveform, choices=waveform_names)
+      call g%add('frequency_hz', m%frequency_hz, unit='Hz', range='frequency_hz > 0', when=waveform_afd)
+      call g%add('amplitude_m', m%amplitude_m, unit='m', range='amplitude_m >= 0', when=waveform_afd)
+      call g%add('n_attack', m%n_attack, range='n_attack >= 1', when=waveform_afd)
+      call g%add('n_full', m%n_full, range='n_full >= 0', when=waveform_afd)
+      call g%add('n_decay', m%n_decay, range='n_decay >= 1', when=waveform_afd)
+      call g%add('record_file', m%record_file)
+      call g%add('record_cutoff_hz', m%record_cutoff_hz, unit='Hz', range='record_cutoff_hz >= 0 (0: no filter)', &
+                 when=waveform_record)
+      call g%add('ramp_rate_m_s3', m%ramp_rate_m_s3, unit='m/s3', range='ramp_rate_m_s3 /= 0', when=waveform_ramp)
+      call g%add('rest_s', m%rest_s, unit='s', range='rest_s >= 0')
+      call g%add('duration_s', m%duration_s, unit='s', range='duration_s >= 0')
+      call g%add('table_gain', m%table_gain, range='table_gain > 0', when=waveform_afd)
+      call g%add('table_delay_s', m%table_delay_s, unit='s', range='table_delay_s >= 0', when=waveform_afd)
+      call g%add('record_scale', m%record_scale, range='record_scale > 0 (finite)', when=waveform_accelerogram)
+    end associate
+    associate (s => cfg%solver, g => groups(3))
+      g%name = 'solver'
+      call g%add('dt_s', s%dt_s, unit='s', range='0 < dt_s <= 0.1')
+      call g%add('theta', s%theta, range='0.5 <= theta <= 1')
+      call g%add('tol', s%tol, range='0 < tol < 1')
+      call g%add('max_iter', s%max_iter, range='max_iter >= 1')
+      call g%add('alert_m', s%alert_m, unit='m', range='alert_m >= 0 (0: automatic)')
+      call g%add('allow_nonconvergence', s%allow_nonconvergence)
+      call g%add('coarse_correction', s%coarse_correction)
+    end associate
+    associate (o => cfg%output, g => groups(4))
+      g%name = 'output'
+      call g%add('file', o%file)
+      call g%add('every', o%every, range='every >= 1')
+      call g%add('hinge_gap_m', o%hinge_gap_m, unit='m', range='hinge_gap_m >= 0')
+      call g%add('collapse_drop_m', o%collapse_drop_m, unit='m', range='collapse_drop_m >= 0')
+      call g%add('collapse_rotation_rad', o%collapse_rotation_rad, unit='rad', range='collapse_rotation_rad > 0')
+      call g%add('stop_after_collapse_s', o%stop_after_collapse_s, unit='s')
+    end associate
+  end subroutine config_groups
 
-  !> Whether `value` of the &arch variable `name` is in its own range (the range that
-  !> does not depend on other variables); the one rule for &arch and the sweep's lists.
-  pure logical function arch_rule(name, value)
+  !> The &arch table: the ranges of the arch's shape hold for the arch builder, the
+  !> thickness's own range for a polygon file (an arch's is below r_ext_m).
+  subroutine arch_group(a, g)
+    type(arch_config_t), intent(inout), target :: a
+    type(nml_group_t), intent(out) :: g
+    g%name = 'arch'
+    call g%add('embrace_deg', a%embrace_deg, unit='deg', range='0 < embrace_deg <= 180', when=arch_builder)
+    call g%add('n_voussoirs', a%n_voussoirs, range='2 <= n_voussoirs <= '//itoa(max_voussoirs), when=arch_builder)
+    call g%add('r_ext_m', a%r_ext_m, unit='m', range='0 < r_ext_m <= 1000 m', when=arch_builder)
+    call g%add('thickness_m', a%thickness_m, unit='m', range='0 < thickness_m <= 1000 m', when=polygon_assembly)
+    call g%add('width_m', a%width_m, unit='m', range='0 < width_m <= 1000 m')
+    call g%add('density_kg_m3', a%density_kg_m3, unit='kg/m3', range='0 < density_kg_m3 <= 1e5')
+    call g%add('friction', a%friction, range='friction >= 0 (finite)')
+    call g%add('contact_inset_m', a%contact_inset_m, unit='m', range='contact_inset_m >= 0 (finite)', &
+               when=checked_apart)
+    call g%add('restrained_springings', a%restrained_springings, choices=springings_names, when=arch_builder)
+    call g%add('polygon_file', a%polygon_file)
+    call g%add('joint_friction', a%joint_friction, first=0, unset=unset_friction, range='joint_friction >= 0', &
+               about='real, the friction of joint j = 0..n_voussoirs')
+    call g%add('size_imperfection', a%size_imperfection, range='0 <= size_imperfection < 0.5')
+    call g%add('imperfection_seed', a%imperfection_seed, range='imperfection_seed >= 0')
+  end subroutine arch_group
+
+  !> Whether `value` of the &arch variable `name` is in its own range (the range of the
+  !> &arch table, which does not depend on other variables): the one rule for &arch
+  !> and the sweep's lists. A variable without a range has no rule (.false.).
+  logical function arch_rule(name, value)
     character(len=*), intent(in) :: name
     real(dp), intent(in) :: value
-    select case (name)
-    case ('embrace_deg')
-      arch_rule = value > 0.0_dp .and. value <= 180.0_dp
-    case ('n_voussoirs')
-      arch_rule = value >= 2.0_dp .and. value <= real(max_voussoirs, dp)
-    case ('thickness_m', 'r_ext_m', 'width_m')
-      arch_rule = value > 0.0_dp .and. value <= 1.0e3_dp
-    case ('density_kg_m3')
-      arch_rule = value > 0.0_dp .and. value <= 1.0e5_dp
-    case ('friction', 'contact_inset_m')
-      arch_rule = value >= 0.0_dp .and. value <= huge(1.0_dp)
-    case ('size_imperfection')
-      arch_rule = value >= 0.0_dp .and. value < 0.5_dp
-    case default
-      arch_rule = .false.
-    end select
+    type(arch_config_t), target :: a
+    type(nml_group_t) :: g
+    integer :: k
+    call arch_group(a, g)
+    k = g%find(name)
+    arch_rule = .false.
+    if (k == 0) return
+    if (len(g%vars(k)%range%text) > 0) arch_rule = in_range(g%vars(k)%range, value)
   end function arch_rule
 
   !> The range `arch_rule` checks, as text for messages.
   function arch_rule_text(name) result(text)
     character(len=*), intent(in) :: name
     character(len=:), allocatable :: text
-    select case (name)
-    case ('embrace_deg')
-      text = '0 < embrace_deg <= 180'
-    case ('n_voussoirs')
-      text = '2 <= n_voussoirs <= '//itoa(max_voussoirs)
-    case ('friction', 'contact_inset_m')
-      text = trim(name)//' >= 0 (finite)'
-    case ('size_imperfection')
-      text = '0 <= size_imperfection < 0.5'
-    case ('thickness_m', 'r_ext_m', 'width_m')
-      text = '0 < '//trim(name)//' <= 1000 m'
-    case ('density_kg_m3')
-      text = '0 < density_kg_m3 <= 1e5'
-    case default
-      text = trim(name)//' > 0 (finite)'
-    end select
+    type(arch_config_t), target :: a
+    type(nml_group_t) :: g
+    integer :: k
+    call arch_group(a, g)
+    k = g%find(name)
+    text = trim(name)//' > 0 (finite)'
+    if (k == 0) return
+    if (len(g%vars(k)%range%text) > 0) text = g%vars(k)%range%text
   end function arch_rule_text
-
-
   !> A file named in an input file: absolute, or relative to that input file's folder.
   function resolve_path(input_path, name) result(full)
     character(len=*), intent(in) :: input_path, name
@@ -321,89 +253,19 @@ contains
     if (k > 0) full = input_path(:k)//trim(full)
   end function resolve_path
 
-
-
-  !> Every setting of `cfg`, defaults included, in group order.
+  !> Every setting of `cfg`, defaults included, in group order (the wall's where it has one).
   function config_entries(cfg) result(e)
     type(config_t), intent(in) :: cfg
     type(config_entry_t), allocatable :: e(:)
-    integer :: j
-    allocate (e(0))
-    associate (a => cfg%arch, m => cfg%motion, s => cfg%solver, o => cfg%output)
-      call r('arch', 'embrace_deg', a%embrace_deg)
-      call i('arch', 'n_voussoirs', a%n_voussoirs)
-      call r('arch', 'r_ext_m', a%r_ext_m)
-      call r('arch', 'thickness_m', a%thickness_m)
-      call r('arch', 'width_m', a%width_m)
-      call r('arch', 'density_kg_m3', a%density_kg_m3)
-      call r('arch', 'friction', a%friction)
-      call r('arch', 'contact_inset_m', a%contact_inset_m)
-      call t('arch', 'restrained_springings', a%restrained_springings)
-      call t('arch', 'polygon_file', a%polygon_file)
-      do j = 0, max_joint
-        if (a%joint_friction(j) /= unset_friction) call r('arch', 'joint_friction('//itoa(j)//')', a%joint_friction(j))
-      end do
-      call r('arch', 'size_imperfection', a%size_imperfection)
-      call i('arch', 'imperfection_seed', a%imperfection_seed)
-      call t('motion', 'waveform', m%waveform)
-      call r('motion', 'frequency_hz', m%frequency_hz)
-      call r('motion', 'amplitude_m', m%amplitude_m)
-      call i('motion', 'n_attack', m%n_attack)
-      call i('motion', 'n_full', m%n_full)
-      call i('motion', 'n_decay', m%n_decay)
-      call t('motion', 'record_file', m%record_file)
-      call r('motion', 'record_cutoff_hz', m%record_cutoff_hz)
-      call r('motion', 'ramp_rate_m_s3', m%ramp_rate_m_s3)
-      call r('motion', 'rest_s', m%rest_s)
-      call r('motion', 'duration_s', m%duration_s)
-      call r('motion', 'table_gain', m%table_gain)
-      call r('motion', 'table_delay_s', m%table_delay_s)
-      call r('motion', 'record_scale', m%record_scale)
-      call r('solver', 'dt_s', s%dt_s)
-      call r('solver', 'theta', s%theta)
-      call r('solver', 'tol', s%tol)
-      call i('solver', 'max_iter', s%max_iter)
-      call r('solver', 'alert_m', s%alert_m)
-      call l('solver', 'allow_nonconvergence', s%allow_nonconvergence)
-      call l('solver', 'coarse_correction', s%coarse_correction)
-      call t('output', 'file', o%file)
-      call i('output', 'every', o%every)
-      call r('output', 'hinge_gap_m', o%hinge_gap_m)
-      call r('output', 'collapse_drop_m', o%collapse_drop_m)
-      call r('output', 'collapse_rotation_rad', o%collapse_rotation_rad)
-      call r('output', 'stop_after_collapse_s', o%stop_after_collapse_s)
-      if (cfg%wall%courses > 0) then
-        call i('wall', 'courses', cfg%wall%courses)
-        call i('wall', 'blocks_per_course', cfg%wall%blocks_per_course)
-        call r('wall', 'block_width_m', cfg%wall%block_width_m)
-        call r('wall', 'block_height_m', cfg%wall%block_height_m)
-        call t('wall', 'bond', cfg%wall%bond)
-      end if
-    end associate
-  contains
-    subroutine r(g, n, x)
-      character(len=*), intent(in) :: g, n
-      real(dp), intent(in) :: x
-      character(len=32) :: buf
-      write (buf, '(es24.16)') x
-      e = [e, config_entry_t(g, n, 'r', adjustl(buf))]
-    end subroutine r
-    subroutine i(g, n, x)
-      character(len=*), intent(in) :: g, n
-      integer, intent(in) :: x
-      character(len=32) :: buf
-      write (buf, '(i0)') x
-      e = [e, config_entry_t(g, n, 'i', buf)]
-    end subroutine i
-    subroutine l(g, n, x)
-      character(len=*), intent(in) :: g, n
-      logical, intent(in) :: x
-      e = [e, config_entry_t(g, n, 'l', merge('.true. ', '.false.', x))]
-    end subroutine l
-    subroutine t(g, n, x)
-      character(len=*), intent(in) :: g, n, x
-      e = [e, config_entry_t(g, n, 's', x)]
-    end subroutine t
+    type(config_t), target :: c
+    type(nml_group_t) :: groups(4), wall
+    c = cfg
+    call config_groups(c, groups)
+    e = [groups(1)%entries(), groups(2)%entries(), groups(3)%entries(), groups(4)%entries()]
+    if (c%wall%courses > 0) then
+      call wall_group(c%wall, wall)
+      e = [e, wall%entries()]
+    end if
   end function config_entries
 
   !> The entries as namelist text that reads back to the same configuration.

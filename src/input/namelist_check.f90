@@ -1,6 +1,7 @@
 !> What gfortran's namelist reader does not say clearly: a group the driver does not
-!> know, and a variable a group does not have (the compiler's message names another
-!> one). Every driver checks every group of its input with these.
+!> know (`check_groups`: every driver, every input). `check_names` and
+!> `check_list_lengths` serve the &sweep group's NAMELIST read until it moves onto
+!> voussoir_namelist_group, whose read checks names and list lengths itself.
 module voussoir_namelist_check
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: lower, join_words, itoa

@@ -1,11 +1,11 @@
 !> The limit analysis a voussoir-limit input asks for: the optional &limit group
 !> (docs/limit_analysis.md) and the analyses of the &arch it describes.
 module voussoir_limit_study
-  use, intrinsic :: iso_fortran_env, only: iostat_end
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
-  use voussoir_config, only: config_t
-  use voussoir_namelist_check, only: check_names
+  use voussoir_config, only: config_t, springings_none
+  use voussoir_namelist_group, only: nml_group_t
+  use voussoir_input_range, only: need
   use voussoir_text, only: itoa, fmt_significant
   use voussoir_assembly, only: assembly_t, build_arch, voussoir_angle_factors
   use voussoir_limit_analysis, only: limit_result_t, horizontal_capacity
@@ -38,38 +38,20 @@ contains
   subroutine read_limit_group(path, cfg, opts, status)
     character(len=*), intent(in) :: path
     type(config_t), intent(in) :: cfg
-    type(limit_options_t), intent(out) :: opts
+    type(limit_options_t), intent(out), target :: opts
     type(status_t), intent(inout) :: status
     real(dp), parameter :: unset = -huge(1.0_dp)
-    logical :: minimum_thickness
-    real(dp) :: inset_m
-    integer :: unit, ios
-    character(len=512) :: iomsg
-    namelist /limit/ minimum_thickness, inset_m
+    type(nml_group_t) :: g
 
-    minimum_thickness = opts%minimum_thickness
-    inset_m = unset
-    call check_names(path, 'limit', [character(len=24) :: 'minimum_thickness', 'inset_m'], status)
+    opts%inset_m = unset
+    g%name = 'limit'
+    call g%add('minimum_thickness', opts%minimum_thickness)
+    call g%add('inset_m', opts%inset_m, unit='m')
+    call g%read(path, status)
     if (.not. status%ok) return
-    open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
-    if (ios /= 0) then
-      call fail(status, path//': cannot open input: '//trim(iomsg))
-      return
-    end if
-    read (unit, nml=limit, iostat=ios, iomsg=iomsg)
-    close (unit)
-    ! End of file: the group is absent and the defaults hold.
-    if (ios /= 0 .and. ios /= iostat_end) then
-      call fail(status, path//': in namelist group &limit: '//trim(iomsg)// &
-                '. The variables of &limit are: minimum_thickness (logical), inset_m (real, m)')
-      return
-    end if
-    opts%minimum_thickness = minimum_thickness
-    opts%inset_m = merge(cfg%arch%contact_inset_m, inset_m, inset_m == unset)
-    if (.not. (opts%inset_m >= 0.0_dp .and. opts%inset_m < 0.5_dp*cfg%arch%thickness_m)) &
-      call fail(status, path//': &limit inset_m = '//fmt_significant(inset_m)// &
-                ' is outside the allowed range 0 <= inset_m < thickness_m/2 = '// &
-                fmt_significant(0.5_dp*cfg%arch%thickness_m))
+    if (opts%inset_m == unset) opts%inset_m = cfg%arch%contact_inset_m
+    call need(opts%inset_m >= 0.0_dp .and. opts%inset_m < 0.5_dp*cfg%arch%thickness_m, path, 'limit', 'inset_m', &
+              opts%inset_m, '0 <= inset_m < thickness_m/2 = '//fmt_significant(0.5_dp*cfg%arch%thickness_m), status)
   end subroutine read_limit_group
 
   !> Build the arch of &arch and run the analyses; refuse what the limit analysis does not model.
@@ -88,7 +70,7 @@ contains
         call fail(status, f//": &arch polygon_file = '"//trim(a%polygon_file)//"': voussoir-limit "// &
                   'analyses the arch of embrace_deg, n_voussoirs, r_ext_m and thickness_m only; '// &
                   'a polygon assembly has no joints to hinge (remove polygon_file)')
-      else if (a%restrained_springings /= 'none') then
+      else if (a%restrained_springings /= springings_none) then
         call fail(status, f//": &arch restrained_springings = '"//trim(a%restrained_springings)// &
                   "': the limit analysis does not model restraint brackets (its mechanisms hinge "// &
                   "freely at the springings); set restrained_springings = 'none'")
