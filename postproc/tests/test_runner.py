@@ -7,7 +7,7 @@ import math
 
 import pytest
 
-from voussoir_post.results import parse_namelist
+from voussoir_post.readers.results import parse_namelist
 from voussoir_post.runner import RunError, Runner, format_value, namelist
 
 

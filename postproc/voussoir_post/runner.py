@@ -21,7 +21,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from .results import LimitResult, RunResult, SweepResult, read_limit_json, read_run, read_sweep
+from .readers.results import LimitResult, RunResult, SweepResult, read_limit_json, read_run, read_sweep
 
 __all__ = ["RunError", "Runner", "namelist", "format_value", "read_csv_rows"]
 

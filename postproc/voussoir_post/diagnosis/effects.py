@@ -15,8 +15,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .actuator import TableEvidence
-from .campaign import Specimen
-from .diagnosis_settings import DiagnosisSettings
+from ..readers.campaign import Specimen
+from .settings import DiagnosisSettings
 
 __all__ = ["COMBINED", "Variant", "Effect", "ContactEdges", "TableMotion", "BaseRestraint", "Friction", "Geometry", "EFFECTS",
            "EFFECTS_BY_ID", "RESTRAINTS", "effect", "arch_group"]

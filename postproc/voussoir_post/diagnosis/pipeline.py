@@ -30,11 +30,11 @@ from pathlib import Path
 import numpy as np
 
 from .actuator import TableEvidence, afd_command, fit_actuator, table_evidence
-from .campaign import Campaign, MeasuredThreshold, Specimen, measured_thresholds, read_campaign
+from ..readers.campaign import Campaign, MeasuredThreshold, Specimen, measured_thresholds, read_campaign
 from .combined import all_pairs, screen_pairs
 from .decision import Decision, decide, hinge_match, hinge_score
 from .nested import admissibility, mean_relative_error, nested_held_out
-from .diagnosis_settings import DiagnosisSettings
+from .settings import DiagnosisSettings
 from .effects import EFFECTS, Variant, effect
 from .selection import CandidateResult, PairData, evaluate_candidate, held_out_loss, mean_error
 from .setup_screen import specimen_restraints
@@ -217,7 +217,7 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
         "notes": notes,
     }
     (out_dir / "diagnosis.json").write_text(json.dumps(result, indent=2) + "\n")
-    from .diagnosis_report import write_report
+    from .report import write_report
     write_report(out_dir, campaign, pairs, cands, decision, table, baseline_error, resolution, result,
                  {"elapsed_s": elapsed, "sweeps": sim.n_sweeps, "runs": sim.n_runs, "settings": settings,
                   "code_version": sim.code_version,

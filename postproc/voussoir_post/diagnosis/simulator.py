@@ -8,10 +8,10 @@ import math
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from .campaign import MeasuredThreshold, Specimen, Test
-from .diagnosis_settings import DiagnosisSettings
+from ..readers.campaign import MeasuredThreshold, Specimen, Test
+from .settings import DiagnosisSettings
 from .effects import Variant, arch_group, effect
-from .runner import Runner
+from ..runner import Runner
 
 __all__ = ["Simulator"]
 

@@ -11,10 +11,10 @@ from matplotlib.animation import FuncAnimation, PillowWriter
 from matplotlib.patches import Polygon
 
 from .drawing import new_figure, provenance, run_caption, save_png
-from .kinematics import (ROLE_FOUNDATION, ROLE_RESTRAINT, JointState, block_polygons,
-                         default_open_tol_m, joint_states)
-from .results import RunResult
-from .tables import Table
+from ..analysis.kinematics import (ROLE_FOUNDATION, ROLE_RESTRAINT, JointState, block_polygons,
+                                   default_open_tol_m, joint_states)
+from ..readers.results import RunResult
+from ..tables import Table
 
 __all__ = ["SequenceFrame", "SequenceData", "default_frame_times", "sequence_frames",
            "plot_sequence", "write_sequence_gif"]

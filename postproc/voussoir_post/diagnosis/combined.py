@@ -23,7 +23,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from .actuator import TableEvidence
-from .diagnosis_settings import DiagnosisSettings
+from .settings import DiagnosisSettings
 from .effects import COMBINED, Effect, Variant
 
 __all__ = ["CombinedEffect", "pair_variant", "all_pairs", "screen_pairs"]

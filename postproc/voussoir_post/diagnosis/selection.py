@@ -15,8 +15,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .actuator import TableEvidence
-from .campaign import MeasuredThreshold, Specimen
-from .diagnosis_settings import DiagnosisSettings
+from ..readers.campaign import MeasuredThreshold, Specimen
+from .settings import DiagnosisSettings
 from .effects import Effect, Variant
 
 __all__ = ["PairData", "CandidateResult", "T_DOF", "STRONG_EVIDENCE", "neg_log_likelihood", "predictions",

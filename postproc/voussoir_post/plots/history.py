@@ -9,8 +9,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .drawing import add_g_axis, new_figure, provenance, run_caption, save_png
-from .results import RunResult
-from .tables import Table
+from ..readers.results import RunResult
+from ..tables import Table
 
 __all__ = ["HistoryData", "plot_history"]
 

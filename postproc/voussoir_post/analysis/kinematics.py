@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .results import RunResult
+from ..readers.results import RunResult
 
 __all__ = [
     "ROLE_VOUSSOIR",

@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 import h5py
 import numpy as np
 
-from .results import ResultsError, parse_namelist
+from ..readers.results import ResultsError, parse_namelist
 
 __all__ = ["IdaResult", "IDA_COLUMNS", "read_ida"]
 

@@ -16,10 +16,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from matplotlib.lines import Line2D
 
-from .campaign import Campaign, MeasuredThreshold, measured_thresholds
+from ..readers.campaign import Campaign, MeasuredThreshold, measured_thresholds
 from .drawing import COLORS, MARKERS, add_g_axis, arch_caption, new_figure, provenance, save_png
-from .results import SweepResult
-from .tables import Table
+from ..readers.results import SweepResult
+from ..tables import Table
 
 __all__ = ["ThresholdCurve", "GridMap", "MeasuredOverlay", "EnvelopeData", "threshold_curves",
            "grid_maps", "measured_overlays", "plot_envelope"]

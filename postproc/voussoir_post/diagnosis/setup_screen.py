@@ -20,7 +20,7 @@ from __future__ import annotations
 import math
 
 from .actuator import TableEvidence
-from .diagnosis_settings import DiagnosisSettings
+from .settings import DiagnosisSettings
 from .effects import RESTRAINTS, Variant, effect
 from .nested import mean_relative_error
 from .selection import CandidateResult, PairData, clearly_better, evaluate_candidate, predictions_loss

@@ -19,9 +19,9 @@ import os
 import sys
 import warnings
 
-from .campaign import Campaign, CampaignError, CampaignWarning, measured_thresholds, read_campaign
-from .runner import RunError
-from .tables import Table, format_table
+from ..readers.campaign import Campaign, CampaignError, CampaignWarning, measured_thresholds, read_campaign
+from ..runner import RunError
+from ..tables import Table, format_table
 
 __all__ = ["main", "build_parser", "campaign_summary"]
 
@@ -115,7 +115,7 @@ def _default_bin_dir() -> str:
 def cmd_run(args) -> int:
     from pathlib import Path
 
-    from .diagnosis import DiagnosisSettings, diagnose
+    from ..diagnosis.pipeline import DiagnosisSettings, diagnose
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", CampaignWarning)
         read_campaign(args.campaign)  # refuse an invalid folder before anything else

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .kinematics import rotation_matrix
-from .results import RunResult
+from ..readers.results import RunResult
 
 __all__ = ["Joint", "JointMotion", "find_joints", "joint_motion", "run_joints"]
 

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .campaign import Campaign, Test
+from ..readers.campaign import Campaign, Test
 
 __all__ = ["afd_command", "fit_actuator", "TableEvidence", "table_evidence"]
 

@@ -10,8 +10,8 @@ import numpy as np
 from matplotlib.patches import Polygon
 
 from .drawing import new_figure, provenance, save_png
-from .results import LimitResult
-from .tables import Table
+from ..readers.results import LimitResult
+from ..tables import Table
 
 __all__ = ["G_M_S2", "MechanismPanel", "MechanismData", "voussoir_polygons", "foundation_polygons",
            "plot_mechanism"]

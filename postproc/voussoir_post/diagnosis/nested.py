@@ -22,7 +22,7 @@ import math
 import numpy as np
 
 from .actuator import TableEvidence
-from .diagnosis_settings import DiagnosisSettings
+from .settings import DiagnosisSettings
 from .effects import Effect, Variant
 from .selection import PairData, clearly_better, errors, evaluate_candidate, folds, held_out_loss
 

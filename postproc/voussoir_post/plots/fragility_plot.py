@@ -13,10 +13,10 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
 from .drawing import new_figure, provenance, save_png
-from .fragility import FragilityBand, FragilityFit, bootstrap_band, empirical_collapse_fraction, fit_lognormal, \
-    fragility
-from .ida import IdaResult
-from .tables import Table
+from ..earthquake.fragility import (FragilityBand, FragilityFit, bootstrap_band, empirical_collapse_fraction,
+                                    fit_lognormal, fragility)
+from ..earthquake.ida import IdaResult
+from ..tables import Table
 
 __all__ = ["FragilityData", "IntensityFragility", "fragility_of", "plot_fragility", "G_M_S2"]
 

@@ -16,19 +16,19 @@ import sys
 
 import numpy as np
 
-from .assembly_joints import run_joints
-from .campaign import CampaignError, read_campaign
-from .compare import MatchError, plot_compare
-from .envelope import plot_envelope
-from .fragility_plot import plot_fragility
-from .history import plot_history
-from .ida import read_ida
-from .records import RecordsError, suite
-from .mechanism import plot_mechanism
-from .results import ResultsError, read_limit_json, read_run, read_sweep
-from .sequence import default_frame_times, plot_sequence, write_sequence_gif
-from .tables import Table, format_table, write_csv
-from .xdmf import check_xdmf, write_xdmf
+from ..analysis.assembly_joints import run_joints
+from ..readers.campaign import CampaignError, read_campaign
+from ..plots.compare import MatchError, plot_compare
+from ..plots.envelope import plot_envelope
+from ..plots.fragility_plot import plot_fragility
+from ..plots.history import plot_history
+from ..earthquake.ida import read_ida
+from ..earthquake.records import RecordsError, suite
+from ..plots.mechanism import plot_mechanism
+from ..readers.results import ResultsError, read_limit_json, read_run, read_sweep
+from ..plots.sequence import default_frame_times, plot_sequence, write_sequence_gif
+from ..tables import Table, format_table, write_csv
+from ..plots.xdmf import check_xdmf, write_xdmf
 
 __all__ = ["main", "build_parser", "output_path"]
 

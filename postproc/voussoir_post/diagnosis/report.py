@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from .actuator import afd_command
-from .drawing import new_figure, provenance, save_png
+from ..plots.drawing import new_figure, provenance, save_png
 from .effects import EFFECTS_BY_ID, Variant
 from .selection import loss, mean_error
 

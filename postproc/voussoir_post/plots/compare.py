@@ -28,11 +28,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .campaign import Campaign, measured_thresholds
+from ..readers.campaign import Campaign, measured_thresholds
 from .drawing import COLORS, new_figure, provenance, save_png
 from .envelope import grid_maps
-from .results import SweepResult
-from .tables import Table
+from ..readers.results import SweepResult
+from ..tables import Table
 
 __all__ = ["MatchError", "ComparisonRow", "CompareData", "arch_of_set", "match_specimens",
            "compare_thresholds", "plot_compare"]

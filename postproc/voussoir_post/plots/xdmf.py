@@ -27,8 +27,8 @@ from dataclasses import dataclass
 import h5py
 import numpy as np
 
-from .kinematics import rotation_matrix
-from .results import RunResult
+from ..analysis.kinematics import rotation_matrix
+from ..readers.results import RunResult
 
 __all__ = ["XdmfData", "write_xdmf", "check_xdmf", "XDMF_POLYGON"]
 
