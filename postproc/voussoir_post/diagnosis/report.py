@@ -7,8 +7,8 @@ from pathlib import Path
 
 import numpy as np
 
-from .actuator import afd_command
 from ..plots.drawing import new_figure, provenance, save_png
+from .actuator import afd_command
 from .effects import EFFECTS_BY_ID, Variant
 from .selection import loss, mean_error
 

@@ -14,10 +14,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .actuator import TableEvidence
 from ..readers.campaign import MeasuredThreshold, Specimen
-from .settings import DiagnosisSettings
+from .actuator import TableEvidence
 from .effects import Effect, Variant
+from .settings import DiagnosisSettings
 
 __all__ = ["PairData", "CandidateResult", "T_DOF", "STRONG_EVIDENCE", "neg_log_likelihood", "predictions",
            "errors", "mean_error", "fit", "predictions_loss", "held_out_loss", "clearly_better", "evaluate_candidate", "folds"]

@@ -20,10 +20,10 @@ from __future__ import annotations
 import math
 
 from .actuator import TableEvidence
-from .settings import DiagnosisSettings
 from .effects import RESTRAINTS, Variant, effect
 from .nested import mean_relative_error
 from .selection import CandidateResult, PairData, clearly_better, evaluate_candidate, predictions_loss
+from .settings import DiagnosisSettings
 
 __all__ = ["specimen_restraints", "RIVAL_STORIES"]
 

@@ -9,9 +9,9 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from ..readers.campaign import MeasuredThreshold, Specimen, Test
-from .settings import DiagnosisSettings
-from .effects import Variant, arch_group, effect
 from ..runner import Runner
+from .effects import Variant, arch_group, effect
+from .settings import DiagnosisSettings
 
 __all__ = ["Simulator"]
 

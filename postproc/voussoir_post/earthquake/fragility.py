@@ -25,16 +25,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import FitError
+
 __all__ = ["FitError", "FragilityFit", "FragilityBand", "fit_lognormal", "max_likelihood", "log_likelihood",
            "fragility", "bootstrap_band", "normal_cdf", "empirical_collapse_fraction"]
 
 _SQRT2 = math.sqrt(2.0)
 _LOG_SQRT_2PI = 0.5 * math.log(2.0 * math.pi)
 _erfc = np.vectorize(math.erfc, otypes=[float])
-
-
-class FitError(ValueError):
-    """The data cannot define a fragility (e.g. no collapse at all)."""
 
 
 @dataclass

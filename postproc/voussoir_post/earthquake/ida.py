@@ -8,19 +8,21 @@ stood (``scale_stood``), and the record's PGA and PGV at ``scale_threshold``. A 
 that never brought it down up to ``scale_max`` is *censored*: its threshold columns
 then hold the values at ``scale_max``, a lower bound of the unknown threshold.
 
-Both files are accepted; an error names the file and, for the CSV, the line and column.
+Both files are accepted; an error names the file and, for the CSV, the line and column
+(the CSV is read by :func:`voussoir_post.readers.csv_table.read_csv_table`).
 """
 
 from __future__ import annotations
 
-import csv
 import os
 from dataclasses import dataclass, field
 
 import h5py
 import numpy as np
 
-from ..readers.results import ResultsError, parse_namelist
+from ..errors import ResultsError
+from ..namelist import parse_namelist
+from ..readers.csv_table import read_csv_table
 
 __all__ = ["IdaResult", "IDA_COLUMNS", "read_ida"]
 
@@ -94,25 +96,20 @@ def read_ida(path: str | os.PathLike) -> IdaResult:
 
 
 def _read_csv(path: str) -> IdaResult:
-    with open(path, newline="", encoding="utf-8") as f:
-        numbered = [(k, line) for k, line in enumerate(f, start=1) if line.strip() and not line.lstrip().startswith("#")]
-    if not numbered:
-        raise ResultsError(path, "empty file: expected a header row with " + ", ".join(IDA_COLUMNS))
-    rows = list(csv.reader(line for _, line in numbered))
-    header = [h.strip() for h in rows[0]]
-    header_line = numbered[0][0]
+    table = read_csv_table(path, expected="a header row with " + ", ".join(IDA_COLUMNS))
+    header, header_line = table.columns, table.header_line
     missing = [c for c in IDA_COLUMNS if c not in header]
     if missing:
         raise ResultsError(path, f"line {header_line}: the header lacks the column(s) {', '.join(missing)} "
                                  f"(an IDA CSV has {', '.join(IDA_COLUMNS)})")
-    col = {name: header.index(name) for name in header}
     extra = [h for h in header if h not in IDA_COLUMNS and h not in _OPTIONAL_INT]
     data: dict[str, list] = {name: [] for name in header}
-    for (line_no, _), cells in zip(numbered[1:], rows[1:]):
-        if len(cells) < len(header):
-            raise ResultsError(path, f"line {line_no}: {len(cells)} cells, the header has {len(header)}")
+    for row in table.rows:
+        line_no = row.line
+        if row.n_fields < len(header):
+            raise ResultsError(path, f"line {line_no}: {row.n_fields} cells, the header has {len(header)}")
         for name in header:
-            text = cells[col[name]].strip()
+            text = row.cells[name]
             if name == "record":
                 if not text:
                     raise ResultsError(path, f"line {line_no}, column record: empty")
@@ -128,7 +125,7 @@ def _read_csv(path: str) -> IdaResult:
                     allowed = "0 or 1" if name in flags else "an integer >= 0"
                     raise ResultsError(path, f"line {line_no}, column {name}: '{text}' is not {allowed}")
             data[name].append(value)
-    if len(rows) < 2:
+    if not table.rows:
         raise ResultsError(path, "no data rows")
     arr = {name: np.asarray(v, dtype=float) for name, v in data.items() if name != "record"}
     keep = arr["failed"] == 0 if "failed" in arr else np.ones(len(data["record"]), bool)

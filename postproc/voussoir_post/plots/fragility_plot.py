@@ -12,11 +12,11 @@ import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from .drawing import new_figure, provenance, save_png
 from ..earthquake.fragility import (FragilityBand, FragilityFit, bootstrap_band, empirical_collapse_fraction,
                                     fit_lognormal, fragility)
 from ..earthquake.ida import IdaResult
-from ..tables import Table
+from ..tables import ReportTable
+from .drawing import new_figure, provenance, save_png
 
 __all__ = ["FragilityData", "IntensityFragility", "fragility_of", "plot_fragility", "G_M_S2"]
 
@@ -42,8 +42,8 @@ class FragilityData:
     pga: IntensityFragility
     pgv: IntensityFragility
     png_path: str | None = None
-    table: Table = field(default_factory=lambda: Table([]))
-    curve_table: Table = field(default_factory=lambda: Table([]))
+    table: ReportTable = field(default_factory=lambda: ReportTable([]))
+    curve_table: ReportTable = field(default_factory=lambda: ReportTable([]))
 
     def summary(self) -> dict:
         """The numbers of the fits (for --json)."""
@@ -58,6 +58,21 @@ class FragilityData:
             "band_level": b.level, "n_bootstrap": b.n_resamples,
             "n_rows": f.n, "n_censored": f.n_censored, "g_m_s2": G_M_S2,
         }
+
+    def report_lines(self) -> list[str]:
+        """The fits in words: the median and beta of PGA and PGV with their bands, the rows."""
+        summary = self.summary()
+        pga, pgv = self.pga, self.pgv
+        pct = int(round(100 * pga.band.level))
+        return [
+            f"PGA: median {summary['median_pga_g']:.4g} g ({pga.fit.median:.4g} m/s2), {pct} % band "
+            f"[{summary['median_pga_g_band'][0]:.4g}, {summary['median_pga_g_band'][1]:.4g}] g; "
+            f"beta {pga.fit.beta:.3f} [{pga.band.beta_low:.3f}, {pga.band.beta_high:.3f}]",
+            f"PGV: median {pgv.fit.median:.4g} m/s, {pct} % band [{pgv.band.median_low:.4g}, "
+            f"{pgv.band.median_high:.4g}] m/s; beta {pgv.fit.beta:.3f} [{pgv.band.beta_low:.3f}, "
+            f"{pgv.band.beta_high:.3f}]",
+            f"{pga.fit.n} rows, {pga.fit.n_censored} censored (no collapse up to scale_max)",
+        ]
 
 
 def fragility_of(name: str, unit: str, im, censored, n_bootstrap: int, seed: int) -> IntensityFragility:
@@ -136,10 +151,10 @@ def plot_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootstrap: int 
                      int(ida.param_set[k]), float(ida.scale_stood[k]), float(ida.scale_threshold[k]),
                      float(ida.pga_m_s2[k] / G_M_S2), float(ida.pga_m_s2[k]), float(ida.pgv_m_s[k]),
                      bool(ida.censored[k])))
-    table = Table(["record", "param_set", "scale_stood", "scale_threshold", "pga_threshold_g",
+    table = ReportTable(["record", "param_set", "scale_stood", "scale_threshold", "pga_threshold_g",
                    "pga_threshold_m_s2", "pgv_threshold_m_s", "censored"], rows,
                   title=f"IDA points of {ida.path}")
-    curve = Table(["pga_g", "pga_m_s2", "p_collapse", "p_low", "p_high"],
+    curve = ReportTable(["pga_g", "pga_m_s2", "p_collapse", "p_low", "p_high"],
                   [(float(x / G_M_S2), float(x), float(p), float(lo), float(hi)) for x, p, lo, hi in
                    zip(pga.band.im, fragility(pga.band.im, pga.fit.median, pga.fit.beta), pga.band.low,
                        pga.band.high)],

@@ -8,9 +8,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .drawing import add_g_axis, new_figure, provenance, run_caption, save_png
 from ..readers.results import RunResult
-from ..tables import Table
+from ..tables import ReportTable
+from .drawing import add_g_axis, new_figure, provenance, run_caption, save_png
 
 __all__ = ["HistoryData", "plot_history"]
 
@@ -30,23 +30,23 @@ class HistoryData:
     step_iterations: np.ndarray
     collapse_time_s: float
     png_path: str | None = None
-    summary: Table = field(default_factory=lambda: Table([]))
+    summary: ReportTable = field(default_factory=lambda: ReportTable([]))
 
-    def samples_table(self) -> Table:
+    def samples_table(self) -> ReportTable:
         """One row per output sample (for --csv)."""
-        return Table(["time_s", "table_x_mm", "table_v_m_s", "table_a_m_s2", "crown_dx_mm",
+        return ReportTable(["time_s", "table_x_mm", "table_v_m_s", "table_a_m_s2", "crown_dx_mm",
                       "crown_dy_mm", "contact_count"],
                      [tuple(float(v) for v in row[:-1]) + (int(row[-1]),) for row in zip(
                          self.time_s, self.table_x_mm, self.table_v_m_s, self.table_a_m_s2,
                          self.crown_dx_mm, self.crown_dy_mm, self.contact_count)])
 
-    def steps_table(self) -> Table:
+    def steps_table(self) -> ReportTable:
         """One row per time step (for --csv)."""
-        return Table(["step_time_s", "iterations"],
+        return ReportTable(["step_time_s", "iterations"],
                      [(float(t), int(i)) for t, i in zip(self.step_time_s, self.step_iterations)])
 
 
-def _summary(data: HistoryData) -> Table:
+def _summary(data: HistoryData) -> ReportTable:
     rows = []
     for name, t, values in (
         ("table_x_mm", data.time_s, data.table_x_mm),
@@ -63,7 +63,7 @@ def _summary(data: HistoryData) -> Table:
         k_min, k_max = int(np.argmin(values)), int(np.argmax(values))
         rows.append((name, float(values[k_min]), float(t[k_min]), float(values[k_max]), float(t[k_max]),
                      float(values[-1])))
-    return Table(["series", "min", "t_min_s", "max", "t_max_s", "final"], rows)
+    return ReportTable(["series", "min", "t_min_s", "max", "t_max_s", "final"], rows)
 
 
 def plot_history(run: RunResult, out_png: str | os.PathLike) -> HistoryData:

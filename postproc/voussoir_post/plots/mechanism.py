@@ -9,9 +9,9 @@ from dataclasses import dataclass, field
 import numpy as np
 from matplotlib.patches import Polygon
 
-from .drawing import new_figure, provenance, save_png
 from ..readers.results import LimitResult
-from ..tables import Table
+from ..tables import ReportTable
+from .drawing import new_figure, provenance, save_png
 
 __all__ = ["G_M_S2", "MechanismPanel", "MechanismData", "voussoir_polygons", "foundation_polygons",
            "plot_mechanism"]
@@ -60,7 +60,7 @@ class MechanismData:
     voussoirs_m: list[np.ndarray]
     panels: list[MechanismPanel]
     png_path: str | None = None
-    table: Table = field(default_factory=lambda: Table([]))
+    table: ReportTable = field(default_factory=lambda: ReportTable([]))
 
 
 def _capacity_text(panel: MechanismPanel) -> str:
@@ -156,6 +156,6 @@ def plot_mechanism(limit: LimitResult, out_png: str | os.PathLike) -> MechanismD
         for (j, side), (x, y) in zip(panel.hinges, panel.hinge_xy_m):
             rows.append((panel.direction, panel.load_factor, panel.accel_m_s2, j, side, float(x), float(y),
                          j in panel.sliding_joints))
-    table = Table(["direction", "lambda", "accel_m_s2", "joint", "side", "x_m", "y_m", "slides"], rows,
+    table = ReportTable(["direction", "lambda", "accel_m_s2", "joint", "side", "x_m", "y_m", "slides"], rows,
                   title=f"Mechanisms of {limit.path}")
     return MechanismData(voussoirs, panels, png, table)

@@ -10,11 +10,11 @@ import numpy as np
 from matplotlib.animation import FuncAnimation, PillowWriter
 from matplotlib.patches import Polygon
 
-from .drawing import new_figure, provenance, run_caption, save_png
 from ..analysis.kinematics import (ROLE_FOUNDATION, ROLE_RESTRAINT, JointState, block_polygons,
                                    default_open_tol_m, joint_states)
 from ..readers.results import RunResult
-from ..tables import Table
+from ..tables import ReportTable
+from .drawing import new_figure, provenance, run_caption, save_png
 
 __all__ = ["SequenceFrame", "SequenceData", "default_frame_times", "sequence_frames",
            "plot_sequence", "write_sequence_gif"]
@@ -47,7 +47,7 @@ class SequenceData:
     frames: list[SequenceFrame]
     png_path: str | None = None
     gif_path: str | None = None
-    table: Table = field(default_factory=lambda: Table([]))
+    table: ReportTable = field(default_factory=lambda: ReportTable([]))
 
 
 def default_frame_times(run: RunResult, n_frames: int) -> np.ndarray:
@@ -141,7 +141,7 @@ def plot_sequence(run: RunResult, out_png: str | os.PathLike, times_s=None, n_fr
                                 label="separated joint (s): both edges open, the blocks part or slide")[0]]
         fig.legend(handles=handles, loc="outside lower center", ncols=2, fontsize=7)
     png = save_png(fig, out_png, note=provenance(run.code_version, run.input_file, os.path.basename(run.path)))
-    table = Table(["frame", "sample", "time_s", "crown_dx_mm", "crown_dy_mm", "open_joints"],
+    table = ReportTable(["frame", "sample", "time_s", "crown_dx_mm", "crown_dy_mm", "open_joints"],
                   [(i + 1, f.sample, f.time_s, 1e3 * float(run.crown_dx_m[f.sample]),
                     1e3 * float(run.crown_dy_m[f.sample]), f.hinge_labels() or "-")
                    for i, f in enumerate(frames)],

@@ -28,7 +28,9 @@ import h5py
 import numpy as np
 
 from ..analysis.kinematics import rotation_matrix
+from ..errors import CheckError
 from ..readers.results import RunResult
+from ..tables import ReportTable
 
 __all__ = ["XdmfData", "write_xdmf", "check_xdmf", "XDMF_POLYGON"]
 
@@ -45,6 +47,12 @@ class XdmfData:
     n_bodies: int
     n_vertices_total: int
     connectivity: np.ndarray
+
+    def table(self, run_path: str, n_checked: int) -> ReportTable:
+        """What was written, and how many HDF5 items :func:`check_xdmf` checked."""
+        return ReportTable(["samples", "bodies", "vertices", "hdf_items_checked"],
+                           [(self.n_samples, self.n_bodies, self.n_vertices_total, n_checked)],
+                           title=f"XDMF of {run_path}")
 
 
 def _vertex_coordinates(run: RunResult, sample: int) -> np.ndarray:
@@ -134,12 +142,12 @@ def check_xdmf(xmf_path: str | os.PathLike) -> list[tuple[str, str, tuple[int, .
     """Parse an XDMF file and check that every HDF DataItem names an existing dataset of
     the stated dimensions, that Mixed topologies hold NumberOfElements polygons whose
     vertex ids are inside the geometry. Returns (file, dataset, dims) of every item;
-    raises ValueError on the first problem."""
+    raises CheckError (a ValueError) on the first problem."""
     xmf_path = os.fspath(xmf_path)
     base = os.path.dirname(os.path.abspath(xmf_path))
     root = ET.parse(xmf_path).getroot()
     if root.tag != "Xdmf":
-        raise ValueError(f"{xmf_path}: root element is <{root.tag}>, expected <Xdmf>")
+        raise CheckError(f"{xmf_path}: root element is <{root.tag}>, expected <Xdmf>")
     items, files = [], {}
     try:
         for item in root.iter("DataItem"):
@@ -150,13 +158,13 @@ def check_xdmf(xmf_path: str | os.PathLike) -> list[tuple[str, str, tuple[int, .
             path = os.path.join(base, fname)
             if path not in files:
                 if not os.path.exists(path):
-                    raise ValueError(f"{xmf_path}: DataItem refers to missing file {fname}")
+                    raise CheckError(f"{xmf_path}: DataItem refers to missing file {fname}")
                 files[path] = h5py.File(path, "r")
             h5 = files[path]
             if dset not in h5:
-                raise ValueError(f"{xmf_path}: dataset {fname}:{dset} does not exist")
+                raise CheckError(f"{xmf_path}: dataset {fname}:{dset} does not exist")
             if h5[dset].shape != dims:
-                raise ValueError(f"{xmf_path}: {fname}:{dset} has shape {h5[dset].shape}, XML says {dims}")
+                raise CheckError(f"{xmf_path}: {fname}:{dset} has shape {h5[dset].shape}, XML says {dims}")
             items.append((fname, dset, dims))
         for grid in root.iter("Grid"):
             topo, geom = grid.find("Topology"), grid.find("Geometry")
@@ -170,15 +178,15 @@ def check_xdmf(xmf_path: str | os.PathLike) -> list[tuple[str, str, tuple[int, .
             k, count = 0, 0
             while k < conn.size:
                 if conn[k] != XDMF_POLYGON:
-                    raise ValueError(f"{xmf_path}: cell type {conn[k]} at {k}, expected {XDMF_POLYGON}")
+                    raise CheckError(f"{xmf_path}: cell type {conn[k]} at {k}, expected {XDMF_POLYGON}")
                 nv = int(conn[k + 1])
                 ids = conn[k + 2: k + 2 + nv]
                 if ids.size != nv or ids.min() < 0 or ids.max() >= n_points:
-                    raise ValueError(f"{xmf_path}: polygon {count} has vertex ids outside 0..{n_points - 1}")
+                    raise CheckError(f"{xmf_path}: polygon {count} has vertex ids outside 0..{n_points - 1}")
                 k += 2 + nv
                 count += 1
             if count != n_elem:
-                raise ValueError(f"{xmf_path}: {count} polygons in the topology, NumberOfElements={n_elem}")
+                raise CheckError(f"{xmf_path}: {count} polygons in the topology, NumberOfElements={n_elem}")
     finally:
         for h5 in files.values():
             h5.close()

@@ -1,136 +1,29 @@
-"""CSV files of a campaign read with the physical line of every row, and typed cells
-whose errors name the file, the line and the column (shared/MEASURED_DATA.md's rules:
-UTF-8 with an optional byte order mark, comma separated, quoted fields, LF or CRLF,
-`#` comment lines anywhere outside a quoted field, blank lines skipped, cells stripped).
+"""CSV files of a campaign: read by :func:`.csv_table.read_csv_table` (which keeps the
+physical line of every row), their columns checked, and typed cells whose errors name
+the file, the line and the column (:class:`~voussoir_post.errors.CampaignError`).
 """
 
 from __future__ import annotations
 
-import csv
-import io
 import math
-import os
 import re
 import warnings
-from dataclasses import dataclass
 
-__all__ = ["CampaignError", "CampaignWarning", "Row", "Table", "read_table", "check_columns", "Cells"]
+from ..errors import CampaignError, CampaignWarning
+from .csv_table import CsvRow, CsvTable, read_csv_table
+
+__all__ = ["CampaignError", "CampaignWarning", "read_table", "check_columns", "Cells"]
 
 NUMBER = re.compile(r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?")  #: a number as a campaign may write it
 
 
-class CampaignError(Exception):
-    """An invalid campaign: names the file, the 1-based line and the column."""
-
-    def __init__(self, path, message: str, line: int | None = None,
-                 column_name: str | None = None, column_index: int | None = None):
-        self.path = os.fspath(path)
-        self.message = message
-        self.line = line
-        self.column_name = column_name
-        self.column_index = column_index
-        super().__init__(self.format())
-
-    @property
-    def location(self) -> str:
-        """``file:line:column`` (the parts that are known)."""
-        loc = self.path
-        if self.line is not None:
-            loc += f":{self.line}"
-            if self.column_index is not None:
-                loc += f":{self.column_index}"
-        return loc
-
-    def format(self) -> str:
-        column = f"column '{self.column_name}': " if self.column_name else ""
-        return f"{self.location}: {column}{self.message}"
+def read_table(path: str) -> CsvTable:
+    """Read one campaign CSV file keeping the physical line of every row; CampaignError
+    when it is not a readable CSV table."""
+    return read_csv_table(path, CampaignError)
 
 
-class CampaignWarning(UserWarning):
-    """Something a valid campaign may contain but that is ignored (e.g. an unknown column)."""
-
-
-@dataclass
-class Row:
-    line: int
-    cells: dict[str, str]
-
-
-@dataclass
-class Table:
-    path: str
-    header_line: int
-    columns: list[str]
-    rows: list[Row]
-
-    def index(self, name: str) -> int | None:
-        """1-based column index of ``name`` or None when absent."""
-        return self.columns.index(name) + 1 if name in self.columns else None
-
-    def has(self, name: str) -> bool:
-        return name in self.columns
-
-
-def read_table(path: str) -> Table:
-    """Read one campaign CSV file keeping the physical line of every row."""
-    try:
-        with open(path, "rb") as f:
-            raw = f.read()
-    except OSError as exc:
-        raise CampaignError(path, f"cannot read file: {exc.strerror}") from exc
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        line = raw[: exc.start].count(b"\n") + 1
-        raise CampaignError(path, f"not UTF-8 text (byte 0x{raw[exc.start]:02x})", line) from exc
-
-    state = {"line": 0, "start": 0, "at_record_start": True}
-
-    def physical_lines():
-        for physical in io.StringIO(text, newline=""):
-            state["line"] += 1
-            if state["at_record_start"]:
-                if physical.startswith("#") or not physical.strip():
-                    continue
-                state["start"] = state["line"]
-                state["at_record_start"] = False
-            yield physical
-
-    reader = csv.reader(physical_lines(), strict=True)
-    header: list[str] | None = None
-    header_line = 0
-    rows: list[Row] = []
-    while True:
-        state["at_record_start"] = True
-        try:
-            record = next(reader)
-        except StopIteration:
-            break
-        except csv.Error as exc:
-            raise CampaignError(path, f"malformed CSV: {exc}", state["line"]) from exc
-        line = state["start"]
-        cells = [c.strip() for c in record]
-        if header is None:
-            header, header_line = cells, line
-            for k, name in enumerate(header):
-                if not name:  # e.g. a trailing comma: an unknown column, ignored with a warning
-                    header[k] = name = f"<unnamed column {k + 1}>"
-                if name in header[:k]:
-                    raise CampaignError(path, f"duplicate column (also column {header.index(name) + 1})",
-                                        line, name, k + 1)
-            continue
-        if len(cells) > len(header) and any(cells[len(header):]):
-            extra = len(header) + next(k for k, c in enumerate(cells[len(header):]) if c) + 1
-            raise CampaignError(path, f"row has {len(cells)} fields but the header has {len(header)}",
-                                line, None, extra)
-        cells += [""] * (len(header) - len(cells))
-        rows.append(Row(line, dict(zip(header, cells))))
-    if header is None:
-        raise CampaignError(path, "no header row (the file is empty or only comments)", max(state["line"], 1))
-    return Table(path, header_line, header, rows)
-
-
-def check_columns(table: Table, required: tuple[str, ...], known: tuple[str, ...],
+def check_columns(table: CsvTable, required: tuple[str, ...], known: tuple[str, ...],
                    warn_list: list[str]) -> None:
     """Error on a missing required column; warn on an unknown one."""
     for name in required:
@@ -148,7 +41,7 @@ def check_columns(table: Table, required: tuple[str, ...], known: tuple[str, ...
 class Cells:
     """Typed access to the cells of one row; errors are collected and the leftmost raised."""
 
-    def __init__(self, table: Table, row: Row):
+    def __init__(self, table: CsvTable, row: CsvRow):
         self.table = table
         self.row = row
         self.errors: list[CampaignError] = []

@@ -26,10 +26,10 @@ __all__ = [
     "read_run",
     "read_sweep",
     "read_limit_json",
-    "parse_namelist",
     "SIDE_NAMES",
 ]
 
+from ..namelist import parse_namelist
 from .results_common import SIDE_NAMES, ResultsError
 
 
@@ -117,80 +117,6 @@ def _check_shape(path, name: str, array: np.ndarray, shape: tuple) -> None:
     if not ok:
         want = "(" + ", ".join("?" if s is None else str(s) for s in shape) + ")"
         raise ResultsError(path, f"dataset '{name}' has shape {array.shape}, expected {want}")
-
-
-def _nml_value(text: str):
-    """One namelist value: int, float, bool, string or a list of them."""
-    text = text.strip().rstrip(",").strip()
-    if not text:
-        return None
-    items = []
-    for token in re.findall(r"'(?:[^']|'')*'|\"(?:[^\"]|\"\")*\"|[^,\s]+", text):
-        repeat = 1
-        m = re.fullmatch(r"(\d+)\*(.+)", token)
-        if m and not token.startswith(("'", '"')):
-            repeat, token = int(m.group(1)), m.group(2)
-        if token[0] in "'\"":
-            value = token[1:-1].replace(token[0] * 2, token[0]).rstrip()
-        elif re.fullmatch(r"\.?(t|true|f|false)\.?", token, re.I):
-            value = token.strip(".").lower().startswith("t")
-        else:
-            try:
-                value = int(token)
-            except ValueError:
-                try:
-                    value = float(token.replace("d", "e").replace("D", "e"))
-                except ValueError:
-                    value = token
-        items.extend([value] * repeat)
-    return items[0] if len(items) == 1 else items
-
-
-def parse_namelist(text: str) -> dict[str, dict[str, object]]:
-    """Parse Fortran namelist text into ``{group: {variable: value}}`` (lower case names).
-
-    Tolerant of the formats compilers write (upper-case names, trailing commas,
-    ``n*value`` repeats, quoted strings, ``T``/``F`` logicals); values are int, float,
-    bool, str or lists of them. Used on the ``config_nml`` root attribute.
-    """
-    groups: dict[str, dict[str, object]] = {}
-    # Split on group starts; each chunk runs to its terminating '/'.
-    for chunk in re.split(r"(?m)^\s*&", "\n" + text)[1:]:
-        m = re.match(r"(\w+)", chunk)
-        if not m:
-            continue
-        name = m.group(1).lower()
-        body = chunk[m.end():]
-        # Drop the terminating '/' (outside quotes) and anything after it.
-        end = _namelist_end(body)
-        body = body[:end]
-        variables: dict[str, object] = {}
-        # Assignments: name = values up to the next 'name ='.
-        assigns = list(re.finditer(r"(?:^|[\s,])([A-Za-z]\w*(?:%\w+)*)\s*=", body))
-        for k, am in enumerate(assigns):
-            stop = assigns[k + 1].start() if k + 1 < len(assigns) else len(body)
-            variables[am.group(1).lower()] = _nml_value(body[am.end():stop])
-        groups[name] = variables
-    return groups
-
-
-def _namelist_end(body: str) -> int:
-    """Index of the '/' ending a namelist group body (outside quotes)."""
-    quote = None
-    for i, ch in enumerate(body):
-        if quote:
-            if ch == quote:
-                quote = None
-        elif ch in "'\"":
-            quote = ch
-        elif ch == "/":
-            return i
-        elif body.startswith("&end", i) or body.startswith("&END", i):
-            return i
-    return len(body)
-
-
-# ------------------------------------------------------------------------ run files
 
 
 def _side_names(h5: h5py.File) -> tuple[str, str]:
