@@ -242,9 +242,9 @@ def plot_compare(sweep: SweepResult, campaign: Campaign, out_png: str | os.PathL
                  f"{campaign.name}", fontsize=11)
     png = save_png(fig, out_png, note=provenance(sweep.code_version, os.path.basename(sweep.path), campaign.path))
     table = ReportTable(["param_set", "parameters", "specimen_id", "frequency_hz", "measured_mm", "low_mm",
-                   "high_mm", "simulated_mm", "error_pct", "measured_accel_m_s2", "simulated_accel_m_s2"],
-                  [(r.param_set, r.label, r.specimen_id, r.frequency_hz, 1e3 * r.measured_m, 1e3 * r.low_m,
-                    1e3 * r.high_m, 1e3 * r.simulated_m, r.error_pct, r.measured_accel_m_s2,
-                    r.simulated_accel_m_s2) for r in rows],
-                  title=f"Simulated vs measured thresholds ({sweep.path} / {campaign.path})")
+                         "high_mm", "simulated_mm", "error_pct", "measured_accel_m_s2", "simulated_accel_m_s2"],
+                        [(r.param_set, r.label, r.specimen_id, r.frequency_hz, 1e3 * r.measured_m, 1e3 * r.low_m,
+                          1e3 * r.high_m, 1e3 * r.simulated_m, r.error_pct, r.measured_accel_m_s2,
+                          r.simulated_accel_m_s2) for r in rows],
+                        title=f"Simulated vs measured thresholds ({sweep.path} / {campaign.path})")
     return CompareData(rows, mean_err, png, table, notes)

@@ -223,7 +223,7 @@ def _plot_threshold(sweep: SweepResult, overlays, out_png) -> EnvelopeData:
                                   cv.n_runs):
             rows.append((cv.param_set, cv.label, float(f), 1e3 * float(a), float(g), bool(nm), int(n)))
     table = ReportTable(["param_set", "parameters", "frequency_hz", "threshold_mm", "peak_accel_m_s2",
-                   "non_monotonic", "n_runs"], rows, title=f"Thresholds of {sweep.path}")
+                         "non_monotonic", "n_runs"], rows, title=f"Thresholds of {sweep.path}")
     return EnvelopeData("threshold", curves=curves, measured=overlays,
                         png_path=save_png(fig, out_png, note=_note(sweep)), table=table)
 
@@ -259,7 +259,7 @@ def _plot_grid(sweep: SweepResult, overlays, out_png) -> EnvelopeData:
             rows.append((gm.param_set, gm.label, float(f), int(sel.sum()), int(gm.collapsed[sel].sum()),
                          1e3 * float(a), float(a * _omega2(f))))
     table = ReportTable(["param_set", "parameters", "frequency_hz", "n_runs", "n_collapse", "envelope_mm",
-                   "envelope_accel_m_s2"], rows, title=f"Grid envelope of {sweep.path}")
+                         "envelope_accel_m_s2"], rows, title=f"Grid envelope of {sweep.path}")
     return EnvelopeData("grid", maps=maps, measured=overlays, png_path=save_png(fig, out_png, note=_note(sweep)),
                         table=table)
 

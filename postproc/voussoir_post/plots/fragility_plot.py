@@ -152,11 +152,11 @@ def plot_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootstrap: int 
                      float(ida.pga_m_s2[k] / G_M_S2), float(ida.pga_m_s2[k]), float(ida.pgv_m_s[k]),
                      bool(ida.censored[k])))
     table = ReportTable(["record", "param_set", "scale_stood", "scale_threshold", "pga_threshold_g",
-                   "pga_threshold_m_s2", "pgv_threshold_m_s", "censored"], rows,
-                  title=f"IDA points of {ida.path}")
+                         "pga_threshold_m_s2", "pgv_threshold_m_s", "censored"], rows,
+                        title=f"IDA points of {ida.path}")
     curve = ReportTable(["pga_g", "pga_m_s2", "p_collapse", "p_low", "p_high"],
-                  [(float(x / G_M_S2), float(x), float(p), float(lo), float(hi)) for x, p, lo, hi in
-                   zip(pga.band.im, fragility(pga.band.im, pga.fit.median, pga.fit.beta), pga.band.low,
-                       pga.band.high)],
-                  title="fragility against PGA")
+                        [(float(x / G_M_S2), float(x), float(p), float(lo), float(hi)) for x, p, lo, hi in
+                         zip(pga.band.im, fragility(pga.band.im, pga.fit.median, pga.fit.beta), pga.band.low,
+                             pga.band.high)],
+                        title="fragility against PGA")
     return FragilityData(pga, pgv, png, table, curve)

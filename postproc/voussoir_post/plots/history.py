@@ -35,15 +35,15 @@ class HistoryData:
     def samples_table(self) -> ReportTable:
         """One row per output sample (for --csv)."""
         return ReportTable(["time_s", "table_x_mm", "table_v_m_s", "table_a_m_s2", "crown_dx_mm",
-                      "crown_dy_mm", "contact_count"],
-                     [tuple(float(v) for v in row[:-1]) + (int(row[-1]),) for row in zip(
-                         self.time_s, self.table_x_mm, self.table_v_m_s, self.table_a_m_s2,
-                         self.crown_dx_mm, self.crown_dy_mm, self.contact_count)])
+                            "crown_dy_mm", "contact_count"],
+                           [tuple(float(v) for v in row[:-1]) + (int(row[-1]),) for row in zip(
+                               self.time_s, self.table_x_mm, self.table_v_m_s, self.table_a_m_s2,
+                               self.crown_dx_mm, self.crown_dy_mm, self.contact_count)])
 
     def steps_table(self) -> ReportTable:
         """One row per time step (for --csv)."""
         return ReportTable(["step_time_s", "iterations"],
-                     [(float(t), int(i)) for t, i in zip(self.step_time_s, self.step_iterations)])
+                           [(float(t), int(i)) for t, i in zip(self.step_time_s, self.step_iterations)])
 
 
 def _summary(data: HistoryData) -> ReportTable:

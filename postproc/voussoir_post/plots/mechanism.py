@@ -157,5 +157,5 @@ def plot_mechanism(limit: LimitResult, out_png: str | os.PathLike) -> MechanismD
             rows.append((panel.direction, panel.load_factor, panel.accel_m_s2, j, side, float(x), float(y),
                          j in panel.sliding_joints))
     table = ReportTable(["direction", "lambda", "accel_m_s2", "joint", "side", "x_m", "y_m", "slides"], rows,
-                  title=f"Mechanisms of {limit.path}")
+                        title=f"Mechanisms of {limit.path}")
     return MechanismData(voussoirs, panels, png, table)

@@ -142,10 +142,10 @@ def plot_sequence(run: RunResult, out_png: str | os.PathLike, times_s=None, n_fr
         fig.legend(handles=handles, loc="outside lower center", ncols=2, fontsize=7)
     png = save_png(fig, out_png, note=provenance(run.code_version, run.input_file, os.path.basename(run.path)))
     table = ReportTable(["frame", "sample", "time_s", "crown_dx_mm", "crown_dy_mm", "open_joints"],
-                  [(i + 1, f.sample, f.time_s, 1e3 * float(run.crown_dx_m[f.sample]),
-                    1e3 * float(run.crown_dy_m[f.sample]), f.hinge_labels() or "-")
-                   for i, f in enumerate(frames)],
-                  title=f"Sequence frames of {run.path}")
+                        [(i + 1, f.sample, f.time_s, 1e3 * float(run.crown_dx_m[f.sample]),
+                          1e3 * float(run.crown_dy_m[f.sample]), f.hinge_labels() or "-")
+                         for i, f in enumerate(frames)],
+                        title=f"Sequence frames of {run.path}")
     return SequenceData(amplify, tol, frames, png_path=png, table=table)
 
 
