@@ -28,7 +28,7 @@ print(f"campaign: {len(arches)} arches x 3 frequencies, {sum(n.values())} tests 
       f"({sum(n.values()) / len(n):.1f} per pair)")
 PY
 start=$(date +%s.%N)
-"$py" -m voussoir_post.diagnose_cli run "$work/campaign" --out "$work/out" --np "$np" \
+"$py" -m voussoir_post.cli.diagnose run "$work/campaign" --out "$work/out" --np "$np" \
       --bin-dir "$root/build/drivers" | tail -n 1
 end=$(date +%s.%N)
 grep -o "voussoir-diagnose run on .* in [0-9]* s" "$work/out/report.md" | sed 's/.*`: //'

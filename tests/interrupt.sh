@@ -21,7 +21,7 @@ for sig in TERM INT; do
   # The file is whole, readable by the postprocessor, and its record stops where the run did.
   if "$py" - long_$sig.h5 "$(kill -l $sig)" <<'PY'
 import sys
-from voussoir_post.results import read_run
+from voussoir_post.readers.results import read_run
 r = read_run(sys.argv[1])
 ok = r.interrupted_by_signal == int(sys.argv[2]) and 0 < r.time_s[-1] < 3000 and r.n_steps == len(r.step_time_s)
 ok = ok and abs(r.time_s[-1] - r.step_time_s[-1]) < 1e-9 and not r.collapsed

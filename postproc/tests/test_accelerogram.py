@@ -18,8 +18,8 @@ import numpy as np
 import pytest
 
 from conftest import run_executable
-from voussoir_post.records import record_path
-from voussoir_post.results import read_run
+from voussoir_post.earthquake.records import record_path
+from voussoir_post.readers.results import read_run
 
 G = 9.81  # the kernel's gravity, also its g for records in units of g
 BLOCK = """\
@@ -226,7 +226,7 @@ def test_unknown_record_format_is_refused(voussoir_run_exe, tmp_path):
 
 
 def test_suite_lists_the_eight_horizontal_records():
-    from voussoir_post.records import suite
+    from voussoir_post.earthquake.records import suite
 
     records = suite()
     assert [r.key for r in records] == ["ELC180", "ELC270", "CLS000", "CLS090", "SYL090", "SYL360",
@@ -240,7 +240,7 @@ def test_suite_lists_the_eight_horizontal_records():
 
 
 def test_records_command_prints_the_suite_as_a_namelist_line(capsys):
-    from voussoir_post.cli import main
+    from voussoir_post.cli.post import main
 
     assert main(["records", "--namelist"]) == 0
     line = capsys.readouterr().out.strip()

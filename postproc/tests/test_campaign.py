@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from voussoir_post.campaign import (CampaignError, CampaignWarning, measured_thresholds,
-                                    read_campaign)
+from voussoir_post.readers.campaign import (CampaignError, CampaignWarning, measured_thresholds,
+                                            read_campaign)
 
 SPECIMENS = """\
 # two arches

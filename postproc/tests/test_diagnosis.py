@@ -19,10 +19,10 @@ import math
 import numpy as np
 import pytest
 
-from voussoir_post.campaign import read_campaign
-from voussoir_post.diagnosis import (CandidateResult, DiagnosisSettings, PairData, TableEvidence, afd_command,
-                                     decide, diagnose, fit_actuator)
-from voussoir_post.decision import hinge_match, hinge_score
+from voussoir_post.readers.campaign import read_campaign
+from voussoir_post.diagnosis.pipeline import (CandidateResult, DiagnosisSettings, PairData, TableEvidence,
+                                              afd_command, decide, diagnose, fit_actuator)
+from voussoir_post.diagnosis.decision import hinge_match, hinge_score
 
 from conftest import VERDICTS, bin_dir, executable
 from independent_campaigns import ARCHES, Truth, actuator_record, ring_blocks, write_campaign, write_polygon_file
@@ -258,8 +258,8 @@ def test_actuator_fit_recovers_gain_and_delay():
 
 
 def _pair(threshold_m, resolution=0.02, nominal_m=None, specimen="S"):
-    from voussoir_post.campaign import MeasuredThreshold, Specimen
-    from voussoir_post.diagnosis import Variant
+    from voussoir_post.readers.campaign import MeasuredThreshold, Specimen
+    from voussoir_post.diagnosis.pipeline import Variant
     m = MeasuredThreshold(specimen, 1.0, threshold_m, threshold_m * (1 - resolution),
                           threshold_m * (1 + resolution), 1, 1, False, [])
     p = PairData(m, Specimen(specimen, 156, 13, 0.508, 0.071, 0.145, 700), resolution,
@@ -315,8 +315,8 @@ def test_a_pair_is_named_only_when_it_beats_each_member_by_strong_evidence():
 
 
 def test_a_cause_named_by_its_hinges_is_not_said_to_win_on_the_thresholds():
-    from voussoir_post.diagnosis import notes_named
-    from voussoir_post.effects import effect
+    from voussoir_post.diagnosis.pipeline import notes_named
+    from voussoir_post.diagnosis.effects import effect
     meas = [0.050, 0.030, 0.040, 0.060]
     pairs = [_pair(m, nominal_m=1.25 * m) for m in meas]
     cands = {"contact_edges": _cand("contact_edges", [1.01 * m for m in meas], 0.01),
@@ -346,8 +346,8 @@ def test_hinge_score_counts_false_hinges_where_the_match_does_not():
 
 
 def test_a_specimen_restrained_alone_is_found_on_its_own_frequencies():
-    from voussoir_post.diagnosis import Variant
-    from voussoir_post.setup_screen import specimen_restraints
+    from voussoir_post.diagnosis.pipeline import Variant
+    from voussoir_post.diagnosis.setup_screen import specimen_restraints
 
     def specimen(sid, meas, factors):
         ps = []

@@ -15,11 +15,11 @@ import h5py
 import numpy as np
 import pytest
 
-from voussoir_post.cli import main
-from voussoir_post.fragility import (FitError, bootstrap_band, empirical_collapse_fraction, fit_lognormal,
-                                     fragility, log_likelihood, max_likelihood)
-from voussoir_post.ida import read_ida
-from voussoir_post.results import ResultsError
+from voussoir_post.cli.post import main
+from voussoir_post.earthquake.fragility import (FitError, bootstrap_band, empirical_collapse_fraction,
+                                                fit_lognormal, fragility, log_likelihood, max_likelihood)
+from voussoir_post.earthquake.ida import read_ida
+from voussoir_post.readers.results import ResultsError
 
 G = 9.81
 

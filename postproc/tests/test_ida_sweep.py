@@ -20,10 +20,10 @@ import numpy as np
 import pytest
 
 from conftest import run_executable
-from voussoir_post.cli import main
-from voussoir_post.ida import read_ida
-from voussoir_post.records import record_path
-from voussoir_post.results import read_run
+from voussoir_post.cli.post import main
+from voussoir_post.earthquake.ida import read_ida
+from voussoir_post.earthquake.records import record_path
+from voussoir_post.readers.results import read_run
 
 SCALE_TOL, SCALE_MAX = 0.05, 3.0
 ARCH = "&arch embrace_deg = 156, n_voussoirs = 13 /\n"

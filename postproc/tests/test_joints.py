@@ -9,8 +9,8 @@ import math
 import numpy as np
 import pytest
 
-from voussoir_post.assembly_joints import find_joints, joint_motion
-from voussoir_post.cli import main
+from voussoir_post.analysis.assembly_joints import find_joints, joint_motion
+from voussoir_post.cli.post import main
 
 from conftest import run_executable
 

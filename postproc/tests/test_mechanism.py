@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 from conftest import run_executable
-from voussoir_post import cli
-from voussoir_post.mechanism import plot_mechanism, voussoir_polygons
-from voussoir_post.results import ResultsError, read_limit_json
+from voussoir_post.cli import post
+from voussoir_post.plots.mechanism import plot_mechanism, voussoir_polygons
+from voussoir_post.readers.results import ResultsError, read_limit_json
 
 LIMIT_NML = """\
 &arch
@@ -75,6 +75,6 @@ def test_limit_json_from_another_producer(limit_json, tmp_path):
 
 
 def test_mechanism_cli(limit_json, tmp_path, capsys):
-    assert cli.main(["mechanism", str(limit_json), "--out", str(tmp_path / "m.png"), "--csv"]) == 0
+    assert post.main(["mechanism", str(limit_json), "--out", str(tmp_path / "m.png"), "--csv"]) == 0
     assert (tmp_path / "m.png").is_file() and (tmp_path / "m.csv").is_file()
     assert "extrados" in capsys.readouterr().out

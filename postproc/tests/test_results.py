@@ -8,8 +8,8 @@ import h5py
 import numpy as np
 import pytest
 
-from voussoir_post.results import (ResultsError, parse_namelist, read_limit_json, read_run,
-                                   read_sweep)
+from voussoir_post.namelist import parse_namelist
+from voussoir_post.readers.results import ResultsError, read_limit_json, read_run, read_sweep
 
 
 def test_run_file_layout(run_file):

@@ -32,8 +32,8 @@ import pytest
 
 from conftest import run_executable
 from test_accelerogram import block_nml, read_at2_here
-from voussoir_post.records import record_path
-from voussoir_post.results import read_run
+from voussoir_post.earthquake.records import record_path
+from voussoir_post.readers.results import read_run
 
 G = 9.81
 B, H = 0.1, 0.5

@@ -14,11 +14,11 @@ from PIL import Image
 
 from conftest import RUN_NML, run_executable
 
-from voussoir_post.history import plot_history
-from voussoir_post.kinematics import block_polygons, default_open_tol_m, joint_openings, joint_states
-from voussoir_post.results import read_run
-from voussoir_post.sequence import default_frame_times, plot_sequence, write_sequence_gif
-from voussoir_post.xdmf import check_xdmf, write_xdmf
+from voussoir_post.plots.history import plot_history
+from voussoir_post.analysis.kinematics import block_polygons, default_open_tol_m, joint_openings, joint_states
+from voussoir_post.readers.results import read_run
+from voussoir_post.plots.sequence import default_frame_times, plot_sequence, write_sequence_gif
+from voussoir_post.plots.xdmf import check_xdmf, write_xdmf
 
 
 def assert_png(path, min_width=400):

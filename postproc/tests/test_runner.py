@@ -1,5 +1,5 @@
-"""The runner: namelist text from a mapping, read back by the executables and by
-results.parse_namelist; failures raise RunError with the program's words."""
+"""The runner: namelist text from a mapping (namelist.format_namelist), read back by the
+executables and by namelist.parse_namelist; failures raise RunError with the program's words."""
 
 from __future__ import annotations
 
@@ -7,15 +7,15 @@ import math
 
 import pytest
 
-from voussoir_post.results import parse_namelist
-from voussoir_post.runner import RunError, Runner, format_value, namelist
+from voussoir_post.namelist import format_namelist, format_value, parse_namelist
+from voussoir_post.runner import RunError, Runner
 
 
 def test_namelist_round_trip_through_the_parser():
     groups = {"arch": {"embrace_deg": 156.0, "n_voussoirs": 13, "restrained_springings": "it's"},
               "solver": {"allow_nonconvergence": True, "dt_s": 1.0e-3},
               "sweep": {"frequencies_hz": [1.25, 2.0]}}
-    parsed = parse_namelist(namelist(groups))
+    parsed = parse_namelist(format_namelist(groups))
     assert parsed["arch"] == {"embrace_deg": 156.0, "n_voussoirs": 13, "restrained_springings": "it's"}
     assert parsed["solver"] == {"allow_nonconvergence": True, "dt_s": 1.0e-3}
     assert parsed["sweep"] == {"frequencies_hz": [1.25, 2.0]}

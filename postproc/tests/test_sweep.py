@@ -15,11 +15,11 @@ import numpy as np
 import pytest
 
 from conftest import run_executable
-from voussoir_post import cli
-from voussoir_post.campaign import read_campaign
-from voussoir_post.compare import compare_thresholds, match_specimens, plot_compare
-from voussoir_post.envelope import plot_envelope
-from voussoir_post.results import read_sweep
+from voussoir_post.cli import post
+from voussoir_post.readers.campaign import read_campaign
+from voussoir_post.plots.compare import compare_thresholds, match_specimens, plot_compare
+from voussoir_post.plots.envelope import plot_envelope
+from voussoir_post.readers.results import read_sweep
 
 FREQUENCIES_HZ = (1.25, 2.5)
 
@@ -124,8 +124,8 @@ def test_compare_matches_a156_by_geometry(threshold_sweep, seed_campaign, tmp_pa
     assert row.error_pct == pytest.approx(100 * (sim - 0.046) / 0.046)
     data = plot_compare(sweep, campaign, tmp_path / "cmp.png")
     assert data.mean_abs_error_pct[0] == pytest.approx(abs(row.error_pct))
-    assert cli.main(["compare", str(threshold_sweep), str(seed_campaign), "--out", str(tmp_path),
-                     "--csv"]) == 0
+    assert post.main(["compare", str(threshold_sweep), str(seed_campaign), "--out", str(tmp_path),
+                      "--csv"]) == 0
     assert "A156" in capsys.readouterr().out
 
 

@@ -1,12 +1,18 @@
-"""Postprocessor of the Voussoir NSCD solver.
+"""Postprocessor of the Voussoir NSCD solver, a subpackage per concept:
 
-Readers (:mod:`.results` for the HDF5/JSON files of the Fortran drivers,
-:mod:`.campaign` for shaking-table campaign folders, :mod:`.ida` for incremental
-dynamic analyses, :mod:`.records` for the suite of real ground-motion records), the
-lognormal fragility fit (:mod:`.fragility`), plain plotting functions over
-numpy arrays that return the numbers they draw (:mod:`.envelope`, :mod:`.sequence`,
-:mod:`.history`, :mod:`.compare`, :mod:`.mechanism`, :mod:`.fragility_plot`), the ParaView export
-(:mod:`.xdmf`) and two command-line programs (:mod:`.cli`, :mod:`.diagnose_cli`).
+- :mod:`.readers`: the HDF5/JSON files of the Fortran drivers, campaign folders, the one
+  CSV reader;
+- :mod:`.analysis`: block polygons, joint openings and hinges of a run;
+- :mod:`.plots`: plain plotting functions that return the numbers they draw, and the
+  ParaView export;
+- :mod:`.earthquake`: the suite of real records, incremental dynamic analyses and their
+  lognormal fragility;
+- :mod:`.diagnosis`: the diagnosis of a shaking-table campaign;
+- :mod:`.cli`: the programs ``voussoir-post`` and ``voussoir-diagnose``;
+
+and at the top :mod:`.errors` (every error and its exit status), :mod:`.namelist`
+(namelists both ways), :mod:`.runner` (the one way Python runs an executable) and
+:mod:`.tables` (what the commands print and write as CSV).
 """
 
 __version__ = "0.1.0"

@@ -1,5 +1,6 @@
-"""The one way Python runs the Fortran executables: a namelist from a mapping, the
-executable on it, the result read back through :mod:`voussoir_post.results`.
+"""The one way Python runs the Fortran executables: a namelist from a mapping
+(:mod:`voussoir_post.namelist`), the executable on it, the result read back through
+:mod:`voussoir_post.readers.results`.
 
     groups = {"arch": {"embrace_deg": 156.0, "n_voussoirs": 13},
               "motion": {"waveform": "afd", "frequency_hz": 1.25, "amplitude_m": 0.046}}
@@ -13,57 +14,62 @@ with the command, the namelist and the program's own words. Sweeps run under MPI
 
 from __future__ import annotations
 
-import csv
-import math
 import os
+import shutil
 import subprocess
+import sys
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from .results import LimitResult, RunResult, SweepResult, read_limit_json, read_run, read_sweep
+from .errors import BinDirError, RunError
+from .namelist import format_namelist
+from .readers.csv_table import read_csv_table
+from .readers.results import LimitResult, RunResult, SweepResult, read_limit_json, read_run, read_sweep
 
-__all__ = ["RunError", "Runner", "namelist", "format_value", "read_csv_rows"]
+__all__ = ["RunError", "Runner", "read_csv_rows", "find_bin_dir", "BIN_DIR_ENV", "installed_bin_dir_file"]
 
-
-class RunError(RuntimeError):
-    """An executable failed: the message has the command, the input and its output."""
-
-
-def format_value(value) -> str:
-    """One namelist value in Fortran syntax (lists comma-separated)."""
-    if isinstance(value, bool):
-        return ".true." if value else ".false."
-    if isinstance(value, (int,)) and not isinstance(value, bool):
-        return str(value)
-    if isinstance(value, float):
-        if not math.isfinite(value):
-            raise ValueError(f"a namelist value must be finite, got {value!r}")
-        return repr(value)
-    if isinstance(value, str):
-        return "'" + value.replace("'", "''") + "'"
-    if isinstance(value, Sequence):
-        if len(value) == 0:
-            raise ValueError("a namelist list must not be empty")
-        return ", ".join(format_value(v) for v in value)
-    if hasattr(value, "item"):  # numpy scalars
-        return format_value(value.item())
-    raise TypeError(f"no namelist form for {type(value).__name__} {value!r}")
+BIN_DIR_ENV = "VOUSSOIR_BIN_DIR"  #: the environment variable naming the folder of the executables
 
 
-def namelist(groups: Mapping[str, Mapping[str, object]]) -> str:
-    """The text of a namelist file: one ``&group`` per mapping entry, in order."""
-    out = []
-    for group, variables in groups.items():
-        body = ",\n".join(f"  {name} = {format_value(v)}" for name, v in variables.items())
-        out.append(f"&{group}\n{body}\n/\n" if body else f"&{group}\n/\n")
-    return "".join(out)
+def installed_bin_dir_file() -> Path:
+    """The file the project's set-up (scripts/setup.sh) writes with the build's drivers
+    folder: ``<sys.prefix>/etc/voussoir/bin_dir``."""
+    return Path(sys.prefix) / "etc" / "voussoir" / "bin_dir"
+
+
+def find_bin_dir(given: str | os.PathLike | None = None,
+                 programs: Sequence[str] = ("voussoir-run", "voussoir-sweep")) -> Path:
+    """The folder of the Fortran executables: ``given`` (a --bin-dir option) when set,
+    else ``$VOUSSOIR_BIN_DIR``, else the folder written at install time in
+    :func:`installed_bin_dir_file`, else the folder of ``programs[0]`` on PATH. The first
+    of these that is set must hold every one of ``programs``; BinDirError otherwise, or
+    naming all three places when none is set."""
+    found = None
+    if given:
+        found = Path(given), "--bin-dir"
+    elif os.environ.get(BIN_DIR_ENV):
+        found = Path(os.environ[BIN_DIR_ENV]), f"${BIN_DIR_ENV}"
+    elif installed_bin_dir_file().is_file() and installed_bin_dir_file().read_text().strip():
+        found = Path(installed_bin_dir_file().read_text().strip()), str(installed_bin_dir_file())
+    elif shutil.which(programs[0]):
+        found = Path(shutil.which(programs[0])).parent, "PATH"
+    if found is None:
+        raise BinDirError(f"the Fortran executables ({', '.join(programs)}) were not found: set ${BIN_DIR_ENV} to "
+                          f"their folder, or run bash scripts/setup.sh (it builds them and writes their folder "
+                          f"into {installed_bin_dir_file()}), or put them on PATH")
+    folder, source = found
+    folder = folder.resolve()
+    for program in programs:
+        if not (folder / program).is_file():
+            raise BinDirError(f"{folder / program} not found (the folder comes from {source}): build the project "
+                              f"(bash scripts/setup.sh) or name the folder of the executables")
+    return folder
 
 
 def read_csv_rows(path: str | os.PathLike) -> list[dict[str, str]]:
     """Rows of a CSV written by the executables (``#`` comment lines skipped)."""
-    with open(path, newline="") as fh:
-        return list(csv.DictReader(line for line in fh if not line.startswith("#")))
+    return [row.cells for row in read_csv_table(path).rows]
 
 
 @dataclass
@@ -86,7 +92,7 @@ class Runner:
     def exe(self, name: str) -> Path:
         path = self.bin_dir / name
         if not path.is_file():
-            raise RunError(f"{path} does not exist: build the project (bash scripts/setup.sh)")
+            raise BinDirError(f"{path} does not exist: build the project (bash scripts/setup.sh)")
         return path
 
     def _env(self) -> dict:
@@ -98,7 +104,7 @@ class Runner:
     def write(self, groups: Mapping[str, Mapping[str, object]], name: str) -> Path:
         """Write ``<name>.nml``; returns its path."""
         path = self.work_dir / f"{name}.nml"
-        path.write_text(namelist(groups))
+        path.write_text(format_namelist(groups))
         return path
 
     def execute(self, program: str, nml: Path, *args: str, mpi: bool = False) -> subprocess.CompletedProcess:
@@ -120,7 +126,7 @@ class Runner:
     def _fresh(self, groups, name: str, outputs: Sequence[str]) -> tuple[Path, bool]:
         """Write the namelist unless the same one and all its outputs are already there."""
         path = self.work_dir / f"{name}.nml"
-        text = namelist(groups)
+        text = format_namelist(groups)
         done = path.is_file() and path.read_text() == text and all((self.work_dir / o).is_file() for o in outputs)
         if not done:
             path.write_text(text)

@@ -1,4 +1,6 @@
-"""Small tables of plotted numbers: aligned text for stdout and CSV files."""
+"""The tables a command reports (the numbers a figure drew, a summary): printed as
+aligned text and written as CSV. Not to be confused with
+:class:`voussoir_post.readers.csv_table.CsvTable`, a CSV file read in."""
 
 from __future__ import annotations
 
@@ -7,12 +9,12 @@ import math
 import os
 from dataclasses import dataclass, field
 
-__all__ = ["Table", "format_table", "write_csv"]
+__all__ = ["ReportTable", "format_table", "write_csv"]
 
 
 @dataclass
-class Table:
-    """Rows of plotted numbers with named columns (units in the names)."""
+class ReportTable:
+    """Rows of reported numbers (or words) with named columns (units in the names)."""
 
     columns: list[str]
     rows: list[tuple] = field(default_factory=list)
@@ -35,7 +37,7 @@ def _cell(value, digits: int = 6) -> str:
     return str(value)
 
 
-def format_table(table: Table, digits: int = 5) -> str:
+def format_table(table: ReportTable, digits: int = 5) -> str:
     """The table as aligned text (NaN and None shown as '-')."""
     cells = [[_cell(v, digits) for v in row] for row in table.rows]
     widths = [max([len(c)] + [len(r[k]) for r in cells]) for k, c in enumerate(table.columns)]
@@ -49,7 +51,7 @@ def format_table(table: Table, digits: int = 5) -> str:
     return "\n".join(lines)
 
 
-def write_csv(table: Table, path: str | os.PathLike) -> str:
+def write_csv(table: ReportTable, path: str | os.PathLike) -> str:
     """Write the table as CSV (full precision, NaN/None as empty cells); returns the path."""
     path = os.fspath(path)
     with open(path, "w", newline="", encoding="utf-8") as f:

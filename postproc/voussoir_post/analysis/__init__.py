@@ -1,0 +1,2 @@
+"""Geometry of a run at a sample: block polygons, joint openings and hinge states of an
+arch (:mod:`.kinematics`), the joints of any assembly (:mod:`.assembly_joints`)."""

@@ -1,0 +1,84 @@
+"""``voussoir-diagnose``: campaign diagnosis (shared/MEASURED_DATA.md).
+
+Subcommands:
+
+- ``check CAMPAIGN``: validate the folder and print a summary; exit 0 when valid,
+  2 with ``file:line:column: message`` when not.
+- ``run CAMPAIGN --out DIR [--np N]``: the full diagnosis (report.md + diagnosis.json),
+  see :mod:`voussoir_post.diagnosis.pipeline`.
+
+Each subcommand is a ``cmd_<name>(args) -> int`` function registered in
+:func:`build_parser`; adding one means adding its parser and function. Errors and exit
+statuses are :func:`.entry.run_command`'s (0 done, 1 the work failed, 2 bad input).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import warnings
+
+from ..errors import DONE, InputError
+from ..readers.campaign import CampaignWarning, read_campaign
+from ..readers.campaign_summary import campaign_summary
+from ..runner import BIN_DIR_ENV, find_bin_dir, installed_bin_dir_file
+from .entry import run_command
+
+__all__ = ["main", "build_parser"]
+
+
+def cmd_check(args) -> int:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", CampaignWarning)  # they are printed in the summary
+        campaign = read_campaign(args.campaign)
+    print(campaign_summary(campaign))
+    return DONE
+
+
+def cmd_run(args) -> int:
+    from ..diagnosis.pipeline import DiagnosisSettings, diagnose
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", CampaignWarning)
+        read_campaign(args.campaign)  # refuse an invalid folder before anything else
+    bin_dir = find_bin_dir(args.bin_dir, ("voussoir-run", "voussoir-sweep"))
+    if args.np < 1 or args.dt <= 0:
+        raise InputError("--np must be >= 1 and --dt > 0")
+    out = args.out or os.path.join(os.getcwd(), "diagnosis_" + os.path.basename(os.path.normpath(args.campaign)))
+    settings = DiagnosisSettings(bin_dir=bin_dir, n_ranks=args.np, dt_s=args.dt,
+                                 log=lambda m: print(m, flush=True))
+    result = diagnose(args.campaign, out, settings)
+    print(f"verdict: {result['verdict']}; threshold error {result['baseline']['threshold_error_pct']:.1f} % "
+          f"(nominal) -> {result['extended']['threshold_error_pct']:.1f} % (extended, held out); "
+          f"report: {os.path.join(out, 'report.md')}")
+    return DONE
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="voussoir-diagnose",
+                                     description="Diagnosis of a shaking-table campaign folder "
+                                                 "(shared/MEASURED_DATA.md).")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    p = sub.add_parser("check", help="validate a campaign folder and print a summary")
+    p.add_argument("campaign", metavar="CAMPAIGN")
+    p.set_defaults(func=cmd_check)
+    p = sub.add_parser("run", help="simulate every test, compare, name the cause, write report.md and "
+                                   "diagnosis.json")
+    p.add_argument("campaign", metavar="CAMPAIGN")
+    p.add_argument("--out", metavar="DIR", help="output folder for report.md and diagnosis.json "
+                                                "(default: ./diagnosis_<campaign>)")
+    p.add_argument("--np", type=int, default=2, help="MPI ranks of the sweeps (default 2)")
+    p.add_argument("--dt", type=float, default=1.0e-3, help="time step of the simulations [s] (default 1e-3)")
+    p.add_argument("--bin-dir", help=f"folder of the Fortran executables (default: ${BIN_DIR_ENV}, else the "
+                                     f"folder scripts/setup.sh wrote into {installed_bin_dir_file()}, else PATH)")
+    p.set_defaults(func=cmd_run)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of ``voussoir-diagnose``; returns the exit status."""
+    return run_command(build_parser(), argv)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,283 @@
+"""``voussoir-post``: plots of Voussoir result files.
+
+Every subcommand writes its PNG(s) beside the input (``<input stem>_<kind>.png``) or to
+``--out`` (a ``.png`` file, or a folder), prints the plotted numbers as a table and,
+with ``--csv``, writes them as CSV beside the PNG (same stem, ``.csv``). Errors and exit
+statuses are :func:`.entry.run_command`'s: 0 done, 1 the work failed, 2 bad input (the
+message on stderr names the file).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+
+from ..analysis.assembly_joints import joints_table, run_joints
+from ..earthquake.ida import read_ida
+from ..earthquake.records import record_files_line, select_records, suite, suite_table
+from ..errors import DONE, InputError
+from ..plots.compare import mean_error_lines, plot_compare
+from ..plots.envelope import plot_envelope
+from ..plots.fragility_plot import plot_fragility
+from ..plots.history import plot_history
+from ..plots.mechanism import plot_mechanism
+from ..plots.sequence import default_frame_times, plot_sequence, write_sequence_gif
+from ..plots.xdmf import check_xdmf, write_xdmf
+from ..readers.campaign import read_campaign
+from ..readers.results import read_limit_json, read_run, read_sweep
+from ..tables import ReportTable, format_table, write_csv
+from .entry import run_command
+
+__all__ = ["main", "build_parser", "output_path"]
+
+
+def output_path(input_path: str, kind: str, out: str | None, ext: str = ".png") -> str:
+    """Where a subcommand writes: ``--out`` when it names a file with extension ``ext``,
+    ``<out>/<stem>_<kind><ext>`` when it names a folder, else beside the input."""
+    stem = os.path.splitext(os.path.basename(input_path))[0]
+    name = f"{stem}_{kind}{ext}"
+    if out is None:
+        return os.path.join(os.path.dirname(os.path.abspath(input_path)), name)
+    if out.lower().endswith(ext):
+        return out
+    return os.path.join(out, name)
+
+
+def _emit(table: ReportTable, png_path: str, csv_wanted: bool, extra: list[tuple[ReportTable, str]] = ()) -> None:
+    """Print the table and the written files; write CSV(s) when asked."""
+    print(format_table(table))
+    print(f"wrote {png_path}")
+    if csv_wanted:
+        print(f"wrote {write_csv(table, os.path.splitext(png_path)[0] + '.csv')}")
+        for tab, suffix in extra:
+            print(f"wrote {write_csv(tab, os.path.splitext(png_path)[0] + suffix)}")
+
+
+def _parse_times(text: str) -> list[float]:
+    try:
+        times = [float(t) for t in text.split(",") if t.strip()]
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(f"--times expects comma-separated seconds, got '{text}'") from exc
+    if not times:
+        raise argparse.ArgumentTypeError("--times is empty")
+    return times
+
+
+def cmd_envelope(args) -> int:
+    sweep = read_sweep(args.sweep)
+    campaign = read_campaign(args.campaign) if args.campaign else None
+    if args.specimen and campaign is None:
+        raise InputError("--specimen needs --campaign")
+    if campaign is not None and args.specimen:
+        for sid in args.specimen:
+            if sid not in campaign.specimens:
+                raise InputError(f"{campaign.path}: no specimen '{sid}' (has: {', '.join(campaign.specimens)})")
+    png = output_path(args.sweep, "envelope", args.out)
+    data = plot_envelope(sweep, png, campaign, args.specimen)
+    _emit(data.table, data.png_path, args.csv)
+    return DONE
+
+
+def cmd_sequence(args) -> int:
+    run = read_run(args.run)
+    png = output_path(args.run, "sequence", args.out)
+    open_tol = None if args.open_tol_mm is None else 1e-3 * args.open_tol_mm
+    data = plot_sequence(run, png, times_s=args.times, n_frames=args.n_frames, amplify=args.amplify,
+                         open_tol_m=open_tol)
+    _emit(data.table, data.png_path, args.csv)
+    if args.gif:
+        t_end = max(f.time_s for f in data.frames) if args.times else float(default_frame_times(run, 2)[-1])
+        gif, samples = write_sequence_gif(run, os.path.splitext(png)[0] + ".gif", t_end_s=t_end,
+                                          amplify=args.amplify, open_tol_m=open_tol)
+        print(f"wrote {gif} ({len(samples)} frames)")
+    return DONE
+
+
+def cmd_history(args) -> int:
+    run = read_run(args.run)
+    png = output_path(args.run, "history", args.out)
+    data = plot_history(run, png)
+    print(format_table(data.summary))
+    print(f"wrote {data.png_path}")
+    if args.csv:
+        stem = os.path.splitext(data.png_path)[0]
+        print(f"wrote {write_csv(data.samples_table(), stem + '.csv')}")
+        print(f"wrote {write_csv(data.steps_table(), stem + '_steps.csv')}")
+    return DONE
+
+
+def cmd_compare(args) -> int:
+    sweep = read_sweep(args.sweep)
+    campaign = read_campaign(args.campaign)
+    png = output_path(args.sweep, "compare", args.out)
+    data = plot_compare(sweep, campaign, png, args.specimen)
+    for note in data.notes:
+        print(note)
+    _emit(data.table, data.png_path, args.csv)
+    for line in mean_error_lines(data, sweep):
+        print(line)
+    return DONE
+
+
+def cmd_xdmf(args) -> int:
+    run = read_run(args.run)
+    xmf = None
+    if args.out is not None:
+        xmf = args.out if args.out.lower().endswith(".xmf") else os.path.join(
+            args.out, os.path.splitext(os.path.basename(args.run))[0] + ".xmf")
+    data = write_xdmf(run, xmf, every=args.every)
+    items = check_xdmf(data.xmf_path)
+    print(format_table(data.table(run.path, len(items))))
+    print(f"wrote {data.h5_path}")
+    print(f"wrote {data.xmf_path}")
+    return DONE
+
+
+def cmd_mechanism(args) -> int:
+    limit = read_limit_json(args.limit)
+    png = output_path(args.limit, "mechanism", args.out)
+    data = plot_mechanism(limit, png)
+    _emit(data.table, data.png_path, args.csv)
+    return DONE
+
+
+def cmd_fragility(args) -> int:
+    ida = read_ida(args.ida)
+    if ida.n_failed:
+        print(f"warning: {args.ida}: {ida.n_failed} rows left out: their search ended by a run that failed "
+              "(column failed = 1; voussoir-sweep printed why)", file=sys.stderr)
+    png = output_path(args.ida, "fragility", args.out)
+    data = plot_fragility(ida, png, n_bootstrap=args.bootstrap, seed=args.seed)
+    stem = os.path.splitext(data.png_path)[0]
+    curve_csv = write_csv(data.curve_table, stem + ".csv")
+    points_csv = write_csv(data.table, stem + "_points.csv")
+    if args.json:
+        print(json.dumps(data.summary(), indent=1))
+        return DONE
+    print(format_table(data.table))
+    for line in data.report_lines():
+        print(line)
+    print(f"wrote {data.png_path}")
+    print(f"wrote {curve_csv}")
+    print(f"wrote {points_csv}")
+    return DONE
+
+
+def cmd_records(args) -> int:
+    records = select_records(suite(), args.keys)
+    print(record_files_line(records) if args.namelist else format_table(suite_table(records)))
+    return DONE
+
+
+def cmd_joints(args) -> int:
+    if not args.tol_mm > 0.0:
+        raise InputError(f"--tol-mm {args.tol_mm:g}: the touching tolerance must be > 0 mm (default 0.1)")
+    run = read_run(args.run)
+    motions = run_joints(run, args.tol_mm * 1e-3)
+    if not motions:
+        raise InputError(f"{args.run}: no two blocks touch in the reference configuration (within {args.tol_mm:g} mm)")
+    table = joints_table(motions, os.path.basename(args.run))
+    shown = table if args.top <= 0 else ReportTable(table.columns, table.rows[: args.top], table.title)
+    print(format_table(shown))
+    if args.csv:
+        print(f"wrote {write_csv(table, output_path(args.run, 'joints', args.out, '.csv'))}")
+    return DONE
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="voussoir-post",
+        description="Plots of Voussoir result files (HDF5 from voussoir-run / voussoir-sweep, "
+                    "JSON from voussoir-limit --json).")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    def common(p, csv=True):
+        p.add_argument("--out", help="output .png file, or a folder (default: beside the input)")
+        if csv:
+            p.add_argument("--csv", action="store_true", help="also write the plotted numbers as CSV")
+
+    p = sub.add_parser("envelope", help="collapse envelope of a sweep (threshold or grid mode)")
+    p.add_argument("sweep", metavar="SWEEP.h5")
+    p.add_argument("--campaign", metavar="DIR", help="overlay the measured points of this campaign folder")
+    p.add_argument("--specimen", metavar="ID", action="append",
+                   help="overlay only this specimen (repeatable; default: all)")
+    common(p)
+    p.set_defaults(func=cmd_envelope)
+
+    p = sub.add_parser("sequence", help="frames of the blocks with open hinges")
+    p.add_argument("run", metavar="RUN.h5")
+    p.add_argument("--times", type=_parse_times, metavar="T1,T2,...", help="frame times [s] (nearest samples)")
+    p.add_argument("--n-frames", type=int, default=6, metavar="N",
+                   help="frames evenly spread up to the collapse time + 15%% or the end (default 6)")
+    p.add_argument("--amplify", type=float, default=1.0, metavar="K",
+                   help="multiply displacements and rotations relative to the table-carried "
+                        "reference by K (default 1)")
+    p.add_argument("--open-tol-mm", type=float, metavar="MM",
+                   help="joint opening counted as open [mm] (default: the run's &output hinge_gap_m, "
+                        "else 1%% of the ring thickness)")
+    p.add_argument("--gif", action="store_true", help="also write an animated GIF")
+    common(p)
+    p.set_defaults(func=cmd_sequence)
+
+    p = sub.add_parser("history", help="time histories: table, crown, NLGS iterations, contacts")
+    p.add_argument("run", metavar="RUN.h5")
+    common(p)
+    p.set_defaults(func=cmd_history)
+
+    p = sub.add_parser("compare", help="simulated vs measured thresholds per specimen and frequency")
+    p.add_argument("sweep", metavar="SWEEP.h5")
+    p.add_argument("campaign", metavar="CAMPAIGN")
+    p.add_argument("--specimen", metavar="ID",
+                   help="the specimen the sweep simulates (default: matched by the &arch geometry)")
+    common(p)
+    p.set_defaults(func=cmd_compare)
+
+    p = sub.add_parser("xdmf", help="write RUN.xmf + RUN.vtk.h5 for ParaView")
+    p.add_argument("run", metavar="RUN.h5")
+    p.add_argument("--every", type=int, default=1, metavar="N", help="export every N-th sample (default 1)")
+    p.add_argument("--out", help="output .xmf file or folder (default: beside the run)")
+    p.set_defaults(func=cmd_xdmf)
+
+    p = sub.add_parser("fragility", help="lognormal fragility of collapse from an IDA sweep (&sweep mode = 'ida')")
+    p.add_argument("ida", metavar="IDA.h5|IDA.csv", help="the IDA sweep's HDF5 file, or its CSV summary")
+    p.add_argument("--out", help="output .png file, or a folder (default: beside the input); the fit's "
+                                 "curve and points are written beside it as <stem>.csv and <stem>_points.csv")
+    p.add_argument("--json", action="store_true",
+                   help="print the fit as JSON (median_pga_g, beta, ...) instead of the tables")
+    p.add_argument("--bootstrap", type=int, default=400, metavar="N",
+                   help="bootstrap resamples of the band (default 400)")
+    p.add_argument("--seed", type=int, default=20261124, help="seed of the bootstrap (default 20261124)")
+    p.set_defaults(func=cmd_fragility)
+
+    p = sub.add_parser("records", help="the suite of real ground-motion records and where they are installed")
+    p.add_argument("keys", nargs="*", metavar="KEY", help="only these records (e.g. ELC180 CLS000)")
+    p.add_argument("--namelist", action="store_true", help="print them as a &sweep record_files line")
+    p.set_defaults(func=cmd_records)
+
+    p = sub.add_parser("joints", help="every joint of any assembly (a wall, polygon blocks): opening and sliding "
+                                      "over the run and at its end")
+    p.add_argument("run", metavar="RUN.h5")
+    p.add_argument("--top", type=int, default=20, metavar="N", help="print the N joints that slid most (0: all; "
+                                                                    "default 20)")
+    p.add_argument("--tol-mm", type=float, default=0.1, metavar="MM",
+                   help="two faces closer than this at t = 0 touch (default 0.1 mm)")
+    p.add_argument("--out", help="CSV file or folder for --csv (default: beside the run)")
+    p.add_argument("--csv", action="store_true", help="also write the table as CSV (<stem>_joints.csv)")
+    p.set_defaults(func=cmd_joints)
+
+    p = sub.add_parser("mechanism", help="limit-analysis mechanisms (voussoir-limit --json)")
+    p.add_argument("limit", metavar="LIMIT.json")
+    common(p)
+    p.set_defaults(func=cmd_mechanism)
+    return parser
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of ``voussoir-post``; returns the exit status."""
+    return run_command(build_parser(), argv)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,109 @@
+"""The diagnosis's simulations, through the project's one runner: thresholds of every
+variant by voussoir-sweep, single tests (hinges, crown records) by voussoir-run.
+Simulations are never re-implemented here."""
+
+from __future__ import annotations
+
+import math
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+from ..readers.campaign import MeasuredThreshold, Specimen, Test
+from ..runner import Runner
+from .effects import Variant, arch_group, effect
+from .settings import DiagnosisSettings
+
+__all__ = ["Simulator"]
+
+
+class Simulator:
+    """Runs the Fortran executables for the diagnosis, in a work folder."""
+
+    def __init__(self, settings: DiagnosisSettings, work_dir: Path):
+        self.s = settings
+        self.runner = Runner(settings.bin_dir, work_dir, n_ranks=settings.n_ranks)
+        self.n_sweeps = 0
+        self.n_runs = 0
+        self.code_version = ""  #: of the executables, from the first sweep file
+        self._count = 0
+
+    def _solver(self) -> dict:
+        return {"dt_s": float(self.s.dt_s), "allow_nonconvergence": True}
+
+    def thresholds(self, spec: Specimen, pairs: list[MeasuredThreshold], cycles: tuple[int, int, int],
+                   variants: list[Variant]) -> dict[tuple[Variant, float], float]:
+        """Simulated threshold [m] of every (variant, frequency) for one specimen. The
+        values of an effect with a &sweep list go into one sweep; each other variant is
+        a sweep of its own. A finished sweep of the same input in the work folder is
+        reused."""
+        freqs = sorted({p.frequency_hz for p in pairs})
+        amp_max = 4.0 * max(p.high_m for p in pairs)
+        amp_tol = max(1e-5, self.s.amp_tol_fraction * min(p.threshold_m for p in pairs))
+        return self.thresholds_at(spec, freqs, cycles, variants, amp_max, amp_tol)
+
+    def thresholds_at(self, spec: Specimen, freqs: list[float], cycles: tuple[int, int, int],
+                      variants: list[Variant], amp_max: float, amp_tol: float) -> dict[tuple[Variant, float], float]:
+        """Simulated threshold [m] of every (variant, frequency), searched up to `amp_max`
+        to `amp_tol` [m]."""
+        out: dict[tuple[Variant, float], float] = {}
+        freqs = sorted(freqs)
+        # Variants whose first effect has a &sweep list go in one sweep per value of the
+        # rest (the fixed part, in the &arch group); every other variant is a sweep.
+        groups: dict[tuple, list[Variant]] = {}
+        for v in variants:
+            parts = v.parts()
+            listed = bool(parts) and effect(parts[0][0]).sweep_list is not None
+            groups.setdefault((parts[0][0], parts[1:]) if listed else ("single", v), []).append(v)
+        for key, vs in groups.items():
+            self._count += 1
+            name = f"sweep_{self._count:03d}_{spec.specimen_id}"
+            sweep = {"mode": "threshold", "frequencies_hz": [float(f) for f in freqs], "amp_tol_m": float(amp_tol),
+                     "amp_max_m": float(amp_max), "progress_every_s": 1.0e9}
+            listed = key[0] != "single"
+            if listed:
+                base = Variant(*key[1][0]) if key[1] else Variant()
+                sweep[effect(key[0]).sweep_list] = [float(v.parts()[0][1]) for v in vs]
+            else:
+                base = vs[0]
+            groups_nml = {"arch": arch_group(spec, base),
+                          "motion": {"waveform": "afd", "n_attack": cycles[0], "n_full": cycles[1],
+                                     "n_decay": cycles[2], "rest_s": 1.0},
+                          "solver": self._solver(), "output": {}, "sweep": sweep}
+            before = self.runner.reused
+            result, rows = self.runner.run_sweep(groups_nml, name)
+            if self.runner.reused == before:
+                self.n_sweeps += 1
+            if not self.code_version:
+                self.code_version = result.code_version
+            for row in rows:
+                v = vs[int(row["param_set"])] if listed else vs[0]
+                f = min(freqs, key=lambda x: abs(x - float(row["frequency_hz"])))
+                text = row["threshold_m"].strip()
+                out[(v, f)] = math.nan if text in ("", "nan", "NaN") else float(text)
+        return out
+
+    def run_tests(self, jobs: list[tuple[Specimen, Test, Variant, dict]]) -> list[dict]:
+        """Simulate single tests as they were run (voussoir-run, in parallel). Each job's
+        dict may add &motion settings (e.g. the table gain and delay). Returns for each
+        job: collapsed, collapse_time_s, hinges {(joint, side)}, and the crown time series."""
+        self._count += 1
+        batch = self._count
+
+        def one(k_job):
+            k, (spec, test, variant, motion) = k_job
+            groups = {"arch": arch_group(spec, variant),
+                      "motion": {"waveform": "afd", "frequency_hz": float(test.frequency_hz),
+                                 "amplitude_m": float(test.amplitude_m), "n_attack": test.n_attack,
+                                 "n_full": test.n_full, "n_decay": test.n_decay, "rest_s": 1.0,
+                                 **{key: float(val) for key, val in motion.items()}},
+                      "solver": self._solver(),
+                      "output": {"every": max(1, round(0.005 / self.s.dt_s)), "stop_after_collapse_s": 0.3}}
+            r = self.runner.run_single(groups, f"run_{batch:03d}_{k:04d}", keep=False)
+            return {"collapsed": r.collapsed, "collapse_time_s": r.collapse_time_s,
+                    "hinges": {(int(j), r.hinge_side_names[int(s)]) for j, s in zip(r.hinge_joint, r.hinge_side)},
+                    "t_s": r.time_s, "crown_dx_m": r.crown_dx_m, "crown_dy_m": r.crown_dy_m}
+
+        with ThreadPoolExecutor(max_workers=max(1, self.s.n_ranks)) as pool:
+            results = list(pool.map(one, enumerate(jobs)))
+        self.n_runs += len(jobs)
+        return results
