@@ -3,7 +3,7 @@
 module voussoir_wall
   use voussoir_kinds, only: dp
   use voussoir_assembly, only: assembly_t, role_voussoir, role_foundation
-  use voussoir_wall_config, only: wall_config_t, wall_block_count
+  use voussoir_wall_config, only: wall_config_t, wall_block_count, bond_running
   implicit none
   private
   public :: build_wall
@@ -36,7 +36,7 @@ contains
     do c = 0, w%courses - 1
       y0 = c*bh
       y1 = y0 + bh
-      offset = w%bond == 'running' .and. modulo(c, 2) == 1
+      offset = w%bond == bond_running .and. modulo(c, 2) == 1
       n_in_course = w%blocks_per_course + merge(1, 0, offset)
       do k = 1, n_in_course
         if (offset) then

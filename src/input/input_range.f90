@@ -12,7 +12,7 @@ module voussoir_input_range
   implicit none
   private
 
-  public :: range_t, range_of, in_range, need
+  public :: range_t, range_of, in_range, need, need_range
 
   !> Bounds read from a range text: low (<, <=) and high (<, <=) or not zero (/=).
   type :: range_t
@@ -28,6 +28,14 @@ module voussoir_input_range
   interface need
     module procedure need_real, need_integer
   end interface need
+
+  !> Fail `status` (unless it already failed) when `value` is outside the range text
+  !> `allowed` of `name` (its index, as in 'x(2)', aside): a range that does not depend on
+  !> other variables, checked outside a group's table. `note`, if given, follows the
+  !> range in the message (whose range it is, why).
+  interface need_range
+    module procedure need_range_real, need_range_integer
+  end interface need_range
 
 contains
 
@@ -135,6 +143,50 @@ contains
     if (good .or. .not. status%ok) return
     call fail(status, outside(file, group, name, itoa(value), allowed))
   end subroutine need_integer
+
+  subroutine need_range_real(allowed, file, group, name, value, status, note)
+    character(len=*), intent(in) :: allowed, file, group, name
+    real(dp), intent(in) :: value
+    type(status_t), intent(inout) :: status
+    character(len=*), intent(in), optional :: note
+    type(range_t) :: r
+    if (.not. status%ok) return
+    r = readable_range(allowed, name, status)
+    if (status%ok) call need_real(in_range(r, value), file, group, name, value, with_note(allowed, note), status)
+  end subroutine need_range_real
+
+  subroutine need_range_integer(allowed, file, group, name, value, status, note)
+    character(len=*), intent(in) :: allowed, file, group, name
+    integer, intent(in) :: value
+    type(status_t), intent(inout) :: status
+    character(len=*), intent(in), optional :: note
+    type(range_t) :: r
+    if (.not. status%ok) return
+    r = readable_range(allowed, name, status)
+    if (status%ok) call need_integer(in_range(r, real(value, dp)), file, group, name, value, with_note(allowed, note), &
+                                    status)
+  end subroutine need_range_integer
+
+  !> The range `text` of variable `name` (without its index); a text that cannot be read
+  !> fails `status` (a fault of the program).
+  function readable_range(text, name, status) result(r)
+    character(len=*), intent(in) :: text, name
+    type(status_t), intent(inout) :: status
+    type(range_t) :: r
+    integer :: open_at
+    open_at = index(name, '(')
+    if (open_at == 0) open_at = len(name) + 1
+    r = range_of(text, name(:open_at - 1))
+    if (.not. r%valid) call fail(status, 'the range "'//text//'" of '//name//' cannot be read (a fault of the program)')
+  end function readable_range
+
+  pure function with_note(allowed, note) result(text)
+    character(len=*), intent(in) :: allowed
+    character(len=*), intent(in), optional :: note
+    character(len=:), allocatable :: text
+    text = allowed
+    if (present(note)) text = allowed//note
+  end function with_note
 
   pure function outside(file, group, name, value, allowed) result(text)
     character(len=*), intent(in) :: file, group, name, value, allowed

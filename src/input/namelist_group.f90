@@ -12,6 +12,7 @@
 !>     call g%add('joint_friction', cfg%arch%joint_friction, first=0, unset=unset_friction)
 !>     call g%read(path, status)         ! absent group: the values stay as they were
 !>     call g%check(path, status)        ! every range and choice without `when`
+!>     n = g%length('frequencies_hz', path, status)  ! a sparse list's entries, without gaps
 !>
 !> A range with `when` is checked on request only (`g%check(path, status, when=...)`):
 !> the case it belongs to (a waveform, the arch builder); `when=checked_apart` marks a
@@ -19,7 +20,7 @@
 module voussoir_namelist_group
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
-  use voussoir_text, only: lower, itoa, join_words
+  use voussoir_text, only: lower, itoa, join_words, fmt_real
   use voussoir_namelist_text, only: nml_value_t, nml_assignment_t, read_group_text
   use voussoir_input_range, only: range_t, range_of, in_range, need
   implicit none
@@ -78,6 +79,7 @@ module voussoir_namelist_group
     procedure :: entries => group_entries
     procedure :: variables => group_variables
     procedure :: find => find_var
+    procedure :: length => list_length
   end type nml_group_t
 
   interface
@@ -240,6 +242,59 @@ contains
     end do
     k = 0
   end function find_var
+
+  !> The entries of the sparse list `name` set from its first one; a later entry set
+  !> after an unset one fails `status` (a list is given without gaps).
+  integer function list_length(g, name, file, status) result(n)
+    class(nml_group_t), intent(in) :: g
+    character(len=*), intent(in) :: name, file
+    type(status_t), intent(inout) :: status
+    integer :: k, j, first, last
+
+    n = 0
+    k = g%find(name)
+    if (k == 0) then
+      call fail(status, '&'//trim(g%name)//' has no list '//name//' (a fault of the program)')
+      return
+    end if
+    associate (v => g%vars(k))
+      first = v%first
+      last = first - 1
+      if (associated(v%ra)) last = ubound(v%ra, 1)
+      if (associated(v%ia)) last = ubound(v%ia, 1)
+      if (allocated(v%ta)) last = ubound(v%ta, 1)
+      do j = first, last
+        if (.not. entry_set(v, j)) exit
+        n = n + 1
+      end do
+      do j = first + n + 1, last
+        if (entry_set(v, j) .and. status%ok) &
+          call fail(status, file//': &'//trim(g%name)//' '//name//'('//itoa(first + n)//') is unset but '// &
+                    name//'('//itoa(j)//') = '//entry_text(v, j)//' is set: give the list without gaps')
+      end do
+    end associate
+  end function list_length
+
+  !> Whether entry j of the sparse list `v` is set (a text: not blank).
+  pure logical function entry_set(v, j)
+    type(nml_var_t), intent(in) :: v
+    integer, intent(in) :: j
+    entry_set = .false.
+    if (associated(v%ra)) entry_set = v%ra(j) /= v%unset_real
+    if (associated(v%ia)) entry_set = v%ia(j) /= v%unset_integer
+    if (allocated(v%ta)) entry_set = len_trim(v%ta(j)%s) > 0
+  end function entry_set
+
+  !> Entry j of the list `v` as a message shows it.
+  function entry_text(v, j) result(text)
+    type(nml_var_t), intent(in) :: v
+    integer, intent(in) :: j
+    character(len=:), allocatable :: text
+    text = ''
+    if (associated(v%ra)) text = fmt_real(v%ra(j))
+    if (associated(v%ia)) text = itoa(v%ia(j))
+    if (allocated(v%ta)) text = "'"//trim(v%ta(j)%s)//"'"
+  end function entry_text
 
   !> "a, b (real, m), c (integer), ...": the variables with their types and units,
   !> those of one description named together.

@@ -53,10 +53,7 @@ contains
                   trim(v%name)//' = value)')
         return
       end if
-      if ((a%indexed .or. .not. v%list) .and. n > 1) then
-        call fail(status, at//' '//a%written//' takes one value; it is given '//itoa(n))
-        return
-      end if
+      ! Past the list's end first: the clearer refusal of an element given several values.
       first = v%first
       last = first + list_size(v) - 1
       pos = merge(a%index, first, a%indexed)
@@ -70,6 +67,10 @@ contains
       else if (v%list .and. pos + n - 1 > last) then
         call fail(status, at//' '//trim(v%name)//' has values up to entry '//itoa(pos + n - 1)//'; at most '// &
                   itoa(last))
+        return
+      end if
+      if ((a%indexed .or. .not. v%list) .and. n > 1) then
+        call fail(status, at//' '//a%written//' takes one value; it is given '//itoa(n))
         return
       end if
       do j = 1, size(a%values)

@@ -5,7 +5,7 @@ module voussoir_limit_study
   use voussoir_status, only: status_t, fail
   use voussoir_config, only: config_t, springings_none
   use voussoir_namelist_group, only: nml_group_t
-  use voussoir_input_range, only: need
+  use voussoir_input_range, only: need, need_range
   use voussoir_text, only: itoa, fmt_significant
   use voussoir_assembly, only: assembly_t, build_arch, voussoir_angle_factors
   use voussoir_limit_analysis, only: limit_result_t, horizontal_capacity
@@ -62,7 +62,7 @@ contains
     type(limit_result_t), intent(out) :: res
     type(thickness_result_t), intent(out) :: tmin
     type(status_t), intent(inout) :: status
-    character(len=:), allocatable :: f
+    character(len=:), allocatable :: f, why
 
     f = trim(cfg%source_file)
     associate (a => cfg%arch)
@@ -74,19 +74,19 @@ contains
         call fail(status, f//": &arch restrained_springings = '"//trim(a%restrained_springings)// &
                   "': the limit analysis does not model restraint brackets (its mechanisms hinge "// &
                   "freely at the springings); set restrained_springings = 'none'")
-      else if (a%n_voussoirs < 3) then
-        call fail(status, f//': &arch n_voussoirs = '//itoa(a%n_voussoirs)// &
-                  ' is outside the allowed range n_voussoirs >= 3 (a four-hinge mechanism needs 3 voussoirs)')
-      else if (a%n_voussoirs > max_limit_voussoirs) then
-        call fail(status, f//': &arch n_voussoirs = '//itoa(a%n_voussoirs)// &
-                  ' is outside the allowed range 3 <= n_voussoirs <= '//itoa(max_limit_voussoirs)// &
-                  ' of voussoir-limit: its exhaustive four-hinge search grows as n^4 (9 s at 200 voussoirs, '// &
-                  '40 s at 300, minutes beyond), and a semicircle of 50 or 200 voussoirs has the same '// &
-                  'minimum thickness to 4 digits')
-      else if (opts%minimum_thickness .and. a%n_voussoirs < 4) then
+      end if
+      ! Below, a mechanism has too few joints; above, the search takes too long.
+      if (a%n_voussoirs < 3) then
+        why = 'a four-hinge mechanism needs 3 voussoirs'
+      else
+        why = 'its exhaustive four-hinge search grows as n^4 (9 s at 200 voussoirs, 40 s at 300, minutes '// &
+              'beyond), and a semicircle of 50 or 200 voussoirs has the same minimum thickness to 4 digits'
+      end if
+      call need_range('3 <= n_voussoirs <= '//itoa(max_limit_voussoirs), f, 'arch', 'n_voussoirs', a%n_voussoirs, &
+                      status, note=' of voussoir-limit: '//why)
+      if (status%ok .and. opts%minimum_thickness .and. a%n_voussoirs < 4) &
         call fail(status, f//': &arch n_voussoirs = 3: the minimum thickness needs n_voussoirs >= 4 '// &
                   '(an arch of 3 voussoirs stands at vanishing thickness); set &limit minimum_thickness = .false.')
-      end if
       if (.not. status%ok) return
       call build_arch(a%embrace_deg, a%n_voussoirs, a%r_ext_m, a%thickness_m, arch, &
                       angle_factors=voussoir_angle_factors(a%n_voussoirs, a%size_imperfection, a%imperfection_seed))

@@ -3,7 +3,8 @@ module voussoir_setup
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: fmt_significant, itoa
-  use voussoir_config, only: config_t
+  use voussoir_config, only: config_t, waveform_afd, waveform_ramp, waveform_record, waveform_accelerogram, &
+                             springings_left, springings_right, springings_both
   use voussoir_assembly, only: assembly_t, build_arch, voussoir_angle_factors
   use voussoir_polygon_file, only: read_polygon_file
   use voussoir_geometry, only: polygon_min_width
@@ -50,8 +51,8 @@ contains
         end if
         assembly%thickness_m = a%thickness_m
       else
-        restrained = [a%restrained_springings == 'left' .or. a%restrained_springings == 'both', &
-                      a%restrained_springings == 'right' .or. a%restrained_springings == 'both']
+        restrained = [a%restrained_springings == springings_left .or. a%restrained_springings == springings_both, &
+                      a%restrained_springings == springings_right .or. a%restrained_springings == springings_both]
         call build_arch(a%embrace_deg, a%n_voussoirs, a%r_ext_m, a%thickness_m, assembly, restrained, &
                         voussoir_angle_factors(a%n_voussoirs, a%size_imperfection, a%imperfection_seed))
       end if
@@ -72,15 +73,15 @@ contains
         call coarse_init(model%coarse, assembly%course, model%bodies%inv_mass, model%bodies%inv_inertia)
 
       select case (m%waveform)
-      case ('afd')
+      case (waveform_afd)
         model%motion = motion_afd(m%frequency_hz, m%amplitude_m, m%n_attack, m%n_full, m%n_decay, &
                                   m%table_gain, m%table_delay_s)
-      case ('ramp')
+      case (waveform_ramp)
         model%motion = motion_ramp(m%ramp_rate_m_s3)
-      case ('record')
+      case (waveform_record)
         call motion_record(trim(m%record_file), m%record_cutoff_hz, model%motion, status)
         if (.not. status%ok) return
-      case ('accelerogram')
+      case (waveform_accelerogram)
         call read_ground_record(trim(m%record_file), rec, status)
         if (.not. status%ok) then
           status%message = trim(cfg%source_file)//': &motion record_file: '//trim(status%message)
@@ -96,7 +97,7 @@ contains
       duration_s = m%duration_s
       ! The rest comes after the motion, but before an accelerogram (already in its duration).
       if (duration_s == 0.0_dp) duration_s = motion_duration_s(model%motion) + &
-                                             merge(0.0_dp, m%rest_s, m%waveform == 'accelerogram')
+                                             merge(0.0_dp, m%rest_s, m%waveform == waveform_accelerogram)
       if (duration_s <= 0.0_dp) then
         call fail(status, trim(cfg%source_file)//': nothing to simulate: set &motion rest_s or duration_s > 0')
         return

@@ -15,6 +15,7 @@ module voussoir_sweep_ida
   use voussoir_config, only: config_t, validate_config, resolve_path, fmt_real, arch_rule, arch_rule_text
   use voussoir_ground_record, only: ground_record_t, record_intensity_t, read_ground_record, record_intensity
   use voussoir_latin_hypercube, only: latin_hypercube
+  use voussoir_input_range, only: need
   implicit none
   private
 
@@ -94,11 +95,11 @@ contains
                   fmt_real(ranges(2, v))//': the low bound must not exceed the high one')
         return
       end if
-      if (.not. (arch_rule(sampled_names(v), ranges(1, v)) .and. arch_rule(sampled_names(v), ranges(2, v)))) then
-        call fail(status, path//': &sweep '//trim(range_names(v))//' = '//fmt_real(ranges(1, v))//', '// &
-                  fmt_real(ranges(2, v))//' is outside the allowed range '//arch_rule_text(sampled_names(v)))
-        return
-      end if
+      do p = 1, 2
+        call need(arch_rule(sampled_names(v), ranges(p, v)), path, 'sweep', trim(range_names(v))//'('//itoa(p)//')', &
+                  ranges(p, v), arch_rule_text(sampled_names(v)), status)
+      end do
+      if (.not. status%ok) return
     end do
     names = pack(sampled_names, given)
     allocate (values(size(names), n_samples), set_cfg(0:n_samples - 1))

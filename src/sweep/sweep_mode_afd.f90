@@ -7,9 +7,10 @@ module voussoir_sweep_mode_afd
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa, fmt_real, fmt_exact_list
-  use voussoir_config, only: config_t
+  use voussoir_config, only: config_t, waveform_afd
+  use voussoir_input_range, only: need
   use voussoir_threshold, only: search_run_config
-  use voussoir_sweep_group, only: sweep_group_t, need, list_length, unset_real
+  use voussoir_sweep_group, only: sweep_group_t, unset_real
   use voussoir_sweep_table, only: named_values_t, named_text_t
   use voussoir_sweep_mode, only: sweep_mode_t, sweep_plan_t, job_param_set
   implicit none
@@ -55,7 +56,7 @@ contains
     type(sweep_plan_t), intent(inout) :: plan
     type(status_t), intent(inout) :: status
     integer :: n_freq, n_amp, k
-    real(dp) :: f_max_hz
+    real(dp) :: f_max_hz, f_hz
 
     if (any(group%ranges /= unset_real) .or. group%n_samples /= 0 .or. len_trim(group%record_files(1)) > 0 .or. &
         group%dt_check_rows /= 0) then
@@ -63,24 +64,24 @@ contains
                 "and dt_check_rows belong to mode = 'ida', not '"//trim(this%name)//"'")
       return
     end if
-    if (base%motion%waveform /= 'afd') then
+    if (base%motion%waveform /= waveform_afd) then
       call fail(status, path//": &motion waveform = '"//trim(base%motion%waveform)// &
-                "': a sweep sets the frequency and amplitude of the 'afd' waveform; use waveform = 'afd'")
+                "': a sweep sets the frequency and amplitude of the '"//waveform_afd//"' waveform; use waveform = '"// &
+                waveform_afd//"'")
       return
     end if
-    n_freq = list_length(status, path, group%frequencies_hz, 'frequencies_hz')
-    if (.not. status%ok) return
+    n_freq = group%n_frequencies
     if (n_freq == 0) then
       call fail(status, path//': &sweep frequencies_hz is not set: give at least one frequency')
       return
     end if
     f_max_hz = 1.0_dp/(20.0_dp*base%solver%dt_s)
     do k = 1, n_freq
-      call need(status, path, group%frequencies_hz(k) > 0.0_dp .and. group%frequencies_hz(k) <= f_max_hz, &
-                'frequencies_hz', k, group%frequencies_hz(k), '0 < frequencies_hz <= 1/(20 dt_s) = '//fmt_real(f_max_hz))
+      f_hz = group%frequencies_hz(k)
+      call need(f_hz > 0.0_dp .and. f_hz <= f_max_hz, path, 'sweep', 'frequencies_hz('//itoa(k)//')', f_hz, &
+                '0 < frequencies_hz <= 1/(20 dt_s) = '//fmt_real(f_max_hz), status)
     end do
-    n_amp = list_length(status, path, group%amplitudes_m, 'amplitudes_m')
-    if (.not. status%ok) return
+    n_amp = group%n_amplitudes
     call this%check_amplitudes(group, path, n_amp, status)
     plan%frequencies_hz = group%frequencies_hz(1:n_freq)
     plan%n_freq = n_freq

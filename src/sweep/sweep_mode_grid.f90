@@ -6,7 +6,8 @@ module voussoir_sweep_mode_grid
   use voussoir_text, only: itoa, fmt_exact, fmt_exact_list
   use voussoir_config, only: config_t
   use voussoir_threshold_search, only: threshold_result_t, run_outcome_t
-  use voussoir_sweep_group, only: sweep_group_t, need
+  use voussoir_input_range, only: need_range
+  use voussoir_sweep_group, only: sweep_group_t
   use voussoir_sweep_table, only: sweep_table_t, named_values_t, named_text_t, name_len, table_init, table_set, &
                                   table_value
   use voussoir_sweep_mode, only: sweep_plan_t, job_param_set
@@ -48,8 +49,8 @@ contains
       return
     end if
     do k = 1, n_amp
-      call need(status, path, group%amplitudes_m(k) >= 0.0_dp .and. group%amplitudes_m(k) <= huge(1.0_dp), &
-                'amplitudes_m', k, group%amplitudes_m(k), '0 <= amplitudes_m (finite)')
+      call need_range('0 <= amplitudes_m (finite)', path, 'sweep', 'amplitudes_m('//itoa(k)//')', group%amplitudes_m(k), &
+                      status)
     end do
     this%amplitudes_m = group%amplitudes_m(1:n_amp)
   end subroutine check_amplitudes

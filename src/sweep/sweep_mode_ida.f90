@@ -8,7 +8,8 @@ module voussoir_sweep_mode_ida
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa, fmt_real, fmt_exact, fmt_exact_list, join_words
-  use voussoir_config, only: config_t
+  use voussoir_config, only: config_t, waveform_afd, waveform_accelerogram
+  use voussoir_input_range, only: need_range
   use voussoir_assembly, only: assembly_t
   use voussoir_model, only: model_t
   use voussoir_simulation, only: run_result_t
@@ -16,7 +17,7 @@ module voussoir_sweep_mode_ida
   use voussoir_threshold_search, only: threshold_search_t, threshold_result_t, run_outcome_t, threshold_init_onset
   use voussoir_threshold, only: search_run_config, static_capacity_m_s2
   use voussoir_sweep_ida, only: n_sampled, range_names, read_ida_records, sample_sets
-  use voussoir_sweep_group, only: sweep_group_t, need, list_length, lengths_text, unset_real, max_records
+  use voussoir_sweep_group, only: sweep_group_t, lengths_text, unset_real
   use voussoir_sweep_table, only: sweep_table_t, named_values_t, named_text_t, name_len, table_init, table_row, &
                                   table_set, table_append, table_value
   use voussoir_sweep_mode, only: sweep_mode_t, sweep_plan_t, job_param_set
@@ -68,19 +69,14 @@ contains
     character(len=*), intent(in) :: path
     type(sweep_plan_t), intent(inout) :: plan
     type(status_t), intent(inout) :: status
-    integer :: n
 
     call check_records_and_samples(this, group, base, path, plan, status)
     if (.not. status%ok) return
-    n = list_length(status, path, group%frequencies_hz, 'frequencies_hz')
-    if (.not. status%ok) return
-    if (n > 0) then
+    if (group%n_frequencies > 0) then
       call fail(status, path//": &sweep frequencies_hz is set but mode = 'ida' plays records: remove it")
       return
     end if
-    n = list_length(status, path, group%amplitudes_m, 'amplitudes_m')
-    if (.not. status%ok) return
-    if (n > 0) then
+    if (group%n_amplitudes > 0) then
       call fail(status, path//": &sweep amplitudes_m is set but mode = 'ida' searches the scale of each "// &
                 'record: remove it')
       return
@@ -106,19 +102,10 @@ contains
     type(status_t), intent(inout) :: status
     integer :: k, v, n_records
 
-    n_records = 0
-    do k = 1, max_records
-      if (len_trim(group%record_files(k)) == 0) exit
-      n_records = k
-    end do
+    n_records = group%n_records
     if (n_records == 0) then
       call fail(status, path//": &sweep record_files is not set: mode = 'ida' needs at least one record "// &
                 '(a PEER .AT2 file or a CSV with t_s, accel_m_s2)')
-      return
-    end if
-    if (any(len_trim(group%record_files(n_records + 1:)) > 0)) then
-      call fail(status, path//': &sweep record_files('//itoa(n_records + 1)//') is empty but a later entry '// &
-                'is set: give the list without gaps')
       return
     end if
     do k = 1, n_records
@@ -129,15 +116,13 @@ contains
       end if
     end do
     associate (g => group)
-      call need(status, path, g%scale_tol > 0.0_dp .and. g%scale_tol < 1.0_dp, 'scale_tol', 0, g%scale_tol, &
-                '0 < scale_tol < 1 (relative width of the final bracket)')
-      call need(status, path, g%scale_max > 0.0_dp .and. g%scale_max <= huge(1.0_dp), 'scale_max', 0, g%scale_max, &
-                'scale_max > 0')
-      call need(status, path, g%n_samples >= 0 .and. g%n_samples <= 100000, 'n_samples', 0, real(g%n_samples, dp), &
-                '0 <= n_samples <= 100000 (0: the parameter lists, or the base case)')
-      call need(status, path, g%sample_seed >= 0, 'sample_seed', 0, real(g%sample_seed, dp), 'sample_seed >= 0')
-      call need(status, path, g%dt_check_rows >= 0, 'dt_check_rows', 0, real(g%dt_check_rows, dp), &
-                'dt_check_rows >= 0')
+      call need_range('0 < scale_tol < 1 (relative width of the final bracket)', path, 'sweep', 'scale_tol', &
+                      g%scale_tol, status)
+      call need_range('scale_max > 0 (finite)', path, 'sweep', 'scale_max', g%scale_max, status)
+      call need_range('0 <= n_samples <= 100000 (0: the parameter lists, or the base case)', path, 'sweep', &
+                      'n_samples', g%n_samples, status)
+      call need_range('sample_seed >= 0', path, 'sweep', 'sample_seed', g%sample_seed, status)
+      call need_range('dt_check_rows >= 0', path, 'sweep', 'dt_check_rows', g%dt_check_rows, status)
       do v = 1, n_sampled
         if (count(g%ranges(:, v) /= unset_real) == 1) call fail(status, path//': &sweep '// &
           trim(range_names(v))//' needs two values, the low and the high bound')
@@ -148,7 +133,7 @@ contains
         itoa(g%n_samples)//' but no range to sample: give one or more of '//join_words(range_names, ', '))
     end associate
     if (.not. status%ok) return
-    if (base%motion%waveform /= 'afd' .and. base%motion%waveform /= 'accelerogram') then
+    if (base%motion%waveform /= waveform_afd .and. base%motion%waveform /= waveform_accelerogram) then
       call fail(status, path//": &motion waveform = '"//trim(base%motion%waveform)//"': mode = 'ida' "// &
                 'drives the table with each record of &sweep record_files; leave waveform unset')
       return
@@ -231,7 +216,7 @@ contains
     real(dp), intent(in) :: value
     type(config_t) :: cfg
     cfg = search_run_config(plan%set_cfg(job_param_set(plan, job)), 0.0_dp, value)
-    cfg%motion%waveform = 'accelerogram'
+    cfg%motion%waveform = waveform_accelerogram
     cfg%motion%record_file = plan%records%files(job_record(plan, job))
     cfg%motion%record_scale = value
     cfg%motion%amplitude_m = 0.0_dp

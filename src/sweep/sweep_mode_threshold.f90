@@ -7,7 +7,8 @@ module voussoir_sweep_mode_threshold
   use voussoir_text, only: itoa, fmt_real, fmt_exact, fmt_exact_list
   use voussoir_threshold_search, only: threshold_search_t, threshold_result_t, run_outcome_t
   use voussoir_threshold, only: threshold_init
-  use voussoir_sweep_group, only: sweep_group_t, need
+  use voussoir_input_range, only: need, need_range
+  use voussoir_sweep_group, only: sweep_group_t
   use voussoir_sweep_table, only: sweep_table_t, name_len, table_init, table_set, table_value
   use voussoir_sweep_mode, only: sweep_plan_t, job_param_set
   use voussoir_sweep_mode_afd, only: afd_mode_t
@@ -47,16 +48,12 @@ contains
     n_amp = 1
     associate (s => group%search)
       ! A search ends: at most about 60 halvings from amp_max_m down to amp_tol_m.
-      call need(status, path, s%amp_tol_m >= 1.0e-7_dp .and. s%amp_tol_m <= huge(1.0_dp), 'amp_tol_m', 0, &
-                s%amp_tol_m, '1e-7 m (0.1 micrometre) <= amp_tol_m (finite)')
-      call need(status, path, s%amp_max_m > s%amp_tol_m .and. s%amp_max_m <= 1.0e3_dp, 'amp_max_m', 0, s%amp_max_m, &
-                'amp_tol_m = '//fmt_real(s%amp_tol_m)//' < amp_max_m <= 1000 m')
-      call need(status, path, s%scan_step > 0.0_dp .and. s%scan_step <= 1.0_dp, 'scan_step', 0, s%scan_step, &
-                '0 < scan_step <= 1')
-      call need(status, path, s%refine_factor >= 2 .and. s%refine_factor <= 64, 'refine_factor', 0, &
-                real(s%refine_factor, dp), '2 <= refine_factor <= 64 (2: bisection)')
-      call need(status, path, s%n_confirm >= 0 .and. s%n_confirm <= 16, 'n_confirm', 0, real(s%n_confirm, dp), &
-                '0 <= n_confirm <= 16')
+      call need_range('1e-7 m (0.1 micrometre) <= amp_tol_m (finite)', path, 'sweep', 'amp_tol_m', s%amp_tol_m, status)
+      call need(s%amp_max_m > s%amp_tol_m .and. s%amp_max_m <= 1.0e3_dp, path, 'sweep', 'amp_max_m', s%amp_max_m, &
+                'amp_tol_m = '//fmt_real(s%amp_tol_m)//' < amp_max_m <= 1000 m', status)
+      call need_range('0 < scan_step <= 1', path, 'sweep', 'scan_step', s%scan_step, status)
+      call need_range('2 <= refine_factor <= 64 (2: bisection)', path, 'sweep', 'refine_factor', s%refine_factor, status)
+      call need_range('0 <= n_confirm <= 16', path, 'sweep', 'n_confirm', s%n_confirm, status)
     end associate
   end subroutine check_amplitudes
 

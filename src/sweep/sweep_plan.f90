@@ -1,15 +1,16 @@
 !> The sweep definition: the &sweep group read into a plan, its parameter sets and its
 !> mode (src/sweep/sweep_mode.f90; one file per mode, made by
 !> src/sweep/sweep_mode_factory.f90). What a job is: src/sweep/sweep_jobs.f90 and the
-!> mode. Reading the group itself: src/sweep/sweep_group.f90.
+!> mode. The group's table and its read: src/sweep/sweep_group.f90.
 module voussoir_sweep_plan
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
-  use voussoir_text, only: lower, itoa, int_list, fmt_exact_list
+  use voussoir_text, only: itoa, int_list, fmt_exact_list
+  use voussoir_input_range, only: need
   use voussoir_config, only: config_t, config_entry_t, config_entries, config_to_nml, validate_config, &
                              arch_rule, arch_rule_text
-  use voussoir_sweep_group, only: sweep_group_t, read_sweep_group, need, list_length, lengths_text, &
-                                  n_kinds, param_kinds, list_names
+  use voussoir_sweep_group, only: sweep_group_t, read_sweep_group, lengths_text, n_kinds, param_kinds, list_names, &
+                                  combine_paired
   use voussoir_sweep_mode, only: sweep_mode_t, sweep_plan_t, set_description
   use voussoir_sweep_mode_factory, only: make_sweep_mode, default_mode
   implicit none
@@ -28,9 +29,8 @@ contains
     type(config_t), intent(in) :: base
     type(sweep_plan_t), intent(out) :: plan
     type(status_t), intent(inout) :: status
-    type(sweep_group_t) :: group
+    type(sweep_group_t), target :: group
     class(sweep_mode_t), allocatable :: mode
-    integer :: lengths(n_kinds)
     logical :: drawn
 
     group%mode = default_mode
@@ -38,25 +38,17 @@ contains
     if (.not. status%ok) return
     call make_sweep_mode(path, group%mode, mode, status)
     if (.not. status%ok) return
-    plan%combine = lower(group%combine)
-    select case (plan%combine)
-    case ('product', 'paired')
-    case default
-      call fail(status, path//": &sweep combine = '"//trim(group%combine)//"' is not one of 'product', 'paired'")
-      return
-    end select
+    plan%combine = group%combine
     plan%pair_frequencies = group%pair_frequencies
     call mode%check_settings(group, base, path, plan, status)
-    call need(status, path, group%progress_every_s >= 0.0_dp, 'progress_every_s', 0, group%progress_every_s, &
-              'progress_every_s >= 0 (0: every result)')
     if (.not. status%ok) return
     plan%progress_every_s = group%progress_every_s
 
-    call check_lists(path, base, group, plan%combine, lengths, status)
+    call check_lists(path, base, group, plan%combine, status)
     if (.not. status%ok) return
-    call mode%draw_sets(group, base, path, lengths, plan, drawn, status)
+    call mode%draw_sets(group, base, path, group%lengths, plan, drawn, status)
     if (.not. status%ok) return
-    if (.not. drawn) call build_sets(path, base, group%lists, lengths, plan, status)
+    if (.not. drawn) call build_sets(path, base, group%lists, group%lengths, plan, status)
     if (.not. status%ok) return
     if (plan%pair_frequencies .and. plan%n_freq /= plan%n_sets) then
       call fail(status, path//': &sweep pair_frequencies = .true. needs one frequency per parameter set: '// &
@@ -68,40 +60,35 @@ contains
       return
     end if
     plan%n_jobs = plan%n_sets*plan%n_freq_per_set*plan%n_amp
-    call make_texts(mode, base, group%lists, lengths, plan)
+    call make_texts(mode, base, group%lists, group%lengths, plan)
     call move_alloc(mode, plan%mode)
   end subroutine read_sweep_plan
 
-  !> The swept lists: without gaps (`lengths`: entries of each), each entry in the range
-  !> &arch allows (what depends on other variables is checked on each set's whole case),
-  !> arch lists only for arches, equal lengths when paired.
-  subroutine check_lists(path, base, group, combine, lengths, status)
+  !> The swept lists (`group%lengths`: entries of each): each entry in the range &arch
+  !> allows (what depends on other variables is checked on each set's whole case), arch
+  !> lists only for arches, equal lengths when paired.
+  subroutine check_lists(path, base, group, combine, status)
     character(len=*), intent(in) :: path, combine
     type(config_t), intent(in) :: base
     type(sweep_group_t), intent(in) :: group
-    integer, intent(out) :: lengths(n_kinds)
     type(status_t), intent(inout) :: status
     integer :: j, k
-    do k = 1, n_kinds
-      lengths(k) = list_length(status, path, group%lists(:, k), trim(list_names(k)))
-    end do
-    if (.not. status%ok) return
     do j = 1, n_kinds
-      do k = 1, lengths(j)
-        call need(status, path, arch_rule(param_kinds(j), group%lists(k, j)), trim(list_names(j)), k, &
-                  group%lists(k, j), arch_rule_text(param_kinds(j)))
+      do k = 1, group%lengths(j)
+        call need(arch_rule(param_kinds(j), group%lists(k, j)), path, 'sweep', trim(list_names(j))//'('//itoa(k)// &
+                  ')', group%lists(k, j), arch_rule_text(param_kinds(j)), status)
       end do
     end do
     if (.not. status%ok) return
-    if (len_trim(base%arch%polygon_file) > 0 .and. any(lengths(1:3) > 0)) then
+    if (len_trim(base%arch%polygon_file) > 0 .and. any(group%lengths(1:3) > 0)) then
       call fail(status, path//': &sweep embrace_list_deg, n_voussoirs_list and thickness_list_m apply to '// &
                 'arches, but &arch polygon_file is set')
       return
     end if
-    if (combine == 'paired' .and. count(lengths > 0) > 1) then
-      if (any(lengths > 0 .and. lengths /= maxval(lengths))) then
-        call fail(status, path//": &sweep combine = 'paired' needs swept lists of equal length; they have "// &
-                  lengths_text(lengths))
+    if (combine == combine_paired .and. count(group%lengths > 0) > 1) then
+      if (any(group%lengths > 0 .and. group%lengths /= maxval(group%lengths))) then
+        call fail(status, path//": &sweep combine = '"//combine_paired//"' needs swept lists of equal length; "// &
+                  'they have '//lengths_text(group%lengths))
         return
       end if
     end if
@@ -123,7 +110,7 @@ contains
     plan%param_names = pack(param_kinds, lengths > 0)
     if (plan%n_params == 0) then
       plan%n_sets = 1
-    else if (plan%combine == 'paired') then
+    else if (plan%combine == combine_paired) then
       plan%n_sets = maxval(lengths)
     else
       plan%n_sets = product(pack(lengths, lengths > 0))
@@ -134,7 +121,7 @@ contains
       do j = n_kinds, 1, -1
         pick(j) = 0
         if (lengths(j) == 0) cycle
-        if (plan%combine == 'paired') then
+        if (plan%combine == combine_paired) then
           pick(j) = s + 1
         else
           pick(j) = modulo(rest, lengths(j)) + 1

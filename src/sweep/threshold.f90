@@ -5,7 +5,7 @@
 module voussoir_threshold
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
-  use voussoir_config, only: config_t, fmt_real
+  use voussoir_config, only: config_t, fmt_real, waveform_afd, springings_none
   use voussoir_assembly, only: assembly_t, build_arch, voussoir_angle_factors
   use voussoir_limit_analysis, only: limit_result_t, horizontal_capacity
   use voussoir_motion, only: motion_t, motion_afd, motion_eval, motion_duration_s
@@ -95,7 +95,7 @@ contains
     real(dp) :: lambda
 
     capacity = 0.0_dp
-    if (len_trim(cfg%arch%polygon_file) > 0 .or. cfg%arch%restrained_springings /= 'none') return
+    if (len_trim(cfg%arch%polygon_file) > 0 .or. cfg%arch%restrained_springings /= springings_none) return
     if (cfg%arch%n_voussoirs < 3) return
     call build_arch(cfg%arch%embrace_deg, cfg%arch%n_voussoirs, cfg%arch%r_ext_m, cfg%arch%thickness_m, arch, &
                     angle_factors=voussoir_angle_factors(cfg%arch%n_voussoirs, cfg%arch%size_imperfection, &
@@ -117,9 +117,9 @@ contains
 
     call check_threshold_settings(settings, status)
     if (.not. status%ok) return
-    if (cfg%motion%waveform /= 'afd') then
+    if (cfg%motion%waveform /= waveform_afd) then
       call fail(status, "threshold search: &motion waveform = '"//trim(cfg%motion%waveform)// &
-                "' has no amplitude to search; it must be 'afd'")
+                "' has no amplitude to search; it must be '"//waveform_afd//"'")
       return
     end if
     if (.not. (frequency_hz > 0.0_dp)) then
