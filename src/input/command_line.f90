@@ -14,7 +14,7 @@ contains
   !> were given. `exit_code` is -1 when the program should go on; else the program stops
   !> with it: `--help` prints `usage` and `about` (0); `--version` prints the code
   !> version (0); anything but one file name and those flags prints the usage on
-  !> standard error (2).
+  !> standard error (2), after naming the first unknown option or extra argument.
   subroutine input_argument(program, usage, about, path, exit_code, flags, given)
     character(len=*), intent(in) :: program, usage, about
     character(len=*), intent(out) :: path
@@ -22,12 +22,14 @@ contains
     character(len=*), intent(in), optional :: flags(:)
     logical, intent(out), optional :: given(:)
     character(len=1024) :: arg
+    character(len=:), allocatable :: why
     integer :: k, j
     logical :: bad
 
     path = ''
     exit_code = -1
     bad = .false.
+    why = ''
     if (present(given)) given = .false.
     do k = 1, command_argument_count()
       call get_command_argument(k, arg)
@@ -45,13 +47,19 @@ contains
       if (present(flags)) j = findloc(flags, trim(arg), dim=1)
       if (j > 0 .and. present(given)) then
         given(j) = .true.
-      else if (arg(1:1) == '-' .or. len_trim(path) > 0) then
+      else if (arg(1:1) == '-') then
+        if (.not. bad) why = program//": unknown option '"//trim(arg)//"'"
+        bad = .true.
+      else if (len_trim(path) > 0) then
+        if (.not. bad) why = program//": one input file only: '"//trim(arg)//"' is a second one"
         bad = .true.
       else
         path = arg
       end if
     end do
     if (bad .or. len_trim(path) == 0) then
+      if (len_trim(path) == 0 .and. .not. bad) why = program//': no input file named'
+      write (error_unit, '(a)') why
       write (error_unit, '(a)') 'usage: '//usage//'   (--help for more)'
       exit_code = 2
     end if
