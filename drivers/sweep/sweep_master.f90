@@ -67,7 +67,7 @@ module voussoir_sweep_master
   end type master_t
 
   interface
-    !> A progress line every `progress_every_s` (and the last one): jobs and runs done,
+    !> A progress line every `progress_every_s` (0: none) and the last one: jobs and runs done,
     !> elapsed time, and the time left (drivers/sweep/sweep_master_report.f90).
     module subroutine report(plan, m, n_ranks, final)
       type(sweep_plan_t), intent(in) :: plan

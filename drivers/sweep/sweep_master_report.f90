@@ -4,8 +4,8 @@ submodule (voussoir_sweep_master) voussoir_sweep_master_report
 
 contains
 
-  !> A progress line every `progress_every_s` (and the last one): jobs and runs done,
-  !> elapsed time, and the time left estimated from the cost of the runs still to come.
+  !> A progress line every `progress_every_s` (0: none) and the last one: jobs and runs
+  !> done, elapsed time, and the time left estimated from the cost of the runs still to come.
   module subroutine report(plan, m, n_ranks, final)
     type(sweep_plan_t), intent(in) :: plan
     type(master_t), intent(inout) :: m
@@ -16,7 +16,8 @@ contains
     character(len=:), allocatable :: runs
     character(len=32) :: eta
     now_s = wall_s()
-    if (.not. final .and. now_s - m%last_report_s < plan%progress_every_s) return
+    if (.not. final .and. (plan%progress_every_s == 0.0_dp .or. now_s - m%last_report_s < plan%progress_every_s)) &
+      return
     m%last_report_s = now_s
     elapsed_s = now_s - m%t0_s
     if (final) then

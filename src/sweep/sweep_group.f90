@@ -75,7 +75,7 @@ contains
     call g%add('scan_step', s%search%scan_step)
     call g%add('refine_factor', s%search%refine_factor)
     call g%add('n_confirm', s%search%n_confirm)
-    call g%add('progress_every_s', s%progress_every_s, unit='s', range='progress_every_s >= 0 (0: every result)')
+    call g%add('progress_every_s', s%progress_every_s, unit='s', range='progress_every_s >= 0 (0: no progress lines)')
     call g%add(trim(list_names(1)), s%lists(:, 1), unset=unset_real, unit='deg')
     call g%add(trim(list_names(2)), s%n_voussoirs_list, unset=unset_int)
     call g%add(trim(list_names(3)), s%lists(:, 3), unset=unset_real, unit='m')

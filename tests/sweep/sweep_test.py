@@ -244,6 +244,12 @@ def case_grid(r, work):
     lines = open("grid_1.csv").read().splitlines()
     check(lines[0] == "param_set,friction,frequency_hz,amplitude_m,outcome,collapse_time_s,"
           "peak_crown_disp_m,mean_iterations" and len(lines) == 13, "grid CSV: header and 12 rows")
+    # progress_every_s = 0: no progress lines, the final one only (docs/sweep.md).
+    write_nml("grid_quiet.nml", "grid_quiet.h5", GRID_SWEEP.replace("/\n", "  progress_every_s = 0\n/\n"))
+    rc, out = r.sweep_run(1, "grid_quiet.nml")
+    progress = [line for line in out.splitlines() if ", ETA " in line]
+    check(rc == 0 and not progress and "voussoir-sweep: done: 12 jobs" in out,
+          f"grid: progress_every_s = 0 prints no progress line ({len(progress)} printed)")
 
 
 def descendants(pid):
