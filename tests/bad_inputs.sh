@@ -127,6 +127,22 @@ $o"
 case_ alert_inf         "&solver alert_m = Infinity is not a finite number" "&solver alert_m = Inf /
 $o"
 case_ stop_nan          "&output stop_after_collapse_s = NaN is not a finite number" "&output file = 'out.h5', stop_after_collapse_s = NaN /"
+# Absurd values refused up front with their range (issue 26), not in the solver.
+case_ ring_thin         "&arch thickness_m = 1.00000E-009 is outside the allowed range r_ext_m/1000 = 5.080E-4 m <= thickness_m < r_ext_m = 0.508" "&arch thickness_m = 1e-9 /
+$o"
+case_ amplitude_huge    "&motion amplitude_m = 1.00000E\+300 is outside the allowed range 0 <= amplitude_m <= 1000 g/\(table_gain \(2 pi frequency_hz\)\^2\) = 159 m" "&motion amplitude_m = 1e300 /
+$o"
+printf 't_s,table_x_m\n0,0\n0.01,1e300\n0.02,0\n0.03,0\n' > record_far.csv
+printf 't_s,table_x_m\n0,0\n0.01,1\n0.02,0\n0.03,0\n0.04,0\n' > record_jerk.csv
+printf 't_s,accel_m_s2\n0,0\n0.01,1e300\n0.02,0\n' > accel_huge.csv
+case_ record_far        "record_file = '.*record_far.csv': its table_x_m \(peak .* m from the first sample\) is outside the allowed range \|table_x_m\| <= 1000 m" "&motion waveform = 'record', record_file = 'record_far.csv' /
+$o"
+case_ record_jerk       "record_file = '.*record_jerk.csv': its table acceleration \(peak 20000 m/s2\) is outside the allowed range \|acceleration\| <= 1000 g" "&motion waveform = 'record', record_file = 'record_jerk.csv', record_cutoff_hz = 0 /
+$o"
+case_ accel_huge        "record_file = '.*accel_huge.csv': its table acceleration \(peak 1.000E\+300 m/s2\) is outside the allowed range \|acceleration\| <= 1000 g" "&motion waveform = 'accelerogram', record_file = 'accel_huge.csv' /
+$o"
+case_ accel_scale_huge  "its table acceleration \(peak .* m/s2\) is outside the allowed range \|acceleration\| <= 1000 g.*record_scale" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', record_scale = 1e6 /
+$o"
 case_ frequency_high    "frequency_hz = 1000000 .*frequency_hz <= 1/\(20 dt_s\) = 50" "&motion frequency_hz = 1e6 /
 $o"
 case_ dt_vs_frequency   "frequency_hz = 1.25 .*1/\(20 dt_s\) = 0.5" "&motion frequency_hz = 1.25 /

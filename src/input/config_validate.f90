@@ -1,10 +1,17 @@
 !> The checks of every &arch, &motion, &solver and &output value (voussoir_config's
 !> validate_config), apart from the reading.
 submodule (voussoir_config) voussoir_config_validate
-  use voussoir_kinds, only: pi
+  use voussoir_kinds, only: pi, g_m_s2
   use voussoir_text, only: fmt_significant
   use voussoir_input_range, only: need
   implicit none
+
+  !> The largest table acceleration of any motion, in g: not physics but a bound on
+  !> typos. Shake tables and recorded earthquakes stay below a few g, and the sweeps'
+  !> searches stop far below (amp_max_m = 0.5 m is 1000 g only at 22 Hz); 1e300 m ended
+  !> in "NaN in the contact solve at step 1".
+  real(dp), parameter :: max_table_accel_g = 1000.0_dp
+  real(dp), parameter :: min_ring_ratio = 1000.0_dp  !! r_ext_m / thickness_m at most
 
 contains
 
@@ -32,6 +39,12 @@ contains
       if (m%waveform == waveform_afd .and. s%dt_s > 0.0_dp) &
         call need(m%frequency_hz <= 1.0_dp/(20.0_dp*s%dt_s), f, 'motion', 'frequency_hz', m%frequency_hz, &
                   '0 < frequency_hz <= 1/(20 dt_s) = '//fmt_real(1.0_dp/(20.0_dp*s%dt_s)), status)
+      if (m%waveform == waveform_afd) &
+        call need(m%amplitude_m*m%table_gain*(2.0_dp*pi*m%frequency_hz)**2 <= max_table_accel_g*g_m_s2, &
+                  f, 'motion', 'amplitude_m', m%amplitude_m, '0 <= amplitude_m <= 1000 g/(table_gain (2 pi '// &
+                  'frequency_hz)^2) = '//fmt_significant(max_table_accel_g*g_m_s2/(m%table_gain* &
+                  (2.0_dp*pi*m%frequency_hz)**2), 4)//' m (a full-cycle table acceleration A (2 pi f)^2 of at '// &
+                  'most 1000 g)', status)
     end associate
     if (.not. status%ok) return
     call check_output_file(cfg%output%file, f, status)
@@ -80,6 +93,12 @@ contains
         call g%check(f, status, when=arch_builder)
         call need(a%thickness_m > 0.0_dp .and. a%thickness_m < a%r_ext_m, &
           f, 'arch', 'thickness_m', a%thickness_m, '0 < thickness_m < r_ext_m = '//fmt_real(a%r_ext_m), status)
+        ! A ring thinner than a thousandth of its radius is no masonry arch (the thinnest
+        ! that stand are some hundredths of it), and its voussoirs are slivers whose area
+        ! the geometry cannot resolve (1e-9 m ended in "zero or negative area").
+        call need(a%thickness_m >= a%r_ext_m/min_ring_ratio, f, 'arch', 'thickness_m', a%thickness_m, &
+          'r_ext_m/1000 = '//fmt_significant(a%r_ext_m/min_ring_ratio, 4)//' m <= thickness_m < r_ext_m = '// &
+          fmt_real(a%r_ext_m)//' (a ring at least a thousandth of its radius thick)', status)
         if (.not. status%ok) return
         call check_voussoir_length(a, f, status)
         if (.not. status%ok) return

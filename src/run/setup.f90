@@ -1,6 +1,6 @@
 !> From a validated configuration to a model ready to run.
 module voussoir_setup
-  use voussoir_kinds, only: dp
+  use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: fmt_significant, itoa
   use voussoir_config, only: config_t, waveform_afd, waveform_ramp, waveform_record, waveform_accelerogram, &
@@ -13,7 +13,7 @@ module voussoir_setup
   use voussoir_model, only: model_t, solver_settings_t
   use voussoir_coarse, only: coarse_init
   use voussoir_contact_law, only: contact_law_t, contact_law_init
-  use voussoir_motion, only: motion_afd, motion_ramp, motion_record, motion_accelerogram, motion_duration_s
+  use voussoir_motion, only: motion_t, motion_afd, motion_ramp, motion_record, motion_accelerogram, motion_duration_s
   use voussoir_ground_record, only: ground_record_t, read_ground_record
   use voussoir_monitors, only: monitor_t, monitor_init
   use voussoir_simulation, only: run_result_t, simulate
@@ -102,7 +102,7 @@ contains
         call fail(status, trim(cfg%source_file)//': nothing to simulate: set &motion rest_s or duration_s > 0')
         return
       end if
-      call check_work(cfg, duration_s, assembly%n_bodies, status)
+      call check_work(cfg, duration_s, assembly%n_bodies, model%motion, status)
       if (.not. status%ok) return
     end associate
     ! Monitors left automatic (0) follow the size of the blocks: the ring's thickness, or
@@ -123,16 +123,20 @@ contains
   end subroutine build_model
 
   !> Refuse a run whose step count or stored record is out of reach, before it starts:
-  !> at most `max_steps` steps, and at most `max_record_bytes` of samples in memory.
-  subroutine check_work(cfg, duration_s, n_bodies, status)
+  !> at most `max_steps` steps, and at most `max_record_bytes` of samples in memory; and
+  !> a record (or accelerogram) of absurd motion.
+  subroutine check_work(cfg, duration_s, n_bodies, motion, status)
     type(config_t), intent(in) :: cfg
     real(dp), intent(in) :: duration_s
     integer, intent(in) :: n_bodies
+    type(motion_t), intent(in) :: motion
     type(status_t), intent(inout) :: status
     real(dp), parameter :: max_steps = 1.0e8_dp, max_record_bytes = 4.0e9_dp
     real(dp) :: steps, bytes
     character(len=:), allocatable :: f
     f = trim(cfg%source_file)
+    call check_record(cfg, motion, status)
+    if (.not. status%ok) return
     steps = duration_s/cfg%solver%dt_s
     if (.not. (steps <= max_steps)) then
       call fail(status, f//': the run would take '//fmt_significant(steps, 3)//' steps (simulated time '// &
@@ -147,6 +151,34 @@ contains
                 fmt_significant(steps, 3)//' steps, '//itoa(n_bodies)//' bodies, &output every = '//itoa(cfg%output%every)// &
                 '): more than 4 GB; raise &output every or dt_s')
   end subroutine check_work
+
+  !> A record's table acceleration (record: the second derivative of its filtered
+  !> table_x_m; accelerogram: record_scale times its samples) is at most 1000 g, as the
+  !> afd amplitude is (config_validate.f90: a bound on typos and wrong units, far above
+  !> any shake table or earthquake), and a record's table_x_m at most 1000 m (the extent
+  !> of any assembly). An absurd record ended in "NaN in the contact solve at step 1".
+  subroutine check_record(cfg, motion, status)
+    type(config_t), intent(in) :: cfg
+    type(motion_t), intent(in) :: motion
+    type(status_t), intent(inout) :: status
+    real(dp), parameter :: max_accel_g = 1000.0_dp, max_x_m = 1000.0_dp
+    character(len=:), allocatable :: what, source
+    if (cfg%motion%waveform /= waveform_record .and. cfg%motion%waveform /= waveform_accelerogram) return
+    source = 'record_scale times the samples'
+    if (cfg%motion%waveform == waveform_record) source = 'the filtered table_x_m, twice derived'
+    what = trim(cfg%source_file)//": &motion record_file = '"//trim(cfg%motion%record_file)//"': "
+    if (cfg%motion%waveform == waveform_record) then
+      if (.not. all(abs(motion%x_m) <= max_x_m)) then
+        call fail(status, what//'its table_x_m (peak '//fmt_significant(maxval(abs(motion%x_m)), 4)// &
+                  ' m from the first sample) is outside the allowed range |table_x_m| <= 1000 m')
+        return
+      end if
+    end if
+    if (.not. all(abs(motion%a_m_s2) <= max_accel_g*g_m_s2)) &
+      call fail(status, what//'its table acceleration (peak '//fmt_significant(maxval(abs(motion%a_m_s2)), 4)// &
+                ' m/s2) is outside the allowed range |acceleration| <= 1000 g = '// &
+                fmt_significant(max_accel_g*g_m_s2, 5)//' m/s2 ('//source//'; check the units)')
+  end subroutine check_record
 
   !> A model of `assembly` at rest with the given solver settings and contact law and no
   !> table motion (set `model%motion` afterwards); an alert distance of 0 is made automatic.
