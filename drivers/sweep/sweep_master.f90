@@ -18,7 +18,7 @@ module voussoir_sweep_master
   use voussoir_status, only: status_t, fail
   use voussoir_version, only: code_version
   use voussoir_config, only: config_t
-  use voussoir_text, only: fmt_fixed, itoa, join_words
+  use voussoir_text, only: fmt_fixed, fmt_significant, itoa, join_words
   use voussoir_threshold_search, only: threshold_search_t, threshold_result_t, run_outcome_t, &
                                        threshold_next, threshold_record, threshold_result, threshold_done
   use voussoir_sweep_table, only: sweep_table_t, table_append, table_value, table_sort, table_row, table_set
@@ -75,6 +75,11 @@ module voussoir_sweep_master
       integer, intent(in) :: n_ranks
       logical, intent(in) :: final
     end subroutine report
+    !> The plan's cost before it starts (drivers/sweep/sweep_master_report.f90).
+    module subroutine estimate(plan, n_ranks)
+      type(sweep_plan_t), intent(in) :: plan
+      integer, intent(in) :: n_ranks
+    end subroutine estimate
     !> The table of results at the end of a sweep (drivers/sweep/sweep_master_report.f90).
     module subroutine summary(plan, m)
       type(sweep_plan_t), intent(in) :: plan
@@ -271,6 +276,7 @@ contains
     type(master_t), intent(in) :: m
     write (output_unit, '(a)') 'voussoir-sweep: '//trim(plan%mode%name)//' sweep of '//itoa(plan%n_jobs)// &
       ' jobs ('//plan%mode%jobs_text(plan)//') on '//itoa(net%size)//' ranks -> '//m%path
+    call estimate(plan, net%size)
     if (m%n_done > 0 .or. m%n_runs_resumed > 0) write (output_unit, '(a)') 'voussoir-sweep: resuming '// &
       m%path//': '//itoa(m%n_done)//' of '//itoa(plan%n_jobs)//' jobs done, '//itoa(m%n_runs_resumed)// &
       ' runs kept'

@@ -54,13 +54,7 @@ contains
     eta = '?'
     if (m%cost_done > 0.0_dp) then
       eta_s = elapsed_s*left/m%cost_done
-      if (eta_s < 120.0_dp) then
-        eta = itoa(nint(eta_s))//' s'
-      else if (eta_s < 7200.0_dp) then
-        eta = itoa(nint(eta_s/60.0_dp))//' min'
-      else
-        eta = fmt_fixed(eta_s/3600.0_dp, 1)//' h'
-      end if
+      eta = time_text(eta_s)
     end if
     ! Runs done / total (a threshold search's total is an estimate until it ends).
     done_runs = m%n_runs + m%n_runs_resumed
@@ -73,6 +67,37 @@ contains
     write (output_unit, '(a)') 'voussoir-sweep: '//runs//', elapsed '//fmt_fixed(elapsed_s, 1)//' s, ETA '//trim(eta)
     flush (output_unit)
   end subroutine report
+
+  !> The plan's cost before it starts (issue 26): jobs, runs, simulated seconds and a
+  !> rough wall time at `step_block_s` per step and block on `n_ranks` ranks (rank 0
+  !> computes too).
+  module subroutine estimate(plan, n_ranks)
+    type(sweep_plan_t), intent(in) :: plan
+    integer, intent(in) :: n_ranks
+    !> Wall time of one step of one block: what the seed's grid sweeps took (3 to 5 us).
+    real(dp), parameter :: step_block_s = 4.0e-6_dp
+    character(len=:), allocatable :: about
+    about = ''
+    if (plan%mode%has_search()) about = 'about '
+    write (output_unit, '(a)') 'voussoir-sweep: estimate: '//itoa(plan%n_jobs)//' jobs, '//about// &
+      itoa(nint(plan%est_runs))//' runs, '//fmt_significant(plan%est_simulated_s, 3)//' s simulated, roughly '// &
+      time_text(plan%est_step_blocks*step_block_s/n_ranks)//' of wall time on '//itoa(n_ranks)// &
+      ' ranks (at 4 us per step and block; iterations and early collapses change it several-fold)'
+    flush (output_unit)
+  end subroutine estimate
+
+  !> A duration in words: seconds, minutes or hours.
+  function time_text(seconds) result(text)
+    real(dp), intent(in) :: seconds
+    character(len=:), allocatable :: text
+    if (seconds < 120.0_dp) then
+      text = itoa(nint(seconds))//' s'
+    else if (seconds < 7200.0_dp) then
+      text = itoa(nint(seconds/60.0_dp))//' min'
+    else
+      text = fmt_fixed(seconds/3600.0_dp, 1)//' h'
+    end if
+  end function time_text
 
   !> The results of a short sweep, for the log: a line per row in the words of the mode
   !> (none for a grid), its parameter set beside it.

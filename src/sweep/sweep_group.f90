@@ -41,6 +41,7 @@ module voussoir_sweep_group
     real(dp) :: amplitudes_m(max_list) = unset_real
     type(threshold_settings_t) :: search            !! amp_tol_m, amp_max_m, scan_step, refine_factor, n_confirm
     real(dp) :: progress_every_s = 10.0_dp
+    integer :: max_runs = 100000                    !! the plan's runs at most (a search counted at its typical runs)
     real(dp) :: lists(max_list, n_kinds) = unset_real   !! the swept lists, in the order of param_kinds
     integer :: n_voussoirs_list(max_list) = unset_int   !! as read; lists(:, 2) holds it as reals
     character(len=record_len) :: record_files(max_records) = ''
@@ -76,6 +77,7 @@ contains
     call g%add('refine_factor', s%search%refine_factor)
     call g%add('n_confirm', s%search%n_confirm)
     call g%add('progress_every_s', s%progress_every_s, unit='s', range='progress_every_s >= 0 (0: no progress lines)')
+    call g%add('max_runs', s%max_runs, range='max_runs >= 1')
     call g%add(trim(list_names(1)), s%lists(:, 1), unset=unset_real, unit='deg')
     call g%add(trim(list_names(2)), s%n_voussoirs_list, unset=unset_int)
     call g%add(trim(list_names(3)), s%lists(:, 3), unset=unset_real, unit='m')

@@ -62,6 +62,9 @@ module voussoir_sweep_mode
     type(threshold_settings_t) :: search          !! threshold and ida modes (ida: over the scale)
     type(ida_records_t) :: records                !! ida mode
     real(dp) :: progress_every_s = 10.0_dp        !! seconds between progress lines
+    !> The plan's cost, estimated before it starts (sweep_plan.f90): runs (a search counted
+    !> at its typical runs), simulated seconds, and steps x blocks summed over the runs.
+    real(dp) :: est_runs = 0.0_dp, est_simulated_s = 0.0_dp, est_step_blocks = 0.0_dp
     integer :: n_params = 0, n_sets = 1, n_freq = 0, n_amp = 1, n_jobs = 0
     integer :: n_freq_per_set = 0                 !! n_freq, or 1 with pair_frequencies; ida: the records
     character(len=24), allocatable :: param_names(:)

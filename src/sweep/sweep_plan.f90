@@ -11,7 +11,7 @@ module voussoir_sweep_plan
                              arch_rule, arch_rule_text
   use voussoir_sweep_group, only: sweep_group_t, read_sweep_group, lengths_text, n_kinds, param_kinds, list_names, &
                                   combine_paired
-  use voussoir_sweep_mode, only: sweep_mode_t, sweep_plan_t, set_description
+  use voussoir_sweep_mode, only: sweep_mode_t, sweep_plan_t, set_description, job_param_set
   use voussoir_sweep_mode_factory, only: make_sweep_mode, default_mode
   implicit none
   private
@@ -19,6 +19,9 @@ module voussoir_sweep_plan
   public :: sweep_plan_t, read_sweep_plan, set_description
 
   real(dp), parameter :: max_jobs = 1.0e7_dp
+  !> Runs a threshold or ida search typically takes (the scan up, the refinement, the
+  !> confirmations: 8 to 16 in the sweeps of docs/sweep.md); the master's first guess too.
+  real(dp), parameter :: typical_search_runs = 12.0_dp
   character(len=*), parameter :: nl = achar(10)
 
 contains
@@ -62,7 +65,45 @@ contains
     plan%n_jobs = plan%n_sets*plan%n_freq_per_set*plan%n_amp
     call make_texts(mode, base, group%lists, group%lengths, plan)
     call move_alloc(mode, plan%mode)
+    call estimate_cost(path, group%max_runs, plan, status)
   end subroutine read_sweep_plan
+
+  !> The plan's cost (its runs, simulated seconds and steps x blocks; voussoir-sweep
+  !> prints them before it starts), and the cap on its runs, &sweep max_runs: a grid job
+  !> is one run, a search is counted at `typical_search_runs`.
+  subroutine estimate_cost(path, max_runs, plan, status)
+    character(len=*), intent(in) :: path
+    integer, intent(in) :: max_runs
+    type(sweep_plan_t), intent(inout) :: plan
+    type(status_t), intent(inout) :: status
+    real(dp) :: per_job, cost
+    integer :: job
+    character(len=:), allocatable :: counted, about
+    per_job = 1.0_dp
+    counted = ''
+    about = ''
+    if (plan%mode%has_search()) then
+      per_job = typical_search_runs
+      counted = ': searches of about '//itoa(nint(typical_search_runs))//' runs each'
+      about = 'about '
+    end if
+    plan%est_runs = per_job*plan%n_jobs
+    if (plan%est_runs > max_runs) then
+      call fail(status, path//': the sweep would take '//about// &
+                itoa(nint(plan%est_runs))//' runs ('//itoa(plan%n_jobs)//' jobs'//counted//'): more than '// &
+                '&sweep max_runs = '//itoa(max_runs)//'; split the sweep or raise max_runs')
+      return
+    end if
+    plan%est_simulated_s = 0.0_dp
+    plan%est_step_blocks = 0.0_dp
+    do job = 0, plan%n_jobs - 1
+      cost = plan%mode%cost(plan, job)   ! steps x bodies; bodies = n_voussoirs + 2 (the mode's cost)
+      plan%est_step_blocks = plan%est_step_blocks + per_job*cost
+      associate (c => plan%set_cfg(job_param_set(plan, job)))
+        plan%est_simulated_s = plan%est_simulated_s + per_job*cost*c%solver%dt_s/(c%arch%n_voussoirs + 2)
+      end associate
+    end do
+  end subroutine estimate_cost
 
   !> The swept lists (`group%lengths`: entries of each): each entry in the range &arch
   !> allows (what depends on other variables is checked on each set's whole case), arch

@@ -250,6 +250,10 @@ def case_grid(r, work):
     progress = [line for line in out.splitlines() if ", ETA " in line]
     check(rc == 0 and not progress and "voussoir-sweep: done: 12 jobs" in out,
           f"grid: progress_every_s = 0 prints no progress line ({len(progress)} printed)")
+    # The plan's cost, up front (issue 26): 12 runs of 3/f + 1 s.
+    check(re.search(r"^voussoir-sweep: estimate: 12 jobs, 12 runs, 28\.\d* s simulated, roughly \d+ s of wall time "
+                    r"on 1 ranks \(at 4 us per step and block", out, re.M) is not None,
+          f"grid: the estimate is printed before the runs ({out.splitlines()[1:2]})")
 
 
 def descendants(pid):
@@ -425,6 +429,10 @@ BAD = [
     ("range_long", "&sweep frequencies_hz = 1, friction_range = 0.1, 0.2, 0.3 /", r"&sweep friction_range has 3 values; at most 2"),
     ("waveform", "&motion waveform = 'ramp', duration_s = 1 /\n&sweep frequencies_hz = 1 /", r"waveform = 'ramp': a sweep sets the frequency and amplitude of the 'afd' waveform"),
     ("group", "&geometry r = 1 /\n&sweep frequencies_hz = 1 /", r"unknown namelist group &geometry"),
+    ("max_runs", "&sweep frequencies_hz = 1, 2, max_runs = 20 /", r"the sweep would take about 24 runs \(2 jobs: searches of about 12 runs each\): more than &sweep max_runs = 20"),
+    ("max_runs_grid", "&sweep mode = 'grid', frequencies_hz = " + ", ".join(f"{1 + 0.01 * k:.2f}" for k in range(256)) + ", amplitudes_m = " + ", ".join(f"{0.001 * (k + 1):.3f}" for k in range(256)) + ", friction_list = 0.5, 0.6 /", r"the sweep would take 131072 runs \(131072 jobs\): more than &sweep max_runs = 100000"),
+    ("max_runs_zero", "&sweep frequencies_hz = 1, max_runs = 0 /", r"max_runs = 0 is outside the allowed range max_runs >= 1"),
+    ("progress_neg", "&sweep frequencies_hz = 1, progress_every_s = -1 /", r"progress_every_s = -1 is outside the allowed range progress_every_s >= 0 \(0: no progress lines\)"),
 ]
 
 
