@@ -9,9 +9,8 @@ module voussoir_limit_study
   use voussoir_namelist_group, only: nml_group_t
   use voussoir_input_range, only: need
   use voussoir_text, only: itoa, fmt_significant
-  use voussoir_assembly, only: assembly_t, build_arch, voussoir_angle_factors
-  use voussoir_wall, only: build_wall
-  use voussoir_polygon_file, only: read_polygon_file
+  use voussoir_assembly, only: assembly_t
+  use voussoir_config_assembly, only: build_config_assembly
   use voussoir_limit_lp_study, only: lp_study_t, lp_study
   use voussoir_limit_analysis, only: limit_result_t, horizontal_capacity
   use voussoir_minimum_thickness, only: thickness_search => minimum_thickness
@@ -97,8 +96,7 @@ contains
                   '(an arch of 3 voussoirs stands at vanishing thickness); set &limit minimum_thickness = .false.')
       end if
       if (.not. status%ok) return
-      call build_arch(a%embrace_deg, a%n_voussoirs, a%r_ext_m, a%thickness_m, arch, &
-                      angle_factors=voussoir_angle_factors(a%n_voussoirs, a%size_imperfection, a%imperfection_seed))
+      call build_config_assembly(cfg, arch, status)
       call horizontal_capacity(arch, opts%inset_m, a%friction, res, status)
       if (status%ok .and. opts%minimum_thickness) then
         call thickness_search(a%embrace_deg, a%n_voussoirs, a%r_ext_m, opts%inset_m, tmin%ratio_ext, &
@@ -126,16 +124,9 @@ contains
     type(assembly_t), intent(out) :: asm
     type(lp_study_t), intent(out) :: lp
     type(status_t), intent(inout) :: status
+    call build_config_assembly(cfg, asm, status)
+    if (.not. status%ok) return
     associate (a => cfg%arch)
-      if (cfg%wall%courses > 0) then
-        call build_wall(cfg%wall, asm)
-      else
-        call read_polygon_file(trim(a%polygon_file), asm, status)
-        if (.not. status%ok) then
-          status%message = '&arch polygon_file: '//trim(status%message)
-          return
-        end if
-      end if
       call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status)
       if (.not. status%ok) status%message = 'limit analysis by linear programming: '//trim(status%message)
     end associate
