@@ -140,10 +140,18 @@ contains
       call fail(status, 'the dead load alone brings the assembly down: no equilibrium without tension '// &
                 'and within friction carries the weights (the linear programme is infeasible)')
     case (lp_unbounded)
-      if (ray > 0 .and. ray < n_cols) res%unbounded_body = faces%body(2, (ray + 2)/3)
-      call fail(status, 'no mechanism opens under the live load: lambda grows without bound '// &
-                '(the linear programme is unbounded'//trim(merge(': see block '//itoa(res%unbounded_body)//')', &
-                ')                                 ', res%unbounded_body > 0)))
+      ! The free block of the interface whose force grows along GLPK's unbounded ray.
+      if (ray > 0 .and. ray < n_cols) then
+        k = (ray + 2)/3
+        res%unbounded_body = merge(faces%body(2, k), faces%body(1, k), asm%driven(faces%body(1, k)))
+      end if
+      if (res%unbounded_body > 0) then
+        call fail(status, 'no mechanism opens under the live load: lambda grows without bound (the linear '// &
+                  'programme is unbounded); block '//itoa(res%unbounded_body)//' is held against the load')
+      else
+        call fail(status, 'no mechanism opens under the live load: lambda grows without bound (the linear '// &
+                  'programme is unbounded)')
+      end if
     case default
       call fail(status, 'GLPK failed to solve the linear programme of the limit analysis')
     end select

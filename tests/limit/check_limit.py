@@ -230,7 +230,7 @@ elif case == "bad_inputs":
         ("restrained", "restrained_springings = 'left'.*restraint", "&arch restrained_springings = 'left' /\n"),
         ("polygon_overhang", "dead load alone brings the assembly down",
          "&arch polygon_file = 'overhang.txt' /\n"),
-        ("polygon_against_wall", "unbounded.*block", "&arch polygon_file = 'against_wall.txt' /\n"),
+        ("polygon_against_wall", "unbounded.*block 1 is held against the load", "&arch polygon_file = 'against_wall.txt' /\n"),
         ("polygon_floating", "block 2 touches no other block", "&arch polygon_file = 'floating.txt' /\n"),
         ("polygon_no_support", "no block is driven", "&arch polygon_file = 'no_support.txt' /\n"),
         ("unknown_group", "unknown namelist group &limits", "&arch /\n&limits /\n"),
