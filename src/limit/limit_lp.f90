@@ -140,18 +140,7 @@ contains
       call fail(status, 'the dead load alone brings the assembly down: no equilibrium without tension '// &
                 'and within friction carries the weights (the linear programme is infeasible)')
     case (lp_unbounded)
-      ! The free block of the interface whose force grows along GLPK's unbounded ray.
-      if (ray > 0 .and. ray < n_cols) then
-        k = (ray + 2)/3
-        res%unbounded_body = merge(faces%body(2, k), faces%body(1, k), asm%driven(faces%body(1, k)))
-      end if
-      if (res%unbounded_body > 0) then
-        call fail(status, 'no mechanism opens under the live load: lambda grows without bound (the linear '// &
-                  'programme is unbounded); block '//itoa(res%unbounded_body)//' is held against the load')
-      else
-        call fail(status, 'no mechanism opens under the live load: lambda grows without bound (the linear '// &
-                  'programme is unbounded)')
-      end if
+      call refuse_unbounded(asm, faces, ray, n_cols, res, status)
     case default
       call fail(status, 'GLPK failed to solve the linear programme of the limit analysis')
     end select
@@ -211,6 +200,26 @@ contains
     end do
     steps = max_steps
   end subroutine nonassociative_capacity
+
+  !> The refusal of an unbounded problem, naming the free block of the interface whose
+  !> force grows along GLPK's unbounded ray (column `ray`) where there is one.
+  pure subroutine refuse_unbounded(asm, faces, ray, n_cols, res, status)
+    type(assembly_t), intent(in) :: asm
+    type(interface_set_t), intent(in) :: faces
+    integer, intent(in) :: ray, n_cols
+    type(lp_result_t), intent(inout) :: res
+    type(status_t), intent(inout) :: status
+    character(len=*), parameter :: what = 'no mechanism opens under the live load: lambda grows without bound '// &
+                                          '(the linear programme is unbounded)'
+    integer :: k
+    if (ray > 0 .and. ray < n_cols) then
+      k = (ray + 2)/3
+      res%unbounded_body = merge(faces%body(2, k), faces%body(1, k), asm%driven(faces%body(1, k)))
+      call fail(status, what//'; block '//itoa(res%unbounded_body)//' is held against the load')
+    else
+      call fail(status, what)
+    end if
+  end subroutine refuse_unbounded
 
   !> The equilibrium coefficients of the columns N1, N2, S of interface k: on body(2) the
   !> force itself, on body(1) its opposite; moments about each block's centroid.
