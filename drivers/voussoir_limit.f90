@@ -1,7 +1,9 @@
-!> voussoir-limit FILE.nml [--json]: limit analysis of the arch that the &arch group of
-!> FILE.nml describes (the same group voussoir-run reads): horizontal collapse multipliers
-!> towards +x and -x with their four-hinge mechanisms, the friction check, and the
-!> minimum thickness of the arch with its hinges. Prints a table, or with --json exactly
+!> voussoir-limit FILE.nml [--json]: limit analysis of the assembly that FILE.nml describes
+!> (the arch builder, a &wall or a polygon file, as voussoir-run reads them). For an arch:
+!> horizontal collapse multipliers towards +x and -x with their four-hinge mechanisms, the
+!> friction check, and the minimum thickness of the arch with its hinges. For every
+!> assembly: the load factor by linear programming, associative and non-associative,
+!> with mechanisms and contact forces. Prints a table, or with --json exactly
 !> one JSON object on stdout (docs/results_format.md, "voussoir-limit --json").
 !> The optional &limit group is documented in docs/limit_analysis.md. Errors go to
 !> stderr with a non-zero exit code.
@@ -12,6 +14,7 @@ program voussoir_limit
   use voussoir_assembly, only: assembly_t
   use voussoir_limit_analysis, only: limit_result_t
   use voussoir_limit_study, only: limit_options_t, thickness_result_t, read_limit_group, analyse
+  use voussoir_limit_lp_study, only: lp_study_t
   use voussoir_limit_output, only: write_table, write_json
   use voussoir_command_line, only: input_argument
   implicit none
@@ -21,23 +24,24 @@ program voussoir_limit
   type(assembly_t) :: arch
   type(limit_result_t) :: res
   type(thickness_result_t) :: tmin
+  type(lp_study_t) :: lp
   type(status_t) :: status
   character(len=1024) :: path
   logical :: json
 
   call parse_arguments(path, json)
-  call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'limit'], &
+  call read_config(trim(path), [character(len=8) :: 'arch', 'wall', 'motion', 'solver', 'output', 'limit'], &
                    cfg, status)
   if (status%ok) call read_limit_group(trim(path), cfg, opts, status)
-  if (status%ok) call analyse(cfg, opts, arch, res, tmin, status)
+  if (status%ok) call analyse(cfg, opts, arch, res, tmin, lp, status)
   if (.not. status%ok) then
     write (error_unit, '(a)') 'voussoir-limit: error: '//trim(status%message)
     stop 1, quiet=.true.
   end if
   if (json) then
-    call write_json(output_unit, trim(path), cfg, opts, arch, res, tmin)
+    call write_json(output_unit, trim(path), cfg, opts, arch, res, tmin, lp)
   else
-    call write_table(output_unit, trim(path), cfg, opts, res, tmin)
+    call write_table(output_unit, trim(path), cfg, opts, res, tmin, lp)
   end if
 
 contains
@@ -49,8 +53,9 @@ contains
     logical :: given(1)
     integer :: exit_code
     call input_argument('voussoir-limit', 'voussoir-limit FILE.nml [--json]', &
-      'Limit analysis of the discrete arch of &arch in FILE.nml: the horizontal acceleration (in g) that '// &
-      'brings it down statically, its four-hinge mechanism, and optionally the minimum thickness '// &
+      'Limit analysis of the assembly of FILE.nml (arch, &wall or polygon file): the horizontal acceleration '// &
+      '(in g) that brings it down statically, by linear programming with Coulomb friction (associative and '// &
+      'non-associative) and, for an arch, by its four-hinge mechanism, with optionally the minimum thickness '// &
       '(&limit; docs/limit_analysis.md). --json prints the result as JSON.', path, exit_code, ['--json'], given)
     if (exit_code >= 0) stop exit_code, quiet=.true.
     json = given(1)

@@ -7,7 +7,7 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
 
 packages=(gfortran cmake make libopenmpi-dev openmpi-bin libhdf5-openmpi-dev liblapack-dev
-          libblas-dev python3 python3-venv python3-pip)
+          libblas-dev libglpk-dev python3 python3-venv python3-pip)
 missing=()
 for p in "${packages[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

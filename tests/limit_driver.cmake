@@ -26,3 +26,17 @@ add_test(NAME limit_driver_bad_inputs
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit> bad_inputs
                  ${CMAKE_SOURCE_DIR}/input/limit_seed_156.nml
          WORKING_DIRECTORY ${LIMIT_TEST_DIR})
+# The limit analysis by linear programming: the seed arch at friction 0.395 (sliding
+# governs), a polygon file (a block tipping at b/h) and a wall (sliding at mu).
+add_test(NAME limit_driver_friction_0395
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
+                 friction_0395 ${CMAKE_SOURCE_DIR}/input/limit_seed_156.nml
+         WORKING_DIRECTORY ${LIMIT_TEST_DIR})
+add_test(NAME limit_driver_polygon_block
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
+                 polygon_block ${CMAKE_SOURCE_DIR}/input/rocking_block.nml
+         WORKING_DIRECTORY ${LIMIT_TEST_DIR})
+add_test(NAME limit_driver_wall_sliding
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
+                 wall_sliding ${CMAKE_SOURCE_DIR}/input/wall_sliding.nml
+         WORKING_DIRECTORY ${LIMIT_TEST_DIR})

@@ -8,6 +8,8 @@ module voussoir_limit_output
   use voussoir_limit_analysis, only: limit_result_t
   use voussoir_hinge_side, only: side_name
   use voussoir_limit_study, only: limit_options_t, thickness_result_t
+  use voussoir_limit_lp_study, only: lp_study_t
+  use voussoir_limit_lp_output, only: write_lp_table, lp_json
   use voussoir_version, only: code_version
   implicit none
   private
@@ -17,14 +19,24 @@ module voussoir_limit_output
 contains
 
   !> The readable report.
-  subroutine write_table(u, path, cfg, opts, res, tmin)
+  subroutine write_table(u, path, cfg, opts, res, tmin, lp)
     integer, intent(in) :: u
     character(len=*), intent(in) :: path
     type(config_t), intent(in) :: cfg
     type(limit_options_t), intent(in) :: opts
     type(limit_result_t), intent(in) :: res
     type(thickness_result_t), intent(in) :: tmin
+    type(lp_study_t), intent(in) :: lp
     character(len=*), parameter :: rule = '  ------------------------------------------------------------------'
+    if (lp%assembly /= 'arch') then
+      write (u, '(a)') 'voussoir-limit: '//path
+      write (u, '(a)') lp%assembly//': the four-hinge analysis and the minimum thickness of an arch do not '// &
+        'apply; the limit analysis by linear programming does (driven blocks: the fixed supports)'
+      write (u, '(a)') '      interface inset '//fmt_significant(1.0e3_dp*opts%inset_m)//' mm, friction '// &
+        fmt_significant(cfg%arch%friction)
+      call write_lp_table(u, lp, cfg%arch%friction)
+      return
+    end if
     associate (a => cfg%arch)
       write (u, '(a)') 'voussoir-limit: '//path
       write (u, '(a)') 'arch: '//itoa(a%n_voussoirs)//' voussoirs, embrace '//fmt_significant(a%embrace_deg)// &
@@ -58,6 +70,7 @@ contains
           '   t_min '//fmt_significant(1.0e3_dp*tmin%ratio_ext*a%r_ext_m)//' mm'
         write (u, '(a)') '  hinges: '//hinge_text(tmin%hinges, tmin%sides)
       end if
+      call write_lp_table(u, lp, a%friction)
     end associate
   end subroutine write_table
 
@@ -130,7 +143,7 @@ contains
   end subroutine sliding_union
 
   !> The JSON object of docs/results_format.md.
-  subroutine write_json(u, path, cfg, opts, arch, res, tmin)
+  subroutine write_json(u, path, cfg, opts, arch, res, tmin, lp)
     integer, intent(in) :: u
     character(len=*), intent(in) :: path
     type(config_t), intent(in) :: cfg
@@ -138,17 +151,22 @@ contains
     type(assembly_t), intent(in) :: arch
     type(limit_result_t), intent(in) :: res
     type(thickness_result_t), intent(in) :: tmin
+    type(lp_study_t), intent(in) :: lp
     integer :: j
     integer, allocatable :: sliding(:)
     character(len=1), parameter :: nl = achar(10)
     character(len=:), allocatable :: text
+    if (lp%assembly /= 'arch') then
+      call write_json_any(u, path, cfg, lp)
+      return
+    end if
     call sliding_union(res, cfg%arch%n_voussoirs, sliding)
     associate (a => cfg%arch)
       text = '{'//nl// &
         '  "producer": "voussoir-limit",'//nl// &
         '  "code_version": '//json_string(code_version)//','//nl// &
         '  "input_file": '//json_string(path)//','//nl// &
-        '  "g_m_s2": '//fmt_json_real(g_m_s2)//','//nl// &
+        '  "g_m_s2": '//fmt_json_real(g_m_s2)//','//nl//lp_json(lp)// &
         '  "lambda_pos": '//finite_or_null(res%lambda_pos)//','//nl// &
         '  "lambda_neg": '//finite_or_null(res%lambda_neg)//','//nl// &
         '  "hinges_pos": '//hinge_json(res%hinges_pos(1:res%n_hinges_pos), res%sides_pos(1:res%n_hinges_pos))// &
@@ -199,6 +217,31 @@ contains
     end associate
     write (u, '(a)') text
   end subroutine write_json
+
+  !> The JSON of a wall or a polygon file: every key of the arch's, null or empty where
+  !> the four-hinge analysis of an arch does not apply, and the LP's.
+  subroutine write_json_any(u, path, cfg, lp)
+    integer, intent(in) :: u
+    character(len=*), intent(in) :: path
+    type(config_t), intent(in) :: cfg
+    type(lp_study_t), intent(in) :: lp
+    character(len=1), parameter :: nl = achar(10)
+    write (u, '(a)') '{'//nl// &
+      '  "producer": "voussoir-limit",'//nl// &
+      '  "code_version": '//json_string(code_version)//','//nl// &
+      '  "input_file": '//json_string(path)//','//nl// &
+      '  "g_m_s2": '//fmt_json_real(g_m_s2)//','//nl//lp_json(lp)// &
+      '  "lambda_pos": null,'//nl//'  "lambda_neg": null,'//nl// &
+      '  "hinges_pos": [],'//nl//'  "hinges_neg": [],'//nl// &
+      '  "bounds_meet_pos": false,'//nl//'  "bounds_meet_neg": false,'//nl// &
+      '  "min_thickness_ratio_ext": null,'//nl//'  "min_thickness_ratio_mean": null,'//nl// &
+      '  "min_thickness_m": null,'//nl//'  "hinges_min_thickness": [],'//nl// &
+      '  "friction": '//fmt_json_real(cfg%arch%friction)//','//nl// &
+      '  "sliding": [],'//nl//'  "sliding_pos": [],'//nl//'  "sliding_neg": [],'//nl// &
+      '  "max_shear_ratio_pos": null,'//nl//'  "max_shear_ratio_neg": null,'//nl// &
+      '  "thrust_fraction_pos": null,'//nl//'  "thrust_fraction_neg": null,'//nl// &
+      '  "arch": null'//nl//'}'
+  end subroutine write_json_any
 
   !> A number, or null for the module's `huge` (no admissible mechanism, joint not in
   !> compression).

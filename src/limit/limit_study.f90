@@ -1,5 +1,7 @@
 !> The limit analysis a voussoir-limit input asks for: the optional &limit group
-!> (docs/limit_analysis.md) and the analyses of the &arch it describes.
+!> (docs/limit_analysis.md) and the analyses of the assembly it describes: for the arch
+!> builder the four-hinge analysis, the minimum thickness and the LP; for a &wall or a
+!> polygon file the LP alone.
 module voussoir_limit_study
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
@@ -7,7 +9,9 @@ module voussoir_limit_study
   use voussoir_namelist_group, only: nml_group_t
   use voussoir_input_range, only: need, need_range
   use voussoir_text, only: itoa, fmt_significant
-  use voussoir_assembly, only: assembly_t, build_arch, voussoir_angle_factors
+  use voussoir_assembly, only: assembly_t
+  use voussoir_config_assembly, only: build_config_assembly
+  use voussoir_limit_lp_study, only: lp_study_t, lp_study
   use voussoir_limit_analysis, only: limit_result_t, horizontal_capacity
   use voussoir_minimum_thickness, only: thickness_search => minimum_thickness
   implicit none
@@ -54,23 +58,27 @@ contains
               opts%inset_m, '0 <= inset_m < thickness_m/2 = '//fmt_significant(0.5_dp*cfg%arch%thickness_m), status)
   end subroutine read_limit_group
 
-  !> Build the arch of &arch and run the analyses; refuse what the limit analysis does not model.
-  subroutine analyse(cfg, opts, arch, res, tmin, status)
+  !> Build the assembly and run the analyses that apply (`lp%assembly` says which
+  !> assembly: 'arch', 'wall' or 'polygon file'); refuse what the analyses do not model.
+  subroutine analyse(cfg, opts, arch, res, tmin, lp, status)
     type(config_t), intent(in) :: cfg
     type(limit_options_t), intent(in) :: opts
     type(assembly_t), intent(out) :: arch
     type(limit_result_t), intent(out) :: res
     type(thickness_result_t), intent(out) :: tmin
+    type(lp_study_t), intent(out) :: lp
     type(status_t), intent(inout) :: status
     character(len=:), allocatable :: f, why
+    type(status_t) :: lp_status
 
     f = trim(cfg%source_file)
+    if (cfg%wall%courses > 0 .or. len_trim(cfg%arch%polygon_file) > 0) then
+      call analyse_any_assembly(cfg, opts, arch, lp, status)
+      if (.not. status%ok) status%message = f//': '//trim(status%message)
+      return
+    end if
     associate (a => cfg%arch)
-      if (len_trim(a%polygon_file) > 0) then
-        call fail(status, f//": &arch polygon_file = '"//trim(a%polygon_file)//"': voussoir-limit "// &
-                  'analyses the arch of embrace_deg, n_voussoirs, r_ext_m and thickness_m only; '// &
-                  'a polygon assembly has no joints to hinge (remove polygon_file)')
-      else if (a%restrained_springings /= springings_none) then
+      if (a%restrained_springings /= springings_none) then
         call fail(status, f//": &arch restrained_springings = '"//trim(a%restrained_springings)// &
                   "': the limit analysis does not model restraint brackets (its mechanisms hinge "// &
                   "freely at the springings); set restrained_springings = 'none'")
@@ -88,8 +96,7 @@ contains
         call fail(status, f//': &arch n_voussoirs = 3: the minimum thickness needs n_voussoirs >= 4 '// &
                   '(an arch of 3 voussoirs stands at vanishing thickness); set &limit minimum_thickness = .false.')
       if (.not. status%ok) return
-      call build_arch(a%embrace_deg, a%n_voussoirs, a%r_ext_m, a%thickness_m, arch, &
-                      angle_factors=voussoir_angle_factors(a%n_voussoirs, a%size_imperfection, a%imperfection_seed))
+      call build_config_assembly(cfg, arch, status)
       call horizontal_capacity(arch, opts%inset_m, a%friction, res, status)
       if (status%ok .and. opts%minimum_thickness) then
         call thickness_search(a%embrace_deg, a%n_voussoirs, a%r_ext_m, opts%inset_m, tmin%ratio_ext, &
@@ -98,8 +105,33 @@ contains
         if (.not. status%ok) status%message = trim(status%message)// &
           ' (set &limit minimum_thickness = .false. to skip it)'
       end if
+      if (status%ok) then
+        ! The four-hinge results stand even where the LP has no answer (an arch thinner
+        ! than its minimum thickness): its reason is reported, not an error.
+        call lp_study(arch, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, lp_status)
+        if (.not. lp_status%ok) lp%note = trim(lp_status%message)
+      end if
     end associate
+    lp%assembly = 'arch'
     if (.not. status%ok) status%message = f//': '//trim(status%message)
   end subroutine analyse
+
+  !> A &wall or a polygon file (its driven blocks the fixed supports): the LP alone, whose
+  !> refusals are errors here (there is nothing else to report).
+  subroutine analyse_any_assembly(cfg, opts, asm, lp, status)
+    type(config_t), intent(in) :: cfg
+    type(limit_options_t), intent(in) :: opts
+    type(assembly_t), intent(out) :: asm
+    type(lp_study_t), intent(out) :: lp
+    type(status_t), intent(inout) :: status
+    call build_config_assembly(cfg, asm, status)
+    if (.not. status%ok) return
+    associate (a => cfg%arch)
+      call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status)
+      if (.not. status%ok) status%message = 'limit analysis by linear programming: '//trim(status%message)
+    end associate
+    lp%assembly = merge('wall        ', 'polygon file', cfg%wall%courses > 0)
+    lp%assembly = trim(lp%assembly)
+  end subroutine analyse_any_assembly
 
 end module voussoir_limit_study

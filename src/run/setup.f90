@@ -3,12 +3,10 @@ module voussoir_setup
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: fmt_significant, itoa
-  use voussoir_config, only: config_t, waveform_afd, waveform_ramp, waveform_record, waveform_accelerogram, &
-                             springings_left, springings_right, springings_both
-  use voussoir_assembly, only: assembly_t, build_arch, voussoir_angle_factors
-  use voussoir_polygon_file, only: read_polygon_file
+  use voussoir_config, only: config_t, waveform_afd, waveform_ramp, waveform_record, waveform_accelerogram
+  use voussoir_assembly, only: assembly_t
+  use voussoir_config_assembly, only: build_config_assembly
   use voussoir_geometry, only: polygon_min_width
-  use voussoir_wall, only: build_wall
   use voussoir_bodies, only: bodies_t, bodies_init
   use voussoir_model, only: model_t, solver_settings_t
   use voussoir_coarse, only: coarse_init
@@ -32,7 +30,6 @@ contains
     type(monitor_t), intent(out) :: mon
     real(dp), intent(out) :: duration_s
     type(status_t), intent(inout) :: status
-    logical :: restrained(2)
     type(solver_settings_t) :: settings
     type(contact_law_t) :: law
     type(ground_record_t) :: rec
@@ -41,20 +38,10 @@ contains
 
     duration_s = 0.0_dp
     associate (a => cfg%arch, m => cfg%motion, s => cfg%solver)
-      if (cfg%wall%courses > 0) then
-        call build_wall(cfg%wall, assembly)
-      else if (len_trim(a%polygon_file) > 0) then
-        call read_polygon_file(trim(a%polygon_file), assembly, status)
-        if (.not. status%ok) then
-          status%message = trim(cfg%source_file)//': &arch polygon_file: '//trim(status%message)
-          return
-        end if
-        assembly%thickness_m = a%thickness_m
-      else
-        restrained = [a%restrained_springings == springings_left .or. a%restrained_springings == springings_both, &
-                      a%restrained_springings == springings_right .or. a%restrained_springings == springings_both]
-        call build_arch(a%embrace_deg, a%n_voussoirs, a%r_ext_m, a%thickness_m, assembly, restrained, &
-                        voussoir_angle_factors(a%n_voussoirs, a%size_imperfection, a%imperfection_seed))
+      call build_config_assembly(cfg, assembly, status)
+      if (.not. status%ok) then
+        status%message = trim(cfg%source_file)//': '//trim(status%message)
+        return
       end if
       settings%dt_s = s%dt_s
       settings%theta = s%theta

@@ -39,6 +39,7 @@ def hinge_words(hinges):
 
 
 def check_common(d, name):
+    check_lp(d, name)
     keys = ["lambda_pos", "lambda_neg", "hinges_pos", "hinges_neg", "min_thickness_ratio_ext",
             "min_thickness_ratio_mean", "arch", "sliding"]
     check(all(k in d for k in keys), f"{name}: keys {keys}")
@@ -71,6 +72,65 @@ def check_common(d, name):
         hm = d["hinges_min_thickness"]
         check(hm == [{"joint": n - h["joint"], "side": h["side"]} for h in reversed(hm)],
               f"{name}: minimum-thickness hinges symmetric")
+
+
+def centroid(poly):
+    """Centroid of a polygon (shoelace)."""
+    a = cx = cy = 0.0
+    for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1]):
+        c = x0 * y1 - x1 * y0
+        a += c
+        cx += (x0 + x1) * c
+        cy += (y0 + y1) * c
+    return cx / (3 * a), cy / (3 * a)
+
+
+def check_lp(d, name):
+    """The LP keys; the four-hinge lambda where hinging governs; equilibrium of every voussoir."""
+    keys = ["load_factor", "load_factor_upper", "load_factor_nonassociative", "mechanism", "contact_forces",
+            "mechanism_nonassociative", "contact_forces_nonassociative", "assembly"]
+    check(all(k in d for k in keys), f"{name}: LP keys {keys}")
+    lam = d["load_factor"]
+    check(close(d["load_factor_upper"], lam, rtol=1e-6, atol=1e-9), f"{name}: LP upper bound = lower bound")
+    check(d["load_factor_nonassociative"] <= lam * (1 + 1e-9) + 1e-12, f"{name}: non-associative <= associative")
+    moving = [(m["joint"], m["mode"], m["hinge_side"]) for m in d["mechanism"] if m["mode"] != "closed"]
+    if not d["sliding"]:
+        check(close(lam, d["lambda_pos"], rtol=1e-6, atol=1e-9),
+              f"{name}: load_factor {lam} = lambda_pos {d['lambda_pos']} (hinging governs)")
+        check(moving == [(h["joint"], "hinge", h["side"]) for h in d["hinges_pos"]],
+              f"{name}: LP mechanism {moving} = the four hinges of +x")
+    else:
+        check(lam <= d["lambda_pos"] * (1 + 1e-9), f"{name}: load_factor <= lambda_pos where sliding governs")
+        check(any(m[1] == "sliding" for m in moving), f"{name}: the LP mechanism slides ({moving})")
+    # Equilibrium of every voussoir i (body i, joints i-1 and i) under the JSON's contact
+    # forces: they carry its weight W (so Fy = W) and lambda W towards +x (so Fx = -lambda Fy),
+    # both through its centroid (no moment about it).
+    a = d["arch"]
+    n = a["n_voussoirs"]
+    worst = 0.0
+    for i in range(1, n + 1):
+        poly = [a["joint_intrados_xy_m"][i - 1], a["joint_intrados_xy_m"][i], a["joint_extrados_xy_m"][i],
+                a["joint_extrados_xy_m"][i - 1]]
+        cx, cy = centroid(poly)
+        fx = fy = m = 0.0
+        for f in d["contact_forces"]:
+            if i not in f["blocks"]:
+                continue
+            sign = 1.0 if f["blocks"][1] == i else -1.0
+            nx, ny = f["normal"]
+            tx, ty = -ny, nx
+            (x1, y1), (x2, y2) = f["ends_xy_m"]
+            pts = [((x1, y1), (nx * f["normal_n"][0], ny * f["normal_n"][0])),
+                   ((x2, y2), (nx * f["normal_n"][1], ny * f["normal_n"][1])),
+                   (((x1 + x2) / 2, (y1 + y2) / 2), (tx * f["shear_n"], ty * f["shear_n"]))]
+            for (px, py), (gx, gy) in pts:
+                fx += sign * gx
+                fy += sign * gy
+                m += sign * ((px - cx) * gy - (py - cy) * gx)
+        worst = max(worst, abs(fx + lam * fy) / fy, abs(m) / (fy * a["r_ext_m"]))
+    check(worst < 1e-6, f"{name}: every voussoir in equilibrium under the JSON's contact forces ({worst:.1e})")
+    check(all(min(f["normal_n"]) >= -1e-9 * max(1.0, max(f["normal_n"])) for f in d["contact_forces"]),
+          f"{name}: no tension at any interface end")
 
 
 if case == "seed_156":
@@ -118,8 +178,44 @@ elif case == "low_friction":
     check(0 in d["sliding"] or n in d["sliding"], f"low friction: sliding at a springing ({d['sliding']})")
     rc, out, err = run("low_friction_180.nml")
     check(rc == 0 and "sliding governs at joints" in out, "low friction: table says sliding governs")
+elif case == "friction_0395":
+    # The seed 156-degree arch at the friction the diagnosis fits best: sliding governs.
+    with open(nml) as f:
+        text = f.read().replace("friction = 0.5", "friction = 0.395")
+    with open("seed_156_friction_0395.nml", "w") as f:
+        f.write(text)
+    d = load("seed_156_friction_0395.nml")
+    check_common(d, "friction 0.395")
+    check(d["load_factor"] < 0.9 * d["lambda_pos"], f"friction 0.395: load_factor {d['load_factor']} well below "
+                                                    f"the hinge-only {d['lambda_pos']}")
+    moving = [(m["joint"], m["mode"]) for m in d["mechanism_nonassociative"] if m["mode"] != "closed"]
+    check(any(mode == "sliding" and j in (0, 13) for j, mode in moving),
+          f"friction 0.395: non-associative mechanism slides at a springing ({moving})")
+elif case == "polygon_block":
+    # input/rocking_block.nml: a 0.2 x 1.0 m block (friction 0.7 > b/h) tips at b/h = 0.2
+    # about its +x corner (0.1, 0).
+    d = load(nml)
+    check(d["assembly"] == "polygon file" and d["arch"] is None and d["lambda_pos"] is None,
+          f"{nml}: a polygon file: no arch, no four-hinge lambda (null)")
+    check(close(d["load_factor"], 0.2, rtol=1e-9), f"{nml}: load_factor {d['load_factor']} = b/h = 0.2")
+    check(close(d["load_factor_nonassociative"], 0.2, rtol=1e-9), f"{nml}: non-associative = b/h")
+    m = d["mechanism"]
+    check(len(m) == 1 and m[0]["mode"] == "hinge" and close(m[0]["hinge_xy_m"][0], 0.1, atol=1e-12)
+          and close(m[0]["hinge_xy_m"][1], 0.0, atol=1e-12), f"{nml}: one hinge at the +x corner ({m})")
+    w = 2000 * 0.2 * 1.0 * 0.2 * 9.81
+    f = d["contact_forces"][0]
+    check(close(sum(f["normal_n"]), w, rtol=1e-9), f"{nml}: the base carries the weight {w} N")
+    rc, out, err = run(nml)
+    check(rc == 0 and "do not apply" in out and "lambda 0.2" in out, f"{nml}: the table says what applies")
+elif case == "wall_sliding":
+    # input/wall_sliding.nml: a 3 x 3 wall, 0.6 m x 0.3 m, friction 0.3 < B/H = 2: it slides
+    # at lambda = mu, associative or not.
+    d = load(nml)
+    check(d["assembly"] == "wall" and d["arch"] is None, f"{nml}: a wall")
+    check(close(d["load_factor"], 0.3, rtol=1e-9), f"{nml}: load_factor {d['load_factor']} = mu = 0.3")
+    check(close(d["load_factor_nonassociative"], 0.3, rtol=1e-9), f"{nml}: non-associative = mu")
+    check(any(m["mode"] == "sliding" for m in d["mechanism"]), f"{nml}: the mechanism slides")
 elif case == "bad_inputs":
-    poly = os.path.join(os.path.dirname(os.path.abspath(nml)), "blocks", "rocking_block.txt")
     cases = [
         ("unknown_limit_variable", "&limit", "&arch /\n&limit minimum_thicknes = .false. /\n"),
         ("limit_wrong_type", r"&limit.*The variables of &limit are: minimum_thickness \(logical\), inset_m \(real, m\)",
@@ -132,13 +228,30 @@ elif case == "bad_inputs":
         ("limit_inset_too_big", "inset_m = 0.04.*thickness_m/2", "&arch /\n&limit inset_m = 0.04 /\n"),
         ("limit_inset_negative", "inset_m = -0.001", "&arch /\n&limit inset_m = -0.001 /\n"),
         ("restrained", "restrained_springings = 'left'.*restraint", "&arch restrained_springings = 'left' /\n"),
-        ("polygon_file", "polygon_file", f"&arch polygon_file = '{poly}' /\n"),
+        ("polygon_overhang", "dead load alone brings the assembly down",
+         "&arch polygon_file = 'overhang.txt' /\n"),
+        ("polygon_against_wall", "unbounded.*block 1 is held against the load", "&arch polygon_file = 'against_wall.txt' /\n"),
+        ("polygon_floating", "block 2 touches no other block", "&arch polygon_file = 'floating.txt' /\n"),
+        ("polygon_no_support", "no block is driven", "&arch polygon_file = 'no_support.txt' /\n"),
         ("unknown_group", "unknown namelist group &limits", "&arch /\n&limits /\n"),
         ("two_voussoirs", "n_voussoirs = 2", "&arch n_voussoirs = 2 /\n"),
         ("three_voussoirs_min_thickness", "minimum_thickness", "&arch n_voussoirs = 3 /\n"),
         ("thickness", "thickness_m", "&arch thickness_m = 0.6 /\n"),
     ]
     import re
+    base = "block driven\n-1.0 -0.2\n1.0 -0.2\n1.0 0.0\n-1.0 0.0\n"
+    block = "block free\n-0.1 0.0\n0.1 0.0\n0.1 1.0\n-0.1 1.0\n"
+    polygons = {
+        # The block's centroid (x = 0) lies beyond the edge of its support (x = -0.05).
+        "overhang.txt": block + "block driven\n-1.0 -0.2\n-0.05 -0.2\n-0.05 0.0\n-1.0 0.0\n",
+        # A driven wall against the +x face: no mechanism opens towards +x.
+        "against_wall.txt": block + base + "block driven\n0.1 0.0\n0.5 0.0\n0.5 1.0\n0.1 1.0\n",
+        "floating.txt": base + "block free\n0.0 0.5\n0.2 0.5\n0.2 0.7\n0.0 0.7\n",
+        "no_support.txt": block,
+    }
+    for file, text in polygons.items():
+        with open(file, "w") as f:
+            f.write(text)
     for name, pattern, text in cases:
         path = f"{name}.nml"
         with open(path, "w") as f:

@@ -1,0 +1,160 @@
+!> What voussoir-limit prints of the limit analysis by linear programming: its lines of
+!> the table and its keys of the JSON object (docs/results_format.md).
+module voussoir_limit_lp_output
+  use voussoir_kinds, only: dp, g_m_s2
+  use voussoir_text, only: itoa, fmt_json_real, json_string, json_bool, fmt_significant
+  use voussoir_hinge_side, only: side_name
+  use voussoir_limit_lp, only: lp_result_t, joint_mode_name, joint_closed, joint_hinge
+  use voussoir_limit_lp_study, only: lp_study_t
+  implicit none
+  private
+
+  public :: write_lp_table, lp_json
+
+contains
+
+  !> The LP's part of the table.
+  subroutine write_lp_table(u, lp, friction)
+    integer, intent(in) :: u
+    type(lp_study_t), intent(in) :: lp
+    real(dp), intent(in) :: friction
+    write (u, '(/,a)') 'Limit analysis by linear programming (GLPK; rigid blocks, no tension, Coulomb friction '// &
+      fmt_significant(friction)//'; load = lambda x weight towards +x)'
+    write (u, '(a)') '  '//itoa(lp%faces%n)//' interfaces'
+    if (.not. lp%solved) then
+      write (u, '(a)') '  no load factor: '//lp%note
+      return
+    end if
+    write (u, '(a)') '  associative (sliding dilates):  lambda '//fmt_significant(lp%assoc%load_factor, 7)// &
+      ' (upper bound of its mechanism '//fmt_significant(lp%assoc%load_factor_upper, 7)//'), lambda g '// &
+      fmt_significant(lp%assoc%load_factor*g_m_s2, 5)//' m/s2'
+    write (u, '(a)') '    mechanism: '//mechanism_text(lp, lp%assoc)
+    if (lp%nonassociative_solved) then
+      write (u, '(a)') '  non-associative (no dilatancy): lambda '//fmt_significant(lp%nonassoc%load_factor, 7)// &
+        ', lambda g '//fmt_significant(lp%nonassoc%load_factor*g_m_s2, 5)//' m/s2 ('//itoa(lp%steps)//' steps'// &
+        trim(merge('             ', ', UNCONVERGED', lp%converged))//')'
+      write (u, '(a)') '    mechanism: '//mechanism_text(lp, lp%nonassoc)
+    else
+      write (u, '(a)') '  non-associative: no solution (a step of the iteration has none)'
+    end if
+  end subroutine write_lp_table
+
+  !> The moving joints: 'joint 5 hinge extrados, blocks 3-4 sliding, ...'
+  function mechanism_text(lp, r) result(text)
+    type(lp_study_t), intent(in) :: lp
+    type(lp_result_t), intent(in) :: r
+    character(len=:), allocatable :: text
+    integer :: k
+    text = ''
+    do k = 1, lp%faces%n
+      if (r%mode(k) == joint_closed) cycle
+      if (len(text) > 0) text = text//', '
+      text = text//joint_name(lp, k)//' '//joint_mode_name(r%mode(k))
+      if (r%mode(k) == joint_hinge .and. lp%joint(k) >= 0) text = text//' '//side_name(lp%end_side(r%pivot_end(k), k))
+    end do
+    if (len(text) == 0) text = 'none (every joint closed)'
+  end function mechanism_text
+
+  function joint_name(lp, k) result(text)
+    type(lp_study_t), intent(in) :: lp
+    integer, intent(in) :: k
+    character(len=:), allocatable :: text
+    if (lp%joint(k) >= 0) then
+      text = 'joint '//itoa(lp%joint(k))
+    else
+      text = 'blocks '//itoa(lp%faces%body(1, k))//'-'//itoa(lp%faces%body(2, k))
+    end if
+  end function joint_name
+
+  !> The LP's keys of the JSON object, each line ending with a comma.
+  function lp_json(lp) result(text)
+    type(lp_study_t), intent(in) :: lp
+    character(len=:), allocatable :: text
+    character(len=1), parameter :: nl = achar(10)
+    text = '  "assembly": '//json_string(lp%assembly)//','//nl
+    if (lp%solved) then
+      text = text//'  "load_factor": '//fmt_json_real(lp%assoc%load_factor)//','//nl// &
+        '  "load_factor_upper": '//fmt_json_real(lp%assoc%load_factor_upper)//','//nl// &
+        '  "load_factor_note": null,'//nl// &
+        '  "mechanism": '//mechanism_json(lp, lp%assoc)//','//nl// &
+        '  "contact_forces": '//forces_json(lp, lp%assoc)//','//nl
+    else
+      text = text//'  "load_factor": null,'//nl//'  "load_factor_upper": null,'//nl// &
+        '  "load_factor_note": '//json_string(lp%note)//','//nl// &
+        '  "mechanism": [],'//nl//'  "contact_forces": [],'//nl
+    end if
+    if (lp%nonassociative_solved) then
+      text = text//'  "load_factor_nonassociative": '//fmt_json_real(lp%nonassoc%load_factor)//','//nl// &
+        '  "nonassociative_steps": '//itoa(lp%steps)//','//nl// &
+        '  "nonassociative_converged": '//json_bool(lp%converged)//','//nl// &
+        '  "mechanism_nonassociative": '//mechanism_json(lp, lp%nonassoc)//','//nl// &
+        '  "contact_forces_nonassociative": '//forces_json(lp, lp%nonassoc)//','//nl
+    else
+      text = text//'  "load_factor_nonassociative": null,'//nl//'  "nonassociative_steps": '//itoa(lp%steps)// &
+        ','//nl//'  "nonassociative_converged": false,'//nl//'  "mechanism_nonassociative": [],'//nl// &
+        '  "contact_forces_nonassociative": [],'//nl
+    end if
+  end function lp_json
+
+  !> One object per interface: its blocks, its arch joint (or null), its mode and, for a
+  !> hinge, the side (arches) and the point it turns about.
+  function mechanism_json(lp, r) result(text)
+    type(lp_study_t), intent(in) :: lp
+    type(lp_result_t), intent(in) :: r
+    character(len=:), allocatable :: text
+    integer :: k
+    text = '['
+    do k = 1, lp%faces%n
+      if (k > 1) text = text//', '
+      text = text//'{'//joint_keys(lp, k)//', "mode": "'//joint_mode_name(r%mode(k))//'", "hinge_side": '
+      if (r%mode(k) == joint_hinge .and. lp%joint(k) >= 0) then
+        text = text//'"'//side_name(lp%end_side(r%pivot_end(k), k))//'"'
+      else
+        text = text//'null'
+      end if
+      text = text//', "hinge_xy_m": '
+      if (r%mode(k) == joint_hinge) then
+        text = text//xy_json(lp%faces%end_xy(:, r%pivot_end(k), k))//'}'
+      else
+        text = text//'null}'
+      end if
+    end do
+    text = text//']'
+  end function mechanism_json
+
+  !> One object per interface: the two ends, the unit normal (from the first block into
+  !> the second), the normal force at each end and the shear force [N] on the second block.
+  function forces_json(lp, r) result(text)
+    type(lp_study_t), intent(in) :: lp
+    type(lp_result_t), intent(in) :: r
+    character(len=:), allocatable :: text
+    integer :: k
+    text = '['
+    do k = 1, lp%faces%n
+      if (k > 1) text = text//', '
+      text = text//'{'//joint_keys(lp, k)//', "ends_xy_m": ['//xy_json(lp%faces%end_xy(:, 1, k))//', '// &
+        xy_json(lp%faces%end_xy(:, 2, k))//'], "normal": '//xy_json(lp%faces%normal(:, k))// &
+        ', "normal_n": '//xy_json(r%normal_n(:, k))//', "shear_n": '//fmt_json_real(r%shear_n(k))//'}'
+    end do
+    text = text//']'
+  end function forces_json
+
+  function joint_keys(lp, k) result(text)
+    type(lp_study_t), intent(in) :: lp
+    integer, intent(in) :: k
+    character(len=:), allocatable :: text
+    text = '"blocks": ['//itoa(lp%faces%body(1, k))//', '//itoa(lp%faces%body(2, k))//'], "joint": '
+    if (lp%joint(k) >= 0) then
+      text = text//itoa(lp%joint(k))
+    else
+      text = text//'null'
+    end if
+  end function joint_keys
+
+  function xy_json(xy) result(text)
+    real(dp), intent(in) :: xy(2)
+    character(len=:), allocatable :: text
+    text = '['//fmt_json_real(xy(1))//', '//fmt_json_real(xy(2))//']'
+  end function xy_json
+
+end module voussoir_limit_lp_output

@@ -1,0 +1,198 @@
+!> Tests of the limit analysis of any assembly by linear programming (voussoir_limit_lp,
+!> voussoir_block_interfaces, voussoir_glpk) against answers derived independently: closed
+!> forms for blocks, stacks and a wall panel, the exact four-hinge analysis of the seed
+!> arches, and the refusals.
+program test_limit_lp
+  use voussoir_kinds, only: dp
+  use voussoir_status, only: status_t
+  use voussoir_assembly, only: assembly_t, build_arch, role_voussoir, role_foundation
+  use voussoir_wall_config, only: wall_config_t
+  use voussoir_wall, only: build_wall
+  use voussoir_limit_analysis, only: limit_result_t, horizontal_capacity
+  use voussoir_block_interfaces, only: interface_set_t, find_interfaces
+  use voussoir_limit_lp, only: block_loads_t, lp_result_t, block_loads, lp_capacity, nonassociative_capacity, &
+                               joint_hinge, joint_sliding, joint_closed
+  use voussoir_assert, only: assert_true, assert_close, assert_summary
+  implicit none
+
+  call test_block_tipping()
+  call test_block_sliding()
+  call test_two_block_stack()
+  call test_wall_panel()
+  call test_seed_arches()
+  call test_refusals()
+  call assert_summary()
+
+contains
+
+  pure function box(xa, xb, ya, yb) result(xy)
+    real(dp), intent(in) :: xa, xb, ya, yb
+    real(dp) :: xy(2, 4)
+    xy = reshape([xa, ya, xb, ya, xb, yb, xa, yb], [2, 4])
+  end function box
+
+  !> Blocks of width b and height h stacked on a driven base (body 1) that is wider.
+  subroutine stack(b, h, n_blocks, asm)
+    real(dp), intent(in) :: b, h
+    integer, intent(in) :: n_blocks
+    type(assembly_t), intent(out) :: asm
+    integer :: k
+    asm%n_bodies = n_blocks + 1
+    allocate (asm%polygon(n_blocks + 1), asm%driven(n_blocks + 1), asm%role(n_blocks + 1))
+    asm%polygon(1)%xy = box(-b, 2*b, -h, 0.0_dp)
+    asm%driven = .false.
+    asm%driven(1) = .true.
+    asm%role = role_voussoir
+    asm%role(1) = role_foundation
+    do k = 1, n_blocks
+      asm%polygon(k + 1)%xy = box(0.0_dp, b, (k - 1)*h, k*h)
+    end do
+  end subroutine stack
+
+  !> Both capacities of `asm` with friction mu at every interface.
+  subroutine capacities(asm, mu, assoc, nonassoc, status)
+    type(assembly_t), intent(in) :: asm
+    real(dp), intent(in) :: mu
+    type(lp_result_t), intent(out) :: assoc, nonassoc
+    type(status_t), intent(inout) :: status
+    type(interface_set_t) :: faces
+    type(block_loads_t) :: loads
+    real(dp), allocatable :: friction(:)
+    integer :: steps
+    logical :: converged
+    call find_interfaces(asm, 1.0e-9_dp, 0.0_dp, faces, status)
+    if (.not. status%ok) return
+    call block_loads(asm, 700.0_dp, 0.145_dp, 9.81_dp, loads)
+    allocate (friction(faces%n))
+    friction = mu
+    call lp_capacity(asm, faces, loads, friction, 0.0_dp*friction, assoc, status)
+    if (.not. status%ok) return
+    call nonassociative_capacity(asm, faces, loads, friction, assoc, nonassoc, steps, converged, status)
+    call assert_true(converged, 'non-associative iteration converges')
+  end subroutine capacities
+
+  !> b/h = 0.4 with mu = 0.6: tips at b/h about the far corner (a hinge at the interface).
+  subroutine test_block_tipping()
+    type(assembly_t) :: asm
+    type(lp_result_t) :: a, na
+    type(status_t) :: status
+    call stack(0.2_dp, 0.5_dp, 1, asm)
+    call capacities(asm, 0.6_dp, a, na, status)
+    call assert_true(status%ok, 'block tipping: solved')
+    call assert_close(a%load_factor, 0.4_dp, 'block tips at b/h (associative)', rtol=1.0e-9_dp)
+    call assert_close(na%load_factor, 0.4_dp, 'block tips at b/h (non-associative)', rtol=1.0e-9_dp)
+    call assert_close(a%load_factor_upper, a%load_factor, 'block tipping: upper bound = lower bound', rtol=1.0e-9_dp)
+    call assert_true(a%mode(1) == joint_hinge .and. a%pivot_end(1) > 0, 'block tips about one end')
+    ! The whole weight W = 700 x 0.1 x 0.145 x 9.81 N bears on the pivot; the lifting end carries nothing.
+    call assert_close(a%normal_n(a%pivot_end(1), 1), 700*0.1_dp*0.145_dp*9.81_dp, 'block tipping: W on the pivot', &
+                      rtol=1.0e-9_dp)
+    call assert_close(a%normal_n(3 - a%pivot_end(1), 1), 0.0_dp, 'block tipping: no force at the end that lifts', &
+                      atol=1.0e-9_dp)
+  end subroutine test_block_tipping
+
+  !> b/h = 0.4 with mu = 0.3: slides at lambda = mu, associative or not.
+  subroutine test_block_sliding()
+    type(assembly_t) :: asm
+    type(lp_result_t) :: a, na
+    type(status_t) :: status
+    call stack(0.2_dp, 0.5_dp, 1, asm)
+    call capacities(asm, 0.3_dp, a, na, status)
+    call assert_true(status%ok, 'block sliding: solved')
+    call assert_close(a%load_factor, 0.3_dp, 'block slides at mu (associative)', rtol=1.0e-9_dp)
+    call assert_close(na%load_factor, 0.3_dp, 'block slides at mu (non-associative)', rtol=1.0e-9_dp)
+    call assert_true(a%mode(1) == joint_sliding, 'block: the joint slides (associative)')
+    call assert_true(na%mode(1) == joint_sliding, 'block: the joint slides (non-associative)')
+    call assert_close(na%load_factor_upper, na%load_factor, 'block sliding: upper = lower (non-assoc. step)', &
+                      rtol=1.0e-9_dp)
+  end subroutine test_block_sliding
+
+  !> Two equal blocks, b/h = 0.4, mu = 0.8: the stack tips about the base's corner at b/(2h).
+  subroutine test_two_block_stack()
+    type(assembly_t) :: asm
+    type(lp_result_t) :: a, na
+    type(status_t) :: status
+    call stack(0.2_dp, 0.5_dp, 2, asm)
+    call capacities(asm, 0.8_dp, a, na, status)
+    call assert_true(status%ok, 'stack: solved')
+    call assert_close(a%load_factor, 0.2_dp, 'two-block stack tips at b/(2h)', rtol=1.0e-9_dp)
+    call assert_close(na%load_factor, 0.2_dp, 'two-block stack (non-associative)', rtol=1.0e-9_dp)
+  end subroutine test_two_block_stack
+
+  !> A panel of 6 courses of 4 blocks (0.2 x 0.1 m) in stack bond, mu = 20: B/H = 0.8/0.6.
+  subroutine test_wall_panel()
+    type(assembly_t) :: asm
+    type(wall_config_t) :: w
+    type(lp_result_t) :: a, na
+    type(status_t) :: status
+    w%courses = 6
+    w%blocks_per_course = 4
+    w%bond = 'stack'
+    call build_wall(w, asm)
+    call capacities(asm, 20.0_dp, a, na, status)
+    call assert_true(status%ok, 'wall panel: solved')
+    ! Without dilatancy the vertical joints (no normal force) can slide: never above B/H.
+    call assert_true(na%load_factor <= a%load_factor*(1 + 1.0e-9_dp), 'stack-bond panel: non-associative <= associative')
+    call assert_close(a%load_factor, 0.8_dp/0.6_dp, 'stack-bond panel tips at B/H (associative)', rtol=1.0e-9_dp)
+    call assert_close(a%load_factor_upper, a%load_factor, 'wall panel: upper = lower', rtol=1.0e-7_dp)
+  end subroutine test_wall_panel
+
+  !> The LP's lambda equals the exact four-hinge analysis on the seed arches (friction 10:
+  !> sliding does not govern), with and without an inset.
+  subroutine test_seed_arches()
+    real(dp), parameter :: embrace(4) = [180.0_dp, 156.0_dp, 132.0_dp, 118.0_dp]
+    integer, parameter :: nv(4) = [15, 13, 11, 10]
+    type(assembly_t) :: arch
+    type(limit_result_t) :: exact
+    type(interface_set_t) :: faces
+    type(block_loads_t) :: loads
+    type(lp_result_t) :: a
+    type(status_t) :: status
+    real(dp), allocatable :: friction(:)
+    real(dp) :: inset
+    integer :: k, i
+    character(len=40) :: name
+    do i = 1, 2
+      inset = merge(0.0_dp, 0.005_dp, i == 1)
+      do k = 1, 4
+        write (name, '(a,i0,a,f5.3)') 'seed arch ', nint(embrace(k)), ' inset ', inset
+        call build_arch(embrace(k), nv(k), 0.508_dp, 0.071_dp, arch)
+        call horizontal_capacity(arch, inset, 10.0_dp, exact, status)
+        call find_interfaces(arch, 1.0e-9_dp, inset, faces, status)
+        call block_loads(arch, 700.0_dp, 0.145_dp, 9.81_dp, loads)
+        friction = spread(10.0_dp, 1, faces%n)
+        call lp_capacity(arch, faces, loads, friction, 0.0_dp*friction, a, status)
+        call assert_true(status%ok .and. faces%n == nv(k) + 1, trim(name)//': n + 1 joints, solved')
+        call assert_close(a%load_factor, exact%lambda_pos, trim(name)//': LP lambda = four-hinge lambda', &
+                          rtol=1.0e-6_dp)
+        call assert_close(a%load_factor_upper, a%load_factor, trim(name)//': upper = lower', rtol=1.0e-6_dp)
+        call assert_true(count(a%mode == joint_hinge) == 4 .and. count(a%mode == joint_closed) == nv(k) - 3, &
+                         trim(name)//': four hinges, the other joints closed')
+      end do
+    end do
+  end subroutine test_seed_arches
+
+  !> A block whose centroid overhangs its support falls under its own weight (infeasible);
+  !> a block against a driven wall on its +x side carries any lambda (unbounded); a block
+  !> touching nothing is refused by name.
+  subroutine test_refusals()
+    type(assembly_t) :: asm
+    type(lp_result_t) :: a, na
+    type(status_t) :: status
+    call stack(0.2_dp, 0.5_dp, 1, asm)
+    asm%polygon(1)%xy = box(-1.0_dp, 0.05_dp, -0.5_dp, 0.0_dp)
+    call capacities(asm, 0.8_dp, a, na, status)
+    call assert_true(.not. status%ok .and. index(status%message, 'dead load alone') > 0, &
+                     'overhanging block: infeasible, dead load named')
+    call stack(0.2_dp, 0.5_dp, 1, asm)
+    asm%polygon = [asm%polygon, asm%polygon(1)]
+    asm%polygon(3)%xy = box(0.2_dp, 0.4_dp, 0.0_dp, 1.0_dp)
+    asm%driven = [asm%driven, .true.]
+    asm%role = [asm%role, role_foundation]
+    asm%n_bodies = 3
+    status = status_t()
+    call capacities(asm, 0.8_dp, a, na, status)
+    call assert_true(.not. status%ok .and. index(status%message, 'unbounded') > 0, &
+                     'block against a driven wall: unbounded, said so')
+  end subroutine test_refusals
+
+end program test_limit_lp
