@@ -15,15 +15,22 @@ class DiagnosisSettings:
     bin_dir: Path
     n_ranks: int = 2
     dt_s: float = 1.0e-3
-    amp_tol_fraction: float = 0.005  #: threshold search tolerance, fraction of the threshold
+    amp_tol_fraction: float = 0.005  #: threshold search tolerance, fraction of the onset of rocking
+    #: Step of the threshold search's upward scan: 5 %, as a laboratory ramps (the
+    #: default of voussoir-sweep, 10 %, jumps narrow collapse bands more often).
+    scan_step: float = 0.05
     inset_grid_m: tuple[float, ...] = (0.0005, 0.001, 0.002, 0.003, 0.004, 0.005, 0.006, 0.008, 0.010)
     friction_steps: tuple[float, ...] = (0.05, 0.10, 0.15, 0.20, 0.25)  #: below and above nominal
     min_friction: float = 0.15
     max_friction: float = 0.9
     thickness_factors: tuple[float, ...] = (0.76, 0.82, 0.88, 0.94, 1.06, 1.12)  #: geometry, nominal 1
-    #: New frequencies at which the rivals of an inconclusive verdict are simulated, to
-    #: find the test that would separate them.
-    probe_frequencies_hz: tuple[float, ...] = (0.75, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0)
-    default_resolution: float = 0.05  #: relative resolution when a pair has no stand row below
-    model_floor: float = 0.03  #: relative scatter of a threshold beyond the bracket (table scatter, dynamics)
+    #: The coarser grids of each effect inside a pair of effects (bank.py).
+    pair_inset_m: tuple[float, ...] = (0.001, 0.002, 0.004, 0.006, 0.008)
+    pair_friction_steps: tuple[float, ...] = (-0.2, -0.15, -0.1, -0.05, 0.1)
+    pair_thickness_factors: tuple[float, ...] = (0.82, 0.88, 0.94, 1.06)
+    #: Ceiling of every threshold search, in onsets of rocking (limit analysis) at the
+    #: lowest frequency tested: data-independent.
+    ceiling_factor: float = 6.0
+    #: Where the simulation bank is cached (None: a folder `voussoir-bank` beside the output).
+    bank_dir: Path | None = None
     log: object = print

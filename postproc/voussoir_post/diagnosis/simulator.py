@@ -1,6 +1,7 @@
 """The diagnosis's simulations, through the project's one runner: thresholds of every
-variant by voussoir-sweep, single tests (hinges, crown records) by voussoir-run.
-Simulations are never re-implemented here."""
+variant by voussoir-sweep (the bank's ceiling and tolerance, never the data's), single
+tests (hinges, crown records) by voussoir-run. Simulations are never re-implemented
+here."""
 
 from __future__ import annotations
 
@@ -8,12 +9,16 @@ import math
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from ..readers.campaign import MeasuredThreshold, Specimen, Test
+from ..readers.campaign import Specimen, Test
 from ..runner import Runner
 from .effects import Variant, arch_group, effect
 from .settings import DiagnosisSettings
 
-__all__ = ["Simulator"]
+__all__ = ["Simulator", "HINGE_GAP_M"]
+
+#: Opening of a joint's other edge at which a hinge counts as open: 1 mm, as a
+#: laboratory sees it (and as the test generator counts it).
+HINGE_GAP_M = 1.0e-3
 
 
 class Simulator:
@@ -30,17 +35,6 @@ class Simulator:
     def _solver(self) -> dict:
         return {"dt_s": float(self.s.dt_s), "allow_nonconvergence": True}
 
-    def thresholds(self, spec: Specimen, pairs: list[MeasuredThreshold], cycles: tuple[int, int, int],
-                   variants: list[Variant]) -> dict[tuple[Variant, float], float]:
-        """Simulated threshold [m] of every (variant, frequency) for one specimen. The
-        values of an effect with a &sweep list go into one sweep; each other variant is
-        a sweep of its own. A finished sweep of the same input in the work folder is
-        reused."""
-        freqs = sorted({p.frequency_hz for p in pairs})
-        amp_max = 4.0 * max(p.high_m for p in pairs)
-        amp_tol = max(1e-5, self.s.amp_tol_fraction * min(p.threshold_m for p in pairs))
-        return self.thresholds_at(spec, freqs, cycles, variants, amp_max, amp_tol)
-
     def thresholds_at(self, spec: Specimen, freqs: list[float], cycles: tuple[int, int, int],
                       variants: list[Variant], amp_max: float, amp_tol: float) -> dict[tuple[Variant, float], float]:
         """Simulated threshold [m] of every (variant, frequency), searched up to `amp_max`
@@ -52,17 +46,22 @@ class Simulator:
         groups: dict[tuple, list[Variant]] = {}
         for v in variants:
             parts = v.parts()
-            listed = bool(parts) and effect(parts[0][0]).sweep_list is not None
-            groups.setdefault((parts[0][0], parts[1:]) if listed else ("single", v), []).append(v)
+            # The listed part goes first: a pair with one listed effect is one sweep per
+            # value of the other.
+            listed_first = sorted(parts, key=lambda part: effect(part[0]).sweep_list is None)
+            listed = bool(parts) and effect(listed_first[0][0]).sweep_list is not None
+            key = (listed_first[0][0], tuple(listed_first[1:])) if listed else ("single", v)
+            groups.setdefault(key, []).append(v)
         for key, vs in groups.items():
             self._count += 1
             name = f"sweep_{self._count:03d}_{spec.specimen_id}"
             sweep = {"mode": "threshold", "frequencies_hz": [float(f) for f in freqs], "amp_tol_m": float(amp_tol),
-                     "amp_max_m": float(amp_max), "progress_every_s": 1.0e9}
+                     "amp_max_m": float(amp_max), "scan_step": float(self.s.scan_step),
+                     "progress_every_s": 1.0e9}
             listed = key[0] != "single"
             if listed:
                 base = Variant(*key[1][0]) if key[1] else Variant()
-                sweep[effect(key[0]).sweep_list] = [float(v.parts()[0][1]) for v in vs]
+                sweep[effect(key[0]).sweep_list] = [float(dict(v.parts())[key[0]]) for v in vs]
             else:
                 base = vs[0]
             groups_nml = {"arch": arch_group(spec, base),
@@ -97,10 +96,14 @@ class Simulator:
                                  "n_full": test.n_full, "n_decay": test.n_decay, "rest_s": 1.0,
                                  **{key: float(val) for key, val in motion.items()}},
                       "solver": self._solver(),
-                      "output": {"every": max(1, round(0.005 / self.s.dt_s)), "stop_after_collapse_s": 0.3}}
+                      "output": {"every": max(1, round(0.005 / self.s.dt_s)), "stop_after_collapse_s": 0.3,
+                                 "hinge_gap_m": HINGE_GAP_M}}
             r = self.runner.run_single(groups, f"run_{batch:03d}_{k:04d}", keep=False)
             return {"collapsed": r.collapsed, "collapse_time_s": r.collapse_time_s,
-                    "hinges": {(int(j), r.hinge_side_names[int(s)]) for j, s in zip(r.hinge_joint, r.hinge_side)},
+                    # One window for the model and the laboratory: hinges up to the collapse.
+                    "hinges": {(int(j), r.hinge_side_names[int(s)])
+                               for t, j, s in zip(r.hinge_time_s, r.hinge_joint, r.hinge_side)
+                               if not r.collapsed or t <= r.collapse_time_s},
                     "t_s": r.time_s, "crown_dx_m": r.crown_dx_m, "crown_dy_m": r.crown_dy_m}
 
         with ThreadPoolExecutor(max_workers=max(1, self.s.n_ranks)) as pool:

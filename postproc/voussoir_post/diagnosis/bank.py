@@ -1,0 +1,212 @@
+"""Stage 2 of the diagnosis: the simulation bank, which does not depend on the data.
+
+For each specimen, the collapse thresholds of every model the inference weighs, at every
+frequency the campaign tested it at: the nominal model, each effect over its grid, the
+pairs of effects over a coarser product grid, and the replicas that measure the
+simulator's own spread (the nominal model at dt x 0.97 and x 1.03, and at dt / 2).
+
+Nothing here reads a measured threshold: the search ceiling and tolerance come from the
+specimen's limit analysis (the onset of rocking, voussoir-limit), so every noise draw
+of a campaign, and every campaign of the same specimens and frequencies, asks the
+kernel the same questions and gets the same answers. The bank of one specimen is cached
+as JSON under a key of the executables' bytes, the specimen, its frequencies and
+cycles, the time step and the grids: a second diagnosis re-simulates nothing.
+
+Cost, per specimen and tested frequency, in threshold searches (each about 12 runs of
+the ramp): 1 nominal + 5 replicas + about 28 single-effect values + about 107 pairs.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import hashlib
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..readers.campaign import Specimen
+from ..runner import Runner
+from .effects import COMBINED, EFFECTS_BY_ID, RESTRAINTS, Variant, arch_group
+from .settings import DiagnosisSettings
+from .simulator import Simulator
+
+__all__ = ["BANK_VERSION", "SpecimenBank", "Bank", "variant_key", "key_variant", "bank_variants", "build_bank",
+           "REPLICAS", "FINE_DT", "G"]
+
+BANK_VERSION = 1
+G = 9.81
+#: Time-step factors of the replicas of the nominal model that measure the simulator's
+#: own spread (a threshold search near a chaotic boundary answers differently to a
+#: change of dt of a few percent); the fine-dt check is at dt / 2.
+#: The replicas of the nominal model: (name, dt factor, scan step or None for the
+#: bank's). Their spread is the simulator's own: a threshold near a chaotic, non-monotonic
+#: band answers differently to a change of dt of a few percent or of the search's path.
+REPLICAS = (("dt x0.97", 0.97, None), ("dt x1.03", 1.03, None), ("scan 3 %", 1.0, 0.03),
+            ("scan 7 %", 1.0, 0.07))
+FINE_DT = ("dt / 2", 0.5, None)  #: the discretisation check of each specimen
+
+
+def variant_key(v: Variant) -> str:
+    """A text key of a variant: 'nominal', 'friction=0.45', 'contact_edges=0.002+friction=0.45'."""
+    parts = sorted(v.parts())
+    return "+".join(f"{e}={val}" for e, val in parts) if parts else "nominal"
+
+
+def key_variant(key: str) -> Variant:
+    if key == "nominal":
+        return Variant()
+    parts = []
+    for text in key.split("+"):
+        e, val = text.split("=")
+        parts.append((e, val if val in RESTRAINTS else float(val)))
+    return Variant(*parts[0]) if len(parts) == 1 else Variant(COMBINED, tuple(parts))
+
+
+def _pair_values(spec: Specimen, settings: DiagnosisSettings) -> dict[str, list]:
+    """The coarser grid of each effect inside a pair."""
+    return {"contact_edges": [e for e in settings.pair_inset_m if e < 0.45 * spec.thickness_m],
+            "friction": [round(spec.friction + d, 6) for d in settings.pair_friction_steps
+                         if settings.min_friction <= spec.friction + d <= settings.max_friction],
+            "geometry": list(settings.pair_thickness_factors),
+            "base_restraint": [] if spec.restrained_springings != "none" else list(RESTRAINTS)}
+
+
+def bank_variants(spec: Specimen, settings: DiagnosisSettings) -> list[Variant]:
+    """Every model simulated for one specimen (the replicas apart)."""
+    out = [Variant()]
+    for e in ("contact_edges", "friction", "geometry", "base_restraint"):
+        out += EFFECTS_BY_ID[e].simulated(spec, settings)
+    grid = _pair_values(spec, settings)
+    # Every value of a pair's grid alone too: the pair's product table has its edges.
+    alone = set(out)
+    out += [v for e, values in grid.items() for v in (Variant(e, x) for x in values) if v not in alone]
+    ids = sorted(grid)
+    for i, a in enumerate(ids):
+        for b in ids[i + 1:]:
+            out += [Variant(COMBINED, ((a, va), (b, vb))) for va in grid[a] for vb in grid[b]]
+    return out
+
+
+@dataclass
+class SpecimenBank:
+    """Simulated thresholds [m] of one specimen, per model key, one per frequency."""
+
+    specimen_id: str
+    frequencies_hz: list[float]
+    cycles: tuple[int, int, int]
+    onset_m: list[float]  #: amplitude of the onset of rocking (limit analysis) per frequency
+    amp_max_m: float
+    amp_tol_m: float
+    dt_s: float
+    thresholds: dict[str, list[float]] = field(default_factory=dict)
+    replicas: dict[str, list[float]] = field(default_factory=dict)  #: 'dt x0.97' ... and 'dt / 2'
+    searches: int = 0  #: threshold searches made to fill it
+
+    def threshold(self, key: str, frequency_hz: float) -> float:
+        k = min(range(len(self.frequencies_hz)), key=lambda i: abs(self.frequencies_hz[i] - frequency_hz))
+        if abs(self.frequencies_hz[k] - frequency_hz) > 1e-6:
+            raise KeyError(f"{self.specimen_id}: {frequency_hz} Hz is not in the bank")
+        return self.thresholds[key][k]
+
+
+@dataclass
+class Bank:
+    """The banks of every specimen of a campaign."""
+
+    specimens: dict[str, SpecimenBank]
+    code: str  #: hash of the executables that made it
+    reused: int = 0  #: specimens found in the cache
+    searches: int = 0  #: threshold searches made now (0 when everything was cached)
+    #: Model grids already made from this bank (models.model_grid), by model and pairs.
+    grids: dict = field(default_factory=dict, repr=False, compare=False)
+
+
+def _code_hash(bin_dir: Path) -> str:
+    h = hashlib.sha256()
+    for name in ("voussoir-sweep", "voussoir-limit"):
+        h.update((Path(bin_dir) / name).read_bytes())
+    return h.hexdigest()[:16]
+
+
+def _cache_key(code: str, spec: Specimen, freqs: list[float], cycles, settings: DiagnosisSettings) -> str:
+    group = arch_group(spec, Variant())
+    grids = {k: v for k, v in dataclasses.asdict(settings).items()
+             if k in ("dt_s", "amp_tol_fraction", "inset_grid_m", "friction_steps", "min_friction", "max_friction",
+                      "thickness_factors", "scan_step", "pair_inset_m", "pair_friction_steps", "pair_thickness_factors",
+                      "ceiling_factor")}
+    text = json.dumps({"version": BANK_VERSION, "code": code, "arch": group, "freqs": [round(f, 6) for f in freqs],
+                       "cycles": list(cycles), "grids": grids}, sort_keys=True, default=str)
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def _clean(x: float):
+    return None if not math.isfinite(x) else float(f"{x:.9g}")
+
+
+def save(bank: SpecimenBank, path: Path) -> None:
+    d = dataclasses.asdict(bank)
+    d["thresholds"] = {k: [_clean(x) for x in v] for k, v in bank.thresholds.items()}
+    d["replicas"] = {k: [_clean(x) for x in v] for k, v in bank.replicas.items()}
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(d, separators=(",", ":")) + "\n")
+
+
+def load(path: Path) -> SpecimenBank:
+    d = json.loads(Path(path).read_text())
+    nan = lambda v: [math.nan if x is None else float(x) for x in v]
+    d["thresholds"] = {k: nan(v) for k, v in d["thresholds"].items()}
+    d["replicas"] = {k: nan(v) for k, v in d["replicas"].items()}
+    d["cycles"] = tuple(d["cycles"])
+    return SpecimenBank(**d)
+
+
+def _onsets(runner: Runner, spec: Specimen, freqs: list[float]) -> list[float]:
+    """Amplitude [m] of the onset of rocking at each frequency, from the limit analysis of
+    the nominal ring: the scale of every search, known before any test."""
+    group = {k: v for k, v in arch_group(spec, Variant()).items()
+             if k in ("embrace_deg", "n_voussoirs", "r_ext_m", "thickness_m")}
+    lam = runner.run_limit({"arch": group}, f"limit_{spec.specimen_id}").lambda_pos
+    return [lam * G / (2.0 * math.pi * f) ** 2 for f in freqs]
+
+
+def _simulate(spec: Specimen, freqs, cycles, settings: DiagnosisSettings, work: Path) -> SpecimenBank:
+    sim = Simulator(settings, work)
+    onset = _onsets(sim.runner, spec, freqs)
+    amp_max = settings.ceiling_factor * max(onset)
+    amp_tol = settings.amp_tol_fraction * min(onset)
+    bank = SpecimenBank(spec.specimen_id, list(freqs), tuple(cycles), onset, amp_max, amp_tol, settings.dt_s)
+    variants = bank_variants(spec, settings)
+    settings.log(f"[bank] {spec.specimen_id}: {len(variants)} models x {len(freqs)} frequencies "
+                 f"(+ {len(REPLICAS) + 1} replicas of the nominal model)")
+    found = sim.thresholds_at(spec, freqs, cycles, variants, amp_max, amp_tol)
+    for v in variants:
+        bank.thresholds[variant_key(v)] = [found.get((v, f), math.nan) for f in freqs]
+    for name, dt_factor, scan in REPLICAS + (FINE_DT,):
+        other = Simulator(dataclasses.replace(settings, dt_s=settings.dt_s * dt_factor,
+                                              scan_step=scan or settings.scan_step), work)
+        other._count = 1000 + 10 * len(bank.replicas)
+        found = other.thresholds_at(spec, freqs, cycles, [Variant()], amp_max, amp_tol)
+        bank.replicas[name] = [found.get((Variant(), f), math.nan) for f in freqs]
+    bank.searches = (len(variants) + len(REPLICAS) + 1) * len(freqs)
+    return bank
+
+
+def build_bank(specimens: dict[str, Specimen], frequencies: dict[str, list[float]], cycles: dict[str, tuple],
+               settings: DiagnosisSettings, cache_dir: Path, work_dir: Path) -> Bank:
+    """The bank of every specimen, from the cache where it is there (the key says which)."""
+    code = _code_hash(settings.bin_dir)
+    out, reused, searches = {}, 0, 0
+    for sid, spec in specimens.items():
+        freqs = sorted(frequencies[sid])
+        key = _cache_key(code, spec, freqs, cycles[sid], settings)
+        path = Path(cache_dir) / f"{sid}-{key}.json"
+        if path.exists():
+            out[sid] = load(path)
+            reused += 1
+            settings.log(f"[bank] {sid}: cached ({path})")
+            continue
+        out[sid] = _simulate(spec, freqs, cycles[sid], settings, Path(work_dir))
+        searches += out[sid].searches
+        save(out[sid], path)
+    return Bank(out, code, reused, searches)

@@ -1,0 +1,87 @@
+"""Stage 1 of the diagnosis: what a campaign observed, reduced to what the inference uses.
+
+Each (specimen, frequency) pair with a collapse gives a *bracket*: the collapse threshold
+(in commanded amplitude) lies in (low_m, high_m], low_m the largest `stand` amplitude
+below the smallest `collapse` amplitude high_m (0 when no stand row lies below). The
+table's own evidence enters as one measured gain per test (records fitted as
+gain x command(t - delay), or measured / commanded peak acceleration).
+
+Observations are plain data: they can be read from a campaign folder
+(`from_campaign`) or written by a replay of stored simulations (the tests and the
+calibration bench), and the later stages cannot tell the difference.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from ..readers.campaign import Campaign, Specimen, measured_thresholds
+from .actuator import TableEvidence, table_evidence
+
+__all__ = ["PairObservation", "Observations", "from_campaign", "cycles_of"]
+
+
+@dataclass(frozen=True)
+class PairObservation:
+    """The bracket of one (specimen, frequency) pair and its tests' measured gains."""
+
+    specimen_id: str
+    frequency_hz: float
+    low_m: float  #: largest stand amplitude below high_m (0: none below)
+    high_m: float  #: smallest collapse amplitude
+    gains: tuple[float, ...] = ()  #: measured table gain of each test of the pair (may be empty)
+    test_ids: tuple[str, ...] = ()
+
+    @property
+    def threshold_m(self) -> float:
+        """The measured threshold of shared/MEASURED_DATA.md (midpoint of the bracket)."""
+        return 0.5 * (self.low_m + self.high_m) if self.low_m > 0 else self.high_m
+
+
+@dataclass
+class Observations:
+    """Everything the inference reads from a campaign."""
+
+    name: str
+    specimens: dict[str, Specimen]  #: every specimen with a pair (certain set-up or apart)
+    pairs: list[PairObservation]
+    cycles: dict[str, tuple[int, int, int]]  #: afd cycles (attack, full, decay) of each specimen
+    gain_source: str = "none"  #: 'records', 'peak_accel' or 'none'
+    delay_s: float = 0.0  #: mean delay of the records (reported, not inferred)
+    delay_se_s: float = math.nan
+    apart: list[PairObservation] = field(default_factory=list)  #: specimens with setup_certain = 0
+
+    def of(self, specimen_id: str) -> list[PairObservation]:
+        return [p for p in self.pairs if p.specimen_id == specimen_id]
+
+    def frequencies(self, specimen_id: str) -> list[float]:
+        return sorted({p.frequency_hz for p in self.pairs + self.apart if p.specimen_id == specimen_id})
+
+
+def cycles_of(campaign: Campaign, test_id: str) -> tuple[int, int, int]:
+    t = campaign.tests[test_id]
+    return (t.n_attack, t.n_full, t.n_decay)
+
+
+def from_campaign(campaign: Campaign) -> tuple[Observations, TableEvidence]:
+    """The observations of a campaign read from its folder, and its table evidence."""
+    table = table_evidence(campaign)
+    gain_of: dict[str, float] = {}
+    if table.source == "records":
+        gain_of = {tid: g for tid, g, _, _ in table.per_test}
+    elif table.source == "peak_accel":
+        gain_of = {t.test_id: t.peak_accel_m_s2 / t.commanded_peak_accel_m_s2 for t in campaign.tests.values()
+                   if t.peak_accel_m_s2 and t.commanded_peak_accel_m_s2}
+    pairs, apart, cycles = [], [], {}
+    for m in measured_thresholds(campaign):
+        if not m.has_collapse:
+            continue
+        low = m.low_m if math.isfinite(m.low_m) else 0.0
+        obs = PairObservation(m.specimen_id, float(m.frequency_hz), float(low), float(m.high_m),
+                              tuple(float(gain_of[t]) for t in m.test_ids if t in gain_of), tuple(m.test_ids))
+        (pairs if campaign.specimens[m.specimen_id].setup_certain else apart).append(obs)
+        cycles.setdefault(m.specimen_id, cycles_of(campaign, m.test_ids[0]))
+    specimens = {sid: s for sid, s in campaign.specimens.items() if any(p.specimen_id == sid for p in pairs + apart)}
+    return (Observations(campaign.name, specimens, pairs, cycles, table.source, table.delay_s, table.delay_se,
+                         apart), table)
