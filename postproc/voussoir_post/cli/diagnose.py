@@ -33,6 +33,10 @@ def cmd_check(args) -> int:
         warnings.simplefilter("ignore", CampaignWarning)  # they are printed in the summary
         campaign = read_campaign(args.campaign)
     print(campaign_summary(campaign))
+    from ..diagnosis.report import METHOD_CHECK, PRIOR_TEXT
+    print("\nHow `voussoir-diagnose run` would weigh it (shared/MEASURED_DATA.md version 3): posterior "
+          "probabilities of the nominal model, of each effect and of each pair, a cause named at 0.9.\n"
+          + PRIOR_TEXT.replace("`", "") + "\n" + METHOD_CHECK)
     return DONE
 
 

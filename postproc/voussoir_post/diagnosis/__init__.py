@@ -1,6 +1,6 @@
-"""The diagnosis of a shaking-table campaign (docs/diagnosis.md): the whole in
-:mod:`.pipeline` (``diagnose``), its report in :mod:`.report`, its settings in
-:mod:`.settings`; the table evidence (:mod:`.actuator`), the effects (:mod:`.effects`),
-their simulations (:mod:`.simulator`), the fits (:mod:`.selection`), pairs of effects
-(:mod:`.combined`), nested cross-validation (:mod:`.nested`), the verdict
-(:mod:`.decision`) and the set-up screen (:mod:`.setup_screen`)."""
+"""The diagnosis of a measured campaign, as stages that hand their result to the next:
+observations (:mod:`.observations`), the simulation bank (:mod:`.bank`, through
+:mod:`.simulator`), each model's predictions and likelihood (:mod:`.models`,
+:mod:`.likelihood`), the posterior (:mod:`.posterior`), the verdict (:mod:`.decision`) and
+the report (:mod:`.report`, with :mod:`.single_runs` and :mod:`.screen`), tied together by
+:mod:`.pipeline`."""
