@@ -76,6 +76,8 @@ def test_diagnose_check_seed(seed_campaign, capsys):
     line = next(l for l in out.splitlines() if l.strip().startswith("A156") and "1.25" in l)
     assert "46c" in line and " 46 " in line + " " and "(-, 46]" in line
     assert "Records: none" in out and "Hinges: none" in out
+    # The check says the prior a diagnosis weighs and how its probabilities were checked.
+    assert "Prior: none 1/4" in out and "calibration study" in out
 
 
 def test_diagnose_check_invalid(tmp_path, capsys):

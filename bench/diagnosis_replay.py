@@ -1,0 +1,84 @@
+"""The replay bank of the diagnosis's tests, and the paired check of a change of it.
+
+    python bench/diagnosis_replay.py BIN_DIR OUT_DIR [--store]
+
+Builds the simulation bank of the test arches (postproc/tests/independent_campaigns.py
+ARCHES, all their frequencies) with the executables of BIN_DIR into OUT_DIR, then replays
+the 20 noise draws of every stored truth (postproc/tests/data/replay/maps) on the stored
+bank and on the new one, and prints, per truth and in all, how often each is right (truth
+in the 90 % set, and no wrong cause named) and the exact McNemar test of the paired draws:
+a change of the kernel's last bits is judged better or no worse, not "the same seed
+passes". With --store the new bank replaces the stored one.
+"""
+
+from __future__ import annotations
+
+import shutil
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path[:0] = [str(ROOT / "postproc"), str(ROOT / "postproc" / "tests")]
+
+from voussoir_post.diagnosis.bank import Bank, build_bank, load  # noqa: E402
+from voussoir_post.diagnosis.rates import draw_outcomes, mcnemar  # noqa: E402
+from voussoir_post.diagnosis.settings import DiagnosisSettings  # noqa: E402
+from voussoir_post.readers.campaign import Specimen  # noqa: E402
+
+from independent_campaigns import ARCHES  # noqa: E402
+from replay_maps import draw_observations, load_map  # noqa: E402
+
+DATA = ROOT / "postproc" / "tests" / "data" / "replay"
+DRAWS = 20
+
+
+def arches_bank(bin_dir: Path, out: Path) -> Bank:
+    specs = {a.specimen_id: Specimen(a.specimen_id, a.embrace_deg, a.n_voussoirs, a.r_ext_m, a.thickness_m,
+                                     a.width_m, a.density_kg_m3, a.friction) for a in ARCHES}
+    freqs = {a.specimen_id: list(a.frequencies_hz) for a in ARCHES}
+    settings = DiagnosisSettings(bin_dir=bin_dir, n_ranks=2, log=print)
+    return build_bank(specs, freqs, {k: (1, 1, 1) for k in specs}, settings, out, out / "work")
+
+
+def stored() -> Bank:
+    return Bank({b.specimen_id: b for b in map(load, sorted((DATA / "bank").glob("*.json")))}, "stored")
+
+
+def right(o: dict) -> bool:
+    return not o["wrong_named"] and (o["in_set"] if o["truth"] != "outside" else not o["named"])
+
+
+def main() -> int:
+    bin_dir, out = Path(sys.argv[1]), Path(sys.argv[2])
+    t0 = time.time()
+    new = arches_bank(bin_dir, out)
+    print(f"bank: {new.searches} threshold searches in {time.time() - t0:.0f} s")
+    if "--store" in sys.argv:
+        (DATA / "bank").mkdir(parents=True, exist_ok=True)
+        for old in (DATA / "bank").glob("*.json"):
+            old.unlink()
+        for f in out.glob("*.json"):
+            shutil.copy(f, DATA / "bank" / f.name.split("-")[0].__add__(".json"))
+        print(f"stored in {DATA / 'bank'}")
+        return 0
+    before_all, after_all = [], []
+    print(f"{'truth':32s} {'stored':>8s} {'new':>8s} {'better':>7s} {'worse':>6s} {'p':>6s}")
+    for path in sorted((DATA / "maps").glob("*.json")):
+        omap = load_map(path)
+        a = [right(o) for o in draw_outcomes(stored(), omap, DRAWS, draw_observations)]
+        b = [right(o) for o in draw_outcomes(new, omap, DRAWS, draw_observations)]
+        m = mcnemar(a, b)
+        print(f"{path.stem:32s} {sum(a):5d}/{DRAWS} {sum(b):5d}/{DRAWS} {m['better']:7d} {m['worse']:6d} "
+              f"{m['p_value']:6.3f}")
+        before_all += a
+        after_all += b
+    m = mcnemar(before_all, after_all)
+    verdict = "worse" if m["worse"] > m["better"] and m["p_value"] < 0.05 else "better or no worse"
+    print(f"{'all':32s} {sum(before_all):5d}/{len(before_all)} {sum(after_all):5d}/{len(after_all)} "
+          f"{m['better']:7d} {m['worse']:6d} {m['p_value']:6.3f}  -> the new bank is {verdict}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
