@@ -22,6 +22,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from scipy.stats import binomtest
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT / "postproc"), str(ROOT / "postproc" / "tests")]
@@ -80,10 +81,11 @@ def reliability(outcomes: list[dict], out: Path) -> list[tuple]:
     ax = fig.subplots()
     ax.plot([0, 1], [0, 1], color="k", lw=0.8, ls="--", label="perfectly calibrated")
     for a, b, n, s, r in rows:
-        se = np.sqrt(max(r * (1 - r), 0.25 / n) / n)
-        ax.errorbar(s, r, yerr=1.96 * se, fmt="o", color="tab:blue", capsize=3)
+        ci = binomtest(int(round(r * n)), n).proportion_ci(0.95, method="wilson")
+        ax.errorbar(s, r, yerr=[[r - ci.low], [ci.high - r]], fmt="o", color="tab:blue", capsize=3)
         ax.annotate(f"{n}", (s, r), textcoords="offset points", xytext=(6, -10), fontsize=7)
-    ax.plot([], [], "o", color="tab:blue", label="draws binned by stated probability\n(bar: 95 % interval; "
+    ax.axvline(0.9, color="tab:red", lw=0.8, ls=":", label="a cause is named at 0.9")
+    ax.plot([], [], "o", color="tab:blue", label="draws binned by stated probability\n(bar: 95 % Wilson interval; "
                                                  "number: draws)")
     ax.set_xlim(0, 1.02)
     ax.set_ylim(0, 1.02)

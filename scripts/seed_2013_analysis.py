@@ -54,11 +54,15 @@ def main() -> int:
     if OUT.exists():
         shutil.rmtree(OUT)
     OUT.mkdir(parents=True)
-    result = diagnose(SEED, OUT, DiagnosisSettings(bin_dir=Path(args.bin_dir).resolve(), n_ranks=args.np))
+    # The simulation bank is cached under build/ (not beside docs/): a rerun simulates nothing.
+    result = diagnose(SEED, OUT, DiagnosisSettings(bin_dir=Path(args.bin_dir).resolve(), n_ranks=args.np,
+                                                   bank_dir=ROOT / "build" / "voussoir-bank"))
     shutil.rmtree(OUT / "work", ignore_errors=True)
     rows = paper_comparison()
     (OUT / "paper_comparison.json").write_text(json.dumps(rows, indent=2) + "\n")
-    print(f"verdict: {result['verdict']}; rivals {result['rivals']}")
+    print(f"verdict: {result['verdict']}; rivals {result['rivals']}; next test {result['next_test']}")
+    print("probabilities: " + ", ".join(f"{m} {p:.3f}" for m, p in sorted(result["probabilities"].items(),
+                                                                          key=lambda kv: -kv[1]) if p >= 0.005))
     for r in rows:
         err = "-" if r["error_pct"] is None else f"{r['error_pct']:+.1f} %"
         print(f"{r['specimen']} {r['model']:>12} {r['frequency_hz']:.2f} Hz: {1e3 * r['paper_threshold_m']:.0f} mm "

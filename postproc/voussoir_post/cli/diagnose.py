@@ -52,8 +52,10 @@ def cmd_run(args) -> int:
     settings = DiagnosisSettings(bin_dir=bin_dir, n_ranks=args.np, dt_s=args.dt,
                                  log=lambda m: print(m, flush=True))
     result = diagnose(args.campaign, out, settings)
-    print(f"verdict: {result['verdict']}; threshold error {result['baseline']['threshold_error_pct']:.1f} % "
-          f"(nominal) -> {result['extended']['threshold_error_pct']:.1f} % (extended, held out); "
+    top = sorted(result["probabilities"].items(), key=lambda kv: -kv[1])[:3]
+    print(f"verdict: {result['verdict']} (" + ", ".join(f"{m} {p:.2f}" for m, p in top) + "); threshold error "
+          f"{result['baseline']['threshold_error_pct']:.1f} % (nominal) -> "
+          f"{result['extended']['threshold_error_pct']:.1f} % (reported model, held out); "
           f"report: {os.path.join(out, 'report.md')}")
     return DONE
 

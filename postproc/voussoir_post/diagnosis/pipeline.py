@@ -67,9 +67,10 @@ def parameters(post: Posterior, model_id: str | None, obs: Observations) -> dict
         se = post.scales.sigma_gain / math.sqrt(max(1, sum(len(p.gains) for p in post.pairs)))
         out["accel_gain"] = {"value": float(np.mean(g)), "low": float(np.min(g) - 1.645 * se),
                              "high": float(np.max(g) + 1.645 * se), "unit": ""}
-        se_d = obs.delay_se_s if math.isfinite(obs.delay_se_s) else 0.0
-        out["delay_s"] = {"value": obs.delay_s, "low": obs.delay_s - 1.645 * se_d,
-                          "high": obs.delay_s + 1.645 * se_d, "unit": "s"}
+        if obs.gain_source == "records":  # peak accelerations say nothing of a delay
+            se_d = obs.delay_se_s if math.isfinite(obs.delay_se_s) else 0.0
+            out["delay_s"] = {"value": obs.delay_s, "low": obs.delay_s - 1.645 * se_d,
+                              "high": obs.delay_s + 1.645 * se_d, "unit": "s"}
     return out
 
 

@@ -197,14 +197,17 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
              "of the nominal model at dt x 0.97 and x 1.03 and with scan steps of 3 and 7 %, and the jitter of "
              "every model's simulated thresholds about its smooth fit), the "
              f"test-to-test table gain scatter ({_pct(sc.sigma_gain)}"
-             + (", measured by the records" if obs.gain_source != "none" else
-                f", assumed {_pct(GAIN_SCATTER_DEFAULT)} without records") + "), a discrepancy shared by a "
+             + {"records": ", measured by the records",
+                "peak_accel": ", from the measured peak accelerations, at least 3 % (a noisy peak overstates)",
+                "none": f", assumed {_pct(GAIN_SCATTER_DEFAULT)} without records"}[obs.gain_source]
+             + "), a discrepancy shared by a "
              f"specimen's pairs (integrated over {', '.join(_pct(t) for t in TAU0)}, plus the change of its "
              "thresholds from dt to dt / 2: "
              + ", ".join(f"{sid} {_pct(v)}" for sid, v in sc.d_fine.items())
              + f") and an outlier mixture (probability {OUTLIER_PROB:g}, within a factor {OUTLIER_FACTOR:g}). "
-             "With table records, each test's measured gain is weighed too: 1 if the table followed the "
-             "command, the pair's own gain under `table_motion`.", "", PRIOR_TEXT, "",
+             + ("Each test's measured gain (records, or measured over commanded peak acceleration) is weighed "
+                "too: 1 if the table followed the command, the pair's own gain under `table_motion`."
+                if obs.gain_source != "none" else ""), "", PRIOR_TEXT, "",
              f"Posterior predictive check of `{decision.top}`: p = {decision.p_value:.3f} "
              f"({'adequate' if decision.adequate else 'not adequate'}; the threshold is {ADEQUATE_P}).", "",
              METHOD_CHECK, ""]
@@ -238,7 +241,7 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
                   "probabilities.", "",
                   _md_table(["specimen", "f [Hz]", "measured [mm]", "nominal [mm]", "nominal error"],
                             [(p.specimen_id, f"{p.frequency_hz:g}", f"{1e3 * p.threshold_m:.1f}",
-                              f"{1e3 * t:.1f}", _pct((t - p.threshold_m) / p.threshold_m))
+                              f"{1e3 * t:.1f}", f"{100 * (t - p.threshold_m) / p.threshold_m:+.1f} %")
                              for p in obs.apart
                              for t in [bank.specimens[p.specimen_id].threshold("nominal", p.frequency_hz)]])]
     s = info["settings"]

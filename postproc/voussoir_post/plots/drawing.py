@@ -72,6 +72,11 @@ def save_png(fig: Figure, path: str | os.PathLike, dpi: int = 120, note: str | N
     """Save ``fig`` as PNG at ``path`` (parent folders created); returns the path.
     ``note`` (see :func:`provenance`) is printed small in the bottom right corner."""
     if note:
+        # A strip of its own at the bottom, so that the note never overlaps an axis label.
+        engine = fig.get_layout_engine()
+        if engine is not None and hasattr(engine, "set") and "rect" in engine.get():
+            strip = 0.14 / fig.get_figheight()  # about 10 points
+            engine.set(rect=(0.0, strip, 1.0, 1.0 - strip))
         fig.text(0.995, 0.002, note, ha="right", va="bottom", fontsize=6, color="#777777")
     path = os.fspath(path)
     parent = os.path.dirname(os.path.abspath(path))
