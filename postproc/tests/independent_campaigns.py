@@ -222,6 +222,16 @@ def _onset_amplitude_m(runner: Runner, arch: Arch, frequency_hz: float) -> float
     return limit.lambda_pos * G / (2.0 * math.pi * frequency_hz) ** 2
 
 
+def run_groups(arch: Arch, poly_file: Path, friction: float, motion: dict, dt_s: float) -> dict:
+    """The input groups of one test of a campaign (the arch as its polygon file)."""
+    return {"arch": {"polygon_file": str(poly_file), "width_m": arch.width_m,
+                     "density_kg_m3": arch.density_kg_m3, "friction": friction},
+            "motion": motion,
+            "solver": {"dt_s": dt_s, "allow_nonconvergence": True},
+            "output": {"every": int(round(0.005 / dt_s)), "stop_after_collapse_s": 0.3,
+                       "collapse_drop_m": 0.5 * arch.thickness_m}}
+
+
 def write_campaign(folder: Path, truth: Truth, bin_dir: Path, arches=ARCHES, seed: int = 11, dt_s: float = 5e-4,
                    step_fraction: float = 0.05, start_fraction: float = 0.8, max_steps: int = 30,
                    hinges: bool = True) -> dict:
@@ -251,13 +261,8 @@ def write_campaign(folder: Path, truth: Truth, bin_dir: Path, arches=ARCHES, see
                     test_id = f"{arch.specimen_id}_f{f:g}_A{1e3 * amp:.1f}"
                     gain = 1.0 + 0.01 * rng.standard_normal()
                     motion, t0 = _motion(tmp, test_id, f, amp, gain, truth, dt_s)
-                    groups = {"arch": {"polygon_file": str(poly_file), "width_m": arch.width_m,
-                                       "density_kg_m3": arch.density_kg_m3, "friction": friction},
-                              "motion": motion,
-                              "solver": {"dt_s": dt_s, "allow_nonconvergence": True},
-                              "output": {"every": int(round(0.005 / dt_s)), "stop_after_collapse_s": 0.3,
-                                         "collapse_drop_m": 0.5 * arch.thickness_m}}
-                    run = runner.run_single(groups, test_id, keep=False)
+                    run = runner.run_single(run_groups(arch, poly_file, friction, motion, dt_s), test_id,
+                                            keep=False)
                     row = _write_test(folder, arch, test_id, f, amp, run, t0, joints, rng, hinges)
                     test_rows.append(row)
                     written += 1

@@ -41,7 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
-from independent_campaigns import (ARCHES, Arch, Truth, _motion, _onset_amplitude_m, ring_blocks,
+from independent_campaigns import (ARCHES, Arch, Truth, _motion, _onset_amplitude_m, ring_blocks, run_groups,
                                    write_polygon_file)
 from voussoir_post.diagnosis.observations import Observations, PairObservation
 from voussoir_post.readers.campaign import Specimen
@@ -123,13 +123,7 @@ def _ramp_pair(runner: Runner, tmp: Path, arch: Arch, poly_file: Path, frequency
         run_id = f"{arch.specimen_id}_f{frequency_hz:g}_k{k:03d}"
         motion, _ = _motion(tmp, run_id, frequency_hz, amp_m, 1.0, truth, dt_s)
         # The groups of write_campaign's tests, the table gain aside.
-        groups = {"arch": {"polygon_file": str(poly_file), "width_m": arch.width_m,
-                           "density_kg_m3": arch.density_kg_m3, "friction": friction},
-                  "motion": motion,
-                  "solver": {"dt_s": dt_s, "allow_nonconvergence": True},
-                  "output": {"every": int(round(0.005 / dt_s)), "stop_after_collapse_s": 0.3,
-                             "collapse_drop_m": 0.5 * arch.thickness_m}}
-        run = runner.run_single(groups, run_id, keep=False)
+        run = runner.run_single(run_groups(arch, poly_file, friction, motion, dt_s), run_id, keep=False)
         (tmp / f"{run_id}_table.csv").unlink(missing_ok=True)
         amplitudes_m.append(amp_m)
         collapsed.append(bool(run.collapsed))
