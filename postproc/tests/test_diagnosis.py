@@ -214,6 +214,22 @@ def test_end_to_end_diagnosis_follows_the_contract_and_keeps_the_truth(tmp_path,
     assert (tmp_path / "first" / "report.md").read_text().count("Prior:") == 1
     for png in ("thresholds.png", "probabilities.png"):
         assert (tmp_path / "first" / png).stat().st_size > 10_000
+    # The posterior as model samples of the arch: as many as asked, parameters inside the
+    # prior, and each model drawn about as often as its probability says (binomial, 4 sigma).
+    rows = [line.split(",") for line in (tmp_path / "first" / "posterior_samples_W156.csv").read_text().splitlines()
+            if not line.startswith("#")]
+    assert rows[0] == ["sample", "model", "friction", "contact_inset_m", "thickness_m", "r_ext_m"]
+    body = rows[1:]
+    assert len(body) == settings.posterior_samples
+    for r in body:
+        friction, inset, t, r_ext = map(float, r[2:])
+        assert 0.25 - 1e-9 <= friction <= 0.75 + 1e-9 and 0.0 <= inset <= 0.005 + 1e-9
+        assert 0.85 * 0.071 - 1e-9 <= t <= 0.071 * 1.0 + 1e-9 or abs(t - 0.071) < 1e-9
+        assert abs((r_ext - t / 2) - (0.508 - 0.071 / 2)) < 1e-6  # about the mean radius
+    top = max(p, key=p.get)
+    n_top = sum(r[1] == top for r in body)
+    n = len(body)
+    assert abs(n_top - n * p[top]) <= 4 * math.sqrt(n * p[top] * (1 - p[top])) + 1, (n_top, p[top])
     # Diagnosed twice: the same probabilities, nothing simulated again.
     assert any("0 threshold searches made" in line for line in again_logs), again_logs
     assert max(abs(p[m] - again["probabilities"][m]) for m in p) <= 0.01

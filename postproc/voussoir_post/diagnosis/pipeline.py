@@ -10,7 +10,8 @@ The stages, each handing its result to the next (docs/diagnosis.md explains them
 4. posterior.py: the models' posterior probabilities, their parameters, the posterior
    predictive check, the held-out errors and the next test;
 5. decision.py: the verdict of shared/MEASURED_DATA.md version 3;
-6. report.py: report.md, its figures and diagnosis.json.
+6. report.py: report.md, its figures and diagnosis.json; samples.py: the posterior as
+   model samples of each arch (posterior_samples_<specimen>.csv), for the fragility.
 
 Single runs (hinges, crown records) are made only for the report, with the nominal model
 and the reported one; they do not enter the probabilities.
@@ -35,6 +36,7 @@ from .models import CANDIDATES, MODEL_IDS, members, model_prior
 from .observations import Observations, from_campaign
 from .posterior import Posterior, held_out, infer, next_test
 from .report import write_report
+from .samples import write_samples
 from .screen import specimen_screen
 from .settings import DiagnosisSettings
 from .simulator import Simulator
@@ -125,6 +127,7 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
         f"({cache})")
     post, decision = infer_campaign(bank, obs)
     log("[diagnose] most probable: " + ", ".join(f"{m} {post.probabilities[m]:.3f}" for m in post.ranked()[:4]))
+    samples = write_samples(out_dir, post, obs, settings.posterior_samples, campaign.name)
     held = {m: held_out(bank, obs, m) for m in MODEL_IDS}
     baseline_pred = np.array([bank.specimens[p.specimen_id].threshold("nominal", p.frequency_hz) for p in obs.pairs])
     meas = np.array([p.threshold_m for p in obs.pairs])
@@ -161,7 +164,7 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
         "notes": "",
     }
     info = {"elapsed_s": time.time() - t0, "bank": bank, "settings": settings, "crown": crown, "screen": screen,
-            "held": held, "baseline_pred": baseline_pred, "runs": sim.n_runs, "prior": {m: model_prior(m)
+            "held": held, "baseline_pred": baseline_pred, "samples": samples, "runs": sim.n_runs, "prior": {m: model_prior(m)
                                                                                     for m in MODEL_IDS}}
     result["notes"] = write_report(out_dir, campaign, obs, post, decision, result, info)
     (out_dir / "diagnosis.json").write_text(json.dumps(result, indent=2) + "\n")

@@ -244,6 +244,13 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
                               f"{1e3 * t:.1f}", f"{100 * (t - p.threshold_m) / p.threshold_m:+.1f} %")
                              for p in obs.apart
                              for t in [bank.specimens[p.specimen_id].threshold("nominal", p.frequency_hz)]])]
+    if info.get("samples"):
+        lines += ["", "## The calibrated model, for the fragility", "",
+                  f"{info['settings'].posterior_samples} samples of the arch's model drawn from the posterior (a "
+                  "model by its probability, its parameters by their weights), written as &arch values of each "
+                  "specimen (table gains and restraints, the laboratory's, are not carried): "
+                  + ", ".join(f"`{p.name}`" for p in info["samples"])
+                  + ". An IDA reads one with `&sweep model_samples_file` (docs/earthquakes.md)."]
     s = info["settings"]
     lines += ["", "## How this was made", "",
               f"voussoir-diagnose on `{campaign.path}`: simulation bank of {len(bank.specimens)} specimen(s) "

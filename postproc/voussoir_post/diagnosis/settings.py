@@ -31,6 +31,8 @@ class DiagnosisSettings:
     #: Ceiling of every threshold search, in onsets of rocking (limit analysis) at the
     #: lowest frequency tested: data-independent.
     ceiling_factor: float = 6.0
+    #: Model samples drawn from the posterior for each specimen (posterior_samples_<id>.csv).
+    posterior_samples: int = 200
     #: Where the simulation bank is cached (None: a folder `voussoir-bank` beside the output).
     bank_dir: Path | None = None
     log: object = print

@@ -1,0 +1,66 @@
+"""The diagnosis's posterior as model samples of each arch, for the fragility.
+
+`posterior_samples_<specimen>.csv` (one file per specimen with a certain set-up): rows
+drawn from the posterior, each a model (by its probability) and its parameters (by
+their posterior weights), written as the &arch values of that specimen:
+
+    sample,model,friction,contact_inset_m,thickness_m,r_ext_m
+
+A thickness factor f changes the ring about its mean radius (thickness f t, extrados
+R_mean + f t / 2). Only what belongs to the arch itself is carried: a table gain is the
+laboratory's actuator and a restraint the laboratory's set-up, so a sample of
+`contact_edges+table_motion` keeps its inset and drops its gain, and one of
+`base_restraint` is the nominal arch. The file is what `&sweep model_samples_file` of an
+IDA reads (docs/earthquakes.md): the fragility of the arch as the table tests revealed it.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from .observations import Observations
+from .posterior import Posterior
+
+__all__ = ["write_samples", "draw_samples", "SAMPLE_COLUMNS"]
+
+SAMPLE_COLUMNS = ("sample", "model", "friction", "contact_inset_m", "thickness_m", "r_ext_m")
+
+
+def draw_samples(post: Posterior, n: int, seed: int = 2026) -> list[tuple[str, dict]]:
+    """`n` draws (model id, {effect: value}) from the posterior, with a fixed seed."""
+    rng = np.random.default_rng(seed)
+    models = list(post.probabilities)
+    p = np.array([post.probabilities[m] for m in models])
+    out = []
+    for m in rng.choice(len(models), size=n, p=p / p.sum()):
+        mp = post.models[models[m]]
+        k = rng.choice(mp.grid.n, p=mp.weights)
+        out.append((models[m], {name: v[k] for name, v in zip(mp.grid.names, mp.grid.values)}))
+    return out
+
+
+def write_samples(out_dir: Path, post: Posterior, obs: Observations, n: int, campaign_name: str) -> list[Path]:
+    """Write the posterior samples of every specimen with a certain set-up; return the files."""
+    draws = draw_samples(post, n)
+    written = []
+    for sid in sorted({p.specimen_id for p in obs.pairs}):
+        spec = obs.specimens[sid]
+        r_mean = spec.r_ext_m - 0.5 * spec.thickness_m
+        lines = [f"# Posterior samples of the model of specimen {sid}, from voussoir-diagnose on campaign "
+                 f"{campaign_name} ({n} draws: a model by its probability, its parameters by their posterior "
+                 "weights).",
+                 "# &arch values of the arch itself: table gains and restraints (the laboratory's) are not "
+                 "carried; a thickness factor f gives thickness f t about the mean radius.",
+                 ",".join(SAMPLE_COLUMNS)]
+        for k, (model, values) in enumerate(draws):
+            f = float(values.get("geometry", 1.0))
+            friction = float(values.get("friction", spec.friction))
+            inset = float(values.get("contact_edges", 0.0))
+            lines.append(f"{k},{model},{friction:.6g},{inset:.6g},{f * spec.thickness_m:.6g},"
+                         f"{r_mean + 0.5 * f * spec.thickness_m:.6g}")
+        path = Path(out_dir) / f"posterior_samples_{sid}.csv"
+        path.write_text("\n".join(lines) + "\n")
+        written.append(path)
+    return written
