@@ -34,7 +34,8 @@ from .decision import Decision, decide
 from .effects import COMBINED, Variant
 from .models import CANDIDATES, MODEL_IDS, members, model_prior
 from .observations import Observations, from_campaign
-from .posterior import Posterior, held_out, infer, next_test
+from .next_test import next_test
+from .posterior import Posterior, held_out, infer
 from .report import write_report
 from .samples import write_samples
 from .screen import specimen_screen
@@ -135,7 +136,11 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     shown = decision.top if decision.adequate and decision.top != "none" else None
     shown_params = parameters(post, shown, obs)
     rivals = decision.rivals
-    suggestion = next_test(post, rivals) if decision.verdict == "inconclusive" else None
+    suggestion = None
+    if decision.verdict == "inconclusive" and len(rivals) > 1:
+        log(f"[diagnose] looking for the test that separates {', '.join(rivals)} (tested and new frequencies)")
+        suggestion = next_test(post, obs, rivals, {m: model_run(m, parameters(post, m, obs), obs) for m in rivals},
+                               settings, cache / "next-test")  # beside the bank: a rerun reuses its sweeps
     sim = Simulator(settings, out_dir / "work")
     runs = {"nominal": (Variant(), {})}
     if shown:
@@ -159,12 +164,12 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
                      "threshold_error_se_pct": None if not math.isfinite(ext_se) else 100 * ext_se,
                      "hinge_match": hinge[shown] if shown else hinge["nominal"]},
         "candidates": [candidate_entry(m, post, held[m], obs) for m in CANDIDATES],
-        "next_test": None if suggestion is None else {"specimen_id": suggestion.specimen_id,
-                                                      "frequency_hz": suggestion.frequency_hz},
+        "next_test": None if suggestion is None else {"specimen_id": suggestion["specimen_id"],
+                                                      "frequency_hz": suggestion["frequency_hz"]},
         "notes": "",
     }
     info = {"elapsed_s": time.time() - t0, "bank": bank, "settings": settings, "crown": crown, "screen": screen,
-            "held": held, "baseline_pred": baseline_pred, "samples": samples, "runs": sim.n_runs, "prior": {m: model_prior(m)
+            "held": held, "baseline_pred": baseline_pred, "samples": samples, "next_test": suggestion, "runs": sim.n_runs, "prior": {m: model_prior(m)
                                                                                     for m in MODEL_IDS}}
     result["notes"] = write_report(out_dir, campaign, obs, post, decision, result, info)
     (out_dir / "diagnosis.json").write_text(json.dumps(result, indent=2) + "\n")

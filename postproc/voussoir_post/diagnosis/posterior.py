@@ -10,8 +10,9 @@ that gives the posterior probability of `none`, of each effect and of each pair.
   standardised squared distance; adequate when p >= 0.01);
 - the held-out error of a model, leave one specimen out (one pair out with a single
   specimen), with its standard error over the pairs;
-- `next_test`: the tested (specimen, frequency) whose outcome the rivals predict most
-  differently, in units of their predictive spread, weighted by their probabilities.
+- how differently the rivals predict each tested pair, in units of their predictive
+  spread, weighted by their probabilities (next_test.py weighs it against new
+  frequencies).
 """
 
 from __future__ import annotations
@@ -28,7 +29,7 @@ from .likelihood import (OUTLIER_FACTOR, OUTLIER_PROB, TAU0, Scales, log_likelih
 from .models import MODEL_IDS, ModelGrid, members, model_grid, model_prior
 from .observations import Observations, PairObservation
 
-__all__ = ["ModelPosterior", "Posterior", "infer", "held_out", "ADEQUATE_P"]
+__all__ = ["ModelPosterior", "Posterior", "infer", "held_out", "tested_separation", "predicted_log", "ADEQUATE_P"]
 
 ADEQUATE_P = 0.01
 PPC_DRAWS = 400
@@ -156,11 +157,10 @@ def held_out(bank: Bank, obs: Observations, model_id: str) -> tuple[np.ndarray, 
     return pred, float(np.mean(err)), se
 
 
-def next_test(post: Posterior, rivals: list[str]) -> PairObservation | None:
-    """The tested pair whose outcome the rivals predict most differently (None with fewer
-    than two rivals)."""
-    if len(rivals) < 2:
-        return None
+def tested_separation(post: Posterior, rivals: list[str]) -> np.ndarray:
+    """How differently the rivals predict each tested pair: the sum over pairs of rivals
+    of p_a p_b (m_a - m_b)^2 / (v_a + v_b), m the posterior mean log threshold and v its
+    predictive variance (simulator, table, discrepancy and the parameters' own spread)."""
     sc = post.scales
     means = {m: predicted_log(post.models[m], sc) for m in rivals}
     var = {}
@@ -173,4 +173,4 @@ def next_test(post: Posterior, rivals: list[str]) -> PairObservation | None:
         for b in rivals[i + 1:]:
             pa, pb = post.probabilities[a], post.probabilities[b]
             score += pa * pb * (means[a] - means[b]) ** 2 / (2 * base + var[a] + var[b])
-    return post.pairs[int(np.argmax(score))]
+    return score

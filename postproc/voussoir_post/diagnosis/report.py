@@ -77,10 +77,13 @@ def notes(decision: Decision, post: Posterior, result: dict, info: dict) -> str:
         common = set(members(decision.rivals[0])).intersection(*(set(members(m)) for m in decision.rivals[1:]))
         if common:
             text += f" Every rival includes {' and '.join(sorted(common))}: that part is established."
-        if result["next_test"]:
-            nt = result["next_test"]
+        nt = info.get("next_test")
+        if nt:
             text += (f" The test whose outcome would best separate them: specimen {nt['specimen_id']} at "
-                     f"{nt['frequency_hz']:g} Hz, ramped again in finer steps.")
+                     f"{nt['frequency_hz']:g} Hz"
+                     + (" (a frequency not tested yet), where the rivals predict thresholds of "
+                        + ", ".join(f"{m} {1e3 * v:.1f} mm" for m, v in nt["predicted_m"].items())
+                        if nt["new"] else ", ramped again in finer steps") + ".")
     for s in info.get("screen", []):
         text += " " + s["sentence"]
     return text
