@@ -119,12 +119,14 @@ contains
       end if
     end do
     if (len_trim(group%model_samples_file) > 0) then
-      if (group%n_samples /= 0) call fail(status, path//': &sweep n_samples = '//itoa(group%n_samples)//' draws '// &
-        'model samples, but model_samples_file gives them: give one or the other')
-      do v = 1, n_sampled
-        if (any(group%ranges(:, v) /= unset_real)) call fail(status, path//': &sweep '//trim(range_names(v))// &
-          ' is a range of the drawn model samples, but model_samples_file gives them: give one or the other')
-      end do
+      v = findloc(any(group%ranges /= unset_real, dim=1), .true., dim=1)
+      if (group%n_samples /= 0) then
+        call fail(status, path//': &sweep n_samples = '//itoa(group%n_samples)//' draws model samples, but '// &
+                  'model_samples_file gives them: give one or the other')
+      else if (v > 0) then
+        call fail(status, path//': &sweep '//trim(range_names(v))//' is a range of the drawn model samples, but '// &
+                  'model_samples_file gives them: give one or the other')
+      end if
       if (.not. status%ok) return
     end if
     associate (g => group)
