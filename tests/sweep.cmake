@@ -9,6 +9,9 @@
 #   sweep_bad_inputs        bad &sweep values: clear errors, no result file
 #   sweep_failing_job       a job whose run fails is recorded as failed, the others finish
 #   sweep_lock              a second sweep on the same file is refused while the first runs
+#   sweep_ida_samples       an IDA over the model samples of a file: the file's values in
+#                           the rows and in the runs (voussoir-limit, voussoir-run), the
+#                           samples in the sweep definition, bad files refused
 # The input files input/sweep_*.nml are run by driver_tests.cmake.
 if(NOT TARGET voussoir-sweep)
   return()
@@ -17,7 +20,7 @@ if(NOT MPIEXEC_EXECUTABLE)
   message(FATAL_ERROR "voussoir-sweep is built but no mpiexec was found: its MPI tests cannot run")
 endif()
 
-foreach(case ranks grid resume refuse threshold_vs_run bad_inputs failing_job lock)
+foreach(case ranks grid resume refuse threshold_vs_run bad_inputs failing_job lock ida_samples)
   add_test(NAME sweep_${case}
            COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/sweep/sweep_test.py ${case}
                    --mpiexec ${MPIEXEC_EXECUTABLE} --bin $<TARGET_FILE_DIR:voussoir-sweep>

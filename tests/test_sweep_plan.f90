@@ -24,6 +24,7 @@ program test_sweep_plan
   call test_refusals()
   call test_ida()
   call test_ida_refusals()
+  call test_ida_samples_file()
   call assert_summary()
 
 contains
@@ -187,6 +188,54 @@ contains
     call refused('ida_samples_max', "&sweep mode = 'ida', record_files = 'rec_a.csv', n_samples = -1 /", &
                  'n_samples = -1 is outside the allowed range')
   end subroutine test_ida_refusals
+
+  !> Model samples from a CSV written here (columns in another order than the plan's,
+  !> a text column, comments): the plan's sets are its rows, each on its case.
+  subroutine test_ida_samples_file()
+    type(sweep_plan_t) :: plan, again, changed
+    type(status_t) :: status
+    character(len=*), parameter :: group = "&sweep mode = 'ida', record_files = 'rec_a.csv', sample_seed = 4, "// &
+                                           "model_samples_file = 'samples.csv' /"
+    call write_records()
+    call write_samples('0.06,0.6,0.5025')
+    call plan_of('ida_file', group, plan, status)
+    call assert_true(status%ok, 'ida samples file reads: '//trim(status%message))
+    if (.not. status%ok) return
+    call assert_true(plan%n_sets == 3 .and. plan%n_jobs == 3 .and. plan%n_params == 4, &
+                     'ida samples file: 3 rows x 1 record = 3 jobs, 4 columns')
+    call assert_true(all(plan%param_names == [character(len=24) :: 'friction', 'thickness_m', 'r_ext_m', &
+                     'size_imperfection']), 'ida samples file: the columns in the order of the sampled variables')
+    call assert_true(all(plan%param_values(:, 3) == [0.6_dp, 0.06_dp, 0.5025_dp, 0.02_dp]), &
+                     'ida samples file: row 3 as written')
+    call assert_true(plan%set_cfg(2)%arch%r_ext_m == 0.5025_dp .and. plan%set_cfg(2)%arch%thickness_m == 0.06_dp &
+                     .and. plan%set_cfg(2)%arch%friction == 0.6_dp .and. plan%set_cfg(0)%arch%r_ext_m == 0.508_dp, &
+                     'ida samples file: each sample on its own arch (r_ext_m too)')
+    call assert_true(plan%set_cfg(2)%arch%size_imperfection == 0.02_dp .and. &
+                     plan%set_cfg(2)%arch%imperfection_seed == 6, &
+                     'ida samples file: sample 2 gets the imperfection pattern of seed sample_seed + 2')
+    call plan_of('ida_file', group, again, status)
+    call write_samples('0.06,0.6,0.5026')
+    call plan_of('ida_file', group, changed, status)
+    call assert_true(again%signature == plan%signature .and. changed%signature /= plan%signature .and. &
+                     index(plan%signature, 'model samples: 3 of friction, thickness_m, r_ext_m, size_imperfection') > 0, &
+                     'ida samples file: the samples are in the sweep definition')
+    call refused('ida_file_n', "&sweep mode = 'ida', record_files = 'rec_a.csv', n_samples = 2, "// &
+                 "model_samples_file = 'samples.csv' /", 'n_samples = 2 draws model samples, but model_samples_file')
+    call refused('ida_file_threshold', "&sweep frequencies_hz = 1, model_samples_file = 'samples.csv' /", &
+                 "model_samples_file gives the model samples of an IDA (mode = 'ida')")
+    call refused('ida_file_missing', "&sweep mode = 'ida', record_files = 'rec_a.csv', "// &
+                 "model_samples_file = 'none.csv' /", 'model_samples_file: none.csv: cannot open')
+  end subroutine test_ida_samples_file
+
+  !> samples.csv with `last` as the thickness_m, friction, r_ext_m of its third row.
+  subroutine write_samples(last)
+    character(len=*), intent(in) :: last
+    integer :: unit
+    open (newunit=unit, file='samples.csv', status='replace', action='write')
+    write (unit, '(a)') '# posterior samples', 'model,thickness_m,friction,r_ext_m,size_imperfection', &
+      'nominal,0.071,0.5,0.508,0', 'friction,0.071,0.45,0.508,0', '', 'geometry,'//last//',0.02'
+    close (unit)
+  end subroutine write_samples
 
   subroutine write_records()
     integer :: unit

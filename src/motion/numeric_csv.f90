@@ -4,7 +4,8 @@
 !> A CSV has one header row naming the columns (order free, other columns ignored),
 !> `#` comment lines and blank lines anywhere, and numbers in the cells. Every error
 !> names the file and the line: a missing column, a short row, a cell that is not a
-!> number, a NaN or an infinity.
+!> number, a NaN or an infinity. A reader that must know every column (to refuse
+!> unknown ones) reads the header first (`read_csv_header`).
 module voussoir_numeric_csv
   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
   use voussoir_kinds, only: dp
@@ -13,7 +14,7 @@ module voussoir_numeric_csv
   implicit none
   private
 
-  public :: read_csv_columns, split_csv, parse_number, number_ok, number_text, number_not_finite
+  public :: read_csv_columns, read_csv_header, split_csv, parse_number, number_ok, number_text, number_not_finite
 
   integer, parameter :: line_len = 4096
   integer, parameter :: number_ok = 0          !! a finite number
@@ -33,7 +34,7 @@ contains
     character(len=line_len) :: line
     character(len=512) :: iomsg
     character(len=64), allocatable :: fields(:)
-    integer :: unit, ios, line_no, n, k, i, kind, first
+    integer :: unit, ios, line_no, n, k, i, kind
     integer :: col(size(names))
     logical :: have_header
 
@@ -53,9 +54,7 @@ contains
       read (unit, '(a)', iostat=ios) line
       if (ios /= 0) exit
       line_no = line_no + 1
-      first = verify(line, ' '//achar(9)//achar(13))
-      if (first == 0) cycle
-      if (line(first:first) == '#') cycle
+      if (.not. is_content(line)) cycle
       call split_csv(line, fields)
       if (.not. have_header) then
         do k = 1, size(names)
@@ -109,6 +108,45 @@ contains
     end function name_list
 
   end subroutine read_csv_columns
+
+  !> The header row of the CSV file `path` (its first line that is neither blank nor a
+  !> `#` comment): its cells, as `split_csv` gives them, and its line.
+  subroutine read_csv_header(path, fields, line_no, status)
+    character(len=*), intent(in) :: path
+    character(len=64), allocatable, intent(out) :: fields(:)
+    integer, intent(out) :: line_no
+    type(status_t), intent(inout) :: status
+    character(len=line_len) :: line
+    character(len=512) :: iomsg
+    integer :: unit, ios
+
+    allocate (fields(0))
+    line_no = 0
+    open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
+    if (ios /= 0) then
+      call fail(status, trim(path)//': cannot open: '//trim(iomsg))
+      return
+    end if
+    do
+      read (unit, '(a)', iostat=ios) line
+      if (ios /= 0) exit
+      line_no = line_no + 1
+      if (.not. is_content(line)) cycle
+      call split_csv(line, fields)
+      exit
+    end do
+    close (unit)
+    if (size(fields) == 0) call fail(status, trim(path)//': no header row (the file is empty or only comments)')
+  end subroutine read_csv_header
+
+  !> Whether `line` holds a row (it is neither blank nor a `#` comment).
+  pure logical function is_content(line)
+    character(len=*), intent(in) :: line
+    integer :: first
+    first = verify(line, ' '//achar(9)//achar(13))
+    is_content = first > 0
+    if (is_content) is_content = line(first:first) /= '#'
+  end function is_content
 
   !> Twice the room for rows in `values` (n_columns, :) and `lines`, the rows kept.
   pure subroutine grow_rows(values, lines)

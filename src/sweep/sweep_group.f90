@@ -49,6 +49,7 @@ module voussoir_sweep_group
     real(dp) :: scale_max = 20.0_dp
     integer :: n_samples = 0
     integer :: sample_seed = 1
+    character(len=512) :: model_samples_file = ''  !! ida: model samples from a CSV instead
     integer :: dt_check_rows = 0
     real(dp) :: ranges(2, n_sampled) = unset_real   !! low and high bound of each sampled variable
     ! The entries given, from the first (the lists have no gaps).
@@ -88,6 +89,7 @@ contains
     call g%add('scale_max', s%scale_max)
     call g%add('n_samples', s%n_samples)
     call g%add('sample_seed', s%sample_seed)
+    call g%add('model_samples_file', s%model_samples_file)
     do k = 1, n_sampled
       call g%add(trim(range_names(k)), s%ranges(:, k), unset=unset_real, about='real, the low and the high bound')
     end do

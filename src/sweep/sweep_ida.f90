@@ -1,6 +1,7 @@
 !> The parts of a sweep plan that belong to an incremental dynamic analysis (`&sweep
 !> mode = 'ida'`): the records and their intensity measures, and the model samples
-!> drawn by a seeded Latin hypercube from uniform distributions between bounds.
+!> drawn by a seeded Latin hypercube from uniform distributions between bounds (or read
+!> from a file: src/sweep/model_samples.f90; both make a sample's case by `sample_case`).
 !>
 !> Sampled variables (each sampled when its `&sweep` range is given, in this order):
 !> friction (`friction_range`), contact inset (`contact_inset_range_m`), ring thickness
@@ -20,8 +21,13 @@ module voussoir_sweep_ida
   private
 
   public :: n_sampled, sampled_names, range_names, ida_records_t, read_ida_records, sample_sets
+  public :: sample_variables, sample_case
 
   integer, parameter :: n_sampled = 4                 !! variables that can be sampled
+  !> The &arch variables a model sample can set: those of the Latin hypercube, and the
+  !> extrados radius, which a file of samples may give (src/sweep/model_samples.f90).
+  character(len=24), parameter :: sample_variables(5) = [character(len=24) :: &
+    'friction', 'contact_inset_m', 'thickness_m', 'r_ext_m', 'size_imperfection']
   character(len=24), parameter :: sampled_names(n_sampled) = [character(len=24) :: &
     'friction', 'contact_inset_m', 'thickness_m', 'size_imperfection']
   character(len=24), parameter :: range_names(n_sampled) = [character(len=24) :: &
@@ -105,24 +111,13 @@ contains
     allocate (values(size(names), n_samples), set_cfg(0:n_samples - 1))
     u = latin_hypercube(n_samples, size(names), seed)
     do s = 0, n_samples - 1
-      set_cfg(s) = base
       p = 0
       do v = 1, n_sampled
         if (.not. given(v)) cycle
         p = p + 1
         values(p, s + 1) = ranges(1, v) + u(p, s + 1)*(ranges(2, v) - ranges(1, v))
-        select case (v)
-        case (1)
-          set_cfg(s)%arch%friction = values(p, s + 1)
-        case (2)
-          set_cfg(s)%arch%contact_inset_m = values(p, s + 1)
-        case (3)
-          set_cfg(s)%arch%thickness_m = values(p, s + 1)
-        case (4)
-          set_cfg(s)%arch%size_imperfection = values(p, s + 1)
-          set_cfg(s)%arch%imperfection_seed = seed + s
-        end select
       end do
+      set_cfg(s) = sample_case(base, names, values(:, s + 1), seed + s)
       call validate_config(set_cfg(s), check)
       if (.not. check%ok) then
         call fail(status, path//': &sweep model sample '//itoa(s)//': '//trim(check%message))
@@ -130,5 +125,32 @@ contains
       end if
     end do
   end subroutine sample_sets
+
+  !> The base case with the values `values` of the &arch variables `names` (among
+  !> `sample_variables`); a size imperfection gets the pattern of seed `pattern_seed`.
+  pure function sample_case(base, names, values, pattern_seed) result(cfg)
+    type(config_t), intent(in) :: base
+    character(len=*), intent(in) :: names(:)
+    real(dp), intent(in) :: values(:)
+    integer, intent(in) :: pattern_seed
+    type(config_t) :: cfg
+    integer :: p
+    cfg = base
+    do p = 1, size(names)
+      select case (names(p))
+      case ('friction')
+        cfg%arch%friction = values(p)
+      case ('contact_inset_m')
+        cfg%arch%contact_inset_m = values(p)
+      case ('thickness_m')
+        cfg%arch%thickness_m = values(p)
+      case ('r_ext_m')
+        cfg%arch%r_ext_m = values(p)
+      case ('size_imperfection')
+        cfg%arch%size_imperfection = values(p)
+        cfg%arch%imperfection_seed = pattern_seed
+      end select
+    end do
+  end function sample_case
 
 end module voussoir_sweep_ida

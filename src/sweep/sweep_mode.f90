@@ -32,6 +32,7 @@ module voussoir_sweep_mode
     procedure(check_settings_i), deferred :: check_settings
     procedure :: draw_sets
     procedure(plan_text_i), deferred :: settings_text
+    procedure :: definition_text
     ! The jobs.
     procedure(plan_text_i), deferred :: jobs_text
     procedure(job_text_i), deferred :: job_label
@@ -212,6 +213,15 @@ contains
     type(status_t), intent(inout) :: status
     drawn = .false.
   end subroutine draw_sets
+
+  !> Lines of the sweep definition (the signature a resumed file must match) besides the
+  !> effective &sweep group and the base case: what a file the mode reads gave (none here).
+  function definition_text(this, plan) result(text)
+    class(sweep_mode_t), intent(in) :: this
+    type(sweep_plan_t), intent(in) :: plan
+    character(len=:), allocatable :: text
+    text = ''
+  end function definition_text
 
   !> The table frequency of job `job` [Hz] (0 when the mode has none).
   pure real(dp) function frequency_hz(this, plan, job)

@@ -58,6 +58,11 @@ contains
     integer :: n_freq, n_amp, k
     real(dp) :: f_max_hz, f_hz
 
+    if (len_trim(group%model_samples_file) > 0) then
+      call fail(status, path//": &sweep model_samples_file gives the model samples of an IDA (mode = 'ida'); "// &
+                "mode = '"//trim(this%name)//"' takes its parameter sets from the lists (friction_list, ...)")
+      return
+    end if
     if (any(group%ranges /= unset_real) .or. group%n_samples /= 0 .or. len_trim(group%record_files(1)) > 0 .or. &
         group%dt_check_rows /= 0) then
       call fail(status, path//": &sweep record_files, scale_tol, scale_max, n_samples, the sampling ranges "// &

@@ -2,8 +2,8 @@
 !> sample (or parameter set) x a record, records varying fastest, and its search is the
 !> threshold search over the record's scale, from the scale at which the record's PGA
 !> equals the arch's static capacity. The records and the Latin hypercube samples are
-!> src/sweep/sweep_ida.f90; after the searches, an optional check redoes some runs at
-!> half the time step.
+!> src/sweep/sweep_ida.f90, the samples of a file src/sweep/model_samples.f90; after the
+!> searches, an optional check redoes some runs at half the time step.
 module voussoir_sweep_mode_ida
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
@@ -17,6 +17,7 @@ module voussoir_sweep_mode_ida
   use voussoir_threshold_search, only: threshold_search_t, threshold_result_t, run_outcome_t, threshold_init_onset
   use voussoir_threshold, only: search_run_config, static_capacity_m_s2
   use voussoir_sweep_ida, only: n_sampled, range_names, read_ida_records, sample_sets
+  use voussoir_model_samples, only: read_model_samples, samples_digest
   use voussoir_sweep_group, only: sweep_group_t, lengths_text, unset_real
   use voussoir_sweep_table, only: sweep_table_t, named_values_t, named_text_t, name_len, table_init, table_row, &
                                   table_set, table_append, table_value
@@ -30,12 +31,14 @@ module voussoir_sweep_mode_ida
   type, extends(sweep_mode_t) :: ida_mode_t
     integer :: n_samples = 0                      !! Latin hypercube model samples (0: the lists)
     integer :: sample_seed = 1                    !! seed of the samples
+    character(len=512) :: samples_file = ''       !! model samples from this CSV, as given
     integer :: dt_check_rows = 0                  !! rows whose two bracketing runs are redone at dt/2
     real(dp) :: ranges(2, n_sampled) = unset_real !! bounds of the sampled variables
   contains
     procedure :: check_settings
     procedure :: draw_sets
     procedure :: settings_text
+    procedure :: definition_text
     procedure :: jobs_text
     procedure :: job_label
     procedure :: run_config
@@ -115,6 +118,17 @@ contains
         return
       end if
     end do
+    if (len_trim(group%model_samples_file) > 0) then
+      v = findloc(any(group%ranges /= unset_real, dim=1), .true., dim=1)
+      if (group%n_samples /= 0) then
+        call fail(status, path//': &sweep n_samples = '//itoa(group%n_samples)//' draws model samples, but '// &
+                  'model_samples_file gives them: give one or the other')
+      else if (v > 0) then
+        call fail(status, path//': &sweep '//trim(range_names(v))//' is a range of the drawn model samples, but '// &
+                  'model_samples_file gives them: give one or the other')
+      end if
+      if (.not. status%ok) return
+    end if
     associate (g => group)
       call need_range('0 < scale_tol < 1 (relative width of the final bracket)', path, 'sweep', 'scale_tol', &
                       g%scale_tol, status)
@@ -141,11 +155,13 @@ contains
     call read_ida_records(path, group%record_files(1:n_records), plan%records, status)
     this%n_samples = group%n_samples
     this%sample_seed = group%sample_seed
+    this%samples_file = group%model_samples_file
     this%dt_check_rows = group%dt_check_rows
     this%ranges = group%ranges
   end subroutine check_records_and_samples
 
-  !> With n_samples > 0, the model samples of the ranges (not with the lists).
+  !> With n_samples > 0, the model samples of the ranges; with model_samples_file, those
+  !> of the file (not with the lists).
   subroutine draw_sets(this, group, base, path, lengths, plan, drawn, status)
     class(ida_mode_t), intent(in) :: this
     type(sweep_group_t), intent(in) :: group
@@ -155,18 +171,26 @@ contains
     type(sweep_plan_t), intent(inout) :: plan
     logical, intent(out) :: drawn
     type(status_t), intent(inout) :: status
-    drawn = this%n_samples > 0
+    character(len=:), allocatable :: source
+    drawn = this%n_samples > 0 .or. len_trim(this%samples_file) > 0
     if (.not. drawn) return
+    source = 'n_samples = '//itoa(this%n_samples)//' draws'
+    if (len_trim(this%samples_file) > 0) source = 'model_samples_file gives'
     if (any(lengths > 0)) then
-      call fail(status, path//': &sweep n_samples = '//itoa(this%n_samples)//' draws the model samples; the '// &
+      call fail(status, path//': &sweep '//source//' the model samples; the '// &
                 'lists ('//lengths_text(lengths)//') cannot be combined with it')
       return
     end if
-    call sample_sets(path, base, this%n_samples, this%sample_seed, this%ranges, this%ranges(1, :) /= unset_real, &
-                     plan%param_names, plan%param_values, plan%set_cfg, status)
+    if (len_trim(this%samples_file) > 0) then
+      call read_model_samples(path, trim(this%samples_file), base, this%sample_seed, plan%param_names, &
+                              plan%param_values, plan%set_cfg, status)
+    else
+      call sample_sets(path, base, this%n_samples, this%sample_seed, this%ranges, this%ranges(1, :) /= unset_real, &
+                       plan%param_names, plan%param_values, plan%set_cfg, status)
+    end if
     if (.not. status%ok) return
     plan%n_params = size(plan%param_names)
-    plan%n_sets = this%n_samples
+    plan%n_sets = size(plan%param_values, 2)
   end subroutine draw_sets
 
   !> The records, the scale search, the sampling.
@@ -187,11 +211,24 @@ contains
            '  n_confirm = '//itoa(plan%search%n_confirm)//nl// &
            '  n_samples = '//itoa(this%n_samples)//nl//'  sample_seed = '//itoa(this%sample_seed)//nl// &
            '  dt_check_rows = '//itoa(this%dt_check_rows)//nl
+    if (len_trim(this%samples_file) > 0) text = text//"  model_samples_file = '"//trim(this%samples_file)//"'"//nl
     do j = 1, n_sampled
       if (this%ranges(1, j) /= unset_real) text = text//'  '//trim(range_names(j))//' = '// &
                                                   fmt_exact_list(this%ranges(:, j))//nl
     end do
   end function settings_text
+
+  !> With model_samples_file, the samples it gave (their number, their columns and a
+  !> digest of their values): another content of the file is another sweep.
+  function definition_text(this, plan) result(text)
+    class(ida_mode_t), intent(in) :: this
+    type(sweep_plan_t), intent(in) :: plan
+    character(len=:), allocatable :: text
+    text = ''
+    if (len_trim(this%samples_file) == 0) return
+    text = 'model samples: '//itoa(plan%n_sets)//' of '//join_words(plan%param_names, ', ')//', values digest '// &
+           samples_digest(plan%param_values)//achar(10)
+  end function definition_text
 
   function jobs_text(this, plan) result(text)
     class(ida_mode_t), intent(in) :: this

@@ -233,7 +233,7 @@ contains
     ! The base case without what does not change results (file name, sampling).
     e = config_entries(base)
     e = pack(e, .not. (e%group == 'output' .and. (e%name == 'file' .or. e%name == 'every')))
-    plan%signature = 'voussoir-sweep definition'//nl//body//'/'//nl//config_to_nml(e)
+    plan%signature = 'voussoir-sweep definition'//nl//body//'/'//nl//mode%definition_text(plan)//config_to_nml(e)
   end subroutine make_texts
 
 end module voussoir_sweep_plan

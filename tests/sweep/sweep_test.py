@@ -15,6 +15,12 @@ CASE is one of:
                     threshold collapse
   bad_inputs        bad &sweep values are refused with a message naming the file, the
                     variable and the allowed range, and no result file appears
+  ida_samples       an IDA over the model samples of a file (model_samples_file): the
+                    rows carry the file's values, each sample's search starts at the
+                    static capacity voussoir-limit gives for the file's &arch values
+                    (r_ext_m and the imperfection pattern included), voussoir-run
+                    stands at scale_stood and falls at scale_threshold, another file
+                    content is another sweep, and bad files and settings are refused
 
 Files are compared on every dataset and attribute except the wall times and
 created_utc, which differ between any two runs. Without h5py and numpy the test fails
@@ -499,6 +505,174 @@ def case_lock(r, work):
     consistent_threshold_file("shared.h5", 1.0e-3)
     rc, out = r.sweep_run(1, "a.nml")  # once it is done, the same input reads the finished file
     check(rc == 0 and "resuming" in out, "a rerun after it reads the finished file")
+
+
+# The IDA base case: the seed's 156-degree arch, a coarse step; &motion waveform unset.
+IDA_BASE = """&arch
+  embrace_deg = 156, n_voussoirs = 13, r_ext_m = 0.508, thickness_m = 0.071
+/
+&motion
+  rest_s = 0.5
+/
+&solver
+  dt_s = 2.0e-3
+/
+"""
+
+# Two model samples as the diagnosis writes them (sample and model columns, comments),
+# each a thinner ring about the seed's mean radius (0.4725 m): thickness t, r_ext =
+# 0.4725 + t/2; the second with a size imperfection (pattern of seed sample_seed + 1).
+SAMPLES_CSV = """# posterior samples of the model of specimen A (hand-written for the test)
+sample,model,thickness_m,friction,r_ext_m,size_imperfection
+0,geometry,0.065,0.55,0.505,0.0
+# a comment between the rows
+1,friction+geometry,0.06,0.6,0.5025,0.03
+"""
+SAMPLE_SEED = 7
+
+
+def pulse_record(path):
+    """Three cycles of 2 Hz at 1 m/s2 peak (sampled every 10 ms), then 0.5 s of rest:
+    a short record that the arch survives unscaled. Returns its PGA [m/s2]."""
+    import math
+    accel = [math.sin(2 * math.pi * 2.0 * 0.01 * k) if k <= 150 else 0.0 for k in range(201)]
+    with open(path, "w") as f:
+        f.write("t_s,accel_m_s2\n" + "".join(f"{0.01 * k:.2f},{a:.6f}\n" for k, a in enumerate(accel)))
+    return max(abs(float(f"{a:.6f}")) for a in accel)
+
+
+def samples_of(text):
+    """The rows of a samples file as {column: float} (the test's own reading)."""
+    lines = [line for line in text.splitlines() if line.strip() and not line.startswith("#")]
+    header = lines[0].split(",")
+    return [{k: float(v) for k, v in zip(header, line.split(",")) if k not in ("sample", "model")}
+            for line in lines[1:]]
+
+
+def arch_group(sample, seed):
+    """The &arch group of the base case with a sample's values put in (by the test)."""
+    extra = ", ".join(f"{k} = {v!r}" for k, v in sample.items())
+    if sample.get("size_imperfection", 0.0) > 0.0:
+        extra += f", imperfection_seed = {seed}"
+    return f"&arch embrace_deg = 156, n_voussoirs = 13, {extra} /\n"
+
+
+def limit_capacity(r, name, arch):
+    """lambda g [m/s2] of an arch by voussoir-limit (min over both directions)."""
+    import json
+    with open(f"{name}.nml", "w") as fh:
+        fh.write(arch)
+    p = subprocess.run([os.path.join(os.path.dirname(r.run_exe), "voussoir-limit"), f"{name}.nml", "--json"],
+                       capture_output=True, text=True)
+    out = json.loads(p.stdout)
+    return min(out["lambda_pos"], out["lambda_neg"]) * out["g_m_s2"]
+
+
+def case_ida_samples(r, work):
+    pga = pulse_record("pulse.csv")
+    with open("samples.csv", "w") as fh:
+        fh.write(SAMPLES_CSV)
+    samples = samples_of(SAMPLES_CSV)
+    sweep = (f"&sweep\n  mode = 'ida', record_files = 'pulse.csv', scale_tol = 0.05, scale_max = 30,\n"
+             f"  model_samples_file = 'samples.csv', sample_seed = {SAMPLE_SEED}\n/\n")
+    write_nml("ida.nml", "ida.h5", sweep, base=IDA_BASE)
+    rc, out = r.sweep_run(2, "ida.nml")
+    if rc != 0:
+        return
+    rows = list(csv.DictReader(open("ida.csv")))
+    names = ["friction", "thickness_m", "r_ext_m", "size_imperfection"]
+    check(len(rows) == 2 and [int(row["param_set"]) for row in rows] == [0, 1],
+          f"one row per sample of the file ({len(rows)} rows)")
+    check(all(all(float(row[k]) == samples[s][k] for k in names) for s, row in enumerate(rows)),
+          "the CSV rows carry exactly the file's values, row by row")
+    data, attrs = read("ida.h5")
+    file_names = attrs["parameter_names"].decode().split(",")
+    check(sorted(file_names) == sorted(names), f"/parameters: the file's columns ({file_names})")
+    values = data["parameters/values"]
+    check(all(values[s, file_names.index(k)] == samples[s][k] for s in range(2) for k in names),
+          "/parameters/values are the file's values")
+    # Each search starts at 0.95 x the scale at which the record's PGA is the static
+    # capacity of the sample's arch: voussoir-limit on the file's &arch values.
+    for s, sample in enumerate(samples):
+        first = data["runs/scale"][(data["runs/job"] == s) & (data["runs/run"] == 0)][0]
+        capacity = limit_capacity(r, f"limit_{s}", arch_group(sample, SAMPLE_SEED + s))
+        check(abs(first - 0.95 * capacity / pga) <= 1e-9 * first,
+              f"sample {s}: the search starts at 0.95 lambda g / PGA of the file's arch ({first:.6f}, "
+              f"{0.95 * capacity / pga:.6f})")
+        nominal = limit_capacity(r, f"nominal_{s}", arch_group(dict(sample, r_ext_m=0.508), SAMPLE_SEED + s))
+        check(abs(nominal - capacity) > 1e-3 * capacity,
+              f"sample {s}: the check can tell r_ext_m (capacity {capacity:.4f} vs {nominal:.4f} m/s2 at 0.508 m)")
+    # voussoir-run on the file's values, the test's own input: stands at scale_stood,
+    # falls at scale_threshold.
+    for s, (sample, row) in enumerate(zip(samples, rows)):
+        for scale, word in ((row["scale_stood"], "stood;"), (row["scale_threshold"], "collapsed")):
+            nml = f"alone_{s}_{word[:5]}.nml"
+            with open(nml, "w") as fh:
+                fh.write(arch_group(sample, SAMPLE_SEED + s) + "&motion rest_s = 0.5, waveform = 'accelerogram', "
+                         f"record_file = 'pulse.csv', record_scale = {scale} /\n&solver dt_s = 2.0e-3 /\n"
+                         f"&output file = '{nml[:-4]}.h5', stop_after_collapse_s = 0 /\n")
+            p = subprocess.run([r.run_exe, nml], capture_output=True, text=True)
+            first_word = p.stdout.split()[0] if p.stdout.split() else ""
+            check(p.returncode == 0 and first_word == word,
+                  f"sample {s}: voussoir-run at scale {float(scale):.4f} says '{first_word}', expected '{word}'")
+    # The same file again: nothing to do; another value in it: another sweep, refused.
+    rc, out = r.sweep_run(1, "ida.nml")
+    check(rc == 0 and re.search(r"done: \d+ jobs, 0 runs", out) is not None, "the same samples: nothing redone")
+    before = md5("ida.h5")
+    with open("samples.csv", "w") as fh:
+        fh.write(SAMPLES_CSV.replace("0.06,0.6,0.5025", "0.06,0.6,0.5026"))
+    rc, out = r.sweep_run(1, "ida.nml", expect_ok=False)
+    check(rc != 0 and "ida.h5: holds a different sweep" in out and "model samples: 2 of" in out
+          and md5("ida.h5") == before, "another value in the samples file is another sweep, refused; file untouched")
+    case_ida_samples_refused(r)
+
+
+# Bad samples files and settings: (name, samples file, &sweep settings, expected message).
+IDA_SAMPLES_BAD = [
+    ("unknown", "friction,thickness_m,frictoin\n0.5,0.07,0.5\n", "",
+     r"unknown\.csv:1: column 3 'frictoin' is not a model sample column; the columns are friction, "
+     r"contact_inset_m, thickness_m, r_ext_m, size_imperfection"),
+    ("text_cell", "# two samples\nsample,friction,thickness_m\n0,0.5,0.07\n1,0.6,0.07x\n", "",
+     r"model_samples_file: text_cell\.csv:4: thickness_m = '0\.07x' is not a number"),
+    ("friction", "friction\n0.5\n-0.1\n", "",
+     r"model_samples_file: friction\.csv:3: &arch friction = -0\.1 is outside the allowed range friction >= 0"),
+    ("inset", "thickness_m,contact_inset_m\n0.071,0.01\n0.03,0.02\n", "",
+     r"inset\.csv:3: &arch contact_inset_m = 0\.02 is outside the allowed range 0 <= contact_inset_m < "
+     r"thickness_m/2 = 0\.015"),
+    ("empty", "# nothing\n", "", r"empty\.csv: no header row"),
+    ("no_rows", "friction,r_ext_m\n", "", r"no_rows\.csv:1: no sample rows after the header"),
+    ("with_n_samples", "friction\n0.5\n", "n_samples = 4, friction_range = 0.4, 0.6,",
+     r"&sweep n_samples = 4 draws model samples, but model_samples_file gives them"),
+    ("with_range", "friction\n0.5\n", "thickness_range_m = 0.06, 0.07,",
+     r"&sweep thickness_range_m is a range of the drawn model samples, but model_samples_file gives them"),
+    ("with_list", "friction\n0.5\n", "thickness_list_m = 0.06,",
+     r"model_samples_file gives the model samples; the lists \(thickness_list_m 1\) cannot be combined"),
+]
+
+
+def case_ida_samples_refused(r):
+    running = []
+    for name, text, settings, expect in IDA_SAMPLES_BAD:
+        with open(f"{name}.csv", "w") as fh:
+            fh.write(text)
+        write_nml(f"{name}.nml", f"{name}.h5", f"&sweep mode = 'ida', record_files = 'pulse.csv', {settings}\n"
+                  f"  model_samples_file = '{name}.csv' /\n", base=IDA_BASE)
+        running.append((name, expect))
+    write_nml("in_threshold.nml", "in_threshold.h5", "&sweep frequencies_hz = 2.0, "
+              "model_samples_file = 'friction.csv' /\n", base=BASE)
+    running.append(("in_threshold", r"&sweep model_samples_file gives the model samples of an IDA \(mode = 'ida'\); "
+                                    r"mode = 'threshold' takes its parameter sets from the lists"))
+    started = []
+    for name, expect in running:
+        log = open(f"{name}.txt", "w")
+        started.append((name, expect, r.start(1, f"{name}.nml", log), log))
+    for name, expect, p, log in started:
+        rc = p.wait()
+        log.close()
+        out = open(f"{name}.txt").read()
+        message = next((line for line in out.splitlines() if "voussoir-sweep: error:" in line), "")
+        check(rc != 0 and re.search(expect, message) is not None and f"{name}.nml" in message
+              and not os.path.exists(f"{name}.h5"), f"refused {name}: {message or out.strip()[:200]}")
 
 
 def main():
