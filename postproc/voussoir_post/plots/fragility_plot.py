@@ -98,7 +98,7 @@ class FragilityData:
             f"{pgv.band.median_high:.4g}] m/s; beta {pgv.fit.beta:.3f} [{pgv.band.beta_low:.3f}, "
             f"{pgv.band.beta_high:.3f}]",
             f"{pga.fit.n} rows: {pga.fit.n_interval} bracketed (stood, collapsed], {summary['n_censored']} censored "
-            f"(no collapse up to scale_max), {summary['n_failed_censored']} failed searches censored at their last "
+            f"(no collapse up to scale_max), {summary['n_failed_censored']} failed search(es) censored at the last "
             f"stand" + (f", {left_out} failed left out (no stand known)" if left_out else "") + f"; {monotonic}",
             f"band: {pct} % pointwise, {band_words(pga.band)}",
             BETA_CONVENTION + f" (PGA: sd of ln median {pga.band.ln_median_sd:.3f}, of beta {pga.band.beta_sd:.3f})",
@@ -143,7 +143,7 @@ def _title(ida: IdaResult) -> str:
                 f"(r_ext {arch.get('r_ext_m')} m, t {arch.get('thickness_m')} m)")
     else:
         what = os.path.basename(ida.path)
-    failed = f", {ida.n_failed} failed searches" if ida.n_failed else ""
+    failed = f", {ida.n_failed} failed search{'es' if ida.n_failed != 1 else ''}" if ida.n_failed else ""
     return (f"Probability of collapse of the {what}\nunder {len(ida.records)} scaled ground-motion records "
             f"x {ida.n_sets} model sample(s): {ida.n_rows} IDA rows, {int(ida.censored.sum())} without collapse "
             f"up to scale_max{failed}")
