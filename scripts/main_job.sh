@@ -65,7 +65,7 @@ echo "== 6. Fragility of the 156-degree arch under the record suite (IDA, 2 MPI 
   echo "&output file = 'ida_156.h5' /"
 } > results/ida_156.nml
 (cd results && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156.nml | grep -E 'done|nothing to do')
-"$post" fragility results/ida_156.h5 --out results/ | tail -n 6 | sed 's/^/   /'
+"$post" fragility results/ida_156.h5 --out results/ | tail -n 9 | sed 's/^/   /'
 
 # An index of everything the job made, with what each shows (results/index.md).
 missing=()  # files the job should have made and did not
@@ -89,7 +89,7 @@ missing=()  # files the job should have made and did not
   describe sweep_seed_tests.h5 "the four seed arches at the frequencies of their tests"
   describe sweep_seed_tests_compare.png "simulated against measured thresholds, and the relative errors"
   describe ida_156.h5 "incremental dynamic analysis under the eight PEER records (CSV beside it)"
-  describe ida_156_fragility.png "the fragility curve: probability of collapse against PGA (g) and PGV, with its bootstrap band"
+  describe ida_156_fragility.png "the fragility curve: probability of collapse against PGA (g) and PGV, with its bootstrap band (clustered by record)"
   describe ida_156_fragility.csv "the fitted curve, and ida_156_fragility_points.csv the points"
 } > results/index.md
 if (( ${#missing[@]} )); then

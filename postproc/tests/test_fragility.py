@@ -1,44 +1,61 @@
-"""The lognormal fragility fit and `voussoir-post fragility` on hand-written IDA files.
+"""The lognormal fragility fit (voussoir_post.earthquake.fragility).
 
 The fit is checked against the closed form (uncensored data), against known lognormal
-populations sampled here (with and without censoring, within the sampling error that
-the observed information gives), and the IDA readers on CSV and HDF5 fixtures written
-by hand in this file (they are the fit's input, not simulated data).
+populations sampled here (with and without censoring, and bracketed as an IDA brackets
+them, within the sampling error that the observed information of a likelihood written
+here gives), the clustered bootstrap against constructions whose answer is known, and
+the goodness of fit on data from the fitted law and from another. The IDA files and
+the command: test_fragility_ida.py.
 """
 
 from __future__ import annotations
 
-import json
 import math
 
-import h5py
 import numpy as np
 import pytest
+from scipy import stats
 
-from voussoir_post.cli.post import main
-from voussoir_post.earthquake.fragility import (FitError, bootstrap_band, empirical_collapse_fraction,
-                                                fit_lognormal, fragility, log_likelihood, max_likelihood)
-from voussoir_post.earthquake.ida import read_ida
-from voussoir_post.readers.results import ResultsError
+from voussoir_post.earthquake.fragility import (FitError, bootstrap_band, clustered_band, empirical_collapse_fraction,
+                                                fit_intervals, fit_lognormal, fragility, goodness_of_fit,
+                                                log_likelihood, max_likelihood, resample_clusters)
 
 G = 9.81
+
+
+def hessian(f, p0, h=1e-4):
+    """Central-difference Hessian of f at p0 (2 parameters)."""
+    p0 = np.asarray(p0, float)
+    hess = np.zeros((2, 2))
+    for i in range(2):
+        for j in range(2):
+            e_i, e_j = np.eye(2)[i] * h, np.eye(2)[j] * h
+            hess[i, j] = (f(p0 + e_i + e_j) - f(p0 + e_i - e_j) - f(p0 - e_i + e_j) + f(p0 - e_i - e_j)) / (4 * h * h)
+    return hess
 
 
 def standard_errors(ln_x, censored, mu, beta):
     """Standard errors of (mu, beta) from the observed information: the inverse of the
     negative Hessian of the log-likelihood at the fit (central differences)."""
-    h = 1e-4
-
-    def ll(p):
-        return log_likelihood(p[0], p[1], ln_x, censored)
-
-    p0 = np.array([mu, beta])
-    hess = np.zeros((2, 2))
-    for i in range(2):
-        for j in range(2):
-            e_i, e_j = np.eye(2)[i] * h, np.eye(2)[j] * h
-            hess[i, j] = (ll(p0 + e_i + e_j) - ll(p0 + e_i - e_j) - ll(p0 - e_i + e_j) + ll(p0 - e_i - e_j)) / (4 * h * h)
+    hess = hessian(lambda p: log_likelihood(p[0], p[1], ln_x, censored), [mu, beta])
     return np.sqrt(np.diag(np.linalg.inv(-hess)))
+
+
+def bracket_log_likelihood(mu, beta, low, high):
+    """The log-likelihood of intensities known to lie in (low, high], written here from
+    scipy.stats.norm alone (independent of the module's tail-safe version)."""
+    return float(np.sum(np.log(stats.norm.cdf((np.log(high) - mu) / beta) - stats.norm.cdf((np.log(low) - mu) / beta))))
+
+
+def ida_brackets(x, rng, step):
+    """Bracket each collapse intensity x as an IDA search does: on a geometric ladder of
+    intensities step**(k + offset) (an offset per row, as each record starts the ladder
+    from its own PGA), between the last rung below x and the first at or above."""
+    offset = rng.uniform(0.0, 1.0, x.size)
+    k = np.floor(np.log(x) / math.log(step) - offset)
+    low, high = step ** (k + offset), step ** (k + 1 + offset)
+    assert np.all((low < x) & (x <= high))
+    return low, high
 
 
 def test_uncensored_fit_is_the_closed_form():
@@ -82,6 +99,130 @@ def test_fit_with_censoring_recovers_a_known_lognormal(seed):
     assert abs(naive.beta - beta) > 3.5 * se_beta
 
 
+@pytest.mark.parametrize("seed", [8, 9, 10])
+def test_interval_censored_fit_recovers_a_known_lognormal(seed):
+    """Collapse intensities drawn here from a known lognormal and bracketed on a 25 %
+    ladder: the interval-censored fit finds median and beta within 3.5 standard errors
+    (observed information of the likelihood written in this file), its maximum is that
+    likelihood's (zero gradient there), and taking the top of each bracket as the
+    intensity misses the median by about half a rung, ln(1.25) / 2 = 0.11, more than
+    that error (0.3 / sqrt(400) = 0.015)."""
+    median, beta, n = 5.4, 0.3, 400
+    rng = np.random.default_rng(seed)
+    x = np.exp(rng.normal(math.log(median), beta, n))
+    low, high = ida_brackets(x, rng, 1.25)
+    fit = fit_intervals(low, high)
+    assert fit.n == n and fit.n_interval == n and fit.n_censored == 0
+
+    def ll(p):
+        return bracket_log_likelihood(p[0], p[1], low, high)
+
+    p_hat = np.array([math.log(fit.median), fit.beta])
+    se_mu, se_beta = np.sqrt(np.diag(np.linalg.inv(-hessian(ll, p_hat))))
+    assert 0.9 * beta / math.sqrt(n) < se_mu < 1.3 * beta / math.sqrt(n)  # a little above the exact-data error
+    assert abs(math.log(fit.median) - math.log(median)) < 3.5 * se_mu
+    assert abs(fit.beta - beta) < 3.5 * se_beta
+    h = 1e-5
+    gradient = [(ll(p_hat + e) - ll(p_hat - e)) / (2 * h) for e in np.eye(2) * h]
+    assert np.max(np.abs(gradient)) < 1e-3, gradient  # against n / beta ~ 1000 per unit of mu
+    top = fit_lognormal(high)
+    assert math.log(top.median) - math.log(median) > 3.5 * se_mu
+
+
+def test_a_failed_search_censored_at_its_last_stand_moves_the_fit_up():
+    """A search that failed after a stand at s says only IM_c > s. (1) When every row
+    says IM_c > x the median is above x: at the maximum, the score in mu makes mu the
+    mean over the rows of E[ln IM_c | its bracket], each above ln x. (2) Added to
+    bracketed rows, a row censored at s raises the median, the more the higher s; far
+    below all of them it tells nothing and the fit is the fit without it."""
+    x = 4.0
+    low = np.array([x, 1.1 * x, 1.05 * x, 1.3 * x, x, 1.2 * x])
+    high = np.array([1.2 * x, 1.3 * x, np.inf, 1.6 * x, np.inf, 1.5 * x])
+    assert fit_intervals(low, high).median > x
+    # (2)
+    rng = np.random.default_rng(12)
+    x_c = np.exp(rng.normal(math.log(5.0), 0.3, 20))
+    low, high = ida_brackets(x_c, rng, 1.1)
+    without = fit_intervals(low, high).median
+    medians = [fit_intervals(np.append(low, s), np.append(high, np.inf)).median for s in (3.0, 5.0, 8.0, 12.0)]
+    assert without < medians[0] < medians[1] < medians[2] < medians[3]
+    far_below = fit_intervals(np.append(low, 1e-3), np.append(high, np.inf))
+    assert far_below.median == pytest.approx(without, rel=1e-7)
+
+
+def test_clustered_band_is_wider_when_rows_within_a_record_are_identical():
+    """12 records whose 4 model samples each give the same bracket: the rows add nothing
+    to the records. Drawing records, a resample of the 48 rows is a resample of the 12
+    brackets repeated 4 times, whose fit is the fit of the 12: the band is the row
+    bootstrap of the 12 brackets (same seed, same draws). Drawing rows treats them as
+    48 independent ones: its band is narrower by sqrt(48 / 12) = 2."""
+    k, r = 12, 4
+    rng = np.random.default_rng(13)
+    x = np.exp(rng.normal(math.log(5.0), 0.3, k))
+    low, high = ida_brackets(x, rng, 1.05)
+    rows_low, rows_high = np.repeat(low, r), np.repeat(high, r)
+    records = np.repeat([f"rec{i:02d}.AT2" for i in range(k)], r)
+    grid = np.linspace(1.0, 10.0, 40)
+    by_record = clustered_band(rows_low, rows_high, grid, records, cluster_by="record", seed=5)
+    by_row = clustered_band(rows_low, rows_high, grid, None, seed=5)
+    of_records = clustered_band(low, high, grid, None, seed=5)
+    assert by_record.cluster_by == "record" and by_record.n_clusters == k
+    assert by_row.cluster_by == "row" and by_row.n_clusters == k * r
+    np.testing.assert_allclose(by_record.low, of_records.low, atol=1e-9)
+    np.testing.assert_allclose(by_record.high, of_records.high, atol=1e-9)
+    assert by_record.median_low == pytest.approx(of_records.median_low, rel=1e-9)
+    width = {name: math.log(band.median_high / band.median_low) for name, band in
+             (("record", by_record), ("row", by_row))}
+    assert 1.6 < width["record"] / width["row"] < 2.5, width
+    assert by_record.ln_median_sd > 1.6 * by_row.ln_median_sd
+
+
+def test_two_stage_resample_draws_events_then_whole_records():
+    """With events, a resample holds whole records (all their rows), only records of the
+    events drawn, and as many records from a drawn event as it has."""
+    events = np.array(["Imperial Valley"] * 4 + ["Loma Prieta"] * 4 + ["San Fernando"] * 2)
+    records = np.array(["ELC180", "ELC180", "ELC270", "ELC270", "CLS000", "CLS000", "CLS090", "CLS090",
+                        "PUL164", "PUL164"])
+    rng = np.random.default_rng(14)
+    for _ in range(50):
+        pick = resample_clusters(rng, records, events)
+        drawn = records[pick]
+        for name in set(drawn.tolist()):
+            assert np.sum(drawn == name) % 2 == 0  # whole records of two rows
+        per_event = {e: np.sum(events[pick] == e) for e in set(events.tolist())}
+        assert per_event["Imperial Valley"] % 4 == 0 and per_event["Loma Prieta"] % 4 == 0
+        assert pick.size == sum(per_event.values())
+    with pytest.raises(FitError, match="belongs to two events"):
+        clustered_band(np.ones(2), np.full(2, 2.0), [1.5], ["a", "a"], ["e1", "e2"])
+
+
+def test_goodness_of_fit_accepts_the_fitted_law_and_rejects_another():
+    """The PIT of rows drawn from a lognormal, fitted, is uniform: out of 40 draws the KS
+    test rejects at 5 % at most a few (it is conservative with fitted parameters: fewer
+    than 2 expected; 7 or more has probability < 1 %). Rows from two well separated
+    lognormals (medians 2 and 8) are not lognormal: p < 0.01 every time. The PIT lies
+    within F of its bracket, and a seed gives it again."""
+    p_same = []
+    for seed in range(40):
+        rng = np.random.default_rng(100 + seed)
+        low, high = ida_brackets(np.exp(rng.normal(math.log(5.4), 0.3, 200)), rng, 1.05)
+        fit = fit_intervals(low, high)
+        check = goodness_of_fit(low, high, fit.median, fit.beta, seed=seed)
+        assert np.all((fragility(low, fit.median, fit.beta) <= check.pit)
+                      & (check.pit <= fragility(high, fit.median, fit.beta)))
+        p_same.append(check.p_value)
+    assert sum(p < 0.05 for p in p_same) <= 6, p_same
+    for seed in range(5):
+        rng = np.random.default_rng(200 + seed)
+        two = np.where(rng.uniform(size=200) < 0.5, rng.normal(math.log(2.0), 0.1, 200),
+                       rng.normal(math.log(8.0), 0.1, 200))
+        low, high = ida_brackets(np.exp(two), rng, 1.05)
+        fit = fit_intervals(low, high)
+        assert goodness_of_fit(low, high, fit.median, fit.beta, seed=seed).p_value < 0.01
+    again = goodness_of_fit(low, high, fit.median, fit.beta, seed=4)
+    np.testing.assert_array_equal(again.pit, goodness_of_fit(low, high, fit.median, fit.beta, seed=4).pit)
+
+
 def test_bootstrap_band_holds_the_fit_and_narrows_as_one_over_root_n():
     population = np.exp(np.random.default_rng(7).normal(math.log(3.0), 0.4, 480))
     widths = {}
@@ -111,137 +252,3 @@ def test_kaplan_meier_fraction_by_hand():
 def test_no_fit_without_two_collapses():
     with pytest.raises(FitError, match="at least two"):
         fit_lognormal([1.0, 2.0, 3.0], [True, True, False])
-
-
-# ------------------------------------------------------------------ IDA files by hand
-
-RECORDS = ["rec/ELC180.AT2", "rec/CLS000.AT2", "rec/PUL164.AT2"]
-PGA = np.array([2.75, 6.33, 11.96])  # unscaled record PGA [m/s2]
-PGV = np.array([0.31, 0.56, 1.14])
-
-
-def csv_fixture(path, scales, censored=None):
-    censored = np.zeros(scales.shape, bool) if censored is None else censored
-    lines = ["# an IDA written by hand", "record,param_set,friction,scale_stood,scale_threshold,"
-             "pga_threshold_m_s2,pgv_threshold_m_s,censored,non_monotonic,n_runs"]
-    for s in range(scales.shape[0]):
-        for r in range(scales.shape[1]):
-            k = float(scales[s, r])
-            lines.append(f"{RECORDS[r]},{s},{0.5 + 0.1 * s},{0.97 * k!r},{k!r},{k * float(PGA[r])!r},"
-                         f"{k * float(PGV[r])!r},"
-                         f"{int(censored[s, r])},0,7")
-    path.write_text("\n".join(lines) + "\n")
-    return path
-
-
-def test_cli_fits_the_csv_of_an_uncensored_ida(tmp_path, capsys):
-    scales = np.array([[1.2, 0.61, 0.33], [1.5, 0.55, 0.29]])
-    path = csv_fixture(tmp_path / "ida.csv", scales)
-    assert main(["fragility", str(path), "--json", "--bootstrap", "50"]) == 0
-    out = json.loads(capsys.readouterr().out)
-    pga = (scales * PGA).reshape(-1)
-    pgv = (scales * PGV).reshape(-1)
-    assert out["median_pga_g"] == pytest.approx(math.exp(np.mean(np.log(pga))) / G, rel=1e-12)
-    assert out["beta"] == pytest.approx(np.std(np.log(pga)), rel=1e-12)
-    assert out["median_pgv_m_s"] == pytest.approx(math.exp(np.mean(np.log(pgv))), rel=1e-12)
-    assert out["beta_pgv"] == pytest.approx(np.std(np.log(pgv)), rel=1e-12)
-    assert out["n_rows"] == 6 and out["n_censored"] == 0
-    assert (tmp_path / "ida_fragility.png").stat().st_size > 10000
-    assert (tmp_path / "ida_fragility.csv").is_file() and (tmp_path / "ida_fragility_points.csv").is_file()
-
-
-def test_failed_rows_are_left_out_and_said(tmp_path, capsys):
-    """A search ended by a failed run is neither a collapse nor a censored row: the fit
-    leaves it out (the same fit as without it) and the command says so."""
-    scales = np.array([[1.2, 0.61, 0.33], [1.5, 0.55, 0.29]])
-    path = csv_fixture(tmp_path / "ida.csv", scales)
-    lines = path.read_text().splitlines()
-    lines[1] += ",failed"
-    lines[2:] = [line + ",0" for line in lines[2:]]
-    lines.append(f"{RECORDS[0]},1,0.6,nan,nan,nan,nan,0,0,1,1")
-    path.write_text("\n".join(lines) + "\n")
-    ida = read_ida(str(path))
-    assert ida.n_failed == 1 and ida.n_rows == 6 and "failed" not in ida.parameters
-    assert main(["fragility", str(path), "--json", "--bootstrap", "20"]) == 0
-    captured = capsys.readouterr()
-    assert json.loads(captured.out)["n_rows"] == 6
-    assert "1 rows left out" in captured.err
-
-
-def h5_fixture(path, scales, censored, scale_max):
-    """An IDA sweep file as docs/results_format.md describes it."""
-    n_sets, n_rec = scales.shape
-    with h5py.File(path, "w") as h5:
-        h5.attrs["producer"] = "voussoir-sweep"
-        h5.attrs["mode"] = "ida"
-        h5.attrs["code_version"] = "voussoir 9.9.9+test"
-        h5.attrs["record_files"] = "\n".join(RECORDS)
-        h5.attrs["parameter_names"] = "friction,thickness_m"
-        h5.attrs["config_nml"] = "&arch\n  embrace_deg = 156.0\n  n_voussoirs = 13\n  r_ext_m = 0.508\n" \
-                                 "  thickness_m = 0.071\n/\n"
-        h5["parameters/values"] = np.array([[0.5 + 0.05 * s, 0.07 + 0.001 * s] for s in range(n_sets)])
-        sets, recs = np.meshgrid(np.arange(n_sets), np.arange(n_rec), indexing="ij")
-        k = np.where(censored, scale_max, scales)
-        h5["results/job"] = np.arange(n_sets * n_rec)
-        h5["results/param_set"] = sets.reshape(-1)
-        h5["results/record"] = recs.reshape(-1)
-        h5["results/scale_stood"] = np.where(censored, scale_max, 0.96 * scales).reshape(-1)
-        h5["results/scale_threshold"] = k.reshape(-1)
-        h5["results/pga_threshold_m_s2"] = (k * PGA).reshape(-1)
-        h5["results/pgv_threshold_m_s"] = (k * PGV).reshape(-1)
-        h5["results/censored"] = censored.reshape(-1).astype(int)
-        h5["results/non_monotonic"] = np.zeros(n_sets * n_rec, int)
-        h5["results/n_runs"] = np.full(n_sets * n_rec, 9)
-    return path
-
-
-def test_hdf5_ida_with_censored_rows(tmp_path, capsys):
-    rng = np.random.default_rng(11)
-    scales = np.exp(rng.normal(0.0, 0.4, (8, 3))) * 3.9 / PGA  # capacities around 3.9 m/s2
-    scale_max = 1.6
-    censored = scales > scale_max
-    assert censored.any() and (~censored).sum() >= 2
-    path = h5_fixture(tmp_path / "ida.h5", scales, censored, scale_max)
-    ida = read_ida(path)
-    assert ida.n_rows == 24 and ida.records == RECORDS and ida.n_sets == 8
-    assert ida.record[4] == RECORDS[1] and ida.param_set[4] == 1
-    assert ida.code_version == "voussoir 9.9.9+test"  # the figure's small print names it
-    np.testing.assert_allclose(ida.parameters["friction"][3:6], 0.55)
-    np.testing.assert_array_equal(ida.censored, censored.reshape(-1))
-    expected = fit_lognormal(ida.pga_m_s2, ida.censored)
-    assert main(["fragility", str(path), "--json", "--bootstrap", "50"]) == 0
-    out = json.loads(capsys.readouterr().out)
-    assert out["n_censored"] == int(censored.sum())
-    assert out["median_pga_g"] == pytest.approx(expected.median / G, rel=1e-9)
-    assert out["beta"] == pytest.approx(expected.beta, rel=1e-9)
-    lo, hi = out["median_pga_g_band"]
-    assert lo < out["median_pga_g"] < hi
-    assert main(["fragility", str(path), "--bootstrap", "50"]) == 0
-    text = capsys.readouterr().out
-    assert "PGA: median" in text and f"{int(censored.sum())} censored" in text
-
-
-@pytest.mark.parametrize("edit, words", [
-    (lambda t: t.replace(",censored,", ",flag,"), "line 2: the header lacks the column(s) censored"),
-    (lambda t: t.replace(",0,0,7\n", ",2,0,7\n", 1), "line 3, column censored: '2' is not 0 or 1"),
-    (lambda t: t.replace("rec/CLS000.AT2,0,0.5,", "rec/CLS000.AT2,0,0.5,x", 1), "line 4, column scale_stood"),
-])
-def test_bad_ida_csv_is_refused_with_line_and_column(tmp_path, capsys, edit, words):
-    path = csv_fixture(tmp_path / "ida.csv", np.array([[1.2, 0.61, 0.33], [1.5, 0.55, 0.29]]))
-    path.write_text(edit(path.read_text()))
-    assert main(["fragility", str(path)]) == 2
-    err = capsys.readouterr().err
-    assert str(path) in err and words in err, err
-
-
-def test_all_censored_and_wrong_files_are_refused(tmp_path, capsys):
-    scales = np.full((2, 3), 2.0)
-    path = csv_fixture(tmp_path / "ida.csv", scales, censored=np.ones((2, 3), bool))
-    assert main(["fragility", str(path)]) == 2
-    assert "at least two different collapse intensities" in capsys.readouterr().err
-    other = tmp_path / "threshold.h5"
-    with h5py.File(other, "w") as h5:
-        h5.attrs["producer"] = "voussoir-sweep"
-        h5.attrs["mode"] = "threshold"
-    with pytest.raises(ResultsError, match="a 'threshold' sweep, not an IDA"):
-        read_ida(other)

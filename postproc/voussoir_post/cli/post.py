@@ -15,7 +15,7 @@ import os
 import sys
 
 from ..analysis.assembly_joints import joints_table, run_joints
-from ..earthquake.ida import read_ida
+from ..earthquake.ida import FIT_FAILED, read_ida
 from ..earthquake.records import record_files_line, select_records, suite, suite_table
 from ..errors import DONE, InputError
 from ..plots.compare import mean_error_lines, plot_compare
@@ -146,8 +146,12 @@ def cmd_mechanism(args) -> int:
 def cmd_fragility(args) -> int:
     ida = read_ida(args.ida)
     if ida.n_failed:
-        print(f"warning: {args.ida}: {ida.n_failed} rows left out: their search ended by a run that failed "
-              "(column failed = 1; voussoir-sweep printed why)", file=sys.stderr)
+        kept = sum(1 for how in ida.fit_as if how == FIT_FAILED)
+        left_out = ida.n_failed - kept
+        print(f"warning: {args.ida}: {ida.n_failed} searches ended by a run that failed (column failed = 1; "
+              f"voussoir-sweep printed why): {kept} fitted as right-censored at their last stand"
+              + (f", {left_out} rows left out: the file does not say their last stand (a CSV does not; the "
+                 "HDF5 file's /runs does)" if left_out else ""), file=sys.stderr)
     png = output_path(args.ida, "fragility", args.out)
     data = plot_fragility(ida, png, n_bootstrap=args.bootstrap, seed=args.seed)
     stem = os.path.splitext(data.png_path)[0]
@@ -247,8 +251,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--json", action="store_true",
                    help="print the fit as JSON (median_pga_g, beta, ...) instead of the tables")
     p.add_argument("--bootstrap", type=int, default=400, metavar="N",
-                   help="bootstrap resamples of the band (default 400)")
-    p.add_argument("--seed", type=int, default=20261124, help="seed of the bootstrap (default 20261124)")
+                   help="bootstrap resamples of the band, each drawing records (or events), not rows "
+                        "(default 400)")
+    p.add_argument("--seed", type=int, default=20261124,
+                   help="seed of the bootstrap and of the PIT within the brackets (default 20261124)")
     p.set_defaults(func=cmd_fragility)
 
     p = sub.add_parser("records", help="the suite of real ground-motion records and where they are installed")

@@ -4,18 +4,27 @@ intensities of an incremental dynamic analysis.
 Each record (on each sampled model) brings the arch down at an intensity IM_c (PGA or
 PGV of the scaled record); the fragility is the distribution of IM_c:
 
-    P(collapse | IM) = P(IM_c <= IM) = Phi(ln(IM / median) / beta).
+    P(collapse | IM) = P(IM_c <= IM) = F(IM) = Phi(ln(IM / median) / beta).
 
-With ln IM_c normal (mu = ln median, sigma = beta), the log-likelihood of n exact
-intensities x_i and m censored ones (records that never brought the arch down, known
-only to exceed c_j, their intensity at the largest scale tried) is
+An IDA does not measure IM_c itself: a search brackets it between the intensity of the
+largest scale that stood and that of the smallest that collapsed, IM_c in (a, b]. With
+ln IM_c normal (mu = ln median, sigma = beta) each row contributes to the
+log-likelihood
 
-    sum_i [ln phi((ln x_i - mu) / beta) - ln beta - ln x_i] + sum_j ln(1 - Phi((ln c_j - mu) / beta)).
+    ln(Phi(z_b) - Phi(z_a)),  z = (ln IM - mu) / beta,
 
-Without censoring its maximum is closed-form, median = exp(mean ln x) and beta = the
-standard deviation of ln x (ddof 0); with censoring it is found numerically
-(Nelder-Mead on (mu, ln beta), from the closed form of all intensities). The band is a
-bootstrap over the rows (records x models), refitted, pointwise percentiles.
+an *interval-censored* row; b = infinity for a row known only to exceed a (right-
+censored: a record that never brought the arch down, or a search that failed after a
+stand), and a row with a = b is an exact intensity, ln phi(z) - ln beta (the constant
+-ln IM left out). The maximum is found by BFGS on (mu, ln beta) with the analytic
+gradient (scipy.optimize); with exact rows only it is the closed form, median =
+exp(mean ln x) and beta = the standard deviation of ln x with divisor n (the maximum-
+likelihood estimate, not the n - 1 one).
+
+The band is a bootstrap refitted on resamples of *clusters* of rows (the rows of one
+record over the model samples are not independent; records of one event neither), with
+pointwise percentiles. The goodness of fit is a Kolmogorov-Smirnov test of the
+probability integral transform of the rows, randomised within each row's bracket.
 """
 
 from __future__ import annotations
@@ -24,15 +33,17 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy import optimize, stats
+from scipy.special import log_ndtr, ndtr
 
 from ..errors import FitError
 
-__all__ = ["FitError", "FragilityFit", "FragilityBand", "fit_lognormal", "max_likelihood", "log_likelihood",
-           "fragility", "bootstrap_band", "normal_cdf", "empirical_collapse_fraction"]
+__all__ = ["FitError", "FragilityFit", "FragilityBand", "FitCheck", "fit_lognormal", "fit_intervals",
+           "max_likelihood", "max_likelihood_intervals", "log_likelihood", "interval_log_likelihood", "fragility",
+           "bootstrap_band", "clustered_band", "resample_clusters", "goodness_of_fit", "normal_cdf",
+           "empirical_collapse_fraction"]
 
-_SQRT2 = math.sqrt(2.0)
 _LOG_SQRT_2PI = 0.5 * math.log(2.0 * math.pi)
-_erfc = np.vectorize(math.erfc, otypes=[float])
 
 
 @dataclass
@@ -40,10 +51,11 @@ class FragilityFit:
     """A fitted lognormal fragility."""
 
     median: float  #: IM at 50 % probability of collapse (units of the IM)
-    beta: float  #: logarithmic standard deviation
+    beta: float  #: logarithmic standard deviation (maximum likelihood: divisor n)
     n: int  #: rows used
-    n_censored: int  #: rows that never collapsed (lower bounds)
+    n_censored: int  #: rows known only to exceed an intensity (right-censored)
     log_likelihood: float
+    n_interval: int = 0  #: rows known between two intensities (the rest are exact)
 
 
 @dataclass
@@ -59,75 +71,198 @@ class FragilityBand:
     beta_low: float
     beta_high: float
     n_resamples: int  #: bootstrap resamples that could be fitted
+    cluster_by: str = "row"  #: what a resample draws: 'row', or the name of the clusters ('record', 'event')
+    n_clusters: int = 0  #: clusters drawn from (rows when cluster_by is 'row'; events with two levels)
+    ln_median_sd: float = math.nan  #: standard deviation of ln median over the resamples (divisor n - 1)
+    beta_sd: float = math.nan  #: standard deviation of beta over the resamples (divisor n - 1)
+    n_unfitted: int = 0  #: resamples left out because they could not be fitted
+
+
+@dataclass
+class FitCheck:
+    """Goodness of fit: the probability integral transform (PIT) u = F(IM_c) of each row
+    under the fitted law, randomised uniformly within F of its bracket, tested against
+    U(0, 1) by Kolmogorov-Smirnov."""
+
+    pit: np.ndarray  #: per row (NaN for a row left out of the fit)
+    statistic: float  #: KS distance D
+    p_value: float
+    n: int  #: rows tested
+    seed: int  #: of the randomisation within the brackets
 
 
 def normal_cdf(z) -> np.ndarray:
-    """Phi(z), accurate in both tails (erfc)."""
-    return 0.5 * _erfc(-np.asarray(z, dtype=float) / _SQRT2)
+    """Phi(z), accurate in both tails."""
+    return ndtr(np.asarray(z, dtype=float))
 
 
 def fragility(im, median: float, beta: float) -> np.ndarray:
     """P(collapse | IM) = Phi(ln(IM / median) / beta)."""
-    return normal_cdf(np.log(np.asarray(im, dtype=float) / median) / beta)
+    with np.errstate(divide="ignore"):
+        return normal_cdf(np.log(np.asarray(im, dtype=float) / median) / beta)
+
+
+# ------------------------------------------------------------------ likelihood
+
+def _log_phi_between(za: np.ndarray, zb: np.ndarray) -> np.ndarray:
+    """ln(Phi(zb) - Phi(za)) for za < zb, from the tail nearer to the pair (no
+    cancellation when both are far out)."""
+    upper = za > 0.0  # both in the upper tail: Phi(zb) - Phi(za) = Phi(-za) - Phi(-zb)
+    big = np.where(upper, log_ndtr(-za), log_ndtr(zb))
+    small = np.where(upper, log_ndtr(-zb), log_ndtr(za))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return big + np.log1p(-np.exp(small - big))
+
+
+def _split(ln_low: np.ndarray, ln_high: np.ndarray) -> np.ndarray:
+    """Rows that are exact intensities (both ends equal)."""
+    return ln_low == ln_high
+
+
+def _log_pdf(z: np.ndarray) -> np.ndarray:
+    """ln phi(z) (-inf at an infinite z)."""
+    with np.errstate(invalid="ignore"):
+        return -0.5 * z * z - _LOG_SQRT_2PI
+
+
+def _value_and_score(mu: float, beta: float, ln_low: np.ndarray, ln_high: np.ndarray,
+                     exact: np.ndarray) -> tuple[float, np.ndarray]:
+    """:func:`interval_log_likelihood` and its gradient with respect to (mu, ln beta)."""
+    z = (ln_low[exact] - mu) / beta
+    value = float(np.sum(_log_pdf(z))) - z.size * math.log(beta)
+    d_mu = float(np.sum(z)) / beta
+    d_beta = float(np.sum(z * z - 1.0)) / beta
+    if not exact.all():
+        za, zb = (ln_low[~exact] - mu) / beta, (ln_high[~exact] - mu) / beta
+        log_p = _log_phi_between(za, zb)
+        value += float(np.sum(log_p))
+        # phi(z) / P and z phi(z) / P, zero at an infinite end
+        ra = np.exp(_log_pdf(za) - log_p)
+        rb = np.exp(_log_pdf(zb) - log_p)
+        za_ra = np.where(np.isfinite(za), za, 0.0) * ra
+        zb_rb = np.where(np.isfinite(zb), zb, 0.0) * rb
+        d_mu += float(np.sum(ra - rb)) / beta
+        d_beta += float(np.sum(za_ra - zb_rb)) / beta
+    if not math.isfinite(value):
+        return -math.inf, np.zeros(2)
+    return value, np.array([d_mu, beta * d_beta])
+
+
+def interval_log_likelihood(mu: float, beta: float, ln_low, ln_high) -> float:
+    """Log-likelihood of (mu, beta) for ln IM_c in (ln_low, ln_high] (ln_high = inf:
+    right-censored; ln_low = -inf: left-censored; equal: exact, its density in ln IM)."""
+    ln_low, ln_high = np.asarray(ln_low, float), np.asarray(ln_high, float)
+    return _value_and_score(mu, beta, ln_low, ln_high, _split(ln_low, ln_high))[0]
 
 
 def log_likelihood(mu: float, beta: float, ln_x: np.ndarray, censored: np.ndarray) -> float:
-    """Log-likelihood of (mu, beta) for ln intensities, right-censored where flagged
-    (the constant -sum ln x of the exact rows left out)."""
-    z = (ln_x - mu) / beta
-    exact = z[~censored]
-    value = float(np.sum(-0.5 * exact * exact - _LOG_SQRT_2PI) - exact.size * math.log(beta))
-    if censored.any():
-        survival = 0.5 * _erfc(z[censored] / _SQRT2)
-        if np.any(survival <= 0.0):
-            return -math.inf
-        value += float(np.sum(np.log(survival)))
-    return value
+    """Log-likelihood of (mu, beta) for exact ln intensities, right-censored where
+    flagged (the constant -sum ln x of the exact rows left out)."""
+    ln_x = np.asarray(ln_x, float)
+    return interval_log_likelihood(mu, beta, ln_x, np.where(np.asarray(censored, bool), math.inf, ln_x))
 
 
-def max_likelihood(ln_x: np.ndarray, censored: np.ndarray, tol: float = 1e-12,
-                   max_iter: int = 5000) -> tuple[float, float, float]:
-    """(mu, beta, log-likelihood) maximising :func:`log_likelihood`, by Nelder-Mead on
-    (mu, ln beta) started from the mean and spread of all ln x."""
-    ln_x = np.asarray(ln_x, dtype=float)
-    censored = np.asarray(censored, dtype=bool)
+def max_likelihood_intervals(ln_low, ln_high, tol: float = 1e-12) -> tuple[float, float, float]:
+    """(mu, beta, log-likelihood) maximising :func:`interval_log_likelihood`: BFGS on
+    (mu, ln beta) with the analytic gradient, from the mean and spread of one point per
+    row (the exact value, the middle of a bracket, the finite end of a censored row),
+    then Newton steps until the step is below ``tol`` (relative)."""
+    ln_low, ln_high = np.asarray(ln_low, float), np.asarray(ln_high, float)
+    exact = _split(ln_low, ln_high)
+    point = np.where(np.isfinite(ln_low) & np.isfinite(ln_high), 0.5 * (ln_low + ln_high),
+                     np.where(np.isfinite(ln_low), ln_low, ln_high))
+    start = np.array([point.mean(), math.log(max(float(np.std(point)), 0.05))])
 
     def cost(p):
-        return -log_likelihood(p[0], math.exp(p[1]), ln_x, censored)
+        value, score = _value_and_score(p[0], math.exp(p[1]), ln_low, ln_high, exact)
+        return -value, -score
 
-    spread = max(float(np.std(ln_x)), 0.05)
-    simplex = np.array([[ln_x.mean(), math.log(spread)],
-                        [ln_x.mean() + 0.5 * spread, math.log(spread)],
-                        [ln_x.mean(), math.log(spread) + 0.5]])
-    values = np.array([cost(p) for p in simplex])
-    for _ in range(max_iter):
-        order = np.argsort(values)
-        simplex, values = simplex[order], values[order]
-        if np.abs(simplex[1:] - simplex[0]).max() < tol and values[-1] - values[0] <= tol * (1 + abs(values[0])):
+    result = optimize.minimize(cost, start, jac=True, method="BFGS", options={"gtol": 1e-9 * max(1, ln_low.size)})
+    p = np.asarray(result.x, float)
+    # Newton with the Hessian from central differences of the gradient: from BFGS's
+    # answer it converges in a few steps to the precision of the arithmetic.
+    h = 1e-6
+    f_p, g_p = cost(p)
+    for _ in range(20):
+        hess = np.empty((2, 2))
+        for j in range(2):
+            e = np.zeros(2)
+            e[j] = h
+            hess[:, j] = (cost(p + e)[1] - cost(p - e)[1]) / (2.0 * h)
+        hess = 0.5 * (hess + hess.T)
+        if not (np.all(np.isfinite(hess)) and np.all(np.linalg.eigvalsh(hess) > 0.0)):
             break
-        centroid = simplex[:-1].mean(axis=0)
-        reflected = centroid + (centroid - simplex[-1])
-        f_r = cost(reflected)
-        if f_r < values[0]:
-            expanded = centroid + 2.0 * (centroid - simplex[-1])
-            f_e = cost(expanded)
-            simplex[-1], values[-1] = (expanded, f_e) if f_e < f_r else (reflected, f_r)
-        elif f_r < values[-2]:
-            simplex[-1], values[-1] = reflected, f_r
-        else:
-            contracted = centroid + 0.5 * (simplex[-1] - centroid)
-            f_c = cost(contracted)
-            if f_c < values[-1]:
-                simplex[-1], values[-1] = contracted, f_c
-            else:  # shrink towards the best point
-                simplex[1:] = simplex[0] + 0.5 * (simplex[1:] - simplex[0])
-                values[1:] = [cost(p) for p in simplex[1:]]
-    best = int(np.argmin(values))
-    return float(simplex[best, 0]), math.exp(simplex[best, 1]), -float(values[best])
+        step = -np.linalg.solve(hess, g_p)
+        f_new, g_new = cost(p + step)
+        if not f_new <= f_p + 1e-12 * (1.0 + abs(f_p)):
+            break  # not a descent: BFGS's answer stands
+        p, f_p, g_p = p + step, f_new, g_new
+        if np.max(np.abs(step)) <= tol * (1.0 + np.max(np.abs(p))):
+            break
+    value = -f_p
+    if not (math.isfinite(value) and np.all(np.isfinite(p))):
+        raise FitError("the maximum-likelihood fit did not converge")
+    return float(p[0]), math.exp(p[1]), value
+
+
+def max_likelihood(ln_x: np.ndarray, censored: np.ndarray, tol: float = 1e-12) -> tuple[float, float, float]:
+    """(mu, beta, log-likelihood) maximising :func:`log_likelihood` (exact rows,
+    right-censored where flagged), numerically."""
+    ln_x = np.asarray(ln_x, dtype=float)
+    return max_likelihood_intervals(ln_x, np.where(np.asarray(censored, bool), math.inf, ln_x), tol=tol)
+
+
+# ------------------------------------------------------------------ the fit
+
+def _check_brackets(low: np.ndarray, high: np.ndarray) -> None:
+    """FitError unless the rows define a lognormal with 0 < beta < infinity."""
+    if low.ndim != 1 or low.shape != high.shape or low.size == 0:
+        raise FitError("the lower and upper intensities must be two 1-D arrays of one length")
+    if not (np.all(np.isfinite(low) & (low >= 0.0)) and np.all(high >= low) and not np.any(np.isnan(high))):
+        raise FitError("intensities must be finite, >= 0 and no upper intensity below its lower one")
+    exact = low == high
+    if np.any(low[exact] <= 0.0):
+        raise FitError("an exact collapse intensity must be > 0")
+    n_collapsed = int(np.sum(np.isfinite(high)))
+    # A point in every row's bracket: a distribution concentrated there explains all
+    # the rows, and the maximum likelihood is at beta = 0.
+    if exact.any():
+        common = float(low[exact][0]) if np.unique(low[exact]).size == 1 else None
+        if common is not None and not np.all((low[~exact] < common) & (common <= high[~exact])):
+            common = None
+    else:
+        a, b = float(np.max(low)), float(np.min(high))
+        common = (b if math.isfinite(b) else 2.0 * a) if a < b else None
+    if common is not None:
+        raise FitError(f"{n_collapsed} of {low.size} rows collapsed and all of them allow one collapse intensity "
+                       f"{common:.4g}: a fragility needs at least two different collapse intensities")
+    if not np.any(exact | ((low > 0.0) & np.isfinite(high))):
+        raise FitError("no row bounds its collapse intensity on both sides (a collapse above a stand): "
+                       "the spread beta is not defined")
+
+
+def fit_intervals(low, high, tol: float = 1e-12) -> FragilityFit:
+    """Maximum-likelihood lognormal fragility of collapse intensities known to lie in
+    (``low``, ``high``] (``high`` = inf: right-censored; ``low`` = 0 with a finite
+    ``high``: left-censored; ``low`` = ``high``: exact). Exact rows only: the closed
+    form; else :func:`max_likelihood_intervals` (``tol`` its relative step)."""
+    low, high = np.asarray(low, dtype=float), np.asarray(high, dtype=float)
+    _check_brackets(low, high)
+    exact = low == high
+    with np.errstate(divide="ignore"):
+        ln_low, ln_high = np.log(low), np.log(high)
+    if exact.all():
+        mu, beta = float(np.mean(ln_low)), float(np.std(ln_low))
+        ll = interval_log_likelihood(mu, beta, ln_low, ln_high)
+    else:
+        mu, beta, ll = max_likelihood_intervals(ln_low, ln_high, tol=tol)
+    censored = np.isinf(high)
+    return FragilityFit(median=math.exp(mu), beta=beta, n=int(low.size), n_censored=int(censored.sum()),
+                        log_likelihood=ll, n_interval=int(np.sum(~exact & ~censored)))
 
 
 def fit_lognormal(im, censored=None, tol: float = 1e-12) -> FragilityFit:
-    """Maximum-likelihood lognormal fragility of collapse intensities ``im`` (> 0),
+    """Maximum-likelihood lognormal fragility of exact collapse intensities ``im`` (> 0),
     right-censored where ``censored`` (their ``im`` a lower bound); ``tol``: of the
     numerical maximisation (censored data only)."""
     im = np.asarray(im, dtype=float)
@@ -136,46 +271,105 @@ def fit_lognormal(im, censored=None, tol: float = 1e-12) -> FragilityFit:
         raise FitError("intensities and censored flags must be two 1-D arrays of one length")
     if not np.all(np.isfinite(im) & (im > 0.0)):
         raise FitError("intensities must be finite and > 0")
-    exact = im[~censored]
-    if np.unique(exact).size < 2:
-        raise FitError(f"{exact.size} of {im.size} rows collapsed (with {np.unique(exact).size} distinct "
-                       "intensities): a fragility needs at least two different collapse intensities")
-    ln_x = np.log(im)
-    if not censored.any():
-        mu, beta = float(np.mean(ln_x)), float(np.std(ln_x))
-        ll = log_likelihood(mu, beta, ln_x, censored)
-    else:
-        mu, beta, ll = max_likelihood(ln_x, censored, tol=tol)
-    return FragilityFit(median=math.exp(mu), beta=beta, n=int(im.size), n_censored=int(censored.sum()),
-                        log_likelihood=ll)
+    return fit_intervals(im, np.where(censored, math.inf, im), tol=tol)
 
 
-def bootstrap_band(im, censored, im_grid, n_resamples: int = 400, level: float = 0.90,
-                   seed: int = 20261124) -> FragilityBand:
+# ------------------------------------------------------------------ the band
+
+def resample_clusters(rng: np.random.Generator, clusters, events=None) -> np.ndarray:
+    """Row indices of one bootstrap resample. Without ``events``: k clusters drawn with
+    replacement from the k (``rng.integers(0, k, k)``, clusters numbered in sorted order
+    of their labels), all the rows of each; with ``events`` (one per row, the same for
+    every row of a cluster): the events drawn with replacement, then within each drawn
+    event its clusters with replacement (two-stage)."""
+    clusters = np.asarray(clusters)
+    names, code = np.unique(clusters, return_inverse=True)
+    members = [np.flatnonzero(code == k) for k in range(names.size)]
+    if events is None:
+        pick = rng.integers(0, names.size, names.size)
+        return np.concatenate([members[k] for k in pick])
+    events = np.asarray(events)
+    event_names, event_code = np.unique(events, return_inverse=True)
+    inside = [np.unique(code[event_code == e]) for e in range(event_names.size)]
+    rows = []
+    for e in rng.integers(0, event_names.size, event_names.size):
+        for k in inside[e][rng.integers(0, inside[e].size, inside[e].size)]:
+            rows.append(members[k])
+    return np.concatenate(rows)
+
+
+def clustered_band(low, high, im_grid, clusters=None, events=None, cluster_by: str = "",
+                   n_resamples: int = 400, level: float = 0.90, seed: int = 20261124) -> FragilityBand:
     """Pointwise ``level`` band of the fragility at ``im_grid`` from ``n_resamples``
-    resamples of the rows with replacement (resamples that cannot be fitted, e.g.
-    with fewer than two collapses, are left out and not counted)."""
-    im = np.asarray(im, dtype=float)
-    censored = np.asarray(censored, dtype=bool)
+    bootstrap resamples of the bracketed rows (``low``, ``high``] (see
+    :func:`fit_intervals`), each refitted. ``clusters`` (one label per row): a resample
+    draws clusters, not rows (:func:`resample_clusters`; ``events``: two stages);
+    ``None``: each row its own cluster, the plain row bootstrap. ``cluster_by`` names
+    the clusters in the result ('record', 'event'). Resamples that cannot be fitted
+    (e.g. with fewer than two collapses) are left out, and counted."""
+    low, high = np.asarray(low, dtype=float), np.asarray(high, dtype=float)
+    rows = clusters is None
+    if rows:
+        clusters = np.arange(low.size)
+    if len(clusters) != low.size or (events is not None and len(events) != low.size):
+        raise FitError("one cluster (and event) label per row is needed")
+    if events is not None:
+        label = {}
+        for c, e in zip(np.asarray(clusters).tolist(), np.asarray(events).tolist()):
+            if label.setdefault(c, e) != e:
+                raise FitError(f"cluster '{c}' belongs to two events, '{label[c]}' and '{e}'")
     rng = np.random.default_rng(seed)
-    curves, medians, betas = [], [], []
+    curves, ln_medians, betas = [], [], []
     for _ in range(n_resamples):
-        pick = rng.integers(0, im.size, im.size)
+        pick = resample_clusters(rng, clusters, events)
         try:
-            fit = fit_lognormal(im[pick], censored[pick], tol=1e-7)
+            fit = fit_intervals(low[pick], high[pick], tol=1e-9)
         except FitError:
             continue
         curves.append(fragility(im_grid, fit.median, fit.beta))
-        medians.append(fit.median)
+        ln_medians.append(math.log(fit.median))
         betas.append(fit.beta)
     if len(curves) < 10:
         raise FitError(f"only {len(curves)} of {n_resamples} bootstrap resamples could be fitted")
     tails = [50.0 * (1.0 - level), 50.0 * (1.0 + level)]
-    low, high = np.percentile(np.array(curves), tails, axis=0)
-    m_low, m_high = np.percentile(medians, tails)
+    p_low, p_high = np.percentile(np.array(curves), tails, axis=0)
+    m_low, m_high = np.exp(np.percentile(ln_medians, tails))
     b_low, b_high = np.percentile(betas, tails)
-    return FragilityBand(np.asarray(im_grid, float), low, high, level, float(m_low), float(m_high),
-                         float(b_low), float(b_high), len(curves))
+    n_clusters = np.unique(np.asarray(events if events is not None else clusters)).size
+    return FragilityBand(np.asarray(im_grid, float), p_low, p_high, level, float(m_low), float(m_high),
+                         float(b_low), float(b_high), len(curves),
+                         cluster_by="row" if rows else (cluster_by or "cluster"), n_clusters=int(n_clusters),
+                         ln_median_sd=float(np.std(ln_medians, ddof=1)), beta_sd=float(np.std(betas, ddof=1)),
+                         n_unfitted=n_resamples - len(curves))
+
+
+def bootstrap_band(im, censored, im_grid, n_resamples: int = 400, level: float = 0.90,
+                   seed: int = 20261124, clusters=None, events=None, cluster_by: str = "") -> FragilityBand:
+    """:func:`clustered_band` of exact intensities ``im``, right-censored where
+    ``censored``."""
+    im = np.asarray(im, dtype=float)
+    high = np.where(np.asarray(censored, dtype=bool), math.inf, im)
+    return clustered_band(im, high, im_grid, clusters, events, cluster_by, n_resamples, level, seed)
+
+
+# ------------------------------------------------------------------ goodness of fit
+
+def goodness_of_fit(low, high, median: float, beta: float, seed: int = 20261124) -> FitCheck:
+    """The PIT of each row (``low``, ``high``] under the lognormal (median, beta): F(x)
+    for an exact row, else F(low) + v (F(high) - F(low)) with v uniform on (0, 1)
+    (drawn for every row in order from ``seed``): uniform on (0, 1) when the rows come
+    from that law. Rows with a NaN ``low`` are left out. The KS p-value takes (median,
+    beta) as given: fitted to the same rows it is conservative (too large), and rows
+    that share a record are not independent, which makes it optimistic the other way."""
+    low, high = np.asarray(low, dtype=float), np.asarray(high, dtype=float)
+    v = np.random.default_rng(seed).uniform(0.0, 1.0, low.size)
+    f_low, f_high = fragility(low, median, beta), fragility(high, median, beta)
+    pit = np.where(low == high, f_low, f_low + v * (f_high - f_low))
+    used = np.isfinite(pit)
+    if used.sum() < 2:
+        raise FitError("the goodness of fit needs at least two rows")
+    test = stats.kstest(pit[used], "uniform")
+    return FitCheck(pit, float(test.statistic), float(test.pvalue), int(used.sum()), seed)
 
 
 def empirical_collapse_fraction(im, censored) -> tuple[np.ndarray, np.ndarray]:

@@ -6,7 +6,14 @@ A row is the collapse intensity of one record on one model: the smallest scale o
 record that brought the arch down (``scale_threshold``), the largest below it that
 stood (``scale_stood``), and the record's PGA and PGV at ``scale_threshold``. A record
 that never brought it down up to ``scale_max`` is *censored*: its threshold columns
-then hold the values at ``scale_max``, a lower bound of the unknown threshold.
+then hold the values at ``scale_max``, a lower bound of the unknown threshold. A search
+that ended by a run that failed (``failed`` = 1) has no threshold: it is kept, with the
+largest scale that stood before the failure as ``scale_stood`` where the file tells it
+(the HDF5 file's ``/runs``; the CSV does not), a lower bound too.
+
+:meth:`IdaResult.intensity_brackets` turns the rows into what the fragility fit takes:
+each row's collapse intensity between the intensity at ``scale_stood`` and that at
+``scale_threshold`` (the intensities scale linearly with the record's scale).
 
 Both files are accepted; an error names the file and, for the CSV, the line and column
 (the CSV is read by :func:`voussoir_post.readers.csv_table.read_csv_table`).
@@ -14,6 +21,7 @@ Both files are accepted; an error names the file and, for the CSV, the line and 
 
 from __future__ import annotations
 
+import math
 import os
 from dataclasses import dataclass, field
 
@@ -24,12 +32,21 @@ from ..errors import ResultsError
 from ..namelist import parse_namelist
 from ..readers.csv_table import read_csv_table
 
-__all__ = ["IdaResult", "IDA_COLUMNS", "read_ida"]
+__all__ = ["IdaResult", "IDA_COLUMNS", "read_ida", "FIT_BRACKET", "FIT_CENSORED", "FIT_FAILED", "FIT_LEFT_OUT"]
 
 #: The columns every IDA CSV has (others, e.g. the sampled parameters, are kept apart).
 IDA_COLUMNS = ("record", "param_set", "scale_stood", "scale_threshold", "pga_threshold_m_s2",
                "pgv_threshold_m_s", "censored")
 _OPTIONAL_INT = ("non_monotonic", "n_runs", "failed")
+#: An optional text column of the CSV: the earthquake of each record (voussoir-sweep does
+#: not write it; added by hand, it makes the bootstrap draw events, then records).
+_OPTIONAL_TEXT = ("event",)
+
+#: How a row enters the fragility fit (:attr:`IdaResult.fit_as`).
+FIT_BRACKET = "bracket"  #: IM_c in (IM at scale_stood, IM at scale_threshold]
+FIT_CENSORED = "censored at scale_max"  #: IM_c > IM at scale_max
+FIT_FAILED = "failed: censored at last stand"  #: IM_c > IM at the last scale that stood
+FIT_LEFT_OUT = "failed: no stand known"  #: nothing known: left out
 
 
 @dataclass
@@ -39,23 +56,81 @@ class IdaResult:
     path: str
     record: list[str]  #: the record file of each row (the path given to the sweep)
     param_set: np.ndarray  #: int
-    scale_stood: np.ndarray
-    scale_threshold: np.ndarray  #: at scale_max for a censored row
-    pga_m_s2: np.ndarray  #: PGA at scale_threshold (a lower bound where censored)
+    scale_stood: np.ndarray  #: of a failed row: the last scale that stood, NaN if unknown
+    scale_threshold: np.ndarray  #: at scale_max for a censored row; NaN for a failed one
+    pga_m_s2: np.ndarray  #: PGA at scale_threshold (a lower bound where censored; NaN where failed)
     pgv_m_s: np.ndarray
-    censored: np.ndarray  #: bool
+    censored: np.ndarray  #: bool: no collapse up to scale_max
     non_monotonic: np.ndarray | None = None  #: bool, when the file has it
     n_runs: np.ndarray | None = None
     parameters: dict[str, np.ndarray] = field(default_factory=dict)  #: sampled model parameters per row
     config: dict = field(default_factory=dict)  #: the base case {group: {var: value}} when known
-    #: Rows left out because their search ended by a run that failed (no threshold, not
-    #: a censored one either: a numerical failure tells nothing of the arch).
-    n_failed: int = 0
     code_version: str = ""  #: the version of voussoir-sweep that wrote the file (HDF5 only)
+    #: bool: the search ended by a run that failed (no threshold); all False when the
+    #: file has no such column
+    failed: np.ndarray | None = None
+    event: list[str] | None = None  #: the earthquake of each row's record, when the file has it
+    #: Each row's record at scale 1: PGA [m/s2] and PGV [m/s] (the HDF5 file's
+    #: /sweep/record_*, else from the record's rows; NaN when neither tells)
+    unit_pga_m_s2: np.ndarray | None = None
+    unit_pgv_m_s: np.ndarray | None = None
+
+    def __post_init__(self):
+        if self.failed is None:
+            self.failed = np.zeros(len(self.record), bool)
+        for name, column in (("unit_pga_m_s2", self.pga_m_s2), ("unit_pgv_m_s", self.pgv_m_s)):
+            if getattr(self, name) is None:
+                setattr(self, name, _unit_intensity(self.record, column, self.scale_threshold, self.failed))
 
     @property
     def n_rows(self) -> int:
         return len(self.record)
+
+    @property
+    def n_failed(self) -> int:
+        """Rows whose search ended by a run that failed."""
+        return int(np.sum(self.failed))
+
+    @property
+    def fit_as(self) -> list[str]:
+        """How each row enters the fit: FIT_BRACKET, FIT_CENSORED, FIT_FAILED or FIT_LEFT_OUT."""
+        known = np.isfinite(self.scale_stood) & np.isfinite(self.unit_pga_m_s2) & np.isfinite(self.unit_pgv_m_s)
+        return [FIT_LEFT_OUT if f and not k else FIT_FAILED if f else FIT_CENSORED if c else FIT_BRACKET
+                for f, k, c in zip(self.failed.tolist(), known.tolist(), self.censored.tolist())]
+
+    def intensity_brackets(self, measure: str) -> tuple[np.ndarray, np.ndarray]:
+        """(low, high) per row: the collapse intensity ``measure`` ('pga' in m/s2 or 'pgv'
+        in m/s) lies in (low, high]. A bracket: low the intensity at scale_stood
+        (intensity at scale_threshold x scale_stood / scale_threshold), high that at
+        scale_threshold; censored at scale_max: low the intensity there, high = inf; a
+        failed search: low the intensity at its last stand, high = inf; NaN for a row
+        left out."""
+        if measure not in ("pga", "pgv"):
+            raise ValueError(f"measure '{measure}': 'pga' or 'pgv'")
+        at_threshold = self.pga_m_s2 if measure == "pga" else self.pgv_m_s
+        unit = self.unit_pga_m_s2 if measure == "pga" else self.unit_pgv_m_s
+        low = np.full(self.n_rows, np.nan)
+        high = np.full(self.n_rows, np.nan)
+        for k, how in enumerate(self.fit_as):
+            if how == FIT_BRACKET:
+                high[k] = at_threshold[k]
+                low[k] = at_threshold[k] * (self.scale_stood[k] / self.scale_threshold[k])
+                if self.scale_stood[k] == self.scale_threshold[k]:
+                    low[k] = high[k]  # a bracket of no width: an exact intensity
+            elif how == FIT_CENSORED:
+                low[k], high[k] = at_threshold[k], np.inf
+            elif how == FIT_FAILED:
+                low[k], high[k] = unit[k] * self.scale_stood[k], np.inf
+        return low, high
+
+    def bootstrap_clusters(self) -> tuple[list[str], list[str] | None, str]:
+        """(cluster of each row, event of each row or None, what a resample draws): the
+        rows of one record over the model samples are one cluster (they share the
+        record, so they are not independent); with an event column, the records of one
+        event are grouped under it ('event'), else the records are drawn ('record')."""
+        if self.event is not None:
+            return list(self.record), list(self.event), "event"
+        return list(self.record), None, "record"
 
     @property
     def records(self) -> list[str]:
@@ -73,11 +148,15 @@ class IdaResult:
             bad = ~(np.isfinite(values) & (values >= 0.0))
             if name != "scale_stood":
                 bad |= values <= 0.0
+            # a failed search has no threshold, and its last stand may be unknown (NaN)
+            bad &= ~self.failed
+            if name == "scale_stood":
+                bad |= self.failed & ~(np.isnan(values) | (np.isfinite(values) & (values >= 0.0)))
             if bad.any():
                 k = int(np.argmax(bad))
                 raise ResultsError(self.path, f"row {k + 1} (record {self.record[k]}): {name} = {values[k]!r} "
                                               f"is not a finite number > 0")
-        bad = self.scale_stood > self.scale_threshold * (1 + 1e-12)
+        bad = (self.scale_stood > self.scale_threshold * (1 + 1e-12)) & ~self.failed
         if bad.any():
             k = int(np.argmax(bad))
             raise ResultsError(self.path, f"row {k + 1} (record {self.record[k]}): scale_stood = "
@@ -102,7 +181,7 @@ def _read_csv(path: str) -> IdaResult:
     if missing:
         raise ResultsError(path, f"line {header_line}: the header lacks the column(s) {', '.join(missing)} "
                                  f"(an IDA CSV has {', '.join(IDA_COLUMNS)})")
-    extra = [h for h in header if h not in IDA_COLUMNS and h not in _OPTIONAL_INT]
+    extra = [h for h in header if h not in IDA_COLUMNS + _OPTIONAL_INT + _OPTIONAL_TEXT]
     data: dict[str, list] = {name: [] for name in header}
     for row in table.rows:
         line_no = row.line
@@ -110,9 +189,9 @@ def _read_csv(path: str) -> IdaResult:
             raise ResultsError(path, f"line {line_no}: {row.n_fields} cells, the header has {len(header)}")
         for name in header:
             text = row.cells[name]
-            if name == "record":
+            if name in ("record",) + _OPTIONAL_TEXT:
                 if not text:
-                    raise ResultsError(path, f"line {line_no}, column record: empty")
+                    raise ResultsError(path, f"line {line_no}, column {name}: empty")
                 data[name].append(text)
                 continue
             try:
@@ -127,12 +206,10 @@ def _read_csv(path: str) -> IdaResult:
             data[name].append(value)
     if not table.rows:
         raise ResultsError(path, "no data rows")
-    arr = {name: np.asarray(v, dtype=float) for name, v in data.items() if name != "record"}
-    keep = arr["failed"] == 0 if "failed" in arr else np.ones(len(data["record"]), bool)
-    arr = {name: v[keep] for name, v in arr.items()}
-    data["record"] = [r for r, k in zip(data["record"], keep) if k]
+    arr = {name: np.asarray(v, dtype=float) for name, v in data.items() if name not in ("record",) + _OPTIONAL_TEXT}
     return IdaResult(
-        n_failed=int((~keep).sum()), path=path, record=data["record"], param_set=arr["param_set"].astype(int),
+        failed=arr["failed"].astype(bool) if "failed" in arr else None, event=data.get("event"),
+        path=path, record=data["record"], param_set=arr["param_set"].astype(int),
         scale_stood=arr["scale_stood"], scale_threshold=arr["scale_threshold"],
         pga_m_s2=arr["pga_threshold_m_s2"], pgv_m_s=arr["pgv_threshold_m_s"],
         censored=arr["censored"].astype(bool),
@@ -167,13 +244,6 @@ def _read_h5(path: str) -> IdaResult:
         for name, values in columns.items():
             if values.shape[0] != n:
                 raise ResultsError(path, f"'/results/{name}' has {values.shape[0]} rows, '/results/param_set' {n}")
-        if "failed" in columns:
-            keep = columns["failed"] == 0
-            n_failed = int((~keep).sum())
-            columns = {name: v[keep] for name, v in columns.items()}
-            n = int(keep.sum())
-        else:
-            n_failed = 0
         index = columns["record"].astype(int)
         if n and (index.min() < 0 or index.max() >= len(files)):
             raise ResultsError(path, f"'/results/record' refers to a record that 'record_files' "
@@ -186,14 +256,54 @@ def _read_h5(path: str) -> IdaResult:
             parameters = {name: values[sets, k] for k, name in enumerate(names)}
         config = parse_namelist(_text(h5.attrs.get("config_nml", "")))
         code_version = _text(h5.attrs.get("code_version", ""))
+        failed = columns["failed"].astype(bool) if "failed" in columns else np.zeros(n, bool)
+        stood = columns["scale_stood"].astype(float)
+        if failed.any() and "results/job" in h5:
+            jobs = np.asarray(h5["results/job"][()]).reshape(-1).astype(int)
+            for k in np.flatnonzero(failed & np.isnan(stood)):  # the sweep writes NaN there
+                stood[k] = _last_stand(h5, jobs[k])
+        units = {}
+        for name in ("record_pga_m_s2", "record_pgv_m_s"):
+            if f"sweep/{name}" in h5:
+                values = np.asarray(h5[f"sweep/{name}"][()], dtype=float).reshape(-1)
+                if values.size == len(files):
+                    units[name] = values[index]
     return IdaResult(
+        failed=failed, unit_pga_m_s2=units.get("record_pga_m_s2"), unit_pgv_m_s=units.get("record_pgv_m_s"),
         path=path, record=[files[i] for i in index], param_set=columns["param_set"].astype(int),
-        scale_stood=columns["scale_stood"].astype(float), scale_threshold=columns["scale_threshold"].astype(float),
+        scale_stood=stood, scale_threshold=columns["scale_threshold"].astype(float),
         pga_m_s2=columns["pga_threshold_m_s2"].astype(float), pgv_m_s=columns["pgv_threshold_m_s"].astype(float),
         censored=columns["censored"].astype(bool),
         non_monotonic=columns["non_monotonic"].astype(bool) if "non_monotonic" in columns else None,
         n_runs=columns["n_runs"].astype(int) if "n_runs" in columns else None,
-        parameters=parameters, config=config, n_failed=n_failed, code_version=code_version)
+        parameters=parameters, config=config, code_version=code_version)
+
+
+def _last_stand(h5: h5py.File, job: int) -> float:
+    """The largest scale that stood in the runs of search ``job`` before it failed, below
+    its smallest collapse if it had one (the search's scale_stood, as far as it got);
+    NaN when the file has no /runs or the search had no stand."""
+    if not all(f"runs/{c}" in h5 for c in ("job", "scale", "collapsed")):
+        return float("nan")
+    mine = np.asarray(h5["runs/job"][()]).reshape(-1).astype(int) == job
+    scale = np.asarray(h5["runs/scale"][()], dtype=float).reshape(-1)[mine]
+    collapsed = np.asarray(h5["runs/collapsed"][()]).reshape(-1)[mine] != 0
+    ok = np.asarray(h5["runs/failed"][()]).reshape(-1)[mine] == 0 if "runs/failed" in h5 else np.ones(scale.size, bool)
+    below = scale < np.min(scale[ok & collapsed], initial=np.inf)
+    stands = scale[ok & ~collapsed & below]
+    return float(stands.max()) if stands.size else float("nan")
+
+
+def _unit_intensity(record: list[str], at_threshold: np.ndarray, scale_threshold: np.ndarray,
+                    failed: np.ndarray) -> np.ndarray:
+    """Each row's record at scale 1 from the rows of that record that have a threshold
+    (intensity / scale; the same for all of them); NaN for a record without such a row."""
+    ratio = np.where(failed, np.nan, np.asarray(at_threshold, float) / np.asarray(scale_threshold, float))
+    by_record: dict[str, float] = {}
+    for name, r in zip(record, ratio.tolist()):
+        if math.isfinite(r) and name not in by_record:
+            by_record[name] = r
+    return np.array([by_record.get(name, np.nan) for name in record], dtype=float)
 
 
 def _text(value) -> str:

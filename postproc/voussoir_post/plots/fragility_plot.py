@@ -1,7 +1,8 @@
 """The fragility figure and table of an IDA: collapse probability against PGA (in g,
 with m/s2 on the top axis) and against PGV, each with its lognormal maximum-likelihood
-fit, the bootstrap band and the IDA points (Kaplan-Meier fraction of records collapsed,
-censored records marked at their lower bound)."""
+fit on the rows' brackets, the bootstrap band clustered by record (or event), the
+goodness of fit, and the IDA points (Kaplan-Meier fraction of records collapsed,
+right-censored records marked at their lower bound)."""
 
 from __future__ import annotations
 
@@ -12,15 +13,18 @@ import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from ..earthquake.fragility import (FragilityBand, FragilityFit, bootstrap_band, empirical_collapse_fraction,
-                                    fit_lognormal, fragility)
-from ..earthquake.ida import IdaResult
+from ..earthquake.fragility import (FitCheck, FragilityBand, FragilityFit, clustered_band,
+                                    empirical_collapse_fraction, fit_intervals, fragility, goodness_of_fit)
+from ..earthquake.ida import FIT_BRACKET, FIT_CENSORED, FIT_FAILED, FIT_LEFT_OUT, IdaResult
 from ..tables import ReportTable
 from .drawing import new_figure, provenance, save_png
 
-__all__ = ["FragilityData", "IntensityFragility", "fragility_of", "plot_fragility", "G_M_S2"]
+__all__ = ["FragilityData", "IntensityFragility", "fragility_of", "plot_fragility", "G_M_S2", "BETA_CONVENTION"]
 
 G_M_S2 = 9.81  #: the kernel's gravity, also its g for PGA in g
+#: How beta and the bootstrap standard deviations are computed (said in every output).
+BETA_CONVENTION = ("beta: maximum likelihood (divisor n, not n - 1); bootstrap standard deviations: "
+                   "divisor n - 1 over the resamples")
 
 
 @dataclass
@@ -29,10 +33,14 @@ class IntensityFragility:
 
     name: str  #: 'PGA' or 'PGV'
     unit: str  #: 'm/s2' or 'm/s'
-    im: np.ndarray  #: per row: collapse intensity (lower bound where censored)
-    censored: np.ndarray
+    im: np.ndarray  #: per row: intensity at the collapse (at the lower bound where right-censored; NaN: left out)
+    censored: np.ndarray  #: per row: right-censored (no collapse up to scale_max, or a failed search)
     fit: FragilityFit
     band: FragilityBand
+    check: FitCheck  #: PIT and Kolmogorov-Smirnov test of the rows under the fit
+    low: np.ndarray  #: per row: the collapse intensity is in (low, high]
+    high: np.ndarray
+    fit_as: list[str] = field(default_factory=list)  #: per row: how it entered the fit (ida.FIT_*)
 
 
 @dataclass
@@ -44,6 +52,10 @@ class FragilityData:
     png_path: str | None = None
     table: ReportTable = field(default_factory=lambda: ReportTable([]))
     curve_table: ReportTable = field(default_factory=lambda: ReportTable([]))
+    n_non_monotonic: int | None = None  #: rows flagged non_monotonic (None: the file does not say)
+
+    def _count(self, how: str) -> int:
+        return sum(1 for k in self.pga.fit_as if k == how)
 
     def summary(self) -> dict:
         """The numbers of the fits (for --json)."""
@@ -55,15 +67,29 @@ class FragilityData:
             "beta_pga_band": [b.beta_low, b.beta_high],
             "median_pgv_m_s": v.median, "beta_pgv": v.beta, "median_pgv_m_s_band": [vb.median_low, vb.median_high],
             "beta_pgv_band": [vb.beta_low, vb.beta_high],
-            "band_level": b.level, "n_bootstrap": b.n_resamples,
-            "n_rows": f.n, "n_censored": f.n_censored, "g_m_s2": G_M_S2,
+            "ln_median_pga_sd": b.ln_median_sd, "beta_pga_sd": b.beta_sd,
+            "ln_median_pgv_sd": vb.ln_median_sd, "beta_pgv_sd": vb.beta_sd,
+            "beta_convention": BETA_CONVENTION,
+            "fit": "interval-censored maximum likelihood: IM_c in (IM at scale_stood, IM at scale_threshold]",
+            "band_level": b.level, "n_bootstrap": b.n_resamples, "n_bootstrap_unfitted": b.n_unfitted,
+            "cluster_by": b.cluster_by, "n_clusters": b.n_clusters,
+            "ks_d_pga": self.pga.check.statistic, "ks_p_pga": self.pga.check.p_value,
+            "ks_d_pgv": self.pgv.check.statistic, "ks_p_pgv": self.pgv.check.p_value,
+            "pit_seed": self.pga.check.seed,
+            "n_rows": f.n, "n_interval": f.n_interval, "n_censored": self._count(FIT_CENSORED),
+            "n_failed_censored": self._count(FIT_FAILED), "n_failed_left_out": self._count(FIT_LEFT_OUT),
+            "n_non_monotonic": self.n_non_monotonic, "g_m_s2": G_M_S2,
         }
 
     def report_lines(self) -> list[str]:
-        """The fits in words: the median and beta of PGA and PGV with their bands, the rows."""
+        """The fits in words: the median and beta of PGA and PGV with their bands, the
+        rows and how they entered the fit, the band's clusters, the goodness of fit."""
         summary = self.summary()
         pga, pgv = self.pga, self.pgv
         pct = int(round(100 * pga.band.level))
+        left_out = summary["n_failed_left_out"]
+        monotonic = ("non_monotonic not in the file" if self.n_non_monotonic is None else
+                     f"{self.n_non_monotonic} non-monotonic (a scale above the threshold stood; column non_monotonic)")
         return [
             f"PGA: median {summary['median_pga_g']:.4g} g ({pga.fit.median:.4g} m/s2), {pct} % band "
             f"[{summary['median_pga_g_band'][0]:.4g}, {summary['median_pga_g_band'][1]:.4g}] g; "
@@ -71,15 +97,43 @@ class FragilityData:
             f"PGV: median {pgv.fit.median:.4g} m/s, {pct} % band [{pgv.band.median_low:.4g}, "
             f"{pgv.band.median_high:.4g}] m/s; beta {pgv.fit.beta:.3f} [{pgv.band.beta_low:.3f}, "
             f"{pgv.band.beta_high:.3f}]",
-            f"{pga.fit.n} rows, {pga.fit.n_censored} censored (no collapse up to scale_max)",
+            f"{pga.fit.n} rows: {pga.fit.n_interval} bracketed (stood, collapsed], {summary['n_censored']} censored "
+            f"(no collapse up to scale_max), {summary['n_failed_censored']} failed search(es) censored at the last "
+            f"stand" + (f", {left_out} failed left out (no stand known)" if left_out else "") + f"; {monotonic}",
+            f"band: {pct} % pointwise, {band_words(pga.band)}",
+            BETA_CONVENTION + f" (PGA: sd of ln median {pga.band.ln_median_sd:.3f}, of beta {pga.band.beta_sd:.3f})",
+            f"goodness of fit: Kolmogorov-Smirnov of the PIT (randomised within the brackets, seed "
+            f"{pga.check.seed}) against U(0, 1): PGA D = {pga.check.statistic:.3f}, p = {pga.check.p_value:.3g}; "
+            f"PGV D = {pgv.check.statistic:.3f}, p = {pgv.check.p_value:.3g}",
         ]
 
 
-def fragility_of(name: str, unit: str, im, censored, n_bootstrap: int, seed: int) -> IntensityFragility:
-    fit = fit_lognormal(im, censored)
-    grid = np.linspace(0.0, 1.15 * np.max(im), 300)[1:]
-    band = bootstrap_band(im, censored, grid, n_resamples=n_bootstrap, seed=seed)
-    return IntensityFragility(name, unit, np.asarray(im, float), np.asarray(censored, bool), fit, band)
+def band_words(band: FragilityBand) -> str:
+    """'400 bootstrap resamples of the 8 records (clustered by record: ...)'."""
+    what = {"record": f"the {band.n_clusters} records (clustered by record: the rows carry no event; a record's "
+                      "rows over the model samples go together)",
+            "event": f"the {band.n_clusters} events, then the records within each (clustered by event)",
+            "row": f"the {band.n_clusters} rows"}.get(band.cluster_by, f"{band.n_clusters} {band.cluster_by}s")
+    unfitted = f", {band.n_unfitted} more could not be fitted" if band.n_unfitted else ""
+    return f"{band.n_resamples} bootstrap resamples of {what}{unfitted}"
+
+
+def fragility_of(name: str, unit: str, low, high, clusters, events, cluster_by: str, n_bootstrap: int,
+                 seed: int, fit_as: list[str] | None = None) -> IntensityFragility:
+    """The fit, band and check of one intensity measure from the rows' brackets (low,
+    high] (NaN: a row left out); ``clusters``/``events``: see
+    :func:`voussoir_post.earthquake.fragility.clustered_band`."""
+    low, high = np.asarray(low, float), np.asarray(high, float)
+    used = np.isfinite(low)
+    fit = fit_intervals(low[used], high[used])
+    im = np.where(np.isfinite(high), high, low)
+    grid = np.linspace(0.0, 1.15 * np.nanmax(im), 300)[1:]
+    band = clustered_band(low[used], high[used], grid, np.asarray(clusters)[used],
+                          None if events is None else np.asarray(events)[used], cluster_by,
+                          n_resamples=n_bootstrap, seed=seed)
+    check = goodness_of_fit(low, high, fit.median, fit.beta, seed=seed)
+    return IntensityFragility(name, unit, im, np.isinf(high), fit, band, check, low, high,
+                              list(fit_as) if fit_as is not None else [])
 
 
 def _title(ida: IdaResult) -> str:
@@ -89,9 +143,10 @@ def _title(ida: IdaResult) -> str:
                 f"(r_ext {arch.get('r_ext_m')} m, t {arch.get('thickness_m')} m)")
     else:
         what = os.path.basename(ida.path)
+    failed = f", {ida.n_failed} failed search{'es' if ida.n_failed != 1 else ''}" if ida.n_failed else ""
     return (f"Probability of collapse of the {what}\nunder {len(ida.records)} scaled ground-motion records "
             f"x {ida.n_sets} model sample(s): {ida.n_rows} IDA rows, {int(ida.censored.sum())} without collapse "
-            "up to scale_max")
+            f"up to scale_max{failed}")
 
 
 def _draw(ax, frag: IntensityFragility, scale: float, unit_label: str, unit: str) -> list:
@@ -100,11 +155,17 @@ def _draw(ax, frag: IntensityFragility, scale: float, unit_label: str, unit: str
     x = band.im / scale
     ax.fill_between(x, band.low, band.high, color="tab:blue", alpha=0.2, linewidth=0)
     ax.plot(x, fragility(band.im, fit.median, fit.beta), "-", color="tab:blue", linewidth=2)
-    xs, ps = empirical_collapse_fraction(frag.im, frag.censored)
+    used = np.isfinite(frag.im)
+    xs, ps = empirical_collapse_fraction(frag.im[used], frag.censored[used])
     ax.plot(xs / scale, ps, "o", color="black", markersize=4)
-    if frag.censored.any():
-        ax.plot(frag.im[frag.censored] / scale, np.full(frag.censored.sum(), 0.02), ">", color="tab:red",
-                markersize=7, linestyle="none")
+    kinds = np.array(frag.fit_as if frag.fit_as else [FIT_CENSORED if c else FIT_BRACKET for c in frag.censored])
+    at_max, failed = kinds == FIT_CENSORED, kinds == FIT_FAILED
+    if at_max.any():
+        ax.plot(frag.im[at_max] / scale, np.full(at_max.sum(), 0.02), ">", color="tab:red", markersize=7,
+                linestyle="none")
+    if failed.any():
+        ax.plot(frag.im[failed] / scale, np.full(failed.sum(), 0.06), ">", color="tab:orange", markersize=7,
+                markerfacecolor="none", linestyle="none")
     ax.axvline(fit.median / scale, color="tab:blue", linestyle=":", linewidth=1)
     ax.set_xlim(0.0, band.im[-1] / scale)
     ax.set_ylim(-0.02, 1.02)
@@ -112,26 +173,39 @@ def _draw(ax, frag: IntensityFragility, scale: float, unit_label: str, unit: str
     ax.set_xlabel(unit_label)
     ax.grid(True, which="both", alpha=0.3)
     pct = int(round(100 * band.level))
-    censored = [Line2D([], [], color="tab:red", marker=">", linestyle="none", markersize=7,
-                       label="no collapse up to scale_max: lower bound of the collapse intensity")]
+    clustered = {"record": f"{band.n_clusters} records, clustered by record",
+                 "event": f"{band.n_clusters} events, clustered by event"}.get(band.cluster_by, "the rows")
+    extra = []
+    if at_max.any():
+        extra.append(Line2D([], [], color="tab:red", marker=">", linestyle="none", markersize=7,
+                            label="no collapse up to scale_max: lower bound of the collapse intensity"))
+    if failed.any():
+        extra.append(Line2D([], [], color="tab:orange", marker=">", markerfacecolor="none", linestyle="none",
+                            markersize=7, label="search failed: lower bound at its last stand"))
     return [
         Line2D([], [], color="tab:blue", linewidth=2,
-               label=f"lognormal fit by maximum likelihood: median {fit.median / scale:.3g} {unit}, "
-                     f"beta {fit.beta:.2f}"),
-        Patch(color="tab:blue", alpha=0.2, label=f"{pct} % bootstrap band ({band.n_resamples} resamples of the rows)"),
+               label=f"lognormal fit, interval-censored max. likelihood: median {fit.median / scale:.3g} {unit}, "
+                     f"beta {fit.beta:.2f}, KS p {frag.check.p_value:.2g}"),
+        Patch(color="tab:blue", alpha=0.2,
+              label=f"{pct} % bootstrap band ({band.n_resamples} resamples of the {clustered})"),
         Line2D([], [], color="black", marker="o", linestyle="none", markersize=4,
-               label="IDA points: fraction of records collapsed at or below (Kaplan-Meier)"),
+               label="IDA points: fraction collapsed at or below (Kaplan-Meier, top of each bracket)"),
         Line2D([], [], color="tab:blue", linestyle=":", label="median: 50 % probability of collapse"),
-    ] + (censored if frag.censored.any() else [])
+    ] + extra
 
 
 def plot_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootstrap: int = 400,
                    seed: int = 20261124) -> FragilityData:
-    """Fit the PGA and PGV fragilities of ``ida`` and draw them to ``out_png``."""
-    pga = fragility_of("PGA", "m/s2", ida.pga_m_s2, ida.censored, n_bootstrap, seed)
-    pgv = fragility_of("PGV", "m/s", ida.pgv_m_s, ida.censored, n_bootstrap, seed + 1)
+    """Fit the PGA and PGV fragilities of ``ida`` and draw them to ``out_png``; ``seed``:
+    of the PGA bootstrap and PIT (PGV: seed + 1)."""
+    clusters, events, cluster_by = ida.bootstrap_clusters()
+    fit_as = ida.fit_as
+    pga = fragility_of("PGA", "m/s2", *ida.intensity_brackets("pga"), clusters, events, cluster_by, n_bootstrap,
+                       seed, fit_as)
+    pgv = fragility_of("PGV", "m/s", *ida.intensity_brackets("pgv"), clusters, events, cluster_by, n_bootstrap,
+                       seed + 1, fit_as)
 
-    fig = new_figure(12.0, 6.6)
+    fig = new_figure(12.0, 6.9)
     ax_a, ax_v = fig.subplots(1, 2)
     handles = _draw(ax_a, pga, G_M_S2, "PGA of the scaled record [g]", "g")
     top = ax_a.secondary_xaxis("top", functions=(lambda g: g * G_M_S2, lambda a: a / G_M_S2))
@@ -145,18 +219,26 @@ def plot_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootstrap: int 
     fig.suptitle(_title(ida), fontsize=10)
     png = save_png(fig, out_png, note=provenance(getattr(ida, "code_version", ""), os.path.basename(ida.path)))
 
+    non_monotonic = ida.non_monotonic
     rows = []
     for k in range(ida.n_rows):
         rows.append((ida.record[k] if len(ida.record[k]) < 48 else "..." + ida.record[k][-45:],
                      int(ida.param_set[k]), float(ida.scale_stood[k]), float(ida.scale_threshold[k]),
                      float(ida.pga_m_s2[k] / G_M_S2), float(ida.pga_m_s2[k]), float(ida.pgv_m_s[k]),
-                     bool(ida.censored[k])))
+                     bool(ida.censored[k]), float(pga.low[k] / G_M_S2), float(pgv.low[k]), bool(ida.failed[k]),
+                     None if non_monotonic is None else bool(non_monotonic[k]), fit_as[k],
+                     float(pga.check.pit[k]), float(pgv.check.pit[k]))
+                    + ((ida.event[k],) if ida.event is not None else ()))
     table = ReportTable(["record", "param_set", "scale_stood", "scale_threshold", "pga_threshold_g",
-                         "pga_threshold_m_s2", "pgv_threshold_m_s", "censored"], rows,
+                         "pga_threshold_m_s2", "pgv_threshold_m_s", "censored", "pga_stood_g", "pgv_stood_m_s",
+                         "failed", "non_monotonic", "fit_as", "pit_pga", "pit_pgv"]
+                        + (["event"] if ida.event is not None else []), rows,
                         title=f"IDA points of {ida.path}")
     curve = ReportTable(["pga_g", "pga_m_s2", "p_collapse", "p_low", "p_high"],
                         [(float(x / G_M_S2), float(x), float(p), float(lo), float(hi)) for x, p, lo, hi in
                          zip(pga.band.im, fragility(pga.band.im, pga.fit.median, pga.fit.beta), pga.band.low,
                              pga.band.high)],
-                        title="fragility against PGA")
-    return FragilityData(pga, pgv, png, table, curve)
+                        title=f"fragility against PGA; p_low, p_high: {int(round(100 * pga.band.level))} % band "
+                              f"of {band_words(pga.band)}")
+    return FragilityData(pga, pgv, png, table, curve,
+                         None if non_monotonic is None else int(np.sum(non_monotonic)))
