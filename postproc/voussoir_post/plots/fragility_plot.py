@@ -144,8 +144,11 @@ def _title(ida: IdaResult) -> str:
     else:
         what = os.path.basename(ida.path)
     failed = f", {ida.n_failed} failed search{'es' if ida.n_failed != 1 else ''}" if ida.n_failed else ""
+    samples_file = str(ida.config.get("sweep", {}).get("model_samples_file", "") or "")
+    samples = (f"{ida.n_sets} model sample(s) from {os.path.basename(samples_file)}" if samples_file
+               else f"{ida.n_sets} model sample(s)")
     return (f"Probability of collapse of the {what}\nunder {len(ida.records)} scaled ground-motion records "
-            f"x {ida.n_sets} model sample(s): {ida.n_rows} IDA rows, {int(ida.censored.sum())} without collapse "
+            f"x {samples}: {ida.n_rows} IDA rows, {int(ida.censored.sum())} without collapse "
             f"up to scale_max{failed}")
 
 
