@@ -2,8 +2,8 @@
 fit's input, not simulated data; test_ida_sweep.py runs the real sweep): how each row
 enters the fit (a bracket, censored at scale_max, a failed search censored at its last
 stand or left out), the clusters of the band, the split of beta by model sample, the
-per-row disclosure in the points CSV, and refusals that name the file, line and column. The fit itself:
-test_fragility.py.
+per-row disclosure in the points CSV, the comparison of two files (--compare), and
+refusals that name the file, line and column. The fit itself: test_fragility.py.
 """
 
 from __future__ import annotations
@@ -325,3 +325,45 @@ def test_all_censored_and_wrong_files_are_refused(tmp_path, capsys):
         h5.attrs["mode"] = "threshold"
     with pytest.raises(ResultsError, match="a 'threshold' sweep, not an IDA"):
         read_ida(other)
+
+
+def test_compare_two_files_in_one_figure(tmp_path, capsys):
+    """B is A with every record's thresholds at 0.7 times the scale: every bracket is 0.7
+    times A's, so (the fit is equivariant in the scale of IM) B's medians are 0.7 times
+    A's and its betas, split included, are A's. Each file's fit is the one `fragility`
+    gives it alone; the figure is written with the curves of both on one grid."""
+    a = csv_fixture(tmp_path / "nominal.csv", SCALES)
+    b = csv_fixture(tmp_path / "calibrated.csv", 0.7 * SCALES)
+    assert main(["fragility", str(a), "--json", "--bootstrap", "40"]) == 0
+    alone = json.loads(capsys.readouterr().out)
+    assert main(["fragility", str(a), "--compare", str(b), "--labels", "nominal model", "as tested", "--json",
+                 "--bootstrap", "40"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["labels"] == ["nominal model", "as tested"] and out["files"] == [str(a), str(b)]
+    assert out["same_records"] is True
+    fit_a, fit_b = out["fits"]
+    for key in ("median_pga_g", "beta", "beta_pga_rtr", "beta_pga_model", "median_pgv_m_s", "beta_pgv",
+                "median_pga_g_band", "median_pga_g_conf", "ks_p_pga"):
+        assert fit_a[key] == pytest.approx(alone[key], rel=1e-12), key
+    assert out["median_pga_ratio"] == pytest.approx(0.7, rel=1e-7)
+    assert out["median_pgv_ratio"] == pytest.approx(0.7, rel=1e-7)
+    assert fit_b["median_pga_g_conf"] == pytest.approx(0.7 * fit_a["median_pga_g_conf"], rel=1e-7)
+    for key in ("beta", "beta_pgv", "beta_pga_rtr", "beta_pga_model", "beta_pgv_model"):
+        assert fit_b[key] == pytest.approx(fit_a[key], rel=1e-6), key
+    png = tmp_path / "nominal_compare_fragility.png"
+    assert png.stat().st_size > 10000
+    curve = read_points(tmp_path / "nominal_compare_fragility.csv")
+    assert {"pga_g", "p_collapse_a", "p_conf_a", "p_low_b", "p_conf_b"} <= set(curve[0])
+    # One grid: at any PGA, B (weaker) is at least as likely to collapse as A.
+    assert all(float(c["p_collapse_b"]) >= float(c["p_collapse_a"]) - 1e-15 for c in curve)
+    assert main(["fragility", str(a), "--compare", str(b), "--bootstrap", "40", "--out", str(tmp_path / "f.png")]) == 0
+    text = capsys.readouterr().out
+    assert "== nominal: " in text and "== calibrated: " in text  # the stems by default
+    assert "== calibrated against nominal" in text and "(x 0.700)" in text
+    assert "PGA beta split over 2 model samples" in text and (tmp_path / "f.png").is_file()
+
+
+def test_labels_without_compare_are_refused(tmp_path, capsys):
+    path = csv_fixture(tmp_path / "ida.csv", SCALES)
+    assert main(["fragility", str(path), "--labels", "a", "b"]) == 2
+    assert "--labels names the two files of --compare" in capsys.readouterr().err
