@@ -22,8 +22,8 @@ from ..tables import ReportTable
 from .drawing import new_figure, provenance, save_png
 
 __all__ = ["FragilityData", "IntensityFragility", "fragility_of", "fragility_data", "plot_fragility", "G_M_S2",
-           "BETA_CONVENTION", "BETA_SPLIT", "confidence_words", "split_words", "split_label", "band_words", "arch_words",
-           "samples_words", "top_intensity"]
+           "BETA_CONVENTION", "BETA_SPLIT", "LEGEND_PAD", "confidence_words", "split_words", "split_label",
+           "band_words", "arch_words", "samples_words", "top_intensity"]
 
 G_M_S2 = 9.81  #: the kernel's gravity, also its g for PGA in g
 #: How beta and the bootstrap standard deviations are computed (said in every output).
@@ -35,9 +35,9 @@ LEGEND_PAD = 0.5 + 10.0 / 8.0
 #: How beta is split (said in every output that gives the split).
 BETA_SPLIT = ("beta split: the rows of each model sample fitted alone (the same interval-censored maximum "
               "likelihood); record-to-record beta_RTR = sqrt(mean over the samples of beta_s^2), model beta_model "
-              "= standard deviation (divisor m - 1) of the samples' ln medians (it also holds the part of their sampling "
-              "error that the records shared by the samples do not cancel); sqrt(beta_RTR^2 + beta_model^2) set "
-              "beside the pooled beta as a check")
+              "= standard deviation (divisor m - 1) of the samples' ln medians (it also holds the part of their "
+              "sampling error that the records shared by the samples do not cancel); "
+              "sqrt(beta_RTR^2 + beta_model^2) set beside the pooled beta as a check")
 
 
 @dataclass
@@ -353,5 +353,6 @@ def plot_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootstrap: int 
     fig.legend(handles=[handles[0], handles_v[0]] + handles[1:], fontsize=8, loc="outside lower center", ncol=2,
                borderaxespad=LEGEND_PAD)
     fig.suptitle(_title(ida), fontsize=10)
-    data.png_path = save_png(fig, out_png, note=provenance(getattr(ida, "code_version", ""), os.path.basename(ida.path)))
+    data.png_path = save_png(fig, out_png,
+                             note=provenance(getattr(ida, "code_version", ""), os.path.basename(ida.path)))
     return data
