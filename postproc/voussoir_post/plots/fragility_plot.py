@@ -348,8 +348,8 @@ def plot_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootstrap: int 
     ax_a.set_title("against peak ground acceleration", fontsize=10)
     handles_v = _draw(ax_v, pgv, 1.0, "PGV of the scaled record [m/s]", "m/s")
     ax_v.set_title("against peak ground velocity", fontsize=10)
-    handles[0].set_label("PGA: " + handles[0].get_label())
-    handles_v[0].set_label("PGV: " + handles_v[0].get_label())
+    handles[0].set_label("PGA " + handles[0].get_label())
+    handles_v[0].set_label("PGV " + handles_v[0].get_label())
     fig.legend(handles=[handles[0], handles_v[0]] + handles[1:], fontsize=8, loc="outside lower center", ncol=2,
                borderaxespad=LEGEND_PAD)
     fig.suptitle(_title(ida), fontsize=10)
