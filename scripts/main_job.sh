@@ -10,7 +10,9 @@
 #     dynamic analysis (MPI sweep on 2 ranks, 4 Latin hypercube samples of friction,
 #     contact inset, thickness and voussoir-size imperfection) and the lognormal fit;
 #  7. the same for the arch as the seed campaign revealed it: 4 model samples of the
-#     diagnosis's posterior (docs/seed_2013/posterior_samples_A156.csv).
+#     diagnosis's posterior (docs/seed_2013/posterior_samples_A156.csv);
+#  8. the two fragilities side by side, with the split of beta into record-to-record and
+#     model parts.
 # Everything goes to results/.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -67,7 +69,7 @@ echo "== 6. Fragility of the 156-degree arch under the record suite (IDA, 2 MPI 
   echo "&output file = 'ida_156.h5' /"
 } > results/ida_156.nml
 (cd results && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156.nml | grep -E 'done|nothing to do')
-"$post" fragility results/ida_156.h5 --out results/ | tail -n 9 | sed 's/^/   /'
+"$post" fragility results/ida_156.h5 --out results/ | tail -n 13 | sed 's/^/   /'
 
 echo "== 7. The same fragility, of the arch as the table tests revealed it (the diagnosis's posterior)"
 # The first 4 of the 200 posterior samples of A156 that the diagnosis of the seed campaign
@@ -78,7 +80,11 @@ sed -e "s/n_samples = 4, sample_seed = 1, friction_range = 0.45, 0.6,/model_samp
     -e "s/  size_imperfection_range = 0.0, 0.05, progress_every_s = 60 \//  progress_every_s = 60 \//" \
     -e "s/ida_156.h5/ida_156_calibrated.h5/" results/ida_156.nml > results/ida_156_calibrated.nml
 (cd results && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156_calibrated.nml | grep -E 'done|nothing to do')
-"$post" fragility results/ida_156_calibrated.h5 --out results/ | tail -n 9 | sed 's/^/   /'
+"$post" fragility results/ida_156_calibrated.h5 --out results/ | tail -n 13 | sed 's/^/   /'
+
+echo "== 8. The nominal and the calibrated fragility side by side"
+"$post" fragility results/ida_156.h5 --compare results/ida_156_calibrated.h5 \
+    --labels 'nominal model' 'as the tests revealed it' --out results/ | tail -n 5 | sed 's/^/   /'
 
 # An index of everything the job made, with what each shows (results/index.md).
 missing=()  # files the job should have made and did not
@@ -106,6 +112,7 @@ missing=()  # files the job should have made and did not
   describe ida_156_fragility.csv "the fitted curve, and ida_156_fragility_points.csv the points"
   describe ida_156_calibrated.h5 "the same IDA with 4 model samples of the diagnosis's posterior of the seed campaign (the arch as the table tests revealed it)"
   describe ida_156_calibrated_fragility.png "its fragility curve, to set beside the nominal one"
+  describe ida_156_compare_fragility.png "the two side by side (blue nominal, orange as the tests revealed it; PGA solid, PGV dash-dot, dashed the fit at the median's lower 5 % bound), medians and betas split into record-to-record and model parts in the legend; the curves in ida_156_compare_fragility.csv"
 } > results/index.md
 if (( ${#missing[@]} )); then
   echo "[main] error: the job did not make ${missing[*]} (see the log above)" >&2

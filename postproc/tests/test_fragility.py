@@ -4,8 +4,9 @@ The fit is checked against the closed form (uncensored data), against known logn
 populations sampled here (with and without censoring, and bracketed as an IDA brackets
 them, within the sampling error that the observed information of a likelihood written
 here gives), the clustered bootstrap against constructions whose answer is known, and
-the goodness of fit on data from the fitted law and from another. The IDA files and
-the command: test_fragility_ida.py.
+the goodness of fit on data from the fitted law and from another, and the split of beta
+into record-to-record and model parts on model samples drawn here with known medians
+and a known common beta. The IDA files and the command: test_fragility_ida.py.
 """
 
 from __future__ import annotations
@@ -16,9 +17,10 @@ import numpy as np
 import pytest
 from scipy import stats
 
-from voussoir_post.earthquake.fragility import (FitError, bootstrap_band, clustered_band, empirical_collapse_fraction,
-                                                fit_intervals, fit_lognormal, fragility, goodness_of_fit,
-                                                log_likelihood, max_likelihood, resample_clusters)
+from voussoir_post.earthquake.fragility import (FitError, bootstrap_band, clustered_band, confidence_curve,
+                                                empirical_collapse_fraction, fit_intervals, fit_lognormal, fragility,
+                                                goodness_of_fit, log_likelihood, max_likelihood, resample_clusters,
+                                                split_beta)
 
 G = 9.81
 
@@ -252,3 +254,100 @@ def test_kaplan_meier_fraction_by_hand():
 def test_no_fit_without_two_collapses():
     with pytest.raises(FitError, match="at least two"):
         fit_lognormal([1.0, 2.0, 3.0], [True, True, False])
+
+
+def test_beta_split_of_exact_crossed_rows_is_the_analysis_of_variance():
+    """Every model sample sees the same records, as in an IDA: ln IM_c(r, s) = mu + a_r +
+    b_s, exact rows. Each sample's fit is the closed form, so each beta_s = std(a)
+    (divisor n) and beta_RTR = std(a); each ln median is mu + mean(a) + b_s, so
+    beta_model = std(b) (divisor m - 1): the record effect, common to the samples,
+    drops out. The pooled beta^2 is then, exactly, beta_RTR^2 + (m - 1)/m beta_model^2
+    (the within and between sums of squares), so sqrt(beta_RTR^2 + beta_model^2) is a
+    little above beta_total, by the divisor."""
+    rng = np.random.default_rng(21)
+    a, b = rng.normal(0.0, 0.35, 8), np.array([-0.12, 0.03, 0.1, -0.05])
+    ln_x = math.log(3.6) + a[None, :] + b[:, None]  # (model sample, record)
+    x = np.exp(ln_x).reshape(-1)
+    samples = np.repeat(np.arange(4), 8)
+    split = split_beta(x, x, samples)
+    assert split.samples == [0, 1, 2, 3] and split.n_samples == 4 and list(split.n_rows) == [8] * 4
+    np.testing.assert_allclose(split.betas, np.std(a), rtol=1e-12)
+    np.testing.assert_allclose(np.log(split.medians), math.log(3.6) + np.mean(a) + b, rtol=1e-12)
+    assert split.beta_rtr == pytest.approx(np.std(a), rel=1e-12)
+    assert split.beta_model == pytest.approx(np.std(b, ddof=1), rel=1e-12)
+    assert split.beta_total == pytest.approx(fit_intervals(x, x).beta, rel=1e-15)
+    assert split.beta_total ** 2 == pytest.approx(split.beta_rtr ** 2 + 0.75 * split.beta_model ** 2, rel=1e-12)
+    assert split.beta_srss == pytest.approx(math.hypot(np.std(a), np.std(b, ddof=1)), rel=1e-12)
+
+
+def test_beta_split_recovers_a_known_record_spread_and_spread_of_medians():
+    """5 model samples, each 200 collapse intensities drawn here from a lognormal of
+    known median (ln medians spread with standard deviation 0.2, divisor m - 1) and the
+    common beta 0.3, bracketed on a 10 % ladder; 40 such draws. Sampling errors from
+    the draw sizes: a beta from n rows has standard deviation ~ beta / sqrt(2n), so
+    beta_RTR (the root mean square of m of them) ~ beta / sqrt(2nm) = 0.0067; each
+    ln median carries an error e_s of standard deviation se = beta / sqrt(n) = 0.021,
+    so beta_model^2 = sd^2(ln m_s + e_s) has the mean 0.2^2 + se^2 (the estimator is
+    biased up by the medians' own error) and beta_model the standard deviation
+    ~ se / sqrt(m - 1) = 0.011. Each draw is within 4 of these errors (x 1.2 for the
+    brackets), the spread of the 40 draws agrees with them within a factor 1.6 (so they
+    are the right tolerances), and the means of the 40 are within 3.5 of their own
+    standard errors of beta and of 0.2^2 + se^2."""
+    m, n, beta, spread = 5, 200, 0.3, 0.2
+    d = np.arange(m) - 2.0
+    ln_medians = math.log(4.0) + spread * d / np.std(d, ddof=1)
+    samples = np.repeat(np.arange(m), n)
+    sd_rtr, se = beta / math.sqrt(2 * n * m), beta / math.sqrt(n)
+    sd_model = se / math.sqrt(m - 1)
+    rtr, model = [], []
+    for seed in range(40):
+        rng = np.random.default_rng(300 + seed)
+        x = np.exp(rng.normal(np.repeat(ln_medians, n), beta))
+        low, high = ida_brackets(x, rng, 1.1)
+        split = split_beta(low, high, samples)
+        assert np.all(np.abs(np.log(split.medians) - ln_medians) < 4 * 1.2 * se)
+        assert abs(split.beta_rtr - beta) < 4 * 1.2 * sd_rtr
+        assert abs(split.beta_model - spread) < 4 * 1.2 * sd_model
+        # The pooled beta holds both parts: sqrt(0.3^2 + 0.8 x 0.2^2) = 0.35.
+        assert split.beta_total == pytest.approx(math.sqrt(beta ** 2 + (m - 1) / m * spread ** 2), abs=0.03)
+        rtr.append(split.beta_rtr)
+        model.append(split.beta_model)
+    rtr, model = np.array(rtr), np.array(model)
+    assert 1 / 1.6 < np.std(rtr, ddof=1) / sd_rtr < 1.6
+    assert 1 / 1.6 < np.std(model, ddof=1) / sd_model < 1.6
+    assert abs(np.mean(rtr) - beta) < 3.5 * np.std(rtr, ddof=1) / math.sqrt(rtr.size)
+    squares = model ** 2
+    assert abs(np.mean(squares) - (spread ** 2 + se ** 2)) < 3.5 * np.std(squares, ddof=1) / math.sqrt(squares.size)
+
+
+def test_beta_split_with_one_model_sample_has_no_model_part():
+    rng = np.random.default_rng(22)
+    low, high = ida_brackets(np.exp(rng.normal(math.log(5.0), 0.3, 30)), rng, 1.05)
+    split = split_beta(low, high, np.zeros(30, int))
+    assert split.beta_model is None and split.beta_srss is None and split.n_samples == 1
+    assert split.beta_rtr == pytest.approx(split.beta_total, rel=1e-12)  # the same rows, the same fit
+
+
+def test_beta_split_names_a_sample_that_cannot_be_fitted_alone():
+    low = np.array([1.0, 2.0, 3.0, 1.5, 2.5, 3.5])
+    high = np.array([1.1, 2.2, 3.3, np.inf, np.inf, np.inf])  # sample 7: every row censored
+    with pytest.raises(FitError, match="model sample 7 alone \\(3 rows\\)"):
+        split_beta(low, high, [3, 3, 3, 7, 7, 7])
+    with pytest.raises(FitError, match="one model sample label per row"):
+        split_beta(low, high, [3, 3, 7])
+
+
+def test_confidence_curve_is_the_fit_moved_to_the_lower_bound_of_the_median():
+    """The same beta, the median at the band's lower percentile: the curve reaches 1/2
+    there, lies above the fit everywhere, and the bound is the 5th percentile of the
+    bootstrap medians (below the fit's median)."""
+    rng = np.random.default_rng(23)
+    low, high = ida_brackets(np.exp(rng.normal(math.log(5.0), 0.3, 40)), rng, 1.05)
+    fit = fit_intervals(low, high)
+    grid = np.linspace(1.0, 12.0, 50)
+    band = clustered_band(low, high, grid, n_resamples=100, seed=3)
+    curve = confidence_curve(grid, fit, band)
+    assert band.median_low < fit.median
+    assert confidence_curve([band.median_low], fit, band)[0] == pytest.approx(0.5, abs=1e-12)
+    np.testing.assert_allclose(curve, fragility(grid, band.median_low, fit.beta), rtol=1e-15)
+    assert np.all(curve >= fragility(grid, fit.median, fit.beta))

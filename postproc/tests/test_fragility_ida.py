@@ -1,9 +1,9 @@
 """`voussoir-post fragility` on IDA files written by hand in this file (they are the
 fit's input, not simulated data; test_ida_sweep.py runs the real sweep): how each row
 enters the fit (a bracket, censored at scale_max, a failed search censored at its last
-stand or left out), the clusters of the band, the per-row disclosure in the points CSV,
-and refusals that name the file, line and column. The fit itself:
-test_fragility.py.
+stand or left out), the clusters of the band, the split of beta by model sample, the
+per-row disclosure in the points CSV, the comparison of two files (--compare), and
+refusals that name the file, line and column. The fit itself: test_fragility.py.
 """
 
 from __future__ import annotations
@@ -69,6 +69,45 @@ def test_rows_of_no_width_are_exact_and_give_the_closed_form(tmp_path, capsys):
     assert "not n - 1" in out["beta_convention"]
     assert (tmp_path / "ida_fragility.png").stat().st_size > 10000
     assert (tmp_path / "ida_fragility.csv").is_file() and (tmp_path / "ida_fragility_points.csv").is_file()
+
+
+def test_beta_split_of_exact_rows_by_hand(tmp_path, capsys):
+    """Rows of no width on 2 model samples x 3 records: each sample's fit is the closed
+    form, so beta_RTR = sqrt(mean of the two samples' std ln IM) and beta_model = the
+    standard deviation (divisor 1) of their mean ln IM, computed here from the scales;
+    the same for PGV. The dashed curve's median is the low end of the median's band."""
+    path = csv_fixture(tmp_path / "ida.csv", SCALES, stood=1.0)
+    assert main(["fragility", str(path), "--json", "--bootstrap", "50"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    for measure, unit, scale, intensities in (("pga", "g", G, PGA), ("pgv", "m_s", 1.0, PGV)):
+        ln_im = np.log(SCALES * intensities)  # (model sample, record)
+        assert out[f"beta_{measure}_rtr"] == pytest.approx(math.sqrt(np.mean(np.var(ln_im, axis=1))), rel=1e-12)
+        assert out[f"beta_{measure}_model"] == pytest.approx(np.std(np.mean(ln_im, axis=1), ddof=1), rel=1e-12)
+        assert out[f"beta_{measure}_srss"] == pytest.approx(math.hypot(out[f"beta_{measure}_rtr"],
+                                                                       out[f"beta_{measure}_model"]), rel=1e-12)
+        np.testing.assert_allclose(out[f"median_{measure}_{unit}_by_sample"],
+                                   np.exp(np.mean(ln_im, axis=1)) / scale, rtol=1e-12)
+        np.testing.assert_allclose(out[f"beta_{measure}_by_sample"], np.std(ln_im, axis=1), rtol=1e-12)
+    assert out["model_samples"] == [0, 1] and "divisor m - 1" in out["beta_split"]
+    assert out["median_pga_g_conf"] == out["median_pga_g_band"][0] and out["conf_level"] == 0.95
+    assert out["median_pgv_m_s_conf"] == out["median_pgv_m_s_band"][0]
+    assert main(["fragility", str(path), "--bootstrap", "50"]) == 0
+    text = capsys.readouterr().out
+    assert "PGA beta split over 2 model samples: record-to-record" in text and "lower 5 % bound" in text
+    curve = read_points(tmp_path / "ida_fragility.csv")
+    median_conf = out["median_pga_g_conf"] * G
+    p_conf = [stats.norm.cdf(math.log(float(c["pga_m_s2"]) / median_conf) / out["beta"]) for c in curve]
+    np.testing.assert_allclose([float(c["p_conf"]) for c in curve], p_conf, rtol=1e-9, atol=1e-12)
+
+
+def test_one_model_sample_has_no_model_part(tmp_path, capsys):
+    path = csv_fixture(tmp_path / "ida.csv", SCALES[:1], stood=0.97)
+    assert main(["fragility", str(path), "--json", "--bootstrap", "30"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["beta_pga_model"] is None and out["beta_pga_srss"] is None and out["model_samples"] == [0]
+    assert out["beta_pga_rtr"] == pytest.approx(out["beta"], rel=1e-12)
+    assert main(["fragility", str(path), "--bootstrap", "30"]) == 0
+    assert "one model sample" in capsys.readouterr().out
 
 
 def test_cli_fits_the_brackets_and_discloses_each_row(tmp_path, capsys):
@@ -286,3 +325,45 @@ def test_all_censored_and_wrong_files_are_refused(tmp_path, capsys):
         h5.attrs["mode"] = "threshold"
     with pytest.raises(ResultsError, match="a 'threshold' sweep, not an IDA"):
         read_ida(other)
+
+
+def test_compare_two_files_in_one_figure(tmp_path, capsys):
+    """B is A with every record's thresholds at 0.7 times the scale: every bracket is 0.7
+    times A's, so (the fit is equivariant in the scale of IM) B's medians are 0.7 times
+    A's and its betas, split included, are A's. Each file's fit is the one `fragility`
+    gives it alone; the figure is written with the curves of both on one grid."""
+    a = csv_fixture(tmp_path / "nominal.csv", SCALES)
+    b = csv_fixture(tmp_path / "calibrated.csv", 0.7 * SCALES)
+    assert main(["fragility", str(a), "--json", "--bootstrap", "40"]) == 0
+    alone = json.loads(capsys.readouterr().out)
+    assert main(["fragility", str(a), "--compare", str(b), "--labels", "nominal model", "as tested", "--json",
+                 "--bootstrap", "40"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["labels"] == ["nominal model", "as tested"] and out["files"] == [str(a), str(b)]
+    assert out["same_records"] is True
+    fit_a, fit_b = out["fits"]
+    for key in ("median_pga_g", "beta", "beta_pga_rtr", "beta_pga_model", "median_pgv_m_s", "beta_pgv",
+                "median_pga_g_band", "median_pga_g_conf", "ks_p_pga"):
+        assert fit_a[key] == pytest.approx(alone[key], rel=1e-12), key
+    assert out["median_pga_ratio"] == pytest.approx(0.7, rel=1e-7)
+    assert out["median_pgv_ratio"] == pytest.approx(0.7, rel=1e-7)
+    assert fit_b["median_pga_g_conf"] == pytest.approx(0.7 * fit_a["median_pga_g_conf"], rel=1e-7)
+    for key in ("beta", "beta_pgv", "beta_pga_rtr", "beta_pga_model", "beta_pgv_model"):
+        assert fit_b[key] == pytest.approx(fit_a[key], rel=1e-6), key
+    png = tmp_path / "nominal_compare_fragility.png"
+    assert png.stat().st_size > 10000
+    curve = read_points(tmp_path / "nominal_compare_fragility.csv")
+    assert {"pga_g", "p_collapse_a", "p_conf_a", "p_low_b", "p_conf_b"} <= set(curve[0])
+    # One grid: at any PGA, B (weaker) is at least as likely to collapse as A.
+    assert all(float(c["p_collapse_b"]) >= float(c["p_collapse_a"]) - 1e-15 for c in curve)
+    assert main(["fragility", str(a), "--compare", str(b), "--bootstrap", "40", "--out", str(tmp_path / "f.png")]) == 0
+    text = capsys.readouterr().out
+    assert "== nominal: " in text and "== calibrated: " in text  # the stems by default
+    assert "== calibrated against nominal" in text and "(x 0.700)" in text
+    assert "PGA beta split over 2 model samples" in text and (tmp_path / "f.png").is_file()
+
+
+def test_labels_without_compare_are_refused(tmp_path, capsys):
+    path = csv_fixture(tmp_path / "ida.csv", SCALES)
+    assert main(["fragility", str(path), "--labels", "a", "b"]) == 2
+    assert "--labels names the two files of --compare" in capsys.readouterr().err

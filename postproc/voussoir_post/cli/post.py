@@ -20,6 +20,7 @@ from ..earthquake.records import record_files_line, select_records, suite, suite
 from ..errors import DONE, InputError
 from ..plots.compare import mean_error_lines, plot_compare
 from ..plots.envelope import plot_envelope
+from ..plots.fragility_compare import plot_fragility_compare
 from ..plots.fragility_plot import plot_fragility
 from ..plots.history import plot_history
 from ..plots.mechanism import plot_mechanism
@@ -143,15 +144,44 @@ def cmd_mechanism(args) -> int:
     return DONE
 
 
-def cmd_fragility(args) -> int:
-    ida = read_ida(args.ida)
+def _read_ida_warned(path: str):
+    """read_ida, and a warning on stderr about the searches that failed."""
+    ida = read_ida(path)
     if ida.n_failed:
         kept = sum(1 for how in ida.fit_as if how == FIT_FAILED)
         left_out = ida.n_failed - kept
-        print(f"warning: {args.ida}: {ida.n_failed} searches ended by a run that failed (column failed = 1; "
+        print(f"warning: {path}: {ida.n_failed} searches ended by a run that failed (column failed = 1; "
               f"voussoir-sweep printed why): {kept} fitted as right-censored at their last stand"
               + (f", {left_out} rows left out: the file does not say their last stand (a CSV does not; the "
                  "HDF5 file's /runs does)" if left_out else ""), file=sys.stderr)
+    return ida
+
+
+def _fragility_compare(args) -> int:
+    """`fragility A --compare B`: both fits in one figure."""
+    ida_a, ida_b = _read_ida_warned(args.ida), _read_ida_warned(args.compare)
+    labels = args.labels or [os.path.splitext(os.path.basename(p))[0] for p in (args.ida, args.compare)]
+    png = output_path(args.ida, "compare_fragility", args.out)
+    data = plot_fragility_compare(ida_a, ida_b, labels, png, n_bootstrap=args.bootstrap, seed=args.seed)
+    curve_csv = write_csv(data.curve_table, os.path.splitext(data.png_path)[0] + ".csv")
+    if args.json:
+        print(json.dumps(data.summary(), indent=1))
+        return DONE
+    for line in data.report_lines():
+        print(line)
+    print(f"wrote {data.png_path}")
+    print(f"wrote {curve_csv}")
+    return DONE
+
+
+def cmd_fragility(args) -> int:
+    if args.labels and not args.compare:
+        raise InputError("--labels names the two files of --compare: give --compare B.h5 too")
+    if args.labels and any(not label.strip() for label in args.labels):
+        raise InputError("--labels: a label is empty")
+    if args.compare:
+        return _fragility_compare(args)
+    ida = _read_ida_warned(args.ida)
     png = output_path(args.ida, "fragility", args.out)
     data = plot_fragility(ida, png, n_bootstrap=args.bootstrap, seed=args.seed)
     stem = os.path.splitext(data.png_path)[0]
@@ -247,7 +277,13 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("fragility", help="lognormal fragility of collapse from an IDA sweep (&sweep mode = 'ida')")
     p.add_argument("ida", metavar="IDA.h5|IDA.csv", help="the IDA sweep's HDF5 file, or its CSV summary")
     p.add_argument("--out", help="output .png file, or a folder (default: beside the input); the fit's "
-                                 "curve and points are written beside it as <stem>.csv and <stem>_points.csv")
+                                 "curve and points are written beside it as <stem>.csv and <stem>_points.csv "
+                                 "(with --compare: <IDA stem>_compare_fragility.png and the curves' .csv)")
+    p.add_argument("--compare", metavar="B.h5|B.csv",
+                   help="a second IDA (e.g. of the calibrated model) drawn with the first in one figure; the "
+                        "text and --json give both fits and the ratio of the medians")
+    p.add_argument("--labels", nargs=2, metavar=("LABEL_A", "LABEL_B"),
+                   help="the names of the two files in the figure and the text (default: their stems)")
     p.add_argument("--json", action="store_true",
                    help="print the fit as JSON (median_pga_g, beta, ...) instead of the tables")
     p.add_argument("--bootstrap", type=int, default=400, metavar="N",

@@ -25,6 +25,12 @@ The band is a bootstrap refitted on resamples of *clusters* of rows (the rows of
 record over the model samples are not independent; records of one event neither), with
 pointwise percentiles. The goodness of fit is a Kolmogorov-Smirnov test of the
 probability integral transform of the rows, randomised within each row's bracket.
+
+With several model samples the spread splits into a record-to-record part and a model
+part (FEMA P695 / P-58 practice; :func:`split_beta`): the same fit on the rows of each
+model sample alone gives its median and beta; beta_RTR = sqrt(mean of the samples'
+beta^2), beta_model = the standard deviation (divisor m - 1) of the m samples' ln
+medians, and sqrt(beta_RTR^2 + beta_model^2) is set beside the pooled beta as a check.
 """
 
 from __future__ import annotations
@@ -38,10 +44,10 @@ from scipy.special import log_ndtr, ndtr
 
 from ..errors import FitError
 
-__all__ = ["FitError", "FragilityFit", "FragilityBand", "FitCheck", "fit_lognormal", "fit_intervals",
+__all__ = ["FitError", "FragilityFit", "FragilityBand", "FitCheck", "BetaSplit", "fit_lognormal", "fit_intervals",
            "max_likelihood", "max_likelihood_intervals", "log_likelihood", "interval_log_likelihood", "fragility",
            "bootstrap_band", "clustered_band", "resample_clusters", "goodness_of_fit", "normal_cdf",
-           "empirical_collapse_fraction"]
+           "empirical_collapse_fraction", "split_beta", "confidence_curve"]
 
 _LOG_SQRT_2PI = 0.5 * math.log(2.0 * math.pi)
 
@@ -89,6 +95,29 @@ class FitCheck:
     p_value: float
     n: int  #: rows tested
     seed: int  #: of the randomisation within the brackets
+
+
+@dataclass
+class BetaSplit:
+    """The spread of the pooled rows beside its record-to-record and model parts
+    (:func:`split_beta`)."""
+
+    beta_total: float  #: the pooled fit's beta (all the rows, every model sample)
+    beta_rtr: float  #: record-to-record: sqrt(mean over the samples of beta_s^2)
+    beta_model: float | None  #: standard deviation (divisor m - 1) of the samples' ln medians; None with one sample
+    samples: list  #: the model samples' labels, sorted
+    medians: np.ndarray  #: each sample's fitted median (units of the IM)
+    betas: np.ndarray  #: each sample's fitted beta (maximum likelihood, divisor n)
+    n_rows: np.ndarray  #: rows each sample's fit used
+
+    @property
+    def n_samples(self) -> int:
+        return len(self.samples)
+
+    @property
+    def beta_srss(self) -> float | None:
+        """sqrt(beta_RTR^2 + beta_model^2), to set beside beta_total (None with one sample)."""
+        return None if self.beta_model is None else math.hypot(self.beta_rtr, self.beta_model)
 
 
 def normal_cdf(z) -> np.ndarray:
@@ -274,6 +303,35 @@ def fit_lognormal(im, censored=None, tol: float = 1e-12) -> FragilityFit:
     return fit_intervals(im, np.where(censored, math.inf, im), tol=tol)
 
 
+# ------------------------------------------------------------------ beta split
+
+def split_beta(low, high, samples, total: FragilityFit | None = None) -> BetaSplit:
+    """The pooled beta of the rows (``low``, ``high``] (``total``: their fit, if made
+    already) beside its parts, the rows grouped by ``samples`` (one model-sample label
+    per row): each sample's rows fitted alone (:func:`fit_intervals`) give its median
+    m_s and beta_s; beta_RTR = sqrt(mean_s beta_s^2) (unweighted over the samples),
+    beta_model = the standard deviation of ln m_s with divisor m - 1, None with one
+    sample. FitError, naming the sample, when a sample's rows cannot be fitted alone."""
+    low, high = np.asarray(low, dtype=float), np.asarray(high, dtype=float)
+    samples = np.asarray(samples)
+    if samples.shape != low.shape:
+        raise FitError("one model sample label per row is needed")
+    total = fit_intervals(low, high) if total is None else total
+    names = np.unique(samples)
+    fits = []
+    for name in names.tolist():
+        mine = samples == name
+        try:
+            fits.append(fit_intervals(low[mine], high[mine]))
+        except FitError as exc:
+            raise FitError(f"model sample {name} alone ({int(mine.sum())} rows): {exc}") from None
+    medians = np.array([f.median for f in fits])
+    betas = np.array([f.beta for f in fits])
+    beta_model = float(np.std(np.log(medians), ddof=1)) if names.size > 1 else None
+    return BetaSplit(beta_total=total.beta, beta_rtr=math.sqrt(float(np.mean(betas ** 2))), beta_model=beta_model,
+                     samples=names.tolist(), medians=medians, betas=betas, n_rows=np.array([f.n for f in fits]))
+
+
 # ------------------------------------------------------------------ the band
 
 def resample_clusters(rng: np.random.Generator, clusters, events=None) -> np.ndarray:
@@ -341,6 +399,14 @@ def clustered_band(low, high, im_grid, clusters=None, events=None, cluster_by: s
                          cluster_by="row" if rows else (cluster_by or "cluster"), n_clusters=int(n_clusters),
                          ln_median_sd=float(np.std(ln_medians, ddof=1)), beta_sd=float(np.std(betas, ddof=1)),
                          n_unfitted=n_resamples - len(curves))
+
+
+def confidence_curve(im, fit: FragilityFit, band: FragilityBand) -> np.ndarray:
+    """The fragility at the lower bound of the median: the lognormal of median
+    ``band.median_low`` (the 50 (1 - level) th percentile of the bootstrap medians: the
+    5th for the 90 % band; the median is above it with confidence (1 + level) / 2) and
+    the fitted beta (the uncertainty of beta is not carried)."""
+    return fragility(im, band.median_low, fit.beta)
 
 
 def bootstrap_band(im, censored, im_grid, n_resamples: int = 400, level: float = 0.90,

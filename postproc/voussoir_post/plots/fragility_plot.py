@@ -1,8 +1,9 @@
 """The fragility figure and table of an IDA: collapse probability against PGA (in g,
 with m/s2 on the top axis) and against PGV, each with its lognormal maximum-likelihood
-fit on the rows' brackets, the bootstrap band clustered by record (or event), the
-goodness of fit, and the IDA points (Kaplan-Meier fraction of records collapsed,
-right-censored records marked at their lower bound)."""
+fit on the rows' brackets, the bootstrap band clustered by record (or event), the fit
+moved to the lower bound of its median (dashed), the goodness of fit, the split of beta
+into record-to-record and model parts, and the IDA points (Kaplan-Meier fraction of
+records collapsed, right-censored records marked at their lower bound)."""
 
 from __future__ import annotations
 
@@ -13,18 +14,30 @@ import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from ..earthquake.fragility import (FitCheck, FragilityBand, FragilityFit, clustered_band,
-                                    empirical_collapse_fraction, fit_intervals, fragility, goodness_of_fit)
+from ..earthquake.fragility import (BetaSplit, FitCheck, FitError, FragilityBand, FragilityFit, clustered_band,
+                                    confidence_curve, empirical_collapse_fraction, fit_intervals, fragility,
+                                    goodness_of_fit, split_beta)
 from ..earthquake.ida import FIT_BRACKET, FIT_CENSORED, FIT_FAILED, FIT_LEFT_OUT, IdaResult
 from ..tables import ReportTable
 from .drawing import new_figure, provenance, save_png
 
-__all__ = ["FragilityData", "IntensityFragility", "fragility_of", "plot_fragility", "G_M_S2", "BETA_CONVENTION"]
+__all__ = ["FragilityData", "IntensityFragility", "fragility_of", "fragility_data", "plot_fragility", "G_M_S2",
+           "BETA_CONVENTION", "BETA_SPLIT", "LEGEND_PAD", "confidence_words", "split_words", "split_label",
+           "band_words", "arch_words", "samples_words", "top_intensity"]
 
 G_M_S2 = 9.81  #: the kernel's gravity, also its g for PGA in g
 #: How beta and the bootstrap standard deviations are computed (said in every output).
 BETA_CONVENTION = ("beta: maximum likelihood (divisor n, not n - 1); bootstrap standard deviations: "
                    "divisor n - 1 over the resamples")
+#: Pad of a figure legend under the axes, in font sizes (8 pt): its 0.5 plus save_png's 10-pt
+#: strip for the small print, which the legend would otherwise cross.
+LEGEND_PAD = 0.5 + 10.0 / 8.0
+#: How beta is split (said in every output that gives the split).
+BETA_SPLIT = ("beta split: the rows of each model sample fitted alone (the same interval-censored maximum "
+              "likelihood); record-to-record beta_RTR = sqrt(mean over the samples of beta_s^2), model beta_model "
+              "= standard deviation (divisor m - 1) of the samples' ln medians (it also holds the part of their "
+              "sampling error that the records shared by the samples do not cancel); "
+              "sqrt(beta_RTR^2 + beta_model^2) set beside the pooled beta as a check")
 
 
 @dataclass
@@ -41,6 +54,12 @@ class IntensityFragility:
     low: np.ndarray  #: per row: the collapse intensity is in (low, high]
     high: np.ndarray
     fit_as: list[str] = field(default_factory=list)  #: per row: how it entered the fit (ida.FIT_*)
+    split: BetaSplit | None = None  #: beta by record-to-record and model parts (None: see split_note)
+    split_note: str = ""  #: why there is no split
+
+    def confidence(self, im) -> np.ndarray:
+        """The fit moved to the lower bound of its median (same beta): :func:`confidence_curve`."""
+        return confidence_curve(im, self.fit, self.band)
 
 
 @dataclass
@@ -79,6 +98,11 @@ class FragilityData:
             "n_rows": f.n, "n_interval": f.n_interval, "n_censored": self._count(FIT_CENSORED),
             "n_failed_censored": self._count(FIT_FAILED), "n_failed_left_out": self._count(FIT_LEFT_OUT),
             "n_non_monotonic": self.n_non_monotonic, "g_m_s2": G_M_S2,
+            "median_pga_g_conf": b.median_low / G_M_S2, "median_pgv_m_s_conf": vb.median_low,
+            "conf_level": 0.5 * (1.0 + b.level), "confidence_curve": confidence_words(b),
+            **_split_keys("pga", self.pga, G_M_S2), **_split_keys("pgv", self.pgv, 1.0),
+            "model_samples": None if self.pga.split is None else self.pga.split.samples,
+            "beta_split": BETA_SPLIT if self.pga.split is not None else self.pga.split_note,
         }
 
     def report_lines(self) -> list[str]:
@@ -105,7 +129,48 @@ class FragilityData:
             f"goodness of fit: Kolmogorov-Smirnov of the PIT (randomised within the brackets, seed "
             f"{pga.check.seed}) against U(0, 1): PGA D = {pga.check.statistic:.3f}, p = {pga.check.p_value:.3g}; "
             f"PGV D = {pgv.check.statistic:.3f}, p = {pgv.check.p_value:.3g}",
+            split_words(pga, G_M_S2, "g"),
+            split_words(pgv, 1.0, "m/s"),
+        ] + ([BETA_SPLIT] if pga.split is not None else []) + [
+            f"{confidence_words(pga.band)}: PGA {pga.band.median_low / G_M_S2:.4g} g, PGV {pgv.band.median_low:.4g} "
+            f"m/s (the dashed curves)",
         ]
+
+
+def _split_keys(measure: str, frag: IntensityFragility, scale: float) -> dict:
+    """The split of one measure's beta for --json (None where it is not defined)."""
+    split = frag.split
+    unit = "g" if measure == "pga" else "m_s"
+    return {
+        f"beta_{measure}_rtr": None if split is None else split.beta_rtr,
+        f"beta_{measure}_model": None if split is None else split.beta_model,
+        f"beta_{measure}_srss": None if split is None else split.beta_srss,
+        f"median_{measure}_{unit}_by_sample": None if split is None else (split.medians / scale).tolist(),
+        f"beta_{measure}_by_sample": None if split is None else split.betas.tolist(),
+    }
+
+
+def confidence_words(band: FragilityBand) -> str:
+    """What the dashed curve is, in words."""
+    tail = 50.0 * (1.0 - band.level)
+    return (f"fit at the median's lower {tail:g} % bound (the {tail:g}th percentile of the bootstrap medians, the "
+            f"low end of the {100 * band.level:g} % band: {100 - tail:g} % confident the median is above it; "
+            f"same beta)")
+
+
+def split_words(frag: IntensityFragility, scale: float, unit: str) -> str:
+    """One measure's beta beside its parts, and each model sample's median and beta."""
+    split = frag.split
+    if split is None:
+        return f"{frag.name} beta split: not made ({frag.split_note})"
+    per_sample = (f"samples' medians {', '.join(f'{m / scale:.3g}' for m in split.medians)} {unit}, betas "
+                  f"{', '.join(f'{b:.3f}' for b in split.betas)}")
+    if split.beta_model is None:
+        return (f"{frag.name} beta split: one model sample: record-to-record {split.beta_rtr:.3f} (= the pooled "
+                f"beta); the model part is not defined ({per_sample})")
+    return (f"{frag.name} beta split over {split.n_samples} model samples: record-to-record {split.beta_rtr:.3f}, "
+            f"model {split.beta_model:.3f}; sqrt(RTR^2 + model^2) = {split.beta_srss:.3f} beside the pooled "
+            f"{split.beta_total:.3f} ({per_sample})")
 
 
 def band_words(band: FragilityBand) -> str:
@@ -119,37 +184,60 @@ def band_words(band: FragilityBand) -> str:
 
 
 def fragility_of(name: str, unit: str, low, high, clusters, events, cluster_by: str, n_bootstrap: int,
-                 seed: int, fit_as: list[str] | None = None) -> IntensityFragility:
-    """The fit, band and check of one intensity measure from the rows' brackets (low,
-    high] (NaN: a row left out); ``clusters``/``events``: see
-    :func:`voussoir_post.earthquake.fragility.clustered_band`."""
+                 seed: int, fit_as: list[str] | None = None, samples=None,
+                 im_max: float | None = None) -> IntensityFragility:
+    """The fit, band, check and beta split of one intensity measure from the rows'
+    brackets (low, high] (NaN: a row left out); ``clusters``/``events``: see
+    :func:`voussoir_post.earthquake.fragility.clustered_band`; ``samples``: each row's
+    model sample, for :func:`voussoir_post.earthquake.fragility.split_beta` (None: no
+    split); the band's grid runs to ``im_max`` (default 1.15 x the largest intensity)."""
     low, high = np.asarray(low, float), np.asarray(high, float)
     used = np.isfinite(low)
     fit = fit_intervals(low[used], high[used])
     im = np.where(np.isfinite(high), high, low)
-    grid = np.linspace(0.0, 1.15 * np.nanmax(im), 300)[1:]
+    grid = np.linspace(0.0, im_max if im_max is not None else 1.15 * np.nanmax(im), 300)[1:]
     band = clustered_band(low[used], high[used], grid, np.asarray(clusters)[used],
                           None if events is None else np.asarray(events)[used], cluster_by,
                           n_resamples=n_bootstrap, seed=seed)
     check = goodness_of_fit(low, high, fit.median, fit.beta, seed=seed)
+    split, note = None, "no model samples given"
+    if samples is not None:
+        try:
+            split = split_beta(low[used], high[used], np.asarray(samples)[used], fit)
+        except FitError as exc:
+            note = str(exc)
     return IntensityFragility(name, unit, im, np.isinf(high), fit, band, check, low, high,
-                              list(fit_as) if fit_as is not None else [])
+                              list(fit_as) if fit_as is not None else [], split, "" if split else note)
+
+
+def top_intensity(ida: IdaResult, measure: str) -> float:
+    """The largest intensity of the rows ('pga' in m/s2, 'pgv' in m/s): the top of a
+    bracket, the lower bound of a censored row."""
+    low, high = ida.intensity_brackets(measure)
+    return float(np.nanmax(np.where(np.isfinite(high), high, low)))
+
+
+def arch_words(ida: IdaResult) -> str:
+    """The arch of an IDA in words ('156-degree arch of 13 voussoirs (r_ext ..., t ...)')."""
+    arch = ida.config.get("arch", {})
+    if arch.get("embrace_deg") is not None:
+        return (f"{arch.get('embrace_deg'):g}-degree arch of {arch.get('n_voussoirs')} voussoirs "
+                f"(r_ext {arch.get('r_ext_m')} m, t {arch.get('thickness_m')} m)")
+    return os.path.basename(ida.path)
+
+
+def samples_words(ida: IdaResult) -> str:
+    """'4 model sample(s)', with the file they came from when it is known."""
+    samples_file = str(ida.config.get("sweep", {}).get("model_samples_file", "") or "")
+    return (f"{ida.n_sets} model sample(s) from {os.path.basename(samples_file)}" if samples_file
+            else f"{ida.n_sets} model sample(s)")
 
 
 def _title(ida: IdaResult) -> str:
-    arch = ida.config.get("arch", {})
-    if arch.get("embrace_deg") is not None:
-        what = (f"{arch.get('embrace_deg'):g}-degree arch of {arch.get('n_voussoirs')} voussoirs "
-                f"(r_ext {arch.get('r_ext_m')} m, t {arch.get('thickness_m')} m)")
-    else:
-        what = os.path.basename(ida.path)
     failed = f", {ida.n_failed} failed search{'es' if ida.n_failed != 1 else ''}" if ida.n_failed else ""
-    samples_file = str(ida.config.get("sweep", {}).get("model_samples_file", "") or "")
-    samples = (f"{ida.n_sets} model sample(s) from {os.path.basename(samples_file)}" if samples_file
-               else f"{ida.n_sets} model sample(s)")
-    return (f"Probability of collapse of the {what}\nunder {len(ida.records)} scaled ground-motion records "
-            f"x {samples}: {ida.n_rows} IDA rows, {int(ida.censored.sum())} without collapse "
-            f"up to scale_max{failed}")
+    return (f"Probability of collapse of the {arch_words(ida)}\nunder {len(ida.records)} scaled ground-motion "
+            f"records x {samples_words(ida)}: {ida.n_rows} IDA rows, {int(ida.censored.sum())} without collapse "
+            f"up to scale_max{failed}\nlognormal fits by interval-censored maximum likelihood on the rows' brackets")
 
 
 def _draw(ax, frag: IntensityFragility, scale: float, unit_label: str, unit: str) -> list:
@@ -158,6 +246,7 @@ def _draw(ax, frag: IntensityFragility, scale: float, unit_label: str, unit: str
     x = band.im / scale
     ax.fill_between(x, band.low, band.high, color="tab:blue", alpha=0.2, linewidth=0)
     ax.plot(x, fragility(band.im, fit.median, fit.beta), "-", color="tab:blue", linewidth=2)
+    ax.plot(x, frag.confidence(band.im), "--", color="tab:blue", linewidth=1.2)
     used = np.isfinite(frag.im)
     xs, ps = empirical_collapse_fraction(frag.im[used], frag.censored[used])
     ax.plot(xs / scale, ps, "o", color="black", markersize=4)
@@ -185,43 +274,42 @@ def _draw(ax, frag: IntensityFragility, scale: float, unit_label: str, unit: str
     if failed.any():
         extra.append(Line2D([], [], color="tab:orange", marker=">", markerfacecolor="none", linestyle="none",
                             markersize=7, label="search failed: lower bound at its last stand"))
+    tail = 50.0 * (1.0 - band.level)
     return [
         Line2D([], [], color="tab:blue", linewidth=2,
-               label=f"lognormal fit, interval-censored max. likelihood: median {fit.median / scale:.3g} {unit}, "
-                     f"beta {fit.beta:.2f}, KS p {frag.check.p_value:.2g}"),
+               label=f"fit: median {fit.median / scale:.3g} {unit}, beta {fit.beta:.2f}{split_label(frag.split)}, "
+                     f"KS p {frag.check.p_value:.2g}"),
         Patch(color="tab:blue", alpha=0.2,
               label=f"{pct} % bootstrap band ({band.n_resamples} resamples of the {clustered})"),
+        Line2D([], [], color="tab:blue", linestyle="--", linewidth=1.2,
+               label=f"fit at the median's lower {tail:g} % bound ({100 - tail:g} % confident the median is "
+                     f"higher), same beta"),
         Line2D([], [], color="black", marker="o", linestyle="none", markersize=4,
                label="IDA points: fraction collapsed at or below (Kaplan-Meier, top of each bracket)"),
         Line2D([], [], color="tab:blue", linestyle=":", label="median: 50 % probability of collapse"),
     ] + extra
 
 
-def plot_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootstrap: int = 400,
-                   seed: int = 20261124) -> FragilityData:
-    """Fit the PGA and PGV fragilities of ``ida`` and draw them to ``out_png``; ``seed``:
-    of the PGA bootstrap and PIT (PGV: seed + 1)."""
+def split_label(split: BetaSplit | None) -> str:
+    """' (record-to-record 0.14, model 0.07)' for a legend; '' without a model part."""
+    if split is None or split.beta_model is None:
+        return ""
+    return f" (record-to-record {split.beta_rtr:.2f}, model {split.beta_model:.2f})"
+
+
+def fragility_data(ida: IdaResult, n_bootstrap: int = 400, seed: int = 20261124,
+                   im_max: dict[str, float] | None = None) -> FragilityData:
+    """The PGA and PGV fragilities of ``ida`` (fits, bands, checks, beta splits by
+    ``param_set``) and their tables, without a figure; ``seed``: of the PGA bootstrap
+    and PIT (PGV: seed + 1); ``im_max``: the end of the bands' grids by measure
+    ('pga' in m/s2, 'pgv' in m/s; default 1.15 x the largest intensity)."""
     clusters, events, cluster_by = ida.bootstrap_clusters()
     fit_as = ida.fit_as
+    im_max = im_max or {}
     pga = fragility_of("PGA", "m/s2", *ida.intensity_brackets("pga"), clusters, events, cluster_by, n_bootstrap,
-                       seed, fit_as)
+                       seed, fit_as, ida.param_set, im_max.get("pga"))
     pgv = fragility_of("PGV", "m/s", *ida.intensity_brackets("pgv"), clusters, events, cluster_by, n_bootstrap,
-                       seed + 1, fit_as)
-
-    fig = new_figure(12.0, 6.9)
-    ax_a, ax_v = fig.subplots(1, 2)
-    handles = _draw(ax_a, pga, G_M_S2, "PGA of the scaled record [g]", "g")
-    top = ax_a.secondary_xaxis("top", functions=(lambda g: g * G_M_S2, lambda a: a / G_M_S2))
-    top.set_xlabel("PGA [m/s²]")
-    ax_a.set_title("against peak ground acceleration", fontsize=10)
-    handles_v = _draw(ax_v, pgv, 1.0, "PGV of the scaled record [m/s]", "m/s")
-    ax_v.set_title("against peak ground velocity", fontsize=10)
-    handles[0].set_label("PGA: " + handles[0].get_label())
-    handles_v[0].set_label("PGV: " + handles_v[0].get_label())
-    fig.legend(handles=[handles[0], handles_v[0]] + handles[1:], fontsize=8, loc="outside lower center", ncol=2)
-    fig.suptitle(_title(ida), fontsize=10)
-    png = save_png(fig, out_png, note=provenance(getattr(ida, "code_version", ""), os.path.basename(ida.path)))
-
+                       seed + 1, fit_as, ida.param_set, im_max.get("pgv"))
     non_monotonic = ida.non_monotonic
     rows = []
     for k in range(ida.n_rows):
@@ -237,11 +325,34 @@ def plot_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootstrap: int 
                          "failed", "non_monotonic", "fit_as", "pit_pga", "pit_pgv"]
                         + (["event"] if ida.event is not None else []), rows,
                         title=f"IDA points of {ida.path}")
-    curve = ReportTable(["pga_g", "pga_m_s2", "p_collapse", "p_low", "p_high"],
-                        [(float(x / G_M_S2), float(x), float(p), float(lo), float(hi)) for x, p, lo, hi in
+    curve = ReportTable(["pga_g", "pga_m_s2", "p_collapse", "p_low", "p_high", "p_conf"],
+                        [(float(x / G_M_S2), float(x), float(p), float(lo), float(hi), float(c)) for x, p, lo, hi, c in
                          zip(pga.band.im, fragility(pga.band.im, pga.fit.median, pga.fit.beta), pga.band.low,
-                             pga.band.high)],
+                             pga.band.high, pga.confidence(pga.band.im))],
                         title=f"fragility against PGA; p_low, p_high: {int(round(100 * pga.band.level))} % band "
-                              f"of {band_words(pga.band)}")
-    return FragilityData(pga, pgv, png, table, curve,
-                         None if non_monotonic is None else int(np.sum(non_monotonic)))
+                              f"of {band_words(pga.band)}; p_conf: the {confidence_words(pga.band)}")
+    return FragilityData(pga, pgv, None, table, curve, None if non_monotonic is None else int(np.sum(non_monotonic)))
+
+
+def plot_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootstrap: int = 400,
+                   seed: int = 20261124) -> FragilityData:
+    """Fit the PGA and PGV fragilities of ``ida`` (:func:`fragility_data`) and draw them
+    to ``out_png``."""
+    data = fragility_data(ida, n_bootstrap, seed)
+    pga, pgv = data.pga, data.pgv
+    fig = new_figure(12.0, 7.2)
+    ax_a, ax_v = fig.subplots(1, 2)
+    handles = _draw(ax_a, pga, G_M_S2, "PGA of the scaled record [g]", "g")
+    top = ax_a.secondary_xaxis("top", functions=(lambda g: g * G_M_S2, lambda a: a / G_M_S2))
+    top.set_xlabel("PGA [m/s²]")
+    ax_a.set_title("against peak ground acceleration", fontsize=10)
+    handles_v = _draw(ax_v, pgv, 1.0, "PGV of the scaled record [m/s]", "m/s")
+    ax_v.set_title("against peak ground velocity", fontsize=10)
+    handles[0].set_label("PGA " + handles[0].get_label())
+    handles_v[0].set_label("PGV " + handles_v[0].get_label())
+    fig.legend(handles=[handles[0], handles_v[0]] + handles[1:], fontsize=8, loc="outside lower center", ncol=2,
+               borderaxespad=LEGEND_PAD)
+    fig.suptitle(_title(ida), fontsize=10)
+    data.png_path = save_png(fig, out_png,
+                             note=provenance(getattr(ida, "code_version", ""), os.path.basename(ida.path)))
+    return data
