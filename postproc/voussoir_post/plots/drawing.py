@@ -9,7 +9,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 __all__ = ["new_figure", "save_png", "MARKERS", "COLORS", "G_M_S2", "provenance", "add_g_axis", "run_caption",
-           "arch_caption"]
+           "arch_caption", "legend_pad", "NOTE_STRIP_PT"]
 
 #: Standard gravity [m/s2] for accelerations read in g (the kernel's value).
 G_M_S2 = 9.81
@@ -68,6 +68,16 @@ def run_caption(run, sep: str = ", ") -> str:
     return what + (f"{sep}{shake}" if shake else "")
 
 
+#: Height [pt] of the strip save_png keeps at the bottom for the provenance note.
+NOTE_STRIP_PT = 10.0
+
+
+def legend_pad(fontsize: float) -> float:
+    """Pad [font sizes] of a figure legend placed "outside lower center" at `fontsize`,
+    so that it clears save_png's strip for the small print: the usual 0.5 plus the strip."""
+    return 0.5 + NOTE_STRIP_PT / fontsize
+
+
 def save_png(fig: Figure, path: str | os.PathLike, dpi: int = 120, note: str | None = None) -> str:
     """Save ``fig`` as PNG at ``path`` (parent folders created); returns the path.
     ``note`` (see :func:`provenance`) is printed small in the bottom right corner."""
@@ -75,7 +85,7 @@ def save_png(fig: Figure, path: str | os.PathLike, dpi: int = 120, note: str | N
         # A strip of its own at the bottom, so that the note never overlaps an axis label.
         engine = fig.get_layout_engine()
         if engine is not None and hasattr(engine, "set") and "rect" in engine.get():
-            strip = 0.14 / fig.get_figheight()  # about 10 points
+            strip = NOTE_STRIP_PT / 72.0 / fig.get_figheight()
             engine.set(rect=(0.0, strip, 1.0, 1.0 - strip))
         fig.text(0.995, 0.002, note, ha="right", va="bottom", fontsize=6, color="#777777")
     path = os.fspath(path)

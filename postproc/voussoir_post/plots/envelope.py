@@ -20,7 +20,7 @@ from ..errors import InputError
 from ..readers.campaign import Campaign, MeasuredThreshold, measured_thresholds
 from ..readers.results import SweepResult
 from ..tables import ReportTable
-from .drawing import COLORS, MARKERS, add_g_axis, arch_caption, new_figure, provenance, save_png
+from .drawing import COLORS, MARKERS, add_g_axis, arch_caption, legend_pad, new_figure, provenance, save_png
 
 __all__ = ["ThresholdCurve", "GridMap", "MeasuredOverlay", "EnvelopeData", "threshold_curves",
            "grid_maps", "measured_overlays", "plot_envelope"]
@@ -213,7 +213,7 @@ def _plot_threshold(sweep: SweepResult, overlays, out_png) -> EnvelopeData:
     for ax in (ax_a, ax_g):
         ax.grid(True, alpha=0.3)
         ax.set_ylim(bottom=0)
-    fig.legend(handles=handles + _measured_legend(overlays, accel=True), fontsize=8, loc="outside lower center",
+    fig.legend(handles=handles + _measured_legend(overlays, accel=True), fontsize=8, loc="outside lower center", borderaxespad=legend_pad(8),
                ncols=3)
     fig.suptitle(f"Collapse envelope under sinusoidal shaking: {arch_caption(sweep.config.get('arch', {}))}",
                  fontsize=11)

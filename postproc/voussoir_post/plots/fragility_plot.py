@@ -19,7 +19,7 @@ from ..earthquake.fragility import (BetaSplit, FitCheck, FitError, FragilityBand
                                     goodness_of_fit, split_beta)
 from ..earthquake.ida import FIT_BRACKET, FIT_CENSORED, FIT_FAILED, FIT_LEFT_OUT, IdaResult
 from ..tables import ReportTable
-from .drawing import new_figure, provenance, save_png
+from .drawing import legend_pad, new_figure, provenance, save_png
 
 __all__ = ["FragilityData", "IntensityFragility", "fragility_of", "fragility_data", "plot_fragility", "G_M_S2",
            "BETA_CONVENTION", "BETA_SPLIT", "LEGEND_PAD", "confidence_words", "split_words", "split_label",
@@ -31,7 +31,7 @@ BETA_CONVENTION = ("beta: maximum likelihood (divisor n, not n - 1); bootstrap s
                    "divisor n - 1 over the resamples")
 #: Pad of a figure legend under the axes, in font sizes (8 pt): its 0.5 plus save_png's 10-pt
 #: strip for the small print, which the legend would otherwise cross.
-LEGEND_PAD = 0.5 + 10.0 / 8.0
+LEGEND_PAD = legend_pad(8.0)
 #: How beta is split (said in every output that gives the split).
 BETA_SPLIT = ("beta split: the rows of each model sample fitted alone (the same interval-censored maximum "
               "likelihood); record-to-record beta_RTR = sqrt(mean over the samples of beta_s^2), model beta_model "

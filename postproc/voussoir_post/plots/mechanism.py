@@ -11,7 +11,7 @@ from matplotlib.patches import Polygon
 
 from ..readers.results import LimitResult
 from ..tables import ReportTable
-from .drawing import new_figure, provenance, save_png
+from .drawing import legend_pad, new_figure, provenance, save_png
 
 __all__ = ["G_M_S2", "MechanismPanel", "MechanismData", "voussoir_polygons", "foundation_polygons",
            "plot_mechanism"]
@@ -144,7 +144,7 @@ def plot_mechanism(limit: LimitResult, out_png: str | os.PathLike) -> MechanismD
         friction = "" if math.isnan(limit.friction) else f" (friction {limit.friction:g})"
         handles.append(axes[0].plot([], [], "-", color="tab:purple", linewidth=3,
                                     label=f"joint that would slide: |T|/N above the friction{friction}")[0])
-    fig.legend(handles=handles, loc="outside lower center", ncols=2, fontsize=8)
+    fig.legend(handles=handles, loc="outside lower center", borderaxespad=legend_pad(8), ncols=2, fontsize=8)
     sliding = f"; sliding governs at joints {', '.join(map(str, limit.sliding))}" if limit.sliding else ""
     fig.suptitle(f"Static collapse mechanisms under horizontal acceleration (limit analysis): "
                  f"{limit.embrace_deg:g}° arch of {limit.n_voussoirs} voussoirs, t = {limit.thickness_m * 1e3:.4g} mm, "

@@ -14,7 +14,7 @@ from ..analysis.kinematics import (ROLE_FOUNDATION, ROLE_RESTRAINT, JointState, 
                                    default_open_tol_m, joint_states)
 from ..readers.results import RunResult
 from ..tables import ReportTable
-from .drawing import new_figure, provenance, run_caption, save_png
+from .drawing import legend_pad, new_figure, provenance, run_caption, save_png
 
 __all__ = ["SequenceFrame", "SequenceData", "default_frame_times", "sequence_frames",
            "plot_sequence", "write_sequence_gif"]
@@ -121,7 +121,9 @@ def plot_sequence(run: RunResult, out_png: str | os.PathLike, times_s=None, n_fr
     width_m = limits[0][1] - limits[0][0]
     height_m = limits[1][1] - limits[1][0]
     panel_w = 4.2
-    fig = new_figure(panel_w * ncols, panel_w * height_m / width_m * nrows + 0.9)
+    # Equal-aspect panels: each row needs room for its title, ticks and label beyond the
+    # drawing itself (about 0.6 in), the figure for its title and legend (about 1 in).
+    fig = new_figure(panel_w * ncols, panel_w * height_m / width_m * nrows + 0.6 * nrows + 1.0)
     axes = np.atleast_1d(fig.subplots(nrows, ncols, squeeze=False)).reshape(-1)
     for ax, frame in zip(axes, frames):
         _draw_frame(ax, run, frame, limits)
@@ -139,7 +141,7 @@ def plot_sequence(run: RunResult, out_png: str | os.PathLike, times_s=None, n_fr
                                       "intrados (i) or extrados (e) edge")[0],
                    axes[0].plot([], [], "o", color="tab:purple", markeredgecolor="white",
                                 label="separated joint (s): both edges open, the blocks part or slide")[0]]
-        fig.legend(handles=handles, loc="outside lower center", ncols=2, fontsize=7)
+        fig.legend(handles=handles, loc="outside lower center", borderaxespad=legend_pad(7), ncols=2, fontsize=7)
     png = save_png(fig, out_png, note=provenance(run.code_version, run.input_file, os.path.basename(run.path)))
     table = ReportTable(["frame", "sample", "time_s", "crown_dx_mm", "crown_dy_mm", "open_joints"],
                         [(i + 1, f.sample, f.time_s, 1e3 * float(run.crown_dx_m[f.sample]),
