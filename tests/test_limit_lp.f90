@@ -7,7 +7,7 @@ program test_limit_lp
   use voussoir_status, only: status_t
   use voussoir_assembly, only: assembly_t, build_arch, role_voussoir, role_foundation
   use voussoir_wall_config, only: wall_config_t
-  use voussoir_wall, only: build_wall
+  use voussoir_wall, only: build_wall, box
   use voussoir_limit_analysis, only: limit_result_t, horizontal_capacity
   use voussoir_block_interfaces, only: interface_set_t, find_interfaces
   use voussoir_limit_lp, only: block_loads_t, lp_result_t, block_loads, lp_capacity, nonassociative_capacity, &
@@ -24,12 +24,6 @@ program test_limit_lp
   call assert_summary()
 
 contains
-
-  pure function box(xa, xb, ya, yb) result(xy)
-    real(dp), intent(in) :: xa, xb, ya, yb
-    real(dp) :: xy(2, 4)
-    xy = reshape([xa, ya, xb, ya, xb, yb, xa, yb], [2, 4])
-  end function box
 
   !> Blocks of width b and height h stacked on a driven base (body 1) that is wider.
   subroutine stack(b, h, n_blocks, asm)

@@ -6,7 +6,7 @@ module voussoir_wall
   use voussoir_wall_config, only: wall_config_t, wall_block_count, bond_running
   implicit none
   private
-  public :: build_wall
+  public :: build_wall, box
 
 contains
 
@@ -52,14 +52,14 @@ contains
       end do
     end do
 
-  contains
-
-    pure function box(xa, xb, ya, yb) result(xy)
-      real(dp), intent(in) :: xa, xb, ya, yb
-      real(dp) :: xy(2, 4)
-      xy = reshape([xa, ya, xb, ya, xb, yb, xa, yb], [2, 4])
-    end function box
-
   end subroutine build_wall
+
+  !> The corners (2, 4) of the axis-aligned rectangle [xa, xb] x [ya, yb], counter-clockwise
+  !> from the lower left.
+  pure function box(xa, xb, ya, yb) result(xy)
+    real(dp), intent(in) :: xa, xb, ya, yb
+    real(dp) :: xy(2, 4)
+    xy = reshape([xa, ya, xb, ya, xb, yb, xa, yb], [2, 4])
+  end function box
 
 end module voussoir_wall
