@@ -27,7 +27,7 @@ from scipy.stats import binomtest
 ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT / "postproc"), str(ROOT / "postproc" / "tests")]
 
-from voussoir_post.diagnosis.bank import Bank, load  # noqa: E402
+from voussoir_post.diagnosis.bank import Bank, load_banks  # noqa: E402
 from voussoir_post.diagnosis.rates import draw_outcomes  # noqa: E402
 from voussoir_post.plots.drawing import new_figure, save_png  # noqa: E402
 
@@ -65,7 +65,7 @@ def draw_truth(rng: np.random.Generator) -> tuple[str, Truth]:
 
 
 def stored_bank() -> Bank:
-    return Bank({b.specimen_id: b for b in map(load, sorted((DATA / "bank").glob("*.json")))}, "stored")
+    return load_banks(DATA / "bank")
 
 
 def reliability(outcomes: list[dict], out: Path) -> list[tuple]:

@@ -21,7 +21,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT / "postproc"), str(ROOT / "postproc" / "tests")]
 
-from voussoir_post.diagnosis.bank import Bank, build_bank, load  # noqa: E402
+from voussoir_post.diagnosis.bank import Bank, build_bank, load_banks  # noqa: E402
 from voussoir_post.diagnosis.rates import draw_outcomes, mcnemar  # noqa: E402
 from voussoir_post.diagnosis.settings import DiagnosisSettings  # noqa: E402
 from voussoir_post.readers.campaign import Specimen  # noqa: E402
@@ -42,7 +42,7 @@ def arches_bank(bin_dir: Path, out: Path) -> Bank:
 
 
 def stored() -> Bank:
-    return Bank({b.specimen_id: b for b in map(load, sorted((DATA / "bank").glob("*.json")))}, "stored")
+    return load_banks(DATA / "bank")
 
 
 def right(o: dict) -> bool:

@@ -28,7 +28,7 @@ import numpy as np
 import pytest
 from scipy.stats import binomtest, norm
 
-from voussoir_post.diagnosis.bank import Bank, key_variant, load, variant_key
+from voussoir_post.diagnosis.bank import Bank, key_variant, load_banks, variant_key
 from voussoir_post.diagnosis.decision import NAME_AT, credible_set
 from voussoir_post.diagnosis.likelihood import _log_bracket, records_log_factor, scales
 from voussoir_post.diagnosis.models import MODEL_IDS, model_prior
@@ -48,10 +48,9 @@ DRAWS = 20
 
 @lru_cache(maxsize=1)
 def stored_bank() -> Bank:
-    files = sorted((DATA / "bank").glob("*.json"))
-    assert files, f"no stored simulation bank in {DATA / 'bank'} (bench/diagnosis_replay_bank.sh makes it)"
-    banks = {b.specimen_id: b for b in map(load, files)}
-    return Bank(banks, "stored")
+    bank = load_banks(DATA / "bank")
+    assert bank.specimens, f"no stored simulation bank in {DATA / 'bank'} (bench/diagnosis_replay_bank.sh makes it)"
+    return bank
 
 
 def case_outcomes(slug: str, bank: Bank | None = None) -> list[dict]:

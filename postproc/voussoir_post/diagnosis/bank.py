@@ -32,6 +32,7 @@ from .settings import DiagnosisSettings
 from .simulator import Simulator
 
 __all__ = ["BANK_VERSION", "SpecimenBank", "Bank", "variant_key", "key_variant", "bank_variants", "build_bank",
+           "load", "save", "load_banks", "onset_amplitudes",
            "REPLICAS", "FINE_DT", "G"]
 
 BANK_VERSION = 1
@@ -103,11 +104,15 @@ class SpecimenBank:
     replicas: dict[str, list[float]] = field(default_factory=dict)  #: 'dt x0.97' ... and 'dt / 2'
     searches: int = 0  #: threshold searches made to fill it
 
-    def threshold(self, key: str, frequency_hz: float) -> float:
+    def index(self, frequency_hz: float) -> int:
+        """The position of a tested frequency in the bank's lists."""
         k = min(range(len(self.frequencies_hz)), key=lambda i: abs(self.frequencies_hz[i] - frequency_hz))
         if abs(self.frequencies_hz[k] - frequency_hz) > 1e-6:
             raise KeyError(f"{self.specimen_id}: {frequency_hz} Hz is not in the bank")
-        return self.thresholds[key][k]
+        return k
+
+    def threshold(self, key: str, frequency_hz: float) -> float:
+        return self.thresholds[key][self.index(frequency_hz)]
 
 
 @dataclass
@@ -161,7 +166,7 @@ def load(path: Path) -> SpecimenBank:
     return SpecimenBank(**d)
 
 
-def _onsets(runner: Runner, spec: Specimen, freqs: list[float]) -> list[float]:
+def onset_amplitudes(runner: Runner, spec: Specimen, freqs: list[float]) -> list[float]:
     """Amplitude [m] of the onset of rocking at each frequency, from the limit analysis of
     the nominal ring: the scale of every search, known before any test."""
     group = {k: v for k, v in arch_group(spec, Variant()).items()
@@ -172,7 +177,7 @@ def _onsets(runner: Runner, spec: Specimen, freqs: list[float]) -> list[float]:
 
 def _simulate(spec: Specimen, freqs, cycles, settings: DiagnosisSettings, work: Path) -> SpecimenBank:
     sim = Simulator(settings, work)
-    onset = _onsets(sim.runner, spec, freqs)
+    onset = onset_amplitudes(sim.runner, spec, freqs)
     amp_max = settings.ceiling_factor * max(onset)
     amp_tol = settings.amp_tol_fraction * min(onset)
     bank = SpecimenBank(spec.specimen_id, list(freqs), tuple(cycles), onset, amp_max, amp_tol, settings.dt_s)
@@ -190,6 +195,12 @@ def _simulate(spec: Specimen, freqs, cycles, settings: DiagnosisSettings, work: 
         bank.replicas[name] = [found.get((Variant(), f), math.nan) for f in freqs]
     bank.searches = (len(variants) + len(REPLICAS) + 1) * len(freqs)
     return bank
+
+
+def load_banks(folder: Path, code: str = "stored") -> Bank:
+    """The bank of every specimen stored as JSON in `folder` (one file each)."""
+    files = sorted(Path(folder).glob("*.json"))
+    return Bank({b.specimen_id: b for b in map(load, files)}, code)
 
 
 def build_bank(specimens: dict[str, Specimen], frequencies: dict[str, list[float]], cycles: dict[str, tuple],

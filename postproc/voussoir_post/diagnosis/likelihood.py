@@ -36,7 +36,7 @@ from .bank import FINE_DT, Bank
 from .models import GAIN_RANGE, ModelGrid, roughness
 from .observations import Observations, PairObservation
 
-__all__ = ["Scales", "scales", "log_likelihood", "records_log_factor", "TAU0", "OUTLIER_PROB", "OUTLIER_FACTOR"]
+__all__ = ["Scales", "scales", "adjusted_mu", "log_likelihood", "records_log_factor", "TAU0", "OUTLIER_PROB", "OUTLIER_FACTOR"]
 
 TAU0 = (0.01, 0.03, 0.06)  #: model discrepancy per specimen (relative), integrated with equal weights
 OUTLIER_PROB = 0.05
@@ -74,7 +74,7 @@ def scales(bank: Bank, obs: Observations, pairs: list[PairObservation]) -> Scale
         ss, dof = roughness(bank, obs, pairs)
         for j, p in enumerate(pairs):
             sb = bank.specimens[p.specimen_id]
-            k = sb.frequencies_hz.index(min(sb.frequencies_hz, key=lambda f: abs(f - p.frequency_hz)))
+            k = sb.index(p.frequency_hz)
             reps = np.log([sb.thresholds["nominal"][k]] + [v[k] for name, v in sb.replicas.items()
                                                            if name != FINE_DT[0]])
             reps = reps[np.isfinite(reps)]
@@ -113,18 +113,27 @@ def _log_outlier(lo: np.ndarray, hi: np.ndarray, m: np.ndarray) -> np.ndarray:
     return np.log(np.maximum(inside / (2 * half), 1e-300))
 
 
+def adjusted_mu(grid: ModelGrid, sc: Scales) -> np.ndarray:
+    """A model's predicted log threshold in commanded amplitude at each grid point, per
+    pair: the simulated one divided by the table gain the model says (the pair's measured
+    gain under table_motion with records, the grid's gain without)."""
+    mu = grid.mu.copy()
+    if grid.gain_per_pair:
+        mu -= np.log(sc.gain_mean)[None, :]
+    if grid.log_gain is not None:
+        mu -= grid.log_gain[:, None]
+    return mu
+
+
 def log_likelihood(grid: ModelGrid, obs: Observations, pairs: list[PairObservation], sc: Scales) -> np.ndarray:
     """log p(brackets | model, theta) at every grid point (records apart)."""
     lo = np.log(np.array([p.low_m if p.low_m > 0 else 0.0 for p in pairs]) + 1e-300)
     lo = np.where(np.array([p.low_m > 0 for p in pairs]), lo, -np.inf)
     hi = np.log(np.array([p.high_m for p in pairs]))
-    mu = grid.mu.copy()
+    mu = adjusted_mu(grid, sc)
     var = np.full(len(pairs), sc.sigma_sim ** 2 + sc.sigma_gain ** 2)
     if grid.gain_per_pair:
-        mu -= np.log(sc.gain_mean)[None, :]
         var += (sc.gain_se / sc.gain_mean) ** 2
-    if grid.log_gain is not None:
-        mu -= grid.log_gain[:, None]
     s = np.sqrt(var)[None, :]
     specimens = sorted({p.specimen_id for p in pairs})
     total = np.zeros((len(TAU0), grid.n))

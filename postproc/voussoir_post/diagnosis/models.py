@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .bank import Bank, SpecimenBank, key_variant
+from .bank import FINE_DT, Bank, SpecimenBank, key_variant
 from .effects import RESTRAINTS
 from .observations import Observations
 
@@ -84,8 +84,8 @@ def nominal_log(bank: SpecimenBank, f: float) -> float:
     """The nominal model's log threshold: the mean over its search and the replicas at
     the same dt scale (dt x 0.97, x 1.03, other scan steps), which the chaotic band
     scatters."""
-    keys = [k for k in bank.replicas if k != "dt / 2"]
-    k = min(range(len(bank.frequencies_hz)), key=lambda i: abs(bank.frequencies_hz[i] - f))
+    keys = [k for k in bank.replicas if k != FINE_DT[0]]
+    k = bank.index(f)
     values = [_node_log(bank, "nominal", f)] + [math.log(bank.replicas[r][k]) for r in keys
                                                  if math.isfinite(bank.replicas[r][k])]
     return float(np.mean(values))
@@ -101,8 +101,7 @@ def _axis(bank: SpecimenBank, effect_id: str, in_pair: bool, spec) -> list:
         parts = key_variant(key).parts()
         if (len(parts) == 2) == in_pair:
             found |= {v for e, v in parts if e == effect_id}
-    nominal = {"contact_edges": 0.0, "friction": spec.friction, "geometry": 1.0}[effect_id]
-    return sorted(found | {nominal})
+    return sorted(found | {_nominal_value(effect_id, spec)})
 
 
 def _nominal_value(effect_id: str, spec):

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .bank import _onsets, variant_key
+from .bank import onset_amplitudes, variant_key
 from .effects import arch_group
 from .likelihood import TAU0
 from .models import members
@@ -61,7 +61,7 @@ def next_test(post: Posterior, obs: Observations, rivals: list[str], runs: dict,
         # another question never meets them.
         key = json.dumps([[arch_group(spec, v) for v in variants], freqs, settings.dt_s], sort_keys=True)
         sim = Simulator(settings, Path(work) / hashlib.sha256(key.encode()).hexdigest()[:16])
-        onset = _onsets(sim.runner, spec, freqs)
+        onset = onset_amplitudes(sim.runner, spec, freqs)
         found = sim.thresholds_at(spec, freqs, obs.cycles[sid], variants, settings.ceiling_factor * max(onset),
                                   settings.amp_tol_fraction * min(onset))
         for f in freqs:

@@ -168,7 +168,7 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
                                                       "frequency_hz": suggestion["frequency_hz"]},
         "notes": "",
     }
-    info = {"elapsed_s": time.time() - t0, "bank": bank, "settings": settings, "crown": crown, "screen": screen,
+    info = {"elapsed_s": time.time() - t0, "bank": bank, "settings": settings, "table": table, "crown": crown, "screen": screen,
             "held": held, "baseline_pred": baseline_pred, "samples": samples, "next_test": suggestion, "runs": sim.n_runs, "prior": {m: model_prior(m)
                                                                                     for m in MODEL_IDS}}
     result["notes"] = write_report(out_dir, campaign, obs, post, decision, result, info)

@@ -24,7 +24,7 @@ import numpy as np
 from scipy.special import logsumexp
 
 from .bank import Bank
-from .likelihood import (OUTLIER_FACTOR, OUTLIER_PROB, TAU0, Scales, log_likelihood, predictive_scale,
+from .likelihood import (OUTLIER_FACTOR, OUTLIER_PROB, TAU0, Scales, adjusted_mu, log_likelihood, predictive_scale,
                          records_log_factor, scales)
 from .models import MODEL_IDS, ModelGrid, members, model_grid, model_prior
 from .observations import Observations, PairObservation
@@ -45,12 +45,7 @@ class ModelPosterior:
 
     def adjusted_mu(self, sc: Scales) -> np.ndarray:
         """Predicted log threshold in commanded amplitude at each grid point, per pair."""
-        mu = self.grid.mu.copy()
-        if self.grid.gain_per_pair:
-            mu -= np.log(sc.gain_mean)[None, :]
-        if self.grid.log_gain is not None:
-            mu -= self.grid.log_gain[:, None]
-        return mu
+        return adjusted_mu(self.grid, sc)
 
     def summary(self, name: str) -> tuple:
         """(posterior mean or mode, 5 %, 95 %) of one parameter."""

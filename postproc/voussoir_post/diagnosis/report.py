@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from ..plots.drawing import new_figure, provenance, save_png
-from .actuator import afd_command, table_evidence
+from .actuator import afd_command
 from .decision import NAME_AT, Decision
 from .likelihood import GAIN_SCATTER_DEFAULT, OUTLIER_FACTOR, OUTLIER_PROB, TAU0
 from .models import CANDIDATES, members
@@ -132,8 +132,7 @@ def _figure_probabilities(out: Path, post: Posterior, note: str) -> str:
     return "probabilities.png"
 
 
-def _figure_table(out: Path, campaign, note: str) -> str | None:
-    table = table_evidence(campaign)
+def _figure_table(out: Path, campaign, table, note: str) -> str | None:
     if table.source != "records" or not table.per_test:
         return None
     tid = max(table.per_test, key=lambda r: campaign.tests[r[0]].amplitude_m)[0]
@@ -176,7 +175,7 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
     note = provenance(f"voussoir-diagnose, executables {bank.code}", f"campaign {campaign.name}")
     text = notes(decision, post, result, info)
     figs = [_figure_thresholds(out, obs, post, decision, info, note), _figure_probabilities(out, post, note)]
-    tfig = _figure_table(out, campaign, note)
+    tfig = _figure_table(out, campaign, info["table"], note)
     sc = post.scales
     lines = [f"# Diagnosis of campaign `{campaign.name}`", "", f"**Verdict: `{result['verdict']}`.** {text}", "",
              f"![probabilities]({figs[1]})", "", "## Thresholds", "",
