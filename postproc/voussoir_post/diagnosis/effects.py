@@ -29,12 +29,6 @@ class Variant:
     effect: str | None = None
     value: float | str | tuple | None = None
 
-    @property
-    def label(self) -> str:
-        if self.effect is None:
-            return "nominal"
-        return " + ".join(EFFECTS_BY_ID[e].label(v) for e, v in self.parts())
-
     def parts(self) -> tuple:
         """The (effect id, value) of each effect of the variant."""
         if self.effect is None:
@@ -69,9 +63,6 @@ class Effect:
     def arch_changes(self, value, spec: Specimen) -> dict:
         return {}
 
-    def label(self, value) -> str:
-        return f"{self.id} {value}"
-
 
 class ContactEdges(Effect):
     id = "contact_edges"
@@ -82,9 +73,6 @@ class ContactEdges(Effect):
 
     def arch_changes(self, value, spec):
         return {"contact_inset_m": float(value)}
-
-    def label(self, value):
-        return f"inset {1e3 * value:g} mm"
 
 
 class Friction(Effect):
@@ -102,9 +90,6 @@ class Friction(Effect):
     def arch_changes(self, value, spec):
         return {"friction": float(value)}
 
-    def label(self, value):
-        return f"friction {value:g}"
-
 
 class BaseRestraint(Effect):
     """Brackets not declared in specimens.csv; a specimen whose brackets are declared
@@ -118,9 +103,6 @@ class BaseRestraint(Effect):
     def arch_changes(self, value, spec):
         return {} if spec.restrained_springings != "none" else {"restrained_springings": str(value)}
 
-    def label(self, value):
-        return f"restrained {value}"
-
 
 class TableMotion(Effect):
     """A table gain g scales the threshold in commanded amplitude exactly by 1/g (rigid
@@ -128,9 +110,6 @@ class TableMotion(Effect):
     to simulate. Single runs play it as &motion table_gain and table_delay_s."""
 
     id = "table_motion"
-
-    def label(self, value):
-        return f"table gain {value:.3f}"
 
 
 class Geometry(Effect):
@@ -146,9 +125,6 @@ class Geometry(Effect):
         r_mean = spec.r_ext_m - 0.5 * spec.thickness_m
         return {"thickness_m": float(value) * spec.thickness_m,
                 "r_ext_m": r_mean + 0.5 * float(value) * spec.thickness_m}
-
-    def label(self, value):
-        return f"thickness x {float(value):.3g}"
 
 
 #: The candidates.
