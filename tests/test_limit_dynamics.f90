@@ -35,12 +35,19 @@
 !> The collapse monitor of the simulation (a voussoir 10 % of the thickness below its
 !> place) fires later still; its load is printed for information only.
 !>
+!> 4. A pointed (two-centred) arch given as a block assembly, not by the arch builder:
+!>    the slow ramp sets its blocks moving between the LP's lambda g (the limit analysis
+!>    of any assembly, src/limit/limit_lp.f90) and 1.15 lambda g. The onset there is the
+!>    load at which a free block has first moved 0.1 mm (no joints are numbered).
+!>
 !> Friction 0.8: the module's sliding check says hinging governs for all these arches
 !> (the 118-degree one needs more than 0.567), which the test asserts first.
 program test_limit_dynamics
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t
-  use voussoir_assembly, only: assembly_t, build_arch
+  use voussoir_kinds, only: pi
+  use voussoir_assembly, only: assembly_t, build_arch, role_voussoir, role_foundation
+  use voussoir_limit_lp_study, only: lp_study_t, lp_study
   use voussoir_model, only: model_t, solver_settings_t
   use voussoir_motion, only: motion_ramp, motion_afd
   use voussoir_contact_law, only: contact_law_t, pair_friction_t
@@ -66,6 +73,7 @@ program test_limit_dynamics
   call test_seed_ramps()
   call test_inset_ramp()
   call test_minimum_thickness_under_gravity()
+  call test_pointed_arch_ramp()
   call assert_summary()
 
 contains
@@ -226,6 +234,107 @@ contains
       if (res%collapsed) write (*, '(6x,a,f0.3,a)') 'collapsed at ', res%collapse_time_s, ' s'
     end do
   end subroutine test_minimum_thickness_under_gravity
+
+  !> A two-centred pointed arch (each half a circular ring of intrados radius 1 m and
+  !> thickness 0.15 m about a centre 0.2 m beyond the middle, 5 voussoirs a half, the two
+  !> halves meeting on the vertical crown joint x = 0), on two driven foundations; the LP
+  !> capacity towards +x and the slow ramp of horizontal load acceleration.
+  subroutine test_pointed_arch_ramp()
+    real(dp), parameter :: r_in = 1.0_dp, t = 0.15_dp, c = 0.2_dp
+    integer, parameter :: n_half = 5
+    type(assembly_t) :: asm
+    type(lp_study_t) :: lp
+    type(model_t) :: model
+    type(monitor_t) :: mon
+    type(run_result_t) :: res
+    type(status_t) :: status
+    type(solver_settings_t) :: settings
+    type(pair_friction_t) :: no_pairs(0)
+    real(dp) :: lambda_g_m_s2, onset_m_s2, size_m
+    integer :: s, b, first
+
+    call pointed_arch(r_in, t, c, n_half, asm)
+    call lp_study(asm, density_kg_m3, width_m, friction, 0.0_dp, lp, status)
+    call assert_true(status%ok .and. lp%solved .and. lp%nonassociative_solved, 'pointed arch: LP solved')
+    if (.not. lp%solved) return
+    call assert_close(lp%nonassoc%load_factor, lp%assoc%load_factor, &
+                      'pointed arch: hinging governs at friction 0.8 (both LP capacities agree)', rtol=1.0e-6_dp)
+    lambda_g_m_s2 = lp%assoc%load_factor*g_m_s2
+
+    settings%dt_s = dt_s
+    settings%tol = nlgs_tol
+    settings%max_iter = 20000
+    settings%alert_m = 0.0_dp
+    settings%allow_nonconvergence = .true.
+    call init_model(asm, density_kg_m3, width_m, settings, &
+                    contact_law_t(friction=friction, inset_m=0.0_dp, pairs=no_pairs), model, status)
+    call assert_true(status%ok, 'pointed arch: model built '//trim(status%message))
+    if (.not. status%ok) return
+    model%motion = motion_ramp(ramp_rate_m_s3)
+    call monitor_init(asm, model%bodies, 0.1_dp*t, 0.5_dp, hinge_gap_m, mon)
+    call simulate(model, mon, max_load_factor*lambda_g_m_s2/ramp_rate_m_s3, 10, 0.2_dp, res, status)
+    call assert_true(status%ok, 'pointed arch: simulation ran '//trim(status%message))
+    if (.not. status%ok) return
+    ! The first sample at which a free block has moved 0.1 mm (a turn counts at the
+    ! block's size).
+    first = 0
+    do s = 1, res%n_samples
+      do b = 1, asm%n_bodies
+        if (asm%driven(b)) cycle
+        size_m = maxval(maxval(asm%polygon(b)%xy, dim=2) - minval(asm%polygon(b)%xy, dim=2))
+        if (norm2(res%q(1:2, b, s) - res%q(1:2, b, 1)) > hinge_gap_m .or. &
+            abs(res%q(3, b, s) - res%q(3, b, 1))*size_m > hinge_gap_m) first = s
+        if (first > 0) exit
+      end do
+      if (first > 0) exit
+    end do
+    call assert_true(first > 0, 'pointed arch: a block moved before 1.5 lambda g')
+    if (first == 0) return
+    onset_m_s2 = ramp_rate_m_s3*res%time_s(first)
+    write (*, '(6x,a,f8.5,a,f7.4,a)') 'pointed arch: onset / lambda g = ', onset_m_s2/lambda_g_m_s2, &
+      ' (LP lambda ', lp%assoc%load_factor, ')'
+    call assert_true(onset_m_s2 >= lambda_g_m_s2 .and. onset_m_s2 <= 1.15_dp*lambda_g_m_s2, &
+                     'pointed arch: the blocks start moving between lambda g and 1.15 lambda g of the LP')
+  end subroutine test_pointed_arch_ramp
+
+  !> The blocks of a pointed arch: the left half's joints radial about (c, 0) at angles
+  !> from 180 deg to where its intrados meets x = 0, the right half its mirror image, and
+  !> a driven foundation block under each springing. Counter-clockwise polygons.
+  subroutine pointed_arch(r_in, t, c, n_half, asm)
+    real(dp), intent(in) :: r_in, t, c
+    integer, intent(in) :: n_half
+    type(assembly_t), intent(out) :: asm
+    real(dp) :: a0, a1, pin(2, 0:n_half), pout(2, 0:n_half)
+    integer :: k, b
+    ! Left half: joint k at angle pi - k (pi - a_crown)/n_half about (c, 0); the crown
+    ! joint is the vertical x = 0 (where both rings meet the middle).
+    a1 = acos(-c/r_in)
+    do k = 0, n_half
+      a0 = pi - real(k, dp)*(pi - a1)/real(n_half, dp)
+      pin(:, k) = [c + r_in*cos(a0), r_in*sin(a0)]
+      pout(:, k) = [c + (r_in + t)*cos(a0), (r_in + t)*sin(a0)]
+    end do
+    pout(:, n_half) = [0.0_dp, sqrt((r_in + t)**2 - c**2)]   ! the crown joint is vertical
+    pin(:, n_half) = [0.0_dp, sqrt(r_in**2 - c**2)]
+    asm%n_bodies = 2*n_half + 2
+    allocate (asm%polygon(asm%n_bodies), asm%driven(asm%n_bodies), asm%role(asm%n_bodies))
+    asm%driven = .false.
+    asm%role = role_voussoir
+    do k = 1, n_half
+      ! Left voussoir k (intrados k-1 -> k, extrados k -> k-1) and its mirror image.
+      asm%polygon(k)%xy = reshape([pout(:, k - 1), pin(:, k - 1), pin(:, k), pout(:, k)], [2, 4])
+      b = 2*n_half + 1 - k
+      asm%polygon(b)%xy = reshape([-pout(1, k), pout(2, k), -pin(1, k), pin(2, k), &
+                                   -pin(1, k - 1), pin(2, k - 1), -pout(1, k - 1), pout(2, k - 1)], [2, 4])
+    end do
+    ! Foundations: 0.1 m deep blocks under each springing, wider than its joint.
+    asm%polygon(2*n_half + 1)%xy = reshape([pout(1, 0) - 0.05_dp, -0.1_dp, pin(1, 0) + 0.05_dp, -0.1_dp, &
+                                            pin(1, 0) + 0.05_dp, 0.0_dp, pout(1, 0) - 0.05_dp, 0.0_dp], [2, 4])
+    asm%polygon(2*n_half + 2)%xy = reshape([-pin(1, 0) - 0.05_dp, -0.1_dp, -pout(1, 0) + 0.05_dp, -0.1_dp, &
+                                            -pout(1, 0) + 0.05_dp, 0.0_dp, -pin(1, 0) - 0.05_dp, 0.0_dp], [2, 4])
+    asm%driven(2*n_half + 1:) = .true.
+    asm%role(2*n_half + 1:) = role_foundation
+  end subroutine pointed_arch
 
   !> 180-degree, 20-voussoir arch, r_ext 1 m, under its own weight for 6 s.
   subroutine stand_under_gravity(thickness_m, inset_m, res)
