@@ -15,7 +15,12 @@
 !>   lever b, lambda = (W b/2 + Q b) / (P h);
 !> - two equal blocks stacked, the live load at (0, h/2) on the lower one's face: the
 !>   upper block gets no load and rides on the lower, which tips about (b,0) with it:
-!>   lambda P h/2 = 2 W b/2, lambda = 2 W b / (P h) (friction high).
+!>   lambda P h/2 = 2 W b/2, lambda = 2 W b / (P h) (friction high);
+!> - a distributed dead load q over the whole top: Q = q b at b/2, as the dead point load;
+!>   over the half away from the pivot (x from 0 to b/2): Q = q b/2 at b/4, lever 3b/4 about
+!>   the pivot, lambda = (W b/2 + 3 q b^2/8) / (P h);
+!> - an axle group: P at (0.05, h) repeated at +0.1 m, both on the top (y = h): 2 P at
+!>   height h, lambda = W b / (4 P h).
 program test_limit_loads
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t
@@ -35,6 +40,7 @@ program test_limit_loads
   call test_tipping_and_sliding()
   call test_dead_loads()
   call test_two_block_stack()
+  call test_distributed_and_axles()
   call test_placement()
   call test_refusals()
   call assert_summary()
@@ -171,6 +177,35 @@ contains
     call capacity(asm, d, 0.8_dp, res, status)
     call assert_close(res%load_factor, w_n*b/(2*p*h), 'two-block stack, load on top: W b / (2 P h)', rtol=1.0e-9_dp)
   end subroutine test_two_block_stack
+
+  !> The distributed dead load's strips and an axle group on the top of the block.
+  subroutine test_distributed_and_axles()
+    type(assembly_t) :: asm
+    type(load_config_t) :: d
+    type(lp_result_t) :: res
+    type(status_t) :: status
+    real(dp), parameter :: p = 100.0_dp, q = 1000.0_dp
+    call stack(1, asm)
+    call add_load(d, p, 0.0_dp, 0.0_dp, h, .true.)
+    d%dead_load_n_per_m = q
+    d%dead_load_x0_m = 0.0_dp
+    d%dead_load_x1_m = b
+    call capacity(asm, d, 0.8_dp, res, status)
+    call assert_true(status%ok, 'distributed dead load: solved')
+    call assert_close(res%load_factor, (w_n + q*b)*b/(2*p*h), 'distributed q over the top: (W + q b) b / (2 P h)', &
+                      rtol=1.0e-9_dp)
+    d%dead_load_x1_m = 0.5_dp*b
+    call capacity(asm, d, 0.8_dp, res, status)
+    call assert_close(res%load_factor, (0.5_dp*w_n*b + 3*q*b**2/8)/(p*h), &
+                      'distributed q over the far half: (W b/2 + 3 q b^2/8) / (P h)', rtol=1.0e-9_dp)
+    d = load_config_t()
+    call add_load(d, p, 0.0_dp, 0.05_dp, 0.3_dp, .true.)   ! y: placed on the top surface instead
+    d%n_axles = 1
+    d%axle_spacing_m(1) = 0.1_dp
+    call capacity(asm, d, 0.8_dp, res, status)
+    call assert_true(status%ok, 'axle group: solved')
+    call assert_close(res%load_factor, w_n*b/(4*p*h), 'axle group of two P on the top: W b / (4 P h)', rtol=1.0e-9_dp)
+  end subroutine test_distributed_and_axles
 
   !> Containment with 1e-9 m of tolerance; the top surface of a stack and of an arch.
   subroutine test_placement()

@@ -65,7 +65,7 @@ contains
 
     allocate (placed%block(0), placed%source(0), placed%xy(2, 0), placed%force_n(2, 0), placed%live(0))
     do j = 1, d%n_point_loads
-      dir = [cos(d%point_load_dir_deg(j)*acos(-1.0_dp)/180.0_dp), sin(d%point_load_dir_deg(j)*acos(-1.0_dp)/180.0_dp)]
+      dir = direction(d%point_load_dir_deg(j))
       if (d%point_load_live(j) .and. moves_on_top(d)) then
         do a = 0, d%n_axles
           x = d%point_load_x_m(j) + shift_x_m
@@ -122,6 +122,16 @@ contains
     end subroutine add
 
   end subroutine place_loads
+
+  !> The unit vector at `deg` from +x, exact at multiples of 90 degrees (a load straight
+  !> down has no horizontal part of round-off size).
+  pure function direction(deg) result(u)
+    real(dp), intent(in) :: deg
+    real(dp) :: u(2)
+    real(dp), parameter :: pi = acos(-1.0_dp)
+    u = [cos(deg*pi/180.0_dp), sin(deg*pi/180.0_dp)]
+    if (modulo(deg, 90.0_dp) == 0.0_dp) u = real(nint(u), dp)
+  end function direction
 
   function axle_words(a) result(text)
     integer, intent(in) :: a

@@ -99,7 +99,8 @@ contains
   pure real(dp) function path_position_m(load, i)
     type(load_config_t), intent(in) :: load
     integer, intent(in) :: i
-    path_position_m = load%path_x0_m + (i - 1)*(load%path_x1_m - load%path_x0_m)/(load%path_points - 1)
+    ! Weighted this way, a path symmetric about x = 0 has its middle position at 0 exactly.
+    path_position_m = ((load%path_points - i)*load%path_x0_m + (i - 1)*load%path_x1_m)/(load%path_points - 1)
   end function path_position_m
 
   !> The associative load factor with the first live load at each position of the path
@@ -175,7 +176,7 @@ contains
       if (load%path_points >= 2) text = text//' at the critical position'
     end if
     text = text//'; dead: the weights'
-    if (n_dead > 0) text = text//' and '//itoa(n_dead)//' dead point loads'
+    if (n_dead > 0) text = text//' and '//itoa(n_dead)//' dead point load'//trim(merge('s', ' ', n_dead > 1))
     if (load%dead_load_n_per_m > 0.0_dp) text = text//' and '//fmt_significant(load%dead_load_n_per_m, 6)// &
       ' N/m from x = '//fmt_significant(load%dead_load_x0_m, 6)//' to '//fmt_significant(load%dead_load_x1_m, 6)//' m'
   end function live_load_words
