@@ -49,6 +49,9 @@ $o"
 # axle beyond the assembly.
 ld="&arch /
 &limit minimum_thickness = .false. /"
+case_ run_load_outside "&load point load 1 at \(x, y\) = \(5, 5\) m lies in no block" "&arch /
+&load point_load_n(1) = 1000, point_load_x_m(1) = 5, point_load_y_m(1) = 5 /
+$o"
 driver=voussoir-limit case_ load_outside "&load point load 1 at \(x, y\) = \(5, 5\) m lies in no block \(a point on a block or on its boundary, within 1e-9 m\)" "$ld
 &load point_load_n(1) = 1000, point_load_x_m(1) = 5, point_load_y_m(1) = 5 /"
 driver=voussoir-limit case_ load_inf "&load point_load_n\(1\) = Infinity is not a finite number" "$ld
