@@ -39,18 +39,27 @@ contains
       return
     end if
     write (u, '(a)') '  associative (sliding dilates):  lambda '//fmt_significant(lp%assoc%load_factor, 7)// &
-      ' (upper bound of its mechanism '//fmt_significant(lp%assoc%load_factor_upper, 7)//'), lambda g '// &
-      fmt_significant(lp%assoc%load_factor*g_m_s2, 5)//' m/s2'
+      ' (upper bound of its mechanism '//fmt_significant(lp%assoc%load_factor_upper, 7)//')'// &
+      acceleration_text(lp, lp%assoc%load_factor)
     write (u, '(a)') '    mechanism: '//mechanism_text(lp, lp%assoc)
     if (lp%nonassociative_solved) then
       write (u, '(a)') '  non-associative (no dilatancy): lambda '//fmt_significant(lp%nonassoc%load_factor, 7)// &
-        ', lambda g '//fmt_significant(lp%nonassoc%load_factor*g_m_s2, 5)//' m/s2 ('//itoa(lp%steps)//' steps'// &
+        acceleration_text(lp, lp%nonassoc%load_factor)//' ('//itoa(lp%steps)//' steps'// &
         trim(merge('             ', ', UNCONVERGED', lp%converged))//')'
       write (u, '(a)') '    mechanism: '//mechanism_text(lp, lp%nonassoc)
     else
       write (u, '(a)') '  non-associative: no solution (a step of the iteration has none)'
     end if
   end subroutine write_lp_table
+
+  !> ', lambda g 3.69 m/s2' where the live load is the horizontal acceleration, else ''.
+  function acceleration_text(lp, lambda) result(text)
+    type(lp_study_t), intent(in) :: lp
+    real(dp), intent(in) :: lambda
+    character(len=:), allocatable :: text
+    text = ''
+    if (lp%live_is_acceleration) text = ', lambda g '//fmt_significant(lambda*g_m_s2, 5)//' m/s2'
+  end function acceleration_text
 
   !> The moving joints: 'joint 5 hinge extrados, blocks 3-4 sliding, ...'
   function mechanism_text(lp, r) result(text)

@@ -33,6 +33,7 @@ module voussoir_limit_lp_study
     integer, allocatable :: joint(:)          !! arch joint 0..n of each interface, -1 if none
     integer, allocatable :: end_side(:, :)    !! (2, n_interfaces) side_intrados / side_extrados of each end (arches)
     character(len=:), allocatable :: live_load !! the live load in words
+    logical :: live_is_acceleration = .true.  !! the live load is lambda g towards +x (else point loads)
     type(placed_loads_t) :: placed            !! the loads of &load (at the critical position on a path)
     logical :: has_path = .false.             !! the live loads moved along &load's path
     real(dp) :: critical_x_m = 0.0_dp         !! the position of least load factor (of the first live load) [m]
@@ -84,6 +85,7 @@ contains
       call place_loads(load, asm, shift_m, study%placed, status)
       if (.not. status%ok) return
       study%live_load = live_load_words(load)
+      study%live_is_acceleration = .not. any(study%placed%live)
     end if
     call block_loads(asm, density_kg_m3, width_m, g_m_s2, loads)
     call add_placed_loads(study%placed, loads)
