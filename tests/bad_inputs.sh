@@ -60,7 +60,7 @@ driver=voussoir-limit case_ load_nan "&load point_load_n\(1\) = NaN is not a fin
 &load point_load_n(1) = NaN /"
 driver=voussoir-limit case_ load_negative "&load point_load_n\(1\) = -5 is outside the allowed range 0 < point_load_n <= 1e12 N" "$ld
 &load point_load_n(1) = -5 /"
-driver=voussoir-limit case_ load_no_magnitude "&load point load 2 has a point or a direction but no magnitude" "$ld
+driver=voussoir-limit case_ load_no_magnitude "&load point load 2 has a point, a direction or a kind but no magnitude" "$ld
 &load point_load_n(1) = 100, point_load_x_m(2) = 0.3 /"
 driver=voussoir-limit case_ load_path_dead "&load path_points moves or repeats the live point loads, but no point load is live" "$ld
 &load point_load_n(1) = 100, point_load_live(1) = .false., path_points = 5, path_x0_m = -0.3, path_x1_m = 0.3 /"

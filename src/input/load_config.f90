@@ -95,7 +95,7 @@ contains
     do j = d%n_point_loads + 1, size(d%point_load_n)
       if (d%point_load_x_m(j) /= 0.0_dp .or. d%point_load_y_m(j) /= 0.0_dp .or. &
           d%point_load_dir_deg(j) /= default_dir_deg .or. .not. d%point_load_live(j)) then
-        call fail(status, path//': &load point load '//itoa(j)//' has a point or a direction but no magnitude: '// &
+        call fail(status, path//': &load point load '//itoa(j)//' has a point, a direction or a kind but no magnitude: '// &
                   'set point_load_n('//itoa(j)//') > 0 [N]')
         return
       end if
