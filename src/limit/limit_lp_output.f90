@@ -102,7 +102,7 @@ contains
     text = text//'  "point_loads": '//point_loads_json(lp)//','//nl//'  "critical_position": '
     if (lp%has_path) then
       text = text//'{"x_m": '//fmt_json_real(lp%critical_x_m)//', "load_factor": '// &
-             fmt_json_real(minval(lp%curve_load_factor, mask=lp%curve_load_factor >= 0.0_dp))//'},'//nl
+             fmt_json_real(lp%critical_load_factor)//'},'//nl
     else
       text = text//'null,'//nl
     end if

@@ -37,6 +37,7 @@ module voussoir_limit_lp_study
     type(placed_loads_t) :: placed            !! the loads of &load (at the critical position on a path)
     logical :: has_path = .false.             !! the live loads moved along &load's path
     real(dp) :: critical_x_m = 0.0_dp         !! the position of least load factor (of the first live load) [m]
+    real(dp) :: critical_load_factor = 0.0_dp !! the associative load factor there
     real(dp), allocatable :: curve_x_m(:)     !! the positions on the path [m]
     real(dp), allocatable :: curve_load_factor(:) !! the associative load factor at each (-1: unbounded)
   end type lp_study_t
@@ -106,8 +107,8 @@ contains
   end function path_position_m
 
   !> The associative load factor with the first live load at each position of the path
-  !> (the others at their offsets from it, on the top surface); the least one is the
-  !> critical position, `shift_m` the shift of the live loads that puts them there. A
+  !> (the others at their offsets from it, on the top surface); the least one (the first
+  !> of equal ones, to 1e-9) is the critical position, `shift_m` the shift of the live loads that puts them there. A
   !> position where no mechanism opens (the loads on a support) has no load factor.
   subroutine critical_position(asm, density_kg_m3, width_m, load, study, mu, shift_m, status)
     type(assembly_t), intent(in) :: asm
@@ -122,6 +123,7 @@ contains
     type(lp_result_t) :: res
     type(status_t) :: lp_status
     integer :: i, best
+    real(dp) :: lowest
 
     study%has_path = .true.
     allocate (study%curve_x_m(load%path_points), study%curve_load_factor(load%path_points))
@@ -137,8 +139,7 @@ contains
       study%curve_load_factor(i) = -1.0_dp
       if (lp_status%ok) then
         study%curve_load_factor(i) = res%load_factor
-        if (best == 0) best = i
-        if (res%load_factor < study%curve_load_factor(best)) best = i
+        best = i
       else if (res%outcome /= lp_outcome_unbounded) then
         status = lp_status
         status%message = trim(status%message)//' (live loads at path position x = '// &
@@ -151,7 +152,13 @@ contains
                 'mechanism anywhere along the path')
       return
     end if
+    ! The first position within 1e-9 of the least (a symmetric assembly has two, equal
+    ! but for round-off: the choice must not depend on it).
+    lowest = minval(study%curve_load_factor, mask=study%curve_load_factor >= 0.0_dp)
+    best = findloc(study%curve_load_factor >= 0.0_dp .and. study%curve_load_factor <= lowest*(1 + 1.0e-9_dp), &
+                   .true., dim=1)
     study%critical_x_m = study%curve_x_m(best)
+    study%critical_load_factor = study%curve_load_factor(best)
     shift_m = study%critical_x_m - first_live_x(load)
   end subroutine critical_position
 
