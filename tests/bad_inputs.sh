@@ -52,6 +52,10 @@ ld="&arch /
 case_ run_load_outside "&load point load 1 at \(x, y\) = \(5, 5\) m lies in no block" "&arch /
 &load point_load_n(1) = 1000, point_load_x_m(1) = 5, point_load_y_m(1) = 5 /
 $o"
+# A live load on the support alone opens no mechanism (unbounded, said so).
+printf 'block free\n-0.1 0\n0.1 0\n0.1 1\n-0.1 1\nblock driven\n-1 -0.2\n1 -0.2\n1 0\n-1 0\n' > load_block.txt
+driver=voussoir-limit case_ load_on_support "unbounded\).*the live load acts on no free block \(only on the supports\)" "&arch polygon_file = 'load_block.txt', thickness_m = 0.2 /
+&load point_load_n(1) = 100, point_load_x_m(1) = 0.5, point_load_y_m(1) = -0.1 /"
 driver=voussoir-limit case_ load_outside "&load point load 1 at \(x, y\) = \(5, 5\) m lies in no block \(a point on a block or on its boundary, within 1e-9 m\)" "$ld
 &load point_load_n(1) = 1000, point_load_x_m(1) = 5, point_load_y_m(1) = 5 /"
 driver=voussoir-limit case_ load_inf "&load point_load_n\(1\) = Infinity is not a finite number" "$ld
