@@ -133,11 +133,11 @@ def check_lp(d, name):
           f"{name}: no tension at any interface end")
 
 
-def arch_point_load_lambda(a, weight, load_xy, load_f):
+def arch_point_load_lambda(a, weight, loads):
     """The least load factor over the arch's four-hinge mechanisms (upper bounds by the
     work equation), independent of the LP: voussoirs i = 1..n between joints i-1 and i
-    (rigid, no sliding), weights at their centroids, the live load load_f at load_xy on
-    its voussoir. Hinges at joints j1 < j2 < j3 < j4, each at the intrados or extrados end;
+    (rigid, no sliding), weights at their centroids, the live loads `loads` (a list of
+    ((x, y), (fx, fy), voussoir)). Hinges at joints j1 < j2 < j3 < j4, each at the intrados or extrados end;
     segment A (j1..j2) turns about H1, C (j3..j4) about H4, B about the intersection of
     lines H1-H2 and H3-H4. A mechanism is admissible when every hinge joint opens at its
     other end; its lambda = -(power of the weights) / (power of the live load > 0)."""
@@ -148,7 +148,6 @@ def arch_point_load_lambda(a, weight, load_xy, load_f):
     for i in range(1, n + 1):
         cents.append(centroid([a["joint_intrados_xy_m"][i - 1], a["joint_intrados_xy_m"][i],
                                a["joint_extrados_xy_m"][i], a["joint_extrados_xy_m"][i - 1]]))
-    load_block = load_f[2]
 
     def cross(u, v):
         return u[0] * v[1] - u[1] * v[0]
@@ -201,7 +200,7 @@ def arch_point_load_lambda(a, weight, load_xy, load_f):
                 s_ = seg(i)
                 return (0.0, 0.0) if s_ is None else vel(om[s_], centre[s_], p)
 
-            live = sum(f * v for f, v in zip(load_f[:2], v_at(load_block, load_xy)))
+            live = sum(f[0] * v_at(i, xy)[0] + f[1] * v_at(i, xy)[1] for xy, f, i in loads)
             dead = sum(-weight[i - 1] * v_at(i, cents[i - 1])[1] for i in range(1, n + 1))
             if abs(live) < 1e-12:
                 continue
@@ -399,7 +398,7 @@ elif case == "arch_point_load":
     w = arch_weights(a, 2000.0, 1.0)
     lam = d["load_factor"]
     check(close(d["load_factor_upper"], lam, rtol=1e-6), f"upper bound {d['load_factor_upper']} = lower bound {lam}")
-    expected = arch_point_load_lambda(a, w, pl[0]["xy_m"], (0.0, -1000.0, pl[0]["block"]))
+    expected = arch_point_load_lambda(a, w, [(pl[0]["xy_m"], (0.0, -1000.0), pl[0]["block"])])
     check(close(lam, expected, rtol=1e-6), f"load factor {lam} = least four-hinge mechanism {expected} (work equation)")
     check_loaded_equilibrium(d, "quarter-span load", w, lam)
     # On the path: the live load on the top surface (the extrados chord), the curve
@@ -418,10 +417,22 @@ elif case == "arch_point_load":
     x, y = d["point_loads"][0]["xy_m"]
     check(close(x, cp["x_m"], atol=1e-12) and close(y, top_of_arch(d["arch"], x), atol=1e-9),
           f"the live load at the critical x, on the extrados ({x}, {y})")
-    expected = arch_point_load_lambda(d["arch"], w, (x, y), (0.0, -1000.0, d["point_loads"][0]["block"]))
+    expected = arch_point_load_lambda(d["arch"], w, [((x, y), (0.0, -1000.0), d["point_loads"][0]["block"])])
     check(close(d["load_factor"], expected, rtol=1e-6),
           f"critical load factor {d['load_factor']} = least four-hinge mechanism {expected}")
     check_loaded_equilibrium(d, "critical position", w, d["load_factor"])
+    # An axle group: 500 N at x = -0.6 m and again 0.4 m to its right, both on the extrados.
+    with open("arch_axles.nml", "w") as f:
+        f.write(arch + "&load point_load_n(1) = 500, point_load_x_m(1) = -0.6, axle_spacing_m(1) = 0.4 /\n")
+    d = load("arch_axles.nml")
+    pl = d["point_loads"]
+    check(len(pl) == 2 and [p["xy_m"][0] for p in pl] == [-0.6, -0.6 + 0.4] and
+          all(close(p["xy_m"][1], top_of_arch(d["arch"], p["xy_m"][0]), atol=1e-9) for p in pl),
+          f"axle group: two loads at x = -0.6 and -0.2 on the extrados ({pl})")
+    expected = arch_point_load_lambda(d["arch"], w, [(p["xy_m"], (0.0, -500.0), p["block"]) for p in pl])
+    check(close(d["load_factor"], expected, rtol=1e-6),
+          f"axle group: load factor {d['load_factor']} = least four-hinge mechanism {expected}")
+    check_loaded_equilibrium(d, "axle group", w, d["load_factor"])
 elif case == "bad_inputs":
     cases = [
         ("unknown_limit_variable", "&limit", "&arch /\n&limit minimum_thicknes = .false. /\n"),
