@@ -13,6 +13,11 @@
 !> - a squat block (b = 1.0 m, h = 0.2 m, friction 0.3) pushed at mid-height slides once
 !>   P > mu W (tipping needs W b / h = 5 W): at 1.1 mu W it slides off with
 !>   a = 0.1 mu g = 0.29 m/s2 (0.15 m in 1 s), at 0.9 mu W it stays.
+!> And held against the limit analysis (an independent, static method, itself checked
+!> against a four-hinge enumeration in tests/limit/check_limit.py): a semicircular arch
+!> of 16 voussoirs (R_ext 1 m, t 0.15 m, friction 0.6) under a constant vertical point load
+!> on its extrados at x = -0.2 m collapses at 1.02 times the LP's load factor and stands
+!> at 0.98 times it.
 program test_load_dynamics
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t
@@ -21,7 +26,13 @@ program test_load_dynamics
   use voussoir_model, only: model_t, model_step
   use voussoir_monitors, only: monitor_t
   use voussoir_setup, only: build_model
-  use voussoir_assert, only: assert_true, assert_summary
+  use voussoir_assembly, only: build_arch
+  use voussoir_load_config, only: load_config_t
+  use voussoir_placed_loads, only: placed_loads_t, place_loads, top_surface
+  use voussoir_block_interfaces, only: interface_set_t, find_interfaces
+  use voussoir_limit_lp, only: block_loads_t, lp_result_t, block_loads, add_placed_loads, lp_capacity, &
+                               nonassociative_capacity
+  use voussoir_assert, only: assert_true, assert_close, assert_summary
   implicit none
 
   real(dp), parameter :: rho = 2000.0_dp, width = 0.2_dp
@@ -31,6 +42,7 @@ program test_load_dynamics
   call tipping(1.1_dp, .true., 'dead')
   call sliding(1.1_dp, .true.)
   call sliding(0.9_dp, .false.)
+  call arch_point_load()
   call assert_summary()
 
 contains
@@ -124,5 +136,85 @@ contains
     end if
     call assert_true(abs(rotation) < 1.0e-3_dp, trim(label)//': without tipping')
   end subroutine sliding
+
+  !> The non-associative load factor of 1 kN down at (x, top) on the arch, then the
+  !> dynamics at 1.02 and 0.98 times it for 2 s: the crown falls (> 0.1 m) or stays (< 0.1 mm).
+  subroutine arch_point_load()
+    real(dp), parameter :: x = -0.2_dp, mu = 0.6_dp, factor(2) = [1.02_dp, 0.98_dp]
+    type(assembly_t) :: arch
+    type(load_config_t) :: d
+    type(placed_loads_t) :: placed
+    type(interface_set_t) :: faces
+    type(block_loads_t) :: loads
+    type(lp_result_t) :: assoc, nonassoc
+    type(status_t) :: status
+    real(dp) :: y, lambda, drop(2)
+    real(dp), allocatable :: friction(:)
+    integer :: blk, k, steps
+    logical :: found, converged
+    character(len=200) :: text
+    call build_arch(180.0_dp, 16, 1.0_dp, 0.15_dp, arch)
+    call top_surface(arch, x, y, blk, found)
+    d%n_point_loads = 1
+    d%point_load_n(1) = 1000.0_dp
+    d%point_load_x_m(1) = x
+    d%point_load_y_m(1) = y
+    call find_interfaces(arch, 1.0e-9_dp, 0.0_dp, faces, status)
+    call place_loads(d, arch, 0.0_dp, placed, status)
+    call block_loads(arch, rho, 1.0_dp, g_m_s2, loads)
+    call add_placed_loads(placed, loads)
+    friction = spread(mu, 1, faces%n)
+    call lp_capacity(arch, faces, loads, friction, 0.0_dp*friction, assoc, status)
+    call nonassociative_capacity(arch, faces, loads, friction, assoc, nonassoc, steps, converged, status)
+    call assert_true(status%ok .and. found .and. converged, 'arch with a point load: the LP solved')
+    call assert_close(nonassoc%load_factor, assoc%load_factor, 'arch with a point load: hinging governs '// &
+                      '(non-associative = associative)', rtol=1.0e-6_dp)
+    lambda = nonassoc%load_factor
+    do k = 1, 2
+      write (text, '(a,es24.16,a,es24.16,a,es24.16)') 'point_load_n(1) = ', factor(k)*lambda*1000.0_dp, &
+        ', point_load_x_m(1) = ', x, ', point_load_y_m(1) = ', y
+      call run_arch(trim(text), drop(k), status)
+      call assert_true(status%ok, 'arch with a point load: runs '//trim(status%message))
+    end do
+    write (text, '(a,f8.5,a,2es10.3,a)') 'arch, 1 kN x 1.02 and 0.98 of the LP load factor ', lambda, &
+      ' at x = -0.2 m (largest drop ', drop, ' m)'
+    call assert_true(drop(1) > 0.1_dp, trim(text)//': collapses at 1.02')
+    call assert_true(drop(2) < 1.0e-4_dp, trim(text)//': stands at 0.98')
+  end subroutine arch_point_load
+
+  !> The arch of arch_point_load from a namelist with &load `load_text`, run for 2 s: the
+  !> largest drop of a voussoir's centroid [m].
+  subroutine run_arch(load_text, drop_m, status)
+    character(len=*), intent(in) :: load_text
+    real(dp), intent(out) :: drop_m
+    type(status_t), intent(inout) :: status
+    type(config_t) :: cfg
+    type(assembly_t) :: asm
+    type(model_t) :: model
+    type(monitor_t) :: mon
+    real(dp) :: duration_s
+    real(dp), allocatable :: y0(:)
+    integer :: u, k
+    open (newunit=u, file='load_arch.nml', status='replace', action='write')
+    write (u, '(a)') '&arch embrace_deg = 180, n_voussoirs = 16, r_ext_m = 1.0, thickness_m = 0.15, width_m = 1.0,'
+    write (u, '(a)') '  density_kg_m3 = 2000, friction = 0.6 /'
+    write (u, '(a)') "&motion waveform = 'afd', amplitude_m = 0, frequency_hz = 1, rest_s = 2 /"
+    write (u, '(a)') '&solver dt_s = 1e-3 /'
+    write (u, '(a)') "&output file = 'load_arch.h5' /"
+    write (u, '(a)') '&load '//load_text//' /'
+    close (u)
+    drop_m = 0.0_dp
+    call read_config('load_arch.nml', [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'load'], cfg, status)
+    if (.not. status%ok) return
+    call build_model(cfg, asm, model, mon, duration_s, status)
+    if (.not. status%ok) return
+    y0 = model%bodies%q(2, 1:16)
+    do k = 1, nint(2.0_dp/model%solver%dt_s)
+      call model_step(model, status)
+      if (.not. status%ok) return
+      drop_m = maxval(y0 - model%bodies%q(2, 1:16))
+      if (drop_m > 0.1_dp) exit
+    end do
+  end subroutine run_arch
 
 end program test_load_dynamics
