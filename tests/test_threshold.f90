@@ -16,7 +16,9 @@ program test_threshold
   use voussoir_threshold_search, only: threshold_settings_t, threshold_search_t, threshold_result_t, &
     run_outcome_t, check_threshold_settings, threshold_next, threshold_record, threshold_result
   use voussoir_threshold, only: threshold_init, find_threshold, search_run_config, static_onset_amplitude_m, &
-    afd_peak_accel_per_m
+    afd_peak_accel_per_m, static_capacity_m_s2
+  use voussoir_assembly, only: build_arch, mirrored_blocks
+  use voussoir_limit_lp_study, only: lp_study_t, lp_study
   use voussoir_assert, only: assert_true, assert_close, assert_summary
   implicit none
 
@@ -28,6 +30,8 @@ program test_threshold
   type(status_t) :: status
   real(dp) :: onset_m, amps(64)
   integer :: n
+  type(assembly_t) :: arch
+  type(lp_study_t) :: pos, neg
 
   cfg = seed_156()
 
@@ -49,6 +53,27 @@ program test_threshold
   onset_m = static_onset_amplitude_m(cfg, 1.25_dp)
   call assert_close(onset_m, lambda_156*g_m_s2/afd_peak_accel_per_m(cfg, 1.25_dp), &
                     '156-degree arch, 1.25 Hz: static onset amplitude', rtol=1.0e-9_dp)
+
+  ! Sliding: where the four-hinge field breaks Coulomb's law (friction 0.395, the
+  ! diagnosis's fit of the seed arch) the capacity is the non-associative LP's, below the
+  ! four-hinge one (voussoir-limit's driver test: below 0.9 lambda); at friction 0.5
+  ! hinging governs and the capacity is the four-hinge one, exactly.
+  call assert_close(static_capacity_m_s2(cfg), lambda_156*g_m_s2, 'friction 0.5: four-hinge capacity', &
+                    rtol=1.0e-12_dp)
+  cfg%arch%friction = 0.395_dp
+  call build_arch(cfg%arch%embrace_deg, cfg%arch%n_voussoirs, cfg%arch%r_ext_m, cfg%arch%thickness_m, arch)
+  call lp_study(arch, cfg%arch%density_kg_m3, cfg%arch%width_m, 0.395_dp, 0.0_dp, pos, status)
+  call lp_study(mirrored_blocks(arch), cfg%arch%density_kg_m3, cfg%arch%width_m, 0.395_dp, 0.0_dp, neg, status)
+  call assert_true(status%ok .and. pos%nonassociative_solved .and. neg%nonassociative_solved, &
+                   'friction 0.395: both LPs solved')
+  ! The arch is symmetric: pushed towards -x (its mirror towards +x) it holds the same.
+  call assert_close(neg%nonassoc%load_factor, pos%nonassoc%load_factor, 'mirror: the same capacity', &
+                    rtol=1.0e-9_dp)
+  call assert_close(static_capacity_m_s2(cfg), pos%nonassoc%load_factor*g_m_s2, &
+                    'friction 0.395: the capacity with sliding', rtol=1.0e-9_dp)
+  call assert_true(static_capacity_m_s2(cfg) < 0.9_dp*lambda_156*g_m_s2, &
+                   'friction 0.395: below 0.9 x the four-hinge capacity')
+  cfg%arch%friction = 0.5_dp
 
   ! Monotone case: collapse from 63.3 mm, still below 58 mm.
   settings = threshold_settings_t()

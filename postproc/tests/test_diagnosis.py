@@ -39,7 +39,7 @@ from voussoir_post.diagnosis.rates import draw_outcomes, mcnemar
 from voussoir_post.readers.campaign import read_campaign
 
 from conftest import VERDICTS, bin_dir, executable
-from independent_campaigns import ARCHES, Truth, write_campaign
+from independent_campaigns import Arch, Truth, write_campaign
 from replay_maps import draw_observations, load_map
 
 DATA = Path(__file__).parent / "data" / "replay"
@@ -169,15 +169,19 @@ def test_mcnemar_is_the_exact_binomial_test_of_the_discordant_draws():
 # ------------------------------------------------------------------ end to end, on a campaign folder
 
 
+# Small grids, one tested frequency and two new ones for the next test: the end-to-end
+# test checks the plumbing and the format (the rates are the replay tests').
 SMALL_GRIDS = dict(inset_grid_m=(0.002, 0.005), friction_steps=(0.05, 0.1, 0.2), thickness_factors=(0.85, 0.94),
-                   pair_inset_m=(0.002,), pair_friction_steps=(-0.1,), pair_thickness_factors=(0.88,))
+                   pair_inset_m=(0.002,), pair_friction_steps=(-0.1,), pair_thickness_factors=(0.88,),
+                   probe_frequencies_hz=(0.75, 3.0))
+ONE_ARCH = (Arch("W156", 156.0, 13, (1.25,)),)
 
 
 def test_end_to_end_diagnosis_follows_the_contract_and_keeps_the_truth(tmp_path, voussoir_run_exe):
     if executable("voussoir-sweep") is None or executable("voussoir-limit") is None:
         pytest.fail(f"voussoir-sweep and voussoir-limit are needed in {bin_dir()}")
     folder = tmp_path / "campaign"
-    write_campaign(folder, Truth(friction=0.43), bin_dir(), arches=ARCHES[:1], seed=23)
+    write_campaign(folder, Truth(friction=0.43), bin_dir(), arches=ONE_ARCH, seed=23)
     campaign = read_campaign(folder)
     words = ("inset", "chamfer", "restrain", "bracket", "gain", "truth", "hidden", "effect", "actuator", "gap")
     for path in folder.rglob("*"):
@@ -188,6 +192,7 @@ def test_end_to_end_diagnosis_follows_the_contract_and_keeps_the_truth(tmp_path,
     settings = DiagnosisSettings(bin_dir=bin_dir(), n_ranks=2, log=logs.append, bank_dir=tmp_path / "bank",
                                  **SMALL_GRIDS)
     result = diagnose(folder, tmp_path / "first", settings)
+    questions = sorted(p.name for p in (tmp_path / "bank" / "next-test").glob("*"))
     again_logs: list[str] = []
     again = diagnose(folder, tmp_path / "second",
                      DiagnosisSettings(bin_dir=bin_dir(), n_ranks=2, log=again_logs.append,
@@ -235,6 +240,8 @@ def test_end_to_end_diagnosis_follows_the_contract_and_keeps_the_truth(tmp_path,
     assert abs(n_top - n * p[top]) <= 4 * math.sqrt(n * p[top] * (1 - p[top])) + 1, (n_top, p[top])
     # Diagnosed twice: the same probabilities, nothing simulated again.
     assert any("0 threshold searches made" in line for line in again_logs), again_logs
+    # ... and the next test's sweeps are the first run's (the same questions, not new ones).
+    assert sorted(p.name for p in (tmp_path / "bank" / "next-test").glob("*")) == questions
     assert max(abs(p[m] - again["probabilities"][m]) for m in p) <= 0.01
     # One window for hinges, for the generator and the model: a model that names the
     # truth reproduces most of what the generator saw.

@@ -10,7 +10,7 @@ module voussoir_assembly
   implicit none
   private
 
-  public :: polygon_t, assembly_t, build_arch, arch_joint_angle_deg, voussoir_angle_factors
+  public :: polygon_t, assembly_t, build_arch, arch_joint_angle_deg, voussoir_angle_factors, mirrored_blocks
   public :: role_voussoir, role_foundation, role_restraint
 
   integer, parameter :: role_voussoir = 1    !! a free block of the arch
@@ -39,6 +39,26 @@ module voussoir_assembly
   end type assembly_t
 
 contains
+
+  !> The blocks of `asm` reflected in the plane x = 0 (each polygon's vertices reversed,
+  !> so they stay counter-clockwise), with their driven flags and roles: what pushes the
+  !> assembly towards +x pushes the original towards -x. The arch description is not
+  !> carried (joint j of the mirror would be joint n - j).
+  pure function mirrored_blocks(asm) result(mirror)
+    type(assembly_t), intent(in) :: asm
+    type(assembly_t) :: mirror
+    integer :: b, nv
+    mirror%n_bodies = asm%n_bodies
+    allocate (mirror%polygon(asm%n_bodies))
+    do b = 1, asm%n_bodies
+      nv = size(asm%polygon(b)%xy, 2)
+      mirror%polygon(b)%xy = asm%polygon(b)%xy(:, nv:1:-1)
+      mirror%polygon(b)%xy(1, :) = -mirror%polygon(b)%xy(1, :)
+    end do
+    mirror%driven = asm%driven
+    if (allocated(asm%role)) mirror%role = asm%role
+    if (allocated(asm%course)) mirror%course = asm%course
+  end function mirrored_blocks
 
   !> Angle [deg] from +x of the radial line of joint j (0..n) of an arch.
   pure real(dp) function arch_joint_angle_deg(embrace_deg, n_voussoirs, j)

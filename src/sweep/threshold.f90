@@ -6,8 +6,9 @@ module voussoir_threshold
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
   use voussoir_config, only: config_t, fmt_real, waveform_afd, springings_none
-  use voussoir_assembly, only: assembly_t, build_arch, voussoir_angle_factors
+  use voussoir_assembly, only: assembly_t, build_arch, voussoir_angle_factors, mirrored_blocks
   use voussoir_limit_analysis, only: limit_result_t, horizontal_capacity
+  use voussoir_limit_lp_study, only: lp_study_t, lp_study
   use voussoir_motion, only: motion_t, motion_afd, motion_eval, motion_duration_s
   use voussoir_model, only: model_t
   use voussoir_simulation, only: run_result_t
@@ -86,7 +87,10 @@ contains
 
   !> The horizontal collapse capacity lambda g [m/s2] of the arch of `cfg` (limit
   !> analysis, the weaker direction); 0 when it does not apply (polygon assemblies,
-  !> restraint brackets, no capacity).
+  !> restraint brackets, no capacity). Where the four-hinge mechanism's static field
+  !> breaks Coulomb's law at a joint (`&arch friction`), sliding may govern: the capacity
+  !> is then the lesser of the four-hinge one and the non-associative LP capacity (the
+  !> joints slide without dilating) in that direction (docs/limit_analysis.md).
   real(dp) function static_capacity_m_s2(cfg) result(capacity)
     type(config_t), intent(in) :: cfg
     type(assembly_t) :: arch
@@ -103,9 +107,32 @@ contains
     call horizontal_capacity(arch, cfg%arch%contact_inset_m, cfg%arch%friction, limit, status)
     if (.not. status%ok) return
     lambda = min(limit%lambda_pos, limit%lambda_neg)
+    if (allocated(limit%sliding_joints_pos)) then
+      if (size(limit%sliding_joints_pos) > 0) lambda = min(lambda, sliding_capacity(arch, cfg))
+    end if
+    if (allocated(limit%sliding_joints_neg)) then
+      if (size(limit%sliding_joints_neg) > 0) lambda = min(lambda, sliding_capacity(mirrored_blocks(arch), cfg))
+    end if
     if (.not. (lambda > 0.0_dp .and. lambda < huge(1.0_dp))) return
     capacity = lambda*g_m_s2
   end function static_capacity_m_s2
+
+  !> The load factor of a horizontal acceleration towards +x of the blocks `asm` with
+  !> sliding (the non-associative LP; the associative one if its iteration failed);
+  !> huge when the LP has no answer (the four-hinge capacity then stands alone).
+  real(dp) function sliding_capacity(asm, cfg) result(lambda)
+    type(assembly_t), intent(in) :: asm
+    type(config_t), intent(in) :: cfg
+    type(lp_study_t) :: study
+    type(status_t) :: status
+    lambda = huge(1.0_dp)
+    call lp_study(asm, cfg%arch%density_kg_m3, cfg%arch%width_m, cfg%arch%friction, cfg%arch%contact_inset_m, &
+                  study, status)
+    if (.not. study%solved) return
+    lambda = study%assoc%load_factor
+    if (study%nonassociative_solved) lambda = study%nonassoc%load_factor
+    if (.not. (lambda > 0.0_dp)) lambda = huge(1.0_dp)
+  end function sliding_capacity
 
   !> A new search for the case `cfg` (an afd motion) at `frequency_hz`.
   subroutine threshold_init(search, cfg, frequency_hz, settings, status)
