@@ -30,7 +30,7 @@ program voussoir_limit
   logical :: json
 
   call parse_arguments(path, json)
-  call read_config(trim(path), [character(len=8) :: 'arch', 'wall', 'motion', 'solver', 'output', 'limit'], &
+  call read_config(trim(path), [character(len=8) :: 'arch', 'wall', 'motion', 'solver', 'output', 'limit', 'load'], &
                    cfg, status)
   if (status%ok) call read_limit_group(trim(path), cfg, opts, status)
   if (status%ok) call analyse(cfg, opts, arch, res, tmin, lp, status)

@@ -28,7 +28,7 @@ program voussoir_run
     'Writes one HDF5 result file and prints one line whose first word is stood or collapsed. '// &
     'Exit 0 on success, 1 with a one-line message naming the file, the variable and the allowed range.', path, exit_code)
   if (exit_code >= 0) stop exit_code, quiet=.true.
-  call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'wall'], cfg, status)
+  call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'wall', 'load'], cfg, status)
   if (status%ok .and. .not. catch_stop_signals()) &
     write (error_unit, '(a)') 'voussoir-run: warning: cannot catch Ctrl-C / SIGTERM: an interrupted run writes nothing'
   if (status%ok) call run_config(cfg, assembly, model, res, status)

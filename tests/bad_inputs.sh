@@ -44,6 +44,36 @@ case_ bad_logical       ":1: &solver allow_nonconvergence = maybe is not a logic
 $o"
 case_ open_string       ":1: &motion waveform: the text 'afd, frequency_hz = 1.0 / has no closing quote" "&motion waveform = 'afd, frequency_hz = 1.0 /
 $o"
+# &load (issue 25): a load outside every block (which load, where), a magnitude not
+# finite or not positive, a point without a magnitude, a path without a live load, an
+# axle beyond the assembly.
+ld="&arch /
+&limit minimum_thickness = .false. /"
+case_ run_load_outside "&load point load 1 at \(x, y\) = \(5, 5\) m lies in no block" "&arch /
+&load point_load_n(1) = 1000, point_load_x_m(1) = 5, point_load_y_m(1) = 5 /
+$o"
+# A live load on the support alone opens no mechanism (unbounded, said so).
+printf 'block free\n-0.1 0\n0.1 0\n0.1 1\n-0.1 1\nblock driven\n-1 -0.2\n1 -0.2\n1 0\n-1 0\n' > load_block.txt
+driver=voussoir-limit case_ load_on_support "unbounded\).*the live load acts on no free block \(only on the supports\)" "&arch polygon_file = 'load_block.txt', thickness_m = 0.2 /
+&load point_load_n(1) = 100, point_load_x_m(1) = 0.5, point_load_y_m(1) = -0.1 /"
+driver=voussoir-limit case_ load_outside "&load point load 1 at \(x, y\) = \(5, 5\) m lies in no block \(a point on a block or on its boundary, within 1e-9 m\)" "$ld
+&load point_load_n(1) = 1000, point_load_x_m(1) = 5, point_load_y_m(1) = 5 /"
+driver=voussoir-limit case_ load_inf "&load point_load_n\(1\) = Infinity is not a finite number" "$ld
+&load point_load_n(1) = Inf /"
+driver=voussoir-limit case_ load_nan "&load point_load_n\(1\) = NaN is not a finite number" "$ld
+&load point_load_n(1) = NaN /"
+driver=voussoir-limit case_ load_negative "&load point_load_n\(1\) = -5 is outside the allowed range 0 < point_load_n <= 1e12 N" "$ld
+&load point_load_n(1) = -5 /"
+driver=voussoir-limit case_ load_no_magnitude "&load point load 2 has a point, a direction or a kind but no magnitude" "$ld
+&load point_load_n(1) = 100, point_load_x_m(2) = 0.3 /"
+driver=voussoir-limit case_ load_path_dead "&load path_points moves or repeats the live point loads, but no point load is live" "$ld
+&load point_load_n(1) = 100, point_load_live(1) = .false., path_points = 5, path_x0_m = -0.3, path_x1_m = 0.3 /"
+driver=voussoir-limit case_ load_path_one "&load path_points = 1 is outside the allowed range path_points = 0 \(no path\) or path_points >= 2" "$ld
+&load point_load_n(1) = 100, path_points = 1 /"
+driver=voussoir-limit case_ load_axle_off "&load live point load 1 \(axle 2\) at x = 3 m lies over no block" "$ld
+&load point_load_n(1) = 100, axle_spacing_m(1) = 3 /"
+driver=voussoir-limit case_ load_live_text "&load point_load_live\(1\) = 'x' is not a logical" "$ld
+&load point_load_n(1) = 100, point_load_live = 'x' /"
 driver=voussoir-limit case_ limit_thickness_text ":2: &limit minimum_thickness = 'x' is not a logical \(.true. or .false.\)" "&arch /
 &limit minimum_thickness = 'x' /"
 case_ thick             "thickness_m = 0.6.*0 < thickness_m < r_ext_m" "&arch thickness_m = 0.6, r_ext_m = 0.5 /

@@ -14,12 +14,13 @@ module voussoir_config
   use voussoir_namelist_group, only: nml_group_t, config_entry_t, checked_apart
   use voussoir_input_range, only: in_range
   use voussoir_wall_config, only: wall_config_t, read_wall_config, wall_group
+  use voussoir_load_config, only: load_config_t, read_load_config, load_entries
   implicit none
   private
 
   public :: config_t, arch_config_t, motion_config_t, solver_config_t, output_config_t
   public :: config_entry_t, read_config, validate_config, config_entries, config_to_nml
-  public :: resolve_path, fmt_real, arch_rule, arch_rule_text, config_groups
+  public :: resolve_path, fmt_real, arch_rule, arch_rule_text, config_groups, has_loads
 
   !> The waveforms of &motion (the `select case` on them: validate_motion and setup).
   character(len=*), parameter, public :: waveform_afd = 'afd', waveform_ramp = 'ramp', &
@@ -104,6 +105,7 @@ module voussoir_config
     type(solver_config_t) :: solver
     type(output_config_t) :: output
     type(wall_config_t) :: wall               !! a wall instead of the arch, where courses > 0
+    type(load_config_t) :: load               !! point, axle and distributed loads (&load; none: no loads)
     character(len=path_len) :: source_file = ''
   end type config_t
 
@@ -136,6 +138,7 @@ contains
       if (.not. status%ok) return
     end do
     if (any(allowed_groups == 'wall')) call read_wall_config(path, cfg%wall, status)
+    if (any(allowed_groups == 'load')) call read_load_config(path, cfg%load, status)
     if (.not. status%ok) return
     if (len_trim(cfg%arch%polygon_file) > 0) &
       cfg%arch%polygon_file = resolve_path(path, cfg%arch%polygon_file)
@@ -266,7 +269,14 @@ contains
       call wall_group(c%wall, wall)
       e = [e, wall%entries()]
     end if
+    if (has_loads(c)) e = [e, load_entries(c%load)]
   end function config_entries
+
+  !> Whether &load gives any load (else the live load is the horizontal acceleration).
+  pure logical function has_loads(cfg)
+    type(config_t), intent(in) :: cfg
+    has_loads = cfg%load%n_point_loads > 0 .or. cfg%load%dead_load_n_per_m > 0.0_dp
+  end function has_loads
 
   !> The entries as namelist text that reads back to the same configuration.
   function config_to_nml(e) result(text)

@@ -61,7 +61,7 @@ module voussoir_namelist_group
     integer :: unset_integer = 0
     real(dp), pointer :: r => null(), ra(:) => null()
     integer, pointer :: i => null(), ia(:) => null()
-    logical, pointer :: l => null()
+    logical, pointer :: l => null(), la(:) => null()
     character(len=:), pointer :: t => null()
     type(text_ref_t), allocatable :: ta(:)
   end type nml_var_t
@@ -72,8 +72,9 @@ module voussoir_namelist_group
     type(nml_var_t), allocatable :: vars(:)
   contains
     procedure, private :: add_real, add_integer, add_logical, add_text
-    procedure, private :: add_real_list, add_integer_list, add_text_list
-    generic :: add => add_real, add_integer, add_logical, add_text, add_real_list, add_integer_list, add_text_list
+    procedure, private :: add_real_list, add_integer_list, add_logical_list, add_text_list
+    generic :: add => add_real, add_integer, add_logical, add_text, add_real_list, add_integer_list, &
+                      add_logical_list, add_text_list
     procedure :: read => read_group
     procedure :: check => check_group
     procedure :: entries => group_entries
@@ -205,6 +206,20 @@ contains
     v%ia(v%first:) => x
     call append(g, v)
   end subroutine add_integer_list
+
+  !> A list of logicals x(first:), every entry a setting.
+  subroutine add_logical_list(g, name, x, first, about)
+    class(nml_group_t), intent(inout) :: g
+    character(len=*), intent(in) :: name
+    logical, intent(inout), target :: x(:)
+    integer, intent(in), optional :: first
+    character(len=*), intent(in), optional :: about
+    type(nml_var_t) :: v
+    v = new_var(name, 'l', about=about)
+    call list_shape(v, first, .false.)
+    v%la(v%first:) => x
+    call append(g, v)
+  end subroutine add_logical_list
 
   !> A list of texts; entries left '' are not settings.
   subroutine add_text_list(g, name, x, first, about)
@@ -384,6 +399,11 @@ contains
         if (associated(v%r)) e = [e, config_entry_t(group, n, v%kind, real_text(v%r))]
         if (associated(v%i)) e = [e, config_entry_t(group, n, v%kind, itoa(v%i))]
         if (associated(v%l)) e = [e, config_entry_t(group, n, v%kind, merge('.true. ', '.false.', v%l))]
+        if (associated(v%la)) then
+          do j = lbound(v%la, 1), ubound(v%la, 1)
+            e = [e, config_entry_t(group, n//'('//itoa(j)//')', v%kind, merge('.true. ', '.false.', v%la(j)))]
+          end do
+        end if
         if (associated(v%t)) e = [e, config_entry_t(group, n, v%kind, v%t)]
         if (associated(v%ra)) then
           do j = lbound(v%ra, 1), ubound(v%ra, 1)

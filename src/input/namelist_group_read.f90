@@ -88,6 +88,7 @@ contains
     list_size = 1
     if (associated(v%ra)) list_size = size(v%ra)
     if (associated(v%ia)) list_size = size(v%ia)
+    if (associated(v%la)) list_size = size(v%la)
     if (allocated(v%ta)) list_size = size(v%ta)
   end function list_size
 
@@ -133,6 +134,7 @@ contains
     if (associated(v%t)) v%t = choice_case(v, s)
     if (associated(v%ra)) v%ra(pos:pos + repeat - 1) = x
     if (associated(v%ia)) v%ia(pos:pos + repeat - 1) = m
+    if (associated(v%la)) v%la(pos:pos + repeat - 1) = b
     if (allocated(v%ta)) then
       do m = pos, pos + repeat - 1
         v%ta(m)%s = s

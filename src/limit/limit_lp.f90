@@ -11,12 +11,13 @@ module voussoir_limit_lp
   use voussoir_assembly, only: assembly_t
   use voussoir_geometry, only: polygon_area, polygon_centroid, cross2
   use voussoir_block_interfaces, only: interface_set_t
+  use voussoir_placed_loads, only: placed_loads_t
   use voussoir_glpk, only: lp_solve, lp_free, lp_lower, lp_upper, lp_fixed, &
                            lp_optimal, lp_infeasible, lp_unbounded
   implicit none
   private
 
-  public :: block_loads_t, lp_result_t, block_loads, lp_capacity, nonassociative_capacity
+  public :: block_loads_t, lp_result_t, block_loads, add_placed_loads, lp_capacity, nonassociative_capacity
   public :: joint_closed, joint_hinge, joint_sliding, joint_open, joint_mode_name
   public :: lp_outcome_optimal, lp_outcome_infeasible, lp_outcome_unbounded
 
@@ -27,10 +28,14 @@ module voussoir_limit_lp
   integer, parameter :: lp_outcome_optimal = lp_optimal, lp_outcome_infeasible = lp_infeasible, &
                         lp_outcome_unbounded = lp_unbounded
 
-  !> Dead and live loads of the blocks, through their centroids.
+  !> Dead and live loads of the blocks: each block's resultant force and its moment
+  !> about the block's centroid.
   type :: block_loads_t
     real(dp), allocatable :: weight_n(:)       !! dead load of each block [N], downwards
+    real(dp), allocatable :: dead_n(:, :)      !! (2, n_bodies) dead point loads [N], beside the weight
+    real(dp), allocatable :: dead_moment_nm(:) !! their moment about the centroid [N m], counter-clockwise
     real(dp), allocatable :: live_n(:, :)      !! (2, n_bodies) live load per unit lambda [N]
+    real(dp), allocatable :: live_moment_nm(:) !! its moment about the centroid per unit lambda [N m]
     real(dp), allocatable :: centroid(:, :)    !! (2, n_bodies) [m]
   end type block_loads_t
 
@@ -56,13 +61,42 @@ contains
     real(dp), intent(in) :: density_kg_m3, width_m, g_m_s2
     type(block_loads_t), intent(out) :: loads
     integer :: b
-    allocate (loads%weight_n(asm%n_bodies), loads%live_n(2, asm%n_bodies), loads%centroid(2, asm%n_bodies))
+    allocate (loads%weight_n(asm%n_bodies), loads%live_n(2, asm%n_bodies), loads%centroid(2, asm%n_bodies), &
+              loads%dead_n(2, asm%n_bodies), loads%dead_moment_nm(asm%n_bodies), loads%live_moment_nm(asm%n_bodies))
+    loads%dead_n = 0.0_dp
+    loads%dead_moment_nm = 0.0_dp
+    loads%live_moment_nm = 0.0_dp
     do b = 1, asm%n_bodies
       loads%weight_n(b) = density_kg_m3*polygon_area(asm%polygon(b)%xy)*width_m*g_m_s2
       loads%centroid(:, b) = polygon_centroid(asm%polygon(b)%xy)
       loads%live_n(:, b) = [loads%weight_n(b), 0.0_dp]
     end do
   end subroutine block_loads
+
+  !> Add the point loads `placed` (each a force and its moment about its block's
+  !> centroid): the dead ones to the weights; the live ones, if any, replace the
+  !> horizontal acceleration as the live load.
+  pure subroutine add_placed_loads(placed, loads)
+    type(placed_loads_t), intent(in) :: placed
+    type(block_loads_t), intent(inout) :: loads
+    real(dp) :: moment
+    integer :: k, b
+    if (any(placed%live)) then
+      loads%live_n = 0.0_dp
+      loads%live_moment_nm = 0.0_dp
+    end if
+    do k = 1, placed%n
+      b = placed%block(k)
+      moment = cross2(placed%xy(:, k) - loads%centroid(:, b), placed%force_n(:, k))
+      if (placed%live(k)) then
+        loads%live_n(:, b) = loads%live_n(:, b) + placed%force_n(:, k)
+        loads%live_moment_nm(b) = loads%live_moment_nm(b) + moment
+      else
+        loads%dead_n(:, b) = loads%dead_n(:, b) + placed%force_n(:, k)
+        loads%dead_moment_nm(b) = loads%dead_moment_nm(b) + moment
+      end if
+    end do
+  end subroutine add_placed_loads
 
   !> Maximise lambda. Friction of interface k: |S| <= friction(k) (N1 + N2) + cohesion_n(k)
   !> (the Coulomb problem with cohesion_n = 0; with friction = 0 and cohesion_n = mu N of
@@ -93,13 +127,15 @@ contains
     end do
     n_rows = n_rows + 2*nf
     n_cols = 3*nf + 1          ! N1, N2, S per interface, then lambda
-    scale_n = max(maxval(loads%weight_n, mask=.not. asm%driven), tiny(1.0_dp))
+    scale_n = max(maxval(loads%weight_n, mask=.not. asm%driven), maxval(norm2(loads%live_n, dim=1)), tiny(1.0_dp))
     allocate (row_kind(n_rows), row_lo(n_rows), row_hi(n_rows), col_kind(n_cols), col_lo(n_cols), &
-              col_hi(n_cols), obj(n_cols), ia(24*nf + 2*asm%n_bodies), ja(24*nf + 2*asm%n_bodies), ar(24*nf + 2*asm%n_bodies))
+              col_hi(n_cols), obj(n_cols), ia(24*nf + 3*asm%n_bodies), ja(24*nf + 3*asm%n_bodies), ar(24*nf + 3*asm%n_bodies))
     row_kind = lp_fixed
     row_lo = 0.0_dp
     do b = 1, asm%n_bodies
-      if (row_of(b) > 0) row_lo(row_of(b):row_of(b) + 1) = [0.0_dp, loads%weight_n(b)/scale_n]
+      ! Interface forces + lambda live = -(dead load): the weight and the dead point loads.
+      if (row_of(b) > 0) row_lo(row_of(b):row_of(b) + 2) = [-loads%dead_n(1, b), loads%weight_n(b) - loads%dead_n(2, b), &
+                                                            -loads%dead_moment_nm(b)]/scale_n
     end do
     row_hi = row_lo
     col_kind = [([lp_lower, lp_lower, lp_free], k=1, nf), lp_lower]
@@ -116,10 +152,11 @@ contains
       call put(n_rows - 2*nf + 2*k - 1, [3*k - 2, 3*k - 1, 3*k], [-friction(k), -friction(k), 1.0_dp])
       call put(n_rows - 2*nf + 2*k, [3*k - 2, 3*k - 1, 3*k], [-friction(k), -friction(k), -1.0_dp])
     end do
-    do b = 1, asm%n_bodies     ! the live load, lambda times live_n (x, y; through the centroid)
+    do b = 1, asm%n_bodies     ! the live load, lambda times live_n and its moment
       if (row_of(b) == 0) cycle
       call put(row_of(b), [n_cols], [loads%live_n(1, b)/scale_n])
       call put(row_of(b) + 1, [n_cols], [loads%live_n(2, b)/scale_n])
+      if (loads%live_moment_nm(b) /= 0.0_dp) call put(row_of(b) + 2, [n_cols], [loads%live_moment_nm(b)/scale_n])
     end do
 
     ! Moment arms of round-off size (1e-17 where a force passes through a centroid) ruin
@@ -140,7 +177,7 @@ contains
       call fail(status, 'the dead load alone brings the assembly down: no equilibrium without tension '// &
                 'and within friction carries the weights (the linear programme is infeasible)')
     case (lp_unbounded)
-      call refuse_unbounded(asm, faces, ray, n_cols, res, status)
+      call refuse_unbounded(asm, faces, loads, ray, n_cols, res, status)
     case default
       call fail(status, 'GLPK failed to solve the linear programme of the limit analysis')
     end select
@@ -202,22 +239,41 @@ contains
   end subroutine nonassociative_capacity
 
   !> The refusal of an unbounded problem, naming the free block of the interface whose
-  !> force grows along GLPK's unbounded ray (column `ray`) where there is one.
-  pure subroutine refuse_unbounded(asm, faces, ray, n_cols, res, status)
+  !> force grows along GLPK's unbounded ray (column `ray`) where there is one, else the
+  !> free blocks that carry the live load.
+  pure subroutine refuse_unbounded(asm, faces, loads, ray, n_cols, res, status)
     type(assembly_t), intent(in) :: asm
     type(interface_set_t), intent(in) :: faces
+    type(block_loads_t), intent(in) :: loads
     integer, intent(in) :: ray, n_cols
     type(lp_result_t), intent(inout) :: res
     type(status_t), intent(inout) :: status
     character(len=*), parameter :: what = 'no mechanism opens under the live load: lambda grows without bound '// &
                                           '(the linear programme is unbounded)'
-    integer :: k
+    character(len=:), allocatable :: blocks
+    integer :: k, b, n_loaded
     if (ray > 0 .and. ray < n_cols) then
       k = (ray + 2)/3
       res%unbounded_body = merge(faces%body(2, k), faces%body(1, k), asm%driven(faces%body(1, k)))
       call fail(status, what//'; block '//itoa(res%unbounded_body)//' is held against the load')
+      return
+    end if
+    blocks = ''
+    n_loaded = 0
+    do b = 1, asm%n_bodies
+      if (asm%driven(b) .or. (all(loads%live_n(:, b) == 0.0_dp) .and. loads%live_moment_nm(b) == 0.0_dp)) cycle
+      n_loaded = n_loaded + 1
+      if (res%unbounded_body == 0) res%unbounded_body = b
+      if (n_loaded <= 5) blocks = blocks//merge(', ', '  ', n_loaded > 1)//itoa(b)
+    end do
+    blocks = adjustl(blocks)
+    if (n_loaded == 0) then
+      call fail(status, what//'; the live load acts on no free block (only on the supports)')
+    else if (n_loaded <= 5) then
+      call fail(status, what//'; the live load on block'//trim(merge('s ', '  ', n_loaded > 1))//' '//trim(blocks)// &
+                ' is held by the blocks around '//trim(merge('them', 'it  ', n_loaded > 1)))
     else
-      call fail(status, what)
+      call fail(status, what//'; the live load acts on '//itoa(n_loaded)//' blocks (blocks '//trim(blocks)//', ...)')
     end if
   end subroutine refuse_unbounded
 
@@ -269,7 +325,8 @@ contains
     do b = 1, asm%n_bodies
       if (row_of(b) > 0) velocity(:, b) = dual(row_of(b):row_of(b) + 2)
     end do
-    power = sum(loads%live_n(1, :)*velocity(1, :) + loads%live_n(2, :)*velocity(2, :))
+    power = sum(loads%live_n(1, :)*velocity(1, :) + loads%live_n(2, :)*velocity(2, :) + &
+                loads%live_moment_nm*velocity(3, :))
     if (power /= 0.0_dp) velocity = velocity/power
   end subroutine velocities_from_duals
 
@@ -333,8 +390,9 @@ contains
   end subroutine classify_joints
 
   !> The upper bound: lambda of the mechanism by the work equation, the live load's
-  !> power being 1: lambda = dissipation - power of the dead load. Coulomb with
-  !> dilatancy dissipates nothing; a fixed shear limit c dissipates c |slip|.
+  !> power being 1: lambda = dissipation - power of the dead load (weights and dead
+  !> point loads). Coulomb with dilatancy dissipates nothing; a fixed shear limit c
+  !> dissipates c |slip|.
   pure real(dp) function work_load_factor(faces, loads, velocity, cohesion_n) result(lambda)
     type(interface_set_t), intent(in) :: faces
     type(block_loads_t), intent(in) :: loads
@@ -346,7 +404,8 @@ contains
       call joint_motion(faces, k, loads%centroid, velocity, opening, slip)
       dissipation = dissipation + cohesion_n(k)*abs(slip)
     end do
-    lambda = dissipation + sum(loads%weight_n*velocity(2, :))
+    lambda = dissipation - sum(loads%dead_n(1, :)*velocity(1, :) + (loads%dead_n(2, :) - loads%weight_n)*velocity(2, :) &
+                               + loads%dead_moment_nm*velocity(3, :))
   end function work_load_factor
 
   !> 'closed', 'hinge', 'sliding' or 'open'.

@@ -18,26 +18,48 @@ contains
     integer, intent(in) :: u
     type(lp_study_t), intent(in) :: lp
     real(dp), intent(in) :: friction
+    integer :: i
     write (u, '(/,a)') 'Limit analysis by linear programming (GLPK; rigid blocks, no tension, Coulomb friction '// &
-      fmt_significant(friction)//'; load = lambda x weight towards +x)'
+      fmt_significant(friction)//')'
+    if (allocated(lp%live_load)) write (u, '(a)') '  live load: '//lp%live_load
     write (u, '(a)') '  '//itoa(lp%faces%n)//' interfaces'
+    if (lp%has_path) then
+      write (u, '(a)') '  load factor along the path (x of the first live load [m], associative lambda):'
+      do i = 1, size(lp%curve_x_m)
+        if (lp%curve_load_factor(i) < 0.0_dp) then
+          write (u, '(a)') '    '//fmt_significant(lp%curve_x_m(i), 6)//'  none (no mechanism opens)'
+        else
+          write (u, '(a)') '    '//fmt_significant(lp%curve_x_m(i), 6)//'  '//fmt_significant(lp%curve_load_factor(i), 7)
+        end if
+      end do
+      write (u, '(a)') '  critical position: x = '//fmt_significant(lp%critical_x_m, 6)//' m (the results below)'
+    end if
     if (.not. lp%solved) then
       write (u, '(a)') '  no load factor: '//lp%note
       return
     end if
     write (u, '(a)') '  associative (sliding dilates):  lambda '//fmt_significant(lp%assoc%load_factor, 7)// &
-      ' (upper bound of its mechanism '//fmt_significant(lp%assoc%load_factor_upper, 7)//'), lambda g '// &
-      fmt_significant(lp%assoc%load_factor*g_m_s2, 5)//' m/s2'
+      ' (upper bound of its mechanism '//fmt_significant(lp%assoc%load_factor_upper, 7)//')'// &
+      acceleration_text(lp, lp%assoc%load_factor)
     write (u, '(a)') '    mechanism: '//mechanism_text(lp, lp%assoc)
     if (lp%nonassociative_solved) then
       write (u, '(a)') '  non-associative (no dilatancy): lambda '//fmt_significant(lp%nonassoc%load_factor, 7)// &
-        ', lambda g '//fmt_significant(lp%nonassoc%load_factor*g_m_s2, 5)//' m/s2 ('//itoa(lp%steps)//' steps'// &
+        acceleration_text(lp, lp%nonassoc%load_factor)//' ('//itoa(lp%steps)//' steps'// &
         trim(merge('             ', ', UNCONVERGED', lp%converged))//')'
       write (u, '(a)') '    mechanism: '//mechanism_text(lp, lp%nonassoc)
     else
       write (u, '(a)') '  non-associative: no solution (a step of the iteration has none)'
     end if
   end subroutine write_lp_table
+
+  !> ', lambda g 3.69 m/s2' where the live load is the horizontal acceleration, else ''.
+  function acceleration_text(lp, lambda) result(text)
+    type(lp_study_t), intent(in) :: lp
+    real(dp), intent(in) :: lambda
+    character(len=:), allocatable :: text
+    text = ''
+    if (lp%live_is_acceleration) text = ', lambda g '//fmt_significant(lambda*g_m_s2, 5)//' m/s2'
+  end function acceleration_text
 
   !> The moving joints: 'joint 5 hinge extrados, blocks 3-4 sliding, ...'
   function mechanism_text(lp, r) result(text)
@@ -72,6 +94,19 @@ contains
     character(len=:), allocatable :: text
     character(len=1), parameter :: nl = achar(10)
     text = '  "assembly": '//json_string(lp%assembly)//','//nl
+    if (allocated(lp%live_load)) then
+      text = text//'  "live_load": '//json_string(lp%live_load)//','//nl
+    else
+      text = text//'  "live_load": null,'//nl
+    end if
+    text = text//'  "point_loads": '//point_loads_json(lp)//','//nl//'  "critical_position": '
+    if (lp%has_path) then
+      text = text//'{"x_m": '//fmt_json_real(lp%critical_x_m)//', "load_factor": '// &
+             fmt_json_real(lp%critical_load_factor)//'},'//nl
+    else
+      text = text//'null,'//nl
+    end if
+    text = text//'  "load_factor_curve": '//curve_json(lp)//','//nl
     if (lp%solved) then
       text = text//'  "load_factor": '//fmt_json_real(lp%assoc%load_factor)//','//nl// &
         '  "load_factor_upper": '//fmt_json_real(lp%assoc%load_factor_upper)//','//nl// &
@@ -138,6 +173,45 @@ contains
     end do
     text = text//']'
   end function forces_json
+
+  !> The point loads of &load as placed (the distributed dead load's strips left out):
+  !> the load j, the block, the point, the force [N] (a live one at load factor 1).
+  function point_loads_json(lp) result(text)
+    type(lp_study_t), intent(in) :: lp
+    character(len=:), allocatable :: text
+    integer :: k
+    text = '['
+    if (allocated(lp%placed%source)) then
+      do k = 1, lp%placed%n
+        if (lp%placed%source(k) == 0) cycle
+        if (len(text) > 1) text = text//', '
+        text = text//'{"load": '//itoa(lp%placed%source(k))//', "block": '//itoa(lp%placed%block(k))// &
+               ', "xy_m": '//xy_json(lp%placed%xy(:, k))//', "force_n": '//xy_json(lp%placed%force_n(:, k))// &
+               ', "live": '//json_bool(lp%placed%live(k))//'}'
+      end do
+    end if
+    text = text//']'
+  end function point_loads_json
+
+  !> [{"x_m": .., "load_factor": ..}, ...] along the path (null where no mechanism opens).
+  function curve_json(lp) result(text)
+    type(lp_study_t), intent(in) :: lp
+    character(len=:), allocatable :: text
+    integer :: i
+    text = '['
+    if (lp%has_path) then
+      do i = 1, size(lp%curve_x_m)
+        if (i > 1) text = text//', '
+        text = text//'{"x_m": '//fmt_json_real(lp%curve_x_m(i))//', "load_factor": '
+        if (lp%curve_load_factor(i) < 0.0_dp) then
+          text = text//'null}'
+        else
+          text = text//fmt_json_real(lp%curve_load_factor(i))//'}'
+        end if
+      end do
+    end if
+    text = text//']'
+  end function curve_json
 
   function joint_keys(lp, k) result(text)
     type(lp_study_t), intent(in) :: lp

@@ -1,19 +1,24 @@
 !> The linear-programming limit analysis that voussoir-limit makes of any assembly
 !> (voussoir_limit_lp): the interfaces, both capacities (associative and
-!> non-associative) and, for an arch, the joint and side of every interface.
-!> docs/limit_analysis.md, "Any assembly".
+!> non-associative) and, for an arch, the joint and side of every interface; with a
+!> &load, its point and distributed loads, and along its path the critical position of
+!> the live loads (the least load factor) with the curve of load factor against position.
+!> docs/limit_analysis.md, "Any assembly" and "Loads".
 module voussoir_limit_lp_study
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
-  use voussoir_text, only: itoa
+  use voussoir_text, only: itoa, fmt_significant
+  use voussoir_load_config, only: load_config_t
+  use voussoir_placed_loads, only: placed_loads_t, place_loads, moves_on_top, first_live_x
   use voussoir_assembly, only: assembly_t
   use voussoir_hinge_side, only: side_intrados, side_extrados
   use voussoir_block_interfaces, only: interface_set_t, find_interfaces
-  use voussoir_limit_lp, only: block_loads_t, lp_result_t, block_loads, lp_capacity, nonassociative_capacity
+  use voussoir_limit_lp, only: block_loads_t, lp_result_t, block_loads, add_placed_loads, lp_capacity, &
+                               nonassociative_capacity, lp_outcome_unbounded
   implicit none
   private
 
-  public :: lp_study_t, lp_study
+  public :: lp_study_t, lp_study, path_position_m
 
   !> Both capacities of an assembly under the horizontal acceleration lambda g towards +x.
   type :: lp_study_t
@@ -27,21 +32,31 @@ module voussoir_limit_lp_study
     logical :: converged = .false.
     integer, allocatable :: joint(:)          !! arch joint 0..n of each interface, -1 if none
     integer, allocatable :: end_side(:, :)    !! (2, n_interfaces) side_intrados / side_extrados of each end (arches)
+    character(len=:), allocatable :: live_load !! the live load in words
+    logical :: live_is_acceleration = .true.  !! the live load is lambda g towards +x (else point loads)
+    type(placed_loads_t) :: placed            !! the loads of &load (at the critical position on a path)
+    logical :: has_path = .false.             !! the live loads moved along &load's path
+    real(dp) :: critical_x_m = 0.0_dp         !! the position of least load factor (of the first live load) [m]
+    real(dp) :: critical_load_factor = 0.0_dp !! the associative load factor there
+    real(dp), allocatable :: curve_x_m(:)     !! the positions on the path [m]
+    real(dp), allocatable :: curve_load_factor(:) !! the associative load factor at each (-1: unbounded)
   end type lp_study_t
 
 contains
 
   !> The LP analysis of `asm` with Coulomb friction `friction` at every interface, the
-  !> weights of density x area x width x g, and the interface ends set in by `inset_m`.
-  !> A refusal (no interfaces, infeasible, unbounded) comes back in `status`.
-  subroutine lp_study(asm, density_kg_m3, width_m, friction, inset_m, study, status)
+  !> weights of density x area x width x g, the loads of `load` (if given), and the
+  !> interface ends set in by `inset_m`. A refusal (no interfaces,
+  !> infeasible, unbounded) comes back in `status`.
+  subroutine lp_study(asm, density_kg_m3, width_m, friction, inset_m, study, status, load)
     type(assembly_t), intent(in) :: asm
     real(dp), intent(in) :: density_kg_m3, width_m, friction, inset_m
     type(lp_study_t), intent(out) :: study
     type(status_t), intent(inout) :: status
+    type(load_config_t), intent(in), optional :: load
     type(block_loads_t) :: loads
     real(dp), allocatable :: mu(:)
-    real(dp) :: size_m
+    real(dp) :: size_m, shift_m
     integer :: b
 
     size_m = 0.0_dp
@@ -57,9 +72,24 @@ contains
       return
     end do
     call name_arch_joints(asm, study)
-    call block_loads(asm, density_kg_m3, width_m, g_m_s2, loads)
     allocate (mu(study%faces%n))
     mu = friction
+    shift_m = 0.0_dp
+    study%live_load = 'horizontal acceleration lambda g towards +x (lambda x the weight of each block)'
+    allocate (study%placed%block(0), study%placed%source(0), study%placed%xy(2, 0), study%placed%force_n(2, 0), &
+              study%placed%live(0))
+    if (present(load)) then
+      if (load%path_points >= 2) then
+        call critical_position(asm, density_kg_m3, width_m, load, study, mu, shift_m, status)
+        if (.not. status%ok) return
+      end if
+      call place_loads(load, asm, shift_m, study%placed, status)
+      if (.not. status%ok) return
+      study%live_load = live_load_words(load)
+      study%live_is_acceleration = .not. any(study%placed%live)
+    end if
+    call block_loads(asm, density_kg_m3, width_m, g_m_s2, loads)
+    call add_placed_loads(study%placed, loads)
     call lp_capacity(asm, study%faces, loads, mu, 0.0_dp*mu, study%assoc, status)
     if (.not. status%ok) return
     study%solved = .true.
@@ -67,6 +97,98 @@ contains
                                  study%converged, status)
     study%nonassociative_solved = status%ok
   end subroutine lp_study
+
+  !> Position i of `path_points` on the path from x0 to x1 [m].
+  pure real(dp) function path_position_m(load, i)
+    type(load_config_t), intent(in) :: load
+    integer, intent(in) :: i
+    ! Weighted this way, a path symmetric about x = 0 has its middle position at 0 exactly.
+    path_position_m = ((load%path_points - i)*load%path_x0_m + (i - 1)*load%path_x1_m)/(load%path_points - 1)
+  end function path_position_m
+
+  !> The associative load factor with the first live load at each position of the path
+  !> (the others at their offsets from it, on the top surface); the least one (the first
+  !> of equal ones, to 1e-9) is the critical position, `shift_m` the shift of the live loads that puts them there. A
+  !> position where no mechanism opens (the loads on a support) has no load factor.
+  subroutine critical_position(asm, density_kg_m3, width_m, load, study, mu, shift_m, status)
+    type(assembly_t), intent(in) :: asm
+    real(dp), intent(in) :: density_kg_m3, width_m
+    type(load_config_t), intent(in) :: load
+    type(lp_study_t), intent(inout) :: study
+    real(dp), intent(in) :: mu(:)
+    real(dp), intent(out) :: shift_m
+    type(status_t), intent(inout) :: status
+    type(placed_loads_t) :: placed
+    type(block_loads_t) :: loads
+    type(lp_result_t) :: res
+    type(status_t) :: lp_status
+    integer :: i, best
+    real(dp) :: lowest
+
+    study%has_path = .true.
+    allocate (study%curve_x_m(load%path_points), study%curve_load_factor(load%path_points))
+    best = 0
+    do i = 1, load%path_points
+      study%curve_x_m(i) = path_position_m(load, i)
+      call place_loads(load, asm, study%curve_x_m(i) - first_live_x(load), placed, status)
+      if (.not. status%ok) return
+      call block_loads(asm, density_kg_m3, width_m, g_m_s2, loads)
+      call add_placed_loads(placed, loads)
+      lp_status = status_t()
+      call lp_capacity(asm, study%faces, loads, mu, 0.0_dp*mu, res, lp_status)
+      study%curve_load_factor(i) = -1.0_dp
+      if (lp_status%ok) then
+        study%curve_load_factor(i) = res%load_factor
+        best = i
+      else if (res%outcome /= lp_outcome_unbounded) then
+        status = lp_status
+        status%message = trim(status%message)//' (live loads at path position x = '// &
+                         fmt_significant(study%curve_x_m(i), 6)//' m)'
+        return
+      end if
+    end do
+    if (best == 0) then
+      call fail(status, 'no position of &load path_x0_m .. path_x1_m has a load factor: the live loads open no '// &
+                'mechanism anywhere along the path')
+      return
+    end if
+    ! The first position within 1e-9 of the least (a symmetric assembly has two, equal
+    ! but for round-off: the choice must not depend on it).
+    lowest = minval(study%curve_load_factor, mask=study%curve_load_factor >= 0.0_dp)
+    best = findloc(study%curve_load_factor >= 0.0_dp .and. study%curve_load_factor <= lowest*(1 + 1.0e-9_dp), &
+                   .true., dim=1)
+    study%critical_x_m = study%curve_x_m(best)
+    study%critical_load_factor = study%curve_load_factor(best)
+    shift_m = study%critical_x_m - first_live_x(load)
+  end subroutine critical_position
+
+  !> 'live point loads of &load: 1 of 1e4 N (x 3 axles) ...; dead: ...'
+  function live_load_words(load) result(text)
+    type(load_config_t), intent(in) :: load
+    character(len=:), allocatable :: text
+    integer :: j, n_live, n_dead
+    n_live = count(load%point_load_live(1:load%n_point_loads))
+    n_dead = load%n_point_loads - n_live
+    if (n_live == 0) then
+      text = 'horizontal acceleration lambda g towards +x (lambda x the weight of each block)'
+    else
+      text = 'lambda x the live point loads of &load ('
+      do j = 1, load%n_point_loads
+        if (.not. load%point_load_live(j)) cycle
+        if (text(len(text):) /= '(') text = text//', '
+        text = text//'load '//itoa(j)//': '//fmt_significant(load%point_load_n(j), 6)//' N at '// &
+               fmt_significant(load%point_load_dir_deg(j), 6)//' deg'
+      end do
+      text = text//')'
+      if (load%n_axles > 0) text = text//', each repeated at '//itoa(load%n_axles)//' axle offsets'
+      if (moves_on_top(load)) text = text//', on the top surface'
+      if (load%path_points >= 2) text = text//' at the critical position'
+    end if
+    text = text//'; dead: the weights'
+    if (n_dead > 0) text = text//' and '//itoa(n_dead)//' dead point load'//trim(merge('s', ' ', n_dead > 1))
+    if (load%dead_load_n_per_m > 0.0_dp) text = text//' and '//fmt_significant(load%dead_load_n_per_m, 6)// &
+      ' N/m from x = '//fmt_significant(load%dead_load_x0_m, 6)//' to '//fmt_significant(load%dead_load_x1_m, 6)//' m'
+  end function live_load_words
 
   !> For an arch, the joint j (0..n) of each interface (the one between the same two
   !> bodies) and which of its ends is on the intrados.

@@ -2,7 +2,7 @@
 !> (docs/results_format.md, "voussoir-limit --json").
 module voussoir_limit_output
   use voussoir_kinds, only: dp, g_m_s2
-  use voussoir_config, only: config_t
+  use voussoir_config, only: config_t, has_loads
   use voussoir_text, only: itoa, int_list, fmt_json_real, json_string, json_bool, fmt_significant
   use voussoir_assembly, only: assembly_t
   use voussoir_limit_analysis, only: limit_result_t
@@ -63,6 +63,8 @@ contains
             '(bounds do not meet: lambda is an upper bound only)'
         end if
         write (u, '(a)') '  friction check: '//friction_text(res, a%n_voussoirs, a%friction)
+        if (has_loads(cfg)) write (u, '(a)') '  (the four-hinge analysis takes the weights alone: the loads of '// &
+          '&load enter the linear programme below)'
       end if
       if (tmin%computed) then
         write (u, '(/,a)') 'Minimum thickness (same embrace, voussoirs, r_ext and inset; own weight only)'

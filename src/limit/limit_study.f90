@@ -5,7 +5,9 @@
 module voussoir_limit_study
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
-  use voussoir_config, only: config_t, springings_none
+  use voussoir_config, only: config_t, springings_none, has_loads
+  use voussoir_placed_loads, only: placed_loads_t, place_loads, first_live_x
+  use voussoir_limit_lp_study, only: path_position_m
   use voussoir_namelist_group, only: nml_group_t
   use voussoir_input_range, only: need, need_range
   use voussoir_text, only: itoa, fmt_significant
@@ -105,10 +107,16 @@ contains
         if (.not. status%ok) status%message = trim(status%message)// &
           ' (set &limit minimum_thickness = .false. to skip it)'
       end if
+      ! A load outside every block is an error of the input, not a note of the LP.
+      if (status%ok .and. has_loads(cfg)) call check_loads_placed(cfg, arch, status)
       if (status%ok) then
         ! The four-hinge results stand even where the LP has no answer (an arch thinner
         ! than its minimum thickness): its reason is reported, not an error.
-        call lp_study(arch, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, lp_status)
+        if (has_loads(cfg)) then
+          call lp_study(arch, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, lp_status, cfg%load)
+        else
+          call lp_study(arch, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, lp_status)
+        end if
         if (.not. lp_status%ok) lp%note = trim(lp_status%message)
       end if
     end associate
@@ -126,12 +134,32 @@ contains
     type(status_t), intent(inout) :: status
     call build_config_assembly(cfg, asm, status)
     if (.not. status%ok) return
+    if (has_loads(cfg)) call check_loads_placed(cfg, asm, status)
+    if (.not. status%ok) return
     associate (a => cfg%arch)
-      call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status)
+      if (has_loads(cfg)) then
+        call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status, cfg%load)
+      else
+        call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status)
+      end if
       if (.not. status%ok) status%message = 'limit analysis by linear programming: '//trim(status%message)
     end associate
     lp%assembly = merge('wall        ', 'polygon file', cfg%wall%courses > 0)
     lp%assembly = trim(lp%assembly)
   end subroutine analyse_any_assembly
+
+  !> Every load of &load on a block, at every position of its path.
+  subroutine check_loads_placed(cfg, asm, status)
+    type(config_t), intent(in) :: cfg
+    type(assembly_t), intent(in) :: asm
+    type(status_t), intent(inout) :: status
+    type(placed_loads_t) :: placed
+    integer :: i
+    if (cfg%load%path_points < 2) call place_loads(cfg%load, asm, 0.0_dp, placed, status)
+    do i = 1, cfg%load%path_points
+      if (.not. status%ok) return
+      call place_loads(cfg%load, asm, path_position_m(cfg%load, i) - first_live_x(cfg%load), placed, status)
+    end do
+  end subroutine check_loads_placed
 
 end module voussoir_limit_study

@@ -7,7 +7,7 @@ module voussoir_bodies
   implicit none
   private
 
-  public :: bodies_t, bodies_init, update_world_vertices
+  public :: bodies_t, bodies_init, update_world_vertices, add_point_load, external_load
 
   !> All bodies of a model, structure of arrays. Index 1 of the state is x [m], 2 is
   !> y [m], 3 is the rotation [rad] from the reference configuration.
@@ -29,6 +29,11 @@ module voussoir_bodies
     real(dp), allocatable :: face_normal_local(:, :, :) !! (2, max_vertices, n) outward, reference
     real(dp), allocatable :: face_normal(:, :, :)       !! (2, max_vertices, n) outward, current
     real(dp), allocatable :: radius_m(:)           !! farthest vertex from the centroid
+    ! Constant forces at material points (the loads of &load), summed per body:
+    real(dp), allocatable :: ext_force_n(:, :)     !! (2, n) their resultant [N], fixed in direction
+    real(dp), allocatable :: ext_cross_nm(:)       !! sum of r x F, r from the centroid in the reference [N m]
+    real(dp), allocatable :: ext_dot_nm(:)         !! sum of r . F [N m]: the moment turns with the body
+    logical :: has_external = .false.              !! any body has one (else the step skips them)
   end type bodies_t
 
 contains
@@ -55,7 +60,11 @@ contains
               bodies%vertex_local(2, bodies%max_vertices, n), &
               bodies%vertex(2, bodies%max_vertices, n), bodies%radius_m(n), &
               bodies%face_normal_local(2, bodies%max_vertices, n), &
-              bodies%face_normal(2, bodies%max_vertices, n))
+              bodies%face_normal(2, bodies%max_vertices, n), bodies%ext_force_n(2, n), &
+              bodies%ext_cross_nm(n), bodies%ext_dot_nm(n))
+    bodies%ext_force_n = 0.0_dp
+    bodies%ext_cross_nm = 0.0_dp
+    bodies%ext_dot_nm = 0.0_dp
     bodies%face_normal_local = 0.0_dp
     bodies%vertex_local = 0.0_dp
     bodies%v = 0.0_dp
@@ -92,6 +101,33 @@ contains
     end where
     call update_world_vertices(bodies, bodies%q)
   end subroutine bodies_init
+
+  !> Add a constant force `force_n` [N] acting at the material point that is at `xy_m` [m]
+  !> in the reference configuration of body i.
+  pure subroutine add_point_load(bodies, i, xy_m, force_n)
+    type(bodies_t), intent(inout) :: bodies
+    integer, intent(in) :: i
+    real(dp), intent(in) :: xy_m(2), force_n(2)
+    real(dp) :: r(2)
+    r = xy_m - bodies%q_ref(1:2, i)
+    bodies%has_external = .true.
+    bodies%ext_force_n(:, i) = bodies%ext_force_n(:, i) + force_n
+    bodies%ext_cross_nm(i) = bodies%ext_cross_nm(i) + (r(1)*force_n(2) - r(2)*force_n(1))
+    bodies%ext_dot_nm(i) = bodies%ext_dot_nm(i) + dot_product(r, force_n)
+  end subroutine add_point_load
+
+  !> The external force and moment (fx, fy [N], m [N m]) on body i turned by `angle_rad`
+  !> from its reference: the points turn with the body, the forces keep their direction,
+  !> so the moment is sum((R r) x F) = cos(angle) sum(r x F) - sin(angle) sum(r . F).
+  pure function external_load(bodies, i, angle_rad) result(f)
+    type(bodies_t), intent(in) :: bodies
+    integer, intent(in) :: i
+    real(dp), intent(in) :: angle_rad
+    real(dp) :: f(3)
+    f = 0.0_dp
+    if (.not. bodies%has_external) return
+    f = [bodies%ext_force_n(:, i), cos(angle_rad)*bodies%ext_cross_nm(i) - sin(angle_rad)*bodies%ext_dot_nm(i)]
+  end function external_load
 
   !> World coordinates of every vertex and face normal for the configuration `q` (3, n).
   pure subroutine update_world_vertices(bodies, q)

@@ -1,13 +1,13 @@
 !> The dynamic model and one Moreau-Jean time step.
 !>
-!> Step from t to t + h with the theta-method: free velocities under gravity and the
-!> inertial load, predicted configuration q + (1 - theta) h v, contact detection there,
-!> NLGS for the end-of-step velocities, then q_end = q_pred + theta h v_end. Driven
+!> Step from t to t + h with the theta-method: free velocities under gravity, the
+!> inertial load and the constant external loads (&load), predicted configuration
+!> q + (1 - theta) h v, contact detection there, NLGS for the end-of-step velocities, then q_end = q_pred + theta h v_end. Driven
 !> bodies (foundations, brackets) move with the table velocity.
 module voussoir_model
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
-  use voussoir_bodies, only: bodies_t, update_world_vertices
+  use voussoir_bodies, only: bodies_t, update_world_vertices, external_load
   use voussoir_contacts, only: contact_set_t, detect_contacts
   use voussoir_contact_law, only: contact_law_t
   use voussoir_nlgs, only: nlgs_work_t, nlgs_prepare, nlgs_solve, warm_start
@@ -76,7 +76,9 @@ contains
           b%v(:, i) = [v0, 0.0_dp, 0.0_dp]
           model%v_free(:, i) = [v1, 0.0_dp, 0.0_dp]
         else
-          model%v_free(:, i) = b%v(:, i) + h*[load_x, -g_m_s2, 0.0_dp]
+          ! Gravity, the inertial load and the constant loads of &load (at the step's start).
+          model%v_free(:, i) = b%v(:, i) + h*([load_x, -g_m_s2, 0.0_dp] + &
+                               [b%inv_mass(i), b%inv_mass(i), b%inv_inertia(i)]*external_load(b, i, b%q(3, i)))
         end if
       end do
       call advance(model%q_pred, b%q, (1.0_dp - theta)*h, b%v)

@@ -3,11 +3,12 @@ module voussoir_setup
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: fmt_significant, itoa
-  use voussoir_config, only: config_t, waveform_afd, waveform_ramp, waveform_record, waveform_accelerogram
+  use voussoir_config, only: config_t, waveform_afd, waveform_ramp, waveform_record, waveform_accelerogram, has_loads
+  use voussoir_placed_loads, only: placed_loads_t, place_loads
   use voussoir_assembly, only: assembly_t
   use voussoir_config_assembly, only: build_config_assembly
   use voussoir_geometry, only: polygon_min_width
-  use voussoir_bodies, only: bodies_t, bodies_init
+  use voussoir_bodies, only: bodies_t, bodies_init, add_point_load
   use voussoir_model, only: model_t, solver_settings_t
   use voussoir_coarse, only: coarse_init
   use voussoir_contact_law, only: contact_law_t, contact_law_init
@@ -55,6 +56,8 @@ contains
         return
       end if
       call init_model(assembly, a%density_kg_m3, a%width_m, settings, law, model, status)
+      if (.not. status%ok) return
+      if (has_loads(cfg)) call apply_loads(cfg, assembly, model%bodies, status)
       if (.not. status%ok) return
       if (s%coarse_correction .and. allocated(assembly%course)) &
         call coarse_init(model%coarse, assembly%course, model%bodies%inv_mass, model%bodies%inv_inertia)
@@ -183,6 +186,28 @@ contains
     if (.not. allocated(model%law%pairs)) allocate (model%law%pairs(0))
     if (settings%alert_m == 0.0_dp) model%solver%alert_m = automatic_alert_m(model%bodies)
   end subroutine init_model
+
+  !> The loads of &load as constant forces at points of the blocks: dead loads, and live
+  !> loads at load factor 1, where &load puts them (a path's positions are not run: its
+  !> live loads stand at their own x, on the top surface). Loads on driven blocks go to
+  !> the table.
+  subroutine apply_loads(cfg, assembly, bodies, status)
+    type(config_t), intent(in) :: cfg
+    type(assembly_t), intent(in) :: assembly
+    type(bodies_t), intent(inout) :: bodies
+    type(status_t), intent(inout) :: status
+    type(placed_loads_t) :: placed
+    integer :: k
+    call place_loads(cfg%load, assembly, 0.0_dp, placed, status)
+    if (.not. status%ok) then
+      status%message = trim(cfg%source_file)//': '//trim(status%message)
+      return
+    end if
+    do k = 1, placed%n
+      if (.not. bodies%driven(placed%block(k))) &
+        call add_point_load(bodies, placed%block(k), placed%xy(:, k), placed%force_n(:, k))
+    end do
+  end subroutine apply_loads
 
   !> Default alert distance: 4 % of the smallest free body's circumradius.
   pure real(dp) function automatic_alert_m(bodies)

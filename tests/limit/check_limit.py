@@ -133,6 +133,151 @@ def check_lp(d, name):
           f"{name}: no tension at any interface end")
 
 
+def arch_point_load_lambda(a, weight, loads):
+    """The least load factor over the arch's four-hinge mechanisms (upper bounds by the
+    work equation), independent of the LP: voussoirs i = 1..n between joints i-1 and i
+    (rigid, no sliding), weights at their centroids, the live loads `loads` (a list of
+    ((x, y), (fx, fy), voussoir)). Hinges at joints j1 < j2 < j3 < j4, each at the intrados or extrados end;
+    segment A (j1..j2) turns about H1, C (j3..j4) about H4, B about the intersection of
+    lines H1-H2 and H3-H4. A mechanism is admissible when every hinge joint opens at its
+    other end; its lambda = -(power of the weights) / (power of the live load > 0)."""
+    n = a["n_voussoirs"]
+    ends = {"intrados": a["joint_intrados_xy_m"], "extrados": a["joint_extrados_xy_m"]}
+    other = {"intrados": "extrados", "extrados": "intrados"}
+    cents = []
+    for i in range(1, n + 1):
+        cents.append(centroid([a["joint_intrados_xy_m"][i - 1], a["joint_intrados_xy_m"][i],
+                               a["joint_extrados_xy_m"][i], a["joint_extrados_xy_m"][i - 1]]))
+
+    def cross(u, v):
+        return u[0] * v[1] - u[1] * v[0]
+
+    def vel(omega, c, p):   # velocity of p turning at omega about c
+        return (-omega * (p[1] - c[1]), omega * (p[0] - c[0]))
+
+    def meet(p1, p2, p3, p4):
+        d1 = (p2[0] - p1[0], p2[1] - p1[1])
+        d2 = (p4[0] - p3[0], p4[1] - p3[1])
+        den = cross(d1, d2)
+        if abs(den) < 1e-14:
+            return None
+        t = cross((p3[0] - p1[0], p3[1] - p1[1]), d2) / den
+        return (p1[0] + t * d1[0], p1[1] + t * d1[1])
+
+    best = math.inf
+    import itertools
+    for js in itertools.combinations(range(n + 1), 4):
+        for sides in itertools.product(("intrados", "extrados"), repeat=4):
+            h = [ends[s][j] for s, j in zip(sides, js)]
+            ib = meet(h[0], h[1], h[2], h[3])
+            if ib is None:
+                continue
+            # omega_A = 1; compatibility at H2 and H3 (collinear points: ratios along the line).
+            def ratio(p, c1, c2):   # (p - c1) = k (p - c2): k
+                d = (p[0] - c2[0], p[1] - c2[1])
+                dd = d[0] ** 2 + d[1] ** 2
+                return ((p[0] - c1[0]) * d[0] + (p[1] - c1[1]) * d[1]) / dd if dd > 1e-28 else None
+            k2 = ratio(h[1], h[0], ib)
+            if k2 is None:
+                continue
+            om = {"A": 1.0, "B": k2}
+            k3 = ratio(h[2], ib, h[3])
+            if k3 is None:
+                continue
+            om["C"] = om["B"] * k3
+            centre = {"A": h[0], "B": ib, "C": h[3]}
+
+            def seg(i):   # voussoir i: its segment or None (fixed)
+                if js[0] < i <= js[1]:
+                    return "A"
+                if js[1] < i <= js[2]:
+                    return "B"
+                if js[2] < i <= js[3]:
+                    return "C"
+                return None
+
+            def v_at(i, p):
+                s_ = seg(i)
+                return (0.0, 0.0) if s_ is None else vel(om[s_], centre[s_], p)
+
+            live = sum(f[0] * v_at(i, xy)[0] + f[1] * v_at(i, xy)[1] for xy, f, i in loads)
+            dead = sum(-weight[i - 1] * v_at(i, cents[i - 1])[1] for i in range(1, n + 1))
+            if abs(live) < 1e-12:
+                continue
+            sign = 1.0 if live > 0 else -1.0
+            # Each hinge joint opens at its other end: relative velocity along the normal
+            # from the left voussoir to the right one, n = (sin theta, -cos theta).
+            good = True
+            for s, j, hp in zip(sides, js, h):
+                q = ends[other[s]][j]
+                left, right = j, j + 1   # voussoirs on either side (0 and n + 1: the supports)
+                vl = v_at(left, q) if 1 <= left <= n else (0.0, 0.0)
+                vr = v_at(right, q) if 1 <= right <= n else (0.0, 0.0)
+                ang = math.atan2(q[1], q[0])
+                nrm = (math.sin(ang), -math.cos(ang))
+                opening = sign * ((vr[0] - vl[0]) * nrm[0] + (vr[1] - vl[1]) * nrm[1])
+                if opening <= 1e-12:
+                    good = False
+                    break
+            if good:
+                best = min(best, -dead / live)
+    return best
+
+
+def top_of_arch(a, x):
+    """The extrados at x: the chord between the extrados corners on either side."""
+    e = a["joint_extrados_xy_m"]
+    for (x0, y0), (x1, y1) in zip(e, e[1:]):
+        if min(x0, x1) <= x <= max(x0, x1):
+            return y0 + (x - x0) * (y1 - y0) / (x1 - x0)
+    return None
+
+
+def check_loaded_equilibrium(d, name, weight, lam):
+    """Every voussoir in equilibrium under the JSON's contact forces, its weight and
+    lambda times the live point loads of the JSON (forces recomputed from &load)."""
+    a = d["arch"]
+    worst = 0.0
+    scale = max(weight)
+    for i in range(1, a["n_voussoirs"] + 1):
+        poly = [a["joint_intrados_xy_m"][i - 1], a["joint_intrados_xy_m"][i], a["joint_extrados_xy_m"][i],
+                a["joint_extrados_xy_m"][i - 1]]
+        cx, cy = centroid(poly)
+        fx, fy, m = 0.0, -weight[i - 1], 0.0
+        for pl in d["point_loads"]:
+            if pl["block"] != i:
+                continue
+            gx, gy = lam * pl["force_n"][0], lam * pl["force_n"][1]
+            fx, fy = fx + gx, fy + gy
+            m += (pl["xy_m"][0] - cx) * gy - (pl["xy_m"][1] - cy) * gx
+        for f in d["contact_forces"]:
+            if i not in f["blocks"]:
+                continue
+            sign = 1.0 if f["blocks"][1] == i else -1.0
+            nx, ny = f["normal"]
+            tx, ty = -ny, nx
+            (x1, y1), (x2, y2) = f["ends_xy_m"]
+            for (px, py), (gx, gy) in (((x1, y1), (nx * f["normal_n"][0], ny * f["normal_n"][0])),
+                                       ((x2, y2), (nx * f["normal_n"][1], ny * f["normal_n"][1])),
+                                       (((x1 + x2) / 2, (y1 + y2) / 2), (tx * f["shear_n"], ty * f["shear_n"]))):
+                fx += sign * gx
+                fy += sign * gy
+                m += sign * ((px - cx) * gy - (py - cy) * gx)
+        worst = max(worst, abs(fx) / scale, abs(fy) / scale, abs(m) / (scale * a["r_ext_m"]))
+    check(worst < 1e-7, f"{name}: every voussoir in equilibrium with its weight, lambda x the point load "
+                        f"and the JSON's contact forces ({worst:.1e})")
+
+
+def arch_weights(a, density, width):
+    w = []
+    for i in range(1, a["n_voussoirs"] + 1):
+        poly = [a["joint_intrados_xy_m"][i - 1], a["joint_intrados_xy_m"][i], a["joint_extrados_xy_m"][i],
+                a["joint_extrados_xy_m"][i - 1]]
+        area = 0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1]))
+        w.append(density * width * 9.81 * area)
+    return w
+
+
 if case == "seed_156":
     d = load(nml)
     check_common(d, nml)
@@ -207,6 +352,25 @@ elif case == "polygon_block":
     check(close(sum(f["normal_n"]), w, rtol=1e-9), f"{nml}: the base carries the weight {w} N")
     rc, out, err = run(nml)
     check(rc == 0 and "do not apply" in out and "lambda 0.2" in out, f"{nml}: the table says what applies")
+    check(d["live_load"].startswith("horizontal acceleration") and d["point_loads"] == [] and
+          d["critical_position"] is None and d["load_factor_curve"] == [], f"{nml}: without &load, lambda g towards +x")
+    # The same block with a live point load P = 100 N towards +x at its top corner (-0.1, 1)
+    # and a dead Q = 200 N down at the top's middle: tips when lambda P h = (W + Q) b/2,
+    # lambda = (784.8 + 200) 0.1 / 100 = 0.9848 (sliding needs mu (W + Q) / P = 6.9).
+    with open(nml) as f:
+        text = f.read().replace("blocks/", os.path.dirname(os.path.abspath(nml)) + "/blocks/")
+    with open("block_point_load.nml", "w") as f:
+        f.write(text + "&load point_load_n = 100, 200, point_load_dir_deg = 0, -90, point_load_x_m = -0.1, 0.0,\n"
+                       "  point_load_y_m = 1.0, 1.0, point_load_live = .true., .false. /\n")
+    d = load("block_point_load.nml")
+    check(close(d["load_factor"], (w + 200.0) * 0.1 / 100.0, rtol=1e-9),
+          f"block with a point load: load_factor {d['load_factor']} = (W + Q) b / (2 P h) = {(w + 200.0) * 0.1 / 100.0}")
+    check(d["point_loads"] == [{"load": 1, "block": 1, "xy_m": [-0.1, 1.0], "force_n": [100.0, 0.0], "live": True},
+                               {"load": 2, "block": 1, "xy_m": [0.0, 1.0], "force_n": [0.0, -200.0], "live": False}],
+          f"block with a point load: the loads as placed ({d['point_loads']})")
+    rc, out, err = run("block_point_load.nml")
+    check(rc == 0 and "live load: lambda x the live point loads of &load (load 1: 100 N at 0 deg); dead: the weights "
+          "and 1 dead point load" in out, "block with a point load: the table names the live load")
 elif case == "wall_sliding":
     # input/wall_sliding.nml: a 3 x 3 wall, 0.6 m x 0.3 m, friction 0.3 < B/H = 2: it slides
     # at lambda = mu, associative or not.
@@ -215,6 +379,60 @@ elif case == "wall_sliding":
     check(close(d["load_factor"], 0.3, rtol=1e-9), f"{nml}: load_factor {d['load_factor']} = mu = 0.3")
     check(close(d["load_factor_nonassociative"], 0.3, rtol=1e-9), f"{nml}: non-associative = mu")
     check(any(m["mode"] == "sliding" for m in d["mechanism"]), f"{nml}: the mechanism slides")
+elif case == "arch_point_load":
+    # A semicircular arch (16 voussoirs, R_ext 1 m, t 0.15 m, friction 10: no sliding)
+    # under a vertical live point load of 1 kN on its extrados at quarter span (x = -0.5 m).
+    # Its load factor against the least four-hinge mechanism computed here by the work
+    # equation (arch_point_load_lambda); the static field of the JSON in equilibrium; both
+    # bounds equal; the point on the extrados chord.
+    arch = ("&arch embrace_deg = 180, n_voussoirs = 16, r_ext_m = 1.0, thickness_m = 0.15, width_m = 1.0,\n"
+            "  density_kg_m3 = 2000, friction = 10 /\n&limit minimum_thickness = .false. /\n")
+    with open("arch_point_load.nml", "w") as f:
+        f.write(arch + "&load point_load_n(1) = 1000, point_load_x_m(1) = -0.5, point_load_y_m(1) = 0.86 /\n")
+    d = load("arch_point_load.nml")
+    check(d["live_load"].startswith("lambda x the live point loads"), f"live_load says so: {d['live_load']}")
+    pl = d["point_loads"]
+    check(len(pl) == 1 and pl[0]["force_n"] == [0.0, -1000.0] and pl[0]["xy_m"] == [-0.5, 0.86],
+          f"one point load of 1 kN downwards at the point given ({pl})")
+    a = d["arch"]
+    w = arch_weights(a, 2000.0, 1.0)
+    lam = d["load_factor"]
+    check(close(d["load_factor_upper"], lam, rtol=1e-6), f"upper bound {d['load_factor_upper']} = lower bound {lam}")
+    expected = arch_point_load_lambda(a, w, [(pl[0]["xy_m"], (0.0, -1000.0), pl[0]["block"])])
+    check(close(lam, expected, rtol=1e-6), f"load factor {lam} = least four-hinge mechanism {expected} (work equation)")
+    check_loaded_equilibrium(d, "quarter-span load", w, lam)
+    # On the path: the live load on the top surface (the extrados chord), the curve
+    # symmetric about the crown, the critical position its least value.
+    with open("arch_point_load_path.nml", "w") as f:
+        f.write(arch + "&load point_load_n(1) = 1000, path_x0_m = -0.8, path_x1_m = 0.8, path_points = 17 /\n")
+    d = load("arch_point_load_path.nml")
+    curve = d["load_factor_curve"]
+    check(len(curve) == 17 and all(c["load_factor"] is not None for c in curve), f"17 positions with a load factor")
+    lf = [c["load_factor"] for c in curve]
+    check(all(close(lf[i], lf[-1 - i], rtol=1e-6) for i in range(17)), f"curve symmetric about the crown: {lf}")
+    cp = d["critical_position"]
+    first = next(c for c in curve if c["load_factor"] <= min(lf) * (1 + 1e-9))
+    check(first == cp and close(cp["load_factor"], d["load_factor"], rtol=1e-9),
+          f"critical position {cp} = the first least of the curve {first} (to 1e-9), and the load_factor reported")
+    x, y = d["point_loads"][0]["xy_m"]
+    check(close(x, cp["x_m"], atol=1e-12) and close(y, top_of_arch(d["arch"], x), atol=1e-9),
+          f"the live load at the critical x, on the extrados ({x}, {y})")
+    expected = arch_point_load_lambda(d["arch"], w, [((x, y), (0.0, -1000.0), d["point_loads"][0]["block"])])
+    check(close(d["load_factor"], expected, rtol=1e-6),
+          f"critical load factor {d['load_factor']} = least four-hinge mechanism {expected}")
+    check_loaded_equilibrium(d, "critical position", w, d["load_factor"])
+    # An axle group: 500 N at x = -0.6 m and again 0.4 m to its right, both on the extrados.
+    with open("arch_axles.nml", "w") as f:
+        f.write(arch + "&load point_load_n(1) = 500, point_load_x_m(1) = -0.6, axle_spacing_m(1) = 0.4 /\n")
+    d = load("arch_axles.nml")
+    pl = d["point_loads"]
+    check(len(pl) == 2 and [p["xy_m"][0] for p in pl] == [-0.6, -0.6 + 0.4] and
+          all(close(p["xy_m"][1], top_of_arch(d["arch"], p["xy_m"][0]), atol=1e-9) for p in pl),
+          f"axle group: two loads at x = -0.6 and -0.2 on the extrados ({pl})")
+    expected = arch_point_load_lambda(d["arch"], w, [(p["xy_m"], (0.0, -500.0), p["block"]) for p in pl])
+    check(close(d["load_factor"], expected, rtol=1e-6),
+          f"axle group: load factor {d['load_factor']} = least four-hinge mechanism {expected}")
+    check_loaded_equilibrium(d, "axle group", w, d["load_factor"])
 elif case == "bad_inputs":
     cases = [
         ("unknown_limit_variable", "&limit", "&arch /\n&limit minimum_thicknes = .false. /\n"),
