@@ -82,8 +82,17 @@ def test_threshold_sweep_file(threshold_sweep):
     assert sorted(res["job"]) == list(range(sweep.n_rows)) and sweep.n_rows == sweep.n_jobs
     assert sorted(res["frequency_hz"]) == pytest.approx(sorted(FREQUENCIES_HZ))
     finite = np.isfinite(res["threshold_m"])
-    assert np.allclose(res["peak_accel_m_s2"][finite],
+    assert np.allclose(res["full_cycle_accel_m_s2"][finite],
                        res["threshold_m"][finite] * (2 * np.pi * res["frequency_hz"][finite]) ** 2)
+    # The true peak of the 1-1-1 afd motion at the threshold: by second differences of the
+    # closed-form displacement x = A e(t) sin(2 pi f t) on a fine grid.
+    for thr, f, peak in zip(res["threshold_m"][finite], res["frequency_hz"][finite],
+                            res["peak_accel_m_s2"][finite]):
+        t = np.linspace(0.0, 3.0 / f, 600001)
+        e = np.where(t < 1.0 / f, np.sin(0.5 * np.pi * f * t) ** 2,
+                     np.where(t < 2.0 / f, 1.0, np.cos(0.5 * np.pi * (f * t - 2.0)) ** 2))
+        x = thr * e * np.sin(2 * np.pi * f * t)
+        assert peak == pytest.approx(np.abs(np.diff(x, 2)).max() / (t[1] - t[0]) ** 2, rel=1e-4)
     assert sweep.config["arch"]["embrace_deg"] == 156.0
 
 
@@ -100,6 +109,10 @@ def test_envelope_threshold_plots_the_results(threshold_sweep, seed_campaign, tm
     assert data.measured[0].thresholds[0].threshold_m == 0.046
     mm = [row[3] for row in data.table.rows]
     assert np.allclose(mm, 1e3 * curve.threshold_m, equal_nan=True)
+    # The right panel is the true peak of the motion (the file's column), not A (2 pi f)^2.
+    assert np.array_equal(curve.peak_accel_m_s2, sweep.results["peak_accel_m_s2"][order], equal_nan=True)
+    assert np.all(curve.peak_accel_m_s2[np.isfinite(curve.peak_accel_m_s2)]
+                  > 1.04 * curve.full_cycle_accel_m_s2[np.isfinite(curve.peak_accel_m_s2)])
 
 
 def test_csv_summary_beside_the_sweep(threshold_sweep):

@@ -8,6 +8,8 @@ import os
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from ..analysis.afd import afd_peak_accel_per_m
+
 __all__ = ["new_figure", "save_png", "MARKERS", "COLORS", "G_M_S2", "provenance", "add_g_axis", "run_caption",
            "arch_caption", "legend_pad", "NOTE_STRIP_PT"]
 
@@ -58,8 +60,10 @@ def run_caption(run, sep: str = ", ") -> str:
     wave = motion.get("waveform", "")
     if wave == "afd":
         f, a = float(motion.get("frequency_hz", math.nan)), float(motion.get("amplitude_m", math.nan))
-        peak = a * (2 * math.pi * f) ** 2
-        shake = f"sinusoid {f:g} Hz, A = {1e3 * a:g} mm (peak {peak:.2f} m/s² = {peak / G_M_S2:.3f} g)"
+        # The true peak of the commanded motion (its envelopes add to A (2 pi f)^2).
+        cycles = (int(motion.get(k, 1)) for k in ("n_attack", "n_full", "n_decay"))
+        peak = a * afd_peak_accel_per_m(f, *cycles)
+        shake = f"sinusoid {f:g} Hz, A = {1e3 * a:g} mm (peak acceleration {peak:.2f} m/s² = {peak / G_M_S2:.3f} g)"
     elif wave == "accelerogram":
         shake = (f"record {os.path.basename(str(motion.get('record_file', '')))} x "
                  f"{float(motion.get('record_scale', 1.0)):g}")

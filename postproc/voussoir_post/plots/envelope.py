@@ -1,7 +1,9 @@
 """Collapse envelopes of a sweep, with measured points of a campaign overlaid.
 
-Threshold mode: threshold amplitude [mm] and commanded peak acceleration [m/s²]
-against frequency [Hz], one curve per parameter set; points where the search met a
+Threshold mode: threshold amplitude [mm] and the peak table acceleration of the
+commanded motion at the threshold [m/s², g] (the true peak of the afd motion, about 1.05
+times the full-cycle A (2 pi f)^2, see :mod:`..analysis.afd`) against frequency [Hz],
+one curve per parameter set; points where the search met a
 stand above a collapse (non_monotonic) are ringed. Grid mode: stand/collapse map over
 (frequency, amplitude) per parameter set, with the envelope (smallest collapsing
 amplitude at each frequency).
@@ -16,6 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from matplotlib.lines import Line2D
 
+from ..analysis.afd import afd_peak_accel_per_m, full_cycle_accel_m_s2
 from ..errors import InputError
 from ..readers.campaign import Campaign, MeasuredThreshold, measured_thresholds
 from ..readers.results import SweepResult
@@ -26,10 +29,6 @@ __all__ = ["ThresholdCurve", "GridMap", "MeasuredOverlay", "EnvelopeData", "thre
            "grid_maps", "measured_overlays", "plot_envelope"]
 
 
-def _omega2(frequency_hz):
-    return (2.0 * np.pi * np.asarray(frequency_hz, dtype=float)) ** 2
-
-
 @dataclass
 class ThresholdCurve:
     """Threshold-mode results of one parameter set, sorted by frequency."""
@@ -38,7 +37,8 @@ class ThresholdCurve:
     label: str
     frequency_hz: np.ndarray
     threshold_m: np.ndarray  #: NaN where no collapse was found up to amp_max_m
-    peak_accel_m_s2: np.ndarray
+    peak_accel_m_s2: np.ndarray  #: true peak of the commanded afd motion at threshold_m
+    full_cycle_accel_m_s2: np.ndarray  #: A (2 pi f)^2 at threshold_m
     non_monotonic: np.ndarray  #: bool
     n_runs: np.ndarray
 
@@ -66,6 +66,10 @@ class MeasuredOverlay:
     collapsed: np.ndarray  #: bool
     peak_accel_m_s2: np.ndarray  #: measured peak acceleration (NaN when not given)
     thresholds: list[MeasuredThreshold]
+    #: true peak acceleration of each test's commanded motion per metre of amplitude
+    peak_per_m: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    #: the same for each threshold (its tests' cycles)
+    threshold_peak_per_m: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
 
 @dataclass
@@ -80,11 +84,22 @@ class EnvelopeData:
     table: ReportTable = field(default_factory=lambda: ReportTable([]))
 
 
+def _sweep_cycles(sweep: SweepResult) -> tuple[int, int, int]:
+    motion = sweep.config.get("motion", {})
+    return tuple(int(motion.get(k, 1)) for k in ("n_attack", "n_full", "n_decay"))
+
+
 def threshold_curves(sweep: SweepResult) -> list[ThresholdCurve]:
-    """One :class:`ThresholdCurve` per parameter set of a threshold-mode sweep."""
+    """One :class:`ThresholdCurve` per parameter set of a threshold-mode sweep. A file of
+    an older version has no peak column (its A (2 pi f)^2 is read as the full-cycle
+    acceleration): the peak is then computed from the threshold and the sweep's cycles."""
     if sweep.mode != "threshold":
         raise InputError(f"{sweep.path}: a '{sweep.mode}' sweep has no thresholds")
-    res = sweep.results
+    res = dict(sweep.results)
+    if "peak_accel_m_s2" not in res:
+        cycles = _sweep_cycles(sweep)
+        res["peak_accel_m_s2"] = res["threshold_m"] * np.array(
+            [afd_peak_accel_per_m(float(f), *cycles) for f in res["frequency_hz"]])
     curves = []
     for ps in range(sweep.n_sets):
         rows = np.nonzero(res["param_set"] == ps)[0]
@@ -95,6 +110,7 @@ def threshold_curves(sweep: SweepResult) -> list[ThresholdCurve]:
             frequency_hz=res["frequency_hz"][rows],
             threshold_m=res["threshold_m"][rows],
             peak_accel_m_s2=res["peak_accel_m_s2"][rows],
+            full_cycle_accel_m_s2=res["full_cycle_accel_m_s2"][rows],
             non_monotonic=res["non_monotonic"][rows].astype(bool),
             n_runs=res["n_runs"][rows],
         ))
@@ -126,6 +142,7 @@ def measured_overlays(campaign: Campaign, specimen_ids: list[str] | None = None)
         if sid not in campaign.specimens:
             raise InputError(f"{campaign.path}: no specimen '{sid}' (has: {', '.join(campaign.specimens)})")
         tests = [t for t in campaign.tests_of(sid) if t.frequency_hz is not None and t.amplitude_m is not None]
+        thresholds = measured_thresholds(campaign, sid)
         out.append(MeasuredOverlay(
             specimen_id=sid,
             frequency_hz=np.array([t.frequency_hz for t in tests], dtype=float),
@@ -133,9 +150,17 @@ def measured_overlays(campaign: Campaign, specimen_ids: list[str] | None = None)
             collapsed=np.array([t.collapsed for t in tests], dtype=bool),
             peak_accel_m_s2=np.array([math.nan if t.peak_accel_m_s2 is None else t.peak_accel_m_s2
                                       for t in tests], dtype=float),
-            thresholds=measured_thresholds(campaign, sid),
+            thresholds=thresholds,
+            peak_per_m=np.array([_test_peak_per_m(t) for t in tests], dtype=float),
+            threshold_peak_per_m=np.array([_test_peak_per_m(campaign.tests[m.test_ids[0]]) for m in thresholds],
+                                          dtype=float),
         ))
     return out
+
+
+def _test_peak_per_m(test) -> float:
+    """True peak acceleration per metre of a test's commanded afd motion."""
+    return afd_peak_accel_per_m(float(test.frequency_hz), test.n_attack, test.n_full, test.n_decay)
 
 
 def _draw_measured(ax, overlays: list[MeasuredOverlay], accel: bool = False) -> None:
@@ -143,17 +168,17 @@ def _draw_measured(ax, overlays: list[MeasuredOverlay], accel: bool = False) -> 
     edge), one marker per specimen."""
     for k, ov in enumerate(overlays):
         marker = MARKERS[k % len(MARKERS)]
-        scale = _omega2(ov.frequency_hz) if accel else 1e3
+        scale = ov.peak_per_m if accel else 1e3
         y = ov.amplitude_m * scale
         c, s = ov.collapsed, ~ov.collapsed
         ax.plot(ov.frequency_hz[c], y[c], marker, color="black", markersize=6, linestyle="none")
         ax.plot(ov.frequency_hz[s], y[s], marker, color="black", markerfacecolor="none", markersize=6,
                 linestyle="none")
-        th = [m for m in ov.thresholds if m.has_collapse]
+        th = [(m, per_m) for m, per_m in zip(ov.thresholds, ov.threshold_peak_per_m) if m.has_collapse]
         if th:
-            f = np.array([m.frequency_hz for m in th])
-            a = np.array([m.threshold_m for m in th])
-            y = a * (_omega2(f) if accel else 1e3)
+            f = np.array([m.frequency_hz for m, _ in th])
+            a = np.array([m.threshold_m for m, _ in th])
+            y = a * (np.array([per_m for _, per_m in th]) if accel else 1e3)
             ax.plot(f, y, marker, color="gold", markeredgecolor="black", markersize=10, linestyle="none",
                     zorder=5)
         if accel and np.any(np.isfinite(ov.peak_accel_m_s2)):
@@ -207,9 +232,9 @@ def _plot_threshold(sweep: SweepResult, overlays, out_png) -> EnvelopeData:
     ax_a.set_ylabel("threshold amplitude [mm]")
     ax_a.set_title("Collapse threshold (commanded displacement amplitude)", fontsize=10)
     ax_g.set_xlabel("frequency [Hz]")
-    ax_g.set_ylabel("peak acceleration [m/s²]")
-    add_g_axis(ax_g)
-    ax_g.set_title("Commanded peak acceleration A(2πf)² at threshold", fontsize=10)
+    ax_g.set_ylabel("peak table acceleration [m/s²]")
+    add_g_axis(ax_g, "peak table acceleration [g]")
+    ax_g.set_title("Peak acceleration of the commanded motion at threshold", fontsize=10)
     for ax in (ax_a, ax_g):
         ax.grid(True, alpha=0.3)
         ax.set_ylim(bottom=0)
@@ -219,11 +244,12 @@ def _plot_threshold(sweep: SweepResult, overlays, out_png) -> EnvelopeData:
                  fontsize=11)
     rows = []
     for cv in curves:
-        for f, a, g, nm, n in zip(cv.frequency_hz, cv.threshold_m, cv.peak_accel_m_s2, cv.non_monotonic,
-                                  cv.n_runs):
-            rows.append((cv.param_set, cv.label, float(f), 1e3 * float(a), float(g), bool(nm), int(n)))
+        for f, a, g, fc, nm, n in zip(cv.frequency_hz, cv.threshold_m, cv.peak_accel_m_s2, cv.full_cycle_accel_m_s2,
+                                      cv.non_monotonic, cv.n_runs):
+            rows.append((cv.param_set, cv.label, float(f), 1e3 * float(a), float(g), float(fc), bool(nm), int(n)))
     table = ReportTable(["param_set", "parameters", "frequency_hz", "threshold_mm", "peak_accel_m_s2",
-                         "non_monotonic", "n_runs"], rows, title=f"Thresholds of {sweep.path}")
+                         "full_cycle_accel_m_s2", "non_monotonic", "n_runs"], rows,
+                        title=f"Thresholds of {sweep.path}")
     return EnvelopeData("threshold", curves=curves, measured=overlays,
                         png_path=save_png(fig, out_png, note=_note(sweep)), table=table)
 
@@ -253,13 +279,15 @@ def _plot_grid(sweep: SweepResult, overlays, out_png) -> EnvelopeData:
     fig.suptitle(f"Stand or collapse under sinusoidal shaking, frequency by amplitude: "
                  f"{arch_caption(sweep.config.get('arch', {}))}", fontsize=11)
     rows = []
+    cycles = _sweep_cycles(sweep)
     for gm in maps:
         for f, a in zip(gm.envelope_frequency_hz, gm.envelope_amplitude_m):
             sel = gm.frequency_hz == f
             rows.append((gm.param_set, gm.label, float(f), int(sel.sum()), int(gm.collapsed[sel].sum()),
-                         1e3 * float(a), float(a * _omega2(f))))
+                         1e3 * float(a), float(a * afd_peak_accel_per_m(float(f), *cycles)),
+                         float(full_cycle_accel_m_s2(a, f))))
     table = ReportTable(["param_set", "parameters", "frequency_hz", "n_runs", "n_collapse", "envelope_mm",
-                         "envelope_accel_m_s2"], rows, title=f"Grid envelope of {sweep.path}")
+                         "envelope_peak_accel_m_s2", "envelope_full_cycle_accel_m_s2"], rows, title=f"Grid envelope of {sweep.path}")
     return EnvelopeData("grid", maps=maps, measured=overlays, png_path=save_png(fig, out_png, note=_note(sweep)),
                         table=table)
 
