@@ -245,3 +245,42 @@ def test_run_that_stands(voussoir_run_exe, tmp_path):
     data = plot_sequence(run, tmp_path / "s.png", n_frames=4)
     assert data.frames[-1].time_s == pytest.approx(run.time_s[-1])
     assert all(f.open_joints == [] for f in data.frames)
+
+
+def test_sequence_true_scale_by_default_and_exaggeration_said(run_file, tmp_path, drawn_figures):
+    run = read_run(run_file)
+    plot_sequence(run, tmp_path / "true.png", n_frames=3)
+    plot_sequence(run, tmp_path / "x5.png", n_frames=3, amplify=5.0)
+    true_fig, x5_fig = drawn_figures
+    assert "true scale" in true_fig._suptitle.get_text() and "exaggerated" not in true_fig._suptitle.get_text()
+    assert "exaggerated x5" in x5_fig._suptitle.get_text()
+    assert all("x5" not in ax.get_title() for ax in true_fig.axes)
+
+
+def test_sequence_colours_hinges_by_side(run_file, tmp_path, drawn_figures):
+    """A hinge on the intrados, one on the extrados and a separated joint have one colour
+    each, the colours of the legend; red (the collapse's) marks none of them."""
+    run = read_run(run_file)
+    data = plot_sequence(run, tmp_path / "seq.png", n_frames=6)
+    (fig,) = drawn_figures
+    legend = {t.get_text().split(":")[0]: h.get_color() for t, h in
+              zip(fig.legends[0].get_texts(), fig.legends[0].legend_handles)}
+    colours = {"intrados": legend["hinge (i)"], "extrados": legend["hinge (e)"],
+               "separated": legend["separated joint (s)"]}
+    assert len(set(colours.values())) == 3 and "tab:red" not in colours.values()
+    seen = 0
+    for ax, frame in zip(fig.axes, data.frames):
+        marks = [line for line in ax.get_lines() if line.get_marker() == "o" and len(line.get_xdata())]
+        assert len(marks) == len(frame.open_joints)
+        for line, state in zip(marks, frame.open_joints):
+            assert line.get_color() == colours[state.state]
+            seen += 1
+    assert seen > 0
+
+
+@pytest.mark.parametrize("n_frames", [1, 2, 6])
+def test_sequence_text_neither_overlaps_nor_is_cut(run_file, tmp_path, drawn_figures, n_frames):
+    from figure_text import text_clashes
+
+    plot_sequence(read_run(run_file), tmp_path / "seq.png", n_frames=n_frames, amplify=5.0)
+    assert text_clashes(drawn_figures[0]) == []

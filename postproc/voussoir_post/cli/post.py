@@ -246,8 +246,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--n-frames", type=int, default=6, metavar="N",
                    help="frames evenly spread up to the collapse time + 15%% or the end (default 6)")
     p.add_argument("--amplify", type=float, default=1.0, metavar="K",
-                   help="multiply displacements and rotations relative to the table-carried "
-                        "reference by K (default 1)")
+                   help="exaggerate displacements and rotations relative to the table-carried "
+                        "reference K times until the collapse (default 1: true scale; the title says K)")
     p.add_argument("--open-tol-mm", type=float, metavar="MM",
                    help="joint opening counted as open [mm] (default: the run's &output hinge_gap_m, "
                         "else 1%% of the ring thickness)")

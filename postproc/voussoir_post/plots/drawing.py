@@ -11,13 +11,19 @@ from matplotlib.figure import Figure
 from ..analysis.afd import afd_peak_accel_per_m
 
 __all__ = ["new_figure", "save_png", "MARKERS", "COLORS", "G_M_S2", "provenance", "add_g_axis", "run_caption",
-           "arch_caption", "legend_pad", "NOTE_STRIP_PT"]
+           "arch_caption", "legend_pad", "NOTE_STRIP_PT", "HINGE_COLOURS", "COLLAPSE_COLOUR", "wrap_text"]
 
 #: Standard gravity [m/s2] for accelerations read in g (the kernel's value).
 G_M_S2 = 9.81
 
 #: Marker style per specimen or parameter set, in order.
 MARKERS = ("o", "s", "^", "D", "v", "P", "X", "<", ">", "h")
+#: What a colour means in every figure of a structure (sequence, mechanism): a hinge
+#: pivoting on the intrados green, on the extrados blue, a separated or sliding joint
+#: purple. Red is kept for the collapse (its time, collapsing runs).
+HINGE_COLOURS = {"intrados": "tab:green", "extrados": "tab:blue", "separated": "tab:purple"}
+COLLAPSE_COLOUR = "tab:red"
+
 #: Colour cycle (matplotlib's tab10).
 COLORS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown",
           "tab:pink", "tab:gray", "tab:olive", "tab:cyan")
@@ -28,6 +34,14 @@ def new_figure(width_in: float, height_in: float) -> Figure:
     fig = Figure(figsize=(width_in, height_in), layout="constrained")
     FigureCanvasAgg(fig)
     return fig
+
+
+def wrap_text(text: str, width_in: float, fontsize: float) -> str:
+    """``text`` broken into lines that fit ``width_in`` inches at ``fontsize`` points
+    (a character taken as 0.52 em: DejaVu Sans averages about 0.5 on prose)."""
+    import textwrap
+    chars = max(20, int(width_in * 72.0 / (0.52 * fontsize)))
+    return "\n".join(textwrap.wrap(text, chars, break_on_hyphens=False)) if len(text) > chars else text
 
 
 def provenance(code_version: str, *sources: str) -> str:
