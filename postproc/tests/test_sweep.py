@@ -153,3 +153,39 @@ def test_envelope_grid(grid_sweep, tmp_path):
         expected = res["amplitude_m"][sel].min() if sel.any() else math.nan
         assert env == expected or (math.isnan(env) and math.isnan(expected))
     assert len(gm.amplitude_m) == sweep.n_rows
+
+
+def test_envelope_figure_reads_for_a_report(threshold_sweep, seed_campaign, voussoir_limit_exe, tmp_path,
+                                            drawn_figures):
+    """Log frequency axis; the static capacity of voussoir-limit's JSON drawn where it is;
+    the measured test drawn over (not under) the threshold marker; the right axis in g;
+    no text box over another."""
+    from conftest import run_executable
+    from figure_text import text_clashes
+    from voussoir_post.readers.results import read_limit_json
+
+    limit_nml = tmp_path / "limit.nml"
+    limit_nml.write_text(SWEEP_NML.split("&motion")[0])
+    proc = run_executable([voussoir_limit_exe, limit_nml, "--json"], tmp_path)
+    (tmp_path / "limit.json").write_text(proc.stdout)
+    limit = read_limit_json(tmp_path / "limit.json")
+    capacity = min(limit.lambda_pos, limit.lambda_neg) * limit.g_m_s2
+    assert post.main(["envelope", str(threshold_sweep), "--campaign", str(seed_campaign), "--specimen", "A156",
+                      "--limit", str(tmp_path / "limit.json"), "--out", str(tmp_path)]) == 0
+    (fig,) = drawn_figures
+    ax_a, ax_g = [ax for ax in fig.axes if ax.get_xlabel()]
+    assert ax_a.get_xscale() == "log" and ax_g.get_xscale() == "log"
+    dashed = [line for line in ax_g.get_lines() if line.get_linestyle() == "--"]
+    assert len(dashed) == 1 and np.allclose(dashed[0].get_ydata(), capacity)
+    legend = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert any(f"{capacity:.2f} m/s²" in t and f"{capacity / 9.81:.3f} g" in t for t in legend)
+    (right,) = ax_g.child_axes
+    assert "[g]" in right.get_ylabel() and "[m/s²]" in ax_g.get_ylabel()
+    for ax in (ax_a, ax_g):  # the 46 mm test is drawn above the gold threshold and smaller
+        gold = [ln for ln in ax.get_lines() if ln.get_color() == "gold"]
+        tests = [ln for ln in ax.get_lines() if ln.get_color() == "black" and len(ln.get_xdata())
+                 and ln.get_marker() == "o" and ln.get_linestyle() == "None"]
+        assert gold and tests
+        assert all(t.get_zorder() > g.get_zorder() and t.get_markersize() < g.get_markersize()
+                   for t in tests for g in gold)
+    assert text_clashes(fig) == []
