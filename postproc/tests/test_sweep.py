@@ -17,7 +17,7 @@ import pytest
 from conftest import run_executable
 from voussoir_post.cli import post
 from voussoir_post.readers.campaign import read_campaign
-from voussoir_post.plots.compare import compare_thresholds, match_specimens, plot_compare
+from voussoir_post.plots.compare import compare_thresholds, match_specimens, mean_error_lines, plot_compare
 from voussoir_post.plots.envelope import plot_envelope
 from voussoir_post.readers.results import read_sweep
 
@@ -189,3 +189,54 @@ def test_envelope_figure_reads_for_a_report(threshold_sweep, seed_campaign, vous
         assert all(t.get_zorder() > g.get_zorder() and t.get_markersize() < g.get_markersize()
                    for t in tests for g in gold)
     assert text_clashes(fig) == []
+
+
+def test_parameters_in_words():
+    from voussoir_post.plots.drawing import parameters_in_words
+
+    assert parameters_in_words({"embrace_deg": 156.0, "n_voussoirs": 13.0}) == "156°, 13 voussoirs"
+    assert parameters_in_words({"arch.thickness_m": 0.065, "friction": 0.45}) == "t = 65 mm, friction 0.45"
+
+
+def _measured_marks(ax):
+    arrows = [a for a in ax.texts if getattr(a, "arrow_patch", None) is not None]
+    bars = [c for c in ax.containers if type(c).__name__ == "ErrorbarContainer" and len(c.lines[0].get_xdata())]
+    return arrows, bars
+
+
+def test_compare_draws_a_bracket_open_below_as_a_one_sided_bound(threshold_sweep, seed_campaign, tmp_path,
+                                                                  drawn_figures):
+    """The seed's A156 bracket is open below (no test stood below 46 mm): an arrow down
+    from 46 mm, no error bar, its error marked as a lower bound; with a stand at 40 mm
+    added, a closed bracket 40-46 mm about its 43 mm midpoint, no arrow."""
+    from figure_text import text_clashes
+
+    sweep = read_sweep(threshold_sweep)
+    data = plot_compare(sweep, read_campaign(seed_campaign), tmp_path / "open.png")
+    (fig,) = drawn_figures
+    ax_a, ax_e = fig.axes
+    arrows, bars = _measured_marks(ax_a)
+    assert bars == [] and len(arrows) == 1
+    (arrow,) = arrows
+    assert arrow.xyann[1] == pytest.approx(46.0) and arrow.xy[1] < 46.0  # from the first collapse, down
+    assert any(t.get_text().startswith("≥ ") for t in ax_e.texts)
+    err_label, bound_label = [t.get_text() for t in ax_e.get_legend().get_texts()]
+    assert "lower bound" in bound_label
+    assert "(one pair)" in err_label and "mean" not in err_label
+    assert "embrace_deg" not in " ".join(t.get_text() for t in ax_a.get_legend().get_texts())
+    assert text_clashes(fig) == []
+    assert "over 1 pair" in mean_error_lines(data, sweep)[0]
+
+    closed = tmp_path / "campaign"
+    shutil.copytree(seed_campaign, closed)
+    with open(closed / "tests.csv", "a") as f:
+        f.write("A156_f1.25_stand,A156,afd,1.25,0.040,1,1,1,stand,\n")
+    data = plot_compare(sweep, read_campaign(closed), tmp_path / "closed.png")
+    ax_a, ax_e = drawn_figures[1].axes
+    arrows, bars = _measured_marks(ax_a)
+    assert arrows == [] and len(bars) == 1
+    (bar,) = bars
+    low, high = sorted(seg[:, 1].tolist() for seg in bar.lines[2][0].get_segments())[0]
+    assert (low, high) == pytest.approx((40.0, 46.0))
+    assert not any(t.get_text().startswith("≥") for t in ax_e.texts)
+    assert text_clashes(drawn_figures[1]) == []

@@ -11,7 +11,8 @@ from matplotlib.figure import Figure
 from ..analysis.afd import afd_peak_accel_per_m
 
 __all__ = ["new_figure", "save_png", "MARKERS", "COLORS", "G_M_S2", "provenance", "add_g_axis", "run_caption",
-           "arch_caption", "legend_pad", "NOTE_STRIP_PT", "HINGE_COLOURS", "COLLAPSE_COLOUR", "wrap_text"]
+           "arch_caption", "legend_pad", "NOTE_STRIP_PT", "HINGE_COLOURS", "COLLAPSE_COLOUR", "wrap_text",
+           "parameters_in_words"]
 
 #: Standard gravity [m/s2] for accelerations read in g (the kernel's value).
 G_M_S2 = 9.81
@@ -24,8 +25,8 @@ MARKERS = ("o", "s", "^", "D", "v", "P", "X", "<", ">", "h")
 HINGE_COLOURS = {"intrados": "tab:green", "extrados": "tab:blue", "separated": "tab:purple"}
 COLLAPSE_COLOUR = "tab:red"
 
-#: Colour cycle (matplotlib's tab10).
-COLORS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown",
+#: Colour cycle of data series (matplotlib's tab10 without red, which is the collapse's).
+COLORS = ("tab:blue", "tab:orange", "tab:green", "tab:purple", "tab:brown",
           "tab:pink", "tab:gray", "tab:olive", "tab:cyan")
 
 
@@ -42,6 +43,30 @@ def wrap_text(text: str, width_in: float, fontsize: float) -> str:
     import textwrap
     chars = max(20, int(width_in * 72.0 / (0.52 * fontsize)))
     return "\n".join(textwrap.wrap(text, chars, break_on_hyphens=False)) if len(text) > chars else text
+
+
+_PARAMETER_WORDS = {
+    "embrace_deg": lambda v: f"{v:g}°",
+    "n_voussoirs": lambda v: f"{int(round(v))} voussoirs",
+    "thickness_m": lambda v: f"t = {1e3 * v:g} mm",
+    "r_ext_m": lambda v: f"R_ext = {1e3 * v:g} mm",
+    "width_m": lambda v: f"width {1e3 * v:g} mm",
+    "friction": lambda v: f"friction {v:g}",
+    "contact_inset_m": lambda v: f"contact inset {1e3 * v:g} mm",
+    "density_kg_m3": lambda v: f"density {v:g} kg/m³",
+    "size_imperfection": lambda v: f"size imperfection {v:g}",
+}
+
+
+def parameters_in_words(parameters: dict) -> str:
+    """A parameter set in words ('156°, 13 voussoirs', 't = 65 mm, friction 0.45'),
+    the names a sweep swept (with or without their group) turned into engineering text."""
+    words = []
+    for name, value in parameters.items():
+        key = name.replace("%", ".").split(".")[-1].strip().lower()
+        say = _PARAMETER_WORDS.get(key)
+        words.append(say(float(value)) if say else f"{key} = {float(value):.6g}")
+    return ", ".join(words)
 
 
 def provenance(code_version: str, *sources: str) -> str:
