@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import functools
 import math
 import os
+import subprocess
 
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
@@ -12,7 +14,7 @@ from ..analysis.afd import afd_peak_accel_per_m
 
 __all__ = ["new_figure", "save_png", "MARKERS", "COLORS", "G_M_S2", "provenance", "add_g_axis", "run_caption",
            "arch_caption", "legend_pad", "NOTE_STRIP_PT", "HINGE_COLOURS", "COLLAPSE_COLOUR", "wrap_text",
-           "parameters_in_words"]
+           "parameters_in_words", "drawing_tree", "PNG_COMMIT_KEY", "PNG_TREE_KEY", "png_provenance"]
 
 #: Standard gravity [m/s2] for accelerations read in g (the kernel's value).
 G_M_S2 = 9.81
@@ -121,10 +123,49 @@ def legend_pad(fontsize: float) -> float:
     return 0.5 + NOTE_STRIP_PT / fontsize
 
 
+#: PNG text keys of every figure: the commit of the code that drew it, and whether that
+#: code's tree had changes ("clean" or "modified"); read back by :func:`png_provenance`.
+PNG_COMMIT_KEY = "Voussoir drawing commit"
+PNG_TREE_KEY = "Voussoir drawing tree"
+
+
+@functools.lru_cache(maxsize=1)
+def drawing_tree() -> tuple[str, str]:
+    """(commit, 'clean' | 'modified') of the git tree this package runs from (tracked
+    files only), or ('unknown', 'unknown') outside a git checkout."""
+    here = os.path.dirname(os.path.abspath(__file__))
+
+    def git(*args: str) -> str | None:
+        try:
+            proc = subprocess.run(["git", "-C", here, *args], capture_output=True, text=True, timeout=30)
+        except (OSError, subprocess.SubprocessError):
+            return None
+        return proc.stdout.strip() if proc.returncode == 0 else None
+
+    commit = git("rev-parse", "HEAD")
+    status = git("status", "--porcelain", "--untracked-files=no")
+    if not commit or status is None:
+        return "unknown", "unknown"
+    return commit, "modified" if status else "clean"
+
+
+def png_provenance(path: str | os.PathLike) -> dict[str, str]:
+    """The drawing commit and tree that :func:`save_png` wrote into a PNG ({} if none)."""
+    from PIL import Image
+
+    with Image.open(path) as im:
+        text = dict(getattr(im, "text", {}) or {})
+    return {k: text[k] for k in (PNG_COMMIT_KEY, PNG_TREE_KEY) if k in text}
+
+
 def save_png(fig: Figure, path: str | os.PathLike, dpi: int = 120, note: str | None = None) -> str:
     """Save ``fig`` as PNG at ``path`` (parent folders created); returns the path.
-    ``note`` (see :func:`provenance`) is printed small in the bottom right corner."""
+    ``note`` (see :func:`provenance`) is printed small in the bottom right corner,
+    followed by the commit of the code that drew the figure ('+modified' when its tree
+    had changes), which the PNG's text chunks also record (:func:`png_provenance`)."""
+    commit, tree = drawing_tree()
     if note:
+        note += f" | drawn by {commit[:10]}" + ("" if tree == "clean" else f" ({tree} tree)")
         # A strip of its own at the bottom, so that the note never overlaps an axis label.
         engine = fig.get_layout_engine()
         if engine is not None and hasattr(engine, "set") and "rect" in engine.get():
@@ -134,5 +175,5 @@ def save_png(fig: Figure, path: str | os.PathLike, dpi: int = 120, note: str | N
     path = os.fspath(path)
     parent = os.path.dirname(os.path.abspath(path))
     os.makedirs(parent, exist_ok=True)
-    fig.savefig(path, dpi=dpi, format="png")
+    fig.savefig(path, dpi=dpi, format="png", metadata={PNG_COMMIT_KEY: commit, PNG_TREE_KEY: tree})
     return path
