@@ -142,9 +142,13 @@ def test_compare_matches_a156_by_geometry(threshold_sweep, seed_campaign, tmp_pa
     assert "A156" in capsys.readouterr().out
 
 
-def test_envelope_grid(grid_sweep, tmp_path):
+def test_envelope_grid(grid_sweep, seed_campaign, tmp_path, drawn_figures):
+    from figure_text import text_clashes
+
     sweep = read_sweep(grid_sweep)
     assert sweep.mode == "grid"
+    plot_envelope(sweep, tmp_path / "grid_measured.png", read_campaign(seed_campaign), ["A156"])
+    assert text_clashes(drawn_figures[0]) == []
     data = plot_envelope(sweep, tmp_path / "grid.png")
     (gm,) = data.maps
     res = sweep.results

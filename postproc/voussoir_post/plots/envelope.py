@@ -24,7 +24,7 @@ from ..readers.campaign import Campaign, MeasuredThreshold, measured_thresholds
 from ..readers.results import SweepResult
 from ..tables import ReportTable
 from .drawing import (COLLAPSE_COLOUR, COLORS, G_M_S2, MARKERS, add_g_axis, arch_caption, legend_pad, new_figure,
-                      provenance, save_png)
+                      provenance, save_png, wrap_text)
 
 __all__ = ["ThresholdCurve", "GridMap", "MeasuredOverlay", "EnvelopeData", "threshold_curves",
            "grid_maps", "measured_overlays", "plot_envelope"]
@@ -220,6 +220,8 @@ def _frequency_axis(ax, frequencies_hz) -> None:
     lo, hi = f.min() / 1.12, f.max() * 1.12
     ax.set_xlim(lo, hi)
     ticks = [t for t in (0.1, 0.2, 0.25, 0.5, 0.75, 1, 1.5, 2, 3, 4, 5, 6, 8, 10, 15, 20, 30, 50) if lo <= t <= hi]
+    if len(ticks) < 3:  # a narrow band: tick the frequencies themselves
+        ticks = sorted(set(float(v) for v in f))[:8]
     ax.set_xticks(ticks, [f"{t:g}" for t in ticks])
     ax.set_xticks([], minor=True)
 
@@ -297,7 +299,7 @@ def _plot_grid(sweep: SweepResult, overlays, out_png) -> EnvelopeData:
     maps = grid_maps(sweep)
     ncols = min(len(maps), 3)
     nrows = math.ceil(len(maps) / ncols)
-    fig = new_figure(5.5 * ncols, 4.6 * nrows)
+    fig = new_figure(5.5 * ncols + 2.6, 4.6 * nrows)
     axes = np.atleast_1d(fig.subplots(nrows, ncols, squeeze=False)).reshape(-1)
     for ax, gm in zip(axes, maps):
         c = gm.collapsed
@@ -313,11 +315,11 @@ def _plot_grid(sweep: SweepResult, overlays, out_png) -> EnvelopeData:
         ax.set_title(gm.label, fontsize=10)
         ax.grid(True, alpha=0.3)
         ax.legend(handles=ax.get_legend_handles_labels()[0] + _measured_legend(overlays), fontsize=7,
-                  loc="upper right")
+                  loc="upper left", bbox_to_anchor=(1.01, 1.0))  # beside the map, over no run
     for ax in axes[len(maps):]:
         ax.set_visible(False)
-    fig.suptitle(f"Stand or collapse under sinusoidal shaking, frequency by amplitude: "
-                 f"{arch_caption(sweep.config.get('arch', {}))}", fontsize=11)
+    fig.suptitle(wrap_text(f"Stand or collapse under sinusoidal shaking, frequency by amplitude: "
+                           f"{arch_caption(sweep.config.get('arch', {}))}", fig.get_figwidth() - 0.3, 11), fontsize=11)
     rows = []
     cycles = _sweep_cycles(sweep)
     for gm in maps:
