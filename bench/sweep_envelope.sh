@@ -55,5 +55,5 @@ printf 'without MPI start-up (the sweep'"'"'s own clock): %.2f s and %.2f s, eff
   "${inner[1]}" "${inner[2]}" "$eff_inner"
 printf 'simulations share of the ranks time: %s %% on 1 rank, %s %% on 2 ranks\n' "${busy[1]}" "${busy[2]}"
 echo
-echo "thresholds (frequency_hz, threshold_m, peak_accel_m_s2, non_monotonic):"
+echo "thresholds (frequency_hz, threshold_m, peak_accel_m_s2, full_cycle_accel_m_s2, non_monotonic, failed):"
 cut -d, -f2- envelope.csv | column -t -s,

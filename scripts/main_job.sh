@@ -48,10 +48,10 @@ echo "== 4. The four seed arches at the frequencies of their tests (2 MPI ranks)
 
 echo "== 5. Figures"
 "$post" history results/seed_156_A66mm.h5 --out results/ >/dev/null
-"$post" sequence results/seed_156_A66mm.h5 --amplify 5 --out results/ >/dev/null
+"$post" sequence results/seed_156_A66mm.h5 --out results/ >/dev/null
 "$post" xdmf results/seed_156_A66mm.h5 >/dev/null
 "$post" mechanism results/limit_seed_156.json --out results/ >/dev/null
-"$post" envelope results/sweep_envelope_156.h5 --campaign "$seed" --specimen A156 --out results/ >/dev/null
+"$post" envelope results/sweep_envelope_156.h5 --campaign "$seed" --specimen A156 --limit results/limit_seed_156.json --out results/ >/dev/null
 "$post" compare results/sweep_seed_tests.h5 "$seed" --out results/ | sed 's/^/   /'
 
 echo "== 6. Fragility of the 156-degree arch under the record suite (IDA, 2 MPI ranks)"
@@ -99,12 +99,12 @@ missing=()  # files the job should have made and did not
   describe seed_156_A46mm.h5 "run at 1.25 Hz, 46 mm (the amplitude that brought the real arch down): the model stands"
   describe seed_156_A66mm.h5 "run at 1.25 Hz, 66 mm (where the paper's LMGC90 fell): the model collapses"
   describe seed_156_A66mm_history.png "that run against time: table motion (acceleration in m/s2 and g), crown, NLGS iterations, contacts"
-  describe seed_156_A66mm_sequence.png "its collapse sequence: hinges (red, i/e) and separated joints (purple), x5 until the collapse"
+  describe seed_156_A66mm_sequence.png "its collapse sequence at true scale: hinges on the intrados (green, i) and on the extrados (blue, e), separated joints (purple)"
   describe seed_156_A66mm.xmf "the same run for ParaView (XDMF; its data in seed_156_A66mm.vtk.h5)"
   describe limit_seed_156.json "limit analysis: static capacity (in g), hinges, line of thrust, minimum thickness"
   describe limit_seed_156_mechanism.png "the two static mechanisms with their lines of thrust"
   describe sweep_envelope_156.h5 "collapse thresholds from 0.5 to 4 Hz (MPI sweep); CSV beside it"
-  describe sweep_envelope_156_envelope.png "the collapse envelope against the table test (amplitude; acceleration in m/s2 and g)"
+  describe sweep_envelope_156_envelope.png "the collapse envelope against the table test (amplitude; peak acceleration of the commanded motion in m/s2 and g; the static capacity of the limit analysis)"
   describe sweep_seed_tests.h5 "the four seed arches at the frequencies of their tests"
   describe sweep_seed_tests_compare.png "simulated against measured thresholds, and the relative errors"
   describe ida_156.h5 "incremental dynamic analysis under the eight PEER records (CSV beside it)"

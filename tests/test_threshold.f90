@@ -86,7 +86,7 @@ program test_threshold
                     rtol=1.0e-12_dp)
   call assert_true(n <= 14, 'monotone: at most 14 runs')
   call assert_true(r%n_runs == n, 'monotone: n_runs counts the runs')
-  call assert_close(r%peak_accel_m_s2, r%threshold_m*(2.0_dp*pi*1.25_dp)**2, 'peak_accel = A (2 pi f)^2', &
+  call assert_close(r%full_cycle_accel_m_s2, r%threshold_m*(2.0_dp*pi*1.25_dp)**2, 'full_cycle_accel = A (2 pi f)^2', &
                     rtol=1.0e-12_dp)
   write (*, '(a,i0,a,f0.3,a)') '      ', n, ' runs, threshold ', 1.0e3_dp*r%threshold_m, ' mm'
 

@@ -527,7 +527,7 @@ contains
     if (broken) then
       nan = ieee_value(1.0_dp, ieee_quiet_nan)
       r%threshold_m = nan
-      r%peak_accel_m_s2 = nan
+      r%full_cycle_accel_m_s2 = nan
       r%stand_below_m = nan
       r%n_runs = r%n_runs + 1
     end if

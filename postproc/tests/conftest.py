@@ -137,3 +137,25 @@ def seed_campaign() -> Path:
     if not (SEED_CAMPAIGN / "tests.csv").is_file():
         pytest.fail(f"seed campaign not found at {SEED_CAMPAIGN}")
     return SEED_CAMPAIGN
+
+
+@pytest.fixture
+def drawn_figures(monkeypatch) -> list:
+    """Every figure the plot modules make during a test (their ``new_figure`` recorded),
+    to look at after the PNG is written (e.g. its text boxes)."""
+    import importlib
+
+    from voussoir_post.plots import drawing
+
+    figures = []
+
+    def recording(*args, **kwargs):
+        fig = drawing.new_figure(*args, **kwargs)
+        figures.append(fig)
+        return fig
+
+    for name in ("sequence", "envelope", "compare", "history", "mechanism", "fragility_plot", "fragility_compare"):
+        module = importlib.import_module(f"voussoir_post.plots.{name}")
+        if hasattr(module, "new_figure"):
+            monkeypatch.setattr(module, "new_figure", recording)
+    return figures

@@ -42,10 +42,13 @@ def area_centroid(xy):
     return np.array([((x + xn) * w).sum(), ((y + yn) * w).sum()]) / (3.0 * w.sum())
 
 
-def test_history_plots_the_file_series(run_file, tmp_path):
+def test_history_plots_the_file_series(run_file, tmp_path, drawn_figures):
+    from figure_text import text_clashes
+
     run = read_run(run_file)
     data = plot_history(run, tmp_path / "history.png")
     assert_png(data.png_path)
+    assert text_clashes(drawn_figures[0]) == []  # no text box over another, none cut
     assert np.array_equal(data.time_s, run.time_s)
     assert np.allclose(data.table_x_mm, 1e3 * run.table_x_m)
     assert np.array_equal(data.table_v_m_s, run.table_v_m_s)
@@ -245,3 +248,34 @@ def test_run_that_stands(voussoir_run_exe, tmp_path):
     data = plot_sequence(run, tmp_path / "s.png", n_frames=4)
     assert data.frames[-1].time_s == pytest.approx(run.time_s[-1])
     assert all(f.open_joints == [] for f in data.frames)
+
+
+def test_sequence_true_scale_colours_and_text(run_file, tmp_path, drawn_figures):
+    """The main job's six frames: true scale said in the title; a hinge on the intrados,
+    one on the extrados and a separated joint have one colour each, the legend's, and
+    red (the collapse's) marks none of them; no text box over another or cut by the
+    edge. One frame exaggerated 5 times: the title says so, and its text fits too."""
+    from figure_text import text_clashes
+
+    run = read_run(run_file)
+    data = plot_sequence(run, tmp_path / "seq.png", n_frames=6)
+    plot_sequence(run, tmp_path / "x5.png", n_frames=1, amplify=5.0)
+    fig, x5_fig = drawn_figures
+    assert "true scale" in fig._suptitle.get_text() and "exaggerated" not in fig._suptitle.get_text()
+    assert all("x5" not in ax.get_title() for ax in fig.axes)
+    assert "exaggerated x5" in x5_fig._suptitle.get_text()
+    legend = {t.get_text().split(":")[0]: h.get_color() for t, h in
+              zip(fig.legends[0].get_texts(), fig.legends[0].legend_handles)}
+    colours = {"intrados": legend["hinge (i)"], "extrados": legend["hinge (e)"],
+               "separated": legend["separated joint (s)"]}
+    assert len(set(colours.values())) == 3 and "tab:red" not in colours.values()
+    seen = 0
+    for ax, frame in zip(fig.axes, data.frames):
+        marks = [line for line in ax.get_lines() if line.get_marker() == "o" and len(line.get_xdata())]
+        assert len(marks) == len(frame.open_joints)
+        for line, state in zip(marks, frame.open_joints):
+            assert line.get_color() == colours[state.state]
+            seen += 1
+    assert seen > 0
+    assert text_clashes(fig) == []
+    assert text_clashes(x5_fig) == []

@@ -6,7 +6,7 @@ module voussoir_sweep_mode_threshold
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa, fmt_real, fmt_exact, fmt_exact_list
   use voussoir_threshold_search, only: threshold_search_t, threshold_result_t, run_outcome_t
-  use voussoir_threshold, only: threshold_init
+  use voussoir_threshold, only: threshold_init, afd_peak_accel_per_m
   use voussoir_input_range, only: need, need_range
   use voussoir_sweep_group, only: sweep_group_t
   use voussoir_sweep_table, only: sweep_table_t, name_len, table_init, table_set, table_value
@@ -91,13 +91,15 @@ contains
     class(threshold_mode_t), intent(in) :: this
     type(sweep_table_t) :: t
     call table_init(t, [character(len=name_len) :: 'job', 'param_set', 'frequency_hz', 'threshold_m', &
-                        'peak_accel_m_s2', 'non_monotonic', 'n_runs', 'mean_iterations', &
-                        'stand_below_m', 'static_onset_m', 'wall_time_s', 'failed'], &
-                    [.true., .true., .false., .false., .false., .true., .true., .false., .false., &
+                        'peak_accel_m_s2', 'full_cycle_accel_m_s2', 'non_monotonic', 'n_runs', &
+                        'mean_iterations', 'stand_below_m', 'static_onset_m', 'wall_time_s', 'failed'], &
+                    [.true., .true., .false., .false., .false., .false., .true., .true., .false., .false., &
                      .false., .false., .true.])
   end function results_table
 
-  !> The row of a finished search.
+  !> The row of a finished search. Two accelerations at the threshold: the true peak of
+  !> the commanded afd motion (its envelopes add to it: about 1.05 A (2 pi f)^2 for 1-1-1
+  !> cycles) and the full-cycle A (2 pi f)^2.
   subroutine result_row(this, plan, job, o, r, failed, results, row)
     class(threshold_mode_t), intent(in) :: this
     type(sweep_plan_t), intent(in) :: plan
@@ -111,7 +113,9 @@ contains
     call table_set(results, row, 'param_set', real(job_param_set(plan, job), dp))
     call table_set(results, row, 'frequency_hz', this%frequency_hz(plan, job))
     call table_set(results, row, 'threshold_m', r%threshold_m)
-    call table_set(results, row, 'peak_accel_m_s2', r%peak_accel_m_s2)
+    call table_set(results, row, 'peak_accel_m_s2', r%threshold_m* &
+                   afd_peak_accel_per_m(plan%set_cfg(job_param_set(plan, job)), this%frequency_hz(plan, job)))
+    call table_set(results, row, 'full_cycle_accel_m_s2', r%full_cycle_accel_m_s2)
     call table_set(results, row, 'non_monotonic', merge(1.0_dp, 0.0_dp, r%non_monotonic))
     call table_set(results, row, 'n_runs', real(r%n_runs, dp))
     call table_set(results, row, 'mean_iterations', r%mean_iterations)
@@ -124,7 +128,7 @@ contains
     class(threshold_mode_t), intent(in) :: this
     character(len=*), intent(in) :: names
     character(len=:), allocatable :: text
-    text = 'param_set'//names//',frequency_hz,threshold_m,peak_accel_m_s2,non_monotonic,failed'
+    text = 'param_set'//names//',frequency_hz,threshold_m,peak_accel_m_s2,full_cycle_accel_m_s2,non_monotonic,failed'
   end function csv_header
 
   function csv_line(this, plan, results, r, set_columns) result(line)
@@ -137,10 +141,11 @@ contains
     line = set_columns//','//fmt_exact(table_value(results, 'frequency_hz', r))//','// &
            fmt_exact(table_value(results, 'threshold_m', r))//','// &
            fmt_exact(table_value(results, 'peak_accel_m_s2', r))//','// &
+           fmt_exact(table_value(results, 'full_cycle_accel_m_s2', r))//','// &
            itoa(nint(table_value(results, 'non_monotonic', r)))//','//itoa(nint(table_value(results, 'failed', r)))
   end function csv_line
 
-  !> "f = ... Hz: threshold ... mm (... m/s2), n runs".
+  !> "f = ... Hz: threshold ... mm (peak ... m/s2), n runs" (the true peak of the motion).
   function summary_line(this, plan, results, r) result(line)
     class(threshold_mode_t), intent(in) :: this
     type(sweep_plan_t), intent(in) :: plan
@@ -157,7 +162,7 @@ contains
       write (buf, '(a,f7.3,a,i3,a)') '  f = ', f_hz, ' Hz: FAILED (a run stopped with an '// &
         'error, see above), ', n_runs, ' runs'
     else if (thr == thr) then
-      write (buf, '(a,f7.3,a,f9.3,a,f8.3,a,i3,a)') '  f = ', f_hz, ' Hz: threshold ', 1.0e3_dp*thr, ' mm (', &
+      write (buf, '(a,f7.3,a,f9.3,a,f8.3,a,i3,a)') '  f = ', f_hz, ' Hz: threshold ', 1.0e3_dp*thr, ' mm (peak', &
         table_value(results, 'peak_accel_m_s2', r), ' m/s2), ', n_runs, ' runs'
     else
       write (buf, '(a,f7.3,a,i3,a)') '  f = ', f_hz, ' Hz: stands up to amp_max_m, ', n_runs, ' runs'

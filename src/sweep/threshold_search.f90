@@ -106,7 +106,7 @@ module voussoir_threshold_search
     real(dp) :: frequency_hz = 0.0_dp
     real(dp) :: threshold_m = 0.0_dp     !! first collapse from below; NaN if none up to amp_max_m
     real(dp) :: stand_below_m = 0.0_dp   !! largest stand below the threshold [m]
-    real(dp) :: peak_accel_m_s2 = 0.0_dp !! threshold_m (2 pi f)^2; NaN if none
+    real(dp) :: full_cycle_accel_m_s2 = 0.0_dp !! threshold_m (2 pi f)^2 (not the afd peak); NaN if none
     logical :: non_monotonic = .false.   !! a stand was met above a collapse
     integer :: n_runs = 0
     real(dp) :: mean_iterations = 0.0_dp !! NLGS iterations per step over all runs
@@ -384,11 +384,11 @@ contains
     if (search%hi_m > 0.0_dp) then
       r%threshold_m = search%hi_m
       r%stand_below_m = search%lo_m
-      r%peak_accel_m_s2 = search%hi_m*(2.0_dp*pi*search%frequency_hz)**2
+      r%full_cycle_accel_m_s2 = search%hi_m*(2.0_dp*pi*search%frequency_hz)**2
     else
       r%threshold_m = nan
       r%stand_below_m = search%lo_m
-      r%peak_accel_m_s2 = nan
+      r%full_cycle_accel_m_s2 = nan
     end if
     steps = 0.0_dp
     r%mean_iterations = 0.0_dp

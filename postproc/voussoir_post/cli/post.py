@@ -75,8 +75,13 @@ def cmd_envelope(args) -> int:
         for sid in args.specimen:
             if sid not in campaign.specimens:
                 raise InputError(f"{campaign.path}: no specimen '{sid}' (has: {', '.join(campaign.specimens)})")
+    capacity, source = None, ""
+    if args.limit:
+        limit = read_limit_json(args.limit)
+        capacity = min(limit.lambda_pos, limit.lambda_neg) * limit.g_m_s2
+        source = os.path.basename(args.limit)
     png = output_path(args.sweep, "envelope", args.out)
-    data = plot_envelope(sweep, png, campaign, args.specimen)
+    data = plot_envelope(sweep, png, campaign, args.specimen, capacity_m_s2=capacity, capacity_source=source)
     _emit(data.table, data.png_path, args.csv)
     return DONE
 
@@ -237,6 +242,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--campaign", metavar="DIR", help="overlay the measured points of this campaign folder")
     p.add_argument("--specimen", metavar="ID", action="append",
                    help="overlay only this specimen (repeatable; default: all)")
+    p.add_argument("--limit", metavar="LIMIT.json",
+                   help="draw the static capacity lambda g of this voussoir-limit --json result (the weaker "
+                        "direction)")
     common(p)
     p.set_defaults(func=cmd_envelope)
 
@@ -246,8 +254,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--n-frames", type=int, default=6, metavar="N",
                    help="frames evenly spread up to the collapse time + 15%% or the end (default 6)")
     p.add_argument("--amplify", type=float, default=1.0, metavar="K",
-                   help="multiply displacements and rotations relative to the table-carried "
-                        "reference by K (default 1)")
+                   help="exaggerate displacements and rotations relative to the table-carried "
+                        "reference K times until the collapse (default 1: true scale; the title says K)")
     p.add_argument("--open-tol-mm", type=float, metavar="MM",
                    help="joint opening counted as open [mm] (default: the run's &output hinge_gap_m, "
                         "else 1%% of the ring thickness)")

@@ -27,12 +27,13 @@ import os
 from dataclasses import dataclass, field
 
 import numpy as np
+from matplotlib.lines import Line2D
 
 from ..errors import MatchError
 from ..readers.campaign import Campaign, measured_thresholds
 from ..readers.results import SweepResult
 from ..tables import ReportTable
-from .drawing import COLORS, new_figure, provenance, save_png
+from .drawing import COLORS, new_figure, parameters_in_words, provenance, save_png, wrap_text
 from .envelope import grid_maps
 
 __all__ = ["MatchError", "ComparisonRow", "CompareData", "arch_of_set", "match_specimens",
@@ -106,11 +107,13 @@ class ComparisonRow:
     error_pct: float  #: (simulated - measured) / measured * 100
 
     @property
-    def simulated_accel_m_s2(self) -> float:
+    def simulated_full_cycle_accel_m_s2(self) -> float:
+        """A (2 pi f)^2 at the simulated threshold (not the peak of the afd motion)."""
         return self.simulated_m * (2 * math.pi * self.frequency_hz) ** 2
 
     @property
-    def measured_accel_m_s2(self) -> float:
+    def measured_full_cycle_accel_m_s2(self) -> float:
+        """A (2 pi f)^2 at the measured threshold."""
         return self.measured_m * (2 * math.pi * self.frequency_hz) ** 2
 
 
@@ -126,10 +129,12 @@ class CompareData:
 
 
 def mean_error_lines(data: CompareData, sweep: SweepResult) -> list[str]:
-    """The mean |error| of each parameter set, in words."""
+    """The mean |error| of each parameter set, in words, with its number of pairs."""
     lines = []
+    counts = _error_counts(data.rows)
     for ps, err in data.mean_abs_error_pct.items():
-        text = "n/a" if math.isnan(err) else f"{err:.2f} %"
+        n = counts.get(ps, 0)
+        text = "n/a (no pair)" if math.isnan(err) else f"{err:.2f} % over {n} pair{'s' if n != 1 else ''}"
         lines.append(f"mean |error| of parameter set {ps} ({sweep.set_label(ps)}): {text}")
     return lines
 
@@ -179,11 +184,30 @@ def compare_thresholds(sweep: SweepResult, campaign: Campaign,
     return rows, notes
 
 
+def _error_counts(rows: list[ComparisonRow]) -> dict[int, int]:
+    """Per parameter set, the pairs with both a measured and a simulated threshold."""
+    counts: dict[int, int] = {}
+    for r in rows:
+        counts[r.param_set] = counts.get(r.param_set, 0) + int(math.isfinite(r.error_pct))
+    return counts
+
+
+def _mean_error_words(err: float, n: int) -> str:
+    """'|error| 40.0 % (one pair)' or 'mean |error| 12.3 % over 4 pairs'."""
+    if n == 0 or math.isnan(err):
+        return "no pair to compare"
+    return f"|error| {err:.1f} % (one pair)" if n == 1 else f"mean |error| {err:.1f} % over {n} pairs"
+
+
 def plot_compare(sweep: SweepResult, campaign: Campaign, out_png: str | os.PathLike,
                  specimen_id: str | None = None) -> CompareData:
-    """Grouped bars of measured and simulated thresholds per (specimen, frequency), with
-    the measured bracket as an error bar, and the relative error [%] per parameter set
-    (as Fig. 10 of the seed paper). Returns the compared numbers."""
+    """Grouped bars of measured and simulated thresholds per (specimen, frequency) and the
+    relative error [%] per parameter set (as Fig. 10 of the seed paper). A measured
+    bracket closed below (a test stood below the first collapse) is drawn as a bracket
+    about the bar of its midpoint; a bracket open below (no test stood below the
+    collapse) is a one-sided bound: the threshold is at most the first collapse, drawn
+    as a cap with an arrow pointing down, and its relative error is a lower bound (>=).
+    Returns the compared numbers."""
     rows, notes = compare_thresholds(sweep, campaign, specimen_id)
     pairs = list(dict.fromkeys((r.specimen_id, r.frequency_hz) for r in rows))
     sets = sorted({r.param_set for r in rows})
@@ -191,23 +215,44 @@ def plot_compare(sweep: SweepResult, campaign: Campaign, out_png: str | os.PathL
     for ps in sets:
         errs = [abs(r.error_pct) for r in rows if r.param_set == ps and math.isfinite(r.error_pct)]
         mean_err[ps] = float(np.mean(errs)) if errs else math.nan
+    counts = _error_counts(rows)
 
-    fig = new_figure(max(6.5, 1.6 * len(pairs) + 3.0), 7.2)
+    fig = new_figure(max(10.0, 1.6 * len(pairs) + 6.0), 8.0)
     ax_a, ax_e = fig.subplots(2, 1, sharex=True)
     x = np.arange(len(pairs))
-    # Each (specimen, frequency) gets the measured bar and a bar for each parameter set
+    # Each (specimen, frequency) gets the measured slot and a bar for each parameter set
     # simulated there only (the seed arches are one set each: no empty slots).
     present = {p: [ps for ps in sets if any(r.param_set == ps and (r.specimen_id, r.frequency_hz) == p
                                             for r in rows)] for p in pairs}
     width = 0.8 / (1 + max(len(v) for v in present.values()))
     measured = {(r.specimen_id, r.frequency_hz): r for r in rows}
-    meas = np.array([1e3 * measured[p].measured_m for p in pairs])
-    low = np.array([1e3 * measured[p].low_m for p in pairs])
-    high = np.array([1e3 * measured[p].high_m for p in pairs])
-    yerr = np.vstack([np.where(np.isfinite(low), meas - low, 0.0), np.where(np.isfinite(low), high - meas, 0.0)])
     starts = np.array([x[i] - 0.5 * width * (1 + len(present[p])) for i, p in enumerate(pairs)])
-    ax_a.bar(starts + 0.5 * width, meas, width, color="0.35", label="measured threshold", yerr=yerr, capsize=3,
-             error_kw={"elinewidth": 1})
+    open_below = {p: not math.isfinite(measured[p].low_m) for p in pairs}
+    drawn_closed = drawn_open = False
+    for i, p in enumerate(pairs):
+        xm, row = starts[i] + 0.5 * width, measured[p]
+        if open_below[p]:
+            # At most the first collapse: a cap there and an arrow down (no bar: there is
+            # no value below it that a test has shown).
+            top = 1e3 * row.high_m
+            ax_a.plot([xm - 0.4 * width, xm + 0.4 * width], [top, top], color="0.2", linewidth=2.5)
+            ax_a.annotate("", (xm, 0.55 * top), (xm, top), arrowprops=dict(arrowstyle="-|>", color="0.2",
+                                                                             linewidth=1.5, mutation_scale=14))
+            drawn_open = True
+        else:
+            ax_a.bar(xm, 1e3 * row.measured_m, width, color="0.55")
+            ax_a.errorbar(xm, 1e3 * row.measured_m, yerr=[[1e3 * (row.measured_m - row.low_m)],
+                                                          [1e3 * (row.high_m - row.measured_m)]],
+                          color="black", capsize=4, linewidth=1.2)
+            drawn_closed = True
+    handles = []
+    if drawn_open:
+        handles.append(ax_a.plot([], [], color="0.2", linewidth=2.5, marker="v", markersize=6,
+                                 label="measured: the first collapse; no test stood below it, so the\n"
+                                       "threshold is at most this (a one-sided bound)")[0])
+    if drawn_closed:
+        handles.append(ax_a.errorbar([], [], yerr=[], color="black", capsize=4,
+                                     label="measured bracket (last stand, first collapse) about its midpoint"))
     for k, ps in enumerate(sets):
         sel = {(r.specimen_id, r.frequency_hz): r for r in rows if r.param_set == ps}
         where = [i for i, p in enumerate(pairs) if p in sel]
@@ -215,13 +260,14 @@ def plot_compare(sweep: SweepResult, campaign: Campaign, out_png: str | os.PathL
         sim = np.array([1e3 * sel[pairs[i]].simulated_m for i in where])
         err = np.array([sel[pairs[i]].error_pct for i in where])
         colour = COLORS[k % len(COLORS)]
-        label = rows[[r.param_set for r in rows].index(ps)].label
-        ax_a.bar(xs, np.nan_to_num(sim), width, color=colour, label=f"simulated: {label}")
+        words = parameters_in_words(sweep.set_parameters(ps)) or "the sweep's arch"
+        ax_a.bar(xs, np.nan_to_num(sim), width, color=colour, label=f"simulated: {words}")
         ax_e.bar(xs, np.nan_to_num(err), width, color=colour,
-                 label=f"{label}: mean |error| {mean_err[ps]:.1f} %")
-        for xi, e in zip(xs, err):
+                 label=f"{words}: {_mean_error_words(mean_err[ps], counts.get(ps, 0))}")
+        for xi, e, i in zip(xs, err, where):
             if math.isfinite(e):
-                ax_e.annotate(f"{e:+.0f}%", (xi, e), textcoords="offset points",
+                bound = "≥ " if open_below[pairs[i]] else ""
+                ax_e.annotate(f"{bound}{e:+.0f} %", (xi, e), textcoords="offset points",
                               xytext=(0, 3 if e >= 0 else -10), ha="center", fontsize=7)
             else:
                 ax_e.annotate("no collapse\nsimulated", (xi, 0), textcoords="offset points", xytext=(0, 3),
@@ -230,21 +276,29 @@ def plot_compare(sweep: SweepResult, campaign: Campaign, out_png: str | os.PathL
     ax_e.margins(y=0.15)
     ax_e.set_xlim(-0.5 - 0.3 * (len(pairs) < 3), len(pairs) - 0.5 + 0.3 * (len(pairs) < 3))
     ax_a.set_ylabel("threshold amplitude [mm]")
-    ax_a.set_title("Collapse threshold: measured (bracket as error bar) and simulated", fontsize=10)
+    ax_a.set_title("Collapse threshold: measured and simulated", fontsize=10)
+    ax_a.margins(y=0.1)
     ax_e.set_ylabel("relative error [%]")
     ax_e.set_title("(simulated − measured) / measured", fontsize=10)
     ax_e.set_xticks(x, [f"{sid}\n{f:g} Hz" for sid, f in pairs])
     ax_e.set_xlabel("specimen, frequency")
     for ax in (ax_a, ax_e):
         ax.grid(True, axis="y", alpha=0.3)
-        ax.legend(fontsize=8)
-    fig.suptitle(f"Collapse thresholds under sinusoidal shaking: simulation against the shaking-table tests of "
-                 f"{campaign.name}", fontsize=11)
+    ax_a.legend(handles=handles + [h for h in ax_a.get_legend_handles_labels()[0] if h not in handles],
+                fontsize=7.5, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # beside, over no bar
+    bound = ([Line2D([], [], linestyle="none", marker="$≥$", markersize=8, color="black",
+                     label="a lower bound of the error: the measured\nthreshold is at most its value")]
+             if drawn_open else [])
+    ax_e.legend(handles=ax_e.get_legend_handles_labels()[0] + bound, fontsize=7.5, loc="upper left",
+                bbox_to_anchor=(1.01, 1.0))
+    fig.suptitle(wrap_text(f"Collapse thresholds under sinusoidal shaking: simulation against the shaking-table "
+                           f"tests of {campaign.name}", fig.get_figwidth() - 0.3, 11), fontsize=11)
     png = save_png(fig, out_png, note=provenance(sweep.code_version, os.path.basename(sweep.path), campaign.path))
     table = ReportTable(["param_set", "parameters", "specimen_id", "frequency_hz", "measured_mm", "low_mm",
-                         "high_mm", "simulated_mm", "error_pct", "measured_accel_m_s2", "simulated_accel_m_s2"],
+                         "high_mm", "simulated_mm", "error_pct", "measured_full_cycle_accel_m_s2",
+                         "simulated_full_cycle_accel_m_s2"],
                         [(r.param_set, r.label, r.specimen_id, r.frequency_hz, 1e3 * r.measured_m, 1e3 * r.low_m,
-                          1e3 * r.high_m, 1e3 * r.simulated_m, r.error_pct, r.measured_accel_m_s2,
-                          r.simulated_accel_m_s2) for r in rows],
+                          1e3 * r.high_m, 1e3 * r.simulated_m, r.error_pct, r.measured_full_cycle_accel_m_s2,
+                          r.simulated_full_cycle_accel_m_s2) for r in rows],
                         title=f"Simulated vs measured thresholds ({sweep.path} / {campaign.path})")
     return CompareData(rows, mean_err, png, table, notes)

@@ -2,22 +2,33 @@
 
 from __future__ import annotations
 
+import functools
 import math
 import os
+import subprocess
 
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from ..analysis.afd import afd_peak_accel_per_m
+
 __all__ = ["new_figure", "save_png", "MARKERS", "COLORS", "G_M_S2", "provenance", "add_g_axis", "run_caption",
-           "arch_caption", "legend_pad", "NOTE_STRIP_PT"]
+           "arch_caption", "legend_pad", "NOTE_STRIP_PT", "HINGE_COLOURS", "COLLAPSE_COLOUR", "wrap_text",
+           "parameters_in_words", "drawing_tree", "PNG_COMMIT_KEY", "PNG_TREE_KEY", "png_provenance"]
 
 #: Standard gravity [m/s2] for accelerations read in g (the kernel's value).
 G_M_S2 = 9.81
 
 #: Marker style per specimen or parameter set, in order.
 MARKERS = ("o", "s", "^", "D", "v", "P", "X", "<", ">", "h")
-#: Colour cycle (matplotlib's tab10).
-COLORS = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown",
+#: What a colour means in every figure of a structure (sequence, mechanism): a hinge
+#: pivoting on the intrados green, on the extrados blue, a separated or sliding joint
+#: purple. Red is kept for the collapse (its time, collapsing runs).
+HINGE_COLOURS = {"intrados": "tab:green", "extrados": "tab:blue", "separated": "tab:purple"}
+COLLAPSE_COLOUR = "tab:red"
+
+#: Colour cycle of data series (matplotlib's tab10 without red, which is the collapse's).
+COLORS = ("tab:blue", "tab:orange", "tab:green", "tab:purple", "tab:brown",
           "tab:pink", "tab:gray", "tab:olive", "tab:cyan")
 
 
@@ -26,6 +37,38 @@ def new_figure(width_in: float, height_in: float) -> Figure:
     fig = Figure(figsize=(width_in, height_in), layout="constrained")
     FigureCanvasAgg(fig)
     return fig
+
+
+def wrap_text(text: str, width_in: float, fontsize: float) -> str:
+    """``text`` broken into lines that fit ``width_in`` inches at ``fontsize`` points
+    (a character taken as 0.52 em: DejaVu Sans averages about 0.5 on prose)."""
+    import textwrap
+    chars = max(20, int(width_in * 72.0 / (0.52 * fontsize)))
+    return "\n".join(textwrap.wrap(text, chars, break_on_hyphens=False)) if len(text) > chars else text
+
+
+_PARAMETER_WORDS = {
+    "embrace_deg": lambda v: f"{v:g}°",
+    "n_voussoirs": lambda v: f"{int(round(v))} voussoirs",
+    "thickness_m": lambda v: f"t = {1e3 * v:g} mm",
+    "r_ext_m": lambda v: f"R_ext = {1e3 * v:g} mm",
+    "width_m": lambda v: f"width {1e3 * v:g} mm",
+    "friction": lambda v: f"friction {v:g}",
+    "contact_inset_m": lambda v: f"contact inset {1e3 * v:g} mm",
+    "density_kg_m3": lambda v: f"density {v:g} kg/m³",
+    "size_imperfection": lambda v: f"size imperfection {v:g}",
+}
+
+
+def parameters_in_words(parameters: dict) -> str:
+    """A parameter set in words ('156°, 13 voussoirs', 't = 65 mm, friction 0.45'),
+    the names a sweep swept (with or without their group) turned into engineering text."""
+    words = []
+    for name, value in parameters.items():
+        key = name.replace("%", ".").split(".")[-1].strip().lower()
+        say = _PARAMETER_WORDS.get(key)
+        words.append(say(float(value)) if say else f"{key} = {float(value):.6g}")
+    return ", ".join(words)
 
 
 def provenance(code_version: str, *sources: str) -> str:
@@ -58,8 +101,10 @@ def run_caption(run, sep: str = ", ") -> str:
     wave = motion.get("waveform", "")
     if wave == "afd":
         f, a = float(motion.get("frequency_hz", math.nan)), float(motion.get("amplitude_m", math.nan))
-        peak = a * (2 * math.pi * f) ** 2
-        shake = f"sinusoid {f:g} Hz, A = {1e3 * a:g} mm (peak {peak:.2f} m/s² = {peak / G_M_S2:.3f} g)"
+        # The true peak of the commanded motion (its envelopes add to A (2 pi f)^2).
+        cycles = (int(motion.get(k, 1)) for k in ("n_attack", "n_full", "n_decay"))
+        peak = a * afd_peak_accel_per_m(f, *cycles)
+        shake = f"sinusoid {f:g} Hz, A = {1e3 * a:g} mm (peak acceleration {peak:.2f} m/s² = {peak / G_M_S2:.3f} g)"
     elif wave == "accelerogram":
         shake = (f"record {os.path.basename(str(motion.get('record_file', '')))} x "
                  f"{float(motion.get('record_scale', 1.0)):g}")
@@ -78,10 +123,49 @@ def legend_pad(fontsize: float) -> float:
     return 0.5 + NOTE_STRIP_PT / fontsize
 
 
+#: PNG text keys of every figure: the commit of the code that drew it, and whether that
+#: code's tree had changes ("clean" or "modified"); read back by :func:`png_provenance`.
+PNG_COMMIT_KEY = "Voussoir drawing commit"
+PNG_TREE_KEY = "Voussoir drawing tree"
+
+
+@functools.lru_cache(maxsize=1)
+def drawing_tree() -> tuple[str, str]:
+    """(commit, 'clean' | 'modified') of the git tree this package runs from (tracked
+    files only), or ('unknown', 'unknown') outside a git checkout."""
+    here = os.path.dirname(os.path.abspath(__file__))
+
+    def git(*args: str) -> str | None:
+        try:
+            proc = subprocess.run(["git", "-C", here, *args], capture_output=True, text=True, timeout=30)
+        except (OSError, subprocess.SubprocessError):
+            return None
+        return proc.stdout.strip() if proc.returncode == 0 else None
+
+    commit = git("rev-parse", "HEAD")
+    status = git("status", "--porcelain", "--untracked-files=no")
+    if not commit or status is None:
+        return "unknown", "unknown"
+    return commit, "modified" if status else "clean"
+
+
+def png_provenance(path: str | os.PathLike) -> dict[str, str]:
+    """The drawing commit and tree that :func:`save_png` wrote into a PNG ({} if none)."""
+    from PIL import Image
+
+    with Image.open(path) as im:
+        text = dict(getattr(im, "text", {}) or {})
+    return {k: text[k] for k in (PNG_COMMIT_KEY, PNG_TREE_KEY) if k in text}
+
+
 def save_png(fig: Figure, path: str | os.PathLike, dpi: int = 120, note: str | None = None) -> str:
     """Save ``fig`` as PNG at ``path`` (parent folders created); returns the path.
-    ``note`` (see :func:`provenance`) is printed small in the bottom right corner."""
+    ``note`` (see :func:`provenance`) is printed small in the bottom right corner,
+    followed by the commit of the code that drew the figure ('+modified' when its tree
+    had changes), which the PNG's text chunks also record (:func:`png_provenance`)."""
+    commit, tree = drawing_tree()
     if note:
+        note += f" | drawn by {commit[:10]}" + ("" if tree == "clean" else f" ({tree} tree)")
         # A strip of its own at the bottom, so that the note never overlaps an axis label.
         engine = fig.get_layout_engine()
         if engine is not None and hasattr(engine, "set") and "rect" in engine.get():
@@ -91,5 +175,5 @@ def save_png(fig: Figure, path: str | os.PathLike, dpi: int = 120, note: str | N
     path = os.fspath(path)
     parent = os.path.dirname(os.path.abspath(path))
     os.makedirs(parent, exist_ok=True)
-    fig.savefig(path, dpi=dpi, format="png")
+    fig.savefig(path, dpi=dpi, format="png", metadata={PNG_COMMIT_KEY: commit, PNG_TREE_KEY: tree})
     return path

@@ -90,7 +90,7 @@ def plot_history(run: RunResult, out_png: str | os.PathLike) -> HistoryData:
     axes[1].set_ylabel("table v [m/s]")
     axes[2].plot(data.time_s, data.table_a_m_s2, color="tab:blue")
     axes[2].set_ylabel("table a [m/s²]")
-    add_g_axis(axes[2])
+    add_g_axis(axes[2], "table a [g]")
     axes[3].plot(data.time_s, data.crown_dx_mm, label="dx (horizontal)", color="tab:orange")
     axes[3].plot(data.time_s, data.crown_dy_mm, label="dy (vertical)", color="tab:green")
     axes[3].set_ylabel("crown rel. table [mm]")

@@ -14,7 +14,7 @@ from ..analysis.kinematics import (ROLE_FOUNDATION, ROLE_RESTRAINT, JointState, 
                                    default_open_tol_m, joint_states)
 from ..readers.results import RunResult
 from ..tables import ReportTable
-from .drawing import legend_pad, new_figure, provenance, run_caption, save_png
+from .drawing import HINGE_COLOURS, legend_pad, new_figure, provenance, run_caption, save_png, wrap_text
 
 __all__ = ["SequenceFrame", "SequenceData", "default_frame_times", "sequence_frames",
            "plot_sequence", "write_sequence_gif"]
@@ -88,12 +88,13 @@ def _view_limits(run: RunResult) -> tuple[tuple[float, float], tuple[float, floa
     return ((lo[0] - margin - x_shift, hi[0] + margin + x_shift), (lo[1] - 0.05 * span, hi[1] + margin))
 
 
-def _draw_frame(ax, run: RunResult, frame: SequenceFrame, limits, label_hinges: bool = True):
+def _draw_frame(ax, run: RunResult, frame: SequenceFrame, limits, label_hinges: bool = True,
+                amplify: float = 1.0):
     for b, poly in enumerate(frame.polygons_m):
         ax.add_patch(Polygon(poly, closed=True, facecolor=_FILL.get(int(run.body_role[b]), "#cccccc"),
                              edgecolor="#333333", linewidth=0.6))
     for s in frame.open_joints:
-        colour = "tab:red" if s.state != "separated" else "tab:purple"
+        colour = HINGE_COLOURS[s.state]
         ax.plot(*s.pivot_xy_m, "o", color=colour, markersize=5, markeredgecolor="white", markeredgewidth=0.6)
         if label_hinges:
             ax.annotate(f"{s.joint}{_SIDE_LABEL[s.state]}", s.pivot_xy_m, textcoords="offset points",
@@ -102,7 +103,8 @@ def _draw_frame(ax, run: RunResult, frame: SequenceFrame, limits, label_hinges: 
     ax.set_ylim(*limits[1])
     ax.set_aspect("equal")
     scale = "" if frame.amplify == 1.0 else f", displacements x{frame.amplify:g}"
-    after = " (collapsed: true scale)" if run.collapsed and frame.time_s >= run.collapse_time_s else scale
+    fallen = run.collapsed and frame.time_s >= run.collapse_time_s
+    after = (" (collapsed: true scale)" if amplify != 1.0 else " (collapsed)") if fallen else scale
     ax.set_title(f"t = {frame.time_s:.3f} s{after}", fontsize=9)
     ax.tick_params(labelsize=7)
 
@@ -122,26 +124,38 @@ def plot_sequence(run: RunResult, out_png: str | os.PathLike, times_s=None, n_fr
     height_m = limits[1][1] - limits[1][0]
     panel_w = 4.2
     # Equal-aspect panels: each row needs room for its title, ticks and label beyond the
-    # drawing itself (about 0.6 in), the figure for its title and legend (about 1 in).
-    fig = new_figure(panel_w * ncols, panel_w * height_m / width_m * nrows + 0.6 * nrows + 1.0)
+    # drawing itself (about 0.6 in), the figure for its title and legend (below). A
+    # strip of one or two frames is widened so that the title and legend fit.
+    fig_w = max(panel_w * ncols, 8.4)
+    panel_w = fig_w / ncols
+    legend_cols = 2 if fig_w >= 12.0 else 1
+    status = (f"collapsed at {run.collapse_time_s:.3f} s" if run.collapsed else "did not collapse")
+    scale = ("true scale" if amplify == 1.0 else
+             f"displacements exaggerated x{amplify:g} until the collapse, true after it")
+    title = wrap_text(f"Collapse sequence: {run_caption(run)}; {status}; {scale}", fig_w - 0.3, 9)
+    legend_in = 0.17 * (3 if legend_cols == 1 else 2) + 0.15 if run.arch is not None else 0.0
+    extra_in = 0.2 * (title.count("\n") + 1) + legend_in + 0.25
+    fig = new_figure(fig_w, panel_w * height_m / width_m * nrows + 0.6 * nrows + extra_in)
     axes = np.atleast_1d(fig.subplots(nrows, ncols, squeeze=False)).reshape(-1)
     for ax, frame in zip(axes, frames):
-        _draw_frame(ax, run, frame, limits)
+        _draw_frame(ax, run, frame, limits, amplify=amplify)
     for ax in axes[len(frames):]:
         ax.set_visible(False)
     for ax in axes[::ncols]:
         ax.set_ylabel("y [m]", fontsize=8)
     for ax in axes[(nrows - 1) * ncols:]:
         ax.set_xlabel("x [m]", fontsize=8)
-    status = (f"collapsed at {run.collapse_time_s:.3f} s" if run.collapsed else "did not collapse")
-    fig.suptitle(f"Collapse sequence: {run_caption(run)}; {status}", fontsize=9)
+    fig.suptitle(title, fontsize=9)
     if run.arch is not None:
-        handles = [axes[0].plot([], [], "o", color="tab:red", markeredgecolor="white",
-                                label=f"hinge: the joint opens (more than {tol * 1e3:.2g} mm) and pivots on its "
-                                      "intrados (i) or extrados (e) edge")[0],
-                   axes[0].plot([], [], "o", color="tab:purple", markeredgecolor="white",
+        opens = f"the joint opens (more than {tol * 1e3:.2g} mm) and pivots on its"
+        handles = [axes[0].plot([], [], "o", color=HINGE_COLOURS["intrados"], markeredgecolor="white",
+                                label=f"hinge (i): {opens} intrados edge")[0],
+                   axes[0].plot([], [], "o", color=HINGE_COLOURS["extrados"], markeredgecolor="white",
+                                label=f"hinge (e): {opens} extrados edge")[0],
+                   axes[0].plot([], [], "o", color=HINGE_COLOURS["separated"], markeredgecolor="white",
                                 label="separated joint (s): both edges open, the blocks part or slide")[0]]
-        fig.legend(handles=handles, loc="outside lower center", borderaxespad=legend_pad(7), ncols=2, fontsize=7)
+        fig.legend(handles=handles, loc="outside lower center", borderaxespad=legend_pad(7), ncols=legend_cols,
+                   fontsize=7)
     png = save_png(fig, out_png, note=provenance(run.code_version, run.input_file, os.path.basename(run.path)))
     table = ReportTable(["frame", "sample", "time_s", "crown_dx_mm", "crown_dy_mm", "open_joints"],
                         [(i + 1, f.sample, f.time_s, 1e3 * float(run.crown_dx_m[f.sample]),
@@ -173,7 +187,7 @@ def write_sequence_gif(run: RunResult, out_gif: str | os.PathLike, t_end_s: floa
         ax.clear()
         k = int(samples[i])
         frame = sequence_frames(run, [run.time_s[k]], amplify, tol)[0]
-        _draw_frame(ax, run, frame, limits)
+        _draw_frame(ax, run, frame, limits, amplify=amplify)
         ax.set_xlabel("x [m]")
         ax.set_ylabel("y [m]")
         ax.set_title(f"{os.path.basename(run.path)}  t = {frame.time_s:.3f} s  (x{amplify:g})", fontsize=9)

@@ -418,8 +418,16 @@ def read_sweep(path: str | os.PathLike) -> SweepResult:
         results = {}
         for col in columns:
             results[col] = _dataset(h5, f"results/{col}").reshape(-1)
+        if mode == "threshold":
+            if "full_cycle_accel_m_s2" in h5["results"]:
+                results["full_cycle_accel_m_s2"] = _dataset(h5, "results/full_cycle_accel_m_s2").reshape(-1)
+            else:
+                # Before full_cycle_accel_m_s2 was written, peak_accel_m_s2 held A (2 pi f)^2,
+                # not the peak of the motion: it is read under its true name, and the peak
+                # is left to the reader of the file (voussoir_post.analysis.afd).
+                results["full_cycle_accel_m_s2"] = results.pop("peak_accel_m_s2")
         n_rows = results["job"].shape[0]
-        for col in columns:
+        for col in results:
             _check_shape(path, f"/results/{col}", results[col], (n_rows,))
         order = np.argsort(results["job"], kind="stable")
         results = {k: v[order] for k, v in results.items()}
