@@ -28,6 +28,7 @@ import numpy as np
 import pytest
 from scipy.stats import binomtest, norm
 
+from voussoir_post.diagnosis.actuator import peak_gain
 from voussoir_post.diagnosis.bank import Bank, key_variant, load_banks, variant_key
 from voussoir_post.diagnosis.decision import NAME_AT, credible_set
 from voussoir_post.diagnosis.likelihood import _log_bracket, records_log_factor, scales
@@ -36,7 +37,7 @@ from voussoir_post.diagnosis.observations import Observations, PairObservation
 from voussoir_post.diagnosis.pipeline import DiagnosisSettings, diagnose
 from voussoir_post.diagnosis.posterior import infer
 from voussoir_post.diagnosis.rates import draw_outcomes, mcnemar
-from voussoir_post.readers.campaign import read_campaign
+from voussoir_post.readers.campaign import Test as CampaignTest, read_campaign
 
 from conftest import VERDICTS, bin_dir, executable
 from independent_campaigns import Arch, Truth, write_campaign
@@ -156,6 +157,25 @@ def test_model_priors_sum_to_one_over_the_models():
 def test_variant_keys_round_trip():
     for key in ("nominal", "friction=0.45", "contact_edges=0.002+friction=0.45", "base_restraint=left+geometry=0.88"):
         assert variant_key(key_variant(key)) == key
+
+
+def test_a_table_that_follows_the_command_has_gain_one_from_its_peak():
+    """Without records the gain is the measured peak over the command's own peak, not
+    over A (2 pi f)^2: the attack and decay envelopes add their derivatives to the full
+    cycles (here the command's peak by second differences of shared/MEASURED_DATA.md's
+    displacement, sampled densely)."""
+    f, amp = 1.25, 0.046
+    t = np.linspace(0.0, 3.0 / f, 300001)
+    h = t[1] - t[0]
+    T = 1.0 / f
+    env = np.where(t < T, np.sin(np.pi * t / (2 * T)) ** 2,
+                   np.where(t < 2 * T, 1.0, np.cos(np.pi * (t - 2 * T) / (2 * T)) ** 2))
+    x = amp * env * np.sin(2 * np.pi * f * t)
+    peak = float(np.abs(np.diff(x, 2)).max() / h ** 2)
+    assert peak > 1.04 * amp * (2 * np.pi * f) ** 2  # the envelopes add about 5 %
+    for gain in (1.0, 1.1):
+        test = CampaignTest("t", "A", "afd", "collapse", frequency_hz=f, amplitude_m=amp, peak_accel_m_s2=gain * peak)
+        assert abs(peak_gain(test) - gain) < 1e-5
 
 
 def test_mcnemar_is_the_exact_binomial_test_of_the_discordant_draws():

@@ -3,7 +3,10 @@
 
 Every record of an `afd` test is fitted as gain x command(t - delay) by least squares,
 which measures the actuator's gain and lag test by test (and so their scatter); without
-records, the measured peak accelerations are compared with the commanded ones.
+records, the measured peak accelerations are compared with the commanded motion's own
+peak: the attack and decay envelopes add their derivatives to the full cycles' A (2 pi
+f)^2, so a table that follows the command exactly peaks 1.049 times above it (1-1-1
+cycles; analysis/afd.py), and that is not the actuator's gain.
 """
 
 from __future__ import annotations
@@ -13,9 +16,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..analysis.afd import afd_peak_accel_per_m
 from ..readers.campaign import Campaign, Test
 
-__all__ = ["afd_command", "fit_actuator", "TableEvidence", "table_evidence"]
+__all__ = ["afd_command", "fit_actuator", "peak_gain", "TableEvidence", "table_evidence"]
 
 
 def afd_command(t_s: np.ndarray, frequency_hz: float, amplitude_m: float, n_attack: int = 1,
@@ -53,6 +57,16 @@ def fit_actuator(t_s: np.ndarray, table_x_m: np.ndarray, test: Test, max_delay_s
     return best[1], best[2], rms
 
 
+def peak_gain(test: Test) -> float | None:
+    """Measured peak table acceleration over the commanded motion's true peak (not over
+    A (2 pi f)^2): the actuator's gain as a test without a record tells it; None when
+    the test does not say."""
+    if not (test.peak_accel_m_s2 and test.waveform == "afd" and test.frequency_hz and test.amplitude_m):
+        return None
+    command = test.amplitude_m * afd_peak_accel_per_m(test.frequency_hz, test.n_attack, test.n_full, test.n_decay)
+    return test.peak_accel_m_s2 / command
+
+
 @dataclass
 class TableEvidence:
     """What the records (or the peak accelerations) say of the table."""
@@ -64,7 +78,7 @@ class TableEvidence:
     gain_sd: float = math.nan
     delay_s: float = 0.0
     delay_se: float = math.nan
-    per_test: list = field(default_factory=list)  #: (test_id, gain, delay_s, rms)
+    per_test: list = field(default_factory=list)  #: (test_id, gain, delay_s, rms); delay and rms NaN from peaks
 
     @property
     def deviates(self) -> bool:
@@ -91,13 +105,12 @@ def table_evidence(campaign: Campaign) -> TableEvidence:
         dsd = float(delays.std(ddof=1)) if n > 1 else math.nan
         return TableEvidence("records", n, float(gains.mean()), sd / math.sqrt(n) if n > 1 else math.nan, sd,
                              float(delays.mean()), dsd / math.sqrt(n) if n > 1 else math.nan, fits)
-    ratios = [t.peak_accel_m_s2 / t.commanded_peak_accel_m_s2 for t in campaign.tests.values()
-              if t.peak_accel_m_s2 and t.commanded_peak_accel_m_s2]
+    ratios = [(tid, peak_gain(t)) for tid, t in campaign.tests.items() if peak_gain(t) is not None]
     if ratios:
-        r = np.array(ratios)
+        r = np.array([g for _, g in ratios])
         n = r.size
         sd = float(r.std(ddof=1)) if n > 1 else math.nan
         return TableEvidence("peak_accel", n, float(np.median(r)), sd / math.sqrt(n) if n > 1 else math.nan, sd,
-                             per_test=[(None, float(x), math.nan, math.nan) for x in r])
+                             per_test=[(tid, float(g), math.nan, math.nan) for tid, g in ratios])
     return TableEvidence("none")
 

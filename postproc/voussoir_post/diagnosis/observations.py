@@ -67,12 +67,7 @@ def cycles_of(campaign: Campaign, test_id: str) -> tuple[int, int, int]:
 def from_campaign(campaign: Campaign) -> tuple[Observations, TableEvidence]:
     """The observations of a campaign read from its folder, and its table evidence."""
     table = table_evidence(campaign)
-    gain_of: dict[str, float] = {}
-    if table.source == "records":
-        gain_of = {tid: g for tid, g, _, _ in table.per_test}
-    elif table.source == "peak_accel":
-        gain_of = {t.test_id: t.peak_accel_m_s2 / t.commanded_peak_accel_m_s2 for t in campaign.tests.values()
-                   if t.peak_accel_m_s2 and t.commanded_peak_accel_m_s2}
+    gain_of = {tid: g for tid, g, _, _ in table.per_test}  # from the records, else from the peaks
     pairs, apart, cycles = [], [], {}
     for m in measured_thresholds(campaign):
         if not m.has_collapse:

@@ -216,8 +216,9 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
     lines += ["## The table", ""]
     lines.append({"records": "Records of the table's motion were fitted as gain x command(t - delay); each "
                              "test's gain enters the probabilities.",
-                  "peak_accel": "No records; the measured peak accelerations over the commanded A (2 pi f)^2 "
-                                "stand for the gains (a noisy record overstates a peak).",
+                  "peak_accel": "No records; the measured peak accelerations over the commanded motion's own "
+                                "peak (1.049 A (2 pi f)^2 for 1-1-1 cycles: the envelopes add to it) stand for "
+                                "the gains (a noisy record overstates a peak).",
                   "none": "No records and no measured peak accelerations: the table's motion is unknown."
                   }[obs.gain_source])
     if tfig:
