@@ -131,12 +131,13 @@ contains
                 fmt_significant(cfg%solver%dt_s, 4)//' s): more than the limit of 1e8; shorten the motion or raise dt_s')
       return
     end if
-    ! Stored per sample: the bodies' x, y, rotation; per step: time, norm, iterations.
-    bytes = 24.0_dp*n_bodies*steps/cfg%output%every + 24.0_dp*steps
+    ! Stored per sample: the bodies' x, y, rotation (24 bytes each) and their loaded
+    ! contact points (about 4 per body, 60 bytes each); per step: time, norm, iterations.
+    bytes = (24.0_dp + 240.0_dp)*n_bodies*steps/cfg%output%every + 24.0_dp*steps
     if (bytes > max_record_bytes) &
       call fail(status, f//': the run would keep '//fmt_significant(bytes/1.0e9_dp, 3)//' GB of samples in memory ('// &
                 fmt_significant(steps, 3)//' steps, '//itoa(n_bodies)//' bodies, &output every = '//itoa(cfg%output%every)// &
-                '): more than 4 GB; raise &output every or dt_s')
+                '; positions and contact forces): more than 4 GB; raise &output every or dt_s')
   end subroutine check_work
 
   !> A record's table acceleration (record: the second derivative of its filtered
