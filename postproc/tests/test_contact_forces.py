@@ -1,0 +1,113 @@
+"""Contact forces of a run written by the real voussoir-run, against statics worked out by
+hand: an arch at rest under its own weight is carried by its springings (vertical
+reactions summing to its weight, horizontal ones equal and opposite, each pushing the
+ring inwards), and its thrust line lies inside the ring at every joint."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from conftest import run_executable
+
+from voussoir_post.analysis.contact_forces import reactions, reactions_table, thrust_line
+from voussoir_post.errors import InputError
+from voussoir_post.readers.results import read_run
+
+#: The seed's 156-degree arch at rest for 1 s, solved tightly so that the forces balance
+#: the weight to far better than 1e-6 once the first steps have settled it.
+REST_NML = """\
+&arch
+  embrace_deg = 156.0, n_voussoirs = 13, r_ext_m = 0.508, thickness_m = 0.071,
+  width_m = 0.145, density_kg_m3 = 700.0, friction = 0.6, contact_inset_m = 0.0
+/
+&motion
+  waveform = 'afd', frequency_hz = 2.5, amplitude_m = 0.0, rest_s = 1.0
+/
+&solver
+  dt_s = 1.0e-3, tol = 1.0e-9, max_iter = 20000
+/
+&output
+  file = '{file}', every = 50
+/
+"""
+
+
+@pytest.fixture(scope="module")
+def rest_run(voussoir_run_exe, tmp_path_factory):
+    folder = tmp_path_factory.mktemp("rest")
+    h5 = folder / "rest.h5"
+    (folder / "rest.nml").write_text(REST_NML.format(file=h5))
+    run_executable([voussoir_run_exe, folder / "rest.nml"], folder)
+    return read_run(h5)
+
+
+def ring_weight_n(embrace_deg, n, r_ext_m, thickness_m, width_m, density_kg_m3, g=9.81):
+    """n voussoirs with straight (chord) faces: each a trapezoid of area
+    (r_ext^2 - r_int^2) sin(dphi) / 2."""
+    r_int = r_ext_m - thickness_m
+    dphi = math.radians(embrace_deg) / n
+    return n * 0.5 * (r_ext_m**2 - r_int**2) * math.sin(dphi) * width_m * density_kg_m3 * g
+
+
+def test_contacts_are_recorded(rest_run):
+    c = rest_run.contacts
+    assert c is not None and c.start.shape == (rest_run.n_samples + 1,)
+    assert np.array_equal(np.diff(c.start), rest_run.contact_count)
+    last = c.rows(-1)
+    # Every one of the 14 joints shut: two loaded points each.
+    assert rest_run.contact_count[-1] == 2 * 14
+    assert sorted(c.joint[last].tolist()) == sorted(list(range(14)) * 2)
+    assert np.all(c.normal_force_n[last] > 0.0)
+    assert np.allclose(c.normal_force_n, c.normal_impulse_n_s / 1.0e-3, rtol=1e-12)
+    assert np.allclose(np.hypot(*c.normal.T), 1.0, atol=1e-12)
+    assert np.all(np.abs(c.tangent_force_n) <= 0.6 * c.normal_force_n * (1 + 1e-9))
+
+
+def test_springing_reactions_of_an_arch_at_rest(rest_run):
+    weight = ring_weight_n(156.0, 13, 0.508, 0.071, 0.145, 700.0)
+    r = reactions(rest_run)
+    assert r.role.tolist() == [2, 2]
+    left, right = r.force_n[-1]
+    assert r.total_n[-1, 1] == pytest.approx(weight, rel=1e-6)
+    # (How the weight is shared between the springings is not fixed by statics: the ring
+    # is hyperstatic; only the sums are.)
+    # The thrust: the left springing pushes the ring towards +x, the right one towards -x, equally.
+    assert left[0] > 0.05 * weight and right[0] < 0.0
+    assert left[0] + right[0] == pytest.approx(0.0, abs=1e-6 * left[0])
+    table = reactions_table(r)
+    assert table.columns[0] == "time_s" and len(table.rows) == rest_run.n_samples
+    assert table.rows[-1][2] == pytest.approx(left[1])
+
+
+def test_thrust_line_of_an_arch_at_rest_is_inside_the_ring(rest_run):
+    t = thrust_line(rest_run)
+    assert t.fraction.shape == (rest_run.n_samples, 14)
+    assert np.all(np.isnan(t.fraction[0]))  # t = 0: no step made, no force yet
+    later = t.fraction[1:]
+    assert np.all(np.isfinite(later))
+    assert np.all((later >= 0.0) & (later <= 1.0))
+    # The centre of pressure lies on the joint: between its two ends in the reference configuration.
+    arch = rest_run.arch
+    ends_dist = np.hypot(*(arch.joint_extrados_xy_m - arch.joint_intrados_xy_m).T)
+    d_int = np.hypot(*(t.point_m[-1] - arch.joint_intrados_xy_m).T)
+    d_ext = np.hypot(*(t.point_m[-1] - arch.joint_extrados_xy_m).T)
+    assert np.allclose(d_int + d_ext, ends_dist, atol=1e-6)
+    # Each voussoir in equilibrium: from one joint to the next the resultant on the right-hand
+    # block drops by the voussoir's weight and keeps its horizontal component (the thrust H).
+    weight = ring_weight_n(156.0, 13, 0.508, 0.071, 0.145, 700.0)
+    f = t.force_n[-1]
+    assert np.allclose(np.diff(f[:, 1]), -weight / 13, rtol=0, atol=1e-6 * weight)
+    assert np.allclose(f[:, 0], f[0, 0], rtol=0, atol=1e-6 * weight)
+    # Joint 0's resultant on voussoir 1 is the left springing's reaction.
+    assert np.allclose(f[0], reactions(rest_run).force_n[-1, 0], atol=1e-9 * weight)
+
+
+def test_no_thrust_line_without_an_arch(rest_run):
+    from dataclasses import replace
+    with pytest.raises(InputError, match="no /arch"):
+        thrust_line(replace(rest_run, arch=None))
+    with pytest.raises(InputError, match="before runs recorded"):
+        reactions(replace(rest_run, contacts=None))

@@ -1,0 +1,142 @@
+"""Statics of a run from its contact forces (/contacts, docs/results_format.md).
+
+Every loaded contact of a sample carries the mean force of the step that ends there
+(impulse / dt) on its body a, and the opposite on its body b. From them:
+
+- the **reactions of the supports** (the driven bodies: the springings' foundations, the
+  brackets, a wall's base or a polygon file's fixed blocks): the force each support
+  exerts on the blocks it carries, Fx and Fy [N]; under gravity alone the vertical
+  reactions sum to the weight of the free blocks;
+- the **thrust line of an arch**: at each joint the resultant of its contact forces
+  (normal N, shear S) and its point of application, the centre of pressure
+  sum(N_i p_i) / sum(N_i) of its contact points, as a point [m] and as the fraction of
+  the joint from the intrados (0) to the extrados (1) in the present configuration; NaN
+  where the joint carries nothing (fully open).
+
+Nothing here is physics the kernel does not already do: sums of recorded forces.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError
+from ..readers.results import ContactRecord, RunResult
+from ..tables import ReportTable
+from .kinematics import ROLE_VOUSSOIR, body_transforms, joint_bodies, rotation_matrix
+
+__all__ = ["Reactions", "ThrustLine", "contact_record", "reactions", "thrust_line", "reactions_table"]
+
+
+@dataclass(frozen=True)
+class Reactions:
+    """The force each support (driven body) exerts on the blocks it carries, per sample."""
+
+    time_s: np.ndarray  #: (nt,)
+    bodies: np.ndarray  #: (nd,) the driven bodies, 0-based, left to right by reference x
+    role: np.ndarray  #: (nd,) 2 foundation, 3 restraint bracket
+    force_n: np.ndarray  #: (nt, nd, 2) Fx, Fy [N]
+
+    @property
+    def total_n(self) -> np.ndarray:
+        """(nt, 2) the sum over the supports [N]."""
+        return self.force_n.sum(axis=1)
+
+
+@dataclass(frozen=True)
+class ThrustLine:
+    """The resultant of every joint of an arch, per sample."""
+
+    time_s: np.ndarray  #: (nt,)
+    point_m: np.ndarray  #: (nt, n+1, 2) centre of pressure; NaN where the joint carries nothing
+    fraction: np.ndarray  #: (nt, n+1) its place from the intrados (0) to the extrados (1); NaN likewise
+    normal_n: np.ndarray  #: (nt, n+1) N: the sum of the normal forces across the joint [N]
+    shear_n: np.ndarray  #: (nt, n+1) S: the sum of the tangential forces [N], signed along the joint
+    #: (nt, n+1, 2) the resultant force on the joint's right-hand body (x, y) [N]
+    force_n: np.ndarray
+
+
+def contact_record(run: RunResult) -> ContactRecord:
+    """The run's contacts, or an InputError for a file written before they were recorded."""
+    if run.contacts is None:
+        raise InputError(f"{run.path}: no /contacts/start: the file was written before runs recorded "
+                         "their contact forces; run it again with this voussoir-run")
+    return run.contacts
+
+
+def _sample_of_row(c: ContactRecord) -> np.ndarray:
+    return np.repeat(np.arange(c.start.shape[0] - 1), np.diff(c.start))
+
+
+def reactions(run: RunResult) -> Reactions:
+    """The reactions of every driven body (role 2 or 3) at every sample."""
+    c = contact_record(run)
+    driven = np.nonzero(run.body_role != ROLE_VOUSSOIR)[0]
+    driven = driven[np.argsort(run.body_position[0, driven, 0], kind="stable")]
+    column = np.full(run.n_bodies, -1)
+    column[driven] = np.arange(driven.size)
+    force = np.zeros((run.n_samples, driven.size, 2))
+    sample = _sample_of_row(c)
+    on_a = c.force_on_a_n()
+    # A support is body b of a row: it pushes body a with the row's force. As body a it
+    # receives the force, and pushes body b with the opposite.
+    for side, sign in ((1, 1.0), (0, -1.0)):
+        col = column[c.body[:, side]]
+        rows = col >= 0
+        np.add.at(force, (sample[rows], col[rows]), sign * on_a[rows])
+    return Reactions(time_s=run.time_s, bodies=driven, role=run.body_role[driven], force_n=force)
+
+
+def thrust_line(run: RunResult) -> ThrustLine:
+    """The centre of pressure and resultant of every joint of an arch at every sample."""
+    c = contact_record(run)
+    if run.arch is None:
+        raise InputError(f"{run.path}: no /arch group: a thrust line is drawn through the joints of an arch")
+    bodies = joint_bodies(run)
+    nt, nj = run.n_samples, bodies.shape[0]
+    sample = _sample_of_row(c)
+    rows = c.joint >= 0
+    s, j = sample[rows], c.joint[rows]
+    on_a = c.force_on_a_n()[rows]
+    # The force on the joint's right-hand body: rows whose body a is the left one push the right one back.
+    sign = np.where(c.body[rows, 0] == bodies[j, 1], 1.0, -1.0)
+    normal = np.zeros((nt, nj))
+    moment = np.zeros((nt, nj, 2))
+    force = np.zeros((nt, nj, 2))
+    np.add.at(normal, (s, j), c.normal_force_n[rows])
+    np.add.at(moment, (s, j), c.normal_force_n[rows, None] * c.point_m[rows])
+    np.add.at(force, (s, j), sign[:, None] * on_a)
+    carried = normal > 0.0
+    point = np.full((nt, nj, 2), np.nan)
+    point[carried] = moment[carried] / normal[carried][:, None]
+
+    # The joint's ends moved with its voussoir (the right body of joint 0, else the left).
+    voussoir = np.where(run.body_role[bodies[:, 0]] == ROLE_VOUSSOIR, bodies[:, 0], bodies[:, 1])
+    ends_ref = np.stack([run.arch.joint_intrados_xy_m, run.arch.joint_extrados_xy_m], axis=1)  # (nj, 2, 2)
+    fraction = np.full((nt, nj), np.nan)
+    shear = np.zeros((nt, nj))
+    for k in range(nt):
+        centroid, rotation = body_transforms(run, k)
+        rot = rotation_matrix(rotation[voussoir])  # (nj, 2, 2)
+        rel = ends_ref - run.body_position[0, voussoir, None, :2]
+        ends = centroid[voussoir, None, :] + np.einsum("jab,jeb->jea", rot, rel)
+        along = ends[:, 1] - ends[:, 0]
+        length2 = np.einsum("ja,ja->j", along, along)
+        fraction[k] = np.einsum("ja,ja->j", point[k] - ends[:, 0], along) / length2
+        shear[k] = np.einsum("ja,ja->j", force[k], along) / np.sqrt(length2)
+    return ThrustLine(time_s=run.time_s, point_m=point, fraction=fraction, normal_n=normal,
+                      shear_n=shear, force_n=force)
+
+
+def reactions_table(r: Reactions) -> ReportTable:
+    """One row per sample: time and each support's Fx, Fy [N]."""
+    columns = ["time_s"]
+    for k, (b, role) in enumerate(zip(r.bodies, r.role)):
+        name = f"support{k + 1}_body{b + 1}"
+        columns += [f"{name}_fx_n", f"{name}_fy_n"]
+    rows = []
+    for t, f in zip(r.time_s, r.force_n):
+        rows.append(tuple([float(t)] + [float(v) for v in f.reshape(-1)]))
+    return ReportTable(columns=columns, rows=rows)
