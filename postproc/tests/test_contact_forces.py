@@ -14,6 +14,7 @@ from conftest import run_executable
 
 from voussoir_post.analysis.contact_forces import reactions, reactions_table, thrust_line
 from voussoir_post.errors import InputError
+from voussoir_post.plots.xdmf import check_xdmf, write_xdmf
 from voussoir_post.readers.results import read_run
 
 #: The seed's 156-degree arch at rest for 1 s, solved tightly so that the forces balance
@@ -111,3 +112,34 @@ def test_no_thrust_line_without_an_arch(rest_run):
         thrust_line(replace(rest_run, arch=None))
     with pytest.raises(InputError, match="before runs recorded"):
         reactions(replace(rest_run, contacts=None))
+
+
+def test_xdmf_draws_the_contact_forces(rest_run, tmp_path):
+    """The contacts grid of the last sample: one point per loaded contact, at the recorded
+    point, with the force on body a; its forces on the voussoirs from the foundations
+    sum to the vertical reactions."""
+    import xml.etree.ElementTree as ET
+    import h5py
+    data = write_xdmf(rest_run, tmp_path / "rest.xmf")
+    check_xdmf(data.xmf_path)
+    assert data.n_contact_points == int(rest_run.contact_count.sum())
+    last = ET.parse(data.xmf_path).getroot().find("Domain/Grid").findall("Grid")[-1]
+    grid = last.find("Grid[@Name='contacts']")
+    assert grid.find("Topology").get("TopologyType") == "Polyvertex"
+    assert grid.find("Topology").get("NumberOfElements") == str(rest_run.contact_count[-1])
+    force_attr = grid.find("Attribute[@Name='force_n']")
+    assert force_attr.get("AttributeType") == "Vector" and force_attr.get("Center") == "Node"
+    c = rest_run.contacts
+    rows = c.rows(-1)
+    with h5py.File(data.h5_path, "r") as h5:
+        g = h5[f"samples/{rest_run.n_samples - 1:06d}/contacts"]
+        xyz, force, a = g["xyz_m"][()], g["force_n"][()], g["body_a"][()]
+        b = g["body_b"][()]
+    assert np.array_equal(xyz[:, :2], c.point_m[rows]) and np.all(xyz[:, 2] == 0.0)
+    # Independent of the reader's force_on_a_n: N n + T t with t = n turned +90 degrees.
+    n = c.normal[rows]
+    expected = c.normal_force_n[rows, None] * n + c.tangent_force_n[rows, None] * np.column_stack([-n[:, 1], n[:, 0]])
+    assert np.allclose(force[:, :2], expected, rtol=1e-12, atol=0)
+    driven = np.nonzero(rest_run.body_role == 2)[0]
+    on_ring = np.where(np.isin(b, driven), force[:, 1], 0.0) - np.where(np.isin(a, driven), force[:, 1], 0.0)
+    assert on_ring.sum() == pytest.approx(ring_weight_n(156.0, 13, 0.508, 0.071, 0.145, 700.0), rel=1e-6)
