@@ -13,6 +13,9 @@ Every loaded contact of a sample carries the mean force of the step that ends th
   the joint from the intrados (0) to the extrados (1) in the present configuration; NaN
   where the joint carries nothing (fully open).
 
+The same centre of pressure for the static field of the limit analysis (the JSON's
+``contact_forces``): :func:`lp_joint_resultants`.
+
 Nothing here is physics the kernel does not already do: sums of recorded forces.
 """
 
@@ -23,11 +26,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
+from ..readers.limit_results import LimitResult
 from ..readers.results import ContactRecord, RunResult
 from ..tables import ReportTable
 from .kinematics import ROLE_VOUSSOIR, body_transforms, joint_bodies, rotation_matrix
 
-__all__ = ["Reactions", "ThrustLine", "contact_record", "reactions", "thrust_line", "reactions_table"]
+__all__ = ["Reactions", "ThrustLine", "LpJointResultants", "contact_record", "reactions", "thrust_line",
+           "reactions_table", "lp_joint_resultants"]
 
 
 @dataclass(frozen=True)
@@ -140,3 +145,37 @@ def reactions_table(r: Reactions) -> ReportTable:
     for t, f in zip(r.time_s, r.force_n):
         rows.append(tuple([float(t)] + [float(v) for v in f.reshape(-1)]))
     return ReportTable(columns=columns, rows=rows)
+
+
+@dataclass(frozen=True)
+class LpJointResultants:
+    """The joints of an arch in the LP's static field at collapse (``voussoir-limit --json``)."""
+
+    joint: np.ndarray  #: (n+1,) 0..n
+    point_m: np.ndarray  #: (n+1, 2) centre of pressure, the JSON's frame; NaN where N = 0
+    force_n: np.ndarray  #: (n+1, 2) the force of the part left of the joint on the part right of it [N]
+    normal_n: np.ndarray  #: (n+1,) N = N1 + N2
+
+
+def lp_joint_resultants(limit: LimitResult) -> LpJointResultants | None:
+    """Centre of pressure (N1 e1 + N2 e2) / (N1 + N2) and resultant of every arch joint in
+    the LP's contact forces; None when the JSON has no LP field for every joint. The
+    right-hand block of joint j is voussoir j + 1, and of joint n the right foundation n + 2."""
+    n = limit.n_voussoirs
+    by_joint = {f.joint: f for f in limit.contact_forces if f.joint is not None}
+    if sorted(by_joint) != list(range(n + 1)):
+        return None
+    point = np.full((n + 1, 2), np.nan)
+    force = np.zeros((n + 1, 2))
+    normal = np.zeros(n + 1)
+    for j in range(n + 1):
+        f = by_joint[j]
+        total = float(f.normal_n.sum())
+        tangent = np.array([-f.normal[1], f.normal[0]])
+        on_b = total * f.normal + f.shear_n * tangent
+        right = j + 1 if j < n else n + 2
+        force[j] = on_b if f.blocks[1] == right else -on_b
+        normal[j] = total
+        if total > 0.0:
+            point[j] = (f.normal_n[0] * f.ends_xy_m[0] + f.normal_n[1] * f.ends_xy_m[1]) / total
+    return LpJointResultants(np.arange(n + 1), point, force, normal)
