@@ -158,18 +158,20 @@ contains
     type(run_result_t), intent(in) :: res
     type(status_t), intent(inout) :: status
     integer(hid_t) :: g
+    integer :: m
+    m = res%n_contact_records   ! the record's arrays may be longer (room reserved)
     call h5_group(file_id, 'contacts', g, status)
     call h5_attr(g, 'dt_s', dt_s, status)
     call h5_write(g, 'count', res%contact_count, status)
     call h5_write(g, 'start', res%contact_start - 1, status)   ! 0-based offsets for Python
-    call h5_write(g, 'body', res%contact_bodies, status)
-    call h5_write(g, 'joint', res%contact_joint, status)
-    call h5_write(g, 'point_m', res%contact_point, status)
-    call h5_write(g, 'normal', res%contact_normal, status)
-    call h5_write(g, 'normal_impulse_n_s', res%contact_impulse(2, :), status)
-    call h5_write(g, 'tangent_impulse_n_s', res%contact_impulse(1, :), status)
-    call h5_write(g, 'normal_force_n', res%contact_impulse(2, :)/dt_s, status)
-    call h5_write(g, 'tangent_force_n', res%contact_impulse(1, :)/dt_s, status)
+    call h5_write(g, 'body', res%contact_bodies(:, 1:m), status)
+    call h5_write(g, 'joint', res%contact_joint(1:m), status)
+    call h5_write(g, 'point_m', res%contact_point(:, 1:m), status)
+    call h5_write(g, 'normal', res%contact_normal(:, 1:m), status)
+    call h5_write(g, 'normal_impulse_n_s', res%contact_impulse(2, 1:m), status)
+    call h5_write(g, 'tangent_impulse_n_s', res%contact_impulse(1, 1:m), status)
+    call h5_write(g, 'normal_force_n', res%contact_impulse(2, 1:m)/dt_s, status)
+    call h5_write(g, 'tangent_force_n', res%contact_impulse(1, 1:m)/dt_s, status)
     call h5_group_close(g, status)
   end subroutine write_contacts
 

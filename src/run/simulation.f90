@@ -18,7 +18,8 @@ module voussoir_simulation
     real(dp), allocatable :: time_s(:), table(:, :), crown(:, :), q(:, :, :)
     integer, allocatable :: contact_count(:)
     !> The contacts that carry load (normal impulse > 0) at each sample, one flat list:
-    !> those of sample s are entries contact_start(s) .. contact_start(s + 1) - 1.
+    !> those of sample s are entries contact_start(s) .. contact_start(s + 1) - 1; the
+    !> arrays may be longer than n_contact_records (room reserved, not trimmed).
     integer :: n_contact_records = 0
     integer, allocatable :: contact_start(:)         !! (n_samples + 1)
     integer, allocatable :: contact_bodies(:, :)     !! (2, :) candidate a, antagonist b
@@ -125,7 +126,10 @@ contains
     integer :: k, m, n_new
     n_new = 0
     if (set%n > 0) n_new = count(set%impulse(2, 1:set%n) > 0.0_dp)
-    call reserve_contacts(res, res%n_contact_records + n_new)
+    ! Room for the rest of the run at this sample's count: memory that is reserved but
+    ! never written costs nothing, and copying on growth is what a long run pays for.
+    call reserve_contacts(res, res%n_contact_records + n_new, &
+                          res%n_contact_records + n_new*(size(res%time_s) - res%n_samples + 1))
     m = res%n_contact_records
     do k = 1, set%n
       if (.not. set%impulse(2, k) > 0.0_dp) cycle
@@ -140,17 +144,18 @@ contains
     res%contact_start(res%n_samples + 1) = m + 1
   end subroutine add_contacts
 
-  !> Room for `capacity` contact records in `res` (doubling), the present ones kept.
-  subroutine reserve_contacts(res, capacity)
+  !> Room for `capacity` contact records in `res`, the present ones kept: when it must
+  !> grow, to `projected` or twice `capacity`, whichever is larger.
+  subroutine reserve_contacts(res, capacity, projected)
     type(run_result_t), intent(inout) :: res
-    integer, intent(in) :: capacity
+    integer, intent(in) :: capacity, projected
     integer :: new_cap, m
     integer, allocatable :: bodies(:, :), joint(:)
     real(dp), allocatable :: point(:, :), normal(:, :), impulse(:, :)
     if (allocated(res%contact_joint)) then
       if (size(res%contact_joint) >= capacity) return
     end if
-    new_cap = max(256, 2*capacity)
+    new_cap = max(256, 2*capacity, projected)
     m = res%n_contact_records
     allocate (bodies(2, new_cap), joint(new_cap), point(2, new_cap), normal(2, new_cap), impulse(2, new_cap))
     if (m > 0) then
@@ -177,14 +182,7 @@ contains
     res%q = res%q(:, :, 1:res%n_samples)
     res%contact_count = res%contact_count(1:res%n_samples)
     res%contact_start = res%contact_start(1:res%n_samples + 1)
-    call reserve_contacts(res, 0)
-    associate (m => res%n_contact_records)
-      res%contact_bodies = res%contact_bodies(:, 1:m)
-      res%contact_joint = res%contact_joint(1:m)
-      res%contact_point = res%contact_point(:, 1:m)
-      res%contact_normal = res%contact_normal(:, 1:m)
-      res%contact_impulse = res%contact_impulse(:, 1:m)
-    end associate
+    call reserve_contacts(res, 0, 0)
     res%step_time_s = res%step_time_s(1:res%n_steps)
     res%step_norm = res%step_norm(1:res%n_steps)
     res%step_iterations = res%step_iterations(1:res%n_steps)
