@@ -32,7 +32,7 @@ from ..tables import ReportTable
 from .kinematics import ROLE_VOUSSOIR, body_transforms, joint_bodies, rotation_matrix
 
 __all__ = ["Reactions", "ThrustLine", "LpJointResultants", "contact_record", "reactions", "thrust_line",
-           "reactions_table", "lp_joint_resultants"]
+           "reactions_table", "lp_joint_resultants", "pair_forces"]
 
 
 @dataclass(frozen=True)
@@ -73,6 +73,20 @@ def contact_record(run: RunResult) -> ContactRecord:
 
 def _sample_of_row(c: ContactRecord) -> np.ndarray:
     return np.repeat(np.arange(c.start.shape[0] - 1), np.diff(c.start))
+
+
+def pair_forces(run: RunResult, sample: int = -1) -> dict[tuple[int, int], tuple[float, float]]:
+    """The normal force N and the magnitude of the tangential force |T| [N] between every
+    pair of bodies in contact at `sample` (keys: 0-based body pairs, the smaller first).
+    The points of one pair share their normal, so their tangential forces add along it."""
+    c = contact_record(run)
+    sums: dict[tuple[int, int], list[float]] = {}
+    rows = c.rows(sample)
+    for a, b, n, t in zip(c.body[rows, 0], c.body[rows, 1], c.normal_force_n[rows], c.tangent_force_n[rows]):
+        entry = sums.setdefault((int(min(a, b)), int(max(a, b))), [0.0, 0.0])
+        entry[0] += float(n)
+        entry[1] += float(t)
+    return {pair: (n, abs(t)) for pair, (n, t) in sums.items()}
 
 
 def reactions(run: RunResult) -> Reactions:
