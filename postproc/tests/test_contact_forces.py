@@ -145,38 +145,59 @@ def test_xdmf_draws_the_contact_forces(rest_run, tmp_path):
     assert on_ring.sum() == pytest.approx(ring_weight_n(156.0, 13, 0.508, 0.071, 0.145, 700.0), rel=1e-6)
 
 
-def test_reactions_figure_of_a_shaken_arch(run_file, tmp_path):
+def test_reactions_figure_of_a_shaken_arch(run_file, tmp_path, capsys):
     """The conftest run (156-degree arch, 2.5 Hz, 50 mm): until the table's acceleration
     first reaches the arch's static capacity (0.376 g, docs/limit_analysis.md) no mechanism
     can open, the ring moves with the table, and Newton gives the supports' horizontal
     reactions summing to its mass times the table's acceleration over the step (at its
-    middle: the samples interpolated), the vertical ones to its weight."""
-    from voussoir_post.plots.reactions import plot_reactions
+    middle: the samples interpolated), the vertical ones to its weight. The figure and
+    its CSV through `voussoir-post reactions`."""
+    from voussoir_post.cli import post
+    from voussoir_post.plots.reactions import free_weight_n, support_names
     run = read_run(run_file)
-    data = plot_reactions(run, tmp_path / "reactions.png")
-    assert data.names == ["left springing (body 14)", "right springing (body 15)"]
+    r = reactions(run)
+    assert support_names(r) == ["left springing (body 14)", "right springing (body 15)"]
     weight = ring_weight_n(156.0, 13, 0.508, 0.071, 0.145, 700.0)
-    assert data.weight_n == pytest.approx(weight, rel=1e-9)
+    assert free_weight_n(run) == pytest.approx(weight, rel=1e-9)
     t, a = run.time_s, run.table_a_m_s2
     first_over = int(np.argmax(np.abs(a) >= 0.376 * 9.81))
     assert first_over > 5
     rigid = slice(1, first_over)
     mass = weight / 9.81
     a_mid = np.interp(t - 0.5 * 2.0e-3, t, a)
-    total = data.reactions.total_n
-    assert np.allclose(total[rigid, 0], mass * a_mid[rigid], rtol=0, atol=0.02 * mass * 0.376 * 9.81)
-    assert np.allclose(total[rigid, 1], weight, rtol=0, atol=0.002 * weight)
-    assert data.summary.rows[-1][0] == "sum" and len(data.samples_table().rows) == run.n_samples
-    from PIL import Image
-    with Image.open(data.png_path) as im:
-        assert im.format == "PNG" and im.size[0] >= 800
+    assert np.allclose(r.total_n[rigid, 0], mass * a_mid[rigid], rtol=0, atol=0.02 * mass * 0.376 * 9.81)
+    assert np.allclose(r.total_n[rigid, 1], weight, rtol=0, atol=0.002 * weight)
 
-
-def test_reactions_cli(run_file, tmp_path, capsys):
-    from voussoir_post.cli import post
     assert post.main(["reactions", str(run_file), "--out", str(tmp_path / "r.png"), "--csv"]) == 0
     out = capsys.readouterr().out
-    assert "left springing (body 14)" in out and (tmp_path / "r.png").is_file()
-    header = (tmp_path / "r.csv").read_text().splitlines()[0]
-    assert header == ("time_s,support1_body14_fx_n,support1_body14_fy_n,support2_body15_fx_n,"
-                      "support2_body15_fy_n")
+    assert "left springing (body 14)" in out and f"weight of the free blocks {weight:.6g} N" in out
+    from PIL import Image
+    with Image.open(tmp_path / "r.png") as im:
+        assert im.format == "PNG" and im.size[0] >= 800
+    lines = (tmp_path / "r.csv").read_text().splitlines()
+    assert lines[0] == ("time_s,support1_body14_fx_n,support1_body14_fy_n,support2_body15_fx_n,"
+                        "support2_body15_fy_n")
+    assert len(lines) == run.n_samples + 1
+
+
+def test_thrust_line_sits_on_the_hinges_the_kinematics_found(run_file, tmp_path):
+    """The conftest run: every hinge the monitors saw open before the collapse (from the
+    blocks' positions: one end of the joint apart, the other shut) has its joint's force
+    at the edge it pivots on, at the first sample after it opened: the centre of
+    pressure within a tenth of the joint of the intrados (0) or the extrados (1)."""
+    run = read_run(run_file)
+    t = thrust_line(run)
+    checked = 0
+    for time, joint, side in zip(run.hinge_time_s, run.hinge_joint, run.hinge_side):
+        if time >= run.collapse_time_s:
+            continue
+        k = int(np.searchsorted(run.time_s, time))
+        assert t.normal_n[k, joint] > 0.0
+        assert abs(t.fraction[k, joint] - float(side)) < 0.1, (time, joint, side, t.fraction[k, joint])
+        checked += 1
+    assert checked >= 4
+    from voussoir_post.cli import post
+    assert post.main(["thrust", str(run_file), "--out", str(tmp_path / "t.png"), "--csv"]) == 0
+    lines = (tmp_path / "t.csv").read_text().splitlines()
+    assert lines[0].startswith("time_s,joint0_fraction,") and len(lines) == run.n_samples + 1
+    assert (tmp_path / "t.png").is_file()
