@@ -100,7 +100,8 @@ def plot_reactions(run: RunResult, out_png: str | os.PathLike) -> ReactionsData:
             ax.axvline(collapse, color="tab:red", linestyle="--", linewidth=1.0)
     if math.isfinite(collapse):
         axes[0].annotate(f"collapse {collapse:.3f} s", (collapse, 1.0), xycoords=("data", "axes fraction"),
-                         xytext=(4, -12), textcoords="offset points", color="tab:red", fontsize=8)
+                         xytext=(0, 2), textcoords="offset points", ha="center", va="bottom", color="tab:red",
+                         fontsize=8)
     fig.suptitle(f"Reactions of the supports over time: the force each exerts on the blocks it carries\n"
                  f"(mean over the time step that ends at each output sample)\n{run_caption(run)}", fontsize=9)
     data.png_path = save_png(fig, out_png, note=provenance(run.code_version, run.input_file,

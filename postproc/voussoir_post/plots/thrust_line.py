@@ -68,7 +68,7 @@ def plot_thrust_line(run: RunResult, out_png: str | os.PathLike) -> ThrustLineDa
         for ax in axes:
             ax.axvline(collapse, color="black", linestyle="--", linewidth=1.0)
         axes[0].annotate(f"collapse {collapse:.3f} s", (collapse, 1.0), xycoords=("data", "axes fraction"),
-                         xytext=(4, -12), textcoords="offset points", fontsize=8)
+                         xytext=(0, 2), textcoords="offset points", ha="center", va="bottom", fontsize=8)
     fig.suptitle(f"Thrust line over time: where each joint's contact force crosses it (mean over the time step "
                  f"ending at each output sample)\n{run_caption(run)}", fontsize=9)
     data.png_path = save_png(fig, out_png, note=provenance(run.code_version, run.input_file,
