@@ -67,7 +67,7 @@ contains
       model%motion = motion_ramp(rate_m_s3)
     end if
     call monitor_init(a, model%bodies, 0.05_dp, 0.5_dp, 1.0e-3_dp, mon)
-    call simulate(model, mon, duration_s, 10, -1.0_dp, res, status)
+    call simulate(model, mon, duration_s, 10, -1.0_dp, res, status, record_contacts=.true.)
     call assert_true(status%ok, 'run: '//trim(status%message))
   end subroutine run
 
@@ -117,7 +117,7 @@ contains
     real(dp), intent(in) :: mu, rate_m_s3
     type(run_result_t) :: res
     real(dp) :: f(2), t_slip_s, load
-    integer :: s, s_stick, s_slide
+    integer :: s_stick, s_slide
     t_slip_s = mu*g_m_s2/rate_m_s3
     call run(mu, 2, rate_m_s3, 1.5_dp*t_slip_s, res)
     ! A sample at 60 % of the slip load (it sticks) and the last one (at 1.5 times: it slides).

@@ -163,6 +163,10 @@ contains
     call h5_group(file_id, 'contacts', g, status)
     call h5_attr(g, 'dt_s', dt_s, status)
     call h5_write(g, 'count', res%contact_count, status)
+    if (.not. res%contacts_recorded) then   ! a run that did not keep them (none writes a file today)
+      call h5_group_close(g, status)
+      return
+    end if
     call h5_write(g, 'start', res%contact_start - 1, status)   ! 0-based offsets for Python
     call h5_write(g, 'body', res%contact_bodies(:, 1:m), status)
     call h5_write(g, 'joint', res%contact_joint(1:m), status)

@@ -17,6 +17,7 @@ module voussoir_simulation
     integer :: n_samples = 0
     real(dp), allocatable :: time_s(:), table(:, :), crown(:, :), q(:, :, :)
     integer, allocatable :: contact_count(:)
+    logical :: contacts_recorded = .false.   !! whether the contact record below was kept
     !> The contacts that carry load (normal impulse > 0) at each sample, one flat list:
     !> those of sample s are entries contact_start(s) .. contact_start(s + 1) - 1; the
     !> arrays may be longer than n_contact_records (room reserved, not trimmed).
@@ -50,14 +51,17 @@ module voussoir_simulation
 contains
 
   !> Run `model` for `duration_s`, sampling every `every` steps, watched by `mon` (cleared
-  !> first); stop `stop_after_collapse_s` after a collapse (never when negative).
-  subroutine simulate(model, mon, duration_s, every, stop_after_collapse_s, res, status)
+  !> first); stop `stop_after_collapse_s` after a collapse (never when negative). With
+  !> `record_contacts` the loaded contacts of every sample are kept (a result file's
+  !> /contacts); a sweep, which keeps only the outcome, goes without.
+  subroutine simulate(model, mon, duration_s, every, stop_after_collapse_s, res, status, record_contacts)
     type(model_t), intent(inout) :: model
     type(monitor_t), intent(inout) :: mon
     real(dp), intent(in) :: duration_s, stop_after_collapse_s
     integer, intent(in) :: every
     type(run_result_t), intent(out) :: res
     type(status_t), intent(inout) :: status
+    logical, intent(in), optional :: record_contacts
     integer :: n_steps, n_samples, nb, istep
     integer(8) :: clock0, clock1, rate
     real(dp) :: sum_iter
@@ -70,6 +74,7 @@ contains
               res%q(3, nb, n_samples), res%contact_count(n_samples), res%step_time_s(n_steps), &
               res%step_norm(n_steps), res%step_iterations(n_steps), res%contact_start(n_samples + 1))
     res%contact_start(1) = 1
+    if (present(record_contacts)) res%contacts_recorded = record_contacts
     call monitor_clear(mon)
     call add_sample(res, model, mon)
     sum_iter = 0.0_dp
@@ -113,8 +118,15 @@ contains
     res%table(:, s) = model%table
     res%crown(:, s) = crown_displacement(mon, model%bodies)
     res%q(:, :, s) = model%bodies%q
-    call add_contacts(res, model%contacts, mon)
-    res%contact_count(s) = res%n_contact_records + 1 - res%contact_start(s)
+    if (res%contacts_recorded) then
+      call add_contacts(res, model%contacts, mon)
+      res%contact_count(s) = res%n_contact_records + 1 - res%contact_start(s)
+    else
+      res%contact_start(s + 1) = res%contact_start(s)
+      res%contact_count(s) = 0
+      if (model%contacts%n > 0) &
+        res%contact_count(s) = count(model%contacts%impulse(2, 1:model%contacts%n) > 0.0_dp)
+    end if
   end subroutine add_sample
 
   !> Append the contacts of `set` that carry load (normal impulse > 0) to the record of
