@@ -1,5 +1,6 @@
 !> A whole run: the time loop, the monitors it updates (voussoir_monitors) and its record.
 module voussoir_simulation
+  use, intrinsic :: iso_fortran_env, only: int64
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t
   use voussoir_model, only: model_t, model_step
@@ -135,13 +136,15 @@ contains
     type(run_result_t), intent(inout) :: res
     type(contact_set_t), intent(in) :: set
     type(monitor_t), intent(in) :: mon
+    integer, parameter :: max_projected = 2**25   ! records reserved ahead at most (2 GB)
     integer :: k, m, n_new
+    integer(int64) :: projected
     n_new = 0
     if (set%n > 0) n_new = count(set%impulse(2, 1:set%n) > 0.0_dp)
     ! Room for the rest of the run at this sample's count: memory that is reserved but
     ! never written costs nothing, and copying on growth is what a long run pays for.
-    call reserve_contacts(res, res%n_contact_records + n_new, &
-                          res%n_contact_records + n_new*(size(res%time_s) - res%n_samples + 1))
+    projected = res%n_contact_records + int(n_new, int64)*(size(res%time_s) - res%n_samples + 1)
+    call reserve_contacts(res, res%n_contact_records + n_new, int(min(projected, int(max_projected, int64))))
     m = res%n_contact_records
     do k = 1, set%n
       if (.not. set%impulse(2, k) > 0.0_dp) cycle
