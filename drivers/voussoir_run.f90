@@ -31,7 +31,7 @@ program voussoir_run
   call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'wall', 'load'], cfg, status)
   if (status%ok .and. .not. catch_stop_signals()) &
     write (error_unit, '(a)') 'voussoir-run: warning: cannot catch Ctrl-C / SIGTERM: an interrupted run writes nothing'
-  if (status%ok) call run_config(cfg, assembly, model, res, status)
+  if (status%ok) call run_config(cfg, assembly, model, res, status, record_contacts=.true.)
   if (status%ok) call write_run_file(cfg, assembly, model, res, status)
   if (.not. status%ok) then
     write (error_unit, '(a)') 'voussoir-run: error: '//trim(status%message)

@@ -50,6 +50,8 @@ echo "== 5. Figures"
 "$post" history results/seed_156_A66mm.h5 --out results/ >/dev/null
 "$post" sequence results/seed_156_A66mm.h5 --out results/ >/dev/null
 "$post" xdmf results/seed_156_A66mm.h5 >/dev/null
+"$post" reactions results/seed_156_A66mm.h5 --out results/ >/dev/null
+"$post" thrust results/seed_156_A66mm.h5 --out results/ >/dev/null
 "$post" mechanism results/limit_seed_156.json --out results/ >/dev/null
 "$post" envelope results/sweep_envelope_156.h5 --campaign "$seed" --specimen A156 --limit results/limit_seed_156.json --out results/ >/dev/null
 "$post" compare results/sweep_seed_tests.h5 "$seed" --out results/ | sed 's/^/   /'
@@ -100,9 +102,11 @@ missing=()  # files the job should have made and did not
   describe seed_156_A66mm.h5 "run at 1.25 Hz, 66 mm (where the paper's LMGC90 fell): the model collapses"
   describe seed_156_A66mm_history.png "that run against time: table motion (acceleration in m/s2 and g), crown, NLGS iterations, contacts"
   describe seed_156_A66mm_sequence.png "its collapse sequence at true scale: hinges on the intrados (green, i) and on the extrados (blue, e), separated joints (purple)"
-  describe seed_156_A66mm.xmf "the same run for ParaView (XDMF; its data in seed_156_A66mm.vtk.h5)"
+  describe seed_156_A66mm.xmf "the same run for ParaView (XDMF; its data in seed_156_A66mm.vtk.h5): the blocks, and the contact forces as point vectors (Glyph filter)"
+  describe seed_156_A66mm_reactions.png "that run's springing reactions over time (N), their sums against the ring's weight and its mass times the table's acceleration"
+  describe seed_156_A66mm_thrust.png "that run's thrust line over time: where each joint's force crosses it, intrados (red) to extrados (blue), grey when the joint carries nothing"
   describe limit_seed_156.json "limit analysis: static capacity (in g), hinges, line of thrust, minimum thickness"
-  describe limit_seed_156_mechanism.png "the two static mechanisms with their lines of thrust"
+  describe limit_seed_156_mechanism.png "the two static mechanisms with their lines of thrust; towards +x the LP's force across each joint (arrows to scale in N)"
   describe sweep_envelope_156.h5 "collapse thresholds from 0.5 to 4 Hz (MPI sweep); CSV beside it"
   describe sweep_envelope_156_envelope.png "the collapse envelope against the table test (amplitude; peak acceleration of the commanded motion in m/s2 and g; the static capacity of the limit analysis)"
   describe sweep_seed_tests.h5 "the four seed arches at the frequencies of their tests"

@@ -77,6 +77,11 @@ def test_a_slab_slides_as_the_closed_form_says(voussoir_run_exe, tmp_path, capsy
     assert abs(float(cells["final_sliding_mm"])) == pytest.approx(expected_mm, rel=0.01)
     assert float(cells["length_mm"]) == pytest.approx(400.0)
     assert abs(float(cells["max_opening_mm"])) < 0.01  # it slides flat, it does not tip
+    # Sliding at the end: the base carries the slab's weight m g, and Coulomb's mu m g along it
+    # (to the contact solve's default tolerance, 1e-4: the run leaves &solver tol alone).
+    weight = 2000 * 0.1 * 0.4 * 0.1 * 9.81
+    assert float(cells["final_normal_n"]) == pytest.approx(weight, rel=1e-4)
+    assert float(cells["final_shear_n"]) == pytest.approx(mu * weight, rel=1e-4)
 
 
 def test_no_joint_is_refused_clearly(voussoir_run_exe, tmp_path, capsys):

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 
 import numpy as np
 import pytest
@@ -78,3 +79,43 @@ def test_mechanism_cli(limit_json, tmp_path, capsys):
     assert post.main(["mechanism", str(limit_json), "--out", str(tmp_path / "m.png"), "--csv"]) == 0
     assert (tmp_path / "m.png").is_file() and (tmp_path / "m.csv").is_file()
     assert "extrados" in capsys.readouterr().out
+
+
+def test_mechanism_thrust_line_and_forces_of_the_lp(limit_json, tmp_path):
+    """Towards +x the thrust line is the LP's centres of pressure: at the four hinges of the
+    exact analysis it passes through the hinge (the joint's end, no inset), elsewhere inside
+    the joint; the arrows' forces keep every voussoir in equilibrium under its weight
+    (trapezoid, closed form) and the inertial load lambda times it."""
+    limit = read_limit_json(limit_json)
+    data = plot_mechanism(limit, tmp_path / "mech.png")
+    pos = data.panels[0]
+    lp = pos.lp_forces
+    assert lp is not None and data.panels[1].lp_forces is None
+    for (j, side), xy in zip(pos.hinges, pos.hinge_xy_m):
+        assert np.allclose(pos.thrust_xy_m[j], xy, atol=1e-9)
+    intr, extr = limit.joint_intrados_xy_m, limit.joint_extrados_xy_m
+    length = np.hypot(*(extr - intr).T)
+    assert np.allclose(np.hypot(*(pos.thrust_xy_m - intr).T) + np.hypot(*(pos.thrust_xy_m - extr).T), length,
+                       atol=1e-9)
+    r_int, dphi = 0.508 - 0.071, math.radians(156.0) / 13
+    w = 0.5 * (0.508**2 - r_int**2) * math.sin(dphi) * 0.145 * 700.0 * 9.81
+    lam = limit.load_factor
+    assert lam == pytest.approx(0.376019, abs=1e-5)
+    assert np.allclose(np.diff(lp.force_n, axis=0), [lam * w, -w], rtol=0, atol=1e-6 * w)
+    # The arrows' key: a round force, drawn at the figure's scale.
+    assert data.force_key_n in (10.0, 20.0, 50.0) and data.force_scale_m_per_n > 0
+
+
+def test_mechanism_axes_from_the_springings_and_capacity_words(limit_json, tmp_path):
+    """y = 0 at the springings: the JSON's origin is the circle's centre, the intrados
+    springing r_int sin(12 deg) above it for a 156-degree arch."""
+    from voussoir_post.plots.mechanism import _capacity_text
+    limit = read_limit_json(limit_json)
+    data = plot_mechanism(limit, tmp_path / "mech.png")
+    assert data.springing_y_m == pytest.approx((0.508 - 0.071) * math.sin(math.radians(12.0)), rel=1e-9)
+    rows = {(r[0], r[3]): r for r in data.table.rows}
+    assert "y_above_springings_m" in data.table.columns
+    assert rows[("+x", 0)][6] == pytest.approx(0.0, abs=1e-12)  # the hinge at the intrados springing
+    text = _capacity_text(data.panels[0])
+    assert "collapse load factor λ = 0.376" in text
+    assert "horizontal acceleration 3.69 m/s² = 0.376 g" in text

@@ -155,7 +155,9 @@ def test_xdmf_export(run_copy):
     assert data.h5_path == str(run_copy.parent / (run_copy.stem + ".vtk.h5"))
     assert hashlib.sha256(run_copy.read_bytes()).hexdigest() == digest  # the run file is untouched
     items = check_xdmf(data.xmf_path)
-    assert len(items) == run.n_samples * 6
+    with_contacts = int(np.count_nonzero(run.contact_count))
+    assert len(items) == run.n_samples * 6 + with_contacts * 7
+    assert data.n_contact_points == int(run.contact_count.sum())
 
     root = ET.parse(data.xmf_path).getroot()
     assert root.get("Version") == "3.0"
@@ -165,7 +167,9 @@ def test_xdmf_export(run_copy):
     assert len(grids) == run.n_samples
     assert [float(g.find("Time").get("Value")) for g in grids] == pytest.approx(list(run.time_s))
     k = run.n_samples // 2
-    geom = grids[k].find("Geometry/DataItem").text.strip().split(":", 1)[1]
+    assert grids[k].get("CollectionType") == "Spatial"
+    assert [g.get("Name") for g in grids[k].findall("Grid")] == ["blocks", "contacts"]
+    geom = grids[k].find("Grid[@Name='blocks']/Geometry/DataItem").text.strip().split(":", 1)[1]
     with h5py.File(data.h5_path, "r") as h5:
         xyz = h5[geom][()]
         conn = h5["topology/mixed"][()]
@@ -174,7 +178,7 @@ def test_xdmf_export(run_copy):
     expected = np.vstack([world_vertices(run, k, b) for b in range(run.n_bodies)])
     assert np.allclose(xyz[:, :2], expected, atol=1e-12)
     assert conn[:6].tolist() == [3, 4, 0, 1, 2, 3]
-    assert grids[k].find("Topology").get("NumberOfElements") == str(run.n_bodies)
+    assert grids[k].find("Grid[@Name='blocks']/Topology").get("NumberOfElements") == str(run.n_bodies)
 
 
 def test_check_xdmf_detects_wrong_dimensions(run_copy):

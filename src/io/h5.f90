@@ -26,7 +26,7 @@ module voussoir_h5
 
   !> Write a whole dataset (real or integer, rank 1 to 3).
   interface h5_write
-    module procedure write_r1, write_r2, write_r3, write_i1
+    module procedure write_r1, write_r2, write_r3, write_i1, write_i2
   end interface h5_write
 
   !> Write an attribute (string, real, integer) on a file, group or dataset.
@@ -275,6 +275,14 @@ contains
     type(status_t), intent(inout) :: status
     call write_any(loc, name, H5T_NATIVE_INTEGER, [int(size(x), hsize_t)], status, buf_i=x)
   end subroutine write_i1
+
+  subroutine write_i2(loc, name, x, status)
+    integer(hid_t), intent(in) :: loc
+    character(len=*), intent(in) :: name
+    integer, intent(in) :: x(:, :)
+    type(status_t), intent(inout) :: status
+    call write_any(loc, name, H5T_NATIVE_INTEGER, int(shape(x), hsize_t), status, buf_i=x)
+  end subroutine write_i2
 
   !> Create attribute `name` of type `type_id` on `loc` (replacing one of that name) and
   !> write one value.

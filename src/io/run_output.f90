@@ -74,9 +74,7 @@ contains
     call write_result_summary(file_id, res, status)
     call write_samples(file_id, model, res, status)
     if (model%motion%waveform == waveform_accelerogram) call write_record(file_id, cfg, model, status)
-    call h5_group(file_id, 'contacts', g, status)
-    call h5_write(g, 'count', res%contact_count, status)
-    call h5_group_close(g, status)
+    call write_contacts(file_id, model%solver%dt_s, res, status)
     call h5_group(file_id, 'solver', g, status)
     call h5_write(g, 'time_s', res%step_time_s, status)
     call h5_write(g, 'iterations', res%step_iterations, status)
@@ -151,6 +149,35 @@ contains
     call h5_write(g, 'role', model%bodies%role, status)
     call h5_group_close(g, status)
   end subroutine write_samples
+
+  !> /contacts: the contacts that carry load at every sample, one flat list with the
+  !> offsets of each sample, their impulses over the step and mean forces (impulse / dt_s).
+  subroutine write_contacts(file_id, dt_s, res, status)
+    integer(hid_t), intent(in) :: file_id
+    real(dp), intent(in) :: dt_s
+    type(run_result_t), intent(in) :: res
+    type(status_t), intent(inout) :: status
+    integer(hid_t) :: g
+    integer :: m
+    m = res%n_contact_records   ! the record's arrays may be longer (room reserved)
+    call h5_group(file_id, 'contacts', g, status)
+    call h5_attr(g, 'dt_s', dt_s, status)
+    call h5_write(g, 'count', res%contact_count, status)
+    if (.not. res%contacts_recorded) then   ! a run that did not keep them (none writes a file today)
+      call h5_group_close(g, status)
+      return
+    end if
+    call h5_write(g, 'start', res%contact_start - 1, status)   ! 0-based offsets for Python
+    call h5_write(g, 'body', res%contact_bodies(:, 1:m), status)
+    call h5_write(g, 'joint', res%contact_joint(1:m), status)
+    call h5_write(g, 'point_m', res%contact_point(:, 1:m), status)
+    call h5_write(g, 'normal', res%contact_normal(:, 1:m), status)
+    call h5_write(g, 'normal_impulse_n_s', res%contact_impulse(2, 1:m), status)
+    call h5_write(g, 'tangent_impulse_n_s', res%contact_impulse(1, 1:m), status)
+    call h5_write(g, 'normal_force_n', res%contact_impulse(2, 1:m)/dt_s, status)
+    call h5_write(g, 'tangent_force_n', res%contact_impulse(1, 1:m)/dt_s, status)
+    call h5_group_close(g, status)
+  end subroutine write_contacts
 
   !> /record: the accelerogram a run was driven by and its intensity measures.
   subroutine write_record(file_id, cfg, model, status)

@@ -14,7 +14,7 @@ module voussoir_monitors
   private
 
   public :: monitor_t, monitor_init, monitor_clear, monitor_update, crown_displacement, residual_displacement
-  public :: joint_closed
+  public :: joint_closed, joint_of_pair
 
   integer, parameter :: joint_closed = -1   !! a joint's state when no hinge is open in it
 
@@ -31,6 +31,7 @@ module voussoir_monitors
     real(dp), allocatable :: joint_ends(:, :, :) !! (2, 2, n_joints): intrados, extrados point
     real(dp), allocatable :: joint_normal(:, :)  !! (2, n_joints): from right body to left
     integer, allocatable :: joint_state(:)       !! (n_joints) `joint_closed` or the side of its open hinge
+    integer, allocatable :: body_joints(:, :)    !! (2, n_bodies): the joints (1..n_joints) of each body, 0: none
     ! Seen so far:
     logical :: collapsed = .false.
     real(dp) :: collapse_time_s = 0.0_dp     !! NaN until a collapse
@@ -87,6 +88,19 @@ contains
         mon%joint_normal(:, j + 1) = nrm
       end do
       mon%joint_state = joint_closed
+      allocate (mon%body_joints(2, assembly%n_bodies))
+      mon%body_joints = 0
+      do j = 1, n + 1
+        do k = 1, 2
+          associate (slot => mon%body_joints(:, mon%joint_bodies(k, j)))
+            if (slot(1) == 0) then
+              slot(1) = j
+            else
+              slot(2) = j
+            end if
+          end associate
+        end do
+      end do
     else
       k = maxloc(bodies%q_ref(2, :), dim=1, mask=.not. bodies%driven)
       mon%crown_bodies = [k]
@@ -151,6 +165,24 @@ contains
       mon%joint_state(j) = side
     end do
   end subroutine monitor_update
+
+  !> The joint (0..n) of an arch between bodies `a` and `b`, -1 when they share none (a
+  !> bracket, or an assembly that is not an arch).
+  pure integer function joint_of_pair(mon, a, b)
+    type(monitor_t), intent(in) :: mon
+    integer, intent(in) :: a, b
+    integer :: k, j
+    joint_of_pair = -1
+    if (mon%n_joints == 0) return
+    do k = 1, 2
+      j = mon%body_joints(k, a)
+      if (j == 0) cycle
+      if (any(mon%joint_bodies(:, j) == b)) then
+        joint_of_pair = j - 1
+        return
+      end if
+    end do
+  end function joint_of_pair
 
   !> Mean displacement of the crown bodies from their reference [m], x relative to the table.
   pure function crown_displacement(mon, bodies) result(d)

@@ -23,14 +23,17 @@ module voussoir_setup
 
 contains
 
-  !> The assembly, model and monitors that `cfg` describes, and the time to simulate.
-  subroutine build_model(cfg, assembly, model, mon, duration_s, status)
+  !> The assembly, model and monitors that `cfg` describes, and the time to simulate
+  !> (its record's size checked with or without the contacts, `record_contacts`).
+  subroutine build_model(cfg, assembly, model, mon, duration_s, status, record_contacts)
     type(config_t), intent(in) :: cfg
     type(assembly_t), intent(out) :: assembly
     type(model_t), intent(out) :: model
     type(monitor_t), intent(out) :: mon
     real(dp), intent(out) :: duration_s
     type(status_t), intent(inout) :: status
+    logical, intent(in), optional :: record_contacts
+    logical :: with_contacts
     type(solver_settings_t) :: settings
     type(contact_law_t) :: law
     type(ground_record_t) :: rec
@@ -92,7 +95,9 @@ contains
         call fail(status, trim(cfg%source_file)//': nothing to simulate: set &motion rest_s or duration_s > 0')
         return
       end if
-      call check_work(cfg, duration_s, assembly%n_bodies, model%motion, status)
+      with_contacts = .false.
+      if (present(record_contacts)) with_contacts = record_contacts
+      call check_work(cfg, duration_s, assembly%n_bodies, model%motion, with_contacts, status)
       if (.not. status%ok) return
     end associate
     ! Monitors left automatic (0) follow the size of the blocks: the ring's thickness, or
@@ -115,11 +120,12 @@ contains
   !> Refuse a run whose step count or stored record is out of reach, before it starts:
   !> at most `max_steps` steps, and at most `max_record_bytes` of samples in memory; and
   !> a record (or accelerogram) of absurd motion.
-  subroutine check_work(cfg, duration_s, n_bodies, motion, status)
+  subroutine check_work(cfg, duration_s, n_bodies, motion, with_contacts, status)
     type(config_t), intent(in) :: cfg
     real(dp), intent(in) :: duration_s
     integer, intent(in) :: n_bodies
     type(motion_t), intent(in) :: motion
+    logical, intent(in) :: with_contacts
     type(status_t), intent(inout) :: status
     real(dp), parameter :: max_steps = 1.0e8_dp, max_record_bytes = 4.0e9_dp
     real(dp) :: steps, bytes
@@ -134,8 +140,10 @@ contains
                 fmt_significant(cfg%solver%dt_s, 4)//' s): more than the limit of 1e8; shorten the motion or raise dt_s')
       return
     end if
-    ! Stored per sample: the bodies' x, y, rotation; per step: time, norm, iterations.
-    bytes = 24.0_dp*n_bodies*steps/cfg%output%every + 24.0_dp*steps
+    ! Stored per sample: the bodies' x, y, rotation (24 bytes each) and, when recorded,
+    ! their loaded contact points (about 4 per body, 60 bytes each); per step: time,
+    ! norm, iterations.
+    bytes = (24.0_dp + merge(240.0_dp, 0.0_dp, with_contacts))*n_bodies*steps/cfg%output%every + 24.0_dp*steps
     if (bytes > max_record_bytes) &
       call fail(status, f//': the run would keep '//fmt_significant(bytes/1.0e9_dp, 3)//' GB of samples in memory ('// &
                 fmt_significant(steps, 3)//' steps, '//itoa(n_bodies)//' bodies, &output every = '//itoa(cfg%output%every)// &
@@ -220,18 +228,24 @@ contains
     if (automatic_alert_m == huge(1.0_dp)) automatic_alert_m = 1.0e-3_dp
   end function automatic_alert_m
 
-  !> Build and run the simulation `cfg` describes.
-  subroutine run_config(cfg, assembly, model, res, status)
+  !> Build and run the simulation `cfg` describes; keep the contacts of every sample with
+  !> `record_contacts` (voussoir-run does, for its file).
+  subroutine run_config(cfg, assembly, model, res, status, record_contacts)
     type(config_t), intent(in) :: cfg
     type(assembly_t), intent(out) :: assembly
     type(model_t), intent(out) :: model
     type(run_result_t), intent(out) :: res
     type(status_t), intent(inout) :: status
+    logical, intent(in), optional :: record_contacts
     type(monitor_t) :: mon
     real(dp) :: duration_s
-    call build_model(cfg, assembly, model, mon, duration_s, status)
+    logical :: with_contacts
+    with_contacts = .false.
+    if (present(record_contacts)) with_contacts = record_contacts
+    call build_model(cfg, assembly, model, mon, duration_s, status, with_contacts)
     if (.not. status%ok) return
-    call simulate(model, mon, duration_s, cfg%output%every, cfg%output%stop_after_collapse_s, res, status)
+    call simulate(model, mon, duration_s, cfg%output%every, cfg%output%stop_after_collapse_s, res, status, &
+                  with_contacts)
   end subroutine run_config
 
 end module voussoir_setup

@@ -1,9 +1,12 @@
 !> A whole run: the time loop, the monitors it updates (voussoir_monitors) and its record.
 module voussoir_simulation
+  use, intrinsic :: iso_fortran_env, only: int64
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t
   use voussoir_model, only: model_t, model_step
-  use voussoir_monitors, only: monitor_t, monitor_clear, monitor_update, crown_displacement, residual_displacement
+  use voussoir_monitors, only: monitor_t, monitor_clear, monitor_update, crown_displacement, residual_displacement, &
+                               joint_of_pair
+  use voussoir_contacts, only: contact_set_t
   use voussoir_interrupt, only: stop_signal
   implicit none
   private
@@ -15,6 +18,17 @@ module voussoir_simulation
     integer :: n_samples = 0
     real(dp), allocatable :: time_s(:), table(:, :), crown(:, :), q(:, :, :)
     integer, allocatable :: contact_count(:)
+    logical :: contacts_recorded = .false.   !! whether the contact record below was kept
+    !> The contacts that carry load (normal impulse > 0) at each sample, one flat list:
+    !> those of sample s are entries contact_start(s) .. contact_start(s + 1) - 1; the
+    !> arrays may be longer than n_contact_records (room reserved, not trimmed).
+    integer :: n_contact_records = 0
+    integer, allocatable :: contact_start(:)         !! (n_samples + 1)
+    integer, allocatable :: contact_bodies(:, :)     !! (2, :) candidate a, antagonist b
+    integer, allocatable :: contact_joint(:)         !! arch joint 0..n, -1 when none
+    real(dp), allocatable :: contact_point(:, :)     !! (2, :) [m]
+    real(dp), allocatable :: contact_normal(:, :)    !! (2, :) unit, from b towards a
+    real(dp), allocatable :: contact_impulse(:, :)   !! (2, :) of the step on a [N s]: tangent, normal
     integer :: n_steps = 0
     real(dp), allocatable :: step_time_s(:), step_norm(:)
     integer, allocatable :: step_iterations(:)
@@ -38,14 +52,17 @@ module voussoir_simulation
 contains
 
   !> Run `model` for `duration_s`, sampling every `every` steps, watched by `mon` (cleared
-  !> first); stop `stop_after_collapse_s` after a collapse (never when negative).
-  subroutine simulate(model, mon, duration_s, every, stop_after_collapse_s, res, status)
+  !> first); stop `stop_after_collapse_s` after a collapse (never when negative). With
+  !> `record_contacts` the loaded contacts of every sample are kept (a result file's
+  !> /contacts); a sweep, which keeps only the outcome, goes without.
+  subroutine simulate(model, mon, duration_s, every, stop_after_collapse_s, res, status, record_contacts)
     type(model_t), intent(inout) :: model
     type(monitor_t), intent(inout) :: mon
     real(dp), intent(in) :: duration_s, stop_after_collapse_s
     integer, intent(in) :: every
     type(run_result_t), intent(out) :: res
     type(status_t), intent(inout) :: status
+    logical, intent(in), optional :: record_contacts
     integer :: n_steps, n_samples, nb, istep
     integer(8) :: clock0, clock1, rate
     real(dp) :: sum_iter
@@ -56,7 +73,9 @@ contains
     n_samples = n_steps/every + 2  ! t = 0, every multiple of `every`, and the last step
     allocate (res%time_s(n_samples), res%table(3, n_samples), res%crown(2, n_samples), &
               res%q(3, nb, n_samples), res%contact_count(n_samples), res%step_time_s(n_steps), &
-              res%step_norm(n_steps), res%step_iterations(n_steps))
+              res%step_norm(n_steps), res%step_iterations(n_steps), res%contact_start(n_samples + 1))
+    res%contact_start(1) = 1
+    if (present(record_contacts)) res%contacts_recorded = record_contacts
     call monitor_clear(mon)
     call add_sample(res, model, mon)
     sum_iter = 0.0_dp
@@ -100,10 +119,73 @@ contains
     res%table(:, s) = model%table
     res%crown(:, s) = crown_displacement(mon, model%bodies)
     res%q(:, :, s) = model%bodies%q
-    res%contact_count(s) = 0
-    if (model%contacts%n > 0) &
-      res%contact_count(s) = count(model%contacts%impulse(2, 1:model%contacts%n) > 0.0_dp)
+    if (res%contacts_recorded) then
+      call add_contacts(res, model%contacts, mon)
+      res%contact_count(s) = res%n_contact_records + 1 - res%contact_start(s)
+    else
+      res%contact_start(s + 1) = res%contact_start(s)
+      res%contact_count(s) = 0
+      if (model%contacts%n > 0) &
+        res%contact_count(s) = count(model%contacts%impulse(2, 1:model%contacts%n) > 0.0_dp)
+    end if
   end subroutine add_sample
+
+  !> Append the contacts of `set` that carry load (normal impulse > 0) to the record of
+  !> the newest sample of `res`, named by their bodies and (arches) joint.
+  subroutine add_contacts(res, set, mon)
+    type(run_result_t), intent(inout) :: res
+    type(contact_set_t), intent(in) :: set
+    type(monitor_t), intent(in) :: mon
+    integer, parameter :: max_projected = 2**25   ! records reserved ahead at most (2 GB)
+    integer :: k, m, n_new
+    integer(int64) :: projected
+    n_new = 0
+    if (set%n > 0) n_new = count(set%impulse(2, 1:set%n) > 0.0_dp)
+    ! Room for the rest of the run at this sample's count: memory that is reserved but
+    ! never written costs nothing, and copying on growth is what a long run pays for.
+    projected = res%n_contact_records + int(n_new, int64)*(size(res%time_s) - res%n_samples + 1)
+    call reserve_contacts(res, res%n_contact_records + n_new, int(min(projected, int(max_projected, int64))))
+    m = res%n_contact_records
+    do k = 1, set%n
+      if (.not. set%impulse(2, k) > 0.0_dp) cycle
+      m = m + 1
+      res%contact_bodies(:, m) = [set%body_a(k), set%body_b(k)]
+      res%contact_joint(m) = joint_of_pair(mon, set%body_a(k), set%body_b(k))
+      res%contact_point(:, m) = set%point(:, k)
+      res%contact_normal(:, m) = set%normal(:, k)
+      res%contact_impulse(:, m) = set%impulse(:, k)
+    end do
+    res%n_contact_records = m
+    res%contact_start(res%n_samples + 1) = m + 1
+  end subroutine add_contacts
+
+  !> Room for `capacity` contact records in `res`, the present ones kept: when it must
+  !> grow, to `projected` or twice `capacity`, whichever is larger.
+  subroutine reserve_contacts(res, capacity, projected)
+    type(run_result_t), intent(inout) :: res
+    integer, intent(in) :: capacity, projected
+    integer :: new_cap, m
+    integer, allocatable :: bodies(:, :), joint(:)
+    real(dp), allocatable :: point(:, :), normal(:, :), impulse(:, :)
+    if (allocated(res%contact_joint)) then
+      if (size(res%contact_joint) >= capacity) return
+    end if
+    new_cap = max(256, 2*capacity, projected)
+    m = res%n_contact_records
+    allocate (bodies(2, new_cap), joint(new_cap), point(2, new_cap), normal(2, new_cap), impulse(2, new_cap))
+    if (m > 0) then
+      bodies(:, 1:m) = res%contact_bodies(:, 1:m)
+      joint(1:m) = res%contact_joint(1:m)
+      point(:, 1:m) = res%contact_point(:, 1:m)
+      normal(:, 1:m) = res%contact_normal(:, 1:m)
+      impulse(:, 1:m) = res%contact_impulse(:, 1:m)
+    end if
+    call move_alloc(bodies, res%contact_bodies)
+    call move_alloc(joint, res%contact_joint)
+    call move_alloc(point, res%contact_point)
+    call move_alloc(normal, res%contact_normal)
+    call move_alloc(impulse, res%contact_impulse)
+  end subroutine reserve_contacts
 
   !> Cut the record to the samples and steps made, and copy what the monitors saw.
   subroutine close_record(res, mon)
@@ -114,6 +196,8 @@ contains
     res%crown = res%crown(:, 1:res%n_samples)
     res%q = res%q(:, :, 1:res%n_samples)
     res%contact_count = res%contact_count(1:res%n_samples)
+    res%contact_start = res%contact_start(1:res%n_samples + 1)
+    call reserve_contacts(res, 0, 0)
     res%step_time_s = res%step_time_s(1:res%n_steps)
     res%step_norm = res%step_norm(1:res%n_steps)
     res%step_iterations = res%step_iterations(1:res%n_steps)

@@ -11,16 +11,20 @@ opening is the distance from a's copy to b's copy along a's outward normal (turn
 a), positive when apart; the sliding is their distance along a's edge direction (at the
 middle of the segment). Residual values are those of the last sample. No monitor of the
 run is needed: /bodies has every block's motion and shape (docs/results_format.md).
+When the run recorded its contact forces, each joint also gets the normal force N and the
+tangential force |T| its two blocks exchange at the last sample (|T| = friction x N while
+the joint slides).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ..readers.results import RunResult
 from ..tables import ReportTable
+from .contact_forces import pair_forces
 from .kinematics import rotation_matrix
 
 __all__ = ["Joint", "JointMotion", "find_joints", "joint_motion", "run_joints", "joints_table"]
@@ -41,6 +45,8 @@ class JointMotion:
     final_opening_m: float  #: the larger opening of the two ends at the last sample
     final_sliding_m: float  #: relative tangential displacement at the middle, last sample (signed)
     max_sliding_m: float  #: its largest magnitude over the run
+    final_normal_n: float = float("nan")  #: N between the two blocks at the last sample (NaN: no forces in the file)
+    final_shear_n: float = float("nan")  #: |T| between them at the last sample
 
 
 def _polygons(centroids: np.ndarray, vertices: list[np.ndarray]) -> list[np.ndarray]:
@@ -116,6 +122,10 @@ def run_joints(run: RunResult, tol_m: float = 1e-4) -> list[JointMotion]:
     vertices = [run.vertices_local_m[b, : run.n_vertices[b]] for b in range(run.n_bodies)]
     joints = find_joints(run.body_position[0, :, :2], vertices, tol_m)
     motions = [joint_motion(j, run.body_position) for j in joints]
+    if run.contacts is not None:
+        forces = pair_forces(run, -1)
+        motions = [replace(m, final_normal_n=forces.get((m.joint.a, m.joint.b), (0.0, 0.0))[0],
+                           final_shear_n=forces.get((m.joint.a, m.joint.b), (0.0, 0.0))[1]) for m in motions]
     return sorted(motions, key=lambda m: (-abs(m.final_sliding_m), -m.max_opening_m))
 
 
@@ -123,9 +133,10 @@ def joints_table(motions: list[JointMotion], run_name: str) -> ReportTable:
     """One row per joint (bodies numbered from 1, lengths in mm), in the order of
     ``motions``."""
     columns = ["body_a", "body_b", "length_mm", "max_opening_mm", "final_opening_mm", "max_sliding_mm",
-               "final_sliding_mm"]
+               "final_sliding_mm", "final_normal_n", "final_shear_n"]
     rows = [(m.joint.a + 1, m.joint.b + 1, 1e3 * float(np.linalg.norm(m.joint.ends_m[1] - m.joint.ends_m[0])),
-             1e3 * m.max_opening_m, 1e3 * m.final_opening_m, 1e3 * m.max_sliding_m, 1e3 * m.final_sliding_m)
+             1e3 * m.max_opening_m, 1e3 * m.final_opening_m, 1e3 * m.max_sliding_m, 1e3 * m.final_sliding_m,
+             m.final_normal_n, m.final_shear_n)
             for m in motions]
     title = (f"joints of {run_name}: {len(motions)} faces where two blocks touch at t = 0 "
              f"(bodies numbered as in /bodies, from 1), the largest final sliding first")

@@ -24,6 +24,8 @@ from ..plots.fragility_compare import plot_fragility_compare
 from ..plots.fragility_plot import plot_fragility
 from ..plots.history import plot_history
 from ..plots.mechanism import plot_mechanism
+from ..plots.reactions import plot_reactions
+from ..plots.thrust_line import plot_thrust_line
 from ..plots.sequence import default_frame_times, plot_sequence, write_sequence_gif
 from ..plots.xdmf import check_xdmf, write_xdmf
 from ..readers.campaign import read_campaign
@@ -138,6 +140,28 @@ def cmd_xdmf(args) -> int:
     print(format_table(data.table(run.path, len(items))))
     print(f"wrote {data.h5_path}")
     print(f"wrote {data.xmf_path}")
+    return DONE
+
+
+def cmd_reactions(args) -> int:
+    run = read_run(args.run)
+    png = output_path(args.run, "reactions", args.out)
+    data = plot_reactions(run, png)
+    print(format_table(data.summary))
+    print(f"wrote {data.png_path}")
+    if args.csv:
+        print(f"wrote {write_csv(data.samples_table(), os.path.splitext(data.png_path)[0] + '.csv')}")
+    return DONE
+
+
+def cmd_thrust(args) -> int:
+    run = read_run(args.run)
+    png = output_path(args.run, "thrust", args.out)
+    data = plot_thrust_line(run, png)
+    print(format_table(data.summary))
+    print(f"wrote {data.png_path}")
+    if args.csv:
+        print(f"wrote {write_csv(data.samples_table(), os.path.splitext(data.png_path)[0] + '.csv')}")
     return DONE
 
 
@@ -267,6 +291,18 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("run", metavar="RUN.h5")
     common(p)
     p.set_defaults(func=cmd_history)
+
+    p = sub.add_parser("reactions", help="the reactions of the supports (springings) over time, from the "
+                                         "run's contact forces")
+    p.add_argument("run", metavar="RUN.h5")
+    common(p)
+    p.set_defaults(func=cmd_reactions)
+
+    p = sub.add_parser("thrust", help="the thrust line of an arch over time: where each joint's force crosses "
+                                      "it, from the run's contact forces")
+    p.add_argument("run", metavar="RUN.h5")
+    common(p)
+    p.set_defaults(func=cmd_thrust)
 
     p = sub.add_parser("compare", help="simulated vs measured thresholds per specimen and frequency")
     p.add_argument("sweep", metavar="SWEEP.h5")

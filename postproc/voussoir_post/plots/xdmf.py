@@ -4,8 +4,14 @@ The run file stores rigid polygons as reference vertices plus a position and rot
 per sample, which XDMF cannot express. :func:`write_xdmf` computes the vertex
 coordinates of every sample and writes them into a companion HDF5 file
 ``RUN.vtk.h5`` (the run file is not modified), then ``RUN.xmf``: a temporal collection
-of uniform grids, one per output sample, with a Mixed topology of one polygon per body
-(XDMF cell type 3, followed by its vertex count and vertex ids) and XYZ geometry (z = 0).
+of spatial collections, one per output sample, each holding the grid ``blocks`` (a Mixed
+topology of one polygon per body: XDMF cell type 3, followed by its vertex count and
+vertex ids, and XYZ geometry, z = 0) and, when the sample has loaded contacts and the run
+recorded them, the grid ``contacts``: one point per contact (Polyvertex) with the contact
+force as a point vector, so that ParaView draws the forces with its Glyph filter (Glyph
+Type Arrow, Orientation Array ``force_n``, Scale Array ``force_n``, scale factor in m/N).
+The vector is the mean force over the step on the contact's body a, which points into
+that body (its compression); body b receives the opposite.
 
 Companion file layout:
 
@@ -16,6 +22,10 @@ Companion file layout:
     /samples/NNNNNN/xyz_m    (nv_total, 3)     vertex coordinates at sample NNNNNN
     /samples/NNNNNN/rotation_rad      (nb,)    cell data
     /samples/NNNNNN/displacement_m    (nb, 3)  centroid displacement from t = 0 (z = 0)
+    /samples/NNNNNN/contacts/xyz_m    (nc, 3)  contact points (z = 0); point data:
+    /samples/NNNNNN/contacts/force_n  (nc, 3)  force on body a [N] (z = 0)
+    /samples/NNNNNN/contacts/normal_force_n, tangent_force_n (nc,)  its components [N]
+    /samples/NNNNNN/contacts/body_a, body_b, joint (nc,) int32  0-based bodies, arch joint or -1
 """
 
 from __future__ import annotations
@@ -47,11 +57,13 @@ class XdmfData:
     n_bodies: int
     n_vertices_total: int
     connectivity: np.ndarray
+    n_contact_points: int = 0  #: contact points written, over all samples
 
     def table(self, run_path: str, n_checked: int) -> ReportTable:
         """What was written, and how many HDF5 items :func:`check_xdmf` checked."""
-        return ReportTable(["samples", "bodies", "vertices", "hdf_items_checked"],
-                           [(self.n_samples, self.n_bodies, self.n_vertices_total, n_checked)],
+        return ReportTable(["samples", "bodies", "vertices", "contact_points", "hdf_items_checked"],
+                           [(self.n_samples, self.n_bodies, self.n_vertices_total, self.n_contact_points,
+                             n_checked)],
                            title=f"XDMF of {run_path}")
 
 
@@ -103,20 +115,40 @@ def write_xdmf(run: RunResult, xmf_path: str | os.PathLike | None = None,
         h5["cells/body"] = np.arange(nb, dtype=np.int32)
         h5["cells/role"] = run.body_role.astype(np.int32)
         ref = run.body_position[0, :, :2]
+        contacts = run.contacts
+        forces = contacts.force_on_a_n() if contacts is not None else None
+        n_contacts = {}
         for k in samples:
             g = h5.create_group(f"samples/{k:06d}")
             g["xyz_m"] = _vertex_coordinates(run, k)
             g["rotation_rad"] = run.body_position[k, :, 2]
             disp = run.body_position[k, :, :2] - ref
             g["displacement_m"] = np.column_stack([disp, np.zeros(nb)])
+            if contacts is None:
+                continue
+            rows = contacts.rows(k)
+            n_contacts[k] = rows.stop - rows.start
+            if n_contacts[k] == 0:
+                continue
+            zero = np.zeros((n_contacts[k], 1))
+            c = g.create_group("contacts")
+            c["xyz_m"] = np.hstack([contacts.point_m[rows], zero])
+            c["force_n"] = np.hstack([forces[rows], zero])
+            c["normal_force_n"] = contacts.normal_force_n[rows]
+            c["tangent_force_n"] = contacts.tangent_force_n[rows]
+            c["body_a"] = contacts.body[rows, 0].astype(np.int32)
+            c["body_b"] = contacts.body[rows, 1].astype(np.int32)
+            c["joint"] = contacts.joint[rows].astype(np.int32)
 
     root = ET.Element("Xdmf", Version="3.0")
     domain = ET.SubElement(root, "Domain")
     series = ET.SubElement(domain, "Grid", Name=os.path.basename(stem), GridType="Collection",
                            CollectionType="Temporal")
     for k in samples:
-        grid = ET.SubElement(series, "Grid", Name=f"sample_{k:06d}", GridType="Uniform")
-        ET.SubElement(grid, "Time", Value=repr(float(run.time_s[k])))
+        sample = ET.SubElement(series, "Grid", Name=f"sample_{k:06d}", GridType="Collection",
+                               CollectionType="Spatial")
+        ET.SubElement(sample, "Time", Value=repr(float(run.time_s[k])))
+        grid = ET.SubElement(sample, "Grid", Name="blocks", GridType="Uniform")
         topo = ET.SubElement(grid, "Topology", TopologyType="Mixed", NumberOfElements=str(nb))
         _data_item(topo, (conn.size,), "Int", 8, h5_name, "/topology/mixed")
         geom = ET.SubElement(grid, "Geometry", GeometryType="XYZ")
@@ -130,18 +162,35 @@ def write_xdmf(run: RunResult, xmf_path: str | os.PathLike | None = None,
             _data_item(attr, dims, ntype, prec, h5_name, dset)
         attr = ET.SubElement(grid, "Attribute", Name="displacement_m", AttributeType="Vector", Center="Cell")
         _data_item(attr, (nb, 3), "Float", 8, h5_name, f"/samples/{k:06d}/displacement_m")
+        if n_contacts.get(k, 0) > 0:
+            _contacts_grid(sample, n_contacts[k], h5_name, f"/samples/{k:06d}/contacts")
     ET.indent(root)
     with open(xmf_path, "w", encoding="utf-8") as f:
         f.write('<?xml version="1.0" ?>\n<!DOCTYPE Xdmf SYSTEM "Xdmf.dtd" []>\n')
         f.write(ET.tostring(root, encoding="unicode"))
         f.write("\n")
-    return XdmfData(xmf_path, h5_path, len(samples), nb, nv_total, conn)
+    return XdmfData(xmf_path, h5_path, len(samples), nb, nv_total, conn, sum(n_contacts.values()))
+
+
+def _contacts_grid(parent, nc: int, h5_name: str, group: str) -> None:
+    """The grid of a sample's `nc` contact points with their forces as point data."""
+    grid = ET.SubElement(parent, "Grid", Name="contacts", GridType="Uniform")
+    ET.SubElement(grid, "Topology", TopologyType="Polyvertex", NumberOfElements=str(nc), NodesPerElement="1")
+    geom = ET.SubElement(grid, "Geometry", GeometryType="XYZ")
+    _data_item(geom, (nc, 3), "Float", 8, h5_name, f"{group}/xyz_m")
+    attr = ET.SubElement(grid, "Attribute", Name="force_n", AttributeType="Vector", Center="Node")
+    _data_item(attr, (nc, 3), "Float", 8, h5_name, f"{group}/force_n")
+    for name, ntype, prec in (("normal_force_n", "Float", 8), ("tangent_force_n", "Float", 8),
+                              ("body_a", "Int", 4), ("body_b", "Int", 4), ("joint", "Int", 4)):
+        attr = ET.SubElement(grid, "Attribute", Name=name, AttributeType="Scalar", Center="Node")
+        _data_item(attr, (nc,), ntype, prec, h5_name, f"{group}/{name}")
 
 
 def check_xdmf(xmf_path: str | os.PathLike) -> list[tuple[str, str, tuple[int, ...]]]:
     """Parse an XDMF file and check that every HDF DataItem names an existing dataset of
     the stated dimensions, that Mixed topologies hold NumberOfElements polygons whose
-    vertex ids are inside the geometry. Returns (file, dataset, dims) of every item;
+    vertex ids are inside the geometry, and that a Polyvertex grid (the contacts) has
+    as many points as elements. Returns (file, dataset, dims) of every item;
     raises CheckError (a ValueError) on the first problem."""
     xmf_path = os.fspath(xmf_path)
     base = os.path.dirname(os.path.abspath(xmf_path))
@@ -171,6 +220,11 @@ def check_xdmf(xmf_path: str | os.PathLike) -> list[tuple[str, str, tuple[int, .
             if topo is None or geom is None:
                 continue
             n_elem = int(topo.get("NumberOfElements"))
+            if topo.get("TopologyType") == "Polyvertex":
+                n_points = int(geom.find("DataItem").get("Dimensions").split()[0])
+                if n_points != n_elem:
+                    raise CheckError(f"{xmf_path}: {n_points} points in a Polyvertex grid, NumberOfElements={n_elem}")
+                continue
             t_item, g_item = topo.find("DataItem"), geom.find("DataItem")
             tf, td = t_item.text.strip().split(":", 1)
             conn = files[os.path.join(base, tf)][td][()]

@@ -5,13 +5,27 @@ from __future__ import annotations
 import json
 import math
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from .results_common import SIDE_NAMES, ResultsError
 
-__all__ = ["LimitResult", "read_limit_json"]
+__all__ = ["LimitResult", "LpInterfaceForce", "read_limit_json"]
+
+
+@dataclass(frozen=True)
+class LpInterfaceForce:
+    """One interface of the LP's static field (the JSON's ``contact_forces``): the force on
+    block b from block a is (N1 + N2) n + S t, t the normal turned +90 degrees, N1 at end 1,
+    N2 at end 2 [N]."""
+
+    blocks: tuple[int, int]  #: a, b as in the JSON (1-based: voussoirs 1..n, foundations n+1 left, n+2 right)
+    joint: int | None  #: the arch joint 0..n, None elsewhere
+    ends_xy_m: np.ndarray  #: (2, 2)
+    normal: np.ndarray  #: (2,) unit, from block a into block b
+    normal_n: np.ndarray  #: (2,) N1, N2 >= 0
+    shear_n: float  #: S
 
 
 
@@ -44,6 +58,10 @@ class LimitResult:
     thrust_fraction_pos: np.ndarray | None = None
     thrust_fraction_neg: np.ndarray | None = None
     input_file: str = ""
+    #: The LP's load factor (associative friction, load towards +x; NaN when the JSON has none)
+    #: and its static field at collapse, one entry per interface (empty when there is none).
+    load_factor: float = math.nan
+    contact_forces: list[LpInterfaceForce] = field(default_factory=list)
 
 
 def _json_float(value) -> float:
@@ -116,7 +134,27 @@ def read_limit_json(path: str | os.PathLike) -> LimitResult:
         thrust_fraction_pos=_fractions(data.get("thrust_fraction_pos")),
         thrust_fraction_neg=_fractions(data.get("thrust_fraction_neg")),
         input_file=str(data.get("input_file", "")),
+        load_factor=_json_float(data.get("load_factor")),
+        contact_forces=_interface_forces(path, data.get("contact_forces") or []),
     )
+
+
+def _interface_forces(path: str, entries: list) -> list[LpInterfaceForce]:
+    out = []
+    for k, e in enumerate(entries):
+        try:
+            force = LpInterfaceForce(
+                blocks=(int(e["blocks"][0]), int(e["blocks"][1])),
+                joint=None if e.get("joint") is None else int(e["joint"]),
+                ends_xy_m=np.asarray(e["ends_xy_m"], dtype=float).reshape(2, 2),
+                normal=np.asarray(e["normal"], dtype=float).reshape(2),
+                normal_n=np.asarray(e["normal_n"], dtype=float).reshape(2),
+                shear_n=float(e["shear_n"]))
+        except (KeyError, TypeError, ValueError, IndexError) as exc:
+            raise ResultsError(path, f"'contact_forces[{k}]' must have blocks, joint, ends_xy_m (2 x 2), "
+                                     f"normal (2), normal_n (2) and shear_n: {exc}") from exc
+        out.append(force)
+    return out
 
 
 def _fractions(values) -> np.ndarray | None:

@@ -20,6 +20,7 @@ __all__ = [
     "ResultsError",
     "ArchGeometry",
     "GroundMotion",
+    "ContactRecord",
     "RunResult",
     "SweepResult",
     "LimitResult",
@@ -178,6 +179,62 @@ def _ground_motion(h5: h5py.File) -> GroundMotion:
 
 
 @dataclass
+class ContactRecord:
+    """The loaded contacts of every sample of a run (/contacts, docs/results_format.md):
+    one flat list, the rows of sample s being ``start[s]:start[s + 1]``."""
+
+    dt_s: float  #: the time step: force = impulse / dt_s
+    start: np.ndarray  #: (nt + 1,) 0-based offsets into the rows
+    body: np.ndarray  #: (nc, 2) bodies a, b (0-based, as the rows of RunResult.body_role)
+    joint: np.ndarray  #: (nc,) arch joint 0..n, -1 when none
+    point_m: np.ndarray  #: (nc, 2) contact point [m]
+    normal: np.ndarray  #: (nc, 2) unit normal from b towards a
+    normal_impulse_n_s: np.ndarray  #: (nc,) on a, along the normal [N s]
+    tangent_impulse_n_s: np.ndarray  #: (nc,) on a, along t = (-n_y, n_x) [N s]
+    normal_force_n: np.ndarray  #: (nc,) mean over the step [N]
+    tangent_force_n: np.ndarray  #: (nc,) mean over the step [N]
+
+    @property
+    def n_rows(self) -> int:
+        return int(self.joint.shape[0])
+
+    def rows(self, sample: int) -> slice:
+        """The rows of sample `sample` (0-based; negative counts from the end)."""
+        n = self.start.shape[0] - 1
+        s = sample + n if sample < 0 else sample
+        return slice(int(self.start[s]), int(self.start[s + 1]))
+
+    def force_on_a_n(self) -> np.ndarray:
+        """(nc, 2) world x, y of the mean force on body a of every row [N]."""
+        tangent = np.column_stack([-self.normal[:, 1], self.normal[:, 0]])
+        return self.normal_force_n[:, None] * self.normal + self.tangent_force_n[:, None] * tangent
+
+
+def _contact_record(path: str, h5: h5py.File, nt: int, nb: int) -> ContactRecord | None:
+    """/contacts of a run, or None for a file written before contacts were recorded."""
+    if "contacts/start" not in h5:
+        return None
+    start = _dataset(h5, "contacts/start", dtype=int).reshape(-1)
+    _check_shape(path, "/contacts/start", start, (nt + 1,))
+    nc = int(start[-1]) if nt >= 0 else 0
+    if start[0] != 0 or np.any(np.diff(start) < 0):
+        raise ResultsError(path, "'/contacts/start' is not a non-decreasing list of offsets from 0")
+    arrays = {}
+    for name, shape, dtype in (("body", (nc, 2), int), ("joint", (nc,), int), ("point_m", (nc, 2), float),
+                               ("normal", (nc, 2), float), ("normal_impulse_n_s", (nc,), float),
+                               ("tangent_impulse_n_s", (nc,), float), ("normal_force_n", (nc,), float),
+                               ("tangent_force_n", (nc,), float)):
+        a = _dataset(h5, "contacts/" + name, dtype=dtype)
+        a = a.reshape(shape) if a.size == 0 else a
+        _check_shape(path, "/contacts/" + name, a, shape)
+        arrays[name] = a
+    body = arrays.pop("body") - 1
+    if nc and (body.min() < 0 or body.max() >= nb):
+        raise ResultsError(path, f"'/contacts/body' out of range 1..{nb}")
+    return ContactRecord(dt_s=_attr(h5["contacts"], "dt_s"), start=start, body=body, **arrays)
+
+
+@dataclass
 class RunResult:
     """One ``voussoir-run`` result file (see docs/results_format.md)."""
 
@@ -220,6 +277,8 @@ class RunResult:
     hinge_side_names: tuple = SIDE_NAMES
     arch: ArchGeometry | None = None
     record: GroundMotion | None = None  #: runs driven by an accelerogram only
+    #: The loaded contacts of every sample (None in files written before they were recorded).
+    contacts: ContactRecord | None = None
     #: The signal that stopped the run early (2 SIGINT, 15 SIGTERM; 0: it ran to its end).
     interrupted_by_signal: int = 0
     #: The largest final displacement of a free block relative to the table [m] (NaN in
@@ -345,6 +404,7 @@ def read_run(path: str | os.PathLike) -> RunResult:
             hinge_side_names=side_names,
             arch=arch,
             record=_ground_motion(h5) if "record" in h5 else None,
+            contacts=_contact_record(path, h5, nt, nb),
         )
 
 
