@@ -104,7 +104,7 @@ missing=()  # files the job should have made and did not
   describe seed_156_A66mm_sequence.png "its collapse sequence at true scale: hinges on the intrados (green, i) and on the extrados (blue, e), separated joints (purple)"
   describe seed_156_A66mm.xmf "the same run for ParaView (XDMF; its data in seed_156_A66mm.vtk.h5): the blocks, and the contact forces as point vectors (Glyph filter)"
   describe seed_156_A66mm_reactions.png "that run's springing reactions over time (N), their sums against the ring's weight and its mass times the table's acceleration"
-  describe seed_156_A66mm_thrust.png "that run's thrust line over time: where each joint's force crosses it, intrados (red) to extrados (blue), grey when the joint carries nothing"
+  describe seed_156_A66mm_thrust.png "that run's thrust line over time: where each joint's force crosses it, intrados (green) to extrados (blue), grey when the joint carries nothing"
   describe limit_seed_156.json "limit analysis: static capacity (in g), hinges, line of thrust, minimum thickness"
   describe limit_seed_156_mechanism.png "the two static mechanisms with their lines of thrust; towards +x the LP's force across each joint (arrows to scale in N)"
   describe sweep_envelope_156.h5 "collapse thresholds from 0.5 to 4 Hz (MPI sweep); CSV beside it"

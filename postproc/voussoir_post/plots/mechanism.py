@@ -20,7 +20,10 @@ from matplotlib.patches import Polygon
 from ..analysis.contact_forces import LpJointResultants, lp_joint_resultants
 from ..readers.results import LimitResult
 from ..tables import ReportTable
-from .drawing import legend_pad, new_figure, provenance, save_png
+from .drawing import HINGE_COLOURS, legend_pad, new_figure, provenance, save_png
+
+#: The LP's joint forces: dark grey, a colour that no hinge, joint or collapse uses.
+FORCE_COLOUR = "#444444"
 
 __all__ = ["G_M_S2", "MechanismPanel", "MechanismData", "voussoir_polygons", "foundation_polygons",
            "plot_mechanism"]
@@ -148,7 +151,7 @@ def plot_mechanism(limit: LimitResult, out_png: str | os.PathLike) -> MechanismD
             ax.add_patch(Polygon(poly, closed=True, facecolor="#9e9e9e", edgecolor="#333333", linewidth=0.7,
                                  hatch="//"))
         for (j, side), (x, y) in zip(panel.hinges, panel.hinge_xy_m):
-            colour = "tab:red" if side == "intrados" else "tab:blue"
+            colour = HINGE_COLOURS[side]
             ax.plot(x, y - y0, "o", color=colour, markersize=8, markeredgecolor="white", zorder=5)
             # Label outward (extrados) or inward (intrados) along the radius from the circle's centre.
             radial = np.array([x, y]) / max(math.hypot(x, y), 1e-12)
@@ -161,13 +164,14 @@ def plot_mechanism(limit: LimitResult, out_png: str | os.PathLike) -> MechanismD
         if panel.lp_forces is not None and scale > 0:
             at = panel.lp_forces.point_m - up
             arrows = ax.quiver(at[:, 0], at[:, 1], panel.lp_forces.force_n[:, 0], panel.lp_forces.force_n[:, 1],
-                               angles="xy", scale_units="xy", scale=1.0 / scale, color="tab:green", width=0.005,
+                               angles="xy", scale_units="xy", scale=1.0 / scale, color=FORCE_COLOUR, width=0.005,
                                pivot="middle", zorder=6)
             ax.quiverkey(arrows, 0.12, 0.93, key_n, f"{key_n:g} N", labelpos="E", coordinates="axes",
                          fontproperties={"size": 8})
         for j in panel.sliding_joints:
             if 0 <= j < intr.shape[0]:
-                ax.plot(*(np.array([intr[j], extr[j]]) - up).T, "-", color="tab:purple", linewidth=3, zorder=4)
+                ax.plot(*(np.array([intr[j], extr[j]]) - up).T, "-", color=HINGE_COLOURS["separated"], linewidth=3,
+                        zorder=4)
         ax.annotate("", xy=(0.62, 0.06), xytext=(0.38, 0.06), xycoords="axes fraction",
                     arrowprops=dict(arrowstyle="->" if panel.direction == "+x" else "<-", color="black"))
         ax.text(0.5, 0.09, "inertial load", transform=ax.transAxes, ha="center", fontsize=8)
@@ -179,7 +183,7 @@ def plot_mechanism(limit: LimitResult, out_png: str | os.PathLike) -> MechanismD
         ax.set_title(f"towards {panel.direction}: {_capacity_text(panel)}", fontsize=10)
         ax.grid(True, alpha=0.2)
     handles = [axes[0].plot([], [], "o", color=c, label=f"hinge pivoting on the {s} ({s[0]})")[0]
-               for c, s in (("tab:red", "intrados"), ("tab:blue", "extrados"))]
+               for c, s in ((HINGE_COLOURS["intrados"], "intrados"), (HINGE_COLOURS["extrados"], "extrados"))]
     if any(p.thrust_xy_m is not None for p in panels):
         source = ("+x: the centres of pressure of the LP's contact forces; -x: the four-hinge analysis"
                   if lp is not None else "its crossing of each joint")
@@ -191,14 +195,14 @@ def plot_mechanism(limit: LimitResult, out_png: str | os.PathLike) -> MechanismD
         if not math.isclose(limit.load_factor, limit.lambda_pos, rel_tol=1e-6):
             lp_note = f": with sliding, below the four-hinge {limit.lambda_pos:.3f}"
         handles.append(axes[0].plot([], [], linestyle="none", marker=r"$\rightarrow$", markersize=14,
-                                    color="tab:green",
+                                    color=FORCE_COLOUR,
                                     label=f"force across each joint in the LP's static field at collapse (λ = {limit.load_factor:.3f}{lp_note}, "
                                           f"load towards +x), from the "
                                           f"part on its left onto the part on its right, centred on its centre of pressure; "
                                           f"arrows to scale: {key_n:g} N = {key_n * scale * 1e3:.0f} mm")[0])
     if any(p.sliding_joints for p in panels):
         friction = "" if math.isnan(limit.friction) else f" (friction {limit.friction:g})"
-        handles.append(axes[0].plot([], [], "-", color="tab:purple", linewidth=3,
+        handles.append(axes[0].plot([], [], "-", color=HINGE_COLOURS["separated"], linewidth=3,
                                     label=f"joint that would slide: |T|/N above the friction{friction}")[0])
     for h in handles:  # long entries on two lines, so that the legend fits the figure's width
         h.set_label(textwrap.fill(h.get_label(), 120))

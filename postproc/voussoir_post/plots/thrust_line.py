@@ -7,12 +7,12 @@ import os
 from dataclasses import dataclass, field
 
 import numpy as np
-from matplotlib import colormaps
+from matplotlib.colors import LinearSegmentedColormap
 
 from ..analysis.contact_forces import ThrustLine, thrust_line
 from ..readers.results import RunResult
 from ..tables import ReportTable
-from .drawing import add_g_axis, new_figure, provenance, run_caption, save_png
+from .drawing import HINGE_COLOURS, add_g_axis, new_figure, provenance, run_caption, save_png
 
 __all__ = ["ThrustLineData", "plot_thrust_line", "EDGE_FRACTION"]
 
@@ -41,7 +41,8 @@ class ThrustLineData:
 def plot_thrust_line(run: RunResult, out_png: str | os.PathLike) -> ThrustLineData:
     """Two panels against time [s]: the table's acceleration, and for every joint (rows,
     0 at the left springing) the place of the centre of pressure of its contact forces
-    across the joint, coloured from the intrados (0, red) to the extrados (1, blue); grey
+    across the joint, coloured from the intrados (0, green) to the extrados (1, blue), the
+    colours of hinges on those sides in every figure; grey
     where the joint carries nothing (fully open)."""
     t = thrust_line(run)
     data = ThrustLineData(t)
@@ -52,13 +53,14 @@ def plot_thrust_line(run: RunResult, out_png: str | os.PathLike) -> ThrustLineDa
     axes[0].set_ylabel("table a [m/s²]")
     add_g_axis(axes[0], "table a [g]")
     axes[0].grid(True, alpha=0.3)
-    cmap = colormaps["RdBu"].with_extremes(bad="#c8c8c8")
+    cmap = LinearSegmentedColormap.from_list(
+        "intrados_extrados", [HINGE_COLOURS["intrados"], "white", HINGE_COLOURS["extrados"]]).with_extremes(bad="#c8c8c8")
     # Cell edges: samples at their times, joints at integers.
     edges_t = np.concatenate([t.time_s, [t.time_s[-1] + (t.time_s[-1] - t.time_s[-2] if t.time_s.size > 1 else 1.0)]])
     mesh = axes[1].pcolormesh(edges_t, np.arange(nj + 1) - 0.5, np.ma.masked_invalid(t.fraction.T), cmap=cmap,
                               vmin=0.0, vmax=1.0, shading="flat")
     bar = fig.colorbar(mesh, ax=axes[1], location="right", fraction=0.05, pad=0.02)
-    bar.set_label("centre of pressure across the joint\n0 intrados (red) … 1 extrados (blue)\ngrey: the joint "
+    bar.set_label("centre of pressure across the joint\n0 intrados (green) … 1 extrados (blue)\ngrey: the joint "
                   "carries nothing")
     axes[1].set_ylabel("joint (0: left springing)")
     axes[1].set_yticks(range(nj))
