@@ -25,7 +25,7 @@ program test_limit_loads
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t
   use voussoir_assembly, only: assembly_t, build_arch, role_voussoir, role_foundation
-  use voussoir_wall, only: box
+  use voussoir_wall, only: box, block_stack
   use voussoir_load_config, only: load_config_t
   use voussoir_placed_loads, only: placed_loads_t, place_loads, block_at, top_surface
   use voussoir_block_interfaces, only: interface_set_t, find_interfaces
@@ -46,23 +46,6 @@ program test_limit_loads
   call assert_summary()
 
 contains
-
-  !> Blocks of width b and height h stacked on a driven base (body 1) that is wider.
-  subroutine stack(n_blocks, asm)
-    integer, intent(in) :: n_blocks
-    type(assembly_t), intent(out) :: asm
-    integer :: k
-    asm%n_bodies = n_blocks + 1
-    allocate (asm%polygon(n_blocks + 1), asm%driven(n_blocks + 1), asm%role(n_blocks + 1))
-    asm%polygon(1)%xy = box(-b, 2*b, -h, 0.0_dp)
-    asm%driven = .false.
-    asm%driven(1) = .true.
-    asm%role = role_voussoir
-    asm%role(1) = role_foundation
-    do k = 1, n_blocks
-      asm%polygon(k + 1)%xy = box(0.0_dp, b, (k - 1)*h, k*h)
-    end do
-  end subroutine stack
 
   !> The associative load factor of `asm` under the loads of `d` with friction mu.
   subroutine capacity(asm, d, mu, res, status)
@@ -106,7 +89,7 @@ contains
     type(lp_result_t) :: res
     type(status_t) :: status
     real(dp), parameter :: p = 100.0_dp
-    call stack(1, asm)
+    call block_stack(b, h, 1, asm)
     call add_load(d, p, 0.0_dp, 0.0_dp, h, .true.)
     call capacity(asm, d, 0.8_dp, res, status)
     call assert_true(status%ok, 'point load, friction 0.8: solved')
@@ -135,7 +118,7 @@ contains
     type(lp_result_t) :: res
     type(status_t) :: status
     real(dp), parameter :: p = 100.0_dp, q = 50.0_dp
-    call stack(1, asm)
+    call block_stack(b, h, 1, asm)
     call add_load(d, p, 0.0_dp, 0.0_dp, h, .true.)
     call add_load(d, q, -90.0_dp, 0.5_dp*b, h, .false.)
     call capacity(asm, d, 0.8_dp, res, status)
@@ -165,7 +148,7 @@ contains
     type(lp_result_t) :: res
     type(status_t) :: status
     real(dp), parameter :: p = 100.0_dp
-    call stack(2, asm)
+    call block_stack(b, h, 2, asm)
     call add_load(d, p, 0.0_dp, 0.0_dp, 0.5_dp*h, .true.)
     call capacity(asm, d, 0.8_dp, res, status)
     call assert_true(status%ok, 'stack: solved')
@@ -185,7 +168,7 @@ contains
     type(lp_result_t) :: res
     type(status_t) :: status
     real(dp), parameter :: p = 100.0_dp, q = 1000.0_dp
-    call stack(1, asm)
+    call block_stack(b, h, 1, asm)
     call add_load(d, p, 0.0_dp, 0.0_dp, h, .true.)
     d%dead_load_n_per_m = q
     d%dead_load_x0_m = 0.0_dp
@@ -213,7 +196,7 @@ contains
     real(dp) :: y
     integer :: blk
     logical :: found
-    call stack(2, asm)
+    call block_stack(b, h, 2, asm)
     call assert_true(block_at(asm, [0.1_dp, 0.25_dp]) == 2, 'a point inside the lower block')
     call assert_true(block_at(asm, [0.1_dp, 0.75_dp]) == 3, 'a point inside the upper block')
     call assert_true(block_at(asm, [b + 0.5e-9_dp, 0.25_dp]) == 2, 'a point 0.5e-9 m outside a face: on it')
@@ -243,7 +226,7 @@ contains
     type(load_config_t) :: d
     type(lp_result_t) :: res
     type(status_t) :: status
-    call stack(1, asm)
+    call block_stack(b, h, 1, asm)
     call add_load(d, 100.0_dp, 0.0_dp, 0.0_dp, h, .true.)
     call add_load(d, 100.0_dp, 0.0_dp, 3.0_dp, 4.0_dp, .true.)
     call capacity(asm, d, 0.8_dp, res, status)

@@ -7,7 +7,7 @@ program test_limit_lp
   use voussoir_status, only: status_t
   use voussoir_assembly, only: assembly_t, build_arch, role_voussoir, role_foundation
   use voussoir_wall_config, only: wall_config_t
-  use voussoir_wall, only: build_wall, box
+  use voussoir_wall, only: build_wall, box, block_stack
   use voussoir_limit_analysis, only: limit_result_t, horizontal_capacity
   use voussoir_block_interfaces, only: interface_set_t, find_interfaces
   use voussoir_limit_lp, only: block_loads_t, lp_result_t, block_loads, lp_capacity, nonassociative_capacity, &
@@ -26,23 +26,6 @@ program test_limit_lp
 contains
 
   !> Blocks of width b and height h stacked on a driven base (body 1) that is wider.
-  subroutine stack(b, h, n_blocks, asm)
-    real(dp), intent(in) :: b, h
-    integer, intent(in) :: n_blocks
-    type(assembly_t), intent(out) :: asm
-    integer :: k
-    asm%n_bodies = n_blocks + 1
-    allocate (asm%polygon(n_blocks + 1), asm%driven(n_blocks + 1), asm%role(n_blocks + 1))
-    asm%polygon(1)%xy = box(-b, 2*b, -h, 0.0_dp)
-    asm%driven = .false.
-    asm%driven(1) = .true.
-    asm%role = role_voussoir
-    asm%role(1) = role_foundation
-    do k = 1, n_blocks
-      asm%polygon(k + 1)%xy = box(0.0_dp, b, (k - 1)*h, k*h)
-    end do
-  end subroutine stack
-
   !> Both capacities of `asm` with friction mu at every interface.
   subroutine capacities(asm, mu, assoc, nonassoc, status)
     type(assembly_t), intent(in) :: asm
@@ -70,7 +53,7 @@ contains
     type(assembly_t) :: asm
     type(lp_result_t) :: a, na
     type(status_t) :: status
-    call stack(0.2_dp, 0.5_dp, 1, asm)
+    call block_stack(0.2_dp, 0.5_dp, 1, asm)
     call capacities(asm, 0.6_dp, a, na, status)
     call assert_true(status%ok, 'block tipping: solved')
     call assert_close(a%load_factor, 0.4_dp, 'block tips at b/h (associative)', rtol=1.0e-9_dp)
@@ -89,7 +72,7 @@ contains
     type(assembly_t) :: asm
     type(lp_result_t) :: a, na
     type(status_t) :: status
-    call stack(0.2_dp, 0.5_dp, 1, asm)
+    call block_stack(0.2_dp, 0.5_dp, 1, asm)
     call capacities(asm, 0.3_dp, a, na, status)
     call assert_true(status%ok, 'block sliding: solved')
     call assert_close(a%load_factor, 0.3_dp, 'block slides at mu (associative)', rtol=1.0e-9_dp)
@@ -105,7 +88,7 @@ contains
     type(assembly_t) :: asm
     type(lp_result_t) :: a, na
     type(status_t) :: status
-    call stack(0.2_dp, 0.5_dp, 2, asm)
+    call block_stack(0.2_dp, 0.5_dp, 2, asm)
     call capacities(asm, 0.8_dp, a, na, status)
     call assert_true(status%ok, 'stack: solved')
     call assert_close(a%load_factor, 0.2_dp, 'two-block stack tips at b/(2h)', rtol=1.0e-9_dp)
@@ -172,12 +155,12 @@ contains
     type(assembly_t) :: asm
     type(lp_result_t) :: a, na
     type(status_t) :: status
-    call stack(0.2_dp, 0.5_dp, 1, asm)
+    call block_stack(0.2_dp, 0.5_dp, 1, asm)
     asm%polygon(1)%xy = box(-1.0_dp, 0.05_dp, -0.5_dp, 0.0_dp)
     call capacities(asm, 0.8_dp, a, na, status)
     call assert_true(.not. status%ok .and. index(status%message, 'dead load alone') > 0, &
                      'overhanging block: infeasible, dead load named')
-    call stack(0.2_dp, 0.5_dp, 1, asm)
+    call block_stack(0.2_dp, 0.5_dp, 1, asm)
     asm%polygon = [asm%polygon, asm%polygon(1)]
     asm%polygon(3)%xy = box(0.2_dp, 0.4_dp, 0.0_dp, 1.0_dp)
     asm%driven = [asm%driven, .true.]

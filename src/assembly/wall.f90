@@ -6,7 +6,7 @@ module voussoir_wall
   use voussoir_wall_config, only: wall_config_t, wall_block_count, bond_running
   implicit none
   private
-  public :: build_wall, box
+  public :: build_wall, box, block_stack
 
 contains
 
@@ -53,6 +53,26 @@ contains
     end do
 
   end subroutine build_wall
+
+  !> A column of `n_blocks` blocks b x h, from x = 0 to b, on a driven base block (body 1)
+  !> three blocks wide and one deep: the rocking block and the stacks of the limit
+  !> analysis's closed forms.
+  pure subroutine block_stack(b, h, n_blocks, asm)
+    real(dp), intent(in) :: b, h
+    integer, intent(in) :: n_blocks
+    type(assembly_t), intent(out) :: asm
+    integer :: k
+    asm%n_bodies = n_blocks + 1
+    allocate (asm%polygon(n_blocks + 1), asm%driven(n_blocks + 1), asm%role(n_blocks + 1))
+    asm%polygon(1)%xy = box(-b, 2*b, -h, 0.0_dp)
+    asm%driven = .false.
+    asm%driven(1) = .true.
+    asm%role = role_voussoir
+    asm%role(1) = role_foundation
+    do k = 1, n_blocks
+      asm%polygon(k + 1)%xy = box(0.0_dp, b, (k - 1)*h, k*h)
+    end do
+  end subroutine block_stack
 
   !> The corners (2, 4) of the axis-aligned rectangle [xa, xb] x [ya, yb], counter-clockwise
   !> from the lower left.

@@ -109,24 +109,8 @@ def check_lp(d, name):
     n = a["n_voussoirs"]
     worst = 0.0
     for i in range(1, n + 1):
-        poly = [a["joint_intrados_xy_m"][i - 1], a["joint_intrados_xy_m"][i], a["joint_extrados_xy_m"][i],
-                a["joint_extrados_xy_m"][i - 1]]
-        cx, cy = centroid(poly)
-        fx = fy = m = 0.0
-        for f in d["contact_forces"]:
-            if i not in f["blocks"]:
-                continue
-            sign = 1.0 if f["blocks"][1] == i else -1.0
-            nx, ny = f["normal"]
-            tx, ty = -ny, nx
-            (x1, y1), (x2, y2) = f["ends_xy_m"]
-            pts = [((x1, y1), (nx * f["normal_n"][0], ny * f["normal_n"][0])),
-                   ((x2, y2), (nx * f["normal_n"][1], ny * f["normal_n"][1])),
-                   (((x1 + x2) / 2, (y1 + y2) / 2), (tx * f["shear_n"], ty * f["shear_n"]))]
-            for (px, py), (gx, gy) in pts:
-                fx += sign * gx
-                fy += sign * gy
-                m += sign * ((px - cx) * gy - (py - cy) * gx)
+        cx, cy = centroid(voussoir_polygon(a, i))
+        fx, fy, m = contact_resultant(d, i, cx, cy)
         worst = max(worst, abs(fx + lam * fy) / fy, abs(m) / (fy * a["r_ext_m"]))
     check(worst < 1e-6, f"{name}: every voussoir in equilibrium under the JSON's contact forces ({worst:.1e})")
     check(all(min(f["normal_n"]) >= -1e-9 * max(1.0, max(f["normal_n"])) for f in d["contact_forces"]),
@@ -240,39 +224,50 @@ def check_loaded_equilibrium(d, name, weight, lam):
     worst = 0.0
     scale = max(weight)
     for i in range(1, a["n_voussoirs"] + 1):
-        poly = [a["joint_intrados_xy_m"][i - 1], a["joint_intrados_xy_m"][i], a["joint_extrados_xy_m"][i],
-                a["joint_extrados_xy_m"][i - 1]]
-        cx, cy = centroid(poly)
-        fx, fy, m = 0.0, -weight[i - 1], 0.0
+        cx, cy = centroid(voussoir_polygon(a, i))
+        fx, fy, m = contact_resultant(d, i, cx, cy)
+        fy -= weight[i - 1]
         for pl in d["point_loads"]:
             if pl["block"] != i:
                 continue
             gx, gy = lam * pl["force_n"][0], lam * pl["force_n"][1]
             fx, fy = fx + gx, fy + gy
             m += (pl["xy_m"][0] - cx) * gy - (pl["xy_m"][1] - cy) * gx
-        for f in d["contact_forces"]:
-            if i not in f["blocks"]:
-                continue
-            sign = 1.0 if f["blocks"][1] == i else -1.0
-            nx, ny = f["normal"]
-            tx, ty = -ny, nx
-            (x1, y1), (x2, y2) = f["ends_xy_m"]
-            for (px, py), (gx, gy) in (((x1, y1), (nx * f["normal_n"][0], ny * f["normal_n"][0])),
-                                       ((x2, y2), (nx * f["normal_n"][1], ny * f["normal_n"][1])),
-                                       (((x1 + x2) / 2, (y1 + y2) / 2), (tx * f["shear_n"], ty * f["shear_n"]))):
-                fx += sign * gx
-                fy += sign * gy
-                m += sign * ((px - cx) * gy - (py - cy) * gx)
         worst = max(worst, abs(fx) / scale, abs(fy) / scale, abs(m) / (scale * a["r_ext_m"]))
     check(worst < 1e-7, f"{name}: every voussoir in equilibrium with its weight, lambda x the point load "
                         f"and the JSON's contact forces ({worst:.1e})")
 
 
+def voussoir_polygon(a, i):
+    """Voussoir i of the JSON's arch: the quadrilateral between joints i - 1 and i."""
+    return [a["joint_intrados_xy_m"][i - 1], a["joint_intrados_xy_m"][i], a["joint_extrados_xy_m"][i],
+            a["joint_extrados_xy_m"][i - 1]]
+
+
+def contact_resultant(d, i, cx, cy):
+    """(Fx, Fy, moment about (cx, cy)) of the JSON's contact forces on block i: the normal
+    force at each end of every interface it is part of, and the shear at its middle."""
+    fx = fy = m = 0.0
+    for f in d["contact_forces"]:
+        if i not in f["blocks"]:
+            continue
+        sign = 1.0 if f["blocks"][1] == i else -1.0
+        nx, ny = f["normal"]
+        tx, ty = -ny, nx
+        (x1, y1), (x2, y2) = f["ends_xy_m"]
+        for (px, py), (gx, gy) in (((x1, y1), (nx * f["normal_n"][0], ny * f["normal_n"][0])),
+                                   ((x2, y2), (nx * f["normal_n"][1], ny * f["normal_n"][1])),
+                                   (((x1 + x2) / 2, (y1 + y2) / 2), (tx * f["shear_n"], ty * f["shear_n"]))):
+            fx += sign * gx
+            fy += sign * gy
+            m += sign * ((px - cx) * gy - (py - cy) * gx)
+    return fx, fy, m
+
+
 def arch_weights(a, density, width):
     w = []
     for i in range(1, a["n_voussoirs"] + 1):
-        poly = [a["joint_intrados_xy_m"][i - 1], a["joint_intrados_xy_m"][i], a["joint_extrados_xy_m"][i],
-                a["joint_extrados_xy_m"][i - 1]]
+        poly = voussoir_polygon(a, i)
         area = 0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1]))
         w.append(density * width * 9.81 * area)
     return w
@@ -407,7 +402,7 @@ elif case == "arch_point_load":
         f.write(arch + "&load point_load_n(1) = 1000, path_x0_m = -0.8, path_x1_m = 0.8, path_points = 17 /\n")
     d = load("arch_point_load_path.nml")
     curve = d["load_factor_curve"]
-    check(len(curve) == 17 and all(c["load_factor"] is not None for c in curve), f"17 positions with a load factor")
+    check(len(curve) == 17 and all(c["load_factor"] is not None for c in curve), "17 positions with a load factor")
     lf = [c["load_factor"] for c in curve]
     check(all(close(lf[i], lf[-1 - i], rtol=1e-6) for i in range(17)), f"curve symmetric about the crown: {lf}")
     cp = d["critical_position"]
