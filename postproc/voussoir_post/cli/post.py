@@ -143,26 +143,24 @@ def cmd_xdmf(args) -> int:
     return DONE
 
 
-def cmd_reactions(args) -> int:
+def _statics_figure(args, kind: str, plot) -> int:
+    """A figure of a run's contact forces over time (reactions, thrust): its summary
+    printed, its samples as CSV with --csv."""
     run = read_run(args.run)
-    png = output_path(args.run, "reactions", args.out)
-    data = plot_reactions(run, png)
+    data = plot(run, output_path(args.run, kind, args.out))
     print(format_table(data.summary))
     print(f"wrote {data.png_path}")
     if args.csv:
         print(f"wrote {write_csv(data.samples_table(), os.path.splitext(data.png_path)[0] + '.csv')}")
     return DONE
+
+
+def cmd_reactions(args) -> int:
+    return _statics_figure(args, "reactions", plot_reactions)
 
 
 def cmd_thrust(args) -> int:
-    run = read_run(args.run)
-    png = output_path(args.run, "thrust", args.out)
-    data = plot_thrust_line(run, png)
-    print(format_table(data.summary))
-    print(f"wrote {data.png_path}")
-    if args.csv:
-        print(f"wrote {write_csv(data.samples_table(), os.path.splitext(data.png_path)[0] + '.csv')}")
-    return DONE
+    return _statics_figure(args, "thrust", plot_thrust_line)
 
 
 def cmd_mechanism(args) -> int:
