@@ -41,6 +41,20 @@ ARCH = """&arch
 /
 """
 
+ARCH180 = """&arch
+  embrace_deg = 180, n_voussoirs = 15, r_ext_m = 0.508, thickness_m = 0.071
+/
+&motion
+  waveform = 'afd', frequency_hz = 1.0, amplitude_m = 0.030, duration_s = 5.0
+/
+&solver
+  dt_s = 1.0e-3, tol = 1.0e-4, max_iter = 10000
+/
+&output
+  file = '{file}', every = {every}, collapse_drop_m = 0.0355, stop_after_collapse_s = -1
+/
+"""
+
 WALL = """&wall courses = {n}, blocks_per_course = {n}, block_width_m = 0.2, block_height_m = 0.1 /
 &arch width_m = 0.1, density_kg_m3 = 2000, friction = 0.6 /
 &motion waveform = 'afd', frequency_hz = 2.0, amplitude_m = 0.00621, table_delay_s = 0.2, duration_s = 1.2 /
@@ -52,7 +66,10 @@ WALL = """&wall courses = {n}, blocks_per_course = {n}, block_width_m = 0.2, blo
 def cases(names):
     out = []
     for name in names:
-        if name.startswith("arch156_"):
+        if name == "arch180_30":
+            out.append((name, "180-degree arch, 15 voussoirs, afd 1 Hz, A = 30 mm, 5 s (bench/arch_180_1hz.nml)",
+                        lambda file, every: ARCH180.format(file=file, every=every), 0.0355))
+        elif name.startswith("arch156_"):
             amp = float(name.split("_")[1]) / 1000.0
             out.append((name, f"156-degree arch, 13 voussoirs, afd 1.25 Hz, A = {amp * 1000:g} mm, 3.4 s",
                         lambda file, every, amp=amp: ARCH.format(amp=amp, file=file, every=every), 0.0355))
@@ -61,7 +78,7 @@ def cases(names):
             out.append((name, f"running-bond wall {n} x {n}, afd 2 Hz, A = 6.21 mm after 0.2 s, 1.2 s",
                         lambda file, every, n=n: WALL.format(n=n, file=file, every=every), 0.05))
         else:
-            sys.exit(f"bench.py: unknown case '{name}' (arch156_<amplitude in mm> or wall<N>)")
+            sys.exit(f"bench.py: unknown case '{name}' (arch180_30, arch156_<amplitude in mm> or wall<N>)")
     return out
 
 
@@ -85,8 +102,8 @@ def export_case(h5, drop):
         nv = f["bodies/n_vertices"][()]
         role = f["bodies/role"][()]
         pos0 = f["bodies/position"][0]
-        cfg_s = f["config/solver"].attrs
-        cfg_a = f["config/arch"].attrs
+        cfg_s = dict(f["config/solver"].attrs)
+        cfg_a = dict(f["config/arch"].attrs)
         t = f["time_s"][()]
         v = f["table/v_m_s"][()]
         n_steps = int(f["result"].attrs["n_steps"])

@@ -59,7 +59,7 @@ def gen(case):
                                 center=np.array(b["centroid"], float), color="FOUND" if driven else "BLOCK",
                                 generation_type="full", vertices=np.array(b["vertices"], float))
         if driven:
-            body.imposeDrivenDof(component=1, dofty="vlocy", description="evolution", evolutionFile="table_vx.dat")
+            body.imposeDrivenDof(component=[1], dofty="vlocy", description="evolution", evolutionFile="table_vx.dat")
             body.imposeDrivenDof(component=[2, 3], dofty="vlocy")
         bodies.addAvatar(body)
 

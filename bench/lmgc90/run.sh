@@ -8,8 +8,9 @@
 #
 # LMGC90_BUILD_DIR: the LMGC90 3.0.0rc1 build folder (the one holding pylmgc90/).
 # N: rounds; each round runs each code once on each case (report: best and median).
-# CASES (default: arch156_46 arch156_70 wall10):
+# CASES (default: arch156_46 arch156_70 arch180_30 wall10):
 #   arch156_<A in mm>  the seed paper's 156-degree arch (input/seed_156.nml) at 1.25 Hz
+#   arch180_30         the 180-degree arch of bench/kernel_speed.sh (bench/arch_180_1hz.nml)
 #   wall<N>            the running-bond wall N x N of bench/walls.sh
 # Environment: LMGC90_PYTHON (default /usr/bin/python3: the Python pylmgc90 was built
 # for), VOUSSOIR_BIN_DIR (default build/drivers), BENCH_JSON (also write the table there).
@@ -23,7 +24,7 @@ lmgc=$(cd "$1" 2>/dev/null && pwd) || { echo "run.sh: no folder '$1'. $usage" >&
 shift
 n=${1:-5}; (($#)) && shift
 [[ "$n" =~ ^[1-9][0-9]*$ ]] || { echo "run.sh: N (rounds) must be a positive whole number, not '$n'" >&2; exit 2; }
-cases=("$@"); ((${#cases[@]})) || cases=(arch156_46 arch156_70 wall10)
+cases=("$@"); ((${#cases[@]})) || cases=(arch156_46 arch156_70 arch180_30 wall10)
 lpy=${LMGC90_PYTHON:-/usr/bin/python3}
 [[ -d "$lmgc/pylmgc90" ]] || { echo "run.sh: $lmgc has no pylmgc90/ (is it the LMGC90 build folder? docs/lmgc90.md)" >&2; exit 2; }
 PYTHONPATH="$lmgc" "$lpy" -c 'from pylmgc90 import chipy, pre' 2>/dev/null || {
