@@ -206,8 +206,8 @@ def main():
             out = (f"collapsed at {c['collapse_time_s']:.2f} s" if c["collapsed"] else "stood")
             print(f"  {code:9} {c['whole_us'][0]:10.1f} (med {c['whole_us'][1]:7.1f}) "
                   f"{c['loop_us'][0]:8.1f} (med {c['loop_us'][1]:7.1f}) {c['sweeps_mean']:12.1f} "
-                  f"{c['sweeps_max']:6d}  {out}, peak crown {c['peak_crown_mm']:.1f} mm, "
-                  f"largest residual {c['residual_mm']:.1f} mm", flush=True)
+                  f"{c['sweeps_max']:6d}  {out}, peak crown {c['peak_crown_mm']:.3g} mm, "
+                  f"largest residual {c['residual_mm']:.3g} mm", flush=True)
         print(f"  total (best whole process): Voussoir {row['voussoir']['whole_us'][0] * n / 1e6:.2f} s, "
               f"LMGC90 {row['lmgc90']['whole_us'][0] * n / 1e6:.2f} s; "
               f"ratio {row['lmgc90']['whole_us'][0] / row['voussoir']['whole_us'][0]:.1f}x (whole), "

@@ -91,7 +91,7 @@ def run(case, out_path):
     free = [i for i, r in enumerate(roles) if r == 1]
     ref = {i: np.array(chipy.RBDY2_GetBodyVector("Coor0", i + 1)) for i in range(len(roles))}
     crown = case["crown"]
-    crown_ref = np.mean([ref[i][:2] for i in crown], axis=0)
+    crown_ref = [float(np.mean([ref[i][k] for i in crown])) for k in (0, 1)]
     driven = roles.index(2)
     drop, rot = case["collapse_drop_m"], case["collapse_rotation_rad"]
     every = case["every"]
@@ -115,8 +115,12 @@ def run(case, out_path):
         # The monitors (as voussoir-run's, in a cheaper form): the crown relative to the
         # table every step, the collapse criterion every `every` steps.
         table_x = chipy.RBDY2_GetBodyVector("Coor_", driven + 1)[0] - ref[driven][0]
-        c = np.mean([chipy.RBDY2_GetBodyVector("Coor_", i + 1)[:2] for i in crown], axis=0) - crown_ref
-        peak = max(peak, math.hypot(c[0] - table_x, c[1]))
+        cx = cy = 0.0
+        for i in crown:
+            q = chipy.RBDY2_GetBodyVector("Coor_", i + 1)
+            cx += q[0]
+            cy += q[1]
+        peak = max(peak, math.hypot(cx / len(crown) - crown_ref[0] - table_x, cy / len(crown) - crown_ref[1]))
         if not collapsed and k % every == 0:
             for i in free:
                 q = chipy.RBDY2_GetBodyVector("Coor_", i + 1)
