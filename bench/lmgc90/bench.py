@@ -57,7 +57,7 @@ ARCH180 = """&arch
 
 WALL = """&wall courses = {n}, blocks_per_course = {n}, block_width_m = 0.2, block_height_m = 0.1 /
 &arch width_m = 0.1, density_kg_m3 = 2000, friction = 0.6 /
-&motion waveform = 'afd', frequency_hz = 2.0, amplitude_m = 0.00621, table_delay_s = 0.2, duration_s = 1.2 /
+&motion waveform = 'afd', frequency_hz = 2.0, amplitude_m = 0.00621, table_delay_s = 0.2, duration_s = {duration} /
 &solver dt_s = 1.0e-3, theta = 0.5, tol = 1.0e-4, max_iter = 10000, allow_nonconvergence = .true. /
 &output file = '{file}', every = {every}, collapse_drop_m = 0.05, stop_after_collapse_s = -1 /
 """
@@ -76,7 +76,8 @@ def cases(names):
         elif name.startswith("wall"):
             n = int(name[4:])
             out.append((name, f"running-bond wall {n} x {n}, afd 2 Hz, A = 6.21 mm after 0.2 s, 1.2 s",
-                        lambda file, every, n=n: WALL.format(n=n, file=file, every=every), 0.05))
+                        lambda file, every, n=n, duration=1.2: WALL.format(n=n, file=file, every=every,
+                                                                           duration=duration), 0.05))
         else:
             sys.exit(f"bench.py: unknown case '{name}' (arch180_30, arch156_<amplitude in mm> or wall<N>)")
     return out
@@ -160,6 +161,9 @@ def main():
         os.makedirs(work, exist_ok=True)
         h5, _ = voussoir(a.voussoir, work, name, text_of, 1)
         case = export_case(h5, drop)
+        wall = name.startswith("wall")
+        if wall:
+            case["split_step"] = 200   # the shaking second: steps 201-1200
         case_json = os.path.join(work, "case.json")
         with open(case_json, "w") as f:
             json.dump(case, f)
@@ -170,7 +174,7 @@ def main():
         if p.returncode != 0:
             sys.exit(f"LMGC90 DATBOX for {name} failed: {p.stderr.decode()[-2000:]}")
         n = case["n_steps"]
-        vw, vl, lw, ll = [], [], [], []
+        vw, vl, lw, ll, vs, ls = [], [], [], [], [], []
         loads = []
         for _ in range(a.repeats):
             loads.append(os.getloadavg()[0])
@@ -178,25 +182,38 @@ def main():
             with h5py.File(h5) as f:
                 r = dict(f["result"].attrs)
                 vit = f["solver/iterations"][()]
+                vct = f["contacts/count"][()]
             vw.append(1e6 * whole / int(r["n_steps"]))
             vl.append(1e6 * float(r["wall_time_s"]) / int(r["n_steps"]))
+            if wall:   # as bench/walls.sh: a 1.2 s run minus a 0.2 s run, over the 1000 steps between
+                h5s, _ = voussoir(a.voussoir, work, name + "_settle", lambda file, every: text_of(file, every, duration=0.2), 10)
+                with h5py.File(h5s) as f:
+                    vs.append(1e6 * (float(r["wall_time_s"]) - float(f["result"].attrs["wall_time_s"])) / 1000)
             res, whole = lmgc90(a.lmgc90_python, env, lwork, case_json, os.path.join(lwork, "out.json"))
             lw.append(1e6 * whole / res["n_steps"])
             ll.append(1e6 * res["loop_s"] / res["n_steps"])
+            if wall:
+                ls.append(1e6 * (res["loop_s"] - res["loop_to_split_s"]) / 1000)
         lit = np.array(res["iterations"])
         row = {
             "case": name, "title": title, "steps": n, "repeats": a.repeats,
             "load_1min_min": min(loads), "load_1min_max": max(loads),
             "voussoir": {"whole_us": stats(vw), "loop_us": stats(vl), "sweeps_mean": float(np.mean(vit)),
+                         "sweeps_after_0.2s": float(np.mean(vit[200:])), "contacts_mean": float(np.mean(vct[1:])),
                          "sweeps_max": int(np.max(vit)), "collapsed": bool(r["collapsed"]),
                          "collapse_time_s": float(r["collapse_time_s"]),
                          "peak_crown_mm": 1e3 * float(r["peak_crown_disp_m"]),
                          "residual_mm": 1e3 * float(r["max_residual_disp_m"]), "n_steps": int(r["n_steps"])},
             "lmgc90": {"whole_us": stats(lw), "loop_us": stats(ll), "sweeps_mean": float(np.mean(lit)),
+                       "sweeps_after_0.2s": float(np.mean(lit[200:])),
+                       "contacts_mean": float(np.mean(res["contacts"][9::10])),
                        "sweeps_max": int(np.max(lit)), "collapsed": res["collapsed"],
                        "collapse_time_s": res["collapse_time_s"], "peak_crown_mm": 1e3 * res["peak_crown_disp_m"],
                        "residual_mm": 1e3 * res["max_residual_disp_m"], "n_steps": res["n_steps"]},
         }
+        if wall:
+            row["voussoir"]["shaking_loop_us"] = stats(vs)
+            row["lmgc90"]["shaking_loop_us"] = stats(ls)
         table.append(row)
         print(f"\n{title}: {n} steps of 1 ms, {a.repeats} rounds, load {min(loads):.1f}-{max(loads):.1f}")
         print(f"  {'code':9} {'whole process us/step':>24} {'time loop us/step':>20} {'sweeps/step':>12} "
@@ -207,7 +224,12 @@ def main():
             print(f"  {code:9} {c['whole_us'][0]:10.1f} (med {c['whole_us'][1]:7.1f}) "
                   f"{c['loop_us'][0]:8.1f} (med {c['loop_us'][1]:7.1f}) {c['sweeps_mean']:12.1f} "
                   f"{c['sweeps_max']:6d}  {out}, peak crown {c['peak_crown_mm']:.3g} mm, "
-                  f"largest residual {c['residual_mm']:.3g} mm", flush=True)
+                  f"largest residual {c['residual_mm']:.3g} mm; sweeps/step after the first 0.2 s "
+                  f"{c['sweeps_after_0.2s']:.1f}; contacts {c['contacts_mean']:.1f}", flush=True)
+        if wall:
+            print(f"  the shaking second only (time loop, as bench/walls.sh): Voussoir "
+                  f"{row['voussoir']['shaking_loop_us'][0]:.0f} (med {row['voussoir']['shaking_loop_us'][1]:.0f}), LMGC90 "
+                  f"{row['lmgc90']['shaking_loop_us'][0]:.0f} (med {row['lmgc90']['shaking_loop_us'][1]:.0f}) us/step")
         print(f"  total (best whole process): Voussoir {row['voussoir']['whole_us'][0] * n / 1e6:.2f} s, "
               f"LMGC90 {row['lmgc90']['whole_us'][0] * n / 1e6:.2f} s; "
               f"ratio {row['lmgc90']['whole_us'][0] / row['voussoir']['whole_us'][0]:.1f}x (whole), "

@@ -23,7 +23,8 @@ ExSolver('Stored_Delassus_Loops', 'Quad ', tol, 1., 10, 1000) (a convergence che
 10 sweeps, at most 10,000 sweeps). Role-2 bodies (foundations) have their three velocities
 imposed: x from the evolution file of the table velocity, y and rotation 0.
 
-OUT.json: loop_s (wall time of the time loop), iterations (NLGS sweeps of each step, from
+OUT.json: loop_s (wall time of the time loop), loop_to_split_s (of its first
+split_step steps, if CASE.json gives split_step), iterations (NLGS sweeps of each step, from
 POSTPRO/SOLVER_INFORMATIONS.DAT), contacts, collapsed, collapse_time_s,
 peak_crown_disp_m (largest norm of the crown's displacement relative to the table), and
 max_residual_disp_m (largest displacement of a free body relative to the table at the end).
@@ -99,8 +100,12 @@ def run(case, out_path):
     peak, collapsed, collapse_t = 0.0, False, math.nan
     solver = ["Stored_Delassus_Loops         ", "Quad ", case["tol"], 1.0, 10, 1000]
 
+    split = case.get("split_step", 0)
+    t_split = math.nan
     t0 = time.perf_counter()
     for k in range(1, case["n_steps"] + 1):
+        if k == split + 1:
+            t_split = time.perf_counter() - t0
         chipy.IncrementStep()
         chipy.ComputeFext()
         chipy.ComputeBulk()
@@ -138,7 +143,7 @@ def run(case, out_path):
     chipy.Finalize()
     info = np.loadtxt("POSTPRO/SOLVER_INFORMATIONS.DAT", ndmin=2)
     with open(out_path, "w") as f:
-        json.dump({"loop_s": loop_s, "n_steps": case["n_steps"], "iterations": info[:, 1].astype(int).tolist(),
+        json.dump({"loop_s": loop_s, "loop_to_split_s": t_split, "n_steps": case["n_steps"], "iterations": info[:, 1].astype(int).tolist(),
                    "contacts": info[:, 5].astype(int).tolist(), "collapsed": collapsed,
                    "collapse_time_s": collapse_t, "peak_crown_disp_m": peak, "table_x_end_m": table_x,
                    "max_residual_disp_m": residual}, f)
