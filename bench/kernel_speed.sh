@@ -4,8 +4,11 @@
 # best and median of N repeats, two ways:
 #   - whole process: the wall time of `voussoir-run` from start to exit (loading the
 #     program and its libraries, reading the input, the time loop, writing the result
-#     file), divided by the steps; the measure of the reference figure (LMGC90 3.0 takes
-#     127 us/step on this kind of machine, issue 11; goal 6 us/step, 20x);
+#     file), divided by the steps; the measure of the reference figure of issue 11 (goal
+#     6 us/step, 20x the 127 us/step quoted there for LMGC90 3.0 "on this kind of
+#     machine": a constant with no date, build or script, never measured beside
+#     Voussoir). LMGC90 measured beside Voussoir on this case, on this machine:
+#     bench/lmgc90/run.sh (case arch180_30) and its table in docs/lmgc90.md;
 #   - time loop only: the result file's wall_time_s over the steps.
 # And the NLGS iterations per step.
 #   bash bench/kernel_speed.sh [N=7]
@@ -38,6 +41,7 @@ for _ in range(n):
 print(f"180-degree arch, 1 Hz, A = 30 mm, dt = 1e-3 s, tol 1e-4, {steps} steps, {n} repeats")
 for name, us in (("whole process  ", whole), ("time loop only ", loop)):
     print(f"  {name} best {min(us):6.2f} us/step   median {np.median(us):6.2f} us/step")
-print(f"  goal: 6 us/step for the whole process (LMGC90 3.0: 127 us/step; issue 11)")
+print(f"  goal: 6 us/step for the whole process (20x the 127 us/step quoted for LMGC90 3.0 in issue 11,"
+      f" not measured beside Voussoir; measured side by side: docs/lmgc90.md)")
 print(f"  NLGS iterations {np.mean(iters):6.2f} per step")
 PY
