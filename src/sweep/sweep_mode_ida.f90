@@ -340,9 +340,9 @@ contains
     call table_init(t, [character(len=name_len) :: 'job', 'param_set', 'record', 'scale_stood', &
                         'scale_threshold', 'pga_threshold_m_s2', 'pgv_threshold_m_s', 'censored', &
                         'non_monotonic', 'n_runs', 'mean_iterations', 'wall_time_s', 'failed', 'magnitude', &
-                        'distance_km', 'pga_m_s2'], &
+                        'distance_km', 'pga_m_s2', 'static_capacity_m_s2'], &
                     [.true., .true., .true., .false., .false., .false., .false., .true., .true., .true., &
-                     .false., .false., .true., .false., .false., .false.])
+                     .false., .false., .true., .false., .false., .false., .false.])
   end function results_table
 
   !> The row of a finished search: one with no collapse up to scale_max is censored, its
@@ -378,6 +378,7 @@ contains
     call table_set(results, row, 'magnitude', plan%records%magnitude(rec))
     call table_set(results, row, 'distance_km', plan%records%distance_km(rec))
     call table_set(results, row, 'pga_m_s2', plan%records%pga_m_s2(rec))
+    call table_set(results, row, 'static_capacity_m_s2', static_capacity_m_s2(plan%set_cfg(job_param_set(plan, job))))
   end subroutine result_row
 
   !> The record files (as given, one per line) and their unscaled PGA and PGV.
@@ -414,7 +415,7 @@ contains
     character(len=*), intent(in) :: names
     character(len=:), allocatable :: text
     text = 'record,param_set'//names//',scale_stood,scale_threshold,pga_threshold_m_s2,pgv_threshold_m_s,'// &
-           'censored,non_monotonic,n_runs,failed,event,magnitude,distance_km,pga_m_s2'
+           'censored,non_monotonic,n_runs,failed,event,magnitude,distance_km,pga_m_s2,static_capacity_m_s2'
   end function csv_header
 
   function csv_line(this, plan, results, r, set_columns) result(line)
@@ -433,7 +434,8 @@ contains
            itoa(nint(table_value(results, 'censored', r)))//','//itoa(nint(table_value(results, 'non_monotonic', r)))// &
            ','//itoa(nint(table_value(results, 'n_runs', r)))//','//itoa(nint(table_value(results, 'failed', r)))// &
            ','//trim(plan%records%events(rec))//','//fmt_exact(plan%records%magnitude(rec))//','// &
-           fmt_exact(plan%records%distance_km(rec))//','//fmt_exact(plan%records%pga_m_s2(rec))
+           fmt_exact(plan%records%distance_km(rec))//','//fmt_exact(plan%records%pga_m_s2(rec))//','// &
+           fmt_exact(table_value(results, 'static_capacity_m_s2', r))
   end function csv_line
 
   !> "<record>: threshold scale ... (PGA ... g), n runs".

@@ -46,7 +46,7 @@ _OPTIONAL_INT = ("non_monotonic", "n_runs", "failed")
 _OPTIONAL_TEXT = ("event",)
 #: Optional numbers of each row's record (voussoir-sweep writes them): moment magnitude,
 #: closest distance to the rupture [km] (NaN unknown), and its own PGA at scale 1 [m/s2].
-_OPTIONAL_REAL = ("magnitude", "distance_km", "pga_m_s2")
+_OPTIONAL_REAL = ("magnitude", "distance_km", "pga_m_s2", "static_capacity_m_s2")
 
 #: How a row enters the fragility fit (:attr:`IdaResult.fit_as`).
 FIT_BRACKET = "bracket"  #: IM_c in (IM at scale_stood, IM at scale_threshold]
@@ -83,6 +83,8 @@ class IdaResult:
     magnitude: np.ndarray | None = None  #: of each row's record's earthquake (NaN: unknown), when the file has it
     distance_km: np.ndarray | None = None  #: closest distance to the rupture (NaN: unknown), when the file has it
     record_set: str = ""  #: the packaged set the records came from ('' : record files, or unknown)
+    #: lambda g of each row's model by limit analysis [m/s2], where its search started (when the file has it)
+    static_capacity_m_s2: np.ndarray | None = None
 
     def __post_init__(self):
         if self.failed is None:
@@ -219,6 +221,7 @@ def _read_csv(path: str) -> IdaResult:
     return IdaResult(
         failed=arr["failed"].astype(bool) if "failed" in arr else None, event=_events(data.get("event"), data["record"]),
         magnitude=arr.get("magnitude"), distance_km=arr.get("distance_km"), unit_pga_m_s2=arr.get("pga_m_s2"),
+        static_capacity_m_s2=arr.get("static_capacity_m_s2"),
         path=path, record=data["record"], param_set=arr["param_set"].astype(int),
         scale_stood=arr["scale_stood"], scale_threshold=arr["scale_threshold"],
         pga_m_s2=arr["pga_threshold_m_s2"], pgv_m_s=arr["pgv_threshold_m_s"],
@@ -243,10 +246,10 @@ def _read_h5(path: str) -> IdaResult:
         files = [f for f in _text(h5.attrs["record_files"]).split("\n") if f.strip()]
         columns = {}
         for name in ("param_set", "record", "scale_stood", "scale_threshold", "pga_threshold_m_s2",
-                     "pgv_threshold_m_s", "censored") + _OPTIONAL_INT:
+                     "pgv_threshold_m_s", "censored") + _OPTIONAL_INT + ("static_capacity_m_s2",):
             key = f"results/{name}"
             if key not in h5:
-                if name in _OPTIONAL_INT:
+                if name in _OPTIONAL_INT + ("static_capacity_m_s2",):
                     continue
                 raise ResultsError(path, f"missing dataset '/{key}'")
             columns[name] = np.asarray(h5[key][()]).reshape(-1)
@@ -287,7 +290,7 @@ def _read_h5(path: str) -> IdaResult:
     return IdaResult(
         failed=failed, unit_pga_m_s2=units.get("record_pga_m_s2"), unit_pgv_m_s=units.get("record_pgv_m_s"),
         magnitude=units.get("record_magnitude"), distance_km=units.get("record_distance_km"), event=events,
-        record_set=record_set,
+        record_set=record_set, static_capacity_m_s2=columns.get("static_capacity_m_s2"),
         path=path, record=[files[i] for i in index], param_set=columns["param_set"].astype(int),
         scale_stood=stood, scale_threshold=columns["scale_threshold"].astype(float),
         pga_m_s2=columns["pga_threshold_m_s2"].astype(float), pgv_m_s=columns["pgv_threshold_m_s"].astype(float),
