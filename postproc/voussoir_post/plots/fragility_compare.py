@@ -20,7 +20,7 @@ from ..earthquake.fragility import empirical_collapse_fraction, fragility
 from ..earthquake.ida import FIT_BRACKET, FIT_CENSORED, FIT_FAILED, IdaResult
 from ..tables import ReportTable
 from .drawing import new_figure, provenance, save_png
-from .fragility_plot import (BOUND_STYLES, FIT_STYLES, G_M_S2, LEGEND_PAD, POINTS_WORDS, FragilityData,
+from .fragility_plot import (BOUND_STYLES, FIT_STYLES, G_M_S2, LEGEND_PAD, FragilityData,
                              IntensityFragility, arch_words, confidence_words, fragility_data, records_words,
                              samples_words, scale_warning, split_label, static_capacities_m_s2, top_intensity)
 
@@ -145,7 +145,8 @@ def _legend_entries(k: int, label: str, data: FragilityData, ida: IdaResult) -> 
                               label=f"{label}: {frag.name} fit at the median's lower {tail:g} % bound "
                                     f"({frag.band.median_low / scale:.3g} {unit}), same beta"))
     entries.append(Line2D([], [], color=color, marker=_POINT_MARKERS[k], markeredgecolor="black",
-                          markeredgewidth=0.4, linestyle="none", markersize=4, label=f"{label}: {POINTS_WORDS}"))
+                          markeredgewidth=0.4, linestyle="none", markersize=4,
+                          label=f"{label}: IDA points, fraction of the rows (record x model) collapsed at or below"))
     capacities = static_capacities_m_s2(ida)
     if capacities.size:
         entries.append(Line2D([], [], color=color, linewidth=3, alpha=0.35,

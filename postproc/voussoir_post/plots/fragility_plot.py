@@ -154,7 +154,7 @@ class FragilityData:
             split_words(pgv, 1.0, "m/s"),
         ] + ([BETA_SPLIT] if pga.split is not None else []) + [
             f"{confidence_words(pga.band)}: PGA {pga.band.median_low / G_M_S2:.4g} g, PGV {pgv.band.median_low:.4g} "
-            f"m/s (the dashed curves)",
+            f"m/s (the dashed PGA and dotted PGV curves)",
         ]
 
 
@@ -300,9 +300,9 @@ def _title(ida: IdaResult) -> str:
     scale_max = ida.config.get("sweep", {}).get("scale_max")
     top = f" (x {scale_max:g})" if isinstance(scale_max, (int, float)) else ""
     return (f"Probability of collapse of the {arch_words(ida)}\nunder {records_words(ida)}, scaled, on "
-            f"{samples_words(ida)}: {ida.n_rows} analyses (record x model), {int(ida.censored.sum())} without collapse "
-            f"up to the largest scale tried{top}{failed}\nlognormal fits by interval-censored maximum likelihood "
-            f"on the brackets (last scale that stood, first that collapsed)")
+            f"{samples_words(ida)}\n{ida.n_rows} analyses (record x model), {int(ida.censored.sum())} without "
+            f"collapse up to the largest scale tried{top}{failed}\nlognormal fits by interval-censored maximum "
+            f"likelihood on the brackets (last scale that stood, first that collapsed)")
 
 
 def _draw(ax, frag: IntensityFragility, scale: float, unit_label: str, unit: str,
@@ -316,7 +316,7 @@ def _draw(ax, frag: IntensityFragility, scale: float, unit_label: str, unit: str
     ax.plot(x, fragility(band.im, fit.median, fit.beta), fit_style, color="tab:blue", linewidth=2)
     ax.plot(x, frag.confidence(band.im), bound_style, color="tab:blue", linewidth=1.2)
     for c in capacities:
-        ax.axvline(c / scale, color="black", linewidth=1.4, alpha=0.55)
+        ax.axvline(c / scale, color="tab:red", linewidth=1.2, alpha=0.7)
     used = np.isfinite(frag.im)
     xs, ps = empirical_collapse_fraction(frag.im[used], frag.censored[used])
     ax.plot(xs / scale, ps, "o", color="black", markersize=4)
@@ -342,7 +342,7 @@ def _draw(ax, frag: IntensityFragility, scale: float, unit_label: str, unit: str
         extra.append(Line2D([], [], color="tab:red", marker=">", linestyle="none", markersize=7,
                             label="no collapse up to the largest scale tried: lower bound of the collapse intensity"))
     if capacities.size:
-        extra.append(Line2D([], [], color="black", linewidth=1.4, alpha=0.55,
+        extra.append(Line2D([], [], color="tab:red", linewidth=1.2, alpha=0.7,
                             label="static capacity lambda g of the model" + ("s" if capacities.size > 1 else "") +
                                   " (limit analysis): " + ", ".join(f"{c / scale:.3g}" for c in capacities) +
                                   f" {unit}; the searches start there"))
