@@ -14,6 +14,7 @@ pulse and 14 without.
 from __future__ import annotations
 
 import csv
+import json
 import os
 import subprocess
 from math import nan
@@ -122,6 +123,12 @@ def test_sweep_plays_a_set_first_components_with_their_metadata(tmp_path, vousso
         assert ida.event == ["Quake A 1990", "Quake B (Far) 2001"]
         assert ida.bootstrap_clusters()[2] == "event"
         assert ida.magnitude.tolist() == [6.5, 7.1]
+    # each row's static capacity is voussoir-limit's lambda g of the same arch (another program)
+    (tmp_path / "limit.nml").write_text("&arch embrace_deg = 156, n_voussoirs = 13 /\n")
+    limit = subprocess.run([str(voussoir_sweep_exe.parent / "voussoir-limit"), "limit.nml", "--json"], cwd=tmp_path,
+                           capture_output=True, text=True, timeout=60)
+    lam_g = json.loads(limit.stdout)["load_factor"] * json.loads(limit.stdout)["g_m_s2"]
+    assert [float(r["static_capacity_m_s2"]) for r in rows] == pytest.approx([lam_g, lam_g], rel=1e-9)
 
 
 def test_sweep_refuses_a_set_not_exported(tmp_path, voussoir_sweep_exe):

@@ -386,6 +386,9 @@ def fragility_data(ida: IdaResult, n_bootstrap: int = 400, seed: int = 20261124,
     pgv = fragility_of("PGV", "m/s", *ida.intensity_brackets("pgv"), clusters, events, cluster_by, n_bootstrap,
                        seed + 1, fit_as, ida.param_set, im_max.get("pgv"))
     non_monotonic = ida.non_monotonic
+    # the records' own numbers, when the file has them (a packaged set: magnitude, distance)
+    metadata = {name: values for name, values in (("magnitude", ida.magnitude), ("distance_km", ida.distance_km))
+                if values is not None and np.any(np.isfinite(values))}
     rows = []
     for k in range(ida.n_rows):
         rows.append((ida.record[k] if len(ida.record[k]) < 48 else "..." + ida.record[k][-45:],
@@ -394,11 +397,12 @@ def fragility_data(ida: IdaResult, n_bootstrap: int = 400, seed: int = 20261124,
                      bool(ida.censored[k]), float(pga.low[k] / G_M_S2), float(pgv.low[k]), bool(ida.failed[k]),
                      None if non_monotonic is None else bool(non_monotonic[k]), fit_as[k],
                      float(pga.check.pit[k]), float(pgv.check.pit[k]))
-                    + ((ida.event[k],) if ida.event is not None else ()))
+                    + ((ida.event[k],) if ida.event is not None else ())
+                    + tuple(float(v[k]) for v in metadata.values()))
     table = ReportTable(["record", "param_set", "scale_stood", "scale_threshold", "pga_threshold_g",
                          "pga_threshold_m_s2", "pgv_threshold_m_s", "censored", "pga_stood_g", "pgv_stood_m_s",
                          "failed", "non_monotonic", "fit_as", "pit_pga", "pit_pgv"]
-                        + (["event"] if ida.event is not None else []), rows,
+                        + (["event"] if ida.event is not None else []) + list(metadata), rows,
                         title=f"IDA points of {ida.path}")
     curve = ReportTable(["pga_g", "pga_m_s2", "p_collapse", "p_low", "p_high", "p_conf"],
                         [(float(x / G_M_S2), float(x), float(p), float(lo), float(hi), float(c)) for x, p, lo, hi, c in
