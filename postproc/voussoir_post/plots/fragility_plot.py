@@ -299,10 +299,10 @@ def _title(ida: IdaResult) -> str:
     failed = f", {ida.n_failed} failed search{'es' if ida.n_failed != 1 else ''}" if ida.n_failed else ""
     scale_max = ida.config.get("sweep", {}).get("scale_max")
     top = f" (x {scale_max:g})" if isinstance(scale_max, (int, float)) else ""
-    return (f"Probability of collapse of the {arch_words(ida)}\nunder {records_words(ida)}, scaled, on "
-            f"{samples_words(ida)}\n{ida.n_rows} analyses (record x model), {int(ida.censored.sum())} without "
+    return (f"Probability of collapse of the {arch_words(ida)}\nunder {records_words(ida)}, scaled\non "
+            f"{samples_words(ida)}: {ida.n_rows} analyses (record x model), {int(ida.censored.sum())} without "
             f"collapse up to the largest scale tried{top}{failed}\nlognormal fits by interval-censored maximum "
-            f"likelihood on the brackets (last scale that stood, first that collapsed)")
+            f"likelihood on each row's bracket (last scale that stood, first that collapsed]")
 
 
 def _draw(ax, frag: IntensityFragility, scale: float, unit_label: str, unit: str,
