@@ -39,7 +39,7 @@ module voussoir_record_set
     integer :: n = 0
     character(len=text_len), allocatable :: files(:)  !! absolute (or relative to the set's folder, resolved)
     character(len=text_len), allocatable :: names(:)  !! the record's name in the set
-    character(len=128), allocatable :: events(:)      !! earthquake and year
+    character(len=text_len), allocatable :: events(:) !! earthquake and year
     real(dp), allocatable :: magnitude(:), distance_km(:), index_pga_m_s2(:)
   end type record_set_t
 
@@ -64,7 +64,7 @@ contains
     character(len=*), intent(in) :: path, name, components
     type(record_set_t), intent(out) :: set
     type(status_t), intent(inout) :: status
-    character(len=:), allocatable :: folder, index_path, line
+    character(len=:), allocatable :: folder, index_path, line, where
     character(len=text_len), allocatable :: cells(:)
     character(len=512) :: iomsg
     integer :: col(size(needed)), unit, ios, line_no, k, pair, component
@@ -111,16 +111,17 @@ contains
                   itoa(maxval(col)))
         exit
       end if
-      pair = whole(cells(col(4)), 'pair')
-      component = whole(cells(col(5)), 'component')
+      where = index_path//':'//itoa(line_no)
+      pair = whole_cell(cells(col(4)), 'pair', where, status)
+      component = whole_cell(cells(col(5)), 'component', where, status)
       if (.not. status%ok) exit
       if (components == components_first .and. component /= 1) cycle
-      set%files = [set%files, resolved(trim(cells(col(1))))]
+      set%files = [set%files, resolved(folder, trim(cells(col(1))))]
       set%names = [set%names, cells(col(2))]
-      set%events = [character(len=128) :: set%events, cells(col(3))(1:128)]
-      set%magnitude = [set%magnitude, real_cell(cells(col(6)), 'magnitude')]
-      set%distance_km = [set%distance_km, real_cell(cells(col(7)), 'distance_km')]
-      set%index_pga_m_s2 = [set%index_pga_m_s2, real_cell(cells(col(8)), 'pga_m_s2')]
+      set%events = [set%events, cells(col(3))]
+      set%magnitude = [set%magnitude, real_cell(cells(col(6)), 'magnitude', where, status)]
+      set%distance_km = [set%distance_km, real_cell(cells(col(7)), 'distance_km', where, status)]
+      set%index_pga_m_s2 = [set%index_pga_m_s2, real_cell(cells(col(8)), 'pga_m_s2', where, status)]
       if (.not. status%ok) exit
     end do
     close (unit)
@@ -128,37 +129,37 @@ contains
     set%n = size(set%files)
     if (set%n == 0) call fail(status, index_path//': no record rows')
     do k = 1, set%n
-      if (len_trim(set%events(k)) == 0) set%events(k) = set%names(k)(1:128)
+      if (len_trim(set%events(k)) == 0) set%events(k) = set%names(k)
     end do
-
-  contains
-
-    function resolved(file) result(full)
-      character(len=*), intent(in) :: file
-      character(len=text_len) :: full
-      full = file
-      if (file(1:1) /= '/') full = folder//'/'//file
-    end function resolved
-
-    integer function whole(text, column)
-      character(len=*), intent(in) :: text, column
-      read (text, *, iostat=ios) whole
-      if (ios /= 0) call fail(status, index_path//':'//itoa(line_no)//': '//column//" = '"//trim(text)// &
-                              "' is not a whole number")
-    end function whole
-
-    real(dp) function real_cell(text, column)
-      character(len=*), intent(in) :: text, column
-      if (len_trim(text) == 0 .or. trim(text) == 'nan') then
-        real_cell = ieee_value(1.0_dp, ieee_quiet_nan)
-        return
-      end if
-      read (text, *, iostat=ios) real_cell
-      if (ios /= 0) call fail(status, index_path//':'//itoa(line_no)//': '//column//" = '"//trim(text)// &
-                              "' is not a number (nor nan)")
-    end function real_cell
-
   end subroutine read_record_set
+
+  !> `file` of the index in `folder`: as it is when absolute, else inside the folder.
+  pure function resolved(folder, file) result(full)
+    character(len=*), intent(in) :: folder, file
+    character(len=text_len) :: full
+    full = file
+    if (file(1:1) /= '/') full = folder//'/'//file
+  end function resolved
+
+  !> The whole number of the cell `text` of column `column` (`where`: file:line).
+  integer function whole_cell(text, column, where, status)
+    character(len=*), intent(in) :: text, column, where
+    type(status_t), intent(inout) :: status
+    integer :: ios
+    read (text, *, iostat=ios) whole_cell
+    if (ios /= 0) call fail(status, where//': '//column//" = '"//trim(text)//"' is not a whole number")
+  end function whole_cell
+
+  !> The number of the cell `text` of column `column`, NaN for 'nan' or an empty cell.
+  real(dp) function real_cell(text, column, where, status)
+    character(len=*), intent(in) :: text, column, where
+    type(status_t), intent(inout) :: status
+    integer :: ios
+    real_cell = ieee_value(1.0_dp, ieee_quiet_nan)
+    if (len_trim(text) == 0 .or. trim(text) == 'nan') return
+    read (text, *, iostat=ios) real_cell
+    if (ios /= 0) call fail(status, where//': '//column//" = '"//trim(text)//"' is not a number (nor nan)")
+  end function real_cell
 
   !> The column of each `needed` name in the header `cells`.
   subroutine header_columns(index_path, line_no, cells, col, status)

@@ -43,7 +43,7 @@ module voussoir_sweep_ida
     real(dp), allocatable :: pga_m_s2(:), pgv_m_s(:), duration_s(:)  !! of the record's own samples (unscaled)
     !> Of a packaged set (record_set): each record's earthquake and year, moment magnitude
     !> and closest distance to the rupture; '' and NaN for files of record_files.
-    character(len=128), allocatable :: events(:)
+    character(len=512), allocatable :: events(:)
     real(dp), allocatable :: magnitude(:), distance_km(:)
   end type ida_records_t
 
