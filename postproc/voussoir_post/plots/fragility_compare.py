@@ -87,7 +87,7 @@ def _title(idas: list[IdaResult], labels: list[str], same_records: bool, data: l
     band = data[0].pga.band
     clustered = {"record": "clustered by record", "event": "clustered by event"}.get(band.cluster_by, "of the rows")
     colours = [c.removeprefix("tab:") for c in COMPARE_COLORS]
-    return (f"Probability of collapse of {arch} under {records}\n"
+    return (f"Probability of collapse of {arch}\nunder {records}\n"
             f"{colours[0]}: {labels[0]}, {samples_words(idas[0])}; {colours[1]}: {labels[1]}, "
             f"{samples_words(idas[1])}\n"
             f"lognormal fits by interval-censored maximum likelihood; bands: {int(round(100 * band.level))} % "
