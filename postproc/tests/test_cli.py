@@ -35,8 +35,9 @@ def test_history_cli_writes_png_table_and_csv(run_copy, capsys):
 def test_sequence_cli_times_out_and_gif(run_copy, tmp_path, capsys):
     out_dir = tmp_path / "figs"
     assert post.main(["sequence", str(run_copy), "--times", "0,0.2,0.3", "--amplify", "2", "--gif",
-                      "--out", str(out_dir), "--csv"]) == 0
+                      "--gif-frames", "8", "--out", str(out_dir), "--csv"]) == 0
     out = capsys.readouterr().out
+    assert "(8 frames)" in out
     assert (out_dir / f"{run_copy.stem}_sequence.png").is_file()
     assert (out_dir / f"{run_copy.stem}_sequence.gif").is_file()
     rows = read_csv(out_dir / f"{run_copy.stem}_sequence.csv")

@@ -100,7 +100,7 @@ def cmd_sequence(args) -> int:
     if args.gif:
         t_end = max(f.time_s for f in data.frames) if args.times else float(default_frame_times(run, 2)[-1])
         gif, samples = write_sequence_gif(run, os.path.splitext(png)[0] + ".gif", t_end_s=t_end,
-                                          amplify=args.amplify, open_tol_m=open_tol)
+                                          amplify=args.amplify, open_tol_m=open_tol, max_frames=args.gif_frames)
         print(f"wrote {gif} ({len(samples)} frames)")
     return DONE
 
@@ -301,6 +301,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="joint opening counted as open [mm] (default: the run's &output hinge_gap_m, "
                         "else 1%% of the ring thickness)")
     p.add_argument("--gif", action="store_true", help="also write an animated GIF")
+    p.add_argument("--gif-frames", type=int, default=120, metavar="N",
+                   help="at most N frames in the GIF, evenly spread over the samples (default 120)")
     common(p)
     p.set_defaults(func=cmd_sequence)
 

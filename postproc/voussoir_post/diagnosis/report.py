@@ -94,12 +94,23 @@ def _figure_thresholds(out: Path, obs, post: Posterior, decision: Decision, info
     fig = new_figure(max(6.5, 1.1 * len(pairs) + 2.5), 4.4)
     ax = fig.subplots()
     x = np.arange(len(pairs))
+    closed = np.array([p.low_m > 0 for p in pairs])
     meas = np.array([1e3 * p.threshold_m for p in pairs])
-    low = np.array([1e3 * (p.low_m if p.low_m > 0 else p.high_m) for p in pairs])
+    low = np.array([1e3 * p.low_m for p in pairs])
     high = np.array([1e3 * p.high_m for p in pairs])
-    ax.errorbar(x, meas, yerr=[meas - low, high - meas], fmt="o", color="k", capsize=4,
-                label="measured: midpoint, bar from the last stand to the first collapse")
-    ax.plot(x - 0.15, 1e3 * info["baseline_pred"], "s", color="tab:red", label="nominal model")
+    if closed.any():
+        ax.errorbar(x[closed], meas[closed], yerr=[(meas - low)[closed], (high - meas)[closed]], fmt="o", color="k",
+                    capsize=4, label="measured: midpoint, bar from the last stand to the first collapse")
+    # A pair with no stand below its collapse is a bound, not a value: the threshold is at
+    # most the first collapse (a cap there and an arrow down, as in the compare figure).
+    for k in np.flatnonzero(~closed):
+        ax.plot([x[k] - 0.08, x[k] + 0.08], [high[k], high[k]], color="k", linewidth=2.5)
+        ax.annotate("", (x[k], 0.85 * high[k]), (x[k], high[k]),
+                    arrowprops=dict(arrowstyle="-|>", color="k", linewidth=1.3, mutation_scale=12))
+    if (~closed).any():
+        ax.plot([], [], color="k", linewidth=2.5, marker="v", markersize=6,
+                label="measured: at most the first collapse (no test stood below it)")
+    ax.plot(x - 0.15, 1e3 * info["baseline_pred"], "s", color="0.45", label="nominal model")
     shown = decision.shown
     if shown:
         pred = info["held"][shown][0]
