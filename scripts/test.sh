@@ -15,7 +15,9 @@ if grep -Eq '\*\*\*Skipped|Not Run|Disabled' "$log"; then
   exit 1
 fi
 echo "[test] pytest"
-VOUSSOIR_BIN_DIR="$root/build/drivers" .venv/bin/python -m pytest -q postproc/tests
+# Two workers (pytest-xdist), one per core: the tests write only to their own temporary
+# folders; the workers' skips and diagnosis verdicts reach the report (conftest.py).
+VOUSSOIR_BIN_DIR="$root/build/drivers" .venv/bin/python -m pytest -q -n 2 postproc/tests
 # The README's first command, end to end (its index lists every file it must make).
 echo "[test] main job (scripts/main_job.sh)"
 if ! bash scripts/main_job.sh > build/main_job.log 2>&1; then

@@ -94,6 +94,13 @@ def voussoir_limit_exe() -> Path:
 VERDICTS: list[str] = []
 
 
+@pytest.hookimpl(optionalhook=True)
+def pytest_testnodedown(node, error):
+    """Under pytest-xdist (scripts/test.sh runs 2 workers), each worker's verdict lines
+    come back to the controller, which prints them."""
+    VERDICTS.extend(getattr(node, "workeroutput", {}).get("verdicts", []))
+
+
 def pytest_terminal_summary(terminalreporter, exitstatus, config):
     if VERDICTS:
         terminalreporter.section("diagnosis verdicts on the independent campaigns")
@@ -102,7 +109,11 @@ def pytest_terminal_summary(terminalreporter, exitstatus, config):
 
 
 def pytest_sessionfinish(session, exitstatus):
-    """No test may be skipped: a skipped test fails the session."""
+    """No test may be skipped: a skipped test fails the session (under pytest-xdist the
+    controller sees every worker's reports)."""
+    if hasattr(session.config, "workeroutput"):  # an xdist worker: hand its verdicts over
+        session.config.workeroutput["verdicts"] = list(VERDICTS)
+        return
     reporter = session.config.pluginmanager.get_plugin("terminalreporter")
     skipped = len(reporter.stats.get("skipped", [])) if reporter else 0
     if skipped and exitstatus == 0:
