@@ -15,8 +15,11 @@ module voussoir_numeric_csv
   private
 
   public :: read_csv_columns, read_csv_header, split_csv, parse_number, number_ok, number_text, number_not_finite
+  public :: csv_cell_len
 
   integer, parameter :: line_len = 4096
+  !> The length of a cell `split_csv` gives (a number, a name, a path).
+  integer, parameter :: csv_cell_len = 512
   integer, parameter :: number_ok = 0          !! a finite number
   integer, parameter :: number_text = 1        !! not a number at all
   integer, parameter :: number_not_finite = 2  !! NaN or an infinity
@@ -33,7 +36,7 @@ contains
     type(status_t), intent(inout) :: status
     character(len=line_len) :: line
     character(len=512) :: iomsg
-    character(len=64), allocatable :: fields(:)
+    character(len=csv_cell_len), allocatable :: fields(:)
     integer :: unit, ios, line_no, n, k, i, kind
     integer :: col(size(names))
     logical :: have_header
@@ -113,7 +116,7 @@ contains
   !> `#` comment): its cells, as `split_csv` gives them, and its line.
   subroutine read_csv_header(path, fields, line_no, status)
     character(len=*), intent(in) :: path
-    character(len=64), allocatable, intent(out) :: fields(:)
+    character(len=csv_cell_len), allocatable, intent(out) :: fields(:)
     integer, intent(out) :: line_no
     type(status_t), intent(inout) :: status
     character(len=line_len) :: line
@@ -164,7 +167,7 @@ contains
   !> Split a CSV line at commas (no quoting in numeric tables), trimming blanks and CR.
   pure subroutine split_csv(line, fields)
     character(len=*), intent(in) :: line
-    character(len=64), allocatable, intent(out) :: fields(:)
+    character(len=csv_cell_len), allocatable, intent(out) :: fields(:)
     integer :: i, start, n, lt
     lt = len_trim(line)
     if (lt > 0) then

@@ -18,7 +18,7 @@ module voussoir_model_samples
   use voussoir_text, only: itoa, join_words
   use voussoir_config, only: config_t, validate_config, resolve_path, arch_rule, arch_rule_text
   use voussoir_input_range, only: need
-  use voussoir_numeric_csv, only: read_csv_columns, read_csv_header
+  use voussoir_numeric_csv, only: read_csv_columns, read_csv_header, csv_cell_len
   use voussoir_sweep_ida, only: sample_variables, sample_case
   implicit none
   private
@@ -44,7 +44,7 @@ contains
     type(config_t), allocatable, intent(out) :: set_cfg(:)
     type(status_t), intent(inout) :: status
     character(len=:), allocatable :: file
-    character(len=64), allocatable :: header(:)
+    character(len=csv_cell_len), allocatable :: header(:)
     integer, allocatable :: lines(:)
     integer :: header_line
 

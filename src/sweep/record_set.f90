@@ -17,6 +17,7 @@ module voussoir_record_set
   use voussoir_text, only: itoa, join_words
   use voussoir_line_reader, only: read_line
   use voussoir_record_sets_dir, only: default_record_sets_dir
+  use voussoir_numeric_csv, only: split_csv, csv_cell_len
   implicit none
   private
 
@@ -65,7 +66,7 @@ contains
     type(record_set_t), intent(out) :: set
     type(status_t), intent(inout) :: status
     character(len=:), allocatable :: folder, index_path, line, where
-    character(len=text_len), allocatable :: cells(:)
+    character(len=csv_cell_len), allocatable :: cells(:)
     character(len=512) :: iomsg
     integer :: col(size(needed)), unit, ios, line_no, k, pair, component
     logical :: have_header, exists
@@ -99,7 +100,7 @@ contains
       line_no = line_no + 1
       if (len_trim(line) == 0) cycle
       if (adjustl(line(1:1)) == '#') cycle
-      call split_cells(line, cells)
+      call split_csv(line, cells)
       if (.not. have_header) then
         call header_columns(index_path, line_no, cells, col, status)
         if (.not. status%ok) exit
@@ -179,29 +180,5 @@ contains
       end if
     end do
   end subroutine header_columns
-
-  !> The cells of a comma-separated line (no quoting), blanks and a CR trimmed.
-  pure subroutine split_cells(line, cells)
-    character(len=*), intent(in) :: line
-    character(len=text_len), allocatable, intent(out) :: cells(:)
-    integer :: i, start, n, lt
-    lt = len_trim(line)
-    if (lt > 0) then
-      if (line(lt:lt) == achar(13)) lt = lt - 1
-    end if
-    allocate (cells(count([(line(i:i) == ',', i = 1, lt)]) + 1))
-    n = 0
-    start = 1
-    do i = 1, lt + 1
-      if (i == lt + 1) then
-        n = n + 1
-        cells(n) = adjustl(line(start:lt))
-      else if (line(i:i) == ',') then
-        n = n + 1
-        cells(n) = adjustl(line(start:i - 1))
-        start = i + 1
-      end if
-    end do
-  end subroutine split_cells
 
 end module voussoir_record_set
