@@ -30,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from voussoir_post.diagnosis.actuator import afd_command
+from voussoir_post.analysis.afd import afd_command
 from voussoir_post.runner import Runner
 
 G = 9.81

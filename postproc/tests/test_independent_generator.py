@@ -8,7 +8,8 @@ import math
 
 import numpy as np
 
-from voussoir_post.diagnosis.actuator import afd_command, fit_actuator
+from voussoir_post.analysis.afd import afd_command
+from voussoir_post.diagnosis.actuator import fit_actuator
 
 from conftest import bin_dir
 from independent_campaigns import ARCHES, Truth, actuator_record, ring_blocks, write_polygon_file

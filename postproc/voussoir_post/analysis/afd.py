@@ -1,5 +1,6 @@
-"""The commanded afd table motion (shared/MEASURED_DATA.md): two accelerations that a
-figure or a table may quote, named apart.
+"""The commanded afd table motion (shared/MEASURED_DATA.md): its displacement and
+acceleration over time from one envelope, and two accelerations that a figure or a table
+may quote, named apart.
 
 - the *full-cycle acceleration* A (2 pi f)^2: the amplitude of the acceleration in the
   full cycles, what the field usually quotes;
@@ -17,7 +18,7 @@ import math
 
 import numpy as np
 
-__all__ = ["full_cycle_accel_m_s2", "afd_accel_per_m", "afd_peak_accel_per_m", "afd_peak_accel_m_s2"]
+__all__ = ["full_cycle_accel_m_s2", "afd_command", "afd_accel_per_m", "afd_peak_accel_per_m", "afd_peak_accel_m_s2"]
 
 
 def full_cycle_accel_m_s2(amplitude_m, frequency_hz):
@@ -25,23 +26,41 @@ def full_cycle_accel_m_s2(amplitude_m, frequency_hz):
     return np.asarray(amplitude_m, dtype=float) * (2.0 * math.pi * np.asarray(frequency_hz, dtype=float)) ** 2
 
 
-def afd_accel_per_m(t_s, frequency_hz: float, n_attack: int = 1, n_full: int = 1, n_decay: int = 1) -> np.ndarray:
-    """Table acceleration [m/s2 per metre of amplitude] at the times ``t_s`` (exact
-    second derivative of the displacement, as src/motion/motion.f90 evaluates it)."""
-    t = np.asarray(t_s, dtype=float)
+def _envelope(t: np.ndarray, frequency_hz: float, n_attack: int, n_full: int, n_decay: int
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The envelope e(t) of the afd motion and its first two derivatives (0 before and
+    after the motion)."""
     ta, tf, td = n_attack / frequency_hz, n_full / frequency_hz, n_decay / frequency_hz
     e, de, d2e = np.zeros_like(t), np.zeros_like(t), np.zeros_like(t)
     if ta > 0:
         w = math.pi / ta
         m = (t >= 0) & (t < ta)
-        e[m], de[m], d2e[m] = np.sin(0.5 * w * t[m]) ** 2, 0.5 * w * np.sin(w * t[m]), 0.5 * w * w * np.cos(w * t[m])
+        e[m], de[m], d2e[m] = (np.sin(np.pi * t[m] / (2 * ta)) ** 2, 0.5 * w * np.sin(w * t[m]),
+                               0.5 * w * w * np.cos(w * t[m]))
     m = (t >= ta) & (t < ta + tf)
     e[m] = 1.0
     if td > 0:
         w = math.pi / td
         m = (t >= ta + tf) & (t < ta + tf + td)
         tau = t[m] - ta - tf
-        e[m], de[m], d2e[m] = np.cos(0.5 * w * tau) ** 2, -0.5 * w * np.sin(w * tau), -0.5 * w * w * np.cos(w * tau)
+        e[m], de[m], d2e[m] = (np.cos(np.pi * tau / (2 * td)) ** 2, -0.5 * w * np.sin(w * tau),
+                               -0.5 * w * w * np.cos(w * tau))
+    return e, de, d2e
+
+
+def afd_command(t_s, frequency_hz: float, amplitude_m: float, n_attack: int = 1, n_full: int = 1,
+                n_decay: int = 1) -> np.ndarray:
+    """The commanded afd displacement [m] of shared/MEASURED_DATA.md at the times ``t_s``."""
+    t = np.asarray(t_s, dtype=float)
+    e = _envelope(t, frequency_hz, n_attack, n_full, n_decay)[0]
+    return amplitude_m * e * np.sin(2 * np.pi * frequency_hz * t)
+
+
+def afd_accel_per_m(t_s, frequency_hz: float, n_attack: int = 1, n_full: int = 1, n_decay: int = 1) -> np.ndarray:
+    """Table acceleration [m/s2 per metre of amplitude] at the times ``t_s`` (exact
+    second derivative of the displacement, as src/motion/motion.f90 evaluates it)."""
+    t = np.asarray(t_s, dtype=float)
+    e, de, d2e = _envelope(t, frequency_hz, n_attack, n_full, n_decay)
     om = 2.0 * math.pi * frequency_hz
     s, c = np.sin(om * t), np.cos(om * t)
     return d2e * s + 2.0 * de * om * c - e * om * om * s

@@ -1,5 +1,5 @@
-"""The table's motion: the afd command of shared/MEASURED_DATA.md, and what the records
-(or the measured peak accelerations) say of how the table followed it.
+"""The table's motion: what the records (or the measured peak accelerations) say of how
+the table followed the afd command of shared/MEASURED_DATA.md (analysis/afd.py).
 
 Every record of an `afd` test is fitted as gain x command(t - delay) by least squares,
 which measures the actuator's gain and lag test by test (and so their scatter); without
@@ -16,24 +16,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..analysis.afd import afd_peak_accel_per_m
+from ..analysis.afd import afd_command, afd_peak_accel_per_m
 from ..readers.campaign import Campaign, Test
 
-__all__ = ["afd_command", "fit_actuator", "peak_gain", "TableEvidence", "table_evidence"]
-
-
-def afd_command(t_s: np.ndarray, frequency_hz: float, amplitude_m: float, n_attack: int = 1,
-                n_full: int = 1, n_decay: int = 1) -> np.ndarray:
-    """The commanded afd displacement of shared/MEASURED_DATA.md."""
-    T = 1.0 / frequency_hz
-    ta, tf, td = n_attack * T, n_full * T, n_decay * T
-    t = np.asarray(t_s, dtype=float)
-    e = np.where(t < 0, 0.0,
-                 np.where(t < ta, np.sin(np.pi * t / (2 * ta)) ** 2,
-                          np.where(t < ta + tf, 1.0,
-                                   np.where(t < ta + tf + td, np.cos(np.pi * (t - ta - tf) / (2 * td)) ** 2,
-                                            0.0))))
-    return amplitude_m * e * np.sin(2 * np.pi * frequency_hz * t)
+__all__ = ["fit_actuator", "peak_gain", "TableEvidence", "table_evidence"]
 
 
 def fit_actuator(t_s: np.ndarray, table_x_m: np.ndarray, test: Test, max_delay_s: float = 0.2
@@ -105,7 +91,7 @@ def table_evidence(campaign: Campaign) -> TableEvidence:
         dsd = float(delays.std(ddof=1)) if n > 1 else math.nan
         return TableEvidence("records", n, float(gains.mean()), sd / math.sqrt(n) if n > 1 else math.nan, sd,
                              float(delays.mean()), dsd / math.sqrt(n) if n > 1 else math.nan, fits)
-    ratios = [(tid, peak_gain(t)) for tid, t in campaign.tests.items() if peak_gain(t) is not None]
+    ratios = [(tid, g) for tid, g in ((tid, peak_gain(t)) for tid, t in campaign.tests.items()) if g is not None]
     if ratios:
         r = np.array([g for _, g in ratios])
         n = r.size

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from ..plots.drawing import new_figure, provenance, save_png
-from .actuator import afd_command
+from ..analysis.afd import afd_command
 from .decision import NAME_AT, Decision
 from .likelihood import GAIN_SCATTER_DEFAULT, OUTLIER_FACTOR, OUTLIER_PROB, TAU0
 from .models import CANDIDATES, members
