@@ -120,7 +120,6 @@ contains
     type(monitor_t) :: mon
     type(run_result_t) :: res
     type(status_t) :: status
-    type(solver_settings_t) :: settings
     type(pair_friction_t) :: no_pairs(0)
     character(len=80) :: name
     real(dp) :: lambda_g_m_s2, onset_m_s2, duration_s
@@ -147,13 +146,7 @@ contains
     call assert_true(solved, trim(name)//': limit analysis solved')
     call assert_true(hinging, trim(name)//': hinging governs at friction 0.8')
 
-    settings%dt_s = dt_s
-    settings%tol = nlgs_tol
-    settings%max_iter = 20000
-    settings%alert_m = 0.0_dp                 ! automatic
-    ! A rare step stalls just above tol 1e-6; it is counted and bounded below.
-    settings%allow_nonconvergence = .true.
-    call init_model(arch, density_kg_m3, width_m, settings, &
+    call init_model(arch, density_kg_m3, width_m, ramp_solver(), &
                     contact_law_t(friction=friction, inset_m=inset_m, pairs=no_pairs), model, status)
     model%motion = motion_ramp(direction*ramp_rate_m_s3)
     call monitor_init(arch, model%bodies, 0.1_dp*thickness_m, 0.5_dp, hinge_gap_m, mon)
@@ -195,6 +188,17 @@ contains
     end do
     call assert_true(k == 5, trim(name)//': the first four hinges are those of the limit analysis')
   end subroutine check_ramp
+
+  !> The solver of the slow ramps: tol 1e-6 (see the header), the automatic alert
+  !> distance; a rare step stalls just above tol 1e-6, and is counted and bounded.
+  pure function ramp_solver() result(settings)
+    type(solver_settings_t) :: settings
+    settings%dt_s = dt_s
+    settings%tol = nlgs_tol
+    settings%max_iter = 20000
+    settings%alert_m = 0.0_dp                 ! automatic
+    settings%allow_nonconvergence = .true.
+  end function ramp_solver
 
   pure subroutine sort_by_joint(joints, sides)
     integer, intent(inout) :: joints(:), sides(:)
@@ -248,7 +252,6 @@ contains
     type(monitor_t) :: mon
     type(run_result_t) :: res
     type(status_t) :: status
-    type(solver_settings_t) :: settings
     type(pair_friction_t) :: no_pairs(0)
     real(dp) :: lambda_g_m_s2, onset_m_s2, size_m
     integer :: s, b, first
@@ -261,12 +264,7 @@ contains
                       'pointed arch: hinging governs at friction 0.8 (both LP capacities agree)', rtol=1.0e-6_dp)
     lambda_g_m_s2 = lp%assoc%load_factor*g_m_s2
 
-    settings%dt_s = dt_s
-    settings%tol = nlgs_tol
-    settings%max_iter = 20000
-    settings%alert_m = 0.0_dp
-    settings%allow_nonconvergence = .true.
-    call init_model(asm, density_kg_m3, width_m, settings, &
+    call init_model(asm, density_kg_m3, width_m, ramp_solver(), &
                     contact_law_t(friction=friction, inset_m=0.0_dp, pairs=no_pairs), model, status)
     call assert_true(status%ok, 'pointed arch: model built '//trim(status%message))
     if (.not. status%ok) return
