@@ -77,29 +77,23 @@ def parameters(post: Posterior, model_id: str | None, obs: Observations) -> dict
     return out
 
 
-def _six(value: float) -> float:
-    return float(f"{value:.6g}")
-
-
 def model_run(model_id: str | None, params: dict, obs: Observations) -> tuple[Variant, dict]:
     """The (variant, extra &motion settings) of a model at its reported parameters, for
-    single runs. The values are rounded to 6 significant digits: a posterior mean from
-    a bank read back from its cache differs from the first run's in the last bits, and
-    the runs of the same question must be the same runs (their cache is keyed by them)."""
+    single runs."""
     parts, motion = [], {}
     for e in members(model_id or "none"):
         if e == "contact_edges":
-            parts.append((e, _six(params["inset_m"]["value"])))
+            parts.append((e, params["inset_m"]["value"]))
         elif e == "friction":
-            parts.append((e, _six(params["friction"]["value"])))
+            parts.append((e, params["friction"]["value"]))
         elif e == "geometry":
-            parts.append((e, _six(params["thickness_factor"]["value"])))
+            parts.append((e, params["thickness_factor"]["value"]))
         elif e == "base_restraint":
             sides = params["restrained_springings"]["value"]
             parts.append((e, "both" if len(sides) == 2 else sides[0]))
         elif e == "table_motion":
-            motion = {"table_gain": _six(params["accel_gain"]["value"]),
-                      "table_delay_s": _six(max(0.0, params.get("delay_s", {"value": 0.0})["value"]))}
+            motion = {"table_gain": params["accel_gain"]["value"],
+                      "table_delay_s": max(0.0, params.get("delay_s", {"value": 0.0})["value"])}
     variant = Variant() if not parts else (Variant(*parts[0]) if len(parts) == 1 else Variant(COMBINED, tuple(parts)))
     return variant, motion
 
