@@ -45,6 +45,15 @@ def test_sequence_cli_times_out_and_gif(run_copy, tmp_path, capsys):
     assert "open_joints" in out
 
 
+def test_gif_frames_below_one_is_refused(run_copy, tmp_path, capsys):
+    for bad, got in (("0", "got 0"), ("-3", "got -3"), ("x", "got 'x'")):
+        with pytest.raises(SystemExit) as exit_info:
+            post.main(["sequence", str(run_copy), "--gif", "--gif-frames", bad, "--out", str(tmp_path)])
+        assert exit_info.value.code == 2
+        err = capsys.readouterr().err
+        assert "argument --gif-frames: expects a whole number >= 1, " + got in err
+
+
 def test_xdmf_cli(run_copy, capsys):
     assert post.main(["xdmf", str(run_copy), "--every", "2"]) == 0
     out = capsys.readouterr().out

@@ -70,6 +70,16 @@ def _parse_times(text: str) -> list[float]:
     return times
 
 
+def _positive_int(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expects a whole number >= 1, got '{text}'") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"expects a whole number >= 1, got {value}")
+    return value
+
+
 def cmd_envelope(args) -> int:
     sweep = read_sweep(args.sweep)
     campaign = read_campaign(args.campaign) if args.campaign else None
@@ -301,7 +311,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="joint opening counted as open [mm] (default: the run's &output hinge_gap_m, "
                         "else 1%% of the ring thickness)")
     p.add_argument("--gif", action="store_true", help="also write an animated GIF")
-    p.add_argument("--gif-frames", type=int, default=120, metavar="N",
+    p.add_argument("--gif-frames", type=_positive_int, default=120, metavar="N",
                    help="at most N frames in the GIF, evenly spread over the samples (default 120)")
     common(p)
     p.set_defaults(func=cmd_sequence)
