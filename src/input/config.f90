@@ -86,6 +86,10 @@ module voussoir_config
     real(dp) :: alert_m = 0.0_dp              !! 0: 2 % of the smallest free block
     logical :: allow_nonconvergence = .false.
     logical :: coarse_correction = .true.     !! walls: coarse correction of the normal impulses per course
+    !> Not a namelist variable: the static capacity lambda g [m/s2] below which the
+    !> assembly at rest moves with the table, so that those steps are not solved (set by
+    !> the IDA sweep, `&sweep skip_at_rest`; 0: every step is solved).
+    real(dp) :: rest_capacity_m_s2 = 0.0_dp
   end type solver_config_t
 
   !> &output: the result file and the monitors.

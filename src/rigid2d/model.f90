@@ -17,7 +17,7 @@ module voussoir_model
   implicit none
   private
 
-  public :: model_t, solver_settings_t, model_step, model_apply_impulses
+  public :: model_t, solver_settings_t, model_step, model_rest_step, model_apply_impulses
 
   !> Numerical settings of the time stepping and of the contact solve.
   type :: solver_settings_t
@@ -27,6 +27,7 @@ module voussoir_model
     integer :: max_iter = 10000
     real(dp) :: alert_m = 0.0_dp              !! 0: automatic, as in the config
     logical :: allow_nonconvergence = .false.
+    real(dp) :: rest_capacity_m_s2 = 0.0_dp   !! see the config's; 0: every step is solved
   end type solver_settings_t
 
   !> Everything one simulation evolves.
@@ -132,6 +133,28 @@ contains
       text = trim(buf)
     end function where_now
   end subroutine model_step
+
+  !> Advance `model` by one time step in which its free bodies ride on the table as one
+  !> rigid body, at rest on it (voussoir_simulation decides when that holds): they move
+  !> by the table's displacement over the step and take its velocity; no contact is
+  !> solved (0 iterations).
+  subroutine model_rest_step(model)
+    type(model_t), intent(inout) :: model
+    real(dp) :: h, x0, v0, a0, x1, v1, a1
+    h = model%solver%dt_s
+    call motion_eval(model%motion, model%t_s, x0, v0, a0)
+    call motion_eval(model%motion, model%t_s + h, x1, v1, a1)
+    model%bodies%q(1, :) = model%bodies%q(1, :) + (x1 - x0)
+    where (model%bodies%driven) model%bodies%q(1, :) = model%bodies%q_ref(1, :) + x1
+    model%bodies%v(1, :) = v1
+    model%bodies%v(2:3, :) = 0.0_dp
+    model%step = model%step + 1
+    model%t_s = model%t_s + h
+    model%iterations = 0
+    model%norm = 0.0_dp
+    model%converged = .true.
+    model%table = [x1, v1, a1]
+  end subroutine model_rest_step
 
   !> q_new = q + h_part v, element by element (the same operations as the array
   !> expression q + h_part*v, without its temporary).

@@ -53,6 +53,7 @@ contains
       settings%max_iter = s%max_iter
       settings%allow_nonconvergence = s%allow_nonconvergence
       settings%alert_m = s%alert_m
+      settings%rest_capacity_m_s2 = s%rest_capacity_m_s2
       call contact_law_init(a%friction, a%contact_inset_m, a%joint_friction, assembly, law, status)
       if (.not. status%ok) then
         status%message = trim(cfg%source_file)//': &arch '//trim(status%message)

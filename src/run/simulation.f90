@@ -3,7 +3,10 @@ module voussoir_simulation
   use, intrinsic :: iso_fortran_env, only: int64
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t
-  use voussoir_model, only: model_t, model_step
+  use voussoir_model, only: model_t, model_step, model_rest_step
+  use voussoir_motion, only: waveform_ramp
+  use voussoir_rest_window, only: rest_window_t, rest_window, relative_speed, smallest_free_size, &
+                                  still_speed_m_s, still_s, drift_fraction
   use voussoir_monitors, only: monitor_t, monitor_clear, monitor_update, crown_displacement, residual_displacement, &
                                joint_of_pair
   use voussoir_contacts, only: contact_set_t
@@ -46,6 +49,11 @@ module voussoir_simulation
     real(dp) :: mean_iterations = 0.0_dp
     integer :: max_iterations = 0
     integer :: nonconverged_steps = 0
+    !> Steps not solved because the assembly rode at rest on the table (the model's
+    !> rest_capacity_m_s2; voussoir_rest_window), and whether the run ended at rest
+    !> before its motion did.
+    integer :: rest_steps = 0
+    logical :: ended_at_rest = .false.
     real(dp) :: wall_time_s = 0.0_dp
   end type run_result_t
 
@@ -54,7 +62,10 @@ contains
   !> Run `model` for `duration_s`, sampling every `every` steps, watched by `mon` (cleared
   !> first); stop `stop_after_collapse_s` after a collapse (never when negative). With
   !> `record_contacts` the loaded contacts of every sample are kept (a result file's
-  !> /contacts); a sweep, which keeps only the outcome, goes without.
+  !> /contacts); a sweep, which keeps only the outcome, goes without. With a static
+  !> capacity in the model's settings (rest_capacity_m_s2 > 0; not for a ramp), the steps
+  !> in which the assembly rides at rest on the table are not solved, and the run ends
+  !> once it has settled after its motion's last strong part (voussoir_rest_window).
   subroutine simulate(model, mon, duration_s, every, stop_after_collapse_s, res, status, record_contacts)
     type(model_t), intent(inout) :: model
     type(monitor_t), intent(inout) :: mon
@@ -65,7 +76,8 @@ contains
     logical, intent(in), optional :: record_contacts
     integer :: n_steps, n_samples, nb, istep
     integer(8) :: clock0, clock1, rate
-    real(dp) :: sum_iter
+    real(dp) :: sum_iter, still_for_s
+    type(rest_window_t) :: window
 
     call system_clock(clock0, rate)
     nb = model%bodies%n
@@ -79,8 +91,16 @@ contains
     call monitor_clear(mon)
     call add_sample(res, model, mon)
     sum_iter = 0.0_dp
+    if (model%motion%waveform /= waveform_ramp) &
+      window = rest_window(model%motion, model%solver%dt_s, n_steps, model%solver%rest_capacity_m_s2)
+    still_for_s = 0.0_dp
     do istep = 1, n_steps
-      call model_step(model, status)
+      if (istep <= window%lead_steps) then
+        call model_rest_step(model)
+        res%rest_steps = res%rest_steps + 1
+      else
+        call model_step(model, status)
+      end if
       if (.not. status%ok) exit
       res%n_steps = istep
       res%step_time_s(istep) = model%t_s
@@ -94,6 +114,10 @@ contains
       end if
       res%interrupted_by = stop_signal()
       if (res%interrupted_by /= 0) exit
+      if (istep > window%tail_step .and. .not. mon%collapsed) then
+        res%ended_at_rest = settled(model, mon, still_for_s)
+        if (res%ended_at_rest) exit
+      end if
     end do
     if (res%n_steps > 0) then
       if (modulo(res%n_steps, every) /= 0) call add_sample(res, model, mon)
@@ -106,6 +130,25 @@ contains
     call system_clock(clock1)
     res%wall_time_s = real(clock1 - clock0, dp)/real(rate, dp)
   end subroutine simulate
+
+  !> Whether the free blocks of `model` have been still on the table for `still_s`
+  !> (`still_for_s` counts the time so far) and stand where they were built.
+  logical function settled(model, mon, still_for_s)
+    type(model_t), intent(in) :: model
+    type(monitor_t), intent(in) :: mon
+    real(dp), intent(inout) :: still_for_s
+    real(dp) :: drift_m
+    integer :: body
+    settled = .false.
+    if (relative_speed(model%bodies, model%table(2)) >= still_speed_m_s) then
+      still_for_s = 0.0_dp
+      return
+    end if
+    still_for_s = still_for_s + model%solver%dt_s
+    if (still_for_s < still_s) return
+    call residual_displacement(mon, model%bodies, drift_m, body)
+    settled = drift_m <= drift_fraction*smallest_free_size(model%bodies)
+  end function settled
 
   !> Add the present state of `model` to the samples of `res`.
   subroutine add_sample(res, model, mon)

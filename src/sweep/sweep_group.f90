@@ -54,6 +54,7 @@ module voussoir_sweep_group
     integer :: sample_seed = 1
     character(len=512) :: model_samples_file = ''  !! ida: model samples from a CSV instead
     integer :: dt_check_rows = 0
+    logical :: skip_at_rest = .true.                !! ida: steps at rest below the static capacity not solved
     real(dp) :: ranges(2, n_sampled) = unset_real   !! low and high bound of each sampled variable
     ! The entries given, from the first (the lists have no gaps).
     integer :: n_frequencies = 0, n_amplitudes = 0, n_records = 0
@@ -99,6 +100,7 @@ contains
       call g%add(trim(range_names(k)), s%ranges(:, k), unset=unset_real, about='real, the low and the high bound')
     end do
     call g%add('dt_check_rows', s%dt_check_rows)
+    call g%add('skip_at_rest', s%skip_at_rest)
   end subroutine sweep_table
 
   !> Read the &sweep group of `path` into `group`, whose values are the defaults; check

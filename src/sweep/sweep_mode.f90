@@ -31,6 +31,7 @@ module voussoir_sweep_mode
     ! Reading the plan.
     procedure(check_settings_i), deferred :: check_settings
     procedure :: draw_sets
+    procedure :: prepare_sets
     procedure(plan_text_i), deferred :: settings_text
     procedure :: definition_text
     ! The jobs.
@@ -213,6 +214,15 @@ contains
     type(status_t), intent(inout) :: status
     drawn = .false.
   end subroutine draw_sets
+
+  !> What the mode adds to the validated case of each set once the sets are made (nothing
+  !> here).
+  subroutine prepare_sets(this, group, plan, status)
+    class(sweep_mode_t), intent(in) :: this
+    type(sweep_group_t), intent(in) :: group
+    type(sweep_plan_t), intent(inout) :: plan
+    type(status_t), intent(inout) :: status
+  end subroutine prepare_sets
 
   !> Lines of the sweep definition (the signature a resumed file must match) besides the
   !> effective &sweep group and the base case: what a file the mode reads gave (none here).

@@ -40,10 +40,12 @@ module voussoir_sweep_mode_ida
     character(len=32) :: record_set = ''          !! the packaged set played ('' : record_files)
     character(len=16) :: record_components = components_both
     integer :: dt_check_rows = 0                  !! rows whose two bracketing runs are redone at dt/2
+    logical :: skip_at_rest = .true.              !! steps at rest below the static capacity not solved
     real(dp) :: ranges(2, n_sampled) = unset_real !! bounds of the sampled variables
   contains
     procedure :: check_settings
     procedure :: draw_sets
+    procedure :: prepare_sets
     procedure :: settings_text
     procedure :: definition_text
     procedure :: jobs_text
@@ -181,6 +183,7 @@ contains
     this%sample_seed = group%sample_seed
     this%samples_file = group%model_samples_file
     this%dt_check_rows = group%dt_check_rows
+    this%skip_at_rest = group%skip_at_rest
     this%ranges = group%ranges
   end subroutine check_records_and_samples
 
@@ -239,13 +242,33 @@ contains
            '  refine_factor = '//itoa(plan%search%refine_factor)//nl// &
            '  n_confirm = '//itoa(plan%search%n_confirm)//nl// &
            '  n_samples = '//itoa(this%n_samples)//nl//'  sample_seed = '//itoa(this%sample_seed)//nl// &
-           '  dt_check_rows = '//itoa(this%dt_check_rows)//nl
+           '  dt_check_rows = '//itoa(this%dt_check_rows)//nl// &
+           '  skip_at_rest = '//trim(merge('.true. ', '.false.', this%skip_at_rest))//nl
     if (len_trim(this%samples_file) > 0) text = text//"  model_samples_file = '"//trim(this%samples_file)//"'"//nl
     do j = 1, n_sampled
       if (this%ranges(1, j) /= unset_real) text = text//'  '//trim(range_names(j))//' = '// &
                                                   fmt_exact_list(this%ranges(:, j))//nl
     end do
   end function settings_text
+
+  !> With skip_at_rest, each set's static capacity lambda g in its solver settings: its
+  !> runs do not solve the steps in which the arch rides at rest on the table
+  !> (src/run/rest_window.f90). Not with loads (&load: the capacity is that of the arch
+  !> alone) or where the capacity does not apply (static_capacity_m_s2 gives 0).
+  subroutine prepare_sets(this, group, plan, status)
+    class(ida_mode_t), intent(in) :: this
+    type(sweep_group_t), intent(in) :: group
+    type(sweep_plan_t), intent(inout) :: plan
+    type(status_t), intent(inout) :: status
+    integer :: s
+    if (.not. this%skip_at_rest) return
+    do s = 0, plan%n_sets - 1
+      associate (c => plan%set_cfg(s))
+        if (c%load%n_point_loads > 0 .or. c%load%dead_load_n_per_m /= 0.0_dp) cycle
+        c%solver%rest_capacity_m_s2 = static_capacity_m_s2(c)
+      end associate
+    end do
+  end subroutine prepare_sets
 
   !> With model_samples_file, the samples it gave (their number, their columns and a
   !> digest of their values): another content of the file is another sweep.

@@ -53,6 +53,8 @@ contains
     if (.not. status%ok) return
     if (.not. drawn) call build_sets(path, base, group%lists, group%lengths, plan, status)
     if (.not. status%ok) return
+    call mode%prepare_sets(group, plan, status)
+    if (.not. status%ok) return
     if (plan%pair_frequencies .and. plan%n_freq /= plan%n_sets) then
       call fail(status, path//': &sweep pair_frequencies = .true. needs one frequency per parameter set: '// &
                 'frequencies_hz has '//itoa(plan%n_freq)//' entries, the lists give '//itoa(plan%n_sets)//' sets')
