@@ -29,7 +29,8 @@ sys.path[:0] = [str(ROOT / "postproc"), str(ROOT / "postproc" / "tests")]
 
 from voussoir_post.diagnosis.bank import Bank, load_banks  # noqa: E402
 from voussoir_post.diagnosis.rates import draw_outcomes  # noqa: E402
-from voussoir_post.plots.drawing import new_figure, save_png  # noqa: E402
+from voussoir_post.diagnosis.figures import reliability_figure  # noqa: E402
+from voussoir_post.plots.drawing import provenance  # noqa: E402
 
 from independent_campaigns import ARCHES, Truth  # noqa: E402
 from replay_maps import draw_observations, outcome_map, save_map, load_map  # noqa: E402
@@ -68,7 +69,7 @@ def stored_bank() -> Bank:
     return load_banks(DATA / "bank")
 
 
-def reliability(outcomes: list[dict], out: Path) -> list[tuple]:
+def reliability(outcomes: list[dict], out: Path, note: str) -> list[tuple]:
     stated = np.array([o["p_top"] for o in outcomes if o["truth"] != "outside"])
     right = np.array([o["top_right"] for o in outcomes if o["truth"] != "outside"])
     edges = np.array([0.0, 0.2, 0.4, 0.6, 0.8, 0.9, 1.0001])
@@ -77,24 +78,11 @@ def reliability(outcomes: list[dict], out: Path) -> list[tuple]:
         sel = (stated >= a) & (stated < b)
         if sel.any():
             rows.append((a, min(b, 1.0), int(sel.sum()), float(stated[sel].mean()), float(right[sel].mean())))
-    fig = new_figure(5.2, 4.6)
-    ax = fig.subplots()
-    ax.plot([0, 1], [0, 1], color="k", lw=0.8, ls="--", label="perfectly calibrated")
+    bins = []
     for a, b, n, s, r in rows:
         ci = binomtest(int(round(r * n)), n).proportion_ci(0.95, method="wilson")
-        ax.errorbar(s, r, yerr=[[r - ci.low], [ci.high - r]], fmt="o", color="tab:blue", capsize=3)
-        ax.annotate(f"{n}", (s, r), textcoords="offset points", xytext=(6, -10), fontsize=7)
-    ax.axvline(0.9, color="tab:red", lw=0.8, ls=":", label="a cause is named at 0.9")
-    ax.plot([], [], "o", color="tab:blue", label="draws binned by stated probability\n(bar: 95 % Wilson interval; "
-                                                 "number: draws)")
-    ax.set_xlim(0, 1.02)
-    ax.set_ylim(0, 1.02)
-    ax.set_xlabel("stated probability of the most probable model")
-    ax.set_ylabel("observed frequency that it is the truth")
-    ax.set_title("Reliability of the diagnosis's probabilities\n(independent generator, truths in the catalogue)",
-                 fontsize=10)
-    ax.legend(fontsize=7, loc="upper left")
-    save_png(fig, out / "diagnosis_reliability.png")
+        bins.append((a, b, n, s, r, ci.low, ci.high))
+    reliability_figure(out, bins, note)
     return rows
 
 
@@ -139,7 +127,9 @@ def main() -> int:
         "outside_named": outside_named,
         "outside_draws": sum(o["truth"] == "outside" for o in outcomes),
     }
-    rows = reliability(outcomes, args.out)
+    note = provenance("bench/diagnosis_calibration.sh",
+                      f"{args.truths} truths x {args.draws} noise draws, seed {args.seed}; the test arches' bank")
+    rows = reliability(outcomes, args.out, note)
     print()
     print(f"draws {table['draws']} ({args.truths} truths x {args.draws})")
     print(f"causes named at >= 0.9: {table['named_at_0.9']}, right {table['named_right_fraction']}  (goal >= 0.85)")

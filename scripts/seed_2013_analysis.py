@@ -18,6 +18,7 @@ import json
 import shutil
 import sys
 from pathlib import Path
+from typing import Callable, TypeVar
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "postproc"))
@@ -27,6 +28,8 @@ from voussoir_post.diagnosis.pipeline import DiagnosisSettings, diagnose  # noqa
 
 SEED = ROOT.parent / "shared" / "data" / "seed_2013"
 OUT = ROOT / "docs" / "seed_2013"
+STAGING = ROOT / "build" / "seed_2013.new"  #: where the output is made before it replaces OUT
+T = TypeVar("T")
 
 
 def paper_comparison() -> list[dict]:
@@ -46,20 +49,42 @@ def paper_comparison() -> list[dict]:
     return rows
 
 
+def write_output(out: Path, settings: DiagnosisSettings, rows: list[dict]) -> dict:
+    """The diagnosis of the seed campaign and the paper's comparison, written into ``out``."""
+    result = diagnose(SEED, out, settings)
+    shutil.rmtree(out / "work", ignore_errors=True)
+    (out / "paper_comparison.json").write_text(json.dumps(rows, indent=2) + "\n")
+    return result
+
+
+def replace_when_made(out: Path, staging: Path, make: Callable[[Path], T]) -> T:
+    """``make(staging)`` writes the output into a fresh folder ``staging`` (untracked, under
+    build/), which then takes the place of ``out``. While the figures are drawn the tracked
+    files of ``out`` are as committed, so the stamp of each figure (plots/drawing.py,
+    save_png: the commit, and 'modified' when a tracked file differs from it) tells the state
+    of the code that drew it, not that of the folder being written: deleting ``out`` first
+    made every figure read 'modified tree'. A failed ``make`` leaves ``out`` as it was.
+    Returns what ``make`` returns."""
+    if staging.exists():
+        shutil.rmtree(staging)
+    staging.mkdir(parents=True)
+    made = make(staging)
+    if out.exists():
+        shutil.rmtree(out)
+    shutil.move(str(staging), str(out))
+    return made
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--np", type=int, default=2)
     parser.add_argument("--bin-dir", default=str(ROOT / "build" / "drivers"))
     args = parser.parse_args()
-    if OUT.exists():
-        shutil.rmtree(OUT)
-    OUT.mkdir(parents=True)
     # The simulation bank is cached under build/ (not beside docs/): a rerun simulates nothing.
-    result = diagnose(SEED, OUT, DiagnosisSettings(bin_dir=Path(args.bin_dir).resolve(), n_ranks=args.np,
-                                                   bank_dir=ROOT / "build" / "voussoir-bank"))
-    shutil.rmtree(OUT / "work", ignore_errors=True)
+    settings = DiagnosisSettings(bin_dir=Path(args.bin_dir).resolve(), n_ranks=args.np,
+                                 bank_dir=ROOT / "build" / "voussoir-bank")
     rows = paper_comparison()
-    (OUT / "paper_comparison.json").write_text(json.dumps(rows, indent=2) + "\n")
+    result = replace_when_made(OUT, STAGING, lambda out: write_output(out, settings, rows))
     print(f"verdict: {result['verdict']}; rivals {result['rivals']}; next test {result['next_test']}")
     print("probabilities: " + ", ".join(f"{m} {p:.3f}" for m, p in sorted(result["probabilities"].items(),
                                                                           key=lambda kv: -kv[1]) if p >= 0.005))

@@ -193,6 +193,25 @@ case_ every_memory      "GB of samples in memory.*every" "&arch n_voussoirs = 10
 case_ repeated_group    ":2: namelist group &arch appears a second time \(first at line 1\)" "&arch n_voussoirs = 13 /
 &arch n_voussoirs = 9 /
 $o"
+# A sweep's plan (issue 26): its cost is printed before the first run, and a plan beyond
+# &sweep max_runs is refused with its count. 256 frequencies x 256 amplitudes = 65,536 jobs.
+freqs=$(for k in $(seq 0 255); do printf '%s, ' "$(awk "BEGIN{printf \"%.2f\", 1 + 0.01*$k}")"; done)
+amps=$(for k in $(seq 1 256); do printf '%s, ' "$(awk "BEGIN{printf \"%.3f\", 0.001*$k}")"; done)
+grid="&sweep mode = 'grid', frequencies_hz = ${freqs%, }, amplitudes_m = ${amps%, }"
+driver=voussoir-sweep case_ sweep_over_cap "the sweep would take 65536 runs \(65536 jobs\): more than &sweep max_runs = 65535; split the sweep or raise max_runs" "$grid, max_runs = 65535 /
+$o"
+driver=voussoir-sweep case_ sweep_progress "&sweep progress_every_s = -1 is outside the allowed range progress_every_s >= 0 \(0: no progress lines\)" "&sweep frequencies_hz = 1, progress_every_s = -1 /
+$o"
+# Under the cap the same plan starts, its estimate first; stopped once it is printed.
+mkdir -p grid_cost && printf '%s /\n&output file = '"'out.h5'"' /\n' "$grid" > grid_cost/grid_cost.nml
+(cd grid_cost && exec "$bin/voussoir-sweep" grid_cost.nml > log.txt 2>&1) & pid=$!
+for _ in $(seq 300); do grep -q "estimate:" grid_cost/log.txt 2>/dev/null && break; sleep 0.1; done
+kill "$pid" 2>/dev/null; wait "$pid" 2>/dev/null
+if grep -Eq "^voussoir-sweep: estimate: 65536 jobs, 65536 runs, [0-9]+ s simulated, roughly [0-9.]+ [a-z]+ of wall time" grid_cost/log.txt; then
+  passed=$((passed+1)); echo "PASS  sweep_cost_printed"
+else failed=$((failed+1)); echo "FAIL  sweep_cost_printed: $(cat grid_cost/log.txt)"; fi
+rm -rf grid_cost
+
 # Polygon files that cannot be an assembly.
 printf 'block free\n0 0\n1 0\n1 1\n0 1\n' > all_free.txt
 printf 'block driven\n0 0\n1 0\n1 1\n0 1\n' > all_driven.txt

@@ -277,6 +277,9 @@ contains
     write (output_unit, '(a)') 'voussoir-sweep: '//trim(plan%mode%name)//' sweep of '//itoa(plan%n_jobs)// &
       ' jobs ('//plan%mode%jobs_text(plan)//') on '//itoa(net%size)//' ranks -> '//m%path
     call estimate(plan, net%size)
+    ! Said, so that a quiet sweep is not taken for a hung one (issue 26).
+    if (plan%progress_every_s == 0.0_dp) write (output_unit, '(a)') 'voussoir-sweep: progress_every_s = 0: '// &
+      'no progress lines; the final done: line only'
     if (m%n_done > 0 .or. m%n_runs_resumed > 0) write (output_unit, '(a)') 'voussoir-sweep: resuming '// &
       m%path//': '//itoa(m%n_done)//' of '//itoa(plan%n_jobs)//' jobs done, '//itoa(m%n_runs_resumed)// &
       ' runs kept'

@@ -165,8 +165,9 @@ def drawn_figures(monkeypatch) -> list:
         figures.append(fig)
         return fig
 
-    for name in ("sequence", "envelope", "compare", "history", "mechanism", "fragility_plot", "fragility_compare"):
-        module = importlib.import_module(f"voussoir_post.plots.{name}")
+    plots = ("sequence", "envelope", "compare", "history", "mechanism", "fragility_plot", "fragility_compare")
+    for name in [f"plots.{p}" for p in plots] + ["diagnosis.figures"]:
+        module = importlib.import_module(f"voussoir_post.{name}")
         if hasattr(module, "new_figure"):
             monkeypatch.setattr(module, "new_figure", recording)
     return figures

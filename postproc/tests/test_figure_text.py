@@ -3,10 +3,13 @@ figure's edge (titles, axis labels, tick labels, legends, the provenance strip),
 matplotlib's renderer extents (figure_text.py). The envelope and compare figures are
 checked on their sweep in test_sweep.py, the sequence and the history in
 test_run_plots.py; here the mechanism (a real voussoir-limit JSON), and the fragility
-figures (IDA tables written by hand, as test_fragility_ida.py writes them). Each
-figure is drawn once, small inputs: seconds in all."""
+figures (IDA tables written by hand, as test_fragility_ida.py writes them), and the
+diagnosis's figures (report.md's and the calibration's reliability figure) from a few
+numbers written here. Each figure is drawn once, small inputs: seconds in all."""
 
 from __future__ import annotations
+
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -14,7 +17,11 @@ import pytest
 from conftest import run_executable
 from figure_text import text_boxes, text_clashes
 from voussoir_post.cli import post
-from voussoir_post.plots.drawing import new_figure, save_png
+from voussoir_post.analysis.afd import afd_command
+from voussoir_post.diagnosis import figures
+from voussoir_post.diagnosis.observations import PairObservation
+from voussoir_post.plots.drawing import new_figure, provenance, save_png
+from voussoir_post.readers.campaign import Record, Test as CampaignTest
 from test_fragility_ida import SCALES, csv_fixture
 
 
@@ -57,3 +64,52 @@ def test_fragility_text(tmp_path, drawn_figures, compare):
     assert drawn_figures
     for fig in drawn_figures:
         assert text_clashes(fig) == []
+
+
+# The diagnosis's figures (report.md's and the calibration's reliability figure), each from
+# a few numbers written here: no simulation, no campaign folder.
+_PAIRS = [PairObservation("A156", 1.25, 0.0, 0.046), PairObservation("A132", 1.6, 0.0, 0.056),
+          PairObservation("A118", 2.0, 0.031, 0.038)]  # two open below (as the seed's), one closed
+
+
+@pytest.mark.parametrize("shown", [None, "contact_edges+friction"])
+def test_diagnosis_thresholds_text(tmp_path, drawn_figures, shown):
+    name = figures.thresholds_figure(tmp_path, _PAIRS, [0.064, 0.072, 0.041], shown, 0.41,
+                                     [0.030, 0.045, 0.036] if shown else None, provenance("v", "campaign test"))
+    assert (tmp_path / name).is_file()
+    (fig,) = drawn_figures
+    assert text_clashes(fig) == []
+
+
+@pytest.mark.parametrize("n_models", [1, 12])
+def test_diagnosis_probabilities_text(tmp_path, drawn_figures, n_models):
+    names = ["none", "friction", "contact_edges", "geometry", "base_restraint", "table_motion",
+             "contact_edges+friction", "contact_edges+geometry", "friction+geometry", "base_restraint+friction",
+             "base_restraint+table_motion", "geometry+table_motion"][:n_models]
+    weights = np.arange(n_models, 0, -1, dtype=float)
+    figures.probabilities_figure(tmp_path, dict(zip(names, weights / weights.sum())), provenance("v", "test"))
+    (fig,) = drawn_figures
+    assert text_clashes(fig) == []
+
+
+def test_diagnosis_table_text(tmp_path, drawn_figures):
+    t = np.arange(0.0, 3.2, 0.005)
+    tests = {tid: CampaignTest(tid, "A156", "afd", "stand", 1.25, a) for tid, a in (("T1", 0.020), ("T2", 0.040))}
+    # The measured motion: the command of T2 a little late and 5 % short (no fit made here).
+    measured = 0.95 * afd_command(t - 0.012, 1.25, 0.040, 1, 1, 1)
+    records = {"T2": Record("T2", "records/T2.csv", t, measured)}
+    table = SimpleNamespace(source="records", per_test=[("T1", 0.97, 0.010, 1e-4), ("T2", 0.95, 0.012, 1e-4)])
+    campaign = SimpleNamespace(tests=tests, records=records)
+    assert figures.table_figure(tmp_path, campaign, table, provenance("v", "test")) == "table_records.png"
+    (fig,) = drawn_figures
+    assert text_clashes(fig) == []
+
+
+def test_diagnosis_reliability_text(tmp_path, drawn_figures):
+    # (bin low, high, draws, mean stated, fraction right, 95 % interval): points near both
+    # corners, as the calibration's (docs/figures/diagnosis_reliability.png).
+    bins = [(0.2, 0.4, 60, 0.32, 0.32, 0.21, 0.44), (0.4, 0.6, 120, 0.50, 0.53, 0.44, 0.61),
+            (0.8, 0.9, 15, 0.87, 1.0, 0.80, 1.0), (0.9, 1.0, 40, 0.94, 1.0, 0.91, 1.0)]
+    figures.reliability_figure(tmp_path, bins, provenance("bench/diagnosis_calibration.sh", "40 truths x 10"))
+    (fig,) = drawn_figures
+    assert text_clashes(fig) == []

@@ -269,6 +269,8 @@ def case_grid(r, work):
     progress = [line for line in out.splitlines() if ", ETA " in line]
     check(rc == 0 and not progress and "voussoir-sweep: done: 12 jobs" in out,
           f"grid: progress_every_s = 0 prints no progress line ({len(progress)} printed)")
+    check("voussoir-sweep: progress_every_s = 0: no progress lines; the final done: line only\n" in out,
+          "grid: progress_every_s = 0 says so before the runs")
     # The plan's cost, up front (issue 26): 12 runs of 3/f + 1 s.
     check(re.search(r"^voussoir-sweep: estimate: 12 jobs, 12 runs, 28\.\d* s simulated, roughly \d+ s of wall time "
                     r"on 1 ranks \(at 4 us per step and block", out, re.M) is not None,

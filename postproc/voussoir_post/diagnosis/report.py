@@ -7,9 +7,9 @@ from pathlib import Path
 
 import numpy as np
 
-from ..plots.drawing import new_figure, provenance, save_png
-from ..analysis.afd import afd_command
+from ..plots.drawing import provenance
 from .decision import NAME_AT, Decision
+from .figures import probabilities_figure, table_figure, thresholds_figure
 from .likelihood import GAIN_SCATTER_DEFAULT, OUTLIER_FACTOR, OUTLIER_PROB, TAU0
 from .models import CANDIDATES, members
 from .posterior import ADEQUATE_P, Posterior
@@ -89,86 +89,6 @@ def notes(decision: Decision, post: Posterior, result: dict, info: dict) -> str:
     return text
 
 
-def _figure_thresholds(out: Path, obs, post: Posterior, decision: Decision, info: dict, note: str) -> str:
-    pairs = obs.pairs
-    fig = new_figure(max(6.5, 1.1 * len(pairs) + 2.5), 4.4)
-    ax = fig.subplots()
-    x = np.arange(len(pairs))
-    closed = np.array([p.low_m > 0 for p in pairs])
-    meas = np.array([1e3 * p.threshold_m for p in pairs])
-    low = np.array([1e3 * p.low_m for p in pairs])
-    high = np.array([1e3 * p.high_m for p in pairs])
-    if closed.any():
-        ax.errorbar(x[closed], meas[closed], yerr=[(meas - low)[closed], (high - meas)[closed]], fmt="o", color="k",
-                    capsize=4, label="measured: midpoint, bar from the last stand to the first collapse")
-    # A pair with no stand below its collapse is a bound, not a value: the threshold is at
-    # most the first collapse (a cap there and an arrow down, as in the compare figure).
-    for k in np.flatnonzero(~closed):
-        ax.plot([x[k] - 0.08, x[k] + 0.08], [high[k], high[k]], color="k", linewidth=2.5)
-        ax.annotate("", (x[k], 0.85 * high[k]), (x[k], high[k]),
-                    arrowprops=dict(arrowstyle="-|>", color="k", linewidth=1.3, mutation_scale=12))
-    if (~closed).any():
-        ax.plot([], [], color="k", linewidth=2.5, marker="v", markersize=6,
-                label="measured: at most the first collapse (no test stood below it)")
-    ax.plot(x - 0.15, 1e3 * info["baseline_pred"], "s", color="0.45", label="nominal model")
-    shown = decision.shown
-    if shown:
-        pred = info["held"][shown][0]
-        ax.plot(x + 0.15, 1e3 * pred, "D", color="tab:blue",
-                label=f"{shown} (probability {post.probabilities[shown]:.2f}), fitted without the specimen")
-    ax.set_xticks(x)
-    ax.set_xticklabels([f"{p.specimen_id}\n{p.frequency_hz:g} Hz" for p in pairs], fontsize=8)
-    ax.set_ylabel("collapse threshold, table displacement amplitude [mm]")
-    ax.set_title("Collapse thresholds: measured brackets against the models")
-    ax.legend(fontsize=7)
-    save_png(fig, out / "thresholds.png", note=note)
-    return "thresholds.png"
-
-
-def _figure_probabilities(out: Path, post: Posterior, note: str) -> str:
-    ranked = post.ranked()
-    shown = [m for m in ranked if post.probabilities[m] >= 0.005][:10] or ranked[:1]
-    fig = new_figure(7.5, 0.35 * len(shown) + 1.9)
-    ax = fig.subplots()
-    y = np.arange(len(shown))[::-1]
-    ax.barh(y, [post.probabilities[m] for m in shown], color="tab:blue")
-    ax.axvline(NAME_AT, color="k", lw=0.8, ls="--", label=f"a cause is named at {NAME_AT:g}")
-    ax.set_yticks(y)
-    ax.set_yticklabels(shown, fontsize=8)
-    ax.set_xlim(0, 1)
-    ax.set_xlabel("posterior probability")
-    ax.set_title("Posterior probability of each model (those above 0.005)")
-    ax.legend(fontsize=8, loc="lower right")
-    save_png(fig, out / "probabilities.png", note=note)
-    return "probabilities.png"
-
-
-def _figure_table(out: Path, campaign, table, note: str) -> str | None:
-    if table.source != "records" or not table.per_test:
-        return None
-    tid = max(table.per_test, key=lambda r: campaign.tests[r[0]].amplitude_m)[0]
-    rec, test = campaign.records[tid], campaign.tests[tid]
-    t = rec.t_s - rec.t_s[0]
-    fig = new_figure(11.0, 3.6)
-    axes = fig.subplots(1, 2)
-    axes[0].plot(t, 1e3 * afd_command(t, test.frequency_hz, test.amplitude_m, test.n_attack, test.n_full,
-                                      test.n_decay), label="command")
-    axes[0].plot(t, 1e3 * (rec.table_x_m - rec.table_x_m[0]), lw=0.8, label="measured")
-    axes[0].set_xlabel("time [s]")
-    axes[0].set_ylabel("table displacement [mm]")
-    axes[0].set_title(f"Commanded and measured table motion, test {tid}", fontsize=9)
-    axes[0].legend(fontsize=8)
-    axes[1].plot([1e3 * r[2] for r in table.per_test], [r[1] for r in table.per_test], "o",
-                 label="one record: gain x command(t - delay)")
-    axes[1].axhline(1.0, color="k", lw=0.6, label="the command (gain 1)")
-    axes[1].set_xlabel("fitted delay [ms]")
-    axes[1].set_ylabel("fitted gain (measured / commanded)")
-    axes[1].set_title("Actuator fit of every record", fontsize=9)
-    axes[1].legend(fontsize=8)
-    save_png(fig, out / "table_records.png", note=note)
-    return "table_records.png"
-
-
 def _model_rows(post: Posterior, info: dict, result: dict) -> list:
     by_model = dict(zip(CANDIDATES, result["candidates"]))
     rows = []
@@ -185,8 +105,12 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
     bank = info["bank"]
     note = provenance(f"voussoir-diagnose, executables {bank.code}", f"campaign {campaign.name}")
     text = notes(decision, post, result, info)
-    figs = [_figure_thresholds(out, obs, post, decision, info, note), _figure_probabilities(out, post, note)]
-    tfig = _figure_table(out, campaign, info["table"], note)
+    shown = decision.shown
+    figs = [thresholds_figure(out, obs.pairs, info["baseline_pred"], shown,
+                              post.probabilities[shown] if shown else float("nan"),
+                              info["held"][shown][0] if shown else None, note),
+            probabilities_figure(out, post.probabilities, note)]
+    tfig = table_figure(out, campaign, info["table"], note)
     sc = post.scales
     lines = [f"# Diagnosis of campaign `{campaign.name}`", "", f"**Verdict: `{result['verdict']}`.** {text}", "",
              f"![probabilities]({figs[1]})", "", "## Thresholds", "",
