@@ -12,8 +12,8 @@ measure's power (2 for the Arias intensity). Besides the measures of the record 
   ``static_capacity_m_s2``), dimensionless: a model that is twice as strong needs
   twice the PGA, and this measure takes that out of the spread;
 - the frequency ratio omega_g / p, not an intensity (a record scaled keeps it) but a
-  covariate of the sufficiency: omega_g = PGA / PGV [rad/s] (exact for a sine pulse
-  a0 sin(omega t), whose PGV is a0 / omega), and p = sqrt(3 g / (4 R)) the frequency
+  covariate of the sufficiency: omega_g = PGA / PGV [rad/s], a frequency of the record
+  (omega exactly for a harmonic ground velocity v0 sin(omega t)), and p = sqrt(3 g / (4 R)) the frequency
   parameter of a rocking block of half-diagonal R (Housner 1963), here the arch's
   block equivalent with R its mean radius r_ext - t / 2 (after the similarity of the
   rocking block, Dimitrakopoulos & DeJong 2012, and the rocking frame, Makris &
@@ -44,7 +44,7 @@ from ..readers.csv_table import read_csv_table
 from ..tables import ReportTable
 from .fragility import FragilityFit, fit_intervals
 from .ida import IdaResult
-from .intensity import (DAMPING, G_M_S2, PYROTD_VERSION, SCALE_POWER, RecordIntensity, avg_sa_periods,
+from .intensity import (DAMPING, G_M_S2, PYROTD_VERSION, RecordIntensity, avg_sa_periods,
                         record_intensity)
 from .record_sets import read_at2, read_set
 
