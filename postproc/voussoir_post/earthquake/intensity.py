@@ -23,6 +23,7 @@ intensity (:data:`SCALE_POWER`).
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
@@ -132,12 +133,27 @@ def cav(accel_m_s2, dt_s: float) -> float:
     return float(np.sum(dt_s * np.where(same, 0.5 * (lo + hi), crossing)))
 
 
+def _pyrotd():
+    """The pyRotd module, checked to be :data:`PYROTD_VERSION`; imported where used (the
+    rest of the package does without it)."""
+    try:
+        with warnings.catch_warnings():  # pyRotd imports pkg_resources, which newer setuptools warn about
+            warnings.simplefilter("ignore")
+            import pyrotd  # noqa: PLC0415
+    except ImportError as exc:
+        raise InputError(f"the response spectra (Sa, AvgSa) need the PyPI package pyRotd=={PYROTD_VERSION} and "
+                         f"setuptools<82 ({exc}; bash scripts/setup.sh installs them)") from exc
+    if pyrotd.__version__ != PYROTD_VERSION:
+        raise InputError(f"the response spectra are those of pyRotd {PYROTD_VERSION}, but {pyrotd.__version__} is "
+                         f"installed (pip install --no-deps pyrotd=={PYROTD_VERSION})")
+    return pyrotd
+
+
 def spectral_acceleration(accel_m_s2, dt_s: float, periods_s, damping: float = DAMPING) -> np.ndarray:
     """Sa(T) [m/s2] at each period of ``periods_s``: omega^2 max |u| of the linear
     oscillator of period T and ``damping`` (pyRotd's pseudo-spectral acceleration), the
     record padded with zeros for the oscillator's free vibration to die out."""
-    import pyrotd  # noqa: PLC0415  (imported where used: the rest of the package does without it)
-
+    pyrotd = _pyrotd()
     a = _check(accel_m_s2, dt_s)
     periods = np.atleast_1d(np.asarray(periods_s, dtype=float))
     if not np.all(np.isfinite(periods) & (periods > 2.0 * dt_s)):
