@@ -79,6 +79,21 @@ def test_sufficiency_of_a_pulse_is_the_difference_of_the_means():
     assert sufficiency(np.ones(5), np.full(5, 7.0), "x") is None  # one value of the covariate
 
 
+def test_sufficiency_over_the_records_means():
+    """6 records x 4 model samples: the line through the records' mean residuals against
+    their covariate is the least-squares line of the 6 means (numpy.polyfit)."""
+    rng = np.random.default_rng(9)
+    records = np.repeat([f"r{k}" for k in range(6)], 4)
+    x = np.repeat(rng.uniform(0.0, 2.0, 6), 4)
+    residual = 0.3 * x + rng.normal(0.0, 0.2, 24)
+    s = sufficiency(residual, x, "x", records)
+    means = residual.reshape(6, 4).mean(axis=1)
+    assert s.n == 24 and s.n_records == 6
+    assert s.slope_records == pytest.approx(np.polyfit(x[::4], means, 1)[0], rel=1e-10)
+    assert s.slope == pytest.approx(s.slope_records, rel=1e-10)  # balanced rows: the same line
+    assert 0.0 < s.p_value_records < 1.0
+
+
 def synthetic_ida(n=24, seed=7):
     """Sine records of various amplitudes and periods, and rows whose collapse PGA is
     planted exactly lognormal (median 4 m/s2, ln spread 0.25): scale = PGA_c / PGA of

@@ -26,7 +26,8 @@ maximum likelihood of the PGA fragility). Its residuals are ln IM_c - ln median 
 rows that collapsed (IM_c the geometric middle of the row's bracket; censored rows have
 none), each regressed alone on each covariate (scipy.stats.linregress): slope, its
 standard error and the two-sided p-value of slope = 0. Rows that share a record are not
-independent, so the p-values are optimistic (too small).
+independent, so these p-values are optimistic (too small); the same line through the
+records' mean residuals (one point a record) is given beside them.
 """
 
 from __future__ import annotations
@@ -85,6 +86,11 @@ class Sufficiency:
     stderr: float
     p_value: float  #: two-sided, of slope = 0 (optimistic: rows sharing a record are not independent)
     n: int  #: residuals regressed
+    #: the same line through each record's mean residual and mean covariate (one point a
+    #: record: the rows of a record are not independent); NaN with fewer than 3 records
+    slope_records: float = math.nan
+    p_value_records: float = math.nan
+    n_records: int = 0
 
 
 @dataclass
@@ -129,7 +135,8 @@ class MeasureComparison:
             cells = [m.label, m.unit, median, f"{m.fit.beta:.3f}", f"{m.beta_linear:.3f}"]
             for c in names:
                 s = m.sufficiency.get(c)
-                cells.append("-" if s is None else f"{s.slope:+.3f} +- {s.stderr:.3f} (p {s.p_value:.2g})")
+                cells.append("-" if s is None else f"{s.slope:+.3f} +- {s.stderr:.3f} (p {s.p_value:.2g}; "
+                             f"{s.n_records} records: p {s.p_value_records:.2g})")
             rows.append(tuple(cells))
         return ReportTable(["measure", "unit", "median", "beta", "beta/power"] + [f"slope on {c}" for c in names],
                            rows, title=f"fragility by intensity measure (Sa at T = {self.sa_period_s:g} s, AvgSa "
@@ -142,7 +149,9 @@ class MeasureComparison:
             "intensity_measures": {m.name: {
                 "label": m.label, "median": m.fit.median, "beta": m.fit.beta, "beta_linear": m.beta_linear,
                 "unit": m.unit, "scale_power": m.power, "n_rows": m.fit.n, "n_censored": m.fit.n_censored,
-                "sufficiency": {c: {"slope": s.slope, "stderr": s.stderr, "p_value": s.p_value, "n": s.n}
+                "sufficiency": {c: {"slope": s.slope, "stderr": s.stderr, "p_value": s.p_value, "n": s.n,
+                                    "slope_records": _number(s.slope_records),
+                                    "p_value_records": _number(s.p_value_records), "n_records": s.n_records}
                                 for c, s in m.sufficiency.items()}} for m in self.fits},
             "intensity_efficiency_rank": self.ranking(),
             "intensity_settings": {
@@ -150,12 +159,18 @@ class MeasureComparison:
                 "damping": DAMPING, "spectra": f"pyRotd {PYROTD_VERSION} (pseudo-spectral acceleration)",
                 "g_m_s2": G_M_S2, "frequency_ratio": FREQUENCY_WORDS,
                 "residual": "ln IM_c - ln median, IM_c the geometric middle of a collapsed row's bracket "
-                            "(censored rows left out); each covariate regressed alone (scipy.stats.linregress)",
+                            "(censored rows left out); each covariate regressed alone (scipy.stats.linregress), "
+                            "over the rows and over the records' mean residuals (_records)",
                 "not_available": dict(self.skipped)},
             "record_intensities": {name: {"pga_m_s2": r.pga_m_s2, "pgv_m_s": r.pgv_m_s, "pgd_m": r.pgd_m,
                                           "arias_m_s": r.arias_m_s, "cav_m_s": r.cav_m_s, "sa_m_s2": r.sa_m_s2,
                                           "avgsa_m_s2": r.avgsa_m_s2} for name, r in self.records.items()},
         }
+
+
+def _number(x: float) -> float | None:
+    """A float for JSON, None for NaN."""
+    return x if math.isfinite(x) else None
 
 
 def parse_measures(text: str) -> list[str]:
@@ -254,27 +269,40 @@ def residuals(low, high, fit: FragilityFit) -> np.ndarray:
     return np.where(np.isfinite(middle), middle - math.log(fit.median), np.nan)
 
 
-def sufficiency(residual, covariate, name: str) -> Sufficiency | None:
+def sufficiency(residual, covariate, name: str, records=None) -> Sufficiency | None:
     """The least-squares line of ``residual`` on ``covariate`` over the rows where both
-    are finite; None with fewer than 3 such rows or one value of the covariate."""
+    are finite; None with fewer than 3 such rows or one value of the covariate. With
+    ``records`` (one label per row), also the line through the records' means."""
     r, x = np.asarray(residual, float), np.asarray(covariate, float)
     used = np.isfinite(r) & np.isfinite(x)
     if used.sum() < 3 or np.unique(x[used]).size < 2:
         return None
     line = stats.linregress(x[used], r[used])
-    return Sufficiency(name, float(line.slope), float(line.stderr), float(line.pvalue), int(used.sum()))
+    out = Sufficiency(name, float(line.slope), float(line.stderr), float(line.pvalue), int(used.sum()))
+    if records is not None:
+        labels = np.asarray(records)[used]
+        names = list(dict.fromkeys(labels.tolist()))
+        x_mean = np.array([x[used][labels == n].mean() for n in names])
+        r_mean = np.array([r[used][labels == n].mean() for n in names])
+        if len(names) >= 3 and np.unique(x_mean).size >= 2:
+            by_record = stats.linregress(x_mean, r_mean)
+            out.slope_records, out.p_value_records = float(by_record.slope), float(by_record.pvalue)
+            out.n_records = len(names)
+    return out
 
 
-def fit_measure(name: str, unit_values, scale_low, scale_high, covariates: dict[str, np.ndarray]) -> MeasureFit:
+def fit_measure(name: str, unit_values, scale_low, scale_high, covariates: dict[str, np.ndarray],
+                records=None) -> MeasureFit:
     """The fit of one measure from its value at scale 1 per row and the rows' scale
-    brackets, and the regression of its residuals on each covariate (per row)."""
+    brackets, and the regression of its residuals on each covariate (per row; and over
+    the records' means with ``records``, the record of each row)."""
     label, unit, power = MEASURES[name]
     unit_values = np.asarray(unit_values, float)
     low, high = unit_values * np.asarray(scale_low, float) ** power, unit_values * np.asarray(scale_high, float) ** power
     used = np.isfinite(low)
     fit = fit_intervals(low[used], high[used])
     res = residuals(low, high, fit)
-    found = {c: sufficiency(res, x, c) for c, x in covariates.items()}
+    found = {c: sufficiency(res, x, c, records) for c, x in covariates.items()}
     return MeasureFit(name, label, unit, power, fit, {c: s for c, s in found.items() if s is not None}, unit_values)
 
 
@@ -317,7 +345,7 @@ def compare_measures(ida: IdaResult, measures: list[str], sa_period_s: float = 1
         else:
             unit = np.array([records[r].value(name) for r in ida.record])
         try:
-            fits.append(fit_measure(name, unit, scale_low, scale_high, covariates))
+            fits.append(fit_measure(name, unit, scale_low, scale_high, covariates, ida.record))
         except FitError as exc:
             skipped[name] = str(exc)
     return MeasureComparison(fits, records, float(sa_period_s), tuple(float(t) for t in periods), skipped)
