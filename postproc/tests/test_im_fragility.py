@@ -129,6 +129,14 @@ def test_efficiency_ranks_first_the_measure_planted_exactly_lognormal():
     assert beta["pga_lambda_g"] == pytest.approx(np.std(ln_pga_c), rel=1e-12)
     assert {m.name: m.fit.median for m in result.fits}["pga"] == pytest.approx(math.exp(np.mean(ln_pga_c)))
     assert set(result.ranking()[:2]) == {"pga", "pga_lambda_g"}
+    p_best = {m.name: m.p_best for m in result.fits}
+    assert sum(p_best.values()) == pytest.approx(1.0)
+    # best in most resamples (a resample that leaves out the records whose period spreads
+    # AvgSa or sqrt(Arias) most can make those two the best now and then)
+    assert p_best["pga"] + p_best["pga_lambda_g"] > 0.5
+    assert result.n_bootstrap == 200 and result.cluster_by == "record"
+    low, high = {m.name: m.beta_band for m in result.fits}["pga"]
+    assert low < beta["pga"] < high
     assert all(beta[name] / MEASURES[name][2] > beta["pga"] for name in MEASURES if name not in ("pga", "pga_lambda_g"))
 
 
@@ -209,7 +217,8 @@ def test_cli_im_table_and_chosen_measures(tmp_path, capsys):
     text = capsys.readouterr().out
     assert "fragility by intensity measure (Sa at T = 0.3 s, AvgSa over 0.1-1 s, 5 % damping, pyRotd 0.6.1)" in text
     assert "PGA / (lambda g)" in text and "Sa(T)" in text and "CAV" not in text
-    assert "efficiency (smallest beta / power first" in text
+    assert "efficiency (smallest beta / power first" in text and "beta [90 % band]" in text
+    assert "30 bootstrap resamples of the records" in text
     assert "not available: ln_frequency_ratio" in text
 
 

@@ -231,8 +231,8 @@ def cmd_fragility(args) -> int:
     stem = os.path.splitext(data.png_path)[0]
     curve_csv = write_csv(data.curve_table, stem + ".csv")
     points_csv = write_csv(data.table, stem + "_points.csv")
-    by_measure = (compare_measures(ida, measures, args.sa_period, tuple(args.avgsa_periods or (0.2, 3.0)))
-                  if measures else None)
+    by_measure = (compare_measures(ida, measures, args.sa_period, tuple(args.avgsa_periods or (0.2, 3.0)),
+                                   n_bootstrap=args.bootstrap, seed=args.seed) if measures else None)
     if args.json:
         print(json.dumps({**data.summary(), **(by_measure.summary() if by_measure else {})}, indent=1))
         return DONE
@@ -247,6 +247,9 @@ def cmd_fragility(args) -> int:
         print(format_table(by_measure.table()))
         print("efficiency (smallest beta / power first; beta / power compares a measure that grows with the "
               "scale squared, Arias, with the others): " + ", ".join(by_measure.ranking()))
+        print(f"beta band and P(best): {by_measure.n_bootstrap} bootstrap resamples of the {by_measure.cluster_by}s "
+              f"(--bootstrap, --seed), the same rows for every measure, each refitted; P(best): the fraction in "
+              f"which the measure's beta / power is the smallest")
         print("sufficiency: slope of ln IM_c - ln median (rows that collapsed, IM_c the geometric middle of the "
               "bracket) on each covariate alone; a p-value below 0.05 says the measure leaves that covariate's "
               "effect in the residuals (rows sharing a record make the p-values optimistic)")

@@ -43,7 +43,7 @@ from scipy import stats
 from ..errors import FitError, InputError, RecordsError
 from ..readers.csv_table import read_csv_table
 from ..tables import ReportTable
-from .fragility import FragilityFit, fit_intervals
+from .fragility import FragilityFit, fit_intervals, resample_clusters
 from .ida import IdaResult
 from .intensity import (DAMPING, G_M_S2, PYROTD_VERSION, RecordIntensity, avg_sa_periods,
                         record_intensity)
@@ -51,7 +51,7 @@ from .record_sets import read_at2, read_set
 
 __all__ = ["MEASURES", "COVARIATES", "RecordMotion", "Sufficiency", "MeasureFit", "MeasureComparison",
            "parse_measures", "record_motions", "frequency_parameter_rad_s", "sufficiency", "residuals",
-           "fit_measure", "compare_measures", "FREQUENCY_WORDS"]
+           "fit_measure", "bootstrap_efficiency", "compare_measures", "FREQUENCY_WORDS"]
 
 #: The measures, in the order of the table: (label, unit, power of the scale).
 MEASURES = {
@@ -104,6 +104,10 @@ class MeasureFit:
     fit: FragilityFit
     sufficiency: dict[str, Sufficiency] = field(default_factory=dict)
     unit_values: np.ndarray = field(default_factory=lambda: np.array([]))  #: per row, at scale 1
+    low: np.ndarray = field(default_factory=lambda: np.array([]))  #: per row: IM_c in (low, high] (NaN: left out)
+    high: np.ndarray = field(default_factory=lambda: np.array([]))
+    beta_band: tuple[float, float] = (math.nan, math.nan)  #: 90 % of beta over the bootstrap resamples
+    p_best: float = math.nan  #: fraction of the resamples in which its beta / power is the smallest
 
     @property
     def beta_linear(self) -> float:
@@ -121,6 +125,8 @@ class MeasureComparison:
     sa_period_s: float
     avgsa_periods_s: tuple[float, ...]
     skipped: dict[str, str] = field(default_factory=dict)  #: measure or covariate -> why it is not there
+    n_bootstrap: int = 0  #: resamples of the efficiency's bootstrap that were fitted
+    cluster_by: str = ""  #: what they drew ('record', 'event')
 
     def ranking(self) -> list[str]:
         """The measures by efficiency, the smallest beta / power first."""
@@ -132,13 +138,15 @@ class MeasureComparison:
         rows = []
         for m in self.fits:
             median = f"{m.fit.median:.4g}" + (f" ({m.fit.median / G_M_S2:.3g} g)" if m.unit == "m/s2" else "")
-            cells = [m.label, m.unit, median, f"{m.fit.beta:.3f}", f"{m.beta_linear:.3f}"]
+            cells = [m.label, m.unit, median, f"{m.fit.beta:.3f} [{m.beta_band[0]:.3f}, {m.beta_band[1]:.3f}]",
+                     f"{m.beta_linear:.3f}", f"{m.p_best:.2f}"]
             for c in names:
                 s = m.sufficiency.get(c)
                 cells.append("-" if s is None else f"{s.slope:+.3f} +- {s.stderr:.3f} (p {s.p_value:.2g}; "
                              f"{s.n_records} records: p {s.p_value_records:.2g})")
             rows.append(tuple(cells))
-        return ReportTable(["measure", "unit", "median", "beta", "beta/power"] + [f"slope on {c}" for c in names],
+        return ReportTable(["measure", "unit", "median", "beta [90 % band]", "beta/power", "P(best)"]
+                           + [f"slope on {c}" for c in names],
                            rows, title=f"fragility by intensity measure (Sa at T = {self.sa_period_s:g} s, AvgSa "
                                        f"over {self.avgsa_periods_s[0]:g}-{self.avgsa_periods_s[-1]:g} s, "
                                        f"{100 * DAMPING:g} % damping, pyRotd {PYROTD_VERSION})")
@@ -148,12 +156,16 @@ class MeasureComparison:
         return {
             "intensity_measures": {m.name: {
                 "label": m.label, "median": m.fit.median, "beta": m.fit.beta, "beta_linear": m.beta_linear,
+                "beta_band": [_number(b) for b in m.beta_band], "p_best": _number(m.p_best),
                 "unit": m.unit, "scale_power": m.power, "n_rows": m.fit.n, "n_censored": m.fit.n_censored,
                 "sufficiency": {c: {"slope": s.slope, "stderr": s.stderr, "p_value": s.p_value, "n": s.n,
                                     "slope_records": _number(s.slope_records),
                                     "p_value_records": _number(s.p_value_records), "n_records": s.n_records}
                                 for c, s in m.sufficiency.items()}} for m in self.fits},
             "intensity_efficiency_rank": self.ranking(),
+            "intensity_bootstrap": {"n_resamples": self.n_bootstrap, "cluster_by": self.cluster_by, "band_level": 0.90,
+                                    "p_best": "fraction of the resamples (the same for every measure) in which the "
+                                              "measure's beta / power is the smallest"},
             "intensity_settings": {
                 "sa_period_s": self.sa_period_s, "avgsa_periods_s": list(self.avgsa_periods_s),
                 "damping": DAMPING, "spectra": f"pyRotd {PYROTD_VERSION} (pseudo-spectral acceleration)",
@@ -303,15 +315,51 @@ def fit_measure(name: str, unit_values, scale_low, scale_high, covariates: dict[
     fit = fit_intervals(low[used], high[used])
     res = residuals(low, high, fit)
     found = {c: sufficiency(res, x, c, records) for c, x in covariates.items()}
-    return MeasureFit(name, label, unit, power, fit, {c: s for c, s in found.items() if s is not None}, unit_values)
+    return MeasureFit(name, label, unit, power, fit, {c: s for c, s in found.items() if s is not None}, unit_values,
+                      low, high)
+
+
+def bootstrap_efficiency(fits: list[MeasureFit], clusters, events=None, n_resamples: int = 200,
+                         seed: int = 20261124) -> int:
+    """Each fit's 90 % band of beta and the fraction of resamples in which its beta /
+    power is the smallest (``beta_band``, ``p_best``), from one set of clustered
+    resamples shared by all the measures (:func:`.fragility.resample_clusters`: records,
+    or events then records), each measure refitted on the same rows; resamples in which a
+    measure cannot be fitted are left out for all. Returns the resamples used."""
+    rng = np.random.default_rng(seed)
+    used = np.isfinite(fits[0].low)
+    for m in fits:
+        used &= np.isfinite(m.low)
+    clusters = np.asarray(clusters)[used]
+    events = None if events is None else np.asarray(events)[used]
+    betas = []
+    for _ in range(n_resamples):
+        pick = resample_clusters(rng, clusters, events)
+        try:
+            betas.append([fit_intervals(m.low[used][pick], m.high[used][pick], tol=1e-9).beta / m.power
+                          for m in fits])
+        except FitError:
+            continue
+    if len(betas) < 10:
+        return len(betas)
+    betas = np.array(betas)
+    best = np.argmin(betas, axis=1)
+    for j, m in enumerate(fits):
+        low, high = np.percentile(betas[:, j] * m.power, [5.0, 95.0])
+        m.beta_band = (float(low), float(high))
+        m.p_best = float(np.mean(best == j))
+    return len(betas)
 
 
 def compare_measures(ida: IdaResult, measures: list[str], sa_period_s: float = 1.0,
                      avgsa_range_s: tuple[float, float] = (0.2, 3.0),
-                     motions: dict[str, RecordMotion] | None = None) -> MeasureComparison:
+                     motions: dict[str, RecordMotion] | None = None, n_bootstrap: int = 200,
+                     seed: int = 20261124) -> MeasureComparison:
     """The fit and sufficiency of each of ``measures`` (keys of MEASURES) on the rows of
     ``ida``; Sa at ``sa_period_s``, AvgSa over 10 periods spread in ln T over
-    ``avgsa_range_s``; ``motions``: the records (default :func:`record_motions`)."""
+    ``avgsa_range_s``; ``motions``: the records (default :func:`record_motions`); the
+    efficiency's bootstrap (:func:`bootstrap_efficiency`) of ``n_bootstrap`` resamples
+    clustered as the PGA band is (0: none)."""
     periods = avg_sa_periods(*avgsa_range_s)
     motions = record_motions(ida) if motions is None else motions
     records = {name: record_intensity(m.accel_m_s2, m.dt_s, sa_period_s, periods) for name, m in motions.items()}
@@ -348,4 +396,11 @@ def compare_measures(ida: IdaResult, measures: list[str], sa_period_s: float = 1
             fits.append(fit_measure(name, unit, scale_low, scale_high, covariates, ida.record))
         except FitError as exc:
             skipped[name] = str(exc)
-    return MeasureComparison(fits, records, float(sa_period_s), tuple(float(t) for t in periods), skipped)
+    n_used = 0
+    if fits and n_bootstrap > 0:
+        clusters, events, cluster_by = ida.bootstrap_clusters()
+        n_used = bootstrap_efficiency(fits, clusters, events, n_bootstrap, seed)
+        if n_used < 10:
+            skipped["beta_band"] = f"only {n_used} of {n_bootstrap} bootstrap resamples could be fitted"
+    return MeasureComparison(fits, records, float(sa_period_s), tuple(float(t) for t in periods), skipped,
+                             n_bootstrap=n_used, cluster_by=ida.bootstrap_clusters()[2])
