@@ -14,9 +14,10 @@ import numpy as np
 import pytest
 
 from voussoir_post.cli.post import main
-from voussoir_post.earthquake.ida import IdaResult
+from voussoir_post.earthquake.ida import IdaResult, read_ida
 from voussoir_post.earthquake.im_fragility import (MEASURES, RecordMotion, compare_measures, fit_measure,
-                                                   frequency_parameter_rad_s, sufficiency)
+                                                   frequency_parameter_rad_s, record_motions, sufficiency)
+from voussoir_post.errors import RecordsError
 from voussoir_post.earthquake.record_sets import write_at2
 
 G = 9.81
@@ -233,6 +234,23 @@ def test_cli_bad_im_options_are_refused(tmp_path, capsys, args, words):
     path = im_fixture(tmp_path)
     assert main(["fragility", str(path), "--bootstrap", "30"] + args) == 2
     assert words in capsys.readouterr().err
+
+
+def test_a_record_csv_is_read_as_its_at2_twin(tmp_path):
+    """A record as a CSV of t_s and accel_m_s2 (the kernel's other record format) gives
+    the samples of the .AT2 file in m/s2; a cell that is not a number names the line."""
+    path = im_fixture(tmp_path)
+    ida = read_ida(path)
+    lines = ["# a record", "t_s,accel_m_s2"] + [f"{k * DT!r},{0.5 * G * float(v)!r}" for k, v in enumerate(PULSE)]
+    (tmp_path / "rec/b.csv").write_text("\n".join(lines) + "\n")
+    ida.record = [r.replace("b.AT2", "b.csv") for r in ida.record]
+    motions = record_motions(ida)
+    assert motions["rec/b.csv"].dt_s == pytest.approx(DT, rel=1e-12)
+    assert motions["rec/b.csv"].accel_m_s2 == pytest.approx(0.5 * G * PULSE, rel=1e-15)
+    assert motions["rec/a.AT2"].accel_m_s2 == pytest.approx(0.3 * G * PULSE, rel=1e-15)
+    (tmp_path / "rec/b.csv").write_text("t_s,accel_m_s2\n0,1\n0.01,x\n")
+    with pytest.raises(RecordsError, match="b.csv:3: t_s or accel_m_s2 is not a number"):
+        record_motions(ida)
 
 
 def test_cli_missing_or_changed_record_is_refused(tmp_path, capsys):

@@ -202,13 +202,18 @@ def _read_record_file(path: Path) -> tuple[float, np.ndarray]:
     """(dt [s], a [m/s2]) of a record file as the kernel reads it: .AT2 in g, or a CSV
     with t_s and accel_m_s2."""
     if path.suffix.lower() == ".csv":
-        table = read_csv_table(path, error=RecordsError, expected="a header row with t_s and accel_m_s2")
+        table = read_csv_table(path, expected="a header row with t_s and accel_m_s2")
         if not (table.has("t_s") and table.has("accel_m_s2")):
             raise RecordsError(f"{path}: a record CSV needs the columns t_s and accel_m_s2")
-        t = np.array([float(r.cells["t_s"]) for r in table.rows])
-        a = np.array([float(r.cells["accel_m_s2"]) for r in table.rows])
-        if t.size < 2:
+        values = []
+        for row in table.rows:
+            try:
+                values.append((float(row.cells["t_s"]), float(row.cells["accel_m_s2"])))
+            except ValueError:
+                raise RecordsError(f"{path}:{row.line}: t_s or accel_m_s2 is not a number") from None
+        if len(values) < 2:
             raise RecordsError(f"{path}: fewer than two samples")
+        t, a = np.array(values).T
         return float(t[1] - t[0]), a
     dt, accel_g = read_at2(path)
     return dt, accel_g * G_M_S2
@@ -397,10 +402,10 @@ def compare_measures(ida: IdaResult, measures: list[str], sa_period_s: float = 1
         except FitError as exc:
             skipped[name] = str(exc)
     n_used = 0
+    clusters, events, cluster_by = ida.bootstrap_clusters()
     if fits and n_bootstrap > 0:
-        clusters, events, cluster_by = ida.bootstrap_clusters()
         n_used = bootstrap_efficiency(fits, clusters, events, n_bootstrap, seed)
         if n_used < 10:
             skipped["beta_band"] = f"only {n_used} of {n_bootstrap} bootstrap resamples could be fitted"
     return MeasureComparison(fits, records, float(sa_period_s), tuple(float(t) for t in periods), skipped,
-                             n_bootstrap=n_used, cluster_by=ida.bootstrap_clusters()[2])
+                             n_bootstrap=n_used, cluster_by=cluster_by)
