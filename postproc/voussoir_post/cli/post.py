@@ -11,11 +11,13 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import sys
 
 from ..analysis.assembly_joints import joints_table, run_joints
 from ..earthquake.ida import FIT_FAILED, read_ida
+from ..earthquake.im_fragility import compare_measures, parse_measures
 from ..earthquake.record_sets import SET_NAMES, export_sets, read_set, set_table
 from ..earthquake.records import record_files_line, select_records, suite, suite_table
 from ..errors import DONE, InputError
@@ -218,7 +220,10 @@ def cmd_fragility(args) -> int:
         raise InputError("--labels names the two files of --compare: give --compare B.h5 too")
     if args.labels and any(not label.strip() for label in args.labels):
         raise InputError("--labels: a label is empty")
+    measures = _measures(args)
     if args.compare:
+        if measures:
+            raise InputError("--im fits one IDA file: give it without --compare")
         return _fragility_compare(args)
     ida = _read_ida_warned(args.ida)
     png = output_path(args.ida, "fragility", args.out)
@@ -226,8 +231,10 @@ def cmd_fragility(args) -> int:
     stem = os.path.splitext(data.png_path)[0]
     curve_csv = write_csv(data.curve_table, stem + ".csv")
     points_csv = write_csv(data.table, stem + "_points.csv")
+    by_measure = (compare_measures(ida, measures, args.sa_period, tuple(args.avgsa_periods or (0.2, 3.0)),
+                                   n_bootstrap=args.bootstrap, seed=args.seed) if measures else None)
     if args.json:
-        print(json.dumps(data.summary(), indent=1))
+        print(json.dumps({**data.summary(), **(by_measure.summary() if by_measure else {})}, indent=1))
         return DONE
     print(format_table(data.table))
     for line in data.report_lines():
@@ -235,7 +242,39 @@ def cmd_fragility(args) -> int:
     print(f"wrote {data.png_path}")
     print(f"wrote {curve_csv}")
     print(f"wrote {points_csv}")
+    if by_measure:
+        print()
+        print(format_table(by_measure.table()))
+        print("efficiency (smallest beta / power first; beta / power compares a measure that grows with the "
+              "scale squared, Arias, with the others): " + ", ".join(by_measure.ranking()))
+        print(f"beta band and P(best): {by_measure.n_bootstrap} bootstrap resamples of the {by_measure.cluster_by}s "
+              f"(--bootstrap, --seed), the same rows for every measure, each refitted; P(best): the fraction in "
+              f"which the measure's beta / power is the smallest")
+        print("sufficiency: slope of ln IM_c - ln median (rows that collapsed, IM_c the geometric middle of the "
+              "bracket) on each covariate alone; a p-value below 0.05 says the measure leaves that covariate's "
+              "effect in the residuals (rows sharing a record make the p-values optimistic)")
+        for what, why in by_measure.skipped.items():
+            print(f"not available: {what}: {why}")
     return DONE
+
+
+def _measures(args) -> list[str]:
+    """The measures of --im (empty without it); InputError for a bad --im, --sa-period or
+    --avgsa-periods."""
+    if args.im is None:
+        if args.sa_period is not None or args.avgsa_periods:
+            raise InputError("--sa-period and --avgsa-periods set the spectra of --im: give --im too")
+        return []
+    measures = parse_measures(args.im)
+    if args.sa_period is None:
+        args.sa_period = 1.0
+    if not (math.isfinite(args.sa_period) and args.sa_period > 0.0):
+        raise InputError(f"--sa-period {args.sa_period!r}: a period > 0 s")
+    if args.avgsa_periods and not (all(math.isfinite(t) for t in args.avgsa_periods)
+                                   and 0.0 < args.avgsa_periods[0] < args.avgsa_periods[1]):
+        raise InputError(f"--avgsa-periods {args.avgsa_periods[0]!r} {args.avgsa_periods[1]!r}: two periods "
+                         f"0 < T_LOW < T_HIGH [s]")
+    return measures
 
 
 def record_sets_dir() -> str:
@@ -364,6 +403,16 @@ def build_parser() -> argparse.ArgumentParser:
                         "(default 400)")
     p.add_argument("--seed", type=int, default=20261124,
                    help="seed of the bootstrap and of the PIT within the brackets (default 20261124)")
+    p.add_argument("--im", metavar="LIST",
+                   help="also fit the fragility in each intensity measure and compare them (efficiency: beta; "
+                        "sufficiency: the residuals' slope on magnitude, distance, pulse, frequency ratio): 'all' or "
+                        "a comma-separated list of pga, pgv, pgd, arias, cav, sa, avgsa, pga_lambda_g "
+                        "(docs/earthquakes.md); the records are read again")
+    p.add_argument("--sa-period", type=float, default=None, metavar="T_S",
+                   help="period of Sa(T) with --im, 5 %% damping (default 1 s)")
+    p.add_argument("--avgsa-periods", type=float, nargs=2, metavar=("T_LOW", "T_HIGH"),
+                   help="periods of AvgSa with --im: the geometric mean of Sa at 10 periods spread in ln T over "
+                        "T_LOW..T_HIGH s (default 0.2 3.0)")
     p.set_defaults(func=cmd_fragility)
 
     p = sub.add_parser("records", help="the suite of real ground-motion records and where they are installed")

@@ -134,6 +134,23 @@ class IdaResult:
                 low[k], high[k] = unit[k] * self.scale_stood[k], np.inf
         return low, high
 
+    def scale_brackets(self) -> tuple[np.ndarray, np.ndarray]:
+        """(low, high) per row: the record scale at the collapse lies in (low, high], as
+        :meth:`intensity_brackets` has it for an intensity (scale_stood and
+        scale_threshold; scale_max and inf where censored; the last stand and inf where a
+        search failed; NaN for a row left out). Any measure of the record at scale 1
+        times these (to the measure's power) is that measure's bracket."""
+        low = np.full(self.n_rows, np.nan)
+        high = np.full(self.n_rows, np.nan)
+        for k, how in enumerate(self.fit_as):
+            if how == FIT_BRACKET:
+                low[k], high[k] = self.scale_stood[k], self.scale_threshold[k]
+            elif how == FIT_CENSORED:
+                low[k], high[k] = self.scale_threshold[k], np.inf
+            elif how == FIT_FAILED:
+                low[k], high[k] = self.scale_stood[k], np.inf
+        return low, high
+
     def bootstrap_clusters(self) -> tuple[list[str], list[str] | None, str]:
         """(cluster of each row, event of each row or None, what a resample draws): the
         rows of one record over the model samples are one cluster (they share the
