@@ -100,7 +100,7 @@ contains
       call g%add(trim(range_names(k)), s%ranges(:, k), unset=unset_real, about='real, the low and the high bound')
     end do
     call g%add('dt_check_rows', s%dt_check_rows)
-    call g%add('msa_levels_g', s%msa_levels_g, unset=unset_real, unit='g (of the PGA)')
+    call g%add('msa_levels_g', s%msa_levels_g, unset=unset_real, unit='g')
   end subroutine sweep_table
 
   !> Read the &sweep group of `path` into `group`, whose values are the defaults; check
