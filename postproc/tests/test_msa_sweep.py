@@ -147,7 +147,7 @@ def test_the_fragility_of_overlapping_stripes(voussoir_sweep_exe, tmp_path, caps
     capsys.readouterr()
     assert main(["fragility", str(tmp_path / "stripes.h5"), "--json", "--bootstrap", "60"]) == 0
     out = json.loads(capsys.readouterr().out)
-    assert out["fit"] == "binomial" and out["band_cluster"] == "record" and out["band_n_clusters"] == 4
+    assert out["fit"] == "binomial" and out["band_cluster"] == "record" and out["n_clusters"] == 4 and out["n_rows"] == 28
     median, beta = grid_fit(levels, collapsed)
     assert out["median_pga_g"] == pytest.approx(median, rel=2e-3)
     assert out["beta_pga"] == pytest.approx(beta, rel=2e-3)

@@ -46,11 +46,13 @@ class MsaFragilityData:
         """The --json keys, those of the IDA's where they apply."""
         f, b = self.fit, self.band
         return {
-            "fit": "binomial", "median_pga_g": f.median, "median_pga_m_s2": f.median * G_M_S2, "beta": f.beta,
-            "beta_pga": f.beta, "median_pga_g_band": [b.median_low, b.median_high],
-            "beta_pga_band": [b.beta_low, b.beta_high], "band_level": b.level, "band_cluster": b.cluster_by,
-            "band_n_clusters": b.n_clusters, "n_bootstrap": b.n_resamples, "n_bootstrap_unfitted": b.n_unfitted,
-            "log_likelihood": f.log_likelihood, "n_runs": int(f.n), "n_failed": self.n_failed,
+            "fit": "binomial", "fit_description": FIT_WORDS, "median_pga_g": f.median,
+            "median_pga_m_s2": f.median * G_M_S2, "beta": f.beta, "beta_pga": f.beta,
+            "median_pga_g_band": [b.median_low, b.median_high], "beta_pga_band": [b.beta_low, b.beta_high],
+            "ln_median_pga_sd": b.ln_median_sd, "beta_pga_sd": b.beta_sd, "beta_convention": BETA_CONVENTION,
+            "band_level": b.level, "band_cluster": b.cluster_by, "cluster_by": b.cluster_by,
+            "n_clusters": b.n_clusters, "n_bootstrap": b.n_resamples, "n_bootstrap_unfitted": b.n_unfitted,
+            "log_likelihood": f.log_likelihood, "n_rows": int(f.n), "n_failed": self.n_failed,
             "n_scale_warned": self.n_scale_warned, "g_m_s2": G_M_S2,
             "stripes": [{"level_g": float(x), "n_runs": int(n), "n_collapsed": int(z)}
                         for x, n, z in zip(self.levels_g, self.n_runs, self.n_collapsed)],
