@@ -1,5 +1,5 @@
 """`voussoir-sweep` in `&sweep mode = 'msa'` on 2 MPI ranks, checked by the static
-capacity and by an independent fit.
+capacity, by voussoir-run and by an independent fit.
 
 The seed's 156-degree arch (static capacity lambda g from voussoir-limit, limit
 analysis: an independent path through the program) under short sine pulses written
@@ -8,7 +8,9 @@ of half the capacity may collapse; at ten times the capacity a 2 or 3 Hz pulse m
 table back and forth by more than the ring's thickness (a / (2 pi f)^2 = 0.10 m at
 3 Hz against 0.071 m), so every run there must collapse. A second sweep, over four
 pulses at 2 to 8 Hz whose stripes overlap, is fitted by `voussoir-post fragility` and
-checked against the binomial likelihood maximised by a plain grid search here.
+checked against the binomial likelihood maximised by a plain grid search here; its
+limit states short of collapse (hinge onset, residual drift) are checked against the
+rows and, for one run, against voussoir-run's own crown record.
 """
 
 from __future__ import annotations
@@ -26,6 +28,7 @@ from scipy.stats import norm
 
 from voussoir_post.cli.post import main
 from voussoir_post.earthquake.msa import read_msa
+from voussoir_post.readers.results import read_run
 
 G_M_S2 = 9.81  # the kernel's g, in which the levels are given
 ARCH = "&arch embrace_deg = 156, n_voussoirs = 13, r_ext_m = 0.508, thickness_m = 0.071 /\n"
@@ -105,6 +108,12 @@ def test_below_the_static_capacity_stands_far_above_collapses(small):
     assert len(below) == 2 and all(row["collapsed"] == "0" for row in below), below
     assert len(above) == 2 and all(row["collapsed"] == "1" for row in above), above
     assert "stripes (collapsed / runs): " in out
+    # below the capacity the ring does not move: no joint opens, the crown stays put
+    for row in below:
+        assert float(row["max_joint_opening_mm"]) < 0.05 and abs(float(row["residual_drift_mm"])) < 0.05, row
+    # a collapse (a voussoir dropped or turned by 0.5 rad) opens joints by far more than 1 mm
+    for row in above:
+        assert float(row["max_joint_opening_mm"]) > 1.0, row
     # both records at ten times the capacity are scaled beyond 4: warned of
     assert "warning: " in out and "runs scaled their record beyond 4 or below 0.25" in out
 
@@ -132,14 +141,8 @@ def grid_fit(levels, collapsed) -> tuple[float, float]:
     return math.exp(ln_t[40]), math.exp(ln_b[40])
 
 
-def test_the_fragility_of_overlapping_stripes(voussoir_sweep_exe, tmp_path, capsys):
-    for name, f in (("p2.csv", 2.0), ("p4.csv", 4.0), ("p6.csv", 6.0), ("p8.csv", 8.0)):
-        write_pulse(tmp_path / name, f)
-    run_sweep(voussoir_sweep_exe, tmp_path, "stripes",
-              "&sweep mode = 'msa', record_files = 'p2.csv', 'p4.csv', 'p6.csv', 'p8.csv',\n"
-              "  msa_levels_g = 0.4, 0.45, 0.5, 0.6, 0.8, 1.0, 1.3 /\n")
-    with open(tmp_path / "stripes.csv", newline="") as f:
-        rows = list(csv.DictReader(f))
+def test_the_fragility_of_overlapping_stripes(stripes, capsys):
+    tmp_path, rows, _ = stripes
     levels = [float(row["level_g"]) for row in rows]
     collapsed = [row["collapsed"] == "1" for row in rows]
     stood_above = max(x for x, c in zip(levels, collapsed) if not c)
@@ -153,7 +156,7 @@ def test_the_fragility_of_overlapping_stripes(voussoir_sweep_exe, tmp_path, caps
     assert out["beta_pga"] == pytest.approx(beta, rel=2e-3)
     low, high = out["median_pga_g_band"]
     assert low <= out["median_pga_g"] <= high
-    stripes = {s["level_g"]: (s["n_runs"], s["n_collapsed"]) for s in out["stripes"]}
+    stripes = {s["level_g"]: (s["n_runs"], s["n_exceeded"]) for s in out["stripes"]}
     for x in set(levels):
         assert stripes[x] == (levels.count(x), sum(c for lx, c in zip(levels, collapsed) if lx == x))
     # the CSV summary gives the same fit
@@ -162,3 +165,61 @@ def test_the_fragility_of_overlapping_stripes(voussoir_sweep_exe, tmp_path, caps
     assert out_csv["median_pga_g"] == pytest.approx(out["median_pga_g"], rel=1e-9)
     assert os.path.exists(tmp_path / "stripes_fragility.png")
     assert read_msa(tmp_path / "stripes.h5").n_rows == 28
+
+
+@pytest.fixture(scope="module")
+def stripes(voussoir_sweep_exe, tmp_path_factory):
+    """Four pulses at 2 to 8 Hz x seven levels around the capacity: stripes that overlap."""
+    folder = tmp_path_factory.mktemp("stripes")
+    pga = {name: write_pulse(folder / name, f) for name, f in (("p2.csv", 2.0), ("p4.csv", 4.0), ("p6.csv", 6.0),
+                                                                 ("p8.csv", 8.0))}
+    run_sweep(voussoir_sweep_exe, folder, "stripes",
+              "&sweep mode = 'msa', record_files = 'p2.csv', 'p4.csv', 'p6.csv', 'p8.csv',\n"
+              "  msa_levels_g = 0.4, 0.45, 0.5, 0.6, 0.8, 1.0, 1.3 /\n")
+    with open(folder / "stripes.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    return folder, rows, pga
+
+
+def test_hinge_onset_fragility_from_the_same_stripes(stripes, capsys):
+    folder, rows, _ = stripes
+    capsys.readouterr()
+    # 1 mm opens in every run just above lambda g (0.376 g) with these pulses: stripes
+    # separated between 0.4 and 0.45 g, refused; 5 mm overlaps
+    assert main(["fragility", str(folder / "stripes.h5"), "--json", "--limit-state", "hinge-onset"]) == 2
+    assert "the stripes are separated: every run stayed short of it at or below 0.4 g" in capsys.readouterr().err
+    assert main(["fragility", str(folder / "stripes.h5"), "--json", "--bootstrap", "40", "--limit-state",
+                 "hinge-onset", "--opening-mm", "5"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["limit_state"] == "hinge-onset" and out["threshold_mm"] == 5.0 and out["fit"] == "binomial"
+    # the test's own count: a run exceeds hinge onset when it collapsed or a joint opened > 5 mm
+    for stripe in out["stripes"]:
+        mine = [row for row in rows if float(row["level_g"]) == stripe["level_g"]]
+        exceeded = sum(row["collapsed"] == "1" or float(row["max_joint_opening_mm"]) > 5.0 for row in mine)
+        assert (stripe["n_runs"], stripe["n_exceeded"]) == (len(mine), exceeded)
+    assert os.path.exists(folder / "stripes_fragility_hinge_onset.png")
+    # hinge onset comes before collapse: its median is lower
+    assert main(["fragility", str(folder / "stripes.h5"), "--json", "--bootstrap", "40"]) == 0
+    collapse = json.loads(capsys.readouterr().out)
+    assert out["median_pga_g"] < collapse["median_pga_g"]
+    assert main(["fragility", str(folder / "stripes.h5"), "--limit-state", "residual-drift"]) == 2
+    assert "--limit-state residual-drift needs --drift-mm X" in capsys.readouterr().err
+
+
+def test_residual_drift_is_that_of_voussoir_run(stripes, voussoir_run_exe):
+    """A run that rocked and stood (6 Hz at 1.3 g): voussoir-run on its own input ends
+    with its crown where the row says."""
+    folder, rows, pga = stripes
+    (row,) = [r for r in rows if r["record"] == "p6.csv" and float(r["level_g"]) == 1.3]
+    assert row["collapsed"] == "0" and abs(float(row["residual_drift_mm"])) > 0.5, row
+    scale = 1.3 * G_M_S2 / pga["p6.csv"]
+    (folder / "alone.nml").write_text(BASE.replace("&motion rest_s = 0.5 /", "&motion rest_s = 0.5, waveform = "
+                                                   f"'accelerogram', record_file = 'p6.csv', record_scale = {scale!r} /")
+                                      + "&output file = 'alone.h5', every = 1 /\n")
+    proc = subprocess.run([str(voussoir_run_exe), "alone.nml"], cwd=folder, capture_output=True, text=True,
+                          timeout=300)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    run = read_run(folder / "alone.h5")
+    assert 1e3 * run.crown_dx_m[-1] == pytest.approx(float(row["residual_drift_mm"]), rel=1e-9, abs=1e-9)
+    assert np.max(np.hypot(run.crown_dx_m, run.crown_dy_m)) == pytest.approx(float(row["peak_crown_disp_m"]),
+                                                                            rel=1e-9)

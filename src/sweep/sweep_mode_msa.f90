@@ -3,8 +3,10 @@
 !> x record x level (levels varying fastest, then records), its outcome collapsed or
 !> not. No search: a record that brings the arch down at one level and not at a higher
 !> one is two rows as they came, and the fragility is fitted to the fraction collapsed
-!> at each level (Baker 2015). The records, the samples and a run are shared with mode
-!> ida (src/sweep/sweep_mode_records.f90).
+!> at each level (Baker 2015). Each row also keeps the run's largest joint opening and
+!> the crown's residual drift (mm), so that the fragilities of hinge onset and of a
+!> residual drift come from the same stripes. The records, the samples and a run are
+!> shared with mode ida (src/sweep/sweep_mode_records.f90).
 module voussoir_sweep_mode_msa
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
@@ -128,9 +130,10 @@ contains
     type(sweep_table_t) :: t
     call table_init(t, [character(len=name_len) :: 'job', 'param_set', 'record', 'level_g', 'scale', 'collapsed', &
                         'collapse_time_s', 'peak_crown_disp_m', 'mean_iterations', 'nonconverged_steps', &
-                        'wall_time_s', 'failed', 'magnitude', 'distance_km', 'pga_m_s2', 'static_capacity_m_s2'], &
+                        'wall_time_s', 'failed', 'magnitude', 'distance_km', 'pga_m_s2', 'static_capacity_m_s2', &
+                        'max_joint_opening_mm', 'residual_drift_mm'], &
                     [.true., .true., .true., .false., .false., .true., .false., .false., .false., .true., &
-                     .false., .true., .false., .false., .false., .false.])
+                     .false., .true., .false., .false., .false., .false., .false., .false.])
   end function results_table
 
   !> The row of the job's one run.
@@ -160,6 +163,10 @@ contains
     call table_set(results, row, 'distance_km', plan%records%distance_km(rec))
     call table_set(results, row, 'pga_m_s2', plan%records%pga_m_s2(rec))
     call table_set(results, row, 'static_capacity_m_s2', static_capacity_m_s2(plan%set_cfg(job_param_set(plan, job))))
+    ! The limit states short of collapse, in mm: hinge onset (an opening above about 1 mm)
+    ! and a residual drift come from the same stripes.
+    call table_set(results, row, 'max_joint_opening_mm', 1.0e3_dp*o%peak_joint_opening_m)
+    call table_set(results, row, 'residual_drift_mm', 1.0e3_dp*o%residual_crown_drift_m)
   end subroutine result_row
 
   !> The records' items (the shared ones) and /sweep/msa_levels_g.
@@ -177,7 +184,8 @@ contains
     character(len=*), intent(in) :: names
     character(len=:), allocatable :: text
     text = 'record,param_set'//names//',level_g,scale,collapsed,failed,event,magnitude,distance_km,pga_m_s2,'// &
-           'collapse_time_s,peak_crown_disp_m,mean_iterations,static_capacity_m_s2'
+           'collapse_time_s,peak_crown_disp_m,mean_iterations,static_capacity_m_s2,max_joint_opening_mm,'// &
+           'residual_drift_mm'
   end function csv_header
 
   function csv_line(this, plan, results, r, set_columns) result(line)
@@ -197,7 +205,9 @@ contains
            fmt_exact(table_value(results, 'collapse_time_s', r))//','// &
            fmt_exact(table_value(results, 'peak_crown_disp_m', r))//','// &
            fmt_exact(table_value(results, 'mean_iterations', r))//','// &
-           fmt_exact(table_value(results, 'static_capacity_m_s2', r))
+           fmt_exact(table_value(results, 'static_capacity_m_s2', r))//','// &
+           fmt_exact(table_value(results, 'max_joint_opening_mm', r))//','// &
+           fmt_exact(table_value(results, 'residual_drift_mm', r))
   end function csv_line
 
   !> None per row: the stripes are summed up after the runs (closing_check).

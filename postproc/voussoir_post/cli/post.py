@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import sys
 
@@ -221,8 +222,16 @@ def _fragility_msa(args) -> int:
     if msa.n_failed:
         print(f"warning: {args.ida}: {msa.n_failed} runs stopped with an error (column failed = 1; voussoir-sweep "
               "printed why): left out of the stripes", file=sys.stderr)
-    png = output_path(args.ida, "fragility", args.out)
-    data = plot_msa_fragility(msa, png, n_bootstrap=args.bootstrap, seed=args.seed)
+    threshold_mm = {"hinge-onset": args.opening_mm, "residual-drift": args.drift_mm}.get(args.limit_state)
+    if args.limit_state == "residual-drift" and args.drift_mm is None:
+        raise InputError("--limit-state residual-drift needs --drift-mm X (the residual crown drift in mm beyond "
+                         "which the limit state is exceeded)")
+    if threshold_mm is not None and not (math.isfinite(threshold_mm) and threshold_mm > 0.0):
+        raise InputError(f"--opening-mm / --drift-mm = {threshold_mm:g}: a threshold > 0 mm is needed")
+    kind = "fragility" if args.limit_state == "collapse" else f"fragility_{args.limit_state.replace('-', '_')}"
+    png = output_path(args.ida, kind, args.out)
+    data = plot_msa_fragility(msa, png, n_bootstrap=args.bootstrap, seed=args.seed, limit_state=args.limit_state,
+                              threshold_mm=threshold_mm)
     stem = os.path.splitext(data.png_path)[0]
     curve_csv = write_csv(data.curve_table, stem + ".csv")
     points_csv = write_csv(data.table, stem + "_points.csv")
@@ -249,6 +258,9 @@ def cmd_fragility(args) -> int:
         return _fragility_compare(args)
     if is_msa(args.ida):
         return _fragility_msa(args)
+    if args.limit_state != "collapse":
+        raise InputError(f"--limit-state {args.limit_state} reads the runs of an MSA file (&sweep mode = 'msa'); "
+                         f"{args.ida} is an IDA, whose rows are collapse intensities")
     ida = _read_ida_warned(args.ida)
     png = output_path(args.ida, "fragility", args.out)
     data = plot_fragility(ida, png, n_bootstrap=args.bootstrap, seed=args.seed)
@@ -395,6 +407,14 @@ def build_parser() -> argparse.ArgumentParser:
                         "(default 400)")
     p.add_argument("--seed", type=int, default=20261124,
                    help="seed of the bootstrap and of the PIT within the brackets (default 20261124)")
+    p.add_argument("--limit-state", choices=["collapse", "hinge-onset", "residual-drift"], default="collapse",
+                   help="MSA only: the limit state fitted: collapse (default); hinge-onset, a joint opened by more "
+                        "than --opening-mm; residual-drift, a residual crown drift above --drift-mm (a collapse "
+                        "exceeds both)")
+    p.add_argument("--opening-mm", type=float, default=1.0, metavar="MM",
+                   help="hinge-onset: the joint opening [mm] beyond which a hinge has formed (default 1)")
+    p.add_argument("--drift-mm", type=float, default=None, metavar="MM",
+                   help="residual-drift: the residual crown drift [mm] beyond which the limit state is exceeded")
     p.set_defaults(func=cmd_fragility)
 
     p = sub.add_parser("records", help="the suite of real ground-motion records and where they are installed")

@@ -8,11 +8,18 @@ kept in the rows and left out of the stripes. :meth:`MsaResult.stripes` gives wh
 Baker's binomial fit (:mod:`voussoir_post.earthquake.stripes_fit`) takes; the runs of
 one record are one bootstrap cluster, under its event when the file names events.
 
+Each run also keeps its largest joint opening and the crown's residual drift at its end
+(mm): :meth:`MsaResult.exceeded` turns them into the outcome of a limit state short of
+collapse (hinge onset: an opening above about 1 mm; a residual drift above a stated
+value), so that their fragilities come from the same stripes. A run that collapsed
+exceeds every limit state.
+
 Both files are accepted; an error names the file and, for the CSV, the line and column.
 """
 
 from __future__ import annotations
 
+import math
 import os
 from dataclasses import dataclass, field
 
@@ -24,7 +31,7 @@ from ..namelist import parse_namelist
 from ..readers.csv_table import read_csv_table
 from .ida import _events, _text
 
-__all__ = ["MsaResult", "MSA_COLUMNS", "read_msa", "is_msa"]
+__all__ = ["MsaResult", "MSA_COLUMNS", "LIMIT_STATES", "read_msa", "is_msa"]
 
 #: The columns every MSA CSV has (others, e.g. the sampled parameters, are kept apart).
 MSA_COLUMNS = ("record", "param_set", "level_g", "scale", "collapsed", "failed")
@@ -34,7 +41,12 @@ _FLAGS = ("collapsed", "failed")
 #: the run's collapse time [s], peak crown displacement [m] and mean NLGS iterations, and
 #: lambda g of its model [m/s2].
 _OPTIONAL_REAL = ("magnitude", "distance_km", "pga_m_s2", "collapse_time_s", "peak_crown_disp_m", "mean_iterations",
-                  "static_capacity_m_s2")
+                  "static_capacity_m_s2", "max_joint_opening_mm", "residual_drift_mm")
+#: The limit states a run's outcome can be read against: its column (None: collapsed) and
+#: what exceeding it means.
+LIMIT_STATES = {"collapse": (None, "collapse"),
+                "hinge-onset": ("max_joint_opening_mm", "a joint opened by more than {mm:g} mm (or collapse)"),
+                "residual-drift": ("residual_drift_mm", "a residual crown drift above {mm:g} mm (or collapse)")}
 
 
 @dataclass
@@ -55,10 +67,31 @@ class MsaResult:
     config: dict = field(default_factory=dict)  #: the base case {group: {var: value}} when known
     code_version: str = ""
     record_set: str = ""
+    max_joint_opening_mm: np.ndarray | None = None  #: the run's largest joint opening [mm]
+    residual_drift_mm: np.ndarray | None = None  #: the crown's horizontal drift from the table at the end [mm]
 
     @property
     def n_rows(self) -> int:
         return len(self.record)
+
+    def exceeded(self, limit_state: str = "collapse", threshold_mm: float | None = None) -> tuple[np.ndarray, str]:
+        """(bool per row, the limit state in words): whether each run exceeded
+        ``limit_state`` (a key of LIMIT_STATES): collapsed, or collapsed or its column
+        above ``threshold_mm`` (|residual drift|). ResultsError when the file lacks the
+        column; ValueError for an unknown limit state or a threshold not > 0."""
+        if limit_state not in LIMIT_STATES:
+            raise ValueError(f"limit state '{limit_state}': one of {', '.join(LIMIT_STATES)}")
+        column, words = LIMIT_STATES[limit_state]
+        if column is None:
+            return self.collapsed.copy(), words
+        if threshold_mm is None or not (math.isfinite(threshold_mm) and threshold_mm > 0.0):
+            raise ValueError(f"limit state '{limit_state}' needs a threshold > 0 mm, got {threshold_mm!r}")
+        values = getattr(self, column)
+        if values is None:
+            raise ResultsError(self.path, f"no column {column}: the file was written before voussoir-sweep kept it")
+        with np.errstate(invalid="ignore"):
+            beyond = np.abs(values) > threshold_mm
+        return self.collapsed | beyond, words.format(mm=threshold_mm)
 
     @property
     def n_failed(self) -> int:
@@ -167,6 +200,7 @@ def _read_csv(path: str) -> MsaResult:
                      level_g=arr["level_g"], scale=arr["scale"], collapsed=arr["collapsed"].astype(bool),
                      failed=arr["failed"].astype(bool), event=_events(data.get("event"), data["record"]),
                      pga_m_s2=arr.get("pga_m_s2"), static_capacity_m_s2=arr.get("static_capacity_m_s2"),
+                     max_joint_opening_mm=arr.get("max_joint_opening_mm"), residual_drift_mm=arr.get("residual_drift_mm"),
                      parameters={name: arr[name] for name in extra})
 
 
@@ -184,11 +218,11 @@ def _read_h5(path: str) -> MsaResult:
             raise ResultsError(path, "missing root attribute 'record_files'")
         files = [f for f in _text(h5.attrs["record_files"]).split("\n") if f.strip()]
         columns = {}
-        for name in ("param_set", "record", "level_g", "scale", "collapsed", "failed", "static_capacity_m_s2",
-                     "pga_m_s2"):
+        optional = ("static_capacity_m_s2", "pga_m_s2", "max_joint_opening_mm", "residual_drift_mm")
+        for name in ("param_set", "record", "level_g", "scale", "collapsed", "failed") + optional:
             key = f"results/{name}"
             if key not in h5:
-                if name in ("static_capacity_m_s2", "pga_m_s2"):
+                if name in optional:
                     continue
                 raise ResultsError(path, f"missing dataset '/{key}'")
             columns[name] = np.asarray(h5[key][()]).reshape(-1)
@@ -219,4 +253,10 @@ def _read_h5(path: str) -> MsaResult:
                      collapsed=columns["collapsed"].astype(bool), failed=columns["failed"].astype(bool),
                      event=events, pga_m_s2=columns.get("pga_m_s2"),
                      static_capacity_m_s2=columns.get("static_capacity_m_s2"), parameters=parameters,
-                     config=config, code_version=code_version, record_set=record_set)
+                     config=config, code_version=code_version, record_set=record_set,
+                     max_joint_opening_mm=_real(columns.get("max_joint_opening_mm")),
+                     residual_drift_mm=_real(columns.get("residual_drift_mm")))
+
+
+def _real(values) -> np.ndarray | None:
+    return None if values is None else np.asarray(values, dtype=float)

@@ -79,34 +79,37 @@ def _cost_and_gradient(p: np.ndarray, ln_x: np.ndarray, n: np.ndarray, z: np.nda
     return -value, -gradient
 
 
-def _check_overlap(x: np.ndarray, n: np.ndarray, z: np.ndarray, unit: str) -> None:
-    """FitError unless some run stood at a level above a level where one collapsed."""
+def _check_overlap(x: np.ndarray, n: np.ndarray, z: np.ndarray, unit: str, verbs: tuple[str, str]) -> None:
+    """FitError unless some run stood at a level above a level where one collapsed
+    (``verbs``: the words of an outcome and of its absence, ('collapsed', 'stood'))."""
+    yes, no = verbs
     if not np.any(z > 0):
-        raise FitError(f"no run collapsed at any of the {x.size} levels (up to {x.max():.4g} {unit}): "
+        raise FitError(f"no run {yes} at any of the {x.size} levels (up to {x.max():.4g} {unit}): "
                        "the fragility's median lies above every level; add higher levels")
     if not np.any(z < n):
-        raise FitError(f"every run collapsed, at each of the {x.size} levels (from {x.min():.4g} {unit}): "
+        raise FitError(f"every run {yes}, at each of the {x.size} levels (from {x.min():.4g} {unit}): "
                        "the fragility's median lies below every level; add lower levels")
-    lowest_collapse = float(x[z > 0].min())
-    highest_stand = float(x[z < n].max())
-    if highest_stand <= lowest_collapse:
-        raise FitError(f"the stripes are separated: every run stood at or below {highest_stand:.4g} {unit} and every "
-                       f"one collapsed at or above {lowest_collapse:.4g} {unit}, so the likelihood grows without "
-                       "bound as beta -> 0; a fragility needs a run that stood at a level above one where a run "
-                       "collapsed (more records, or levels between these)")
+    lowest_yes = float(x[z > 0].min())
+    highest_no = float(x[z < n].max())
+    if highest_no <= lowest_yes:
+        raise FitError(f"the stripes are separated: every run {no} at or below {highest_no:.4g} {unit} and every "
+                       f"one {yes} at or above {lowest_yes:.4g} {unit}, so the likelihood grows without "
+                       f"bound as beta -> 0; a fragility needs a run that {no} at a level above one where a run "
+                       f"{yes} (more records, or levels between these)")
 
 
-def fit_stripes(x, n, z, unit: str = "g") -> FragilityFit:
+def fit_stripes(x, n, z, unit: str = "g", verbs: tuple[str, str] = ("collapsed", "stood")) -> FragilityFit:
     """Baker's binomial maximum-likelihood fit to stripes (x, n, z): ``n`` runs at level
-    ``x`` (> 0, in ``unit``), ``z`` of them collapsed. FitError, with the levels named,
-    when the maximum is not a fragility (no collapse, no stand, separated stripes, or a
+    ``x`` (> 0, in ``unit``), ``z`` of them collapsed (``verbs``: the words of the
+    outcome and of its absence in the messages). FitError, with the levels named, when
+    the maximum is not a fragility (no collapse, no stand, separated stripes, or a
     fraction collapsed that does not grow with the level)."""
     x, n, z = np.asarray(x, float), np.asarray(n, float), np.asarray(z, float)
     if not (x.ndim == 1 and x.shape == n.shape == z.shape and x.size > 0):
         raise FitError("levels, runs and collapses must be three 1-D arrays of one length, not empty")
     if not (np.all(np.isfinite(x) & (x > 0.0)) and np.all((n >= 1) & (z >= 0) & (z <= n))):
         raise FitError("levels must be finite and > 0, each with at least one run and 0 <= collapses <= runs")
-    _check_overlap(x, n, z, unit)
+    _check_overlap(x, n, z, unit, verbs)
     ln_x = np.log(x)
     # Start: the median at the weighted mean of the levels' logarithms, beta 0.5.
     start = np.array([float(np.sum(n * ln_x) / np.sum(n)), math.log(0.5)])
