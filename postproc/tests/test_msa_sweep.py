@@ -85,7 +85,10 @@ def small(voussoir_sweep_exe, voussoir_limit_exe, tmp_path_factory):
 
 def test_one_row_per_record_and_level_with_its_scale(small):
     folder, rows, pga, levels_g, out = small
-    assert "msa sweep of 6 jobs (1 model samples x 2 records x 3 levels)" in out
+    # the runs that scale their record beyond 4 or below 0.25, warned of before any run
+    beyond = sum(not 0.25 <= x * G_M_S2 / a <= 4.0 for x in levels_g for a in pga.values())
+    assert (f"msa sweep of 6 jobs (1 model samples x 2 records x 3 levels; warning: {beyond} runs scale their "
+            "record beyond 4 or below 0.25)") in out
     assert "estimate: 6 jobs, 6 runs" in out  # the plan's run count, up front
     assert len(rows) == 6
     pairs = sorted((row["record"], float(row["level_g"])) for row in rows)

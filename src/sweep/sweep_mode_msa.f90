@@ -104,11 +104,22 @@ contains
     text = records_settings_text(this, plan, '  msa_levels_g = '//fmt_exact_list(this%levels_g)//achar(10), '')
   end function settings_text
 
+  !> The jobs in words, and before any run how many scale their record beyond
+  !> scale_warn_high or below scale_warn_low (the scales are known from the plan).
   function jobs_text(this, plan) result(text)
     class(msa_mode_t), intent(in) :: this
     type(sweep_plan_t), intent(in) :: plan
     character(len=:), allocatable :: text
+    integer :: job, n_warned
+    real(dp) :: scale
     text = itoa(plan%n_sets)//' model samples x '//itoa(plan%records%n)//' records x '//itoa(plan%n_amp)//' levels'
+    n_warned = 0
+    do job = 0, plan%n_jobs - 1
+      scale = this%run_value(plan, job)
+      if (scale > scale_warn_high .or. scale < scale_warn_low) n_warned = n_warned + 1
+    end do
+    if (n_warned > 0) text = text//'; warning: '//itoa(n_warned)//' runs scale their record beyond '// &
+                             fmt_real(scale_warn_high)//' or below '//fmt_real(scale_warn_low)
   end function jobs_text
 
   !> The scale of job `job`'s record that makes its PGA the job's level.
