@@ -247,6 +247,30 @@ $o"
 case_ polygon_overlap   "overlap.txt: blocks 1 and 2 overlap by 0.01 m" "&arch polygon_file = 'overlap.txt' /
 $o"
 
+# &sweep mode = 'msa' (issue 24): the levels stated, each > 0 and finite, increasing;
+# the variables of the other modes refused (voussoir-sweep on one rank, no mpirun).
+printf 't_s,accel_m_s2\n0.00,0.0\n0.01,1.0\n0.02,-0.5\n0.03,0.0\n' > msa_record.csv
+msa="&arch /
+&output file = 'out.h5' /"
+driver=voussoir-sweep case_ msa_no_levels "&sweep msa_levels_g is not set: mode = 'msa' needs at least one intensity level \(the PGA in g" "$msa
+&sweep mode = 'msa', record_files = 'msa_record.csv' /"
+driver=voussoir-sweep case_ msa_level_zero "&sweep msa_levels_g\(2\) = 0 is outside the allowed range 0 < msa_levels_g <= 100 g" "$msa
+&sweep mode = 'msa', record_files = 'msa_record.csv', msa_levels_g = 0.2, 0 /"
+driver=voussoir-sweep case_ msa_level_nan "&sweep msa_levels_g\(1\) = NaN is outside the allowed range 0 < msa_levels_g <= 100 g \(finite\)" "$msa
+&sweep mode = 'msa', record_files = 'msa_record.csv', msa_levels_g = NaN /"
+driver=voussoir-sweep case_ msa_level_order "&sweep msa_levels_g\(3\) = 0.3 g is not above msa_levels_g\(2\) = 0.4 g: the levels must be strictly increasing" "$msa
+&sweep mode = 'msa', record_files = 'msa_record.csv', msa_levels_g = 0.2, 0.4, 0.3 /"
+driver=voussoir-sweep case_ msa_level_text ":3: &sweep msa_levels_g\(1\) = 'high' is not a number" "$msa
+&sweep mode = 'msa', record_files = 'msa_record.csv', msa_levels_g = 'high' /"
+driver=voussoir-sweep case_ msa_no_records "&sweep record_files is not set: mode = 'msa' needs at least one record" "$msa
+&sweep mode = 'msa', msa_levels_g = 0.2 /"
+driver=voussoir-sweep case_ msa_dt_check "&sweep dt_check_rows = 3 belongs to mode = 'ida'" "$msa
+&sweep mode = 'msa', record_files = 'msa_record.csv', msa_levels_g = 0.2, dt_check_rows = 3 /"
+driver=voussoir-sweep case_ msa_levels_in_ida "&sweep msa_levels_g is set but mode = 'ida' searches the scale of each record: remove it, or use mode = 'msa'" "$msa
+&sweep mode = 'ida', record_files = 'msa_record.csv', msa_levels_g = 0.2 /"
+driver=voussoir-sweep case_ msa_unknown_mode "&sweep mode = 'stripes' is not one of 'threshold', 'grid', 'ida', 'msa'" "$msa
+&sweep mode = 'stripes' /"
+
 # The output named where it cannot be written: refused before the run, nothing left.
 case_ output_is_input   "&output file = 'output_is_input.nml' is the input file itself" "&output file = 'output_is_input.nml' /"
 case_ output_no_folder  "&output file = 'no_folder/out.h5': the folder 'no_folder' does not exist" "&output file = 'no_folder/out.h5' /"

@@ -33,6 +33,7 @@ program test_monitors
   call test_collapse_by_drop()
   call test_collapse_by_rotation()
   call test_crown_and_residual_follow_the_table()
+  call test_peak_joint_opening()
   call assert_summary()
 
 contains
@@ -126,6 +127,29 @@ contains
     call assert_true(mon%n_hinges == 0 .and. mon%peak_crown_disp_m == 0.0_dp, 'hinges: cleared')
     call assert_true(mon%joint_state(2) == side_extrados, 'hinges: clearing keeps the joints as they are')
   end subroutine test_hinges
+
+  !> The largest opening of a joint, at either end, over the updates: sin(phi) at joint 0's
+  !> extrados after the turn about (0, 0) (joint 1 opens only 1 - cos(phi)); a smaller
+  !> turn after it leaves the peak; after monitor_clear, a turn of phi/2 about (1, 1)
+  !> opens joint 1's intrados end by sin(phi/2).
+  subroutine test_peak_joint_opening()
+    type(monitor_t) :: mon
+    call monitor_init(flat, bodies, 0.25_dp, 0.5_dp, hinge_gap_m, mon)
+    call assert_true(mon%peak_joint_opening_m == 0.0_dp, 'opening: none at the start')
+    call place_voussoir([0.0_dp, 0.0_dp], -phi, [0.0_dp, 0.0_dp])
+    call monitor_update(mon, bodies, 0.1_dp)
+    call assert_close(mon%peak_joint_opening_m, sin(phi), 'opening: joint 0 opened by sin(phi) [m]', rtol=1.0e-12_dp)
+    call place_voussoir([0.0_dp, 0.0_dp], -0.5_dp*phi, [0.0_dp, 0.0_dp])
+    call monitor_update(mon, bodies, 0.2_dp)
+    call assert_close(mon%peak_joint_opening_m, sin(phi), 'opening: the peak stays when the joint half shuts', &
+                      rtol=1.0e-12_dp)
+    call monitor_clear(mon)
+    call assert_true(mon%peak_joint_opening_m == 0.0_dp, 'opening: cleared')
+    call place_voussoir([1.0_dp, 1.0_dp], -0.5_dp*phi, [0.0_dp, 0.0_dp])
+    call monitor_update(mon, bodies, 0.3_dp)
+    call assert_close(mon%peak_joint_opening_m, sin(0.5_dp*phi), 'opening: joint 1 opened by sin(phi/2) [m]', &
+                      rtol=1.0e-12_dp)
+  end subroutine test_peak_joint_opening
 
   subroutine test_collapse_by_drop()
     type(monitor_t) :: mon

@@ -9,7 +9,7 @@ program test_sweep_plan
   use voussoir_config, only: config_t, read_config
   use voussoir_sweep_plan, only: sweep_plan_t, read_sweep_plan
   use voussoir_sweep_jobs, only: job_param_set, job_frequency_hz, job_amplitude_m, job_run_config
-  use voussoir_sweep_mode_ida, only: job_record
+  use voussoir_sweep_mode_records, only: job_record
   use voussoir_assert, only: assert_true, assert_close, assert_summary
   implicit none
 
@@ -25,6 +25,8 @@ program test_sweep_plan
   call test_ida()
   call test_ida_refusals()
   call test_ida_samples_file()
+  call test_msa()
+  call test_msa_refusals()
   call assert_summary()
 
 contains
@@ -245,6 +247,59 @@ contains
       'nominal,0.071,0.5,0.508,0', 'friction,0.071,0.45,0.508,0', '', 'geometry,'//last//',0.02'
     close (unit)
   end subroutine write_samples
+
+  !> Two frictions x two records x three levels: 12 jobs, levels varying fastest, then
+  !> the records; a run scales its record so that its PGA (2 and 4 m/s2, written here)
+  !> is the level times g = 9.81 m/s2.
+  subroutine test_msa()
+    type(sweep_plan_t) :: plan
+    type(status_t) :: status
+    type(config_t) :: run
+    integer :: job
+    logical :: layout
+    real(dp), parameter :: levels_g(3) = [0.1_dp, 0.2_dp, 0.4_dp], pga_m_s2(2) = [2.0_dp, 4.0_dp]
+    call write_records()
+    call plan_of('msa', "&sweep mode = 'msa', record_files = 'rec_a.csv', 'rec_b.csv', "// &
+                 'msa_levels_g = 0.1, 0.2, 0.4, friction_list = 0.5, 0.6 /', plan, status)
+    call assert_true(status%ok, 'msa plan reads: '//trim(status%message))
+    if (.not. status%ok) return
+    call assert_true(plan%n_sets == 2 .and. plan%n_jobs == 12 .and. .not. plan%mode%has_search(), &
+                     'msa: 2 sets x 2 records x 3 levels = 12 single runs')
+    layout = .true.
+    do job = 0, plan%n_jobs - 1
+      layout = layout .and. job_param_set(plan, job) == job/6 .and. job_record(plan, job) == modulo(job/3, 2) + 1 &
+               .and. abs(job_amplitude_m(plan, job) - levels_g(modulo(job, 3) + 1)*9.81_dp/ &
+                         pga_m_s2(modulo(job/3, 2) + 1)) <= 1.0e-12_dp
+    end do
+    call assert_true(layout, 'msa: job -> (set, record, level), its scale = level x g / the record''s PGA')
+    run = job_run_config(plan, 10, job_amplitude_m(plan, 10))
+    call assert_true(run%motion%waveform == 'accelerogram' .and. index(run%motion%record_file, 'rec_b.csv') > 0 .and. &
+                     abs(run%motion%record_scale - 0.2_dp*9.81_dp/4.0_dp) <= 1.0e-12_dp .and. &
+                     run%arch%friction == 0.6_dp, 'msa: job 10 plays rec_b at 0.2 g on friction 0.6')
+    call assert_true(index(plan%sweep_nml, "mode = 'msa'") > 0 .and. index(plan%sweep_nml, 'msa_levels_g = ') > 0, &
+                     'msa: the effective &sweep group names the mode and the levels')
+  end subroutine test_msa
+
+  subroutine test_msa_refusals()
+    call write_records()
+    call refused('msa_none', "&sweep mode = 'msa', record_files = 'rec_a.csv' /", &
+                 "msa_levels_g is not set: mode = 'msa' needs at least one intensity level")
+    call refused('msa_zero', "&sweep mode = 'msa', record_files = 'rec_a.csv', msa_levels_g = 0.2, 0 /", &
+                 'msa_levels_g(2) = 0 is outside the allowed range 0 < msa_levels_g <= 100 g')
+    call refused('msa_order', "&sweep mode = 'msa', record_files = 'rec_a.csv', msa_levels_g = 0.2, 0.4, 0.3 /", &
+                 'msa_levels_g(3) = 0.3 g is not above msa_levels_g(2) = 0.4 g: the levels must be strictly increasing')
+    call refused('msa_repeat', "&sweep mode = 'msa', record_files = 'rec_a.csv', msa_levels_g = 0.2, 0.2 /", &
+                 'the levels must be strictly increasing')
+    call refused('msa_records', "&sweep mode = 'msa', msa_levels_g = 0.2 /", "mode = 'msa' needs at least one record")
+    call refused('msa_amps', "&sweep mode = 'msa', record_files = 'rec_a.csv', msa_levels_g = 0.2, "// &
+                 'amplitudes_m = 0.01 /', "amplitudes_m is set but mode = 'msa' scales records")
+    call refused('msa_dt_check', "&sweep mode = 'msa', record_files = 'rec_a.csv', msa_levels_g = 0.2, "// &
+                 'dt_check_rows = 2 /', "dt_check_rows = 2 belongs to mode = 'ida'")
+    call refused('msa_in_ida', "&sweep mode = 'ida', record_files = 'rec_a.csv', msa_levels_g = 0.2 /", &
+                 "msa_levels_g is set but mode = 'ida' searches the scale of each record")
+    call refused('msa_in_grid', "&sweep mode = 'grid', frequencies_hz = 1, amplitudes_m = 0.01, "// &
+                 'msa_levels_g = 0.2 /', "msa_levels_g to mode = 'msa', not 'grid'")
+  end subroutine test_msa_refusals
 
   subroutine write_records()
     integer :: unit

@@ -2,7 +2,7 @@
 !>
 !> Message layouts (reals): a task is [job, run, amplitude_m, n, then n x (amplitude_m,
 !> collapsed, peak_crown_disp_m) of the search's earlier runs]; a result is
-!> [job, run, continuing, then the outcome].
+!> [job, run, continuing, then the outcome (its fields in the order of run_outcome_t)].
 module voussoir_sweep_tasks
   use, intrinsic :: iso_fortran_env, only: output_unit
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
@@ -24,7 +24,7 @@ module voussoir_sweep_tasks
   public :: prefetch, task_head, history_width, result_len
 
   integer, parameter :: prefetch = 2                        !! tasks a worker may hold
-  integer, parameter :: task_head = 4, history_width = 3, result_len = 12
+  integer, parameter :: task_head = 4, history_width = 3, result_len = 14
 
   !> A task waiting on a worker.
   type :: queued_task_t
@@ -57,6 +57,8 @@ contains
       o%failed = .true.
       o%collapse_time_s = ieee_value(1.0_dp, ieee_quiet_nan)
       o%peak_crown_disp_m = o%collapse_time_s
+      o%peak_joint_opening_m = o%collapse_time_s
+      o%residual_crown_drift_m = o%collapse_time_s
       o%mean_iterations = o%collapse_time_s
       return
     end if
@@ -70,7 +72,8 @@ contains
     real(dp) :: msg(result_len)
     msg = [real(job, dp), real(seq, dp), merge(1.0_dp, 0.0_dp, continuing), o%amplitude_m, &
            merge(1.0_dp, 0.0_dp, o%collapsed), o%collapse_time_s, o%peak_crown_disp_m, o%mean_iterations, &
-           real(o%n_steps, dp), real(o%nonconverged_steps, dp), o%wall_time_s, merge(1.0_dp, 0.0_dp, o%failed)]
+           real(o%n_steps, dp), real(o%nonconverged_steps, dp), o%wall_time_s, merge(1.0_dp, 0.0_dp, o%failed), &
+           o%peak_joint_opening_m, o%residual_crown_drift_m]
   end function msg_of_outcome
 
   pure function outcome_of_msg(msg) result(o)
@@ -85,6 +88,8 @@ contains
     o%nonconverged_steps = nint(msg(10))
     o%wall_time_s = msg(11)
     o%failed = msg(12) == 1.0_dp
+    o%peak_joint_opening_m = msg(13)
+    o%residual_crown_drift_m = msg(14)
   end function outcome_of_msg
 
 end module voussoir_sweep_tasks

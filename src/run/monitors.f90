@@ -36,6 +36,8 @@ module voussoir_monitors
     logical :: collapsed = .false.
     real(dp) :: collapse_time_s = 0.0_dp     !! NaN until a collapse
     real(dp) :: peak_crown_disp_m = 0.0_dp
+    !> The largest opening of an arch joint at either end [m] (0 when not an arch)
+    real(dp) :: peak_joint_opening_m = 0.0_dp
     integer :: n_hinges = 0                  !! hinges opened, in order (hinge_* (1:n_hinges))
     real(dp), allocatable :: hinge_time_s(:)
     integer, allocatable :: hinge_joint(:)   !! joint 0..n
@@ -114,6 +116,7 @@ contains
     mon%collapsed = .false.
     mon%collapse_time_s = ieee_value(1.0_dp, ieee_quiet_nan)
     mon%peak_crown_disp_m = 0.0_dp
+    mon%peak_joint_opening_m = 0.0_dp
     mon%n_hinges = 0
     if (allocated(mon%hinge_time_s)) deallocate (mon%hinge_time_s, mon%hinge_joint, mon%hinge_side)
     allocate (mon%hinge_time_s(16), mon%hinge_joint(16), mon%hinge_side(16))
@@ -121,7 +124,7 @@ contains
 
   !> Watch the bodies at time `t_s`: the peak crown displacement, the first collapse (a
   !> voussoir dropped by more than `collapse_drop_m` or turned by more than
-  !> `collapse_rotation_rad`), and every hinge that opens.
+  !> `collapse_rotation_rad`), every hinge that opens and the largest joint opening.
   !>
   !> A hinge pivots on the edge that stays shut while the other opens by more than
   !> `hinge_gap_m`; the joint closes again (hysteresis) when both ends are back within
@@ -153,6 +156,7 @@ contains
     end if
     do j = 1, mon%n_joints
       gaps = joint_gaps(mon, bodies, cs, j)
+      mon%peak_joint_opening_m = max(mon%peak_joint_opening_m, maxval(gaps))
       side = mon%joint_state(j)
       if (gaps(2) > mon%hinge_gap_m .and. gaps(1) < 0.5_dp*mon%hinge_gap_m) then
         side = side_intrados

@@ -46,6 +46,10 @@ module voussoir_simulation
     !> the table at the end of the run [m], and which (a wall that slid has not just "stood").
     real(dp) :: max_residual_disp_m = 0.0_dp
     integer :: max_residual_body = 0
+    !> The largest opening of an arch joint during the run [m] (0 when not an arch), and
+    !> the crown's horizontal displacement relative to the table at its end [m], signed.
+    real(dp) :: peak_joint_opening_m = 0.0_dp
+    real(dp) :: residual_crown_drift_m = 0.0_dp
     real(dp) :: mean_iterations = 0.0_dp
     integer :: max_iterations = 0
     integer :: nonconverged_steps = 0
@@ -76,7 +80,7 @@ contains
     logical, intent(in), optional :: record_contacts
     integer :: n_steps, n_samples, nb, istep
     integer(8) :: clock0, clock1, rate
-    real(dp) :: sum_iter, still_for_s
+    real(dp) :: sum_iter, still_for_s, crown_end_m(2)
     type(rest_window_t) :: window
 
     call system_clock(clock0, rate)
@@ -126,6 +130,8 @@ contains
     end if
     res%nonconverged_steps = model%nonconverged_steps
     call residual_displacement(mon, model%bodies, res%max_residual_disp_m, res%max_residual_body)
+    crown_end_m = crown_displacement(mon, model%bodies)
+    res%residual_crown_drift_m = crown_end_m(1)
     call close_record(res, mon)
     call system_clock(clock1)
     res%wall_time_s = real(clock1 - clock0, dp)/real(rate, dp)
@@ -247,6 +253,7 @@ contains
     res%collapsed = mon%collapsed
     res%collapse_time_s = mon%collapse_time_s
     res%peak_crown_disp_m = mon%peak_crown_disp_m
+    res%peak_joint_opening_m = mon%peak_joint_opening_m
     res%n_hinges = mon%n_hinges
     res%hinge_time_s = mon%hinge_time_s(1:mon%n_hinges)
     res%hinge_joint = mon%hinge_joint(1:mon%n_hinges)

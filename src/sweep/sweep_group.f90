@@ -55,9 +55,10 @@ module voussoir_sweep_group
     character(len=512) :: model_samples_file = ''  !! ida: model samples from a CSV instead
     integer :: dt_check_rows = 0
     logical :: skip_at_rest = .true.                !! ida: steps at rest below the static capacity not solved
+    real(dp) :: msa_levels_g(max_list) = unset_real !! msa: the intensity levels, the records' PGA scaled to each [g]
     real(dp) :: ranges(2, n_sampled) = unset_real   !! low and high bound of each sampled variable
     ! The entries given, from the first (the lists have no gaps).
-    integer :: n_frequencies = 0, n_amplitudes = 0, n_records = 0
+    integer :: n_frequencies = 0, n_amplitudes = 0, n_records = 0, n_levels = 0
     integer :: lengths(n_kinds) = 0                 !! of each swept list
   end type sweep_group_t
 
@@ -101,6 +102,7 @@ contains
     end do
     call g%add('dt_check_rows', s%dt_check_rows)
     call g%add('skip_at_rest', s%skip_at_rest)
+    call g%add('msa_levels_g', s%msa_levels_g, unset=unset_real, unit='g')
   end subroutine sweep_table
 
   !> Read the &sweep group of `path` into `group`, whose values are the defaults; check
@@ -128,6 +130,7 @@ contains
       group%lengths(k) = g%length(trim(list_names(k)), path, status)
     end do
     group%n_records = g%length('record_files', path, status)
+    group%n_levels = g%length('msa_levels_g', path, status)
     group%lists(:, 2) = merge(real(group%n_voussoirs_list, dp), unset_real, group%n_voussoirs_list /= unset_int)
   end subroutine read_sweep_group
 

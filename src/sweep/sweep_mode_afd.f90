@@ -64,9 +64,9 @@ contains
       return
     end if
     if (any(group%ranges /= unset_real) .or. group%n_samples /= 0 .or. len_trim(group%record_files(1)) > 0 .or. &
-        group%dt_check_rows /= 0) then
+        group%dt_check_rows /= 0 .or. group%n_levels > 0) then
       call fail(status, path//": &sweep record_files, scale_tol, scale_max, n_samples, the sampling ranges "// &
-                "and dt_check_rows belong to mode = 'ida', not '"//trim(this%name)//"'")
+                "and dt_check_rows belong to mode = 'ida', msa_levels_g to mode = 'msa', not '"//trim(this%name)//"'")
       return
     end if
     if (base%motion%waveform /= waveform_afd) then

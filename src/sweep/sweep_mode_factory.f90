@@ -9,6 +9,7 @@ module voussoir_sweep_mode_factory
   use voussoir_sweep_mode_threshold, only: threshold_mode_t
   use voussoir_sweep_mode_grid, only: grid_mode_t
   use voussoir_sweep_mode_ida, only: ida_mode_t
+  use voussoir_sweep_mode_msa, only: msa_mode_t
   implicit none
   private
 
@@ -17,8 +18,9 @@ module voussoir_sweep_mode_factory
   character(len=*), parameter :: threshold_mode = 'threshold'  !! the collapse threshold amplitude per frequency
   character(len=*), parameter :: grid_mode = 'grid'            !! every frequency x amplitude
   character(len=*), parameter :: ida_mode = 'ida'              !! the threshold scale of each record
+  character(len=*), parameter :: msa_mode = 'msa'              !! each record scaled to stated levels
   !> The modes, in the order the error message lists them.
-  character(len=16), parameter :: known_modes(3) = [character(len=16) :: threshold_mode, grid_mode, ida_mode]
+  character(len=16), parameter :: known_modes(4) = [character(len=16) :: threshold_mode, grid_mode, ida_mode, msa_mode]
   !> The mode of a &sweep group that gives none.
   character(len=*), parameter :: default_mode = threshold_mode
 
@@ -36,6 +38,8 @@ contains
       allocate (grid_mode_t :: mode)
     case (ida_mode)
       allocate (ida_mode_t :: mode)
+    case (msa_mode)
+      allocate (msa_mode_t :: mode)
     case default
       call fail(status, path//": &sweep mode = '"//trim(name)//"' is not one of '"// &
                 join_words(known_modes, "', '")//"'")

@@ -51,6 +51,8 @@ contains
     outcome%collapsed = res%collapsed
     outcome%collapse_time_s = res%collapse_time_s
     outcome%peak_crown_disp_m = res%peak_crown_disp_m
+    outcome%peak_joint_opening_m = res%peak_joint_opening_m
+    outcome%residual_crown_drift_m = res%residual_crown_drift_m
     outcome%mean_iterations = res%mean_iterations
     outcome%n_steps = res%n_steps
     outcome%nonconverged_steps = res%nonconverged_steps

@@ -70,6 +70,8 @@ module voussoir_threshold_search
     logical :: collapsed = .false.
     real(dp) :: collapse_time_s = 0.0_dp    !! NaN when it stood
     real(dp) :: peak_crown_disp_m = 0.0_dp
+    real(dp) :: peak_joint_opening_m = 0.0_dp   !! largest opening of an arch joint [m]
+    real(dp) :: residual_crown_drift_m = 0.0_dp !! crown's horizontal drift from the table at the end [m]
     real(dp) :: mean_iterations = 0.0_dp
     integer :: n_steps = 0
     integer :: nonconverged_steps = 0

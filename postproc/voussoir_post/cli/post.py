@@ -18,6 +18,7 @@ import sys
 from ..analysis.assembly_joints import joints_table, run_joints
 from ..earthquake.ida import FIT_FAILED, read_ida
 from ..earthquake.im_fragility import compare_measures, parse_measures
+from ..earthquake.msa import is_msa, read_msa
 from ..earthquake.record_sets import SET_NAMES, export_sets, read_set, set_table
 from ..earthquake.records import record_files_line, select_records, suite, suite_table
 from ..errors import DONE, InputError
@@ -27,6 +28,7 @@ from ..plots.fragility_compare import plot_fragility_compare
 from ..plots.fragility_plot import plot_fragility
 from ..plots.history import plot_history
 from ..plots.mechanism import plot_mechanism
+from ..plots.msa_plot import plot_msa_fragility
 from ..plots.reactions import plot_reactions
 from ..plots.thrust_line import plot_thrust_line
 from ..plots.sequence import default_frame_times, plot_sequence, write_sequence_gif
@@ -215,6 +217,37 @@ def _fragility_compare(args) -> int:
     return DONE
 
 
+def _fragility_msa(args) -> int:
+    """`fragility MSA.h5`: Baker's binomial fit to the stripes."""
+    msa = read_msa(args.ida)
+    if msa.n_failed:
+        print(f"warning: {args.ida}: {msa.n_failed} runs stopped with an error (column failed = 1; voussoir-sweep "
+              "printed why): left out of the stripes", file=sys.stderr)
+    threshold_mm = {"hinge-onset": args.opening_mm, "residual-drift": args.drift_mm}.get(args.limit_state)
+    if args.limit_state == "residual-drift" and args.drift_mm is None:
+        raise InputError("--limit-state residual-drift needs --drift-mm X (the residual crown drift in mm beyond "
+                         "which the limit state is exceeded)")
+    if threshold_mm is not None and not (math.isfinite(threshold_mm) and threshold_mm > 0.0):
+        raise InputError(f"--opening-mm / --drift-mm = {threshold_mm:g}: a threshold > 0 mm is needed")
+    kind = "fragility" if args.limit_state == "collapse" else f"fragility_{args.limit_state.replace('-', '_')}"
+    png = output_path(args.ida, kind, args.out)
+    data = plot_msa_fragility(msa, png, n_bootstrap=args.bootstrap, seed=args.seed, limit_state=args.limit_state,
+                              threshold_mm=threshold_mm)
+    stem = os.path.splitext(data.png_path)[0]
+    curve_csv = write_csv(data.curve_table, stem + ".csv")
+    points_csv = write_csv(data.table, stem + "_points.csv")
+    if args.json:
+        print(json.dumps(data.summary(), indent=1))
+        return DONE
+    print(format_table(data.table))
+    for line in data.report_lines():
+        print(line)
+    print(f"wrote {data.png_path}")
+    print(f"wrote {curve_csv}")
+    print(f"wrote {points_csv}")
+    return DONE
+
+
 def cmd_fragility(args) -> int:
     if args.labels and not args.compare:
         raise InputError("--labels names the two files of --compare: give --compare B.h5 too")
@@ -224,7 +257,16 @@ def cmd_fragility(args) -> int:
     if args.compare:
         if measures:
             raise InputError("--im fits one IDA file: give it without --compare")
+        if is_msa(args.ida) or is_msa(args.compare):
+            raise InputError("--compare draws two IDA fits; an MSA file (&sweep mode = 'msa') is fitted alone")
         return _fragility_compare(args)
+    if is_msa(args.ida):
+        if measures:
+            raise InputError("--im fits the rows of an IDA file; an MSA file (&sweep mode = 'msa') has stripes")
+        return _fragility_msa(args)
+    if args.limit_state != "collapse":
+        raise InputError(f"--limit-state {args.limit_state} reads the runs of an MSA file (&sweep mode = 'msa'); "
+                         f"{args.ida} is an IDA, whose rows are collapse intensities")
     ida = _read_ida_warned(args.ida)
     png = output_path(args.ida, "fragility", args.out)
     data = plot_fragility(ida, png, n_bootstrap=args.bootstrap, seed=args.seed)
@@ -386,8 +428,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", help="output .xmf file or folder (default: beside the run)")
     p.set_defaults(func=cmd_xdmf)
 
-    p = sub.add_parser("fragility", help="lognormal fragility of collapse from an IDA sweep (&sweep mode = 'ida')")
-    p.add_argument("ida", metavar="IDA.h5|IDA.csv", help="the IDA sweep's HDF5 file, or its CSV summary")
+    p = sub.add_parser("fragility", help="lognormal fragility of collapse from an IDA sweep (&sweep mode = 'ida', "
+                                         "interval-censored fit) or an MSA sweep (mode = 'msa', binomial fit of "
+                                         "the stripes)")
+    p.add_argument("ida", metavar="SWEEP.h5|SWEEP.csv", help="the IDA or MSA sweep's HDF5 file, or its CSV summary")
     p.add_argument("--out", help="output .png file, or a folder (default: beside the input); the fit's "
                                  "curve and points are written beside it as <stem>.csv and <stem>_points.csv "
                                  "(with --compare: <IDA stem>_compare_fragility.png and the curves' .csv)")
@@ -413,6 +457,14 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--avgsa-periods", type=float, nargs=2, metavar=("T_LOW", "T_HIGH"),
                    help="periods of AvgSa with --im: the geometric mean of Sa at 10 periods spread in ln T over "
                         "T_LOW..T_HIGH s (default 0.2 3.0)")
+    p.add_argument("--limit-state", choices=["collapse", "hinge-onset", "residual-drift"], default="collapse",
+                   help="MSA only: the limit state fitted: collapse (default); hinge-onset, a joint opened by more "
+                        "than --opening-mm; residual-drift, a residual crown drift above --drift-mm (a collapse "
+                        "exceeds both)")
+    p.add_argument("--opening-mm", type=float, default=1.0, metavar="MM",
+                   help="hinge-onset: the joint opening [mm] beyond which a hinge has formed (default 1)")
+    p.add_argument("--drift-mm", type=float, default=None, metavar="MM",
+                   help="residual-drift: the residual crown drift [mm] beyond which the limit state is exceeded")
     p.set_defaults(func=cmd_fragility)
 
     p = sub.add_parser("records", help="the suite of real ground-motion records and where they are installed")

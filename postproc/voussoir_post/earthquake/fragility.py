@@ -46,7 +46,7 @@ from ..errors import FitError
 
 __all__ = ["FitError", "FragilityFit", "FragilityBand", "FitCheck", "BetaSplit", "fit_lognormal", "fit_intervals",
            "max_likelihood", "max_likelihood_intervals", "log_likelihood", "interval_log_likelihood", "fragility",
-           "bootstrap_band", "clustered_band", "resample_clusters", "goodness_of_fit", "normal_cdf",
+           "bootstrap_band", "clustered_band", "refitted_band", "resample_clusters", "goodness_of_fit", "normal_cdf",
            "empirical_collapse_fraction", "split_beta", "confidence_curve"]
 
 _LOG_SQRT_2PI = 0.5 * math.log(2.0 * math.pi)
@@ -366,10 +366,20 @@ def clustered_band(low, high, im_grid, clusters=None, events=None, cluster_by: s
     the clusters in the result ('record', 'event'). Resamples that cannot be fitted
     (e.g. with fewer than two collapses) are left out, and counted."""
     low, high = np.asarray(low, dtype=float), np.asarray(high, dtype=float)
+    return refitted_band(lambda pick: fit_intervals(low[pick], high[pick], tol=1e-9), low.size, im_grid, clusters,
+                         events, cluster_by, n_resamples, level, seed)
+
+
+def refitted_band(fit_rows, n_rows: int, im_grid, clusters=None, events=None, cluster_by: str = "",
+                  n_resamples: int = 400, level: float = 0.90, seed: int = 20261124) -> FragilityBand:
+    """The band of :func:`clustered_band` for any fit of rows: ``fit_rows(pick)`` fits
+    the rows of the index array ``pick`` (a resample of the ``n_rows`` rows, drawn by
+    :func:`resample_clusters`) and returns a :class:`FragilityFit`, or raises FitError
+    (the resample is then left out, and counted)."""
     rows = clusters is None
     if rows:
-        clusters = np.arange(low.size)
-    if len(clusters) != low.size or (events is not None and len(events) != low.size):
+        clusters = np.arange(n_rows)
+    if len(clusters) != n_rows or (events is not None and len(events) != n_rows):
         raise FitError("one cluster (and event) label per row is needed")
     if events is not None:
         label = {}
@@ -381,7 +391,7 @@ def clustered_band(low, high, im_grid, clusters=None, events=None, cluster_by: s
     for _ in range(n_resamples):
         pick = resample_clusters(rng, clusters, events)
         try:
-            fit = fit_intervals(low[pick], high[pick], tol=1e-9)
+            fit = fit_rows(pick)
         except FitError:
             continue
         curves.append(fragility(im_grid, fit.median, fit.beta))
