@@ -8,6 +8,8 @@
 !>   number of them per line.
 !> - `.csv`: columns `t_s` and `accel_m_s2` (shared/MEASURED_DATA.md's CSV rules),
 !>   uniformly sampled, time increasing.
+!> - `.asc` (any case): an ESM or ITACA ASCII file, in the unit its header's UNITS names
+!>   (cm/s^2 as those databases write it; src/motion/esm_record.f90).
 !> A record that breaks a rule is refused with the file and the line.
 !>
 !> The acceleration between samples is the linear interpolation of the samples; the
@@ -18,6 +20,7 @@ module voussoir_ground_record
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: lower, upper, itoa, fmt_real
   use voussoir_numeric_csv, only: read_csv_columns, parse_number, number_ok, number_not_finite
+  use voussoir_esm_record, only: read_esm
   implicit none
   private
 
@@ -32,7 +35,7 @@ module voussoir_ground_record
   type :: ground_record_t
     character(len=text_len) :: path = ''
     character(len=text_len) :: name = ''         !! the file name without folder and extension
-    character(len=text_len) :: description = '' !! an AT2 file's event and station line
+    character(len=text_len) :: description = '' !! an AT2 file's event and station line; an ESM file's event, station, stream
     real(dp) :: dt_s = 0.0_dp
     real(dp), allocatable :: accel_m_s2(:)
   end type ground_record_t
@@ -66,9 +69,12 @@ contains
       call read_at2(path, rec, status)
     case ('csv')
       call read_accel_csv(path, rec, status)
+    case ('asc')
+      call read_esm(path, rec%dt_s, rec%accel_m_s2, rec%description, status)
     case default
       call fail(status, trim(path)//": unknown record format '."//ext// &
-                "' (expected a PEER NGA .AT2 file in g, or a .csv with columns t_s, accel_m_s2)")
+                "' (expected a PEER NGA .AT2 file in g, a .csv with columns t_s, accel_m_s2, or an ESM/ITACA "// &
+                ".ASC file with its UNITS in the header)")
     end select
   end subroutine read_ground_record
 
