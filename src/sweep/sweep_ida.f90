@@ -23,7 +23,16 @@ module voussoir_sweep_ida
   private
 
   public :: n_sampled, sampled_names, range_names, ida_records_t, read_ida_records, read_set_records, sample_sets
-  public :: sample_variables, sample_case
+  public :: sample_variables, sample_case, set_record_polarity, record_label
+
+  !> &sweep record_polarity: each record as recorded, reversed (its horizontal sign
+  !> flipped: the motion mirrored), or both, the reversed one a row of its own after it.
+  character(len=*), parameter, public :: polarity_forward = 'forward', polarity_reversed = 'reversed', &
+    polarity_both = 'both'
+  character(len=16), parameter, public :: polarity_names(3) = [character(len=16) :: &
+    polarity_forward, polarity_reversed, polarity_both]
+  !> What a reversed record's name is followed by in the tables.
+  character(len=*), parameter :: reversed_suffix = ' (reversed)'
 
   integer, parameter :: n_sampled = 4                 !! variables that can be sampled
   !> The &arch variables a model sample can set: those of the Latin hypercube, and the
@@ -45,6 +54,7 @@ module voussoir_sweep_ida
     !> and closest distance to the rupture; '' and NaN for files of record_files.
     character(len=512), allocatable :: events(:)
     real(dp), allocatable :: magnitude(:), distance_km(:)
+    integer, allocatable :: polarity(:)             !! &motion record_polarity of each: 1, or -1 reversed
   end type ida_records_t
 
 contains
@@ -99,6 +109,7 @@ contains
     type(ground_record_t) :: rec
     type(record_intensity_t) :: im
     integer :: k
+    records%polarity = [(1, k = 1, records%n)]
     do k = 1, records%n
       call read_ground_record(trim(records%files(k)), rec, status)
       if (.not. status%ok) then
@@ -116,6 +127,40 @@ contains
       records%duration_s(k) = (size(rec%accel_m_s2) - 1)*rec%dt_s
     end do
   end subroutine read_records
+
+  !> Play the records as `choice` says (one of polarity_names): forward, reversed, or
+  !> both (record k forward, then reversed: the intensity measures are those of |a|).
+  subroutine set_record_polarity(records, choice)
+    type(ida_records_t), intent(inout) :: records
+    character(len=*), intent(in) :: choice
+    integer, allocatable :: twice(:)
+    integer :: k
+    select case (choice)
+    case (polarity_reversed)
+      records%polarity = -records%polarity
+    case (polarity_both)
+      twice = [((k + 1)/2, k = 1, 2*records%n)]
+      records%files = records%files(twice)
+      records%given = records%given(twice)
+      records%pga_m_s2 = records%pga_m_s2(twice)
+      records%pgv_m_s = records%pgv_m_s(twice)
+      records%duration_s = records%duration_s(twice)
+      records%events = records%events(twice)
+      records%magnitude = records%magnitude(twice)
+      records%distance_km = records%distance_km(twice)
+      records%polarity = [(merge(1, -1, modulo(k, 2) == 1), k = 1, 2*records%n)]
+      records%n = 2*records%n
+    end select
+  end subroutine set_record_polarity
+
+  !> Record `k` as the tables name it: as given, followed by ' (reversed)' when reversed.
+  pure function record_label(records, k) result(label)
+    type(ida_records_t), intent(in) :: records
+    integer, intent(in) :: k
+    character(len=:), allocatable :: label
+    label = trim(records%given(k))
+    if (records%polarity(k) == -1) label = label//reversed_suffix
+  end function record_label
 
   !> `n_samples` model samples of the base case: for every variable whose range
   !> (`ranges(:, v)`, low and high; unset where `given(v)` is false) is given, a Latin

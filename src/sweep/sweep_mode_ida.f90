@@ -16,7 +16,8 @@ module voussoir_sweep_mode_ida
   use voussoir_setup, only: simulate => run_config
   use voussoir_threshold_search, only: threshold_search_t, threshold_result_t, run_outcome_t, threshold_init_onset
   use voussoir_threshold, only: search_run_config, static_capacity_m_s2
-  use voussoir_sweep_ida, only: n_sampled, range_names, read_ida_records, read_set_records, sample_sets
+  use voussoir_sweep_ida, only: n_sampled, range_names, read_ida_records, read_set_records, sample_sets, &
+                                set_record_polarity, record_label, polarity_forward, polarity_both
   use voussoir_record_set, only: components_both
   use voussoir_model_samples, only: read_model_samples, samples_digest
   use voussoir_sweep_group, only: sweep_group_t, lengths_text, unset_real
@@ -39,6 +40,7 @@ module voussoir_sweep_mode_ida
     character(len=512) :: samples_file = ''       !! model samples from this CSV, as given
     character(len=32) :: record_set = ''          !! the packaged set played ('' : record_files)
     character(len=16) :: record_components = components_both
+    character(len=16) :: record_polarity = polarity_forward  !! records forward, reversed, or both as rows
     integer :: dt_check_rows = 0                  !! rows whose two bracketing runs are redone at dt/2
     real(dp) :: ranges(2, n_sampled) = unset_real !! bounds of the sampled variables
   contains
@@ -170,11 +172,24 @@ contains
                 'drives the table with each record of &sweep record_files; leave waveform unset')
       return
     end if
+    if (len_trim(base%motion%record_vertical_file) > 0) then
+      call fail(status, path//": &motion record_vertical_file = '"//trim(base%motion%record_vertical_file)// &
+                "': mode = 'ida' plays records without vertical files; give the vertical component as "// &
+                '&motion vertical_ratio (vertical / horizontal acceleration, scaled with the record)')
+      return
+    end if
+    if (base%motion%record_polarity /= 1) then
+      call fail(status, path//": &motion record_polarity = -1: mode = 'ida' chooses the records' polarity "// &
+                "with &sweep record_polarity ('forward', 'reversed' or 'both')")
+      return
+    end if
     if (len_trim(group%record_set) > 0) then
       call read_set_records(path, trim(group%record_set), trim(group%record_components), plan%records, status)
     else
       call read_ida_records(path, group%record_files(1:n_records), plan%records, status)
     end if
+    if (status%ok) call set_record_polarity(plan%records, trim(group%record_polarity))
+    this%record_polarity = group%record_polarity
     this%record_set = group%record_set
     this%record_components = group%record_components
     this%n_samples = group%n_samples
@@ -230,9 +245,14 @@ contains
     else
       text = '  record_files = '
       do j = 1, plan%records%n
-        text = text//"'"//trim(plan%records%given(j))//"'"//trim(merge(', ', '  ', j < plan%records%n))
+        ! With both polarities each file comes twice, forward first: named once.
+        if (this%record_polarity == polarity_both .and. plan%records%polarity(j) == -1) cycle
+        text = text//"'"//trim(plan%records%given(j))//"', "
       end do
+      text = text(:len(text) - 2)
     end if
+    if (this%record_polarity /= polarity_forward) &
+      text = text//nl//"  record_polarity = '"//trim(this%record_polarity)//"'"
     text = trim(text)//nl//'  scale_tol = '//fmt_exact_list([plan%search%amp_tol_m])//nl// &
            '  scale_max = '//fmt_exact_list([plan%search%amp_max_m])//nl// &
            '  scan_step = '//fmt_exact_list([plan%search%scan_step])//nl// &
@@ -258,7 +278,7 @@ contains
     if (len_trim(this%record_set) > 0) then
       text = 'records of the set:'
       do k = 1, plan%records%n
-        text = text//' '//trim(plan%records%given(k))
+        text = text//' '//record_label(plan%records, k)
       end do
       text = text//achar(10)
     end if
@@ -279,7 +299,7 @@ contains
     type(sweep_plan_t), intent(in) :: plan
     integer, intent(in) :: job
     character(len=:), allocatable :: text
-    text = 'record '//trim(plan%records%given(job_record(plan, job)))
+    text = 'record '//record_label(plan%records, job_record(plan, job))
   end function job_label
 
   !> The job's sample playing its record at the scale `value`, stopping at the collapse.
@@ -293,6 +313,7 @@ contains
     cfg%motion%waveform = waveform_accelerogram
     cfg%motion%record_file = plan%records%files(job_record(plan, job))
     cfg%motion%record_scale = value
+    cfg%motion%record_polarity = plan%records%polarity(job_record(plan, job))
     cfg%motion%amplitude_m = 0.0_dp
   end function run_config
 
@@ -392,7 +413,7 @@ contains
     lines = ''
     events = ''
     do k = 1, plan%records%n
-      lines = lines//trim(plan%records%given(k))
+      lines = lines//record_label(plan%records, k)
       events = events//trim(plan%records%events(k))
       if (k < plan%records%n) lines = lines//achar(10)
       if (k < plan%records%n) events = events//achar(10)
@@ -427,7 +448,7 @@ contains
     character(len=:), allocatable :: line
     integer :: rec
     rec = nint(table_value(results, 'record', r)) + 1
-    line = trim(plan%records%given(rec))//','//set_columns//','// &
+    line = record_label(plan%records, rec)//','//set_columns//','// &
            fmt_exact(table_value(results, 'scale_stood', r))//','//fmt_exact(table_value(results, 'scale_threshold', r))// &
            ','//fmt_exact(table_value(results, 'pga_threshold_m_s2', r))//','// &
            fmt_exact(table_value(results, 'pgv_threshold_m_s', r))//','// &
@@ -456,7 +477,7 @@ contains
       write (buf, '(a,f9.4,a,f8.3,a,i3,a)') ': threshold scale ', table_value(results, 'scale_threshold', r), &
         ' (PGA ', table_value(results, 'pga_threshold_m_s2', r)/g_m_s2, ' g), ', n_runs, ' runs'
     end if
-    line = '  '//trim(plan%records%given(job_record(plan, nint(table_value(results, 'job', r)))))//trim(buf)
+    line = '  '//record_label(plan%records, job_record(plan, nint(table_value(results, 'job', r))))//trim(buf)
     if (scale_warned(results, r)) line = line//', WARNING: scaled beyond '//fmt_real(scale_warn_high)//' or below '// &
                                          fmt_real(scale_warn_low)
   end function summary_line
