@@ -126,3 +126,69 @@ def test_the_reversed_record_mirrors_a_symmetric_arch(voussoir_run_exe, tmp_path
     assert lags[1e-5] <= 1.5e-3, lags  # the same collapse time to a step (dt_s = 1e-3)
     assert errors[1e-5] < 0.01, errors
     assert errors[1e-5] < errors[1e-4] / 3, errors
+
+
+def dense_integrals(accel: np.ndarray, dt: float, sub: int = 64):
+    """The linearly interpolated acceleration on a grid `sub` times finer, and its
+    velocity and displacement from rest by cumulative trapezoids (a second-order
+    quadrature, not the closed form the program uses)."""
+    t = np.arange((accel.size - 1) * sub + 1) * (dt / sub)
+    a = np.interp(t, np.arange(accel.size) * dt, accel)
+    h = dt / sub
+    v = np.concatenate([[0.0], np.cumsum(0.5 * h * (a[1:] + a[:-1]))])
+    x = np.concatenate([[0.0], np.cumsum(0.5 * h * (v[1:] + v[:-1]))])
+    return t, v, x
+
+
+def rise(run) -> np.ndarray:
+    """The table slab's (body 2 of BLOCK) rise [m] from its place at the first sample (t = 0)."""
+    return run.body_position[:, 1, 1] - run.body_position[0, 1, 1]
+
+
+def test_the_driven_blocks_follow_the_vertical_record(voussoir_run_exe, tmp_path):
+    # Horizontal: a constant 0.1 g after a ramp; vertical: one cycle of a 4 Hz sine of
+    # 0.2 g, then rest. The table (the driven block) rises by the vertical record's
+    # double integral, computed here by quadrature.
+    dt, n = 0.01, 131
+    constant_record(tmp_path / "horizontal.csv", 0.1 * G)
+    t = np.arange(n) * dt
+    a_v = np.where(t < 0.25, 0.2 * G * np.sin(2 * np.pi * 4.0 * t), 0.0)
+    (tmp_path / "vertical.csv").write_text(
+        "t_s,accel_m_s2\n" + "".join(f"{ti!r},{ai!r}\n" for ti, ai in zip(t.tolist(), a_v.tolist())))
+    run = read_run(block_run(voussoir_run_exe, tmp_path, "own_v", "record_vertical_file = 'vertical.csv'"))
+    assert run.time_s[0] == 0.0
+    table_y = rise(run)
+    td, _, yd = dense_integrals(a_v, dt)
+    inside = run.time_s <= t[-1]
+    np.testing.assert_allclose(table_y[inside], np.interp(run.time_s[inside], td, yd),
+                               rtol=0, atol=1e-6 * np.abs(yd).max())
+    assert np.abs(yd).max() > 1e-3  # the table does move vertically
+
+
+def test_vertical_ratio_of_an_afd_and_of_a_reversed_record(voussoir_run_exe, tmp_path):
+    (tmp_path / "block.txt").write_text(BLOCK)
+    afd = tmp_path / "afd.nml"
+    afd.write_text("""&arch
+  polygon_file = 'block.txt', thickness_m = 0.2, width_m = 0.2, density_kg_m3 = 2000, friction = 0.7
+/
+&motion
+  waveform = 'afd', frequency_hz = 2.0, amplitude_m = 0.01, vertical_ratio = 0.5, rest_s = 0.2
+/
+&output
+  file = 'afd.h5', every = 5
+/
+""")
+    run_executable([voussoir_run_exe, afd], tmp_path)
+    run = read_run(tmp_path / "afd.h5")
+    # The table moves along the line y = 0.5 x.
+    assert run.time_s[0] == 0.0
+    np.testing.assert_allclose(rise(run), 0.5 * run.table_x_m, rtol=0, atol=1e-12)
+    assert np.abs(run.table_x_m).max() > 0.005
+    # A record reversed with a ratio: the horizontal flips, the vertical stays that of the
+    # record as recorded (the mirror image leaves it as it is).
+    constant_record(tmp_path / "horizontal.csv", 0.1 * G)
+    forward = read_run(block_run(voussoir_run_exe, tmp_path, "fwd", "vertical_ratio = -0.5"))
+    reverse = read_run(block_run(voussoir_run_exe, tmp_path, "rev", "vertical_ratio = -0.5, record_polarity = -1"))
+    np.testing.assert_array_equal(reverse.table_x_m, -forward.table_x_m)
+    np.testing.assert_array_equal(rise(reverse), rise(forward))
+    np.testing.assert_allclose(rise(forward), -0.5 * forward.table_x_m, rtol=1e-12, atol=1e-15)
