@@ -154,6 +154,9 @@ $o"
 printf 'EVENT_NAME: TEST\nEVENT_ID: X\nSAMPLING_INTERVAL_S: 0.01\nNDATA: 2\nUSER5:\n0.1\n0.2\n' > unitless.asc
 case_ esm_unitless      "record_file: .*unitless.asc: the unit of the samples cannot be determined: .*no UNITS; state it in a header line such as 'UNITS: cm/s\^2'" "&motion waveform = 'accelerogram', record_file = 'unitless.asc' /
 $o"
+printf 'PEER NGA STRONG MOTION DATABASE RECORD\nTEST\nACCELERATION TIME SERIES\nNPTS=   2, DT=   .0100 SEC,\n 0.1 0.2\n' > unitless.AT2
+case_ at2_unitless      "record_file: .*unitless.AT2:3: the line 'ACCELERATION TIME SERIES' names no units, so the unit of the samples cannot be determined: a PEER .AT2 record states it there, as 'ACCELERATION TIME SERIES IN UNITS OF G'" "&motion waveform = 'accelerogram', record_file = 'unitless.AT2' /
+$o"
 case_ esm_unitless_vertical "record_vertical_file: .*unitless.asc: the unit of the samples cannot be determined" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', record_vertical_file = 'unitless.asc' /
 $o"
 case_ polygon_missing   "polygon_file = .*no such file" "&arch polygon_file = 'nothere.txt' /

@@ -2,7 +2,7 @@
 !>
 !> Two formats, chosen by the file name's extension:
 !> - `.AT2` (any case): a PEER NGA strong-motion file in units of g. Four header lines:
-!>   title, event and station, units ("... IN UNITS OF G"), and NPTS and DT in either
+!>   title, event and station, units ("... IN UNITS OF G", required), and NPTS and DT in either
 !>   of the two variants PEER has written, "NPTS=   5372, DT=   .0100 SEC" (NGA-West2)
 !>   or "  4000    0.01000   NPTS, DT" (the older database); then NPTS numbers, any
 !>   number of them per line.
@@ -176,7 +176,8 @@ contains
                 ' samples, but NPTS = '//itoa(npts)//' in the header (line 4)')
   end subroutine read_at2_samples
 
-  !> Line 3 of the AT2 file `path` names the units; anything named but g is refused.
+  !> Line 3 of the AT2 file `path` names the units; a line that names none, or anything
+  !> but g, is refused (the unit cannot be taken for granted).
   subroutine check_at2_units(path, text, status)
     character(len=*), intent(in) :: path, text
     type(status_t), intent(inout) :: status
@@ -184,7 +185,11 @@ contains
     integer :: k
     up = upper(text)
     k = index(up, 'UNITS OF')
-    if (k == 0) return
+    if (k == 0) then
+      call fail(status, trim(path)//":3: the line '"//trim(text)//"' names no units, so the unit of the samples "// &
+                "cannot be determined: a PEER .AT2 record states it there, as 'ACCELERATION TIME SERIES IN UNITS OF G'")
+      return
+    end if
     up = adjustl(up(k + 8:))
     if (up(1:1) == 'G' .and. (up(2:2) == ' ' .or. up(2:2) == ',' .or. up(2:2) == '.')) return
     call fail(status, trim(path)//":3: units '"//trim(up)//"': a PEER .AT2 record must be in units of g")
