@@ -74,6 +74,7 @@ def test_a_downward_vertical_component_tips_a_block_that_stands_without_it(vouss
     own = read_run(block_run(voussoir_run_exe, tmp_path, "own", "record_vertical_file = 'vertical.csv'"))
     assert np.abs(alone.crown_dx_m).max() < 1e-6
     assert np.abs(ratio.crown_dx_m).max() > 1e-3
+    assert alone.table_y_m is None and ratio.table_y_m is not None  # stored only with a vertical motion
     # The ratio and the vertical record of the same samples are one motion.
     np.testing.assert_array_equal(own.crown_dx_m, ratio.crown_dx_m)
     np.testing.assert_array_equal(own.crown_dy_m, ratio.crown_dy_m)
@@ -163,6 +164,10 @@ def test_the_driven_blocks_follow_the_vertical_record(voussoir_run_exe, tmp_path
     np.testing.assert_allclose(table_y[inside], np.interp(run.time_s[inside], td, yd),
                                rtol=0, atol=1e-6 * np.abs(yd).max())
     assert np.abs(yd).max() > 1e-3  # the table does move vertically
+    # The file's vertical table record: the record played, and the slab on it.
+    np.testing.assert_allclose(run.table_ay_m_s2[inside], np.interp(run.time_s[inside], t, a_v), rtol=0,
+                               atol=1e-9 * np.abs(a_v).max())
+    np.testing.assert_allclose(run.table_y_m, table_y, rtol=0, atol=1e-12)
 
 
 def test_vertical_ratio_of_an_afd_and_of_a_reversed_record(voussoir_run_exe, tmp_path):

@@ -4,6 +4,7 @@ module voussoir_simulation
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t
   use voussoir_model, only: model_t, model_step
+  use voussoir_motion, only: vertical_none
   use voussoir_monitors, only: monitor_t, monitor_clear, monitor_update, crown_displacement, residual_displacement, &
                                joint_of_pair
   use voussoir_contacts, only: contact_set_t
@@ -17,6 +18,7 @@ module voussoir_simulation
   type :: run_result_t
     integer :: n_samples = 0
     real(dp), allocatable :: time_s(:), table(:, :), crown(:, :), q(:, :, :)
+    real(dp), allocatable :: table_vertical(:, :)   !! (3, :) y, v, a upwards; only with a vertical motion
     integer, allocatable :: contact_count(:)
     logical :: contacts_recorded = .false.   !! whether the contact record below was kept
     !> The contacts that carry load (normal impulse > 0) at each sample, one flat list:
@@ -117,6 +119,10 @@ contains
     s = res%n_samples
     res%time_s(s) = model%t_s
     res%table(:, s) = model%table
+    if (model%motion%vertical /= vertical_none) then
+      if (.not. allocated(res%table_vertical)) allocate (res%table_vertical(3, size(res%time_s)))
+      res%table_vertical(:, s) = model%table_vertical
+    end if
     res%crown(:, s) = crown_displacement(mon, model%bodies)
     res%q(:, :, s) = model%bodies%q
     if (res%contacts_recorded) then
@@ -193,6 +199,7 @@ contains
     type(monitor_t), intent(in) :: mon
     res%time_s = res%time_s(1:res%n_samples)
     res%table = res%table(:, 1:res%n_samples)
+    if (allocated(res%table_vertical)) res%table_vertical = res%table_vertical(:, 1:res%n_samples)
     res%crown = res%crown(:, 1:res%n_samples)
     res%q = res%q(:, :, 1:res%n_samples)
     res%contact_count = res%contact_count(1:res%n_samples)
