@@ -14,7 +14,8 @@ module voussoir_sweep_ida
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa
-  use voussoir_config, only: config_t, validate_config, resolve_path, fmt_real, arch_rule, arch_rule_text
+  use voussoir_config, only: config_t, validate_config, resolve_path, fmt_real, arch_rule, arch_rule_text, &
+                             waveform_afd, waveform_accelerogram
   use voussoir_ground_record, only: ground_record_t, record_intensity_t, read_ground_record, record_intensity
   use voussoir_latin_hypercube, only: latin_hypercube
   use voussoir_input_range, only: need
@@ -23,7 +24,7 @@ module voussoir_sweep_ida
   private
 
   public :: n_sampled, sampled_names, range_names, ida_records_t, read_ida_records, read_set_records, sample_sets
-  public :: sample_variables, sample_case, set_record_polarity, record_label
+  public :: sample_variables, sample_case, set_record_polarity, record_label, check_base_motion
 
   !> &sweep record_polarity: each record as recorded, reversed (its horizontal sign
   !> flipped: the motion mirrored), or both, the reversed one a row of its own after it.
@@ -127,6 +128,31 @@ contains
       records%duration_s(k) = (size(rec%accel_m_s2) - 1)*rec%dt_s
     end do
   end subroutine read_records
+
+  !> The base case's &motion as an IDA can play it: a waveform the records replace, no
+  !> vertical record file (the records have none: vertical_ratio gives the vertical) and
+  !> no polarity of its own (&sweep record_polarity chooses it).
+  subroutine check_base_motion(path, base, status)
+    character(len=*), intent(in) :: path
+    type(config_t), intent(in) :: base
+    type(status_t), intent(inout) :: status
+    if (base%motion%waveform /= waveform_afd .and. base%motion%waveform /= waveform_accelerogram) then
+      call fail(status, path//": &motion waveform = '"//trim(base%motion%waveform)//"': mode = 'ida' "// &
+                'drives the table with each record of &sweep record_files; leave waveform unset')
+      return
+    end if
+    if (len_trim(base%motion%record_vertical_file) > 0) then
+      call fail(status, path//": &motion record_vertical_file = '"//trim(base%motion%record_vertical_file)// &
+                "': mode = 'ida' plays records without vertical files; give the vertical component as "// &
+                '&motion vertical_ratio (vertical / horizontal acceleration, scaled with the record)')
+      return
+    end if
+    if (base%motion%record_polarity /= 1) then
+      call fail(status, path//": &motion record_polarity = -1: mode = 'ida' chooses the records' polarity "// &
+                "with &sweep record_polarity ('forward', 'reversed' or 'both')")
+      return
+    end if
+  end subroutine check_base_motion
 
   !> Play the records as `choice` says (one of polarity_names): forward, reversed, or
   !> both (record k forward, then reversed: the intensity measures are those of |a|).

@@ -8,7 +8,7 @@ module voussoir_sweep_mode_ida
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa, fmt_real, fmt_exact, fmt_exact_list, join_words
-  use voussoir_config, only: config_t, waveform_afd, waveform_accelerogram
+  use voussoir_config, only: config_t, waveform_accelerogram
   use voussoir_input_range, only: need_range
   use voussoir_assembly, only: assembly_t
   use voussoir_model, only: model_t
@@ -17,7 +17,8 @@ module voussoir_sweep_mode_ida
   use voussoir_threshold_search, only: threshold_search_t, threshold_result_t, run_outcome_t, threshold_init_onset
   use voussoir_threshold, only: search_run_config, static_capacity_m_s2
   use voussoir_sweep_ida, only: n_sampled, range_names, read_ida_records, read_set_records, sample_sets, &
-                                set_record_polarity, record_label, polarity_forward, polarity_both
+                                set_record_polarity, record_label, polarity_forward, polarity_both, &
+                                check_base_motion
   use voussoir_record_set, only: components_both
   use voussoir_model_samples, only: read_model_samples, samples_digest
   use voussoir_sweep_group, only: sweep_group_t, lengths_text, unset_real
@@ -167,22 +168,8 @@ contains
         itoa(g%n_samples)//' but no range to sample: give one or more of '//join_words(range_names, ', '))
     end associate
     if (.not. status%ok) return
-    if (base%motion%waveform /= waveform_afd .and. base%motion%waveform /= waveform_accelerogram) then
-      call fail(status, path//": &motion waveform = '"//trim(base%motion%waveform)//"': mode = 'ida' "// &
-                'drives the table with each record of &sweep record_files; leave waveform unset')
-      return
-    end if
-    if (len_trim(base%motion%record_vertical_file) > 0) then
-      call fail(status, path//": &motion record_vertical_file = '"//trim(base%motion%record_vertical_file)// &
-                "': mode = 'ida' plays records without vertical files; give the vertical component as "// &
-                '&motion vertical_ratio (vertical / horizontal acceleration, scaled with the record)')
-      return
-    end if
-    if (base%motion%record_polarity /= 1) then
-      call fail(status, path//": &motion record_polarity = -1: mode = 'ida' chooses the records' polarity "// &
-                "with &sweep record_polarity ('forward', 'reversed' or 'both')")
-      return
-    end if
+    call check_base_motion(path, base, status)
+    if (.not. status%ok) return
     if (len_trim(group%record_set) > 0) then
       call read_set_records(path, trim(group%record_set), trim(group%record_components), plan%records, status)
     else
