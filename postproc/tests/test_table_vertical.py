@@ -197,3 +197,27 @@ def test_vertical_ratio_of_an_afd_and_of_a_reversed_record(voussoir_run_exe, tmp
     np.testing.assert_array_equal(reverse.table_x_m, -forward.table_x_m)
     np.testing.assert_array_equal(rise(reverse), rise(forward))
     np.testing.assert_allclose(rise(forward), -0.5 * forward.table_x_m, rtol=1e-12, atol=1e-15)
+
+
+def test_an_esm_file_in_cm_s2_drives_the_table_as_its_csv_in_m_s2(voussoir_run_exe, tmp_path):
+    # The same acceleration as an ESM/ITACA file in cm/s^2 (the header says so) and as a
+    # CSV in m/s2: the table plays the same record.
+    dt, n = 0.01, 101
+    t = np.arange(n) * dt
+    a = 0.15 * G * np.sin(2 * np.pi * 3.0 * t) * np.exp(-t)
+    (tmp_path / "horizontal.csv").write_text(
+        "t_s,accel_m_s2\n" + "".join(f"{ti!r},{ai!r}\n" for ti, ai in zip(t.tolist(), a.tolist())))
+    header = ["EVENT_NAME: TEST", "EVENT_ID: T-1", "NETWORK: IT", "STATION_CODE: AMT", "STREAM: HNE",
+              f"SAMPLING_INTERVAL_S: {dt}", f"NDATA: {n}", "DATA_TYPE: ACCELERATION", "UNITS: cm/s^2",
+              "USER1:", "USER2:", "USER3:", "USER4:", "USER5:"]
+    (tmp_path / "record.ASC").write_text("\n".join(header + [f"{100.0 * ai!r}" for ai in a.tolist()]) + "\n")
+    csv_run = read_run(block_run(voussoir_run_exe, tmp_path, "csv", "record_scale = 1.0"))
+    (tmp_path / "horizontal.csv").rename(tmp_path / "horizontal_m_s2.csv")
+    (tmp_path / "record.ASC").rename(tmp_path / "horizontal.ASC")
+    nml = (tmp_path / "csv.nml").read_text().replace("horizontal.csv", "horizontal.ASC").replace("csv.h5", "esm.h5")
+    (tmp_path / "esm.nml").write_text(nml)
+    run_executable([voussoir_run_exe, tmp_path / "esm.nml"], tmp_path)
+    esm_run = read_run(tmp_path / "esm.h5")
+    np.testing.assert_allclose(esm_run.table_a_m_s2, csv_run.table_a_m_s2, rtol=1e-12, atol=1e-12)
+    assert np.abs(esm_run.table_a_m_s2).max() > 0.5
+    assert "TEST" in esm_run.record.description and "AMT" in esm_run.record.description
