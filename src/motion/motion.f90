@@ -53,7 +53,6 @@ module voussoir_motion
     real(dp), allocatable :: y_m(:), vy_m_s(:), ay_m_s2(:) !! accelerogram: vertical samples and integrals
   end type motion_t
 
-
 contains
 
   !> The commanded `afd` motion, optionally played by an actuator that scales it by
@@ -235,7 +234,8 @@ contains
     real(dp), intent(in) :: accel_m_s2(:)
     m%vertical = vertical_samples
     m%ay_m_s2 = accel_m_s2
-    allocate (m%vy_m_s(size(accel_m_s2)), m%y_m(size(accel_m_s2)))
+    m%vy_m_s = accel_m_s2   ! (sized as the samples; the integrals overwrite them)
+    m%y_m = accel_m_s2
     call integrate_linear_accel(m%ay_m_s2, m%dt_record_s, m%vy_m_s, m%y_m)
   end subroutine motion_set_vertical_record
 
