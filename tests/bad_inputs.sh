@@ -131,6 +131,34 @@ case_ accel_scale_neg   "record_scale = -2.*record_scale > 0" "&motion waveform 
 $o"
 case_ accel_rest        "rest_s = -1.*rest_s >= 0" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', rest_s = -1 /
 $o"
+# The vertical component, the polarity and the unit of a record (issue 24).
+case_ vertical_ratio_big "&motion vertical_ratio = 3 is outside the allowed range -2 <= vertical_ratio <= 2" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', vertical_ratio = 3 /
+$o"
+case_ vertical_ratio_nan "&motion vertical_ratio = NaN is not a finite number" "&motion vertical_ratio = NaN /
+$o"
+case_ vertical_ratio_ramp "vertical_ratio = 0.5 .*waveform = 'ramp' has no vertical component" "&motion waveform = 'ramp', duration_s = 1, vertical_ratio = 0.5 /
+$o"
+case_ vertical_missing  "record_vertical_file = '.*nothere_v.csv': no such file" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', record_vertical_file = 'nothere_v.csv' /
+$o"
+case_ vertical_and_ratio "record_vertical_file and vertical_ratio both give the vertical component" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', record_vertical_file = 'good_record.csv', vertical_ratio = 0.5 /
+$o"
+case_ vertical_afd      "record_vertical_file is set but waveform = 'afd'" "&motion record_vertical_file = 'good_record.csv' /
+$o"
+printf 't_s,accel_m_s2\n0.0,0.1\n0.02,0.2\n' > other_step.csv
+case_ vertical_steps    "record_vertical_file: .*other_step.csv has 2 samples 0.02 s apart, the horizontal record_file 2 samples 0.01 s apart" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', record_vertical_file = 'other_step.csv' /
+$o"
+case_ polarity_two      "&motion record_polarity = 2 is outside the allowed range record_polarity = 1 or -1" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', record_polarity = 2 /
+$o"
+case_ polarity_afd      "record_polarity = -1 .*waveform = 'afd' has no record to reverse" "&motion record_polarity = -1 /
+$o"
+printf 'EVENT_NAME: TEST\nEVENT_ID: X\nSAMPLING_INTERVAL_S: 0.01\nNDATA: 2\nUSER5:\n0.1\n0.2\n' > unitless.asc
+case_ esm_unitless      "record_file: .*unitless.asc: the unit of the samples cannot be determined: .*no UNITS; state it in a header line such as 'UNITS: cm/s\^2'" "&motion waveform = 'accelerogram', record_file = 'unitless.asc' /
+$o"
+printf 'PEER NGA STRONG MOTION DATABASE RECORD\nTEST\nACCELERATION TIME SERIES\nNPTS=   2, DT=   .0100 SEC,\n 0.1 0.2\n' > unitless.AT2
+case_ at2_unitless      "record_file: .*unitless.AT2:3: the line 'ACCELERATION TIME SERIES' names no units, so the unit of the samples cannot be determined: a PEER .AT2 record states it there, as 'ACCELERATION TIME SERIES IN UNITS OF G'" "&motion waveform = 'accelerogram', record_file = 'unitless.AT2' /
+$o"
+case_ esm_unitless_vertical "record_vertical_file: .*unitless.asc: the unit of the samples cannot be determined" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', record_vertical_file = 'unitless.asc' /
+$o"
 case_ polygon_missing   "polygon_file = .*no such file" "&arch polygon_file = 'nothere.txt' /
 $o"
 case_ ramp_no_duration  "duration_s = 0.*duration_s > 0" "&motion waveform = 'ramp' /

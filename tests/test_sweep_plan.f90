@@ -27,18 +27,28 @@ program test_sweep_plan
   call test_ida_samples_file()
   call test_msa()
   call test_msa_refusals()
+  call test_ida_polarity()
   call assert_summary()
 
 contains
 
-  subroutine plan_of(name, sweep_group, plan, status)
+  !> The plan of `sweep_group` over the base groups (`motion_group` in place of their
+  !> &motion, if given).
+  subroutine plan_of(name, sweep_group, plan, status, motion_group)
     character(len=*), intent(in) :: name, sweep_group
     type(sweep_plan_t), intent(out) :: plan
     type(status_t), intent(out) :: status
+    character(len=*), intent(in), optional :: motion_group
     type(config_t) :: cfg
-    integer :: unit
+    character(len=:), allocatable :: groups
+    integer :: unit, k
+    groups = base_groups
+    if (present(motion_group)) then
+      k = index(groups, '&motion')
+      groups = groups(:k - 1)//motion_group//groups(k + index(groups(k:), '/') :)
+    end if
     open (newunit=unit, file=name//'.nml', status='replace', action='write')
-    write (unit, '(a)') base_groups//sweep_group
+    write (unit, '(a)') groups//sweep_group
     close (unit)
     call read_config(name//'.nml', [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'sweep'], &
                      cfg, status)
@@ -198,7 +208,46 @@ contains
                  "belong to mode = 'ida'")
     call refused('ida_samples_max', "&sweep mode = 'ida', record_files = 'rec_a.csv', n_samples = -1 /", &
                  'n_samples = -1 is outside the allowed range')
+    call refused('ida_polarity', "&sweep mode = 'ida', record_files = 'rec_a.csv', record_polarity = 'mirror' /", &
+                 "record_polarity = 'mirror' is not one of 'forward', 'reversed', 'both'")
+    call refused('ida_vertical_file', "&sweep mode = 'ida', record_files = 'rec_a.csv' /", &
+                 "mode = 'ida' plays records without vertical files; give the vertical component as "// &
+                 '&motion vertical_ratio', &
+                 motion_group="&motion waveform = 'accelerogram', record_file = 'rec_a.csv', "// &
+                 "record_vertical_file = 'rec_b.csv' /")
+    call refused('ida_base_polarity', "&sweep mode = 'ida', record_files = 'rec_a.csv' /", &
+                 "&motion record_polarity = -1: mode = 'ida' chooses the records' polarity with &sweep record_polarity", &
+                 motion_group="&motion waveform = 'accelerogram', record_file = 'rec_a.csv', record_polarity = -1 /")
   end subroutine test_ida_refusals
+
+  !> record_polarity = 'both': each record, then reversed, as jobs of their own; the
+  !> runs carry the polarity and the base case's vertical_ratio.
+  subroutine test_ida_polarity()
+    type(sweep_plan_t) :: plan
+    type(status_t) :: status
+    type(config_t) :: run
+    integer :: job
+    call write_records()
+    call plan_of('ida_both', "&sweep mode = 'ida', record_files = 'rec_a.csv', 'rec_b.csv', "// &
+                 "record_polarity = 'both' /", plan, status, &
+                 motion_group="&motion waveform = 'afd', rest_s = 0.5, vertical_ratio = 0.4 /")
+    call assert_true(status%ok, 'ida both polarities: plan reads: '//trim(status%message))
+    if (.not. status%ok) return
+    call assert_true(plan%records%n == 4 .and. plan%n_jobs == 4 .and. all(plan%records%polarity == [1, -1, 1, -1]), &
+                     'ida both polarities: 2 records x 2 polarities = 4 jobs, each record then its reversal')
+    call assert_close(plan%records%pga_m_s2(4), plan%records%pga_m_s2(3), 'ida both: the reversal has its PGA')
+    do job = 0, 3
+      run = job_run_config(plan, job, 1.5_dp)
+      call assert_true(index(run%motion%record_file, merge('rec_a.csv', 'rec_b.csv', job < 2)) > 0 .and. &
+                       run%motion%record_polarity == merge(1, -1, modulo(job, 2) == 0) .and. &
+                       run%motion%vertical_ratio == 0.4_dp .and. run%motion%record_scale == 1.5_dp, &
+                       'ida both polarities: job -> record, polarity, the base vertical_ratio, the scale')
+    end do
+    call plan_of('ida_reversed', "&sweep mode = 'ida', record_files = 'rec_a.csv', 'rec_b.csv', "// &
+                 "record_polarity = 'reversed' /", plan, status)
+    call assert_true(status%ok .and. plan%n_jobs == 2 .and. all(plan%records%polarity == -1), &
+                     'ida reversed: the records reversed in their place')
+  end subroutine test_ida_polarity
 
   !> Model samples from a CSV written here (columns in another order than the plan's,
   !> a text column, comments): the plan's sets are its rows, each on its case.
@@ -317,11 +366,12 @@ contains
     close (unit)
   end subroutine write_records
 
-  subroutine refused(name, sweep_group, expected)
+  subroutine refused(name, sweep_group, expected, motion_group)
     character(len=*), intent(in) :: name, sweep_group, expected
+    character(len=*), intent(in), optional :: motion_group
     type(sweep_plan_t) :: plan
     type(status_t) :: status
-    call plan_of(name, sweep_group, plan, status)
+    call plan_of(name, sweep_group, plan, status, motion_group)
     call assert_true(.not. status%ok .and. index(status%message, expected) > 0 .and. &
                      index(status%message, name//'.nml') > 0, &
                      'refused '//name//': got "'//trim(status%message)//'"')

@@ -74,7 +74,13 @@ module voussoir_config
     real(dp) :: duration_s = 0.0_dp           !! total simulated time; 0: motion + rest
     real(dp) :: table_gain = 1.0_dp           !! actuator model: table / commanded amplitude
     real(dp) :: table_delay_s = 0.0_dp        !! actuator model: lag of the table [s]
-    real(dp) :: record_scale = 1.0_dp         !! accelerogram: factor on the acceleration
+    real(dp) :: record_scale = 1.0_dp         !! accelerogram: factor on the acceleration (both components)
+    !> accelerogram: the vertical component's record (upwards, same time steps), any format of record_file
+    character(len=path_len) :: record_vertical_file = ''
+    !> afd, accelerogram: vertical table acceleration / horizontal one (in phase); 0: none
+    real(dp) :: vertical_ratio = 0.0_dp
+    !> accelerogram: -1 plays the horizontal record with its sign reversed (the motion mirrored)
+    integer :: record_polarity = 1
   end type motion_config_t
 
   !> &solver: time stepping and contact solve.
@@ -148,6 +154,8 @@ contains
       cfg%arch%polygon_file = resolve_path(path, cfg%arch%polygon_file)
     if (len_trim(cfg%motion%record_file) > 0) &
       cfg%motion%record_file = resolve_path(path, cfg%motion%record_file)
+    if (len_trim(cfg%motion%record_vertical_file) > 0) &
+      cfg%motion%record_vertical_file = resolve_path(path, cfg%motion%record_vertical_file)
     call validate_config(cfg, status)
   end subroutine read_config
 
@@ -175,6 +183,10 @@ contains
       call g%add('table_gain', m%table_gain, range='table_gain > 0', when=waveform_afd)
       call g%add('table_delay_s', m%table_delay_s, unit='s', range='table_delay_s >= 0', when=waveform_afd)
       call g%add('record_scale', m%record_scale, range='record_scale > 0 (finite)', when=waveform_accelerogram)
+      call g%add('record_vertical_file', m%record_vertical_file)
+      call g%add('vertical_ratio', m%vertical_ratio, range='-2 <= vertical_ratio <= 2')
+      call g%add('record_polarity', m%record_polarity, range='-1 <= record_polarity <= 1 (1 or -1)', &
+                 when=checked_apart)
     end associate
     associate (s => cfg%solver, g => groups(3))
       g%name = 'solver'

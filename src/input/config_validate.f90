@@ -156,7 +156,40 @@ contains
       call need_file(m%record_file, f, status)
     end select
     call g%check(f, status, when=m%waveform)
+    call validate_vertical_and_polarity(m, f, status)
   end subroutine validate_motion
+
+  !> The vertical component (a ratio for afd and accelerograms, or an own record for an
+  !> accelerogram, not both) and the polarity (1 or -1, accelerograms only).
+  subroutine validate_vertical_and_polarity(m, f, status)
+    type(motion_config_t), intent(in) :: m
+    character(len=*), intent(in) :: f
+    type(status_t), intent(inout) :: status
+    logical :: exists
+    if (.not. status%ok) return
+    call need(m%record_polarity == 1 .or. m%record_polarity == -1, f, 'motion', 'record_polarity', &
+              m%record_polarity, 'record_polarity = 1 or -1 (-1: the horizontal record played with its sign reversed)', &
+              status)
+    if (m%record_polarity == -1 .and. m%waveform /= waveform_accelerogram) &
+      call need(.false., f, 'motion', 'record_polarity', m%record_polarity, &
+                "1: waveform = '"//trim(m%waveform)//"' has no record to reverse (only 'accelerogram')", status)
+    if (m%vertical_ratio /= 0.0_dp .and. m%waveform /= waveform_afd .and. m%waveform /= waveform_accelerogram) &
+      call need(.false., f, 'motion', 'vertical_ratio', m%vertical_ratio, &
+                "0: waveform = '"//trim(m%waveform)//"' has no vertical component (only 'afd' and 'accelerogram')", &
+                status)
+    if (.not. status%ok .or. len_trim(m%record_vertical_file) == 0) return
+    if (m%waveform /= waveform_accelerogram) then
+      call fail(status, f//": &motion record_vertical_file is set but waveform = '"//trim(m%waveform)// &
+                "': only an 'accelerogram' has a vertical record")
+    else if (m%vertical_ratio /= 0.0_dp) then
+      call fail(status, f//': &motion record_vertical_file and vertical_ratio both give the vertical component: '// &
+                'set one of them')
+    else
+      inquire (file=m%record_vertical_file, exist=exists)
+      if (.not. exists) call fail(status, f//": &motion record_vertical_file = '"// &
+                                  trim(m%record_vertical_file)//"': no such file")
+    end if
+  end subroutine validate_vertical_and_polarity
 
   !> The record named by &motion record_file exists.
   subroutine need_file(record_file, f, status)

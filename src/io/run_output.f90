@@ -129,6 +129,11 @@ contains
     call h5_write(g, 'x_m', res%table(1, :), status)
     call h5_write(g, 'v_m_s', res%table(2, :), status)
     call h5_write(g, 'a_m_s2', res%table(3, :), status)
+    if (allocated(res%table_vertical)) then
+      call h5_write(g, 'y_m', res%table_vertical(1, :), status)
+      call h5_write(g, 'vy_m_s', res%table_vertical(2, :), status)
+      call h5_write(g, 'ay_m_s2', res%table_vertical(3, :), status)
+    end if
     call h5_group_close(g, status)
     call h5_group(file_id, 'crown', g, status)
     call h5_write(g, 'dx_m', res%crown(1, :), status)

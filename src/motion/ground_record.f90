@@ -2,12 +2,14 @@
 !>
 !> Two formats, chosen by the file name's extension:
 !> - `.AT2` (any case): a PEER NGA strong-motion file in units of g. Four header lines:
-!>   title, event and station, units ("... IN UNITS OF G"), and NPTS and DT in either
+!>   title, event and station, units ("... IN UNITS OF G", required), and NPTS and DT in either
 !>   of the two variants PEER has written, "NPTS=   5372, DT=   .0100 SEC" (NGA-West2)
 !>   or "  4000    0.01000   NPTS, DT" (the older database); then NPTS numbers, any
 !>   number of them per line.
 !> - `.csv`: columns `t_s` and `accel_m_s2` (shared/MEASURED_DATA.md's CSV rules),
 !>   uniformly sampled, time increasing.
+!> - `.asc` (any case): an ESM or ITACA ASCII file, in the unit its header's UNITS names
+!>   (cm/s^2 as those databases write it; src/motion/esm_record.f90).
 !> A record that breaks a rule is refused with the file and the line.
 !>
 !> The acceleration between samples is the linear interpolation of the samples; the
@@ -18,6 +20,7 @@ module voussoir_ground_record
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: lower, upper, itoa, fmt_real
   use voussoir_numeric_csv, only: read_csv_columns, parse_number, number_ok, number_not_finite
+  use voussoir_esm_record, only: read_esm
   implicit none
   private
 
@@ -32,7 +35,7 @@ module voussoir_ground_record
   type :: ground_record_t
     character(len=text_len) :: path = ''
     character(len=text_len) :: name = ''         !! the file name without folder and extension
-    character(len=text_len) :: description = '' !! an AT2 file's event and station line
+    character(len=text_len) :: description = '' !! an AT2 file's event and station line; an ESM file's event, station, stream
     real(dp) :: dt_s = 0.0_dp
     real(dp), allocatable :: accel_m_s2(:)
   end type ground_record_t
@@ -66,9 +69,12 @@ contains
       call read_at2(path, rec, status)
     case ('csv')
       call read_accel_csv(path, rec, status)
+    case ('asc')
+      call read_esm(path, rec%dt_s, rec%accel_m_s2, rec%description, status)
     case default
       call fail(status, trim(path)//": unknown record format '."//ext// &
-                "' (expected a PEER NGA .AT2 file in g, or a .csv with columns t_s, accel_m_s2)")
+                "' (expected a PEER NGA .AT2 file in g, a .csv with columns t_s, accel_m_s2, or an ESM/ITACA "// &
+                ".ASC file with its UNITS in the header)")
     end select
   end subroutine read_ground_record
 
@@ -170,7 +176,8 @@ contains
                 ' samples, but NPTS = '//itoa(npts)//' in the header (line 4)')
   end subroutine read_at2_samples
 
-  !> Line 3 of the AT2 file `path` names the units; anything named but g is refused.
+  !> Line 3 of the AT2 file `path` names the units; a line that names none, or anything
+  !> but g, is refused (the unit cannot be taken for granted).
   subroutine check_at2_units(path, text, status)
     character(len=*), intent(in) :: path, text
     type(status_t), intent(inout) :: status
@@ -178,7 +185,11 @@ contains
     integer :: k
     up = upper(text)
     k = index(up, 'UNITS OF')
-    if (k == 0) return
+    if (k == 0) then
+      call fail(status, trim(path)//":3: the line '"//trim(text)//"' names no units, so the unit of the samples "// &
+                "cannot be determined: a PEER .AT2 record states it there, as 'ACCELERATION TIME SERIES IN UNITS OF G'")
+      return
+    end if
     up = adjustl(up(k + 8:))
     if (up(1:1) == 'G' .and. (up(2:2) == ' ' .or. up(2:2) == ',' .or. up(2:2) == '.')) return
     call fail(status, trim(path)//":3: units '"//trim(up)//"': a PEER .AT2 record must be in units of g")

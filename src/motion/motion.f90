@@ -10,6 +10,11 @@
 !> between samples, after a time at rest; velocity and displacement are its exact
 !> integrals (piecewise quadratic and cubic), and after the last sample the table keeps
 !> its final velocity (the exact integral of a zero acceleration).
+!>
+!> The vertical component (`motion_eval_vertical`, upwards positive): none by default;
+!> for afd and accelerograms a ratio times the horizontal (`motion_set_vertical_ratio`),
+!> or for accelerograms an own record on the horizontal's time steps
+!> (`motion_set_vertical_record`), integrated exactly as the horizontal is.
 module voussoir_motion
   use voussoir_kinds, only: dp, pi
   use voussoir_status, only: status_t, fail
@@ -19,10 +24,12 @@ module voussoir_motion
   private
 
   public :: motion_t, motion_afd, motion_ramp, motion_record, motion_accelerogram, motion_eval
-  public :: motion_duration_s
+  public :: motion_duration_s, motion_eval_vertical, motion_set_vertical_ratio, motion_set_vertical_record
   public :: waveform_afd, waveform_ramp, waveform_record, waveform_accelerogram
 
   integer, parameter :: waveform_afd = 1, waveform_ramp = 2, waveform_record = 3, waveform_accelerogram = 4
+  !> The kinds of vertical component.
+  integer, parameter, public :: vertical_none = 0, vertical_ratio_of_afd = 1, vertical_samples = 2
 
   !> A table motion, ready to evaluate at any time.
   type :: motion_t
@@ -40,6 +47,10 @@ module voussoir_motion
     type(record_intensity_t) :: intensity        !! accelerogram: of the acceleration as played
     character(len=512) :: record_name = ''        !! accelerogram: its file name without extension
     character(len=512) :: record_description = '' !! accelerogram: event and station, if the file says
+    ! The vertical component: none, a ratio times the horizontal (afd), or samples (accelerogram).
+    integer :: vertical = vertical_none
+    real(dp) :: vertical_ratio = 0.0_dp          !! afd: vertical / horizontal motion
+    real(dp), allocatable :: y_m(:), vy_m_s(:), ay_m_s2(:) !! accelerogram: vertical samples and integrals
   end type motion_t
 
 contains
@@ -104,8 +115,8 @@ contains
     type(motion_t), intent(in) :: m
     real(dp), intent(in) :: t_s
     real(dp), intent(out) :: x, v, a
-    real(dp) :: e, de, d2e, w, s, c, tau, f, t, slope
-    integer :: i, n
+    real(dp) :: e, de, d2e, w, s, c, tau, f, t
+    integer :: i
 
     x = 0.0_dp
     v = 0.0_dp
@@ -156,24 +167,77 @@ contains
       v = (1.0_dp - f)*m%v_m_s(i) + f*m%v_m_s(i + 1)
       a = (1.0_dp - f)*m%a_m_s2(i) + f*m%a_m_s2(i + 1)
     case (waveform_accelerogram)
-      t = t_s - m%start_s
-      if (t < 0.0_dp) return
-      n = size(m%a_m_s2)
-      i = min(int(t/m%dt_record_s) + 1, n)
-      tau = t - (i - 1)*m%dt_record_s
-      if (i == n) then
-        ! After the last sample (or on it): no acceleration, constant velocity.
-        x = m%x_m(n) + m%v_m_s(n)*tau
-        v = m%v_m_s(n)
-        if (tau == 0.0_dp) a = m%a_m_s2(n)
-        return
-      end if
-      slope = (m%a_m_s2(i + 1) - m%a_m_s2(i))/m%dt_record_s
-      a = m%a_m_s2(i) + slope*tau
-      v = m%v_m_s(i) + m%a_m_s2(i)*tau + slope*tau*tau/2.0_dp
-      x = m%x_m(i) + m%v_m_s(i)*tau + m%a_m_s2(i)*tau*tau/2.0_dp + slope*tau**3/6.0_dp
+      call accelerogram_eval(m%a_m_s2, m%v_m_s, m%x_m, m%dt_record_s, t_s - m%start_s, x, v, a)
     end select
   end subroutine motion_eval
+
+  !> Vertical table displacement [m], velocity [m/s] and acceleration [m/s2], upwards,
+  !> at time `t_s` (zero without a vertical component).
+  pure subroutine motion_eval_vertical(m, t_s, y, vy, ay)
+    type(motion_t), intent(in) :: m
+    real(dp), intent(in) :: t_s
+    real(dp), intent(out) :: y, vy, ay
+    select case (m%vertical)
+    case (vertical_ratio_of_afd)
+      call motion_eval(m, t_s, y, vy, ay)
+      y = m%vertical_ratio*y
+      vy = m%vertical_ratio*vy
+      ay = m%vertical_ratio*ay
+    case (vertical_samples)
+      call accelerogram_eval(m%ay_m_s2, m%vy_m_s, m%y_m, m%dt_record_s, t_s - m%start_s, y, vy, ay)
+    case default
+      y = 0.0_dp
+      vy = 0.0_dp
+      ay = 0.0_dp
+    end select
+  end subroutine motion_eval_vertical
+
+  !> The accelerogram of samples `a` (linear between them, `dt_s` apart) and their exact
+  !> integrals `v`, `x` at time `t` after its first sample (at rest before it).
+  pure subroutine accelerogram_eval(a_s, v_s, x_s, dt_s, t, x, v, a)
+    real(dp), intent(in) :: a_s(:), v_s(:), x_s(:), dt_s, t
+    real(dp), intent(out) :: x, v, a
+    real(dp) :: tau, slope
+    integer :: i, n
+    x = 0.0_dp
+    v = 0.0_dp
+    a = 0.0_dp
+    if (t < 0.0_dp) return
+    n = size(a_s)
+    i = min(int(t/dt_s) + 1, n)
+    tau = t - (i - 1)*dt_s
+    if (i == n) then
+      ! After the last sample (or on it): no acceleration, constant velocity.
+      x = x_s(n) + v_s(n)*tau
+      v = v_s(n)
+      if (tau == 0.0_dp) a = a_s(n)
+      return
+    end if
+    slope = (a_s(i + 1) - a_s(i))/dt_s
+    a = a_s(i) + slope*tau
+    v = v_s(i) + a_s(i)*tau + slope*tau*tau/2.0_dp
+    x = x_s(i) + v_s(i)*tau + a_s(i)*tau*tau/2.0_dp + slope*tau**3/6.0_dp
+  end subroutine accelerogram_eval
+
+  !> An afd motion's vertical component: `ratio` times its horizontal one.
+  pure subroutine motion_set_vertical_ratio(m, ratio)
+    type(motion_t), intent(inout) :: m
+    real(dp), intent(in) :: ratio
+    m%vertical = vertical_ratio_of_afd
+    m%vertical_ratio = ratio
+  end subroutine motion_set_vertical_ratio
+
+  !> An accelerogram's vertical component: the samples `accel_m_s2` (upwards, already
+  !> scaled) on the horizontal's time steps, as many as the horizontal has.
+  pure subroutine motion_set_vertical_record(m, accel_m_s2)
+    type(motion_t), intent(inout) :: m
+    real(dp), intent(in) :: accel_m_s2(:)
+    m%vertical = vertical_samples
+    m%ay_m_s2 = accel_m_s2
+    m%vy_m_s = accel_m_s2   ! (sized as the samples; the integrals overwrite them)
+    m%y_m = accel_m_s2
+    call integrate_linear_accel(m%ay_m_s2, m%dt_record_s, m%vy_m_s, m%y_m)
+  end subroutine motion_set_vertical_record
 
   !> Read a measured table record (CSV with a header naming `t_s` and `table_x_m`; `#`
   !> comment lines), low-pass filter it at `cutoff_hz` and differentiate it.

@@ -3,7 +3,8 @@
 !> Step from t to t + h with the theta-method: free velocities under gravity, the
 !> inertial load and the constant external loads (&load), predicted configuration
 !> q + (1 - theta) h v, contact detection there, NLGS for the end-of-step velocities, then q_end = q_pred + theta h v_end. Driven
-!> bodies (foundations, brackets) move with the table velocity.
+!> bodies (foundations, brackets) move with the table velocity, horizontal and (where the
+!> motion has one) vertical.
 module voussoir_model
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
@@ -12,7 +13,7 @@ module voussoir_model
   use voussoir_contact_law, only: contact_law_t
   use voussoir_nlgs, only: nlgs_work_t, nlgs_prepare, nlgs_solve, warm_start
   use voussoir_contact_rows, only: apply_impulse_change
-  use voussoir_motion, only: motion_t, motion_eval, waveform_ramp
+  use voussoir_motion, only: motion_t, motion_eval, motion_eval_vertical, waveform_ramp, vertical_none
   use voussoir_coarse, only: coarse_t
   implicit none
   private
@@ -47,6 +48,7 @@ module voussoir_model
     logical :: converged = .true.
     integer :: nonconverged_steps = 0
     real(dp) :: table(3) = 0.0_dp       !! table x [m], v [m/s], a [m/s2] at t_s
+    real(dp) :: table_vertical(3) = 0.0_dp !! table y [m], v [m/s], a [m/s2] at t_s, upwards
     real(dp), allocatable :: q_pred(:, :), v_free(:, :)
   end type model_t
 
@@ -56,7 +58,7 @@ contains
   subroutine model_step(model, status)
     type(model_t), intent(inout) :: model
     type(status_t), intent(inout) :: status
-    real(dp) :: h, theta, x0, v0, a0, x1, v1, a1, load_x, speed
+    real(dp) :: h, theta, x0, v0, a0, x1, v1, a1, load_x, speed, y0, vy0, ay0, y1, vy1, ay1
     integer :: i, nb
     character(len=160) :: where
 
@@ -67,6 +69,8 @@ contains
 
     call motion_eval(model%motion, model%t_s, x0, v0, a0)
     call motion_eval(model%motion, model%t_s + h, x1, v1, a1)
+    call motion_eval_vertical(model%motion, model%t_s, y0, vy0, ay0)
+    call motion_eval_vertical(model%motion, model%t_s + h, y1, vy1, ay1)
     ! Inertial load of the ramp, at the theta point of the step.
     load_x = 0.0_dp
     if (model%motion%waveform == waveform_ramp) load_x = (1.0_dp - theta)*a0 + theta*a1
@@ -74,8 +78,8 @@ contains
     associate (b => model%bodies)
       do i = 1, nb
         if (b%driven(i)) then
-          b%v(:, i) = [v0, 0.0_dp, 0.0_dp]
-          model%v_free(:, i) = [v1, 0.0_dp, 0.0_dp]
+          b%v(:, i) = [v0, vy0, 0.0_dp]
+          model%v_free(:, i) = [v1, vy1, 0.0_dp]
         else
           ! Gravity, the inertial load and the constant loads of &load (at the step's start).
           model%v_free(:, i) = b%v(:, i) + h*([load_x, -g_m_s2, 0.0_dp] + &
@@ -119,6 +123,10 @@ contains
     ! The table's displacement is known exactly: keep the driven bodies on it rather than
     ! on the theta-rule integral of its velocity (which differs by O(h^3) per step).
     where (model%bodies%driven) model%bodies%q(1, :) = model%bodies%q_ref(1, :) + x1
+    if (model%motion%vertical /= vertical_none) then
+      where (model%bodies%driven) model%bodies%q(2, :) = model%bodies%q_ref(2, :) + y1
+      model%table_vertical = [y1, vy1, ay1]
+    end if
     model%t_s = model%t_s + h
     model%table = [x1, v1, a1]
     if (model%motion%waveform == waveform_ramp) model%table = [0.0_dp, 0.0_dp, a1]

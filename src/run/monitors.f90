@@ -135,7 +135,7 @@ contains
     real(dp), intent(in) :: t_s
     real(dp) :: cs(2, bodies%n)  ! cos and sin of every body's rotation
     integer :: i, j, side
-    real(dp) :: gaps(2)
+    real(dp) :: gaps(2), table_dy
 
     if (mon%n_joints > 0) then
       ! Rotation of every body, once per step (the joints share them).
@@ -144,9 +144,12 @@ contains
     end if
     mon%peak_crown_disp_m = max(mon%peak_crown_disp_m, norm2(crown_displacement(mon, bodies)))
     if (.not. mon%collapsed) then
+      ! A drop is measured from the table, which may move vertically.
+      table_dy = 0.0_dp
+      if (mon%table_body > 0) table_dy = bodies%q(2, mon%table_body) - bodies%q_ref(2, mon%table_body)
       do i = 1, bodies%n
         if (bodies%role(i) /= role_voussoir) cycle
-        if (bodies%q_ref(2, i) - bodies%q(2, i) > mon%collapse_drop_m .or. &
+        if (bodies%q_ref(2, i) - (bodies%q(2, i) - table_dy) > mon%collapse_drop_m .or. &
             abs(bodies%q(3, i)) > mon%collapse_rotation_rad) then
           mon%collapsed = .true.
           mon%collapse_time_s = t_s
@@ -188,7 +191,7 @@ contains
     end do
   end function joint_of_pair
 
-  !> Mean displacement of the crown bodies from their reference [m], x relative to the table.
+  !> Mean displacement of the crown bodies from their reference [m], relative to the table.
   pure function crown_displacement(mon, bodies) result(d)
     type(monitor_t), intent(in) :: mon
     type(bodies_t), intent(in) :: bodies
@@ -199,8 +202,7 @@ contains
       d = d + bodies%q(1:2, mon%crown_bodies(k)) - bodies%q_ref(1:2, mon%crown_bodies(k))
     end do
     d = d/size(mon%crown_bodies)
-    if (mon%table_body > 0) d(1) = d(1) - (bodies%q(1, mon%table_body) &
-                                           - bodies%q_ref(1, mon%table_body))
+    if (mon%table_body > 0) d = d - (bodies%q(1:2, mon%table_body) - bodies%q_ref(1:2, mon%table_body))
   end function crown_displacement
 
   !> The largest displacement of a free body relative to the table [m] and which body

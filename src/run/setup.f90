@@ -12,7 +12,8 @@ module voussoir_setup
   use voussoir_model, only: model_t, solver_settings_t
   use voussoir_coarse, only: coarse_init
   use voussoir_contact_law, only: contact_law_t, contact_law_init
-  use voussoir_motion, only: motion_t, motion_afd, motion_ramp, motion_record, motion_accelerogram, motion_duration_s
+  use voussoir_motion, only: motion_t, motion_afd, motion_ramp, motion_record, motion_accelerogram, motion_duration_s, &
+                             motion_set_vertical_ratio, motion_set_vertical_record
   use voussoir_ground_record, only: ground_record_t, read_ground_record
   use voussoir_monitors, only: monitor_t, monitor_init
   use voussoir_simulation, only: run_result_t, simulate
@@ -20,6 +21,9 @@ module voussoir_setup
   private
 
   public :: build_model, run_config, init_model, automatic_alert_m
+
+  !> Relative difference of the vertical record's time step from the horizontal's allowed.
+  real(dp), parameter :: vertical_dt_tol = 1.0e-6_dp
 
 contains
 
@@ -70,6 +74,7 @@ contains
       case (waveform_afd)
         model%motion = motion_afd(m%frequency_hz, m%amplitude_m, m%n_attack, m%n_full, m%n_decay, &
                                   m%table_gain, m%table_delay_s)
+        if (m%vertical_ratio /= 0.0_dp) call motion_set_vertical_ratio(model%motion, m%vertical_ratio)
       case (waveform_ramp)
         model%motion = motion_ramp(m%ramp_rate_m_s3)
       case (waveform_record)
@@ -81,9 +86,8 @@ contains
           status%message = trim(cfg%source_file)//': &motion record_file: '//trim(status%message)
           return
         end if
-        model%motion = motion_accelerogram(m%record_scale*rec%accel_m_s2, rec%dt_s, m%rest_s)
-        model%motion%record_name = rec%name
-        model%motion%record_description = rec%description
+        call accelerogram_motion(cfg, rec, model%motion, status)
+        if (.not. status%ok) return
       case default
         call fail(status, 'unknown waveform '//trim(m%waveform))
         return
@@ -117,6 +121,47 @@ contains
     if (collapse_drop_m == 0.0_dp) collapse_drop_m = 0.5_dp*size_m
     call monitor_init(assembly, model%bodies, collapse_drop_m, cfg%output%collapse_rotation_rad, hinge_gap_m, mon)
   end subroutine build_model
+
+  !> The accelerogram of &motion from its record `rec`: scaled, its horizontal played with
+  !> `record_polarity`, and its vertical component (a record on the same time steps, or
+  !> `vertical_ratio` times the horizontal record as recorded, so that a reversed record
+  !> is the motion mirrored left-right).
+  subroutine accelerogram_motion(cfg, rec, motion, status)
+    type(config_t), intent(in) :: cfg
+    type(ground_record_t), intent(in) :: rec
+    type(motion_t), intent(out) :: motion
+    type(status_t), intent(inout) :: status
+    type(ground_record_t) :: vertical
+    character(len=:), allocatable :: what
+    associate (m => cfg%motion)
+      if (m%record_polarity == -1) then
+        motion = motion_accelerogram(-(m%record_scale*rec%accel_m_s2), rec%dt_s, m%rest_s)
+      else
+        motion = motion_accelerogram(m%record_scale*rec%accel_m_s2, rec%dt_s, m%rest_s)
+      end if
+      motion%record_name = rec%name
+      motion%record_description = rec%description
+      if (m%vertical_ratio /= 0.0_dp) then
+        call motion_set_vertical_record(motion, m%vertical_ratio*(m%record_scale*rec%accel_m_s2))
+      else if (len_trim(m%record_vertical_file) > 0) then
+        what = trim(cfg%source_file)//': &motion record_vertical_file: '
+        call read_ground_record(trim(m%record_vertical_file), vertical, status)
+        if (.not. status%ok) then
+          status%message = what//trim(status%message)
+          return
+        end if
+        if (abs(vertical%dt_s - rec%dt_s) > vertical_dt_tol*rec%dt_s .or. &
+            size(vertical%accel_m_s2) /= size(rec%accel_m_s2)) then
+          call fail(status, what//trim(m%record_vertical_file)//' has '//itoa(size(vertical%accel_m_s2))// &
+                    ' samples '//fmt_significant(vertical%dt_s, 6)//' s apart, the horizontal record_file '// &
+                    itoa(size(rec%accel_m_s2))//' samples '//fmt_significant(rec%dt_s, 6)//' s apart: '// &
+                    'the two components of one recording have the same time steps')
+          return
+        end if
+        call motion_set_vertical_record(motion, m%record_scale*vertical%accel_m_s2)
+      end if
+    end associate
+  end subroutine accelerogram_motion
 
   !> Refuse a run whose step count or stored record is out of reach, before it starts:
   !> at most `max_steps` steps, and at most `max_record_bytes` of samples in memory; and
@@ -172,6 +217,12 @@ contains
                   ' m from the first sample) is outside the allowed range |table_x_m| <= 1000 m')
         return
       end if
+    end if
+    if (allocated(motion%ay_m_s2)) then
+      if (.not. all(abs(motion%ay_m_s2) <= max_accel_g*g_m_s2)) &
+        call fail(status, trim(cfg%source_file)//': &motion vertical table acceleration (peak '// &
+                  fmt_significant(maxval(abs(motion%ay_m_s2)), 4)//' m/s2) is outside the allowed range '// &
+                  '|acceleration| <= 1000 g (check the units of record_vertical_file)')
     end if
     if (.not. all(abs(motion%a_m_s2) <= max_accel_g*g_m_s2)) &
       call fail(status, what//'its table acceleration (peak '//fmt_significant(maxval(abs(motion%a_m_s2)), 4)// &

@@ -7,6 +7,8 @@ module voussoir_simulation
   use voussoir_motion, only: waveform_ramp
   use voussoir_rest_window, only: rest_window_t, rest_window, relative_speed, smallest_free_size, &
                                   still_speed_m_s, still_s, drift_fraction
+  use voussoir_model, only: model_t, model_step
+  use voussoir_motion, only: vertical_none
   use voussoir_monitors, only: monitor_t, monitor_clear, monitor_update, crown_displacement, residual_displacement, &
                                joint_of_pair
   use voussoir_contacts, only: contact_set_t
@@ -20,6 +22,7 @@ module voussoir_simulation
   type :: run_result_t
     integer :: n_samples = 0
     real(dp), allocatable :: time_s(:), table(:, :), crown(:, :), q(:, :, :)
+    real(dp), allocatable :: table_vertical(:, :)   !! (3, :) y, v, a upwards; only with a vertical motion
     integer, allocatable :: contact_count(:)
     logical :: contacts_recorded = .false.   !! whether the contact record below was kept
     !> The contacts that carry load (normal impulse > 0) at each sample, one flat list:
@@ -67,7 +70,8 @@ contains
   !> first); stop `stop_after_collapse_s` after a collapse (never when negative). With
   !> `record_contacts` the loaded contacts of every sample are kept (a result file's
   !> /contacts); a sweep, which keeps only the outcome, goes without. With a static
-  !> capacity in the model's settings (rest_capacity_m_s2 > 0; not for a ramp), the steps
+  !> capacity in the model's settings (rest_capacity_m_s2 > 0; not for a ramp nor with a
+  !> vertical table motion), the steps
   !> in which the assembly rides at rest on the table are not solved, and the run ends
   !> once it has settled after its motion's last strong part (voussoir_rest_window).
   subroutine simulate(model, mon, duration_s, every, stop_after_collapse_s, res, status, record_contacts)
@@ -95,7 +99,8 @@ contains
     call monitor_clear(mon)
     call add_sample(res, model, mon)
     sum_iter = 0.0_dp
-    if (model%motion%waveform /= waveform_ramp) &
+    ! Not with a vertical table motion: the capacity is that of gravity alone.
+    if (model%motion%waveform /= waveform_ramp .and. model%motion%vertical == vertical_none) &
       window = rest_window(model%motion, model%solver%dt_s, n_steps, model%solver%rest_capacity_m_s2)
     still_for_s = 0.0_dp
     do istep = 1, n_steps
@@ -166,6 +171,10 @@ contains
     s = res%n_samples
     res%time_s(s) = model%t_s
     res%table(:, s) = model%table
+    if (model%motion%vertical /= vertical_none) then
+      if (.not. allocated(res%table_vertical)) allocate (res%table_vertical(3, size(res%time_s)))
+      res%table_vertical(:, s) = model%table_vertical
+    end if
     res%crown(:, s) = crown_displacement(mon, model%bodies)
     res%q(:, :, s) = model%bodies%q
     if (res%contacts_recorded) then
@@ -242,6 +251,7 @@ contains
     type(monitor_t), intent(in) :: mon
     res%time_s = res%time_s(1:res%n_samples)
     res%table = res%table(:, 1:res%n_samples)
+    if (allocated(res%table_vertical)) res%table_vertical = res%table_vertical(:, 1:res%n_samples)
     res%crown = res%crown(:, 1:res%n_samples)
     res%q = res%q(:, :, 1:res%n_samples)
     res%contact_count = res%contact_count(1:res%n_samples)

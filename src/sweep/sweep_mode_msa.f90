@@ -19,6 +19,7 @@ module voussoir_sweep_mode_msa
   use voussoir_sweep_table, only: sweep_table_t, named_values_t, named_text_t, name_len, table_init, table_set, &
                                   table_value
   use voussoir_sweep_mode, only: sweep_plan_t, job_param_set
+  use voussoir_sweep_ida, only: record_label
   use voussoir_sweep_mode_records, only: record_mode_t, job_record, check_records_and_samples, records_settings_text, &
                                          records_file_items
   use voussoir_sweep_mode_ida, only: scale_warn_low, scale_warn_high
@@ -208,7 +209,7 @@ contains
     character(len=:), allocatable :: line
     integer :: rec
     rec = nint(table_value(results, 'record', r)) + 1
-    line = trim(plan%records%given(rec))//','//set_columns//','// &
+    line = record_label(plan%records, rec)//','//set_columns//','// &
            fmt_exact(table_value(results, 'level_g', r))//','//fmt_exact(table_value(results, 'scale', r))//','// &
            itoa(nint(table_value(results, 'collapsed', r)))//','//itoa(nint(table_value(results, 'failed', r)))// &
            ','//trim(plan%records%events(rec))//','//fmt_exact(plan%records%magnitude(rec))//','// &

@@ -9,10 +9,12 @@ module voussoir_sweep_mode_records
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa, fmt_exact_list, join_words
-  use voussoir_config, only: config_t, waveform_afd, waveform_accelerogram
+  use voussoir_config, only: config_t, waveform_accelerogram
   use voussoir_input_range, only: need_range
   use voussoir_threshold, only: search_run_config, static_capacity_m_s2
-  use voussoir_sweep_ida, only: n_sampled, range_names, read_ida_records, read_set_records, sample_sets
+  use voussoir_sweep_ida, only: n_sampled, range_names, read_ida_records, read_set_records, sample_sets, &
+                                set_record_polarity, record_label, polarity_forward, polarity_both, &
+                                check_base_motion
   use voussoir_record_set, only: components_both
   use voussoir_model_samples, only: read_model_samples, samples_digest
   use voussoir_sweep_group, only: sweep_group_t, lengths_text, unset_real
@@ -31,6 +33,7 @@ module voussoir_sweep_mode_records
     character(len=512) :: samples_file = ''       !! model samples from this CSV, as given
     character(len=32) :: record_set = ''          !! the packaged set played ('' : record_files)
     character(len=16) :: record_components = components_both
+    character(len=16) :: record_polarity = polarity_forward  !! records forward, reversed, or both as rows
     real(dp) :: ranges(2, n_sampled) = unset_real !! bounds of the sampled variables
     logical :: skip_at_rest = .true.              !! steps at rest below the static capacity not solved
   contains
@@ -123,16 +126,15 @@ contains
         itoa(g%n_samples)//' but no range to sample: give one or more of '//join_words(range_names, ', '))
     end associate
     if (.not. status%ok) return
-    if (base%motion%waveform /= waveform_afd .and. base%motion%waveform /= waveform_accelerogram) then
-      call fail(status, path//": &motion waveform = '"//trim(base%motion%waveform)//"': "//mode// &
-                ' drives the table with each record of &sweep record_files; leave waveform unset')
-      return
-    end if
+    call check_base_motion(path, "'"//trim(this%name)//"'", base, status)
+    if (.not. status%ok) return
     if (len_trim(group%record_set) > 0) then
       call read_set_records(path, trim(group%record_set), trim(group%record_components), plan%records, status)
     else
       call read_ida_records(path, group%record_files(1:n_records), plan%records, status)
     end if
+    if (status%ok) call set_record_polarity(plan%records, trim(group%record_polarity))
+    this%record_polarity = group%record_polarity
     if (.not. status%ok) return
     this%record_set = group%record_set
     this%record_components = group%record_components
@@ -195,9 +197,14 @@ contains
     else
       text = '  record_files = '
       do j = 1, plan%records%n
-        text = text//"'"//trim(plan%records%given(j))//"'"//trim(merge(', ', '  ', j < plan%records%n))
+        ! With both polarities each file comes twice, forward first: named once.
+        if (this%record_polarity == polarity_both .and. plan%records%polarity(j) == -1) cycle
+        text = text//"'"//trim(plan%records%given(j))//"', "
       end do
+      text = text(:len(text) - 2)
     end if
+    if (this%record_polarity /= polarity_forward) &
+      text = text//nl//"  record_polarity = '"//trim(this%record_polarity)//"'"
     text = trim(text)//nl//middle//'  n_samples = '//itoa(this%n_samples)//nl//'  sample_seed = '// &
            itoa(this%sample_seed)//nl//after_seed//'  skip_at_rest = '// &
            trim(merge('.true. ', '.false.', this%skip_at_rest))//nl
@@ -239,7 +246,7 @@ contains
     if (len_trim(this%record_set) > 0) then
       text = 'records of the set:'
       do k = 1, plan%records%n
-        text = text//' '//trim(plan%records%given(k))
+        text = text//' '//record_label(plan%records, k)
       end do
       text = text//achar(10)
     end if
@@ -253,7 +260,7 @@ contains
     type(sweep_plan_t), intent(in) :: plan
     integer, intent(in) :: job
     character(len=:), allocatable :: text
-    text = 'record '//trim(plan%records%given(job_record(plan, job)))
+    text = 'record '//record_label(plan%records, job_record(plan, job))
   end function job_label
 
   !> The job's sample playing its record at the scale `value`, stopping at the collapse.
@@ -266,6 +273,7 @@ contains
     cfg = search_run_config(plan%set_cfg(job_param_set(plan, job)), 0.0_dp, value)
     cfg%motion%waveform = waveform_accelerogram
     cfg%motion%record_file = plan%records%files(job_record(plan, job))
+    cfg%motion%record_polarity = plan%records%polarity(job_record(plan, job))
     cfg%motion%record_scale = value
     cfg%motion%amplitude_m = 0.0_dp
   end function run_config
@@ -295,7 +303,7 @@ contains
     lines = ''
     events = ''
     do k = 1, plan%records%n
-      lines = lines//trim(plan%records%given(k))
+      lines = lines//record_label(plan%records, k)
       events = events//trim(plan%records%events(k))
       if (k < plan%records%n) lines = lines//achar(10)
       if (k < plan%records%n) events = events//achar(10)

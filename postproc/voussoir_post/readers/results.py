@@ -285,6 +285,11 @@ class RunResult:
     #: files written before it was recorded), and that block's body index (1-based).
     max_residual_disp_m: float = float("nan")
     max_residual_body: int = 0
+    #: The table's vertical displacement [m], velocity [m/s] and acceleration [m/s2],
+    #: upwards (None for a motion without a vertical component).
+    table_y_m: np.ndarray | None = None
+    table_vy_m_s: np.ndarray | None = None
+    table_ay_m_s2: np.ndarray | None = None
 
     @property
     def n_samples(self) -> int:
@@ -319,6 +324,10 @@ def read_run(path: str | os.PathLike) -> RunResult:
                      "contacts/count"):
             samples[name] = _dataset(h5, name)
             _check_shape(path, "/" + name, samples[name], (nt,))
+        for name in ("table/y_m", "table/vy_m_s", "table/ay_m_s2"):
+            samples[name] = _dataset(h5, name) if name in h5 else None
+            if samples[name] is not None:
+                _check_shape(path, "/" + name, samples[name], (nt,))
 
         role = _dataset(h5, "bodies/role", dtype=int)
         nb = role.shape[0]
@@ -405,6 +414,9 @@ def read_run(path: str | os.PathLike) -> RunResult:
             arch=arch,
             record=_ground_motion(h5) if "record" in h5 else None,
             contacts=_contact_record(path, h5, nt, nb),
+            table_y_m=samples["table/y_m"],
+            table_vy_m_s=samples["table/vy_m_s"],
+            table_ay_m_s2=samples["table/ay_m_s2"],
         )
 
 
