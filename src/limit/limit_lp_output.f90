@@ -5,7 +5,7 @@ module voussoir_limit_lp_output
   use voussoir_text, only: itoa, fmt_json_real, json_string, json_bool, fmt_significant
   use voussoir_hinge_side, only: side_name
   use voussoir_limit_lp, only: lp_result_t, joint_mode_name, joint_closed, joint_hinge
-  use voussoir_limit_lp_study, only: lp_study_t
+  use voussoir_limit_lp_study, only: lp_study_t, lp_direction_t
   implicit none
   private
 
@@ -38,19 +38,37 @@ contains
       write (u, '(a)') '  no load factor: '//lp%note
       return
     end if
-    write (u, '(a)') '  associative (sliding dilates):  lambda '//fmt_significant(lp%assoc%load_factor, 7)// &
-      ' (upper bound of its mechanism '//fmt_significant(lp%assoc%load_factor_upper, 7)//')'// &
-      acceleration_text(lp, lp%assoc%load_factor)
-    write (u, '(a)') '    mechanism: '//mechanism_text(lp, lp%assoc)
-    if (lp%nonassociative_solved) then
-      write (u, '(a)') '  non-associative (no dilatancy): lambda '//fmt_significant(lp%nonassoc%load_factor, 7)// &
-        acceleration_text(lp, lp%nonassoc%load_factor)//' ('//itoa(lp%steps)//' steps'// &
-        trim(merge('             ', ', UNCONVERGED', lp%converged))//')'
-      write (u, '(a)') '    mechanism: '//mechanism_text(lp, lp%nonassoc)
+    call write_direction(u, lp, lp%assoc, lp%nonassociative_solved, lp%nonassoc, lp%steps, lp%converged)
+    if (.not. lp%neg%applies) return
+    write (u, '(a)') '  towards -x (the acceleration turned round):'
+    if (.not. lp%neg%solved) then
+      write (u, '(a)') '  no load factor: '//lp%neg%note
+      return
+    end if
+    call write_direction(u, lp, lp%neg%assoc, lp%neg%nonassociative_solved, lp%neg%nonassoc, lp%neg%steps, &
+                         lp%neg%converged)
+  end subroutine write_lp_table
+
+  !> The lines of one direction: both load factors and their mechanisms.
+  subroutine write_direction(u, lp, assoc, nonassociative_solved, nonassoc, steps, converged)
+    integer, intent(in) :: u
+    type(lp_study_t), intent(in) :: lp
+    type(lp_result_t), intent(in) :: assoc, nonassoc
+    logical, intent(in) :: nonassociative_solved, converged
+    integer, intent(in) :: steps
+    write (u, '(a)') '  associative (sliding dilates):  lambda '//fmt_significant(assoc%load_factor, 7)// &
+      ' (upper bound of its mechanism '//fmt_significant(assoc%load_factor_upper, 7)//')'// &
+      acceleration_text(lp, assoc%load_factor)
+    write (u, '(a)') '    mechanism: '//mechanism_text(lp, assoc)
+    if (nonassociative_solved) then
+      write (u, '(a)') '  non-associative (no dilatancy): lambda '//fmt_significant(nonassoc%load_factor, 7)// &
+        acceleration_text(lp, nonassoc%load_factor)//' ('//itoa(steps)//' steps'// &
+        trim(merge('             ', ', UNCONVERGED', converged))//')'
+      write (u, '(a)') '    mechanism: '//mechanism_text(lp, nonassoc)
     else
       write (u, '(a)') '  non-associative: no solution (a step of the iteration has none)'
     end if
-  end subroutine write_lp_table
+  end subroutine write_direction
 
   !> ', lambda g 3.69 m/s2' where the live load is the horizontal acceleration, else ''.
   function acceleration_text(lp, lambda) result(text)
@@ -107,29 +125,62 @@ contains
       text = text//'null,'//nl
     end if
     text = text//'  "load_factor_curve": '//curve_json(lp)//','//nl
-    if (lp%solved) then
-      text = text//'  "load_factor": '//fmt_json_real(lp%assoc%load_factor)//','//nl// &
-        '  "load_factor_upper": '//fmt_json_real(lp%assoc%load_factor_upper)//','//nl// &
-        '  "load_factor_note": null,'//nl// &
-        '  "mechanism": '//mechanism_json(lp, lp%assoc)//','//nl// &
-        '  "contact_forces": '//forces_json(lp, lp%assoc)//','//nl
+    text = text//direction_json(lp, '', lp%solved, lp%note, lp%assoc, lp%nonassociative_solved, lp%nonassoc, &
+                                lp%steps, lp%converged)
+    ! The -x direction: the same keys ending in _neg (null where it does not apply).
+    if (lp%neg%applies) then
+      text = text//'  "live_load_neg": '//json_string('horizontal acceleration lambda g towards -x (lambda x the '// &
+             'weight of each block)')//','//nl
     else
-      text = text//'  "load_factor": null,'//nl//'  "load_factor_upper": null,'//nl// &
-        '  "load_factor_note": '//json_string(lp%note)//','//nl// &
-        '  "mechanism": [],'//nl//'  "contact_forces": [],'//nl
+      text = text//'  "live_load_neg": null,'//nl
     end if
-    if (lp%nonassociative_solved) then
-      text = text//'  "load_factor_nonassociative": '//fmt_json_real(lp%nonassoc%load_factor)//','//nl// &
-        '  "nonassociative_steps": '//itoa(lp%steps)//','//nl// &
-        '  "nonassociative_converged": '//json_bool(lp%converged)//','//nl// &
-        '  "mechanism_nonassociative": '//mechanism_json(lp, lp%nonassoc)//','//nl// &
-        '  "contact_forces_nonassociative": '//forces_json(lp, lp%nonassoc)//','//nl
-    else
-      text = text//'  "load_factor_nonassociative": null,'//nl//'  "nonassociative_steps": '//itoa(lp%steps)// &
-        ','//nl//'  "nonassociative_converged": false,'//nl//'  "mechanism_nonassociative": [],'//nl// &
-        '  "contact_forces_nonassociative": [],'//nl
-    end if
+    text = text//direction_json(lp, '_neg', lp%neg%solved, lp%neg%note, lp%neg%assoc, lp%neg%nonassociative_solved, &
+                                lp%neg%nonassoc, lp%neg%steps, lp%neg%converged)
   end function lp_json
+
+  !> The keys of one direction, each name ending in `suffix`: both load factors, the note
+  !> where there is none (an absent note: the +x analysis had no answer, so -x was not
+  !> made), the mechanisms and contact forces.
+  function direction_json(lp, suffix, solved, note, assoc, nonassociative_solved, nonassoc, steps, converged) &
+    result(text)
+    type(lp_study_t), intent(in) :: lp
+    character(len=*), intent(in) :: suffix
+    logical, intent(in) :: solved, nonassociative_solved, converged
+    character(len=*), intent(in), optional :: note
+    type(lp_result_t), intent(in) :: assoc, nonassoc
+    integer, intent(in) :: steps
+    character(len=:), allocatable :: text
+    character(len=1), parameter :: nl = achar(10)
+    if (solved) then
+      text = '  "load_factor'//suffix//'": '//fmt_json_real(assoc%load_factor)//','//nl// &
+        '  "load_factor_upper'//suffix//'": '//fmt_json_real(assoc%load_factor_upper)//','//nl// &
+        '  "load_factor_note'//suffix//'": null,'//nl// &
+        '  "mechanism'//suffix//'": '//mechanism_json(lp, assoc)//','//nl// &
+        '  "contact_forces'//suffix//'": '//forces_json(lp, assoc)//','//nl
+    else
+      text = '  "load_factor'//suffix//'": null,'//nl//'  "load_factor_upper'//suffix//'": null,'//nl// &
+        '  "load_factor_note'//suffix//'": '//json_string(note_text(note))//','//nl// &
+        '  "mechanism'//suffix//'": [],'//nl//'  "contact_forces'//suffix//'": [],'//nl
+    end if
+    if (nonassociative_solved) then
+      text = text//'  "load_factor_nonassociative'//suffix//'": '//fmt_json_real(nonassoc%load_factor)//','//nl// &
+        '  "nonassociative_steps'//suffix//'": '//itoa(steps)//','//nl// &
+        '  "nonassociative_converged'//suffix//'": '//json_bool(converged)//','//nl// &
+        '  "mechanism_nonassociative'//suffix//'": '//mechanism_json(lp, nonassoc)//','//nl// &
+        '  "contact_forces_nonassociative'//suffix//'": '//forces_json(lp, nonassoc)//','//nl
+    else
+      text = text//'  "load_factor_nonassociative'//suffix//'": null,'//nl//'  "nonassociative_steps'//suffix// &
+        '": '//itoa(steps)//','//nl//'  "nonassociative_converged'//suffix//'": false,'//nl// &
+        '  "mechanism_nonassociative'//suffix//'": [],'//nl//'  "contact_forces_nonassociative'//suffix//'": [],'//nl
+    end if
+  end function direction_json
+
+  function note_text(note) result(text)
+    character(len=*), intent(in), optional :: note
+    character(len=:), allocatable :: text
+    text = 'no analysis: the +x one has no answer'
+    if (present(note)) text = note
+  end function note_text
 
   !> One object per interface: its blocks, its arch joint (or null), its mode and, for a
   !> hinge, the side (arches) and the point it turns about.

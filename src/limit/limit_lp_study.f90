@@ -18,9 +18,22 @@ module voussoir_limit_lp_study
   implicit none
   private
 
-  public :: lp_study_t, lp_study, path_position_m
+  public :: lp_study_t, lp_direction_t, lp_study, path_position_m
 
-  !> Both capacities of an assembly under the horizontal acceleration lambda g towards +x.
+  !> Both capacities of the live load reversed: the horizontal acceleration lambda g
+  !> towards -x (the loads in place, the live one turned round).
+  type :: lp_direction_t
+    logical :: applies = .false.              !! the live load is the horizontal acceleration
+    logical :: solved = .false.               !! the associative LP has a solution
+    logical :: nonassociative_solved = .false.
+    character(len=:), allocatable :: note     !! why not, when not solved
+    type(lp_result_t) :: assoc, nonassoc
+    integer :: steps = 0                      !! steps of the non-associative iteration
+    logical :: converged = .false.
+  end type lp_direction_t
+
+  !> Both capacities of an assembly under the horizontal acceleration lambda g towards +x
+  !> (or lambda x the live point loads of &load); `neg`, towards -x.
   type :: lp_study_t
     logical :: solved = .false.               !! the associative LP has a solution
     logical :: nonassociative_solved = .false.
@@ -40,6 +53,7 @@ module voussoir_limit_lp_study
     real(dp) :: critical_load_factor = 0.0_dp !! the associative load factor there
     real(dp), allocatable :: curve_x_m(:)     !! the positions on the path [m]
     real(dp), allocatable :: curve_load_factor(:) !! the associative load factor at each (-1: unbounded)
+    type(lp_direction_t) :: neg               !! the horizontal acceleration towards -x
   end type lp_study_t
 
 contains
@@ -47,7 +61,8 @@ contains
   !> The LP analysis of `asm` with Coulomb friction `friction` at every interface, the
   !> weights of density x area x width x g, the loads of `load` (if given), and the
   !> interface ends set in by `inset_m`. A refusal (no interfaces,
-  !> infeasible, unbounded) comes back in `status`.
+  !> infeasible, unbounded) comes back in `status`. Where the live load is the horizontal
+  !> acceleration, the same towards -x in `study%neg` (its refusal in `study%neg%note`).
   subroutine lp_study(asm, density_kg_m3, width_m, friction, inset_m, study, status, load)
     type(assembly_t), intent(in) :: asm
     real(dp), intent(in) :: density_kg_m3, width_m, friction, inset_m
@@ -96,7 +111,34 @@ contains
     call nonassociative_capacity(asm, study%faces, loads, mu, study%assoc, study%nonassoc, study%steps, &
                                  study%converged, status)
     study%nonassociative_solved = status%ok
+    if (study%live_is_acceleration) call reversed_direction(asm, study%faces, loads, mu, study%neg)
+    if (.not. study%live_is_acceleration) study%neg%note = 'the live load is the point loads of &load: '// &
+      'the -x direction is that of the horizontal acceleration only'
   end subroutine lp_study
+
+  !> Both capacities with the live load turned round (the dead loads as they are); a
+  !> refusal (a block held against -x) is the direction's note, not an error.
+  subroutine reversed_direction(asm, faces, loads, mu, neg)
+    type(assembly_t), intent(in) :: asm
+    type(interface_set_t), intent(in) :: faces
+    type(block_loads_t), intent(in) :: loads
+    real(dp), intent(in) :: mu(:)
+    type(lp_direction_t), intent(inout) :: neg
+    type(block_loads_t) :: reversed
+    type(status_t) :: status
+    reversed = loads
+    reversed%live_n = -loads%live_n
+    reversed%live_moment_nm = -loads%live_moment_nm
+    neg%applies = .true.
+    call lp_capacity(asm, faces, reversed, mu, 0.0_dp*mu, neg%assoc, status)
+    if (.not. status%ok) then
+      neg%note = trim(status%message)
+      return
+    end if
+    neg%solved = .true.
+    call nonassociative_capacity(asm, faces, reversed, mu, neg%assoc, neg%nonassoc, neg%steps, neg%converged, status)
+    neg%nonassociative_solved = status%ok
+  end subroutine reversed_direction
 
   !> Position i of `path_points` on the path from x0 to x1 [m].
   pure real(dp) function path_position_m(load, i)

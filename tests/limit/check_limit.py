@@ -86,35 +86,44 @@ def centroid(poly):
 
 
 def check_lp(d, name):
-    """The LP keys; the four-hinge lambda where hinging governs; equilibrium of every voussoir."""
-    keys = ["load_factor", "load_factor_upper", "load_factor_nonassociative", "mechanism", "contact_forces",
-            "mechanism_nonassociative", "contact_forces_nonassociative", "assembly"]
-    check(all(k in d for k in keys), f"{name}: LP keys {keys}")
-    lam = d["load_factor"]
-    check(close(d["load_factor_upper"], lam, rtol=1e-6, atol=1e-9), f"{name}: LP upper bound = lower bound")
-    check(d["load_factor_nonassociative"] <= lam * (1 + 1e-9) + 1e-12, f"{name}: non-associative <= associative")
-    moving = [(m["joint"], m["mode"], m["hinge_side"]) for m in d["mechanism"] if m["mode"] != "closed"]
+    """The LP keys; the four-hinge lambda where hinging governs, towards +x and -x;
+    equilibrium of every voussoir in both directions."""
+    for sfx, sign, exact, hinges in (("", 1.0, "lambda_pos", "hinges_pos"), ("_neg", -1.0, "lambda_neg", "hinges_neg")):
+        check_lp_direction(d, name, sfx, sign, exact, hinges)
+
+
+def check_lp_direction(d, name, sfx, sign, exact, hinges):
+    """The LP keys ending in `sfx` (the acceleration towards +x for "", -x for "_neg",
+    `sign`) against the four-hinge analysis of that direction (`exact`, `hinges`)."""
+    keys = [k + sfx for k in ("load_factor", "load_factor_upper", "load_factor_nonassociative", "mechanism",
+                              "contact_forces", "mechanism_nonassociative", "contact_forces_nonassociative")]
+    check(all(k in d for k in keys + ["assembly"]), f"{name}: LP keys {keys}")
+    lam = d["load_factor" + sfx]
+    check(close(d["load_factor_upper" + sfx], lam, rtol=1e-6, atol=1e-9), f"{name}: LP{sfx} upper bound = lower bound")
+    check(d["load_factor_nonassociative" + sfx] <= lam * (1 + 1e-9) + 1e-12,
+          f"{name}: non-associative{sfx} <= associative{sfx}")
+    moving = [(m["joint"], m["mode"], m["hinge_side"]) for m in d["mechanism" + sfx] if m["mode"] != "closed"]
     if not d["sliding"]:
-        check(close(lam, d["lambda_pos"], rtol=1e-6, atol=1e-9),
-              f"{name}: load_factor {lam} = lambda_pos {d['lambda_pos']} (hinging governs)")
-        check(moving == [(h["joint"], "hinge", h["side"]) for h in d["hinges_pos"]],
-              f"{name}: LP mechanism {moving} = the four hinges of +x")
+        check(close(lam, d[exact], rtol=1e-6, atol=1e-9),
+              f"{name}: load_factor{sfx} {lam} = {exact} {d[exact]} (hinging governs)")
+        check(moving == [(h["joint"], "hinge", h["side"]) for h in d[hinges]],
+              f"{name}: LP{sfx} mechanism {moving} = the four hinges of {hinges}")
     else:
-        check(lam <= d["lambda_pos"] * (1 + 1e-9), f"{name}: load_factor <= lambda_pos where sliding governs")
-        check(any(m[1] == "sliding" for m in moving), f"{name}: the LP mechanism slides ({moving})")
+        check(lam <= d[exact] * (1 + 1e-9), f"{name}: load_factor{sfx} <= {exact} where sliding governs")
+        check(any(m[1] == "sliding" for m in moving), f"{name}: the LP{sfx} mechanism slides ({moving})")
     # Equilibrium of every voussoir i (body i, joints i-1 and i) under the JSON's contact
-    # forces: they carry its weight W (so Fy = W) and lambda W towards +x (so Fx = -lambda Fy),
-    # both through its centroid (no moment about it).
+    # forces: they carry its weight W (so Fy = W) and lambda W towards sign x (so
+    # Fx = -sign lambda Fy), both through its centroid (no moment about it).
     a = d["arch"]
     n = a["n_voussoirs"]
     worst = 0.0
     for i in range(1, n + 1):
         cx, cy = centroid(voussoir_polygon(a, i))
-        fx, fy, m = contact_resultant(d, i, cx, cy)
-        worst = max(worst, abs(fx + lam * fy) / fy, abs(m) / (fy * a["r_ext_m"]))
-    check(worst < 1e-6, f"{name}: every voussoir in equilibrium under the JSON's contact forces ({worst:.1e})")
-    check(all(min(f["normal_n"]) >= -1e-9 * max(1.0, max(f["normal_n"])) for f in d["contact_forces"]),
-          f"{name}: no tension at any interface end")
+        fx, fy, m = contact_resultant(d, i, cx, cy, "contact_forces" + sfx)
+        worst = max(worst, abs(fx + sign * lam * fy) / fy, abs(m) / (fy * a["r_ext_m"]))
+    check(worst < 1e-6, f"{name}: every voussoir in equilibrium under the JSON's contact_forces{sfx} ({worst:.1e})")
+    check(all(min(f["normal_n"]) >= -1e-9 * max(1.0, max(f["normal_n"])) for f in d["contact_forces" + sfx]),
+          f"{name}: no tension at any interface end{sfx}")
 
 
 def arch_point_load_lambda(a, weight, loads):
@@ -244,11 +253,11 @@ def voussoir_polygon(a, i):
             a["joint_extrados_xy_m"][i - 1]]
 
 
-def contact_resultant(d, i, cx, cy):
-    """(Fx, Fy, moment about (cx, cy)) of the JSON's contact forces on block i: the normal
-    force at each end of every interface it is part of, and the shear at its middle."""
+def contact_resultant(d, i, cx, cy, key="contact_forces"):
+    """(Fx, Fy, moment about (cx, cy)) of the JSON's contact forces (`key`) on block i: the
+    normal force at each end of every interface it is part of, and the shear at its middle."""
     fx = fy = m = 0.0
-    for f in d["contact_forces"]:
+    for f in d[key]:
         if i not in f["blocks"]:
             continue
         sign = 1.0 if f["blocks"][1] == i else -1.0
@@ -345,8 +354,16 @@ elif case == "polygon_block":
     w = 2000 * 0.2 * 1.0 * 0.2 * 9.81
     f = d["contact_forces"][0]
     check(close(sum(f["normal_n"]), w, rtol=1e-9), f"{nml}: the base carries the weight {w} N")
+    # Towards -x the block is the same mirrored: b/h about its -x corner.
+    check(close(d["load_factor_neg"], 0.2, rtol=1e-9) and close(d["load_factor_nonassociative_neg"], 0.2, rtol=1e-9),
+          f"{nml}: load_factor_neg {d['load_factor_neg']} = b/h = 0.2 (symmetric block)")
+    m = d["mechanism_neg"]
+    check(len(m) == 1 and m[0]["mode"] == "hinge" and close(m[0]["hinge_xy_m"][0], -0.1, atol=1e-12),
+          f"{nml}: -x: one hinge at the -x corner ({m})")
+    check(d["live_load_neg"].startswith("horizontal acceleration lambda g towards -x"), f"{nml}: live_load_neg says -x")
     rc, out, err = run(nml)
     check(rc == 0 and "do not apply" in out and "lambda 0.2" in out, f"{nml}: the table says what applies")
+    check("towards -x" in out, f"{nml}: the table has the -x direction")
     check(d["live_load"].startswith("horizontal acceleration") and d["point_loads"] == [] and
           d["critical_position"] is None and d["load_factor_curve"] == [], f"{nml}: without &load, lambda g towards +x")
     # The same block with a live point load P = 100 N towards +x at its top corner (-0.1, 1)
@@ -357,7 +374,22 @@ elif case == "polygon_block":
     with open("block_point_load.nml", "w") as f:
         f.write(text + "&load point_load_n = 100, 200, point_load_dir_deg = 0, -90, point_load_x_m = -0.1, 0.0,\n"
                        "  point_load_y_m = 1.0, 1.0, point_load_live = .true., .false. /\n")
+    # A dead Q = 200 N down at the top's +x corner (0.1, 1): towards +x the block tips about
+    # (0.1, 0), under Q's line: lambda W h/2 = W b/2, lambda = b/h = 0.2 as without Q;
+    # towards -x about (-0.1, 0), Q a lever b away: lambda W h/2 = W b/2 + Q b,
+    # lambda = (b/h)(1 + 2Q/W). Sliding needs mu (W + Q)/W = 0.88, more than either.
+    with open("block_dead_corner.nml", "w") as f:
+        f.write(text + "&load point_load_n = 200, point_load_dir_deg = -90, point_load_x_m = 0.1, point_load_y_m = 1.0,\n"
+                       "  point_load_live = .false. /\n")
+    d = load("block_dead_corner.nml")
+    lam_neg = 0.2 * (1.0 + 2.0 * 200.0 / w)
+    check(close(d["load_factor"], 0.2, rtol=1e-9), f"dead load at the +x corner: load_factor {d['load_factor']} = b/h")
+    check(close(d["load_factor_neg"], lam_neg, rtol=1e-9) and close(d["load_factor_nonassociative_neg"], lam_neg, rtol=1e-9),
+          f"dead load at the +x corner: load_factor_neg {d['load_factor_neg']} = (b/h)(1 + 2Q/W) = {lam_neg}")
+    check(d["load_factor_neg"] > d["load_factor"], "dead load at the +x corner: -x is the stronger direction")
     d = load("block_point_load.nml")
+    check(d["load_factor_neg"] is None and "horizontal acceleration only" in d["load_factor_note_neg"]
+          and d["live_load_neg"] is None, f"live point loads: no -x direction ({d['load_factor_note_neg']})")
     check(close(d["load_factor"], (w + 200.0) * 0.1 / 100.0, rtol=1e-9),
           f"block with a point load: load_factor {d['load_factor']} = (W + Q) b / (2 P h) = {(w + 200.0) * 0.1 / 100.0}")
     check(d["point_loads"] == [{"load": 1, "block": 1, "xy_m": [-0.1, 1.0], "force_n": [100.0, 0.0], "live": True},
