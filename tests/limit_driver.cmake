@@ -40,6 +40,12 @@ add_test(NAME limit_driver_wall_sliding
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
                  wall_sliding ${CMAKE_SOURCE_DIR}/input/wall_sliding.nml
          WORKING_DIRECTORY ${LIMIT_TEST_DIR})
+# Restraint brackets (issue 25): the LP against the least four-hinge mechanism with no
+# hinge at a restrained springing, computed in the check itself.
+add_test(NAME limit_driver_restrained
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
+                 restrained
+         WORKING_DIRECTORY ${LIMIT_TEST_DIR})
 # &load (issue 25): a vertical live point load on a semicircular arch at quarter span and
 # along a path, against the least four-hinge mechanism computed in the check itself.
 add_test(NAME limit_driver_arch_point_load

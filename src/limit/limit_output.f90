@@ -30,8 +30,14 @@ contains
     character(len=*), parameter :: rule = '  ------------------------------------------------------------------'
     if (lp%assembly /= 'arch') then
       write (u, '(a)') 'voussoir-limit: '//path
-      write (u, '(a)') lp%assembly//': the four-hinge analysis and the minimum thickness of an arch do not '// &
-        'apply; the limit analysis by linear programming does (driven blocks: the fixed supports)'
+      if (lp%assembly == 'restrained arch') then
+        write (u, '(a)') "restrained arch (&arch restrained_springings = '"//trim(cfg%arch%restrained_springings)// &
+          "'): the four-hinge analysis and the minimum thickness do not model the restraint brackets; the "// &
+          'limit analysis by linear programming does (the brackets and foundations: fixed blocks)'
+      else
+        write (u, '(a)') lp%assembly//': the four-hinge analysis and the minimum thickness of an arch do not '// &
+          'apply; the limit analysis by linear programming does (driven blocks: the fixed supports)'
+      end if
       write (u, '(a)') '      interface inset '//fmt_significant(1.0e3_dp*opts%inset_m)//' mm, friction '// &
         fmt_significant(cfg%arch%friction)
       call write_lp_table(u, lp, cfg%arch%friction)
@@ -220,8 +226,8 @@ contains
     write (u, '(a)') text
   end subroutine write_json
 
-  !> The JSON of a wall or a polygon file: every key of the arch's, null or empty where
-  !> the four-hinge analysis of an arch does not apply, and the LP's.
+  !> The JSON of a wall, a polygon file or a restrained arch: every key of the arch's,
+  !> null or empty where the four-hinge analysis of an arch does not apply, and the LP's.
   subroutine write_json_any(u, path, cfg, lp)
     integer, intent(in) :: u
     character(len=*), intent(in) :: path

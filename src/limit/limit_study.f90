@@ -61,7 +61,8 @@ contains
   end subroutine read_limit_group
 
   !> Build the assembly and run the analyses that apply (`lp%assembly` says which
-  !> assembly: 'arch', 'wall' or 'polygon file'); refuse what the analyses do not model.
+  !> assembly: 'arch', 'restrained arch', 'wall' or 'polygon file'); refuse what the
+  !> analyses do not model.
   subroutine analyse(cfg, opts, arch, res, tmin, lp, status)
     type(config_t), intent(in) :: cfg
     type(limit_options_t), intent(in) :: opts
@@ -74,17 +75,14 @@ contains
     type(status_t) :: lp_status
 
     f = trim(cfg%source_file)
-    if (cfg%wall%courses > 0 .or. len_trim(cfg%arch%polygon_file) > 0) then
+    ! A restrained arch: the brackets are driven blocks the LP takes like any other.
+    if (cfg%wall%courses > 0 .or. len_trim(cfg%arch%polygon_file) > 0 .or. &
+        cfg%arch%restrained_springings /= springings_none) then
       call analyse_any_assembly(cfg, opts, arch, lp, status)
       if (.not. status%ok) status%message = f//': '//trim(status%message)
       return
     end if
     associate (a => cfg%arch)
-      if (a%restrained_springings /= springings_none) then
-        call fail(status, f//": &arch restrained_springings = '"//trim(a%restrained_springings)// &
-                  "': the limit analysis does not model restraint brackets (its mechanisms hinge "// &
-                  "freely at the springings); set restrained_springings = 'none'")
-      end if
       ! Below, a mechanism has too few joints; above, the search takes too long.
       if (a%n_voussoirs < 3) then
         why = 'a four-hinge mechanism needs 3 voussoirs'
@@ -124,8 +122,10 @@ contains
     if (.not. status%ok) status%message = f//': '//trim(status%message)
   end subroutine analyse
 
-  !> A &wall or a polygon file (its driven blocks the fixed supports): the LP alone, whose
-  !> refusals are errors here (there is nothing else to report).
+  !> A &wall, a polygon file (its driven blocks the fixed supports) or an arch with
+  !> restraint brackets (driven blocks against the outer faces of its springing
+  !> voussoirs, which the four-hinge analysis and the minimum thickness do not model):
+  !> the LP alone, whose refusals are errors here (there is nothing else to report).
   subroutine analyse_any_assembly(cfg, opts, asm, lp, status)
     type(config_t), intent(in) :: cfg
     type(limit_options_t), intent(in) :: opts
@@ -144,8 +144,13 @@ contains
       end if
       if (.not. status%ok) status%message = 'limit analysis by linear programming: '//trim(status%message)
     end associate
-    lp%assembly = merge('wall        ', 'polygon file', cfg%wall%courses > 0)
-    lp%assembly = trim(lp%assembly)
+    if (cfg%wall%courses > 0) then
+      lp%assembly = 'wall'
+    else if (len_trim(cfg%arch%polygon_file) > 0) then
+      lp%assembly = 'polygon file'
+    else
+      lp%assembly = 'restrained arch'
+    end if
   end subroutine analyse_any_assembly
 
   !> Every load of &load on a block, at every position of its path.

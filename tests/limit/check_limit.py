@@ -126,14 +126,15 @@ def check_lp_direction(d, name, sfx, sign, exact, hinges):
           f"{name}: no tension at any interface end{sfx}")
 
 
-def arch_point_load_lambda(a, weight, loads):
+def arch_point_load_lambda(a, weight, loads, fixed_joints=()):
     """The least load factor over the arch's four-hinge mechanisms (upper bounds by the
     work equation), independent of the LP: voussoirs i = 1..n between joints i-1 and i
     (rigid, no sliding), weights at their centroids, the live loads `loads` (a list of
     ((x, y), (fx, fy), voussoir)). Hinges at joints j1 < j2 < j3 < j4, each at the intrados or extrados end;
     segment A (j1..j2) turns about H1, C (j3..j4) about H4, B about the intersection of
     lines H1-H2 and H3-H4. A mechanism is admissible when every hinge joint opens at its
-    other end; its lambda = -(power of the weights) / (power of the live load > 0)."""
+    other end; its lambda = -(power of the weights) / (power of the live load > 0).
+    No hinge at the joints `fixed_joints` (a springing that cannot hinge)."""
     n = a["n_voussoirs"]
     ends = {"intrados": a["joint_intrados_xy_m"], "extrados": a["joint_extrados_xy_m"]}
     other = {"intrados": "extrados", "extrados": "intrados"}
@@ -159,7 +160,7 @@ def arch_point_load_lambda(a, weight, loads):
 
     best = math.inf
     import itertools
-    for js in itertools.combinations(range(n + 1), 4):
+    for js in itertools.combinations([j for j in range(n + 1) if j not in fixed_joints], 4):
         for sides in itertools.product(("intrados", "extrados"), repeat=4):
             h = [ends[s][j] for s, j in zip(sides, js)]
             ib = meet(h[0], h[1], h[2], h[3])
@@ -460,6 +461,60 @@ elif case == "arch_point_load":
     check(close(d["load_factor"], expected, rtol=1e-6),
           f"axle group: load factor {d['load_factor']} = least four-hinge mechanism {expected}")
     check_loaded_equilibrium(d, "axle group", w, d["load_factor"])
+elif case == "restrained":
+    # The seed 156-degree arch (friction 10: no sliding) with restraint brackets. A bracket
+    # stands against the lower half of the springing voussoir's extrados chord, which
+    # meets the springing joint at 90 - 6 degrees (half a voussoir's angle less than a
+    # right angle): turning about either end of the springing joint drives the voussoir
+    # into the bracket or the foundation, so that joint cannot hinge. The load factors
+    # are then the least four-hinge mechanisms (work equation, arch_point_load_lambda)
+    # with no hinge at a restrained springing, in each direction; a left bracket leaves
+    # the +x mechanism only where it does not hinge at joint 0.
+    emb, n, r_ext, t = 156.0, 13, 0.508, 0.071
+    a = {"n_voussoirs": n, "r_ext_m": r_ext, "joint_intrados_xy_m": [], "joint_extrados_xy_m": []}
+    for j in range(n + 1):
+        ang = math.radians(90.0 + 0.5 * emb - j * emb / n)
+        a["joint_intrados_xy_m"].append([(r_ext - t) * math.cos(ang), (r_ext - t) * math.sin(ang)])
+        a["joint_extrados_xy_m"].append([r_ext * math.cos(ang), r_ext * math.sin(ang)])
+    w = arch_weights(a, 700.0, 0.145)
+    cents = [centroid(voussoir_polygon(a, i)) for i in range(1, n + 1)]
+
+    def expected(fixed, sign):
+        return arch_point_load_lambda(a, w, [(cents[i - 1], (sign * w[i - 1], 0.0), i) for i in range(1, n + 1)],
+                                      fixed)
+
+    free = expected((), 1.0)
+    for side, fixed in (("left", (0,)), ("right", (n,)), ("both", (0, n))):
+        path = f"restrained_{side}.nml"
+        with open(path, "w") as f:
+            f.write(f"&arch embrace_deg = {emb}, n_voussoirs = {n}, r_ext_m = {r_ext}, thickness_m = {t},\n"
+                    f"  width_m = 0.145, density_kg_m3 = 700, friction = 10, restrained_springings = '{side}' /\n")
+        d = load(path)
+        check(d["assembly"] == "restrained arch" and d["lambda_pos"] is None and d["arch"] is None,
+              f"{side}: a restrained arch, the four-hinge keys null")
+        for sfx, sign in (("", 1.0), ("_neg", -1.0)):
+            lam, exp = d["load_factor" + sfx], expected(fixed, sign)
+            check(close(lam, exp, rtol=1e-6),
+                  f"{side}: load_factor{sfx} {lam} = least four-hinge mechanism without hinges at joints {fixed} {exp}")
+            check(close(d["load_factor_upper" + sfx], lam, rtol=1e-6), f"{side}: upper{sfx} = lower bound")
+            moving = [m["joint"] for m in d["mechanism" + sfx] if m["mode"] != "closed"]
+            check(len(moving) == 4 and not set(moving) & set(fixed),
+                  f"{side}: the {sfx or '+x'} mechanism hinges at four joints, none restrained ({moving})")
+            check(lam >= free * (1 - 1e-9), f"{side}: load_factor{sfx} {lam} >= the free arch's {free}")
+        # The brackets (blocks n + 3 and on) hold the springing voussoirs in compression.
+        brackets = [f for f in d["contact_forces"] + d["contact_forces_neg"] if f["joint"] is None]
+        check(len(brackets) == 2 * len(fixed) and all(max(f["blocks"]) > n + 2 for f in brackets)
+              and max(sum(f["normal_n"]) for f in brackets) > 0.0,
+              f"{side}: {len(fixed)} bracket interface(s), not arch joints, carrying compression")
+    # The free arch's mechanisms both hinge at joint 0 (+x: 0, 5, 10, 13; -x: 0, 3, 8, 13):
+    # a left bracket raises both; +x only a little (its hinge moves to joint 1 of a long
+    # left segment), -x much (its short left segment of three voussoirs grows).
+    d = load("restrained_left.nml")
+    check(free < d["load_factor"] < d["load_factor_neg"],
+          f"left bracket: free {free} < +x {d['load_factor']} < -x {d['load_factor_neg']}")
+    rc, out, err = run("restrained_left.nml")
+    check(rc == 0 and "do not model the restraint brackets" in out and "towards -x" in out,
+          "left bracket: the table says the LP models the brackets")
 elif case == "bad_inputs":
     cases = [
         ("unknown_limit_variable", "&limit", "&arch /\n&limit minimum_thicknes = .false. /\n"),
@@ -472,7 +527,6 @@ elif case == "bad_inputs":
          "&arch n_voussoirs = 600 /\n"),
         ("limit_inset_too_big", "inset_m = 0.04.*thickness_m/2", "&arch /\n&limit inset_m = 0.04 /\n"),
         ("limit_inset_negative", "inset_m = -0.001", "&arch /\n&limit inset_m = -0.001 /\n"),
-        ("restrained", "restrained_springings = 'left'.*restraint", "&arch restrained_springings = 'left' /\n"),
         ("polygon_overhang", "dead load alone brings the assembly down",
          "&arch polygon_file = 'overhang.txt' /\n"),
         ("polygon_against_wall", "unbounded.*block 1 is held against the load", "&arch polygon_file = 'against_wall.txt' /\n"),
