@@ -63,12 +63,13 @@ contains
   !> interface ends set in by `inset_m`. A refusal (no interfaces,
   !> infeasible, unbounded) comes back in `status`. Where the live load is the horizontal
   !> acceleration, the same towards -x in `study%neg` (its refusal in `study%neg%note`).
-  subroutine lp_study(asm, density_kg_m3, width_m, friction, inset_m, study, status, load)
+  subroutine lp_study(asm, density_kg_m3, width_m, friction, inset_m, study, status, load, joint_friction)
     type(assembly_t), intent(in) :: asm
     real(dp), intent(in) :: density_kg_m3, width_m, friction, inset_m
     type(lp_study_t), intent(out) :: study
     type(status_t), intent(inout) :: status
     type(load_config_t), intent(in), optional :: load
+    real(dp), intent(in), optional :: joint_friction(0:) !! arch joint j's coefficient where >= 0 (else `friction`)
     type(block_loads_t) :: loads
     real(dp), allocatable :: mu(:)
     real(dp) :: size_m, shift_m
@@ -89,6 +90,10 @@ contains
     call name_arch_joints(asm, study)
     allocate (mu(study%faces%n))
     mu = friction
+    if (present(joint_friction)) then
+      call joint_coefficients(asm, study, joint_friction, mu, status)
+      if (.not. status%ok) return
+    end if
     shift_m = 0.0_dp
     study%live_load = 'horizontal acceleration lambda g towards +x (lambda x the weight of each block)'
     allocate (study%placed%block(0), study%placed%source(0), study%placed%xy(2, 0), study%placed%force_n(2, 0), &
@@ -139,6 +144,33 @@ contains
     call nonassociative_capacity(asm, faces, reversed, mu, neg%assoc, neg%nonassoc, neg%steps, neg%converged, status)
     neg%nonassociative_solved = status%ok
   end subroutine reversed_direction
+
+  !> The friction of each interface that is arch joint j where `joint_friction(j) >= 0`,
+  !> as the dynamics takes it (voussoir_contact_law); the others keep theirs.
+  subroutine joint_coefficients(asm, study, joint_friction, mu, status)
+    type(assembly_t), intent(in) :: asm
+    type(lp_study_t), intent(in) :: study
+    real(dp), intent(in) :: joint_friction(0:)
+    real(dp), intent(inout) :: mu(:)
+    type(status_t), intent(inout) :: status
+    integer :: k, j
+    if (all(joint_friction < 0.0_dp)) return
+    if (.not. allocated(asm%joint_bodies)) then
+      call fail(status, 'joint_friction is set, but the assembly has no numbered joints')
+      return
+    end if
+    do j = ubound(asm%joint_bodies, 2) + 1, ubound(joint_friction, 1)
+      if (joint_friction(j) < 0.0_dp) cycle
+      call fail(status, 'joint_friction('//itoa(j)//') is set: the arch has joints 0..'// &
+                itoa(ubound(asm%joint_bodies, 2))//' only')
+      return
+    end do
+    do k = 1, study%faces%n
+      j = study%joint(k)
+      if (j < 0) cycle
+      if (joint_friction(j) >= 0.0_dp) mu(k) = joint_friction(j)
+    end do
+  end subroutine joint_coefficients
 
   !> Position i of `path_points` on the path from x0 to x1 [m].
   pure real(dp) function path_position_m(load, i)

@@ -68,7 +68,8 @@ contains
           write (u, '(a)') '  static check: the thrust line through the hinges leaves a joint '// &
             '(bounds do not meet: lambda is an upper bound only)'
         end if
-        write (u, '(a)') '  friction check: '//friction_text(res, a%n_voussoirs, a%friction)
+        write (u, '(a)') '  friction check: '//friction_text(res, a%n_voussoirs, a%friction, &
+                                                             any(a%joint_friction >= 0.0_dp))
         if (has_loads(cfg)) write (u, '(a)') '  (the four-hinge analysis takes the weights alone: the loads of '// &
           '&load enter the linear programme below)'
       end if
@@ -110,19 +111,23 @@ contains
   end function hinge_text
 
   !> 'hinging governs ...' or 'sliding governs at joints ...'.
-  function friction_text(res, n_voussoirs, friction) result(text)
+  !> With `per_joint`, some joints have their own friction (&arch joint_friction), against
+  !> which they were checked.
+  function friction_text(res, n_voussoirs, friction, per_joint) result(text)
     type(limit_result_t), intent(in) :: res
     integer, intent(in) :: n_voussoirs
     real(dp), intent(in) :: friction
-    character(len=:), allocatable :: text
+    logical, intent(in) :: per_joint
+    character(len=:), allocatable :: text, coefficient
     integer, allocatable :: joints(:)
     real(dp) :: worst
     integer :: k
     call sliding_union(res, n_voussoirs, joints)
     worst = max(maxval(res%shear_ratio_pos), maxval(res%shear_ratio_neg))
+    coefficient = 'friction '//fmt_significant(friction)
+    if (per_joint) coefficient = 'the friction of each joint (joint_friction where set, else '//coefficient//')'
     if (size(joints) == 0) then
-      text = 'hinging governs (largest |T|/N at collapse '//fmt_significant(worst, 5)//' <= friction '// &
-             fmt_significant(friction)//')'
+      text = 'hinging governs (largest |T|/N at collapse '//fmt_significant(worst, 5)//' <= '//coefficient//')'
     else
       text = 'sliding governs at joints '
       do k = 1, size(joints)
@@ -132,7 +137,7 @@ contains
       if (worst == huge(1.0_dp)) then
         text = text//' (a joint is not in compression in the collapse state)'
       else
-        text = text//' (|T|/N at collapse up to '//fmt_significant(worst, 5)//' > friction '//fmt_significant(friction)// &
+        text = text//' (|T|/N at collapse up to '//fmt_significant(worst, 5)//' > '//coefficient// &
                '): the true capacity can be lower than lambda'
       end if
     end if

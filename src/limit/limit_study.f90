@@ -97,7 +97,7 @@ contains
                   '(an arch of 3 voussoirs stands at vanishing thickness); set &limit minimum_thickness = .false.')
       if (.not. status%ok) return
       call build_config_assembly(cfg, arch, status)
-      call horizontal_capacity(arch, opts%inset_m, a%friction, res, status)
+      call horizontal_capacity(arch, opts%inset_m, a%friction, res, status, a%joint_friction)
       if (status%ok .and. opts%minimum_thickness) then
         call thickness_search(a%embrace_deg, a%n_voussoirs, a%r_ext_m, opts%inset_m, tmin%ratio_ext, &
                               tmin%ratio_mean, tmin%hinges, tmin%sides, status)
@@ -111,9 +111,11 @@ contains
         ! The four-hinge results stand even where the LP has no answer (an arch thinner
         ! than its minimum thickness): its reason is reported, not an error.
         if (has_loads(cfg)) then
-          call lp_study(arch, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, lp_status, cfg%load)
+          call lp_study(arch, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, lp_status, cfg%load, &
+                        a%joint_friction)
         else
-          call lp_study(arch, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, lp_status)
+          call lp_study(arch, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, lp_status, &
+                        joint_friction=a%joint_friction)
         end if
         if (.not. lp_status%ok) lp%note = trim(lp_status%message)
       end if
@@ -138,9 +140,11 @@ contains
     if (.not. status%ok) return
     associate (a => cfg%arch)
       if (has_loads(cfg)) then
-        call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status, cfg%load)
+        call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status, cfg%load, &
+                      a%joint_friction)
       else
-        call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status)
+        call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status, &
+                      joint_friction=a%joint_friction)
       end if
       if (.not. status%ok) status%message = 'limit analysis by linear programming: '//trim(status%message)
     end associate

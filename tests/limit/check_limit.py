@@ -515,6 +515,47 @@ elif case == "restrained":
     rc, out, err = run("restrained_left.nml")
     check(rc == 0 and "do not model the restraint brackets" in out and "towards -x" in out,
           "left bracket: the table says the LP models the brackets")
+elif case == "joint_friction":
+    # &arch joint_friction(j), the friction of joint j alone in the dynamics, in both
+    # analyses. Every joint at 0.395 through joint_friction is the arch at friction 0.395.
+    with open(nml) as f:
+        text = f.read().replace("friction = 0.5", "friction = 10")
+    with open("all_joints.nml", "w") as f:
+        f.write(text.replace("friction = 10", "friction = 10, " + ", ".join(f"joint_friction({j}) = 0.395"
+                                                                           for j in range(14))))
+    with open("everywhere.nml", "w") as f:
+        f.write(text.replace("friction = 10", "friction = 0.395"))
+    d, e = load("all_joints.nml"), load("everywhere.nml")
+    for key in ("load_factor", "load_factor_nonassociative", "load_factor_neg", "load_factor_nonassociative_neg"):
+        check(close(d[key], e[key], rtol=1e-9), f"joint_friction 0.395 at every joint: {key} {d[key]} = "
+                                                f"friction 0.395's {e[key]}")
+    check(d["sliding"] == e["sliding"] and d["sliding"], f"the same joints slide in the friction check ({d['sliding']})")
+    # Joint 0 alone at 0.2 (the others at 10): every static field keeps |S| <= 0.2 N there;
+    # less friction never carries more, and towards -x (the arch leaning onto its left
+    # springing, joint 0 at 12 degrees to the horizontal) the capacity drops, the mechanism
+    # sliding at joint 0; the four-hinge friction check flags joint 0 alone (its |T|/N at
+    # collapse is above 0.2, the others far below 10).
+    with open("joint0.nml", "w") as f:
+        f.write(text.replace("friction = 10", "friction = 10, joint_friction(0) = 0.2"))
+    with open("friction10.nml", "w") as f:
+        f.write(text)
+    d, e = load("joint0.nml"), load("friction10.nml")
+    worst = 0.0
+    for key in ("contact_forces", "contact_forces_nonassociative", "contact_forces_neg",
+                "contact_forces_nonassociative_neg"):
+        for f in d[key]:
+            if f["joint"] == 0:
+                worst = max(worst, abs(f["shear_n"]) / sum(f["normal_n"]))
+    check(worst <= 0.2 * (1 + 1e-9), f"joint 0: |S|/N <= 0.2 in every static field ({worst})")
+    check(d["load_factor"] <= e["load_factor"] * (1 + 1e-9) and e["sliding"] == [],
+          f"joint 0 at 0.2: load_factor {d['load_factor']} <= friction 10's {e['load_factor']}")
+    check(d["load_factor_neg"] < e["load_factor_neg"] * (1 - 1e-6),
+          f"joint 0 at 0.2: load_factor_neg {d['load_factor_neg']} below friction 10's {e['load_factor_neg']}")
+    moving = {m["joint"]: m["mode"] for m in d["mechanism_neg"] if m["mode"] != "closed"}
+    check(moving.get(0) == "sliding", f"joint 0 at 0.2: the -x mechanism slides at joint 0 ({moving})")
+    check(d["sliding"] == [0], f"joint 0 at 0.2: the friction check flags joint 0 alone ({d['sliding']})")
+    rc, out, err = run("joint0.nml")
+    check(rc == 0 and "joint_friction where set" in out, "joint 0 at 0.2: the table says joint_friction is used")
 elif case == "bad_inputs":
     cases = [
         ("unknown_limit_variable", "&limit", "&arch /\n&limit minimum_thicknes = .false. /\n"),
