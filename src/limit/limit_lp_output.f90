@@ -23,6 +23,11 @@ contains
       fmt_significant(friction)//')'
     if (allocated(lp%live_load)) write (u, '(a)') '  live load: '//lp%live_load
     write (u, '(a)') '  '//itoa(lp%faces%n)//' interfaces'
+    if (lp%crush%strength_pa > 0.0_dp) write (u, '(a)') '  compressive strength '// &
+      fmt_significant(lp%crush%strength_pa, 6)//' Pa: each interface force kept N / (2 sigma_c w) from the ends '// &
+      '(iterated: '//itoa(lp%crushing_steps)//' LPs'//trim(merge('             ', ', UNCONVERGED', &
+      lp%crushing_converged))//trim(merge(', an interface crushed through', '                              ', &
+      lp%crushed_through))//')'
     if (lp%has_path) then
       write (u, '(a)') '  load factor along the path (x of the first live load [m], associative lambda):'
       do i = 1, size(lp%curve_x_m)
@@ -125,6 +130,14 @@ contains
       text = text//'null,'//nl
     end if
     text = text//'  "load_factor_curve": '//curve_json(lp)//','//nl
+    if (lp%crush%strength_pa > 0.0_dp) then
+      text = text//'  "compressive_strength_pa": '//fmt_json_real(lp%crush%strength_pa)//','//nl
+    else
+      text = text//'  "compressive_strength_pa": null,'//nl
+    end if
+    text = text//'  "crushing_steps": '//itoa(lp%crushing_steps)//','//nl// &
+           '  "crushing_converged": '//json_bool(lp%crushing_converged)//','//nl// &
+           '  "crushed_through": '//json_bool(lp%crushed_through .or. lp%neg%crushed_through)//','//nl
     text = text//direction_json(lp, '', lp%solved, lp%note, lp%assoc, lp%nonassociative_solved, lp%nonassoc, &
                                 lp%steps, lp%converged)
     ! The -x direction: the same keys ending in _neg (null where it does not apply).
@@ -200,7 +213,7 @@ contains
       end if
       text = text//', "hinge_xy_m": '
       if (r%mode(k) == joint_hinge) then
-        text = text//xy_json(lp%faces%end_xy(:, r%pivot_end(k), k))//'}'
+        text = text//xy_json(r%end_xy(:, r%pivot_end(k), k))//'}'
       else
         text = text//'null}'
       end if
@@ -208,8 +221,9 @@ contains
     text = text//']'
   end function mechanism_json
 
-  !> One object per interface: the two ends, the unit normal (from the first block into
-  !> the second), the normal force at each end and the shear force [N] on the second block.
+  !> One object per interface: the two ends (moved in by the crushing offsets where the
+  !> strength is finite), the unit normal (from the first block into the second), the
+  !> normal force at each end and the shear force [N] on the second block.
   function forces_json(lp, r) result(text)
     type(lp_study_t), intent(in) :: lp
     type(lp_result_t), intent(in) :: r
@@ -218,8 +232,8 @@ contains
     text = '['
     do k = 1, lp%faces%n
       if (k > 1) text = text//', '
-      text = text//'{'//joint_keys(lp, k)//', "ends_xy_m": ['//xy_json(lp%faces%end_xy(:, 1, k))//', '// &
-        xy_json(lp%faces%end_xy(:, 2, k))//'], "normal": '//xy_json(lp%faces%normal(:, k))// &
+      text = text//'{'//joint_keys(lp, k)//', "ends_xy_m": ['//xy_json(r%end_xy(:, 1, k))//', '// &
+        xy_json(r%end_xy(:, 2, k))//'], "normal": '//xy_json(lp%faces%normal(:, k))// &
         ', "normal_n": '//xy_json(r%normal_n(:, k))//', "shear_n": '//fmt_json_real(r%shear_n(k))//'}'
     end do
     text = text//']'

@@ -13,8 +13,8 @@ module voussoir_limit_lp_study
   use voussoir_assembly, only: assembly_t
   use voussoir_hinge_side, only: side_intrados, side_extrados
   use voussoir_block_interfaces, only: interface_set_t, find_interfaces
-  use voussoir_limit_lp, only: block_loads_t, lp_result_t, block_loads, add_placed_loads, lp_capacity, &
-                               nonassociative_capacity, lp_outcome_unbounded
+  use voussoir_limit_lp, only: block_loads_t, lp_result_t, block_loads, add_placed_loads, lp_outcome_unbounded
+  use voussoir_limit_crushing, only: crushing_t, crushing_capacity, crushing_nonassociative
   implicit none
   private
 
@@ -30,6 +30,9 @@ module voussoir_limit_lp_study
     type(lp_result_t) :: assoc, nonassoc
     integer :: steps = 0                      !! steps of the non-associative iteration
     logical :: converged = .false.
+    integer :: crushing_steps = 0             !! LPs of the crushing iteration (associative)
+    logical :: crushing_converged = .true.
+    logical :: crushed_through = .false.      !! an interface crushed through (its ends met)
   end type lp_direction_t
 
   !> Both capacities of an assembly under the horizontal acceleration lambda g towards +x
@@ -54,6 +57,10 @@ module voussoir_limit_lp_study
     real(dp), allocatable :: curve_x_m(:)     !! the positions on the path [m]
     real(dp), allocatable :: curve_load_factor(:) !! the associative load factor at each (-1: unbounded)
     type(lp_direction_t) :: neg               !! the horizontal acceleration towards -x
+    type(crushing_t) :: crush                 !! the compressive strength (rigid: 0)
+    integer :: crushing_steps = 0             !! LPs of the crushing iteration (associative, +x)
+    logical :: crushing_converged = .true.
+    logical :: crushed_through = .false.      !! an interface crushed through (its ends met)
   end type lp_study_t
 
 contains
@@ -63,18 +70,23 @@ contains
   !> interface ends set in by `inset_m`. A refusal (no interfaces,
   !> infeasible, unbounded) comes back in `status`. Where the live load is the horizontal
   !> acceleration, the same towards -x in `study%neg` (its refusal in `study%neg%note`).
-  subroutine lp_study(asm, density_kg_m3, width_m, friction, inset_m, study, status, load, joint_friction)
+  !> With `compressive_strength_pa` > 0, the interfaces crush (voussoir_limit_crushing).
+  subroutine lp_study(asm, density_kg_m3, width_m, friction, inset_m, study, status, load, joint_friction, &
+                      compressive_strength_pa)
     type(assembly_t), intent(in) :: asm
     real(dp), intent(in) :: density_kg_m3, width_m, friction, inset_m
     type(lp_study_t), intent(out) :: study
     type(status_t), intent(inout) :: status
     type(load_config_t), intent(in), optional :: load
     real(dp), intent(in), optional :: joint_friction(0:) !! arch joint j's coefficient where >= 0 (else `friction`)
+    real(dp), intent(in), optional :: compressive_strength_pa !! sigma_c [Pa]; absent or 0: rigid
     type(block_loads_t) :: loads
     real(dp), allocatable :: mu(:)
     real(dp) :: size_m, shift_m
     integer :: b
 
+    study%crush = crushing_t(0.0_dp, width_m)
+    if (present(compressive_strength_pa)) study%crush%strength_pa = compressive_strength_pa
     size_m = 0.0_dp
     do b = 1, asm%n_bodies
       size_m = max(size_m, maxval(maxval(asm%polygon(b)%xy, dim=2) - minval(asm%polygon(b)%xy, dim=2)))
@@ -110,24 +122,26 @@ contains
     end if
     call block_loads(asm, density_kg_m3, width_m, g_m_s2, loads)
     call add_placed_loads(study%placed, loads)
-    call lp_capacity(asm, study%faces, loads, mu, 0.0_dp*mu, study%assoc, status)
+    call crushing_capacity(asm, study%faces, loads, mu, study%crush, study%assoc, study%crushing_steps, &
+                           study%crushing_converged, study%crushed_through, status)
     if (.not. status%ok) return
     study%solved = .true.
-    call nonassociative_capacity(asm, study%faces, loads, mu, study%assoc, study%nonassoc, study%steps, &
+    call crushing_nonassociative(asm, study%faces, loads, mu, study%crush, study%assoc, study%nonassoc, study%steps, &
                                  study%converged, status)
     study%nonassociative_solved = status%ok
-    if (study%live_is_acceleration) call reversed_direction(asm, study%faces, loads, mu, study%neg)
+    if (study%live_is_acceleration) call reversed_direction(asm, study%faces, loads, mu, study%crush, study%neg)
     if (.not. study%live_is_acceleration) study%neg%note = 'the live load is the point loads of &load: '// &
       'the -x direction is that of the horizontal acceleration only'
   end subroutine lp_study
 
   !> Both capacities with the live load turned round (the dead loads as they are); a
   !> refusal (a block held against -x) is the direction's note, not an error.
-  subroutine reversed_direction(asm, faces, loads, mu, neg)
+  subroutine reversed_direction(asm, faces, loads, mu, crush, neg)
     type(assembly_t), intent(in) :: asm
     type(interface_set_t), intent(in) :: faces
     type(block_loads_t), intent(in) :: loads
     real(dp), intent(in) :: mu(:)
+    type(crushing_t), intent(in) :: crush
     type(lp_direction_t), intent(inout) :: neg
     type(block_loads_t) :: reversed
     type(status_t) :: status
@@ -135,13 +149,15 @@ contains
     reversed%live_n = -loads%live_n
     reversed%live_moment_nm = -loads%live_moment_nm
     neg%applies = .true.
-    call lp_capacity(asm, faces, reversed, mu, 0.0_dp*mu, neg%assoc, status)
+    call crushing_capacity(asm, faces, reversed, mu, crush, neg%assoc, neg%crushing_steps, neg%crushing_converged, &
+                           neg%crushed_through, status)
     if (.not. status%ok) then
       neg%note = trim(status%message)
       return
     end if
     neg%solved = .true.
-    call nonassociative_capacity(asm, faces, reversed, mu, neg%assoc, neg%nonassoc, neg%steps, neg%converged, status)
+    call crushing_nonassociative(asm, faces, reversed, mu, crush, neg%assoc, neg%nonassoc, neg%steps, neg%converged, &
+                                 status)
     neg%nonassociative_solved = status%ok
   end subroutine reversed_direction
 
@@ -196,8 +212,9 @@ contains
     type(block_loads_t) :: loads
     type(lp_result_t) :: res
     type(status_t) :: lp_status
-    integer :: i, best
+    integer :: i, best, steps
     real(dp) :: lowest
+    logical :: converged, crushed
 
     study%has_path = .true.
     allocate (study%curve_x_m(load%path_points), study%curve_load_factor(load%path_points))
@@ -209,7 +226,7 @@ contains
       call block_loads(asm, density_kg_m3, width_m, g_m_s2, loads)
       call add_placed_loads(placed, loads)
       lp_status = status_t()
-      call lp_capacity(asm, study%faces, loads, mu, 0.0_dp*mu, res, lp_status)
+      call crushing_capacity(asm, study%faces, loads, mu, study%crush, res, steps, converged, crushed, lp_status)
       study%curve_load_factor(i) = -1.0_dp
       if (lp_status%ok) then
         study%curve_load_factor(i) = res%load_factor

@@ -29,6 +29,7 @@ module voussoir_limit_study
   type :: limit_options_t
     logical :: minimum_thickness = .true.  !! compute the minimum thickness
     real(dp) :: inset_m = 0.0_dp           !! pivot inset of the analysis [m]
+    real(dp) :: compressive_strength_pa = 0.0_dp !! sigma_c of the LP's interfaces [Pa]; 0: rigid (infinite)
   end type limit_options_t
 
   !> The minimum thickness of the arch's shape (embrace, voussoirs, r_ext, inset).
@@ -50,11 +51,21 @@ contains
     type(nml_group_t) :: g
 
     opts%inset_m = unset
+    opts%compressive_strength_pa = unset
     g%name = 'limit'
     call g%add('minimum_thickness', opts%minimum_thickness)
     call g%add('inset_m', opts%inset_m, unit='m')
+    call g%add('compressive_strength_pa', opts%compressive_strength_pa, unit='Pa')
     call g%read(path, status)
     if (.not. status%ok) return
+    if (opts%compressive_strength_pa == unset) then
+      opts%compressive_strength_pa = 0.0_dp
+    else
+      call need(opts%compressive_strength_pa > 0.0_dp, path, 'limit', 'compressive_strength_pa', &
+                opts%compressive_strength_pa, 'compressive_strength_pa > 0 (leave it out for blocks that do not crush)', &
+                status)
+      if (.not. status%ok) return
+    end if
     if (opts%inset_m == unset) opts%inset_m = cfg%arch%contact_inset_m
     call need(opts%inset_m >= 0.0_dp .and. opts%inset_m < 0.5_dp*cfg%arch%thickness_m, path, 'limit', 'inset_m', &
               opts%inset_m, '0 <= inset_m < thickness_m/2 = '//fmt_significant(0.5_dp*cfg%arch%thickness_m), status)
@@ -112,10 +123,10 @@ contains
         ! than its minimum thickness): its reason is reported, not an error.
         if (has_loads(cfg)) then
           call lp_study(arch, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, lp_status, cfg%load, &
-                        a%joint_friction)
+                        a%joint_friction, opts%compressive_strength_pa)
         else
           call lp_study(arch, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, lp_status, &
-                        joint_friction=a%joint_friction)
+                        joint_friction=a%joint_friction, compressive_strength_pa=opts%compressive_strength_pa)
         end if
         if (.not. lp_status%ok) lp%note = trim(lp_status%message)
       end if
@@ -141,10 +152,10 @@ contains
     associate (a => cfg%arch)
       if (has_loads(cfg)) then
         call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status, cfg%load, &
-                      a%joint_friction)
+                      a%joint_friction, opts%compressive_strength_pa)
       else
         call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status, &
-                      joint_friction=a%joint_friction)
+                      joint_friction=a%joint_friction, compressive_strength_pa=opts%compressive_strength_pa)
       end if
       if (.not. status%ok) status%message = 'limit analysis by linear programming: '//trim(status%message)
     end associate

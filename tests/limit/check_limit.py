@@ -556,6 +556,58 @@ elif case == "joint_friction":
     check(d["sliding"] == [0], f"joint 0 at 0.2: the friction check flags joint 0 alone ({d['sliding']})")
     rc, out, err = run("joint0.nml")
     check(rc == 0 and "joint_friction where set" in out, "joint 0 at 0.2: the table says joint_friction is used")
+elif case == "crushing":
+    # &limit compressive_strength_pa: every interface force kept a = N / (2 sigma_c w) from
+    # the ends. input/rocking_block.nml (b = 0.2, h = 1, w = 0.2 m, W = 784.8 N) tips about
+    # a point a = W / (2 sigma_c w) in from its corner: lambda W h/2 = W (b/2 - a),
+    # lambda = (b - W / (sigma_c w)) / h, both ways (sliding needs mu = 0.7).
+    with open(nml) as f:
+        text = f.read().replace("blocks/", os.path.dirname(os.path.abspath(nml)) + "/blocks/")
+    w = 2000 * 0.2 * 1.0 * 0.2 * 9.81
+    for sigma in (1e12, 98100.0, 50000.0):
+        path = f"block_sigma_{sigma:g}.nml"
+        with open(path, "w") as f:
+            f.write(text + f"&limit compressive_strength_pa = {sigma} /\n")
+        d = load(path)
+        expected = (0.2 - w / (sigma * 0.2)) / 1.0
+        for key in ("load_factor", "load_factor_nonassociative", "load_factor_neg", "load_factor_nonassociative_neg"):
+            check(close(d[key], expected, rtol=1e-9), f"block, sigma_c {sigma:g} Pa: {key} {d[key]} = "
+                                                      f"(b - W/(sigma_c w))/h = {expected}")
+        check(d["compressive_strength_pa"] == sigma and d["crushing_converged"] and not d["crushed_through"],
+              f"block, sigma_c {sigma:g} Pa: the JSON says so, converged")
+        hinge = d["mechanism"][0]["hinge_xy_m"]
+        check(close(hinge[0], 0.1 - w / (2 * sigma * 0.2), atol=1e-12),
+              f"block, sigma_c {sigma:g} Pa: the hinge {hinge} set in by a = W/(2 sigma_c w) from the +x corner")
+    d = load(f"block_sigma_{1e12:g}.nml")
+    check(close(d["load_factor"], 0.2, rtol=1e-6), f"block, sigma_c 1e12 Pa: the rigid b/h to 1e-6 ({d['load_factor']})")
+    rc, out, err = run("block_sigma_98100.nml")
+    check(rc == 0 and "compressive strength 98100 Pa" in out, "block: the table names the strength")
+    # The seed arch at 30 kPa: below its rigid lambda; every interface force at the ends of
+    # its joint (from the geometry conventions) moved in by N / (2 sigma_c w).
+    with open(os.path.join(os.path.dirname(os.path.abspath(nml)), "limit_seed_156.nml")) as f:
+        text = f.read().replace("minimum_thickness = .true.", "minimum_thickness = .false.")
+    with open("seed_rigid.nml", "w") as f:
+        f.write(text)
+    with open("seed_crushing.nml", "w") as f:
+        f.write(text.replace("&limit\n", "&limit\n  compressive_strength_pa = 3e4,\n"))
+    rigid, d = load("seed_rigid.nml"), load("seed_crushing.nml")
+    check(d["compressive_strength_pa"] == 3e4, "seed arch: a finite strength read")
+    for key in ("load_factor", "load_factor_neg"):
+        check(d[key] < rigid[key] * (1 - 1e-3), f"seed arch, 30 kPa: {key} {d[key]} below the rigid {rigid[key]}")
+    a = d["arch"]
+    worst = 0.0
+    for key in ("contact_forces", "contact_forces_neg", "contact_forces_nonassociative"):
+        for f in d[key]:
+            j = f["joint"]
+            ends = [a["joint_intrados_xy_m"][j], a["joint_extrados_xy_m"][j]]
+            offset = sum(f["normal_n"]) / (2 * 3e4 * 0.145)
+            for p in f["ends_xy_m"]:
+                dist = min(math.dist(p, e) for e in ends)
+                worst = max(worst, abs(dist - offset) / a["thickness_m"])
+    check(worst < 1e-6, f"seed arch, 30 kPa: every force N / (2 sigma_c w) in from its joint's ends ({worst:.1e})")
+    for sfx in ("", "_neg"):
+        check(close(d["load_factor_upper" + sfx], d["load_factor" + sfx], rtol=1e-6),
+              f"seed arch, 30 kPa: upper{sfx} = lower bound")
 elif case == "bad_inputs":
     cases = [
         ("unknown_limit_variable", "&limit", "&arch /\n&limit minimum_thicknes = .false. /\n"),
@@ -568,6 +620,8 @@ elif case == "bad_inputs":
          "&arch n_voussoirs = 600 /\n"),
         ("limit_inset_too_big", "inset_m = 0.04.*thickness_m/2", "&arch /\n&limit inset_m = 0.04 /\n"),
         ("limit_inset_negative", "inset_m = -0.001", "&arch /\n&limit inset_m = -0.001 /\n"),
+        ("limit_strength_zero", r"compressive_strength_pa = 0.*compressive_strength_pa > 0",
+         "&arch /\n&limit compressive_strength_pa = 0 /\n"),
         ("polygon_overhang", "dead load alone brings the assembly down",
          "&arch polygon_file = 'overhang.txt' /\n"),
         ("polygon_against_wall", "unbounded.*block 1 is held against the load", "&arch polygon_file = 'against_wall.txt' /\n"),
