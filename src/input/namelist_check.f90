@@ -51,15 +51,8 @@ contains
       if (name == 'end' .or. len_trim(name) == 0) cycle
       if (.not. any(allowed == lower(name))) then
         write (num, '(i0)') line_no
-        if (lower(name) == 'load') then
-          ! A group of another driver: say so, rather than that it is unknown.
-          call fail(status, trim(path)//':'//trim(num)//': namelist group &load is not taken by this program: '// &
-                    'only voussoir-run and voussoir-limit apply loads (a sweep would run its cases and compute '// &
-                    'the static capacity that starts its searches without them); allowed:'//trim(list))
-        else
-          call fail(status, trim(path)//':'//trim(num)//': unknown namelist group &'//trim(name)// &
-                    ' (allowed:'//trim(list)//')')
-        end if
+        call fail(status, trim(path)//':'//trim(num)//': unknown namelist group &'//trim(name)// &
+                  ' (allowed:'//trim(list)//')')
         exit
       end if
       ! A second group of the same name would be silently ignored by the read.

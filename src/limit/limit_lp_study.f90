@@ -20,6 +20,9 @@ module voussoir_limit_lp_study
 
   public :: lp_study_t, lp_direction_t, lp_study, path_position_m
 
+  character(len=*), parameter :: live_acceleration_words = &
+    'horizontal acceleration lambda g towards +x (lambda x the weight of each block)'
+
   !> Both capacities of the live load reversed: the horizontal acceleration lambda g
   !> towards -x (the loads in place, the live one turned round).
   type :: lp_direction_t
@@ -72,7 +75,7 @@ contains
   !> acceleration, the same towards -x in `study%neg` (its refusal in `study%neg%note`).
   !> With `compressive_strength_pa` > 0, the interfaces crush (voussoir_limit_crushing).
   subroutine lp_study(asm, density_kg_m3, width_m, friction, inset_m, study, status, load, joint_friction, &
-                      compressive_strength_pa)
+                      compressive_strength_pa, loads_dead)
     type(assembly_t), intent(in) :: asm
     real(dp), intent(in) :: density_kg_m3, width_m, friction, inset_m
     type(lp_study_t), intent(out) :: study
@@ -80,10 +83,14 @@ contains
     type(load_config_t), intent(in), optional :: load
     real(dp), intent(in), optional :: joint_friction(0:) !! arch joint j's coefficient where >= 0 (else `friction`)
     real(dp), intent(in), optional :: compressive_strength_pa !! sigma_c [Pa]; absent or 0: rigid
+    !> Every load of `load` dead, where a run applies it (no path), the live load the
+    !> horizontal acceleration: the static capacity of a shaken, loaded assembly.
+    logical, intent(in), optional :: loads_dead
     type(block_loads_t) :: loads
     real(dp), allocatable :: mu(:)
     real(dp) :: size_m, shift_m
     integer :: b
+    logical :: all_dead
 
     study%crush = crushing_t(0.0_dp, width_m)
     if (present(compressive_strength_pa)) study%crush%strength_pa = compressive_strength_pa
@@ -107,10 +114,17 @@ contains
       if (.not. status%ok) return
     end if
     shift_m = 0.0_dp
-    study%live_load = 'horizontal acceleration lambda g towards +x (lambda x the weight of each block)'
+    study%live_load = live_acceleration_words
     allocate (study%placed%block(0), study%placed%source(0), study%placed%xy(2, 0), study%placed%force_n(2, 0), &
               study%placed%live(0))
-    if (present(load)) then
+    all_dead = .false.
+    if (present(loads_dead)) all_dead = loads_dead
+    if (present(load) .and. all_dead) then
+      call place_loads(load, asm, 0.0_dp, study%placed, status)
+      if (.not. status%ok) return
+      study%placed%live = .false.
+      study%live_load = study%live_load//'; dead: the weights and every load of &load, where a run applies it'
+    else if (present(load)) then
       if (load%path_points >= 2) then
         call critical_position(asm, density_kg_m3, width_m, load, study, mu, shift_m, status)
         if (.not. status%ok) return

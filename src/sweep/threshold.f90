@@ -5,7 +5,7 @@
 module voussoir_threshold
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
-  use voussoir_config, only: config_t, fmt_real, waveform_afd, springings_none
+  use voussoir_config, only: config_t, fmt_real, waveform_afd, springings_none, has_loads
   use voussoir_assembly, only: assembly_t, build_arch, voussoir_angle_factors
   use voussoir_limit_analysis, only: limit_result_t, horizontal_capacity
   use voussoir_limit_lp_study, only: lp_study_t, lp_study
@@ -91,7 +91,8 @@ contains
   !> restraint brackets, no capacity). Where the four-hinge mechanism's static field
   !> breaks Coulomb's law at a joint (`&arch friction`), sliding may govern: the capacity
   !> is then the lesser of the four-hinge one and the non-associative LP capacity (the
-  !> joints slide without dilating) in that direction (docs/limit_analysis.md).
+  !> joints slide without dilating) in that direction (docs/limit_analysis.md). With the
+  !> loads of &load, the LP's capacity with them (`loaded_capacity`).
   real(dp) function static_capacity_m_s2(cfg) result(capacity)
     type(config_t), intent(in) :: cfg
     type(assembly_t) :: arch
@@ -105,6 +106,10 @@ contains
     call build_arch(cfg%arch%embrace_deg, cfg%arch%n_voussoirs, cfg%arch%r_ext_m, cfg%arch%thickness_m, arch, &
                     angle_factors=voussoir_angle_factors(cfg%arch%n_voussoirs, cfg%arch%size_imperfection, &
                                                          cfg%arch%imperfection_seed))
+    if (has_loads(cfg)) then
+      capacity = loaded_capacity(arch, cfg)
+      return
+    end if
     call horizontal_capacity(arch, cfg%arch%contact_inset_m, cfg%arch%friction, limit, status, &
                              cfg%arch%joint_friction)
     if (.not. status%ok) return
@@ -137,6 +142,25 @@ contains
     if (neg .and. study%neg%solved) lambda = min(lambda, direction_lambda(study%neg%assoc, study%neg%nonassoc, &
                                                                          study%neg%nonassociative_solved))
   end function sliding_capacity
+
+  !> The capacity lambda g [m/s2] of the arch `asm` loaded by &load as a run applies the
+  !> loads (all dead, at their places; the four-hinge analysis takes the weights alone):
+  !> the LP's non-associative load factor of the weaker direction; 0 when it has none.
+  real(dp) function loaded_capacity(asm, cfg) result(capacity)
+    type(assembly_t), intent(in) :: asm
+    type(config_t), intent(in) :: cfg
+    type(lp_study_t) :: study
+    type(status_t) :: status
+    real(dp) :: lambda
+    capacity = 0.0_dp
+    call lp_study(asm, cfg%arch%density_kg_m3, cfg%arch%width_m, cfg%arch%friction, cfg%arch%contact_inset_m, &
+                  study, status, load=cfg%load, joint_friction=cfg%arch%joint_friction, loads_dead=.true.)
+    if (.not. study%solved) return
+    lambda = direction_lambda(study%assoc, study%nonassoc, study%nonassociative_solved)
+    if (study%neg%solved) lambda = min(lambda, direction_lambda(study%neg%assoc, study%neg%nonassoc, &
+                                                                study%neg%nonassociative_solved))
+    if (lambda < huge(1.0_dp)) capacity = lambda*g_m_s2
+  end function loaded_capacity
 
   !> The non-associative load factor where there is one, else the associative; huge
   !> where not positive.
