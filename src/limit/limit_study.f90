@@ -62,8 +62,8 @@ contains
       opts%compressive_strength_pa = 0.0_dp
     else
       call need(opts%compressive_strength_pa > 0.0_dp, path, 'limit', 'compressive_strength_pa', &
-                opts%compressive_strength_pa, 'compressive_strength_pa > 0 (leave it out for blocks that do not crush)', &
-                status)
+                opts%compressive_strength_pa, &
+                'compressive_strength_pa > 0 (leave it out for blocks that do not crush)', status)
       if (.not. status%ok) return
     end if
     if (opts%inset_m == unset) opts%inset_m = cfg%arch%contact_inset_m
