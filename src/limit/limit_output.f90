@@ -170,7 +170,11 @@ contains
     character(len=1), parameter :: nl = achar(10)
     character(len=:), allocatable :: text
     if (lp%assembly /= 'arch') then
-      call write_json_any(u, path, cfg, lp)
+      if (lp%assembly == 'restrained arch') then
+        call write_json_any(u, path, cfg, lp, arch_json(cfg, opts, arch))
+      else
+        call write_json_any(u, path, cfg, lp, 'null')
+      end if
       return
     end if
     call sliding_union(res, cfg%arch%n_voussoirs, sliding)
@@ -208,7 +212,21 @@ contains
         '  "max_shear_ratio_neg": '//finite_or_null(maxval(res%shear_ratio_neg))//','//nl// &
         '  "thrust_fraction_pos": '//fraction_list(res%thrust_fraction_pos)//','//nl// &
         '  "thrust_fraction_neg": '//fraction_list(res%thrust_fraction_neg)//','//nl// &
-        '  "arch": {'//nl// &
+        '  "arch": '//arch_json(cfg, opts, arch)//nl//'}'
+    end associate
+    write (u, '(a)') text
+  end subroutine write_json
+
+  !> The "arch" object: its shape, the inset, and the ends of every joint.
+  function arch_json(cfg, opts, arch) result(text)
+    type(config_t), intent(in) :: cfg
+    type(limit_options_t), intent(in) :: opts
+    type(assembly_t), intent(in) :: arch
+    character(len=:), allocatable :: text
+    character(len=1), parameter :: nl = achar(10)
+    integer :: j
+    associate (a => cfg%arch)
+      text = '{'//nl// &
         '    "n_voussoirs": '//itoa(a%n_voussoirs)//','//nl// &
         '    "embrace_deg": '//fmt_json_real(a%embrace_deg)//','//nl// &
         '    "r_ext_m": '//fmt_json_real(a%r_ext_m)//','//nl// &
@@ -226,18 +244,19 @@ contains
         text = text//'['//fmt_json_real(arch%joint_extrados_xy(1, j))//', '// &
                fmt_json_real(arch%joint_extrados_xy(2, j))//']'
       end do
-      text = text//']'//nl//'  }'//nl//'}'
+      text = text//']'//nl//'  }'
     end associate
-    write (u, '(a)') text
-  end subroutine write_json
+  end function arch_json
 
   !> The JSON of a wall, a polygon file or a restrained arch: every key of the arch's,
-  !> null or empty where the four-hinge analysis of an arch does not apply, and the LP's.
-  subroutine write_json_any(u, path, cfg, lp)
+  !> null or empty where the four-hinge analysis of an arch does not apply (the "arch"
+  !> object given for a restrained arch), and the LP's.
+  subroutine write_json_any(u, path, cfg, lp, arch_text)
     integer, intent(in) :: u
     character(len=*), intent(in) :: path
     type(config_t), intent(in) :: cfg
     type(lp_study_t), intent(in) :: lp
+    character(len=*), intent(in) :: arch_text   !! the "arch" object of a restrained arch, else null
     character(len=1), parameter :: nl = achar(10)
     write (u, '(a)') '{'//nl// &
       '  "producer": "voussoir-limit",'//nl// &
@@ -253,7 +272,7 @@ contains
       '  "sliding": [],'//nl//'  "sliding_pos": [],'//nl//'  "sliding_neg": [],'//nl// &
       '  "max_shear_ratio_pos": null,'//nl//'  "max_shear_ratio_neg": null,'//nl// &
       '  "thrust_fraction_pos": null,'//nl//'  "thrust_fraction_neg": null,'//nl// &
-      '  "arch": null'//nl//'}'
+      '  "arch": '//arch_text//nl//'}'
   end subroutine write_json_any
 
   !> A number, or null for the module's `huge` (no admissible mechanism, joint not in

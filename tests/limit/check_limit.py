@@ -490,8 +490,13 @@ elif case == "restrained":
             f.write(f"&arch embrace_deg = {emb}, n_voussoirs = {n}, r_ext_m = {r_ext}, thickness_m = {t},\n"
                     f"  width_m = 0.145, density_kg_m3 = 700, friction = 10, restrained_springings = '{side}' /\n")
         d = load(path)
-        check(d["assembly"] == "restrained arch" and d["lambda_pos"] is None and d["arch"] is None,
+        check(d["assembly"] == "restrained arch" and d["lambda_pos"] is None and d["hinges_pos"] == [],
               f"{side}: a restrained arch, the four-hinge keys null")
+        da = d["arch"]
+        check(da is not None and da["n_voussoirs"] == n and all(
+            close(p, q, atol=1e-12) for key in ("joint_intrados_xy_m", "joint_extrados_xy_m")
+            for pq in zip(da[key], a[key]) for p, q in zip(*pq)),
+              f"{side}: the arch object with the joint ends of the geometry conventions")
         for sfx, sign in (("", 1.0), ("_neg", -1.0)):
             lam, exp = d["load_factor" + sfx], expected(fixed, sign)
             check(close(lam, exp, rtol=1e-6),
