@@ -39,7 +39,8 @@ program voussoir_sweep
     'beside it, updated as jobs finish; a rerun continues a killed sweep.', path, exit_code)
   if (exit_code >= 0) stop exit_code, quiet=.true.
   call comm_start(net)
-  call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'sweep'], cfg, status)
+  call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'sweep', 'load'], cfg, &
+                   status)
   if (status%ok) call read_sweep_plan(trim(path), cfg, plan, status)
   if (status%ok .and. net%rank == 0) call master_prepare(plan, cfg, net%size, master, status)
   ! Every rank read the same input; only rank 0 knows whether the result file is usable.

@@ -74,6 +74,12 @@ driver=voussoir-limit case_ load_axle_off "&load live point load 1 \(axle 2\) at
 &load point_load_n(1) = 100, axle_spacing_m(1) = 3 /"
 driver=voussoir-limit case_ load_live_text "&load point_load_live\(1\) = 'x' is not a logical" "$ld
 &load point_load_n(1) = 100, point_load_live = 'x' /"
+# voussoir-sweep takes &load (issue 25): a load outside every block is refused before any run.
+driver=voussoir-sweep case_ sweep_load_outside "sweep_load_outside.nml: &load point load 1 at \(x, y\) = \(5, 0\) m lies in no block" "&arch /
+&motion waveform = 'afd', frequency_hz = 2, amplitude_m = 0.01 /
+&sweep mode = 'threshold', frequencies_hz = 2 /
+&load point_load_n(1) = 100, point_load_x_m(1) = 5 /
+$o"
 driver=voussoir-limit case_ limit_thickness_text ":2: &limit minimum_thickness = 'x' is not a logical \(.true. or .false.\)" "&arch /
 &limit minimum_thickness = 'x' /"
 case_ thick             "thickness_m = 0.6.*0 < thickness_m < r_ext_m" "&arch thickness_m = 0.6, r_ext_m = 0.5 /

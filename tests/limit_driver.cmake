@@ -40,6 +40,23 @@ add_test(NAME limit_driver_wall_sliding
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
                  wall_sliding ${CMAKE_SOURCE_DIR}/input/wall_sliding.nml
          WORKING_DIRECTORY ${LIMIT_TEST_DIR})
+# &arch joint_friction (issue 25): the friction of each joint as the dynamics takes it.
+add_test(NAME limit_driver_joint_friction
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
+                 joint_friction ${CMAKE_SOURCE_DIR}/input/limit_seed_156.nml
+         WORKING_DIRECTORY ${LIMIT_TEST_DIR})
+# &limit compressive_strength_pa (issue 25): a block tipping about a point set in by the
+# stress block (closed form) and the seed arch's forces at their crushing offsets.
+add_test(NAME limit_driver_crushing
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
+                 crushing ${CMAKE_SOURCE_DIR}/input/rocking_block.nml
+         WORKING_DIRECTORY ${LIMIT_TEST_DIR})
+# Restraint brackets (issue 25): the LP against the least four-hinge mechanism with no
+# hinge at a restrained springing, computed in the check itself.
+add_test(NAME limit_driver_restrained
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
+                 restrained
+         WORKING_DIRECTORY ${LIMIT_TEST_DIR})
 # &load (issue 25): a vertical live point load on a semicircular arch at quarter span and
 # along a path, against the least four-hinge mechanism computed in the check itself.
 add_test(NAME limit_driver_arch_point_load

@@ -3,7 +3,7 @@
 !> forms for blocks, stacks and a wall panel, the exact four-hinge analysis of the seed
 !> arches, and the refusals.
 program test_limit_lp
-  use voussoir_kinds, only: dp
+  use voussoir_kinds, only: dp, pi
   use voussoir_status, only: status_t
   use voussoir_assembly, only: assembly_t, build_arch, role_voussoir, role_foundation
   use voussoir_wall_config, only: wall_config_t
@@ -18,6 +18,8 @@ program test_limit_lp
   call test_block_tipping()
   call test_block_sliding()
   call test_two_block_stack()
+  call test_block_on_incline(mu=0.6_dp)
+  call test_block_on_incline(mu=0.35_dp)
   call test_wall_panel()
   call test_seed_arches()
   call test_refusals()
@@ -82,6 +84,53 @@ contains
     call assert_close(na%load_factor_upper, na%load_factor, 'block sliding: upper = lower (non-assoc. step)', &
                       rtol=1.0e-9_dp)
   end subroutine test_block_sliding
+
+  !> A block b x h = 0.2 x 0.4 m on a driven incline falling at alpha = 10 deg towards +x,
+  !> under lambda g towards +x. In the incline's frame the load per weight is lambda cos a
+  !> + sin a down the slope and cos a - lambda sin a into it: the block slides at
+  !> lambda = tan(phi - alpha) (mu = tan phi) and tips about its down-slope corner when the
+  !> load's line through the centroid reaches it, lambda = tan(atan(b/h) - alpha); the
+  !> lesser governs (mu 0.6: tipping, 0.297; mu 0.35: sliding, 0.164).
+  subroutine test_block_on_incline(mu)
+    real(dp), intent(in) :: mu
+    real(dp), parameter :: alpha = 10.0_dp*pi/180.0_dp, b = 0.2_dp, h = 0.4_dp
+    type(assembly_t) :: asm
+    type(lp_result_t) :: a, na
+    type(status_t) :: status
+    real(dp) :: t(2), n(2), p0(2), lambda_slide, lambda_tip, expected
+    character(len=:), allocatable :: what
+    t = [cos(alpha), -sin(alpha)]    ! down the slope
+    n = [sin(alpha), cos(alpha)]     ! out of the incline
+    p0 = [-0.1_dp, 0.0_dp]
+    asm%n_bodies = 2
+    allocate (asm%polygon(2), asm%driven(2))
+    asm%polygon(1)%xy = reshape([p0, p0 + b*t, p0 + b*t + h*n, p0 + h*n], [2, 4])
+    ! The incline: a quadrilateral under the block's base, longer than it both ways.
+    asm%polygon(2)%xy = reshape([p0 - 0.3_dp*t - [0.0_dp, 0.5_dp], p0 + (b + 0.3_dp)*t - [0.0_dp, 0.5_dp], &
+                                 p0 + (b + 0.3_dp)*t, p0 - 0.3_dp*t], [2, 4])
+    asm%driven = [.false., .true.]
+    call capacities(asm, mu, a, na, status)
+    what = 'block on a 10 deg incline, mu '//trim(adjustl(fmt_mu(mu)))
+    call assert_true(status%ok, what//': solved')
+    if (.not. status%ok) return
+    lambda_slide = tan(atan(mu) - alpha)
+    lambda_tip = tan(atan(b/h) - alpha)
+    expected = min(lambda_slide, lambda_tip)
+    call assert_close(a%load_factor, expected, what//': lambda = min(tan(phi - a), tan(atan(b/h) - a))', &
+                      rtol=1.0e-9_dp)
+    call assert_close(na%load_factor, expected, what//': the same without dilatancy', rtol=1.0e-9_dp)
+    if (lambda_tip < lambda_slide) then
+      call assert_true(a%mode(1) == joint_hinge, what//': it tips')
+    else
+      call assert_true(a%mode(1) == joint_sliding .and. na%mode(1) == joint_sliding, what//': it slides')
+    end if
+  end subroutine test_block_on_incline
+
+  function fmt_mu(mu) result(text)
+    real(dp), intent(in) :: mu
+    character(len=16) :: text
+    write (text, '(f5.2)') mu
+  end function fmt_mu
 
   !> Two equal blocks, b/h = 0.4, mu = 0.8: the stack tips about the base's corner at b/(2h).
   subroutine test_two_block_stack()

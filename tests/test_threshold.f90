@@ -7,6 +7,7 @@
 program test_threshold
   use, intrinsic :: ieee_arithmetic, only: ieee_is_nan
   use voussoir_kinds, only: dp, pi, g_m_s2
+  use voussoir_geometry, only: polygon_area, polygon_centroid
   use voussoir_status, only: status_t
   use voussoir_config, only: config_t
   use voussoir_assembly, only: assembly_t
@@ -74,6 +75,7 @@ program test_threshold
   call assert_true(static_capacity_m_s2(cfg) < 0.9_dp*lambda_156*g_m_s2, &
                    'friction 0.395: below 0.9 x the four-hinge capacity')
   cfg%arch%friction = 0.5_dp
+  call test_loaded_capacity(cfg)
 
   ! Monotone case: collapse from 63.3 mm, still below 58 mm.
   settings = threshold_settings_t()
@@ -140,6 +142,45 @@ program test_threshold
   call assert_summary()
 
 contains
+
+  !> &load in the sweep's static capacity (issue 25). A dead vertical load k W_i at the
+  !> centroid of every voussoir i makes gravity 1 + k times stronger while the
+  !> acceleration still acts on the masses alone: every force scales, the capacity is
+  !> (1 + k) lambda g exactly (hinging still governs: the shear ratios do not change). A
+  !> dead load on a foundation goes to the table: no change. The runs of a search keep
+  !> the loads.
+  subroutine test_loaded_capacity(base)
+    type(config_t), intent(in) :: base
+    real(dp), parameter :: k = 0.5_dp
+    type(config_t) :: c, run_cfg
+    type(assembly_t) :: arch
+    real(dp) :: xy(2)
+    integer :: i, n
+    n = base%arch%n_voussoirs
+    call build_arch(base%arch%embrace_deg, n, base%arch%r_ext_m, base%arch%thickness_m, arch)
+    c = base
+    do i = 1, n
+      xy = polygon_centroid(arch%polygon(i)%xy)
+      c%load%point_load_n(i) = k*c%arch%density_kg_m3*polygon_area(arch%polygon(i)%xy)*c%arch%width_m*g_m_s2
+      c%load%point_load_x_m(i) = xy(1)
+      c%load%point_load_y_m(i) = xy(2)
+      c%load%point_load_live(i) = .false.
+    end do
+    c%load%n_point_loads = n
+    call assert_close(static_capacity_m_s2(c), (1.0_dp + k)*lambda_156*g_m_s2, &
+                      '&load: dead loads k W_i at the centroids: capacity (1 + k) lambda g', rtol=1.0e-9_dp)
+    run_cfg = search_run_config(c, 1.25_dp, 0.01_dp)
+    call assert_true(run_cfg%load%n_point_loads == n, '&load: the runs of a search keep the loads')
+    c = base
+    xy = polygon_centroid(arch%polygon(n + 1)%xy)
+    c%load%point_load_n(1) = 1000.0_dp
+    c%load%point_load_x_m(1) = xy(1)
+    c%load%point_load_y_m(1) = xy(2)
+    c%load%point_load_live(1) = .false.
+    c%load%n_point_loads = 1
+    call assert_close(static_capacity_m_s2(c), lambda_156*g_m_s2, '&load: a load on a foundation: lambda g', &
+                      rtol=1.0e-9_dp)
+  end subroutine test_loaded_capacity
 
   function seed_156() result(c)
     type(config_t) :: c

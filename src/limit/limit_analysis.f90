@@ -142,13 +142,15 @@ contains
   end subroutine arch_chain
 
   !> Horizontal collapse multipliers (towards +x and -x) of an arch from `build_arch`,
-  !> with the hinge pivots set in by `inset_m` and the sliding check against `friction`.
-  pure subroutine horizontal_capacity(arch, inset_m, friction, result, status)
+  !> with the hinge pivots set in by `inset_m` and the sliding check against `friction`
+  !> (at joint j against `joint_friction(j)` where that is >= 0, as in the dynamics).
+  pure subroutine horizontal_capacity(arch, inset_m, friction, result, status, joint_friction)
     type(assembly_t), intent(in) :: arch         !! an arch from `build_arch`
     real(dp), intent(in) :: inset_m              !! pivot distance from the joint ends [m]
     real(dp), intent(in) :: friction             !! Coulomb coefficient of the joints
     type(limit_result_t), intent(out) :: result
     type(status_t), intent(inout) :: status
+    real(dp), intent(in), optional :: joint_friction(0:) !! per joint; < 0: `friction`
     type(block_chain_t) :: chain
 
     if (allocated(arch%role)) then
@@ -160,20 +162,23 @@ contains
     end if
     call arch_chain(arch, chain, status)
     if (.not. status%ok) return
-    call chain_capacity(chain, inset_m, friction, result, status)
+    call chain_capacity(chain, inset_m, friction, result, status, joint_friction)
   end subroutine horizontal_capacity
 
   !> Horizontal collapse multipliers of a generic chain of blocks (see `block_chain_t`).
   !>
   !> Arch chains need at least 3 blocks (a four-hinge mechanism), stacks at least 1.
-  pure subroutine chain_capacity(chain, inset_m, friction, result, status)
+  pure subroutine chain_capacity(chain, inset_m, friction, result, status, joint_friction)
     type(block_chain_t), intent(in) :: chain
     real(dp), intent(in) :: inset_m              !! pivot distance from the joint ends [m]
     real(dp), intent(in) :: friction             !! Coulomb coefficient of the joints
     type(limit_result_t), intent(out) :: result
     type(status_t), intent(inout) :: status
+    real(dp), intent(in), optional :: joint_friction(0:) !! per joint; < 0: `friction`
     type(chain_work_t) :: work
     type(mechanism_t) :: best_pos, best_neg
+    real(dp), allocatable :: mu(:)
+    integer :: j
 
     if (.not. (friction >= 0.0_dp)) then
       call fail(status, 'limit analysis: friction must be >= 0')
@@ -181,6 +186,13 @@ contains
     end if
     call prepare_chain(chain, inset_m, work, status)
     if (.not. status%ok) return
+    allocate (mu(0:work%n))
+    mu = friction
+    if (present(joint_friction)) then
+      do j = 0, min(work%n, ubound(joint_friction, 1))
+        if (joint_friction(j) >= 0.0_dp) mu(j) = joint_friction(j)
+      end do
+    end if
 
     if (work%free_top) then
       call search_stack(work, best_pos, best_neg)
@@ -197,10 +209,10 @@ contains
     result%hinges_neg = best_neg%joint
     result%sides_neg = best_neg%side
 
-    call verify_mechanism(work, best_pos, 1.0_dp, friction, result%lambda_static_pos, &
+    call verify_mechanism(work, best_pos, 1.0_dp, mu, result%lambda_static_pos, &
                           result%bounds_meet_pos, result%thrust_fraction_pos, &
                           result%shear_ratio_pos, result%sliding_joints_pos)
-    call verify_mechanism(work, best_neg, -1.0_dp, friction, result%lambda_static_neg, &
+    call verify_mechanism(work, best_neg, -1.0_dp, mu, result%lambda_static_neg, &
                           result%bounds_meet_neg, result%thrust_fraction_neg, &
                           result%shear_ratio_neg, result%sliding_joints_neg)
   end subroutine chain_capacity
@@ -416,7 +428,8 @@ contains
                                    thrust_fraction, shear_ratio, sliding_joints)
     type(chain_work_t), intent(in) :: work
     type(mechanism_t), intent(in) :: mech
-    real(dp), intent(in) :: dir, friction
+    real(dp), intent(in) :: dir
+    real(dp), intent(in) :: friction(0:)         !! Coulomb coefficient of each joint
     real(dp), intent(out) :: lambda_static
     logical, intent(out) :: bounds_meet
     real(dp), allocatable, intent(out) :: thrust_fraction(:), shear_ratio(:)
@@ -458,7 +471,7 @@ contains
       else
         shear_ratio(j) = huge(1.0_dp)
       end if
-      if (shear_ratio(j) > friction) sliding_joints = [sliding_joints, j]
+      if (shear_ratio(j) > friction(j)) sliding_joints = [sliding_joints, j]
     end do
     bounds_meet = all(inside) .and. &
                   abs(lambda_static - mech%lambda) <= lambda_tol*max(1.0_dp, abs(mech%lambda))

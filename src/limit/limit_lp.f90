@@ -44,6 +44,7 @@ module voussoir_limit_lp
     integer :: outcome = lp_optimal
     real(dp) :: load_factor = 0.0_dp        !! lambda of the static field (lower bound)
     real(dp) :: load_factor_upper = 0.0_dp  !! lambda of the mechanism by the work equation (upper bound)
+    real(dp), allocatable :: end_xy(:, :, :) !! (2, 2, n_interfaces) the ends the normal forces act at [m]
     real(dp), allocatable :: normal_n(:, :) !! (2, n_interfaces) normal force at each end [N], >= 0
     real(dp), allocatable :: shear_n(:)     !! shear force [N] on body(2), along the normal turned +90 deg
     real(dp), allocatable :: velocity(:, :) !! (3, n_bodies) u_x, u_y at the centroid, omega; live power 1
@@ -168,6 +169,7 @@ contains
     select case (res%outcome)
     case (lp_optimal)
       res%load_factor = objective
+      res%end_xy = faces%end_xy
       res%normal_n = scale_n*reshape([(x(3*k - 2:3*k - 1), k=1, nf)], [2, nf])
       res%shear_n = scale_n*[(x(3*k), k=1, nf)]
       call velocities_from_duals(asm, loads, row_of, dual, res%velocity)

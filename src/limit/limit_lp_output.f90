@@ -5,7 +5,7 @@ module voussoir_limit_lp_output
   use voussoir_text, only: itoa, fmt_json_real, json_string, json_bool, fmt_significant
   use voussoir_hinge_side, only: side_name
   use voussoir_limit_lp, only: lp_result_t, joint_mode_name, joint_closed, joint_hinge
-  use voussoir_limit_lp_study, only: lp_study_t
+  use voussoir_limit_lp_study, only: lp_study_t, lp_direction_t
   implicit none
   private
 
@@ -23,6 +23,11 @@ contains
       fmt_significant(friction)//')'
     if (allocated(lp%live_load)) write (u, '(a)') '  live load: '//lp%live_load
     write (u, '(a)') '  '//itoa(lp%faces%n)//' interfaces'
+    if (lp%crush%strength_pa > 0.0_dp) write (u, '(a)') '  compressive strength '// &
+      fmt_significant(lp%crush%strength_pa, 6)//' Pa: each interface force kept N / (2 sigma_c w) from the ends '// &
+      '(iterated: '//itoa(lp%crushing_steps)//' LPs'//trim(merge('             ', ', UNCONVERGED', &
+      lp%crushing_converged))//trim(merge(', an interface crushed through', '                              ', &
+      lp%crushed_through))//')'
     if (lp%has_path) then
       write (u, '(a)') '  load factor along the path (x of the first live load [m], associative lambda):'
       do i = 1, size(lp%curve_x_m)
@@ -38,19 +43,37 @@ contains
       write (u, '(a)') '  no load factor: '//lp%note
       return
     end if
-    write (u, '(a)') '  associative (sliding dilates):  lambda '//fmt_significant(lp%assoc%load_factor, 7)// &
-      ' (upper bound of its mechanism '//fmt_significant(lp%assoc%load_factor_upper, 7)//')'// &
-      acceleration_text(lp, lp%assoc%load_factor)
-    write (u, '(a)') '    mechanism: '//mechanism_text(lp, lp%assoc)
-    if (lp%nonassociative_solved) then
-      write (u, '(a)') '  non-associative (no dilatancy): lambda '//fmt_significant(lp%nonassoc%load_factor, 7)// &
-        acceleration_text(lp, lp%nonassoc%load_factor)//' ('//itoa(lp%steps)//' steps'// &
-        trim(merge('             ', ', UNCONVERGED', lp%converged))//')'
-      write (u, '(a)') '    mechanism: '//mechanism_text(lp, lp%nonassoc)
+    call write_direction(u, lp, lp%assoc, lp%nonassociative_solved, lp%nonassoc, lp%steps, lp%converged)
+    if (.not. lp%neg%applies) return
+    write (u, '(a)') '  towards -x (the acceleration turned round):'
+    if (.not. lp%neg%solved) then
+      write (u, '(a)') '  no load factor: '//lp%neg%note
+      return
+    end if
+    call write_direction(u, lp, lp%neg%assoc, lp%neg%nonassociative_solved, lp%neg%nonassoc, lp%neg%steps, &
+                         lp%neg%converged)
+  end subroutine write_lp_table
+
+  !> The lines of one direction: both load factors and their mechanisms.
+  subroutine write_direction(u, lp, assoc, nonassociative_solved, nonassoc, steps, converged)
+    integer, intent(in) :: u
+    type(lp_study_t), intent(in) :: lp
+    type(lp_result_t), intent(in) :: assoc, nonassoc
+    logical, intent(in) :: nonassociative_solved, converged
+    integer, intent(in) :: steps
+    write (u, '(a)') '  associative (sliding dilates):  lambda '//fmt_significant(assoc%load_factor, 7)// &
+      ' (upper bound of its mechanism '//fmt_significant(assoc%load_factor_upper, 7)//')'// &
+      acceleration_text(lp, assoc%load_factor)
+    write (u, '(a)') '    mechanism: '//mechanism_text(lp, assoc)
+    if (nonassociative_solved) then
+      write (u, '(a)') '  non-associative (no dilatancy): lambda '//fmt_significant(nonassoc%load_factor, 7)// &
+        acceleration_text(lp, nonassoc%load_factor)//' ('//itoa(steps)//' steps'// &
+        trim(merge('             ', ', UNCONVERGED', converged))//')'
+      write (u, '(a)') '    mechanism: '//mechanism_text(lp, nonassoc)
     else
       write (u, '(a)') '  non-associative: no solution (a step of the iteration has none)'
     end if
-  end subroutine write_lp_table
+  end subroutine write_direction
 
   !> ', lambda g 3.69 m/s2' where the live load is the horizontal acceleration, else ''.
   function acceleration_text(lp, lambda) result(text)
@@ -107,29 +130,70 @@ contains
       text = text//'null,'//nl
     end if
     text = text//'  "load_factor_curve": '//curve_json(lp)//','//nl
-    if (lp%solved) then
-      text = text//'  "load_factor": '//fmt_json_real(lp%assoc%load_factor)//','//nl// &
-        '  "load_factor_upper": '//fmt_json_real(lp%assoc%load_factor_upper)//','//nl// &
-        '  "load_factor_note": null,'//nl// &
-        '  "mechanism": '//mechanism_json(lp, lp%assoc)//','//nl// &
-        '  "contact_forces": '//forces_json(lp, lp%assoc)//','//nl
+    if (lp%crush%strength_pa > 0.0_dp) then
+      text = text//'  "compressive_strength_pa": '//fmt_json_real(lp%crush%strength_pa)//','//nl
     else
-      text = text//'  "load_factor": null,'//nl//'  "load_factor_upper": null,'//nl// &
-        '  "load_factor_note": '//json_string(lp%note)//','//nl// &
-        '  "mechanism": [],'//nl//'  "contact_forces": [],'//nl
+      text = text//'  "compressive_strength_pa": null,'//nl
     end if
-    if (lp%nonassociative_solved) then
-      text = text//'  "load_factor_nonassociative": '//fmt_json_real(lp%nonassoc%load_factor)//','//nl// &
-        '  "nonassociative_steps": '//itoa(lp%steps)//','//nl// &
-        '  "nonassociative_converged": '//json_bool(lp%converged)//','//nl// &
-        '  "mechanism_nonassociative": '//mechanism_json(lp, lp%nonassoc)//','//nl// &
-        '  "contact_forces_nonassociative": '//forces_json(lp, lp%nonassoc)//','//nl
+    text = text//'  "crushing_steps": '//itoa(lp%crushing_steps)//','//nl// &
+           '  "crushing_converged": '//json_bool(lp%crushing_converged)//','//nl// &
+           '  "crushed_through": '//json_bool(lp%crushed_through .or. lp%neg%crushed_through)//','//nl
+    text = text//direction_json(lp, '', lp%solved, lp%note, lp%assoc, lp%nonassociative_solved, lp%nonassoc, &
+                                lp%steps, lp%converged)
+    ! The -x direction: the same keys ending in _neg (null where it does not apply).
+    if (lp%neg%applies) then
+      text = text//'  "live_load_neg": '//json_string('horizontal acceleration lambda g towards -x (lambda x the '// &
+             'weight of each block)')//','//nl
     else
-      text = text//'  "load_factor_nonassociative": null,'//nl//'  "nonassociative_steps": '//itoa(lp%steps)// &
-        ','//nl//'  "nonassociative_converged": false,'//nl//'  "mechanism_nonassociative": [],'//nl// &
-        '  "contact_forces_nonassociative": [],'//nl
+      text = text//'  "live_load_neg": null,'//nl
     end if
+    text = text//direction_json(lp, '_neg', lp%neg%solved, lp%neg%note, lp%neg%assoc, lp%neg%nonassociative_solved, &
+                                lp%neg%nonassoc, lp%neg%steps, lp%neg%converged)
   end function lp_json
+
+  !> The keys of one direction, each name ending in `suffix`: both load factors, the note
+  !> where there is none (an absent note: the +x analysis had no answer, so -x was not
+  !> made), the mechanisms and contact forces.
+  function direction_json(lp, suffix, solved, note, assoc, nonassociative_solved, nonassoc, steps, converged) &
+    result(text)
+    type(lp_study_t), intent(in) :: lp
+    character(len=*), intent(in) :: suffix
+    logical, intent(in) :: solved, nonassociative_solved, converged
+    character(len=*), intent(in), optional :: note
+    type(lp_result_t), intent(in) :: assoc, nonassoc
+    integer, intent(in) :: steps
+    character(len=:), allocatable :: text
+    character(len=1), parameter :: nl = achar(10)
+    if (solved) then
+      text = '  "load_factor'//suffix//'": '//fmt_json_real(assoc%load_factor)//','//nl// &
+        '  "load_factor_upper'//suffix//'": '//fmt_json_real(assoc%load_factor_upper)//','//nl// &
+        '  "load_factor_note'//suffix//'": null,'//nl// &
+        '  "mechanism'//suffix//'": '//mechanism_json(lp, assoc)//','//nl// &
+        '  "contact_forces'//suffix//'": '//forces_json(lp, assoc)//','//nl
+    else
+      text = '  "load_factor'//suffix//'": null,'//nl//'  "load_factor_upper'//suffix//'": null,'//nl// &
+        '  "load_factor_note'//suffix//'": '//json_string(note_text(note))//','//nl// &
+        '  "mechanism'//suffix//'": [],'//nl//'  "contact_forces'//suffix//'": [],'//nl
+    end if
+    if (nonassociative_solved) then
+      text = text//'  "load_factor_nonassociative'//suffix//'": '//fmt_json_real(nonassoc%load_factor)//','//nl// &
+        '  "nonassociative_steps'//suffix//'": '//itoa(steps)//','//nl// &
+        '  "nonassociative_converged'//suffix//'": '//json_bool(converged)//','//nl// &
+        '  "mechanism_nonassociative'//suffix//'": '//mechanism_json(lp, nonassoc)//','//nl// &
+        '  "contact_forces_nonassociative'//suffix//'": '//forces_json(lp, nonassoc)//','//nl
+    else
+      text = text//'  "load_factor_nonassociative'//suffix//'": null,'//nl//'  "nonassociative_steps'//suffix// &
+        '": '//itoa(steps)//','//nl//'  "nonassociative_converged'//suffix//'": false,'//nl// &
+        '  "mechanism_nonassociative'//suffix//'": [],'//nl//'  "contact_forces_nonassociative'//suffix//'": [],'//nl
+    end if
+  end function direction_json
+
+  function note_text(note) result(text)
+    character(len=*), intent(in), optional :: note
+    character(len=:), allocatable :: text
+    text = 'no analysis: the +x one has no answer'
+    if (present(note)) text = note
+  end function note_text
 
   !> One object per interface: its blocks, its arch joint (or null), its mode and, for a
   !> hinge, the side (arches) and the point it turns about.
@@ -149,7 +213,7 @@ contains
       end if
       text = text//', "hinge_xy_m": '
       if (r%mode(k) == joint_hinge) then
-        text = text//xy_json(lp%faces%end_xy(:, r%pivot_end(k), k))//'}'
+        text = text//xy_json(r%end_xy(:, r%pivot_end(k), k))//'}'
       else
         text = text//'null}'
       end if
@@ -157,8 +221,9 @@ contains
     text = text//']'
   end function mechanism_json
 
-  !> One object per interface: the two ends, the unit normal (from the first block into
-  !> the second), the normal force at each end and the shear force [N] on the second block.
+  !> One object per interface: the two ends (moved in by the crushing offsets where the
+  !> strength is finite), the unit normal (from the first block into the second), the
+  !> normal force at each end and the shear force [N] on the second block.
   function forces_json(lp, r) result(text)
     type(lp_study_t), intent(in) :: lp
     type(lp_result_t), intent(in) :: r
@@ -167,8 +232,8 @@ contains
     text = '['
     do k = 1, lp%faces%n
       if (k > 1) text = text//', '
-      text = text//'{'//joint_keys(lp, k)//', "ends_xy_m": ['//xy_json(lp%faces%end_xy(:, 1, k))//', '// &
-        xy_json(lp%faces%end_xy(:, 2, k))//'], "normal": '//xy_json(lp%faces%normal(:, k))// &
+      text = text//'{'//joint_keys(lp, k)//', "ends_xy_m": ['//xy_json(r%end_xy(:, 1, k))//', '// &
+        xy_json(r%end_xy(:, 2, k))//'], "normal": '//xy_json(lp%faces%normal(:, k))// &
         ', "normal_n": '//xy_json(r%normal_n(:, k))//', "shear_n": '//fmt_json_real(r%shear_n(k))//'}'
     end do
     text = text//']'

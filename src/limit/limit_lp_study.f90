@@ -13,14 +13,33 @@ module voussoir_limit_lp_study
   use voussoir_assembly, only: assembly_t
   use voussoir_hinge_side, only: side_intrados, side_extrados
   use voussoir_block_interfaces, only: interface_set_t, find_interfaces
-  use voussoir_limit_lp, only: block_loads_t, lp_result_t, block_loads, add_placed_loads, lp_capacity, &
-                               nonassociative_capacity, lp_outcome_unbounded
+  use voussoir_limit_lp, only: block_loads_t, lp_result_t, block_loads, add_placed_loads, lp_outcome_unbounded
+  use voussoir_limit_crushing, only: crushing_t, crushing_capacity, crushing_nonassociative
   implicit none
   private
 
-  public :: lp_study_t, lp_study, path_position_m
+  public :: lp_study_t, lp_direction_t, lp_study, path_position_m
 
-  !> Both capacities of an assembly under the horizontal acceleration lambda g towards +x.
+  character(len=*), parameter :: live_acceleration_words = &
+    'horizontal acceleration lambda g towards +x (lambda x the weight of each block)'
+
+  !> Both capacities of the live load reversed: the horizontal acceleration lambda g
+  !> towards -x (the loads in place, the live one turned round).
+  type :: lp_direction_t
+    logical :: applies = .false.              !! the live load is the horizontal acceleration
+    logical :: solved = .false.               !! the associative LP has a solution
+    logical :: nonassociative_solved = .false.
+    character(len=:), allocatable :: note     !! why not, when not solved
+    type(lp_result_t) :: assoc, nonassoc
+    integer :: steps = 0                      !! steps of the non-associative iteration
+    logical :: converged = .false.
+    integer :: crushing_steps = 0             !! LPs of the crushing iteration (associative)
+    logical :: crushing_converged = .true.
+    logical :: crushed_through = .false.      !! an interface crushed through (its ends met)
+  end type lp_direction_t
+
+  !> Both capacities of an assembly under the horizontal acceleration lambda g towards +x
+  !> (or lambda x the live point loads of &load); `neg`, towards -x.
   type :: lp_study_t
     logical :: solved = .false.               !! the associative LP has a solution
     logical :: nonassociative_solved = .false.
@@ -40,6 +59,11 @@ module voussoir_limit_lp_study
     real(dp) :: critical_load_factor = 0.0_dp !! the associative load factor there
     real(dp), allocatable :: curve_x_m(:)     !! the positions on the path [m]
     real(dp), allocatable :: curve_load_factor(:) !! the associative load factor at each (-1: unbounded)
+    type(lp_direction_t) :: neg               !! the horizontal acceleration towards -x
+    type(crushing_t) :: crush                 !! the compressive strength (rigid: 0)
+    integer :: crushing_steps = 0             !! LPs of the crushing iteration (associative, +x)
+    logical :: crushing_converged = .true.
+    logical :: crushed_through = .false.      !! an interface crushed through (its ends met)
   end type lp_study_t
 
 contains
@@ -47,18 +71,29 @@ contains
   !> The LP analysis of `asm` with Coulomb friction `friction` at every interface, the
   !> weights of density x area x width x g, the loads of `load` (if given), and the
   !> interface ends set in by `inset_m`. A refusal (no interfaces,
-  !> infeasible, unbounded) comes back in `status`.
-  subroutine lp_study(asm, density_kg_m3, width_m, friction, inset_m, study, status, load)
+  !> infeasible, unbounded) comes back in `status`. Where the live load is the horizontal
+  !> acceleration, the same towards -x in `study%neg` (its refusal in `study%neg%note`).
+  !> With `compressive_strength_pa` > 0, the interfaces crush (voussoir_limit_crushing).
+  subroutine lp_study(asm, density_kg_m3, width_m, friction, inset_m, study, status, load, joint_friction, &
+                      compressive_strength_pa, loads_dead)
     type(assembly_t), intent(in) :: asm
     real(dp), intent(in) :: density_kg_m3, width_m, friction, inset_m
     type(lp_study_t), intent(out) :: study
     type(status_t), intent(inout) :: status
     type(load_config_t), intent(in), optional :: load
+    real(dp), intent(in), optional :: joint_friction(0:) !! arch joint j's coefficient where >= 0 (else `friction`)
+    real(dp), intent(in), optional :: compressive_strength_pa !! sigma_c [Pa]; absent or 0: rigid
+    !> Every load of `load` dead, where a run applies it (no path), the live load the
+    !> horizontal acceleration: the static capacity of a shaken, loaded assembly.
+    logical, intent(in), optional :: loads_dead
     type(block_loads_t) :: loads
     real(dp), allocatable :: mu(:)
     real(dp) :: size_m, shift_m
     integer :: b
+    logical :: all_dead
 
+    study%crush = crushing_t(0.0_dp, width_m)
+    if (present(compressive_strength_pa)) study%crush%strength_pa = compressive_strength_pa
     size_m = 0.0_dp
     do b = 1, asm%n_bodies
       size_m = max(size_m, maxval(maxval(asm%polygon(b)%xy, dim=2) - minval(asm%polygon(b)%xy, dim=2)))
@@ -74,11 +109,22 @@ contains
     call name_arch_joints(asm, study)
     allocate (mu(study%faces%n))
     mu = friction
+    if (present(joint_friction)) then
+      call joint_coefficients(asm, study, joint_friction, mu, status)
+      if (.not. status%ok) return
+    end if
     shift_m = 0.0_dp
-    study%live_load = 'horizontal acceleration lambda g towards +x (lambda x the weight of each block)'
+    study%live_load = live_acceleration_words
     allocate (study%placed%block(0), study%placed%source(0), study%placed%xy(2, 0), study%placed%force_n(2, 0), &
               study%placed%live(0))
-    if (present(load)) then
+    all_dead = .false.
+    if (present(loads_dead)) all_dead = loads_dead
+    if (present(load) .and. all_dead) then
+      call place_loads(load, asm, 0.0_dp, study%placed, status)
+      if (.not. status%ok) return
+      study%placed%live = .false.
+      study%live_load = study%live_load//'; dead: the weights and every load of &load, where a run applies it'
+    else if (present(load)) then
       if (load%path_points >= 2) then
         call critical_position(asm, density_kg_m3, width_m, load, study, mu, shift_m, status)
         if (.not. status%ok) return
@@ -90,13 +136,71 @@ contains
     end if
     call block_loads(asm, density_kg_m3, width_m, g_m_s2, loads)
     call add_placed_loads(study%placed, loads)
-    call lp_capacity(asm, study%faces, loads, mu, 0.0_dp*mu, study%assoc, status)
+    call crushing_capacity(asm, study%faces, loads, mu, study%crush, study%assoc, study%crushing_steps, &
+                           study%crushing_converged, study%crushed_through, status)
     if (.not. status%ok) return
     study%solved = .true.
-    call nonassociative_capacity(asm, study%faces, loads, mu, study%assoc, study%nonassoc, study%steps, &
+    call crushing_nonassociative(asm, study%faces, loads, mu, study%crush, study%assoc, study%nonassoc, study%steps, &
                                  study%converged, status)
     study%nonassociative_solved = status%ok
+    if (study%live_is_acceleration) call reversed_direction(asm, study%faces, loads, mu, study%crush, study%neg)
+    if (.not. study%live_is_acceleration) study%neg%note = 'the live load is the point loads of &load: '// &
+      'the -x direction is that of the horizontal acceleration only'
   end subroutine lp_study
+
+  !> Both capacities with the live load turned round (the dead loads as they are); a
+  !> refusal (a block held against -x) is the direction's note, not an error.
+  subroutine reversed_direction(asm, faces, loads, mu, crush, neg)
+    type(assembly_t), intent(in) :: asm
+    type(interface_set_t), intent(in) :: faces
+    type(block_loads_t), intent(in) :: loads
+    real(dp), intent(in) :: mu(:)
+    type(crushing_t), intent(in) :: crush
+    type(lp_direction_t), intent(inout) :: neg
+    type(block_loads_t) :: reversed
+    type(status_t) :: status
+    reversed = loads
+    reversed%live_n = -loads%live_n
+    reversed%live_moment_nm = -loads%live_moment_nm
+    neg%applies = .true.
+    call crushing_capacity(asm, faces, reversed, mu, crush, neg%assoc, neg%crushing_steps, neg%crushing_converged, &
+                           neg%crushed_through, status)
+    if (.not. status%ok) then
+      neg%note = trim(status%message)
+      return
+    end if
+    neg%solved = .true.
+    call crushing_nonassociative(asm, faces, reversed, mu, crush, neg%assoc, neg%nonassoc, neg%steps, neg%converged, &
+                                 status)
+    neg%nonassociative_solved = status%ok
+  end subroutine reversed_direction
+
+  !> The friction of each interface that is arch joint j where `joint_friction(j) >= 0`,
+  !> as the dynamics takes it (voussoir_contact_law); the others keep theirs.
+  subroutine joint_coefficients(asm, study, joint_friction, mu, status)
+    type(assembly_t), intent(in) :: asm
+    type(lp_study_t), intent(in) :: study
+    real(dp), intent(in) :: joint_friction(0:)
+    real(dp), intent(inout) :: mu(:)
+    type(status_t), intent(inout) :: status
+    integer :: k, j
+    if (all(joint_friction < 0.0_dp)) return
+    if (.not. allocated(asm%joint_bodies)) then
+      call fail(status, 'joint_friction is set, but the assembly has no numbered joints')
+      return
+    end if
+    do j = ubound(asm%joint_bodies, 2) + 1, ubound(joint_friction, 1)
+      if (joint_friction(j) < 0.0_dp) cycle
+      call fail(status, 'joint_friction('//itoa(j)//') is set: the arch has joints 0..'// &
+                itoa(ubound(asm%joint_bodies, 2))//' only')
+      return
+    end do
+    do k = 1, study%faces%n
+      j = study%joint(k)
+      if (j < 0) cycle
+      if (joint_friction(j) >= 0.0_dp) mu(k) = joint_friction(j)
+    end do
+  end subroutine joint_coefficients
 
   !> Position i of `path_points` on the path from x0 to x1 [m].
   pure real(dp) function path_position_m(load, i)
@@ -122,8 +226,9 @@ contains
     type(block_loads_t) :: loads
     type(lp_result_t) :: res
     type(status_t) :: lp_status
-    integer :: i, best
+    integer :: i, best, steps
     real(dp) :: lowest
+    logical :: converged, crushed
 
     study%has_path = .true.
     allocate (study%curve_x_m(load%path_points), study%curve_load_factor(load%path_points))
@@ -135,7 +240,7 @@ contains
       call block_loads(asm, density_kg_m3, width_m, g_m_s2, loads)
       call add_placed_loads(placed, loads)
       lp_status = status_t()
-      call lp_capacity(asm, study%faces, loads, mu, 0.0_dp*mu, res, lp_status)
+      call crushing_capacity(asm, study%faces, loads, mu, study%crush, res, steps, converged, crushed, lp_status)
       study%curve_load_factor(i) = -1.0_dp
       if (lp_status%ok) then
         study%curve_load_factor(i) = res%load_factor

@@ -30,8 +30,14 @@ contains
     character(len=*), parameter :: rule = '  ------------------------------------------------------------------'
     if (lp%assembly /= 'arch') then
       write (u, '(a)') 'voussoir-limit: '//path
-      write (u, '(a)') lp%assembly//': the four-hinge analysis and the minimum thickness of an arch do not '// &
-        'apply; the limit analysis by linear programming does (driven blocks: the fixed supports)'
+      if (lp%assembly == 'restrained arch') then
+        write (u, '(a)') "restrained arch (&arch restrained_springings = '"//trim(cfg%arch%restrained_springings)// &
+          "'): the four-hinge analysis and the minimum thickness do not model the restraint brackets; the "// &
+          'limit analysis by linear programming does (the brackets and foundations: fixed blocks)'
+      else
+        write (u, '(a)') lp%assembly//': the four-hinge analysis and the minimum thickness of an arch do not '// &
+          'apply; the limit analysis by linear programming does (driven blocks: the fixed supports)'
+      end if
       write (u, '(a)') '      interface inset '//fmt_significant(1.0e3_dp*opts%inset_m)//' mm, friction '// &
         fmt_significant(cfg%arch%friction)
       call write_lp_table(u, lp, cfg%arch%friction)
@@ -62,7 +68,8 @@ contains
           write (u, '(a)') '  static check: the thrust line through the hinges leaves a joint '// &
             '(bounds do not meet: lambda is an upper bound only)'
         end if
-        write (u, '(a)') '  friction check: '//friction_text(res, a%n_voussoirs, a%friction)
+        write (u, '(a)') '  friction check: '//friction_text(res, a%n_voussoirs, a%friction, &
+                                                             any(a%joint_friction >= 0.0_dp))
         if (has_loads(cfg)) write (u, '(a)') '  (the four-hinge analysis takes the weights alone: the loads of '// &
           '&load enter the linear programme below)'
       end if
@@ -104,19 +111,23 @@ contains
   end function hinge_text
 
   !> 'hinging governs ...' or 'sliding governs at joints ...'.
-  function friction_text(res, n_voussoirs, friction) result(text)
+  !> With `per_joint`, some joints have their own friction (&arch joint_friction), against
+  !> which they were checked.
+  function friction_text(res, n_voussoirs, friction, per_joint) result(text)
     type(limit_result_t), intent(in) :: res
     integer, intent(in) :: n_voussoirs
     real(dp), intent(in) :: friction
-    character(len=:), allocatable :: text
+    logical, intent(in) :: per_joint
+    character(len=:), allocatable :: text, coefficient
     integer, allocatable :: joints(:)
     real(dp) :: worst
     integer :: k
     call sliding_union(res, n_voussoirs, joints)
     worst = max(maxval(res%shear_ratio_pos), maxval(res%shear_ratio_neg))
+    coefficient = 'friction '//fmt_significant(friction)
+    if (per_joint) coefficient = 'the friction of each joint (joint_friction where set, else '//coefficient//')'
     if (size(joints) == 0) then
-      text = 'hinging governs (largest |T|/N at collapse '//fmt_significant(worst, 5)//' <= friction '// &
-             fmt_significant(friction)//')'
+      text = 'hinging governs (largest |T|/N at collapse '//fmt_significant(worst, 5)//' <= '//coefficient//')'
     else
       text = 'sliding governs at joints '
       do k = 1, size(joints)
@@ -126,7 +137,7 @@ contains
       if (worst == huge(1.0_dp)) then
         text = text//' (a joint is not in compression in the collapse state)'
       else
-        text = text//' (|T|/N at collapse up to '//fmt_significant(worst, 5)//' > friction '//fmt_significant(friction)// &
+        text = text//' (|T|/N at collapse up to '//fmt_significant(worst, 5)//' > '//coefficient// &
                '): the true capacity can be lower than lambda'
       end if
     end if
@@ -159,7 +170,11 @@ contains
     character(len=1), parameter :: nl = achar(10)
     character(len=:), allocatable :: text
     if (lp%assembly /= 'arch') then
-      call write_json_any(u, path, cfg, lp)
+      if (lp%assembly == 'restrained arch') then
+        call write_json_any(u, path, cfg, lp, arch_json(cfg, opts, arch))
+      else
+        call write_json_any(u, path, cfg, lp, 'null')
+      end if
       return
     end if
     call sliding_union(res, cfg%arch%n_voussoirs, sliding)
@@ -197,7 +212,21 @@ contains
         '  "max_shear_ratio_neg": '//finite_or_null(maxval(res%shear_ratio_neg))//','//nl// &
         '  "thrust_fraction_pos": '//fraction_list(res%thrust_fraction_pos)//','//nl// &
         '  "thrust_fraction_neg": '//fraction_list(res%thrust_fraction_neg)//','//nl// &
-        '  "arch": {'//nl// &
+        '  "arch": '//arch_json(cfg, opts, arch)//nl//'}'
+    end associate
+    write (u, '(a)') text
+  end subroutine write_json
+
+  !> The "arch" object: its shape, the inset, and the ends of every joint.
+  function arch_json(cfg, opts, arch) result(text)
+    type(config_t), intent(in) :: cfg
+    type(limit_options_t), intent(in) :: opts
+    type(assembly_t), intent(in) :: arch
+    character(len=:), allocatable :: text
+    character(len=1), parameter :: nl = achar(10)
+    integer :: j
+    associate (a => cfg%arch)
+      text = '{'//nl// &
         '    "n_voussoirs": '//itoa(a%n_voussoirs)//','//nl// &
         '    "embrace_deg": '//fmt_json_real(a%embrace_deg)//','//nl// &
         '    "r_ext_m": '//fmt_json_real(a%r_ext_m)//','//nl// &
@@ -215,18 +244,19 @@ contains
         text = text//'['//fmt_json_real(arch%joint_extrados_xy(1, j))//', '// &
                fmt_json_real(arch%joint_extrados_xy(2, j))//']'
       end do
-      text = text//']'//nl//'  }'//nl//'}'
+      text = text//']'//nl//'  }'
     end associate
-    write (u, '(a)') text
-  end subroutine write_json
+  end function arch_json
 
-  !> The JSON of a wall or a polygon file: every key of the arch's, null or empty where
-  !> the four-hinge analysis of an arch does not apply, and the LP's.
-  subroutine write_json_any(u, path, cfg, lp)
+  !> The JSON of a wall, a polygon file or a restrained arch: every key of the arch's,
+  !> null or empty where the four-hinge analysis of an arch does not apply (the "arch"
+  !> object given for a restrained arch), and the LP's.
+  subroutine write_json_any(u, path, cfg, lp, arch_text)
     integer, intent(in) :: u
     character(len=*), intent(in) :: path
     type(config_t), intent(in) :: cfg
     type(lp_study_t), intent(in) :: lp
+    character(len=*), intent(in) :: arch_text   !! the "arch" object of a restrained arch, else null
     character(len=1), parameter :: nl = achar(10)
     write (u, '(a)') '{'//nl// &
       '  "producer": "voussoir-limit",'//nl// &
@@ -242,7 +272,7 @@ contains
       '  "sliding": [],'//nl//'  "sliding_pos": [],'//nl//'  "sliding_neg": [],'//nl// &
       '  "max_shear_ratio_pos": null,'//nl//'  "max_shear_ratio_neg": null,'//nl// &
       '  "thrust_fraction_pos": null,'//nl//'  "thrust_fraction_neg": null,'//nl// &
-      '  "arch": null'//nl//'}'
+      '  "arch": '//arch_text//nl//'}'
   end subroutine write_json_any
 
   !> A number, or null for the module's `huge` (no admissible mechanism, joint not in

@@ -29,6 +29,7 @@ module voussoir_limit_study
   type :: limit_options_t
     logical :: minimum_thickness = .true.  !! compute the minimum thickness
     real(dp) :: inset_m = 0.0_dp           !! pivot inset of the analysis [m]
+    real(dp) :: compressive_strength_pa = 0.0_dp !! sigma_c of the LP's interfaces [Pa]; 0: rigid (infinite)
   end type limit_options_t
 
   !> The minimum thickness of the arch's shape (embrace, voussoirs, r_ext, inset).
@@ -50,18 +51,29 @@ contains
     type(nml_group_t) :: g
 
     opts%inset_m = unset
+    opts%compressive_strength_pa = unset
     g%name = 'limit'
     call g%add('minimum_thickness', opts%minimum_thickness)
     call g%add('inset_m', opts%inset_m, unit='m')
+    call g%add('compressive_strength_pa', opts%compressive_strength_pa, unit='Pa')
     call g%read(path, status)
     if (.not. status%ok) return
+    if (opts%compressive_strength_pa == unset) then
+      opts%compressive_strength_pa = 0.0_dp
+    else
+      call need(opts%compressive_strength_pa > 0.0_dp, path, 'limit', 'compressive_strength_pa', &
+                opts%compressive_strength_pa, &
+                'compressive_strength_pa > 0 (leave it out for blocks that do not crush)', status)
+      if (.not. status%ok) return
+    end if
     if (opts%inset_m == unset) opts%inset_m = cfg%arch%contact_inset_m
     call need(opts%inset_m >= 0.0_dp .and. opts%inset_m < 0.5_dp*cfg%arch%thickness_m, path, 'limit', 'inset_m', &
               opts%inset_m, '0 <= inset_m < thickness_m/2 = '//fmt_significant(0.5_dp*cfg%arch%thickness_m), status)
   end subroutine read_limit_group
 
   !> Build the assembly and run the analyses that apply (`lp%assembly` says which
-  !> assembly: 'arch', 'wall' or 'polygon file'); refuse what the analyses do not model.
+  !> assembly: 'arch', 'restrained arch', 'wall' or 'polygon file'); refuse what the
+  !> analyses do not model.
   subroutine analyse(cfg, opts, arch, res, tmin, lp, status)
     type(config_t), intent(in) :: cfg
     type(limit_options_t), intent(in) :: opts
@@ -74,17 +86,14 @@ contains
     type(status_t) :: lp_status
 
     f = trim(cfg%source_file)
-    if (cfg%wall%courses > 0 .or. len_trim(cfg%arch%polygon_file) > 0) then
+    ! A restrained arch: the brackets are driven blocks the LP takes like any other.
+    if (cfg%wall%courses > 0 .or. len_trim(cfg%arch%polygon_file) > 0 .or. &
+        cfg%arch%restrained_springings /= springings_none) then
       call analyse_any_assembly(cfg, opts, arch, lp, status)
       if (.not. status%ok) status%message = f//': '//trim(status%message)
       return
     end if
     associate (a => cfg%arch)
-      if (a%restrained_springings /= springings_none) then
-        call fail(status, f//": &arch restrained_springings = '"//trim(a%restrained_springings)// &
-                  "': the limit analysis does not model restraint brackets (its mechanisms hinge "// &
-                  "freely at the springings); set restrained_springings = 'none'")
-      end if
       ! Below, a mechanism has too few joints; above, the search takes too long.
       if (a%n_voussoirs < 3) then
         why = 'a four-hinge mechanism needs 3 voussoirs'
@@ -99,7 +108,7 @@ contains
                   '(an arch of 3 voussoirs stands at vanishing thickness); set &limit minimum_thickness = .false.')
       if (.not. status%ok) return
       call build_config_assembly(cfg, arch, status)
-      call horizontal_capacity(arch, opts%inset_m, a%friction, res, status)
+      call horizontal_capacity(arch, opts%inset_m, a%friction, res, status, a%joint_friction)
       if (status%ok .and. opts%minimum_thickness) then
         call thickness_search(a%embrace_deg, a%n_voussoirs, a%r_ext_m, opts%inset_m, tmin%ratio_ext, &
                               tmin%ratio_mean, tmin%hinges, tmin%sides, status)
@@ -113,9 +122,11 @@ contains
         ! The four-hinge results stand even where the LP has no answer (an arch thinner
         ! than its minimum thickness): its reason is reported, not an error.
         if (has_loads(cfg)) then
-          call lp_study(arch, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, lp_status, cfg%load)
+          call lp_study(arch, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, lp_status, cfg%load, &
+                        a%joint_friction, opts%compressive_strength_pa)
         else
-          call lp_study(arch, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, lp_status)
+          call lp_study(arch, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, lp_status, &
+                        joint_friction=a%joint_friction, compressive_strength_pa=opts%compressive_strength_pa)
         end if
         if (.not. lp_status%ok) lp%note = trim(lp_status%message)
       end if
@@ -124,8 +135,10 @@ contains
     if (.not. status%ok) status%message = f//': '//trim(status%message)
   end subroutine analyse
 
-  !> A &wall or a polygon file (its driven blocks the fixed supports): the LP alone, whose
-  !> refusals are errors here (there is nothing else to report).
+  !> A &wall, a polygon file (its driven blocks the fixed supports) or an arch with
+  !> restraint brackets (driven blocks against the outer faces of its springing
+  !> voussoirs, which the four-hinge analysis and the minimum thickness do not model):
+  !> the LP alone, whose refusals are errors here (there is nothing else to report).
   subroutine analyse_any_assembly(cfg, opts, asm, lp, status)
     type(config_t), intent(in) :: cfg
     type(limit_options_t), intent(in) :: opts
@@ -138,14 +151,21 @@ contains
     if (.not. status%ok) return
     associate (a => cfg%arch)
       if (has_loads(cfg)) then
-        call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status, cfg%load)
+        call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status, cfg%load, &
+                      a%joint_friction, opts%compressive_strength_pa)
       else
-        call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status)
+        call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status, &
+                      joint_friction=a%joint_friction, compressive_strength_pa=opts%compressive_strength_pa)
       end if
       if (.not. status%ok) status%message = 'limit analysis by linear programming: '//trim(status%message)
     end associate
-    lp%assembly = merge('wall        ', 'polygon file', cfg%wall%courses > 0)
-    lp%assembly = trim(lp%assembly)
+    if (cfg%wall%courses > 0) then
+      lp%assembly = 'wall'
+    else if (len_trim(cfg%arch%polygon_file) > 0) then
+      lp%assembly = 'polygon file'
+    else
+      lp%assembly = 'restrained arch'
+    end if
   end subroutine analyse_any_assembly
 
   !> Every load of &load on a block, at every position of its path.

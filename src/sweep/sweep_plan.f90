@@ -8,11 +8,14 @@ module voussoir_sweep_plan
   use voussoir_text, only: itoa, int_list, fmt_exact_list
   use voussoir_input_range, only: need
   use voussoir_config, only: config_t, config_entry_t, config_entries, config_to_nml, validate_config, &
-                             arch_rule, arch_rule_text
+                             arch_rule, arch_rule_text, has_loads
   use voussoir_sweep_group, only: sweep_group_t, read_sweep_group, lengths_text, n_kinds, param_kinds, list_names, &
                                   combine_paired
   use voussoir_sweep_mode, only: sweep_mode_t, sweep_plan_t, set_description, job_param_set
   use voussoir_sweep_mode_factory, only: make_sweep_mode, default_mode
+  use voussoir_assembly, only: assembly_t
+  use voussoir_config_assembly, only: build_config_assembly
+  use voussoir_placed_loads, only: placed_loads_t, place_loads
   implicit none
   private
 
@@ -65,10 +68,33 @@ contains
       return
     end if
     plan%n_jobs = plan%n_sets*plan%n_freq_per_set*plan%n_amp
+    call check_loads_placed(path, plan, status)
+    if (.not. status%ok) return
     call make_texts(mode, base, group%lists, group%lengths, plan)
     call move_alloc(mode, plan%mode)
     call estimate_cost(path, group%max_runs, plan, status)
   end subroutine read_sweep_plan
+
+  !> Every load of &load on a block of every parameter set's assembly, where a run puts
+  !> it (before any run, rather than a failed run per job).
+  subroutine check_loads_placed(path, plan, status)
+    character(len=*), intent(in) :: path
+    type(sweep_plan_t), intent(in) :: plan
+    type(status_t), intent(inout) :: status
+    type(assembly_t) :: asm
+    type(placed_loads_t) :: placed
+    integer :: s
+    do s = 0, plan%n_sets - 1
+      if (.not. has_loads(plan%set_cfg(s))) cycle
+      call build_config_assembly(plan%set_cfg(s), asm, status)
+      if (status%ok) call place_loads(plan%set_cfg(s)%load, asm, 0.0_dp, placed, status)
+      if (.not. status%ok) then
+        if (plan%n_sets > 1) status%message = trim(status%message)//' (parameter set '//itoa(s)//')'
+        status%message = path//': '//trim(status%message)
+        return
+      end if
+    end do
+  end subroutine check_loads_placed
 
   !> The plan's cost (its runs, simulated seconds and steps x blocks; voussoir-sweep
   !> prints them before it starts), and the cap on its runs, &sweep max_runs: a grid job

@@ -5,10 +5,11 @@
 module voussoir_threshold
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
-  use voussoir_config, only: config_t, fmt_real, waveform_afd, springings_none
-  use voussoir_assembly, only: assembly_t, build_arch, voussoir_angle_factors, mirrored_blocks
+  use voussoir_config, only: config_t, fmt_real, waveform_afd, springings_none, has_loads
+  use voussoir_assembly, only: assembly_t, build_arch, voussoir_angle_factors
   use voussoir_limit_analysis, only: limit_result_t, horizontal_capacity
   use voussoir_limit_lp_study, only: lp_study_t, lp_study
+  use voussoir_limit_lp, only: lp_result_t
   use voussoir_motion, only: motion_t, motion_afd, motion_eval, motion_duration_s
   use voussoir_model, only: model_t
   use voussoir_simulation, only: run_result_t
@@ -92,7 +93,8 @@ contains
   !> restraint brackets, no capacity). Where the four-hinge mechanism's static field
   !> breaks Coulomb's law at a joint (`&arch friction`), sliding may govern: the capacity
   !> is then the lesser of the four-hinge one and the non-associative LP capacity (the
-  !> joints slide without dilating) in that direction (docs/limit_analysis.md).
+  !> joints slide without dilating) in that direction (docs/limit_analysis.md). With the
+  !> loads of &load, the LP's capacity with them (`loaded_capacity`).
   real(dp) function static_capacity_m_s2(cfg) result(capacity)
     type(config_t), intent(in) :: cfg
     type(assembly_t) :: arch
@@ -106,35 +108,71 @@ contains
     call build_arch(cfg%arch%embrace_deg, cfg%arch%n_voussoirs, cfg%arch%r_ext_m, cfg%arch%thickness_m, arch, &
                     angle_factors=voussoir_angle_factors(cfg%arch%n_voussoirs, cfg%arch%size_imperfection, &
                                                          cfg%arch%imperfection_seed))
-    call horizontal_capacity(arch, cfg%arch%contact_inset_m, cfg%arch%friction, limit, status)
+    if (has_loads(cfg)) then
+      capacity = loaded_capacity(arch, cfg)
+      return
+    end if
+    call horizontal_capacity(arch, cfg%arch%contact_inset_m, cfg%arch%friction, limit, status, &
+                             cfg%arch%joint_friction)
     if (.not. status%ok) return
     lambda = min(limit%lambda_pos, limit%lambda_neg)
-    if (allocated(limit%sliding_joints_pos)) then
-      if (size(limit%sliding_joints_pos) > 0) lambda = min(lambda, sliding_capacity(arch, cfg))
-    end if
-    if (allocated(limit%sliding_joints_neg)) then
-      if (size(limit%sliding_joints_neg) > 0) lambda = min(lambda, sliding_capacity(mirrored_blocks(arch), cfg))
+    if (allocated(limit%sliding_joints_pos) .and. allocated(limit%sliding_joints_neg)) then
+      if (size(limit%sliding_joints_pos) > 0 .or. size(limit%sliding_joints_neg) > 0) &
+        lambda = min(lambda, sliding_capacity(arch, cfg, size(limit%sliding_joints_pos) > 0, &
+                                              size(limit%sliding_joints_neg) > 0))
     end if
     if (.not. (lambda > 0.0_dp .and. lambda < huge(1.0_dp))) return
     capacity = lambda*g_m_s2
   end function static_capacity_m_s2
 
-  !> The load factor of a horizontal acceleration towards +x of the blocks `asm` with
-  !> sliding (the non-associative LP; the associative one if its iteration failed);
-  !> huge when the LP has no answer (the four-hinge capacity then stands alone).
-  real(dp) function sliding_capacity(asm, cfg) result(lambda)
+  !> The load factor of a horizontal acceleration of the blocks `asm` with sliding (the
+  !> non-associative LP; the associative one if its iteration failed), towards +x where
+  !> `pos`, towards -x where `neg`, the lesser of those asked; the joints' friction as in
+  !> the dynamics (&arch joint_friction where set). Huge when the LP has no answer (the
+  !> four-hinge capacity then stands alone).
+  real(dp) function sliding_capacity(asm, cfg, pos, neg) result(lambda)
     type(assembly_t), intent(in) :: asm
     type(config_t), intent(in) :: cfg
+    logical, intent(in) :: pos, neg
     type(lp_study_t) :: study
     type(status_t) :: status
     lambda = huge(1.0_dp)
     call lp_study(asm, cfg%arch%density_kg_m3, cfg%arch%width_m, cfg%arch%friction, cfg%arch%contact_inset_m, &
-                  study, status)
+                  study, status, joint_friction=cfg%arch%joint_friction)
     if (.not. study%solved) return
-    lambda = study%assoc%load_factor
-    if (study%nonassociative_solved) lambda = study%nonassoc%load_factor
-    if (.not. (lambda > 0.0_dp)) lambda = huge(1.0_dp)
+    if (pos) lambda = direction_lambda(study%assoc, study%nonassoc, study%nonassociative_solved)
+    if (neg .and. study%neg%solved) lambda = min(lambda, direction_lambda(study%neg%assoc, study%neg%nonassoc, &
+                                                                         study%neg%nonassociative_solved))
   end function sliding_capacity
+
+  !> The capacity lambda g [m/s2] of the arch `asm` loaded by &load as a run applies the
+  !> loads (all dead, at their places; the four-hinge analysis takes the weights alone):
+  !> the LP's non-associative load factor of the weaker direction; 0 when it has none.
+  real(dp) function loaded_capacity(asm, cfg) result(capacity)
+    type(assembly_t), intent(in) :: asm
+    type(config_t), intent(in) :: cfg
+    type(lp_study_t) :: study
+    type(status_t) :: status
+    real(dp) :: lambda
+    capacity = 0.0_dp
+    call lp_study(asm, cfg%arch%density_kg_m3, cfg%arch%width_m, cfg%arch%friction, cfg%arch%contact_inset_m, &
+                  study, status, load=cfg%load, joint_friction=cfg%arch%joint_friction, loads_dead=.true.)
+    if (.not. study%solved) return
+    lambda = direction_lambda(study%assoc, study%nonassoc, study%nonassociative_solved)
+    if (study%neg%solved) lambda = min(lambda, direction_lambda(study%neg%assoc, study%neg%nonassoc, &
+                                                                study%neg%nonassociative_solved))
+    if (lambda < huge(1.0_dp)) capacity = lambda*g_m_s2
+  end function loaded_capacity
+
+  !> The non-associative load factor where there is one, else the associative; huge
+  !> where not positive.
+  pure real(dp) function direction_lambda(assoc, nonassoc, nonassociative_solved) result(lambda)
+    type(lp_result_t), intent(in) :: assoc, nonassoc
+    logical, intent(in) :: nonassociative_solved
+    lambda = assoc%load_factor
+    if (nonassociative_solved) lambda = nonassoc%load_factor
+    if (.not. (lambda > 0.0_dp)) lambda = huge(1.0_dp)
+  end function direction_lambda
 
   !> A new search for the case `cfg` (an afd motion) at `frequency_hz`.
   subroutine threshold_init(search, cfg, frequency_hz, settings, status)

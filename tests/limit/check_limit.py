@@ -86,45 +86,55 @@ def centroid(poly):
 
 
 def check_lp(d, name):
-    """The LP keys; the four-hinge lambda where hinging governs; equilibrium of every voussoir."""
-    keys = ["load_factor", "load_factor_upper", "load_factor_nonassociative", "mechanism", "contact_forces",
-            "mechanism_nonassociative", "contact_forces_nonassociative", "assembly"]
-    check(all(k in d for k in keys), f"{name}: LP keys {keys}")
-    lam = d["load_factor"]
-    check(close(d["load_factor_upper"], lam, rtol=1e-6, atol=1e-9), f"{name}: LP upper bound = lower bound")
-    check(d["load_factor_nonassociative"] <= lam * (1 + 1e-9) + 1e-12, f"{name}: non-associative <= associative")
-    moving = [(m["joint"], m["mode"], m["hinge_side"]) for m in d["mechanism"] if m["mode"] != "closed"]
+    """The LP keys; the four-hinge lambda where hinging governs, towards +x and -x;
+    equilibrium of every voussoir in both directions."""
+    for sfx, sign, exact, hinges in (("", 1.0, "lambda_pos", "hinges_pos"), ("_neg", -1.0, "lambda_neg", "hinges_neg")):
+        check_lp_direction(d, name, sfx, sign, exact, hinges)
+
+
+def check_lp_direction(d, name, sfx, sign, exact, hinges):
+    """The LP keys ending in `sfx` (the acceleration towards +x for "", -x for "_neg",
+    `sign`) against the four-hinge analysis of that direction (`exact`, `hinges`)."""
+    keys = [k + sfx for k in ("load_factor", "load_factor_upper", "load_factor_nonassociative", "mechanism",
+                              "contact_forces", "mechanism_nonassociative", "contact_forces_nonassociative")]
+    check(all(k in d for k in keys + ["assembly"]), f"{name}: LP keys {keys}")
+    lam = d["load_factor" + sfx]
+    check(close(d["load_factor_upper" + sfx], lam, rtol=1e-6, atol=1e-9), f"{name}: LP{sfx} upper bound = lower bound")
+    check(d["load_factor_nonassociative" + sfx] <= lam * (1 + 1e-9) + 1e-12,
+          f"{name}: non-associative{sfx} <= associative{sfx}")
+    moving = [(m["joint"], m["mode"], m["hinge_side"]) for m in d["mechanism" + sfx] if m["mode"] != "closed"]
     if not d["sliding"]:
-        check(close(lam, d["lambda_pos"], rtol=1e-6, atol=1e-9),
-              f"{name}: load_factor {lam} = lambda_pos {d['lambda_pos']} (hinging governs)")
-        check(moving == [(h["joint"], "hinge", h["side"]) for h in d["hinges_pos"]],
-              f"{name}: LP mechanism {moving} = the four hinges of +x")
+        check(close(lam, d[exact], rtol=1e-6, atol=1e-9),
+              f"{name}: load_factor{sfx} {lam} = {exact} {d[exact]} (hinging governs)")
+        check(moving == [(h["joint"], "hinge", h["side"]) for h in d[hinges]],
+              f"{name}: LP{sfx} mechanism {moving} = the four hinges of {hinges}")
     else:
-        check(lam <= d["lambda_pos"] * (1 + 1e-9), f"{name}: load_factor <= lambda_pos where sliding governs")
-        check(any(m[1] == "sliding" for m in moving), f"{name}: the LP mechanism slides ({moving})")
+        check(lam <= d[exact] * (1 + 1e-9), f"{name}: load_factor{sfx} <= {exact} where sliding governs")
+        check(any(m[1] == "sliding" for m in moving), f"{name}: the LP{sfx} mechanism slides ({moving})")
     # Equilibrium of every voussoir i (body i, joints i-1 and i) under the JSON's contact
-    # forces: they carry its weight W (so Fy = W) and lambda W towards +x (so Fx = -lambda Fy),
-    # both through its centroid (no moment about it).
+    # forces: they carry its weight W (so Fy = W) and lambda W towards sign x (so
+    # Fx = -sign lambda Fy), both through its centroid (no moment about it).
     a = d["arch"]
     n = a["n_voussoirs"]
     worst = 0.0
     for i in range(1, n + 1):
         cx, cy = centroid(voussoir_polygon(a, i))
-        fx, fy, m = contact_resultant(d, i, cx, cy)
-        worst = max(worst, abs(fx + lam * fy) / fy, abs(m) / (fy * a["r_ext_m"]))
-    check(worst < 1e-6, f"{name}: every voussoir in equilibrium under the JSON's contact forces ({worst:.1e})")
-    check(all(min(f["normal_n"]) >= -1e-9 * max(1.0, max(f["normal_n"])) for f in d["contact_forces"]),
-          f"{name}: no tension at any interface end")
+        fx, fy, m = contact_resultant(d, i, cx, cy, "contact_forces" + sfx)
+        worst = max(worst, abs(fx + sign * lam * fy) / fy, abs(m) / (fy * a["r_ext_m"]))
+    check(worst < 1e-6, f"{name}: every voussoir in equilibrium under the JSON's contact_forces{sfx} ({worst:.1e})")
+    check(all(min(f["normal_n"]) >= -1e-9 * max(1.0, max(f["normal_n"])) for f in d["contact_forces" + sfx]),
+          f"{name}: no tension at any interface end{sfx}")
 
 
-def arch_point_load_lambda(a, weight, loads):
+def arch_point_load_lambda(a, weight, loads, fixed_joints=()):
     """The least load factor over the arch's four-hinge mechanisms (upper bounds by the
     work equation), independent of the LP: voussoirs i = 1..n between joints i-1 and i
     (rigid, no sliding), weights at their centroids, the live loads `loads` (a list of
     ((x, y), (fx, fy), voussoir)). Hinges at joints j1 < j2 < j3 < j4, each at the intrados or extrados end;
     segment A (j1..j2) turns about H1, C (j3..j4) about H4, B about the intersection of
     lines H1-H2 and H3-H4. A mechanism is admissible when every hinge joint opens at its
-    other end; its lambda = -(power of the weights) / (power of the live load > 0)."""
+    other end; its lambda = -(power of the weights) / (power of the live load > 0).
+    No hinge at the joints `fixed_joints` (a springing that cannot hinge)."""
     n = a["n_voussoirs"]
     ends = {"intrados": a["joint_intrados_xy_m"], "extrados": a["joint_extrados_xy_m"]}
     other = {"intrados": "extrados", "extrados": "intrados"}
@@ -150,7 +160,7 @@ def arch_point_load_lambda(a, weight, loads):
 
     best = math.inf
     import itertools
-    for js in itertools.combinations(range(n + 1), 4):
+    for js in itertools.combinations([j for j in range(n + 1) if j not in fixed_joints], 4):
         for sides in itertools.product(("intrados", "extrados"), repeat=4):
             h = [ends[s][j] for s, j in zip(sides, js)]
             ib = meet(h[0], h[1], h[2], h[3])
@@ -244,11 +254,11 @@ def voussoir_polygon(a, i):
             a["joint_extrados_xy_m"][i - 1]]
 
 
-def contact_resultant(d, i, cx, cy):
-    """(Fx, Fy, moment about (cx, cy)) of the JSON's contact forces on block i: the normal
-    force at each end of every interface it is part of, and the shear at its middle."""
+def contact_resultant(d, i, cx, cy, key="contact_forces"):
+    """(Fx, Fy, moment about (cx, cy)) of the JSON's contact forces (`key`) on block i: the
+    normal force at each end of every interface it is part of, and the shear at its middle."""
     fx = fy = m = 0.0
-    for f in d["contact_forces"]:
+    for f in d[key]:
         if i not in f["blocks"]:
             continue
         sign = 1.0 if f["blocks"][1] == i else -1.0
@@ -345,8 +355,16 @@ elif case == "polygon_block":
     w = 2000 * 0.2 * 1.0 * 0.2 * 9.81
     f = d["contact_forces"][0]
     check(close(sum(f["normal_n"]), w, rtol=1e-9), f"{nml}: the base carries the weight {w} N")
+    # Towards -x the block is the same mirrored: b/h about its -x corner.
+    check(close(d["load_factor_neg"], 0.2, rtol=1e-9) and close(d["load_factor_nonassociative_neg"], 0.2, rtol=1e-9),
+          f"{nml}: load_factor_neg {d['load_factor_neg']} = b/h = 0.2 (symmetric block)")
+    m = d["mechanism_neg"]
+    check(len(m) == 1 and m[0]["mode"] == "hinge" and close(m[0]["hinge_xy_m"][0], -0.1, atol=1e-12),
+          f"{nml}: -x: one hinge at the -x corner ({m})")
+    check(d["live_load_neg"].startswith("horizontal acceleration lambda g towards -x"), f"{nml}: live_load_neg says -x")
     rc, out, err = run(nml)
     check(rc == 0 and "do not apply" in out and "lambda 0.2" in out, f"{nml}: the table says what applies")
+    check("towards -x" in out, f"{nml}: the table has the -x direction")
     check(d["live_load"].startswith("horizontal acceleration") and d["point_loads"] == [] and
           d["critical_position"] is None and d["load_factor_curve"] == [], f"{nml}: without &load, lambda g towards +x")
     # The same block with a live point load P = 100 N towards +x at its top corner (-0.1, 1)
@@ -357,7 +375,22 @@ elif case == "polygon_block":
     with open("block_point_load.nml", "w") as f:
         f.write(text + "&load point_load_n = 100, 200, point_load_dir_deg = 0, -90, point_load_x_m = -0.1, 0.0,\n"
                        "  point_load_y_m = 1.0, 1.0, point_load_live = .true., .false. /\n")
+    # A dead Q = 200 N down at the top's +x corner (0.1, 1): towards +x the block tips about
+    # (0.1, 0), under Q's line: lambda W h/2 = W b/2, lambda = b/h = 0.2 as without Q;
+    # towards -x about (-0.1, 0), Q a lever b away: lambda W h/2 = W b/2 + Q b,
+    # lambda = (b/h)(1 + 2Q/W). Sliding needs mu (W + Q)/W = 0.88, more than either.
+    with open("block_dead_corner.nml", "w") as f:
+        f.write(text + "&load point_load_n = 200, point_load_dir_deg = -90, point_load_x_m = 0.1, point_load_y_m = 1.0,\n"
+                       "  point_load_live = .false. /\n")
+    d = load("block_dead_corner.nml")
+    lam_neg = 0.2 * (1.0 + 2.0 * 200.0 / w)
+    check(close(d["load_factor"], 0.2, rtol=1e-9), f"dead load at the +x corner: load_factor {d['load_factor']} = b/h")
+    check(close(d["load_factor_neg"], lam_neg, rtol=1e-9) and close(d["load_factor_nonassociative_neg"], lam_neg, rtol=1e-9),
+          f"dead load at the +x corner: load_factor_neg {d['load_factor_neg']} = (b/h)(1 + 2Q/W) = {lam_neg}")
+    check(d["load_factor_neg"] > d["load_factor"], "dead load at the +x corner: -x is the stronger direction")
     d = load("block_point_load.nml")
+    check(d["load_factor_neg"] is None and "horizontal acceleration only" in d["load_factor_note_neg"]
+          and d["live_load_neg"] is None, f"live point loads: no -x direction ({d['load_factor_note_neg']})")
     check(close(d["load_factor"], (w + 200.0) * 0.1 / 100.0, rtol=1e-9),
           f"block with a point load: load_factor {d['load_factor']} = (W + Q) b / (2 P h) = {(w + 200.0) * 0.1 / 100.0}")
     check(d["point_loads"] == [{"load": 1, "block": 1, "xy_m": [-0.1, 1.0], "force_n": [100.0, 0.0], "live": True},
@@ -428,6 +461,158 @@ elif case == "arch_point_load":
     check(close(d["load_factor"], expected, rtol=1e-6),
           f"axle group: load factor {d['load_factor']} = least four-hinge mechanism {expected}")
     check_loaded_equilibrium(d, "axle group", w, d["load_factor"])
+elif case == "restrained":
+    # The seed 156-degree arch (friction 10: no sliding) with restraint brackets. A bracket
+    # stands against the lower half of the springing voussoir's extrados chord, which
+    # meets the springing joint at 90 - 6 degrees (half a voussoir's angle less than a
+    # right angle): turning about either end of the springing joint drives the voussoir
+    # into the bracket or the foundation, so that joint cannot hinge. The load factors
+    # are then the least four-hinge mechanisms (work equation, arch_point_load_lambda)
+    # with no hinge at a restrained springing, in each direction; a left bracket leaves
+    # the +x mechanism only where it does not hinge at joint 0.
+    emb, n, r_ext, t = 156.0, 13, 0.508, 0.071
+    a = {"n_voussoirs": n, "r_ext_m": r_ext, "joint_intrados_xy_m": [], "joint_extrados_xy_m": []}
+    for j in range(n + 1):
+        ang = math.radians(90.0 + 0.5 * emb - j * emb / n)
+        a["joint_intrados_xy_m"].append([(r_ext - t) * math.cos(ang), (r_ext - t) * math.sin(ang)])
+        a["joint_extrados_xy_m"].append([r_ext * math.cos(ang), r_ext * math.sin(ang)])
+    w = arch_weights(a, 700.0, 0.145)
+    cents = [centroid(voussoir_polygon(a, i)) for i in range(1, n + 1)]
+
+    def expected(fixed, sign):
+        return arch_point_load_lambda(a, w, [(cents[i - 1], (sign * w[i - 1], 0.0), i) for i in range(1, n + 1)],
+                                      fixed)
+
+    free = expected((), 1.0)
+    for side, fixed in (("left", (0,)), ("right", (n,)), ("both", (0, n))):
+        path = f"restrained_{side}.nml"
+        with open(path, "w") as f:
+            f.write(f"&arch embrace_deg = {emb}, n_voussoirs = {n}, r_ext_m = {r_ext}, thickness_m = {t},\n"
+                    f"  width_m = 0.145, density_kg_m3 = 700, friction = 10, restrained_springings = '{side}' /\n")
+        d = load(path)
+        check(d["assembly"] == "restrained arch" and d["lambda_pos"] is None and d["hinges_pos"] == [],
+              f"{side}: a restrained arch, the four-hinge keys null")
+        da = d["arch"]
+        check(da is not None and da["n_voussoirs"] == n and all(
+            close(p, q, atol=1e-12) for key in ("joint_intrados_xy_m", "joint_extrados_xy_m")
+            for pq in zip(da[key], a[key]) for p, q in zip(*pq)),
+              f"{side}: the arch object with the joint ends of the geometry conventions")
+        for sfx, sign in (("", 1.0), ("_neg", -1.0)):
+            lam, exp = d["load_factor" + sfx], expected(fixed, sign)
+            check(close(lam, exp, rtol=1e-6),
+                  f"{side}: load_factor{sfx} {lam} = least four-hinge mechanism without hinges at joints {fixed} {exp}")
+            check(close(d["load_factor_upper" + sfx], lam, rtol=1e-6), f"{side}: upper{sfx} = lower bound")
+            moving = [m["joint"] for m in d["mechanism" + sfx] if m["mode"] != "closed"]
+            check(len(moving) == 4 and not set(moving) & set(fixed),
+                  f"{side}: the {sfx or '+x'} mechanism hinges at four joints, none restrained ({moving})")
+            check(lam >= free * (1 - 1e-9), f"{side}: load_factor{sfx} {lam} >= the free arch's {free}")
+        # The brackets (blocks n + 3 and on) hold the springing voussoirs in compression.
+        brackets = [f for f in d["contact_forces"] + d["contact_forces_neg"] if f["joint"] is None]
+        check(len(brackets) == 2 * len(fixed) and all(max(f["blocks"]) > n + 2 for f in brackets)
+              and max(sum(f["normal_n"]) for f in brackets) > 0.0,
+              f"{side}: {len(fixed)} bracket interface(s), not arch joints, carrying compression")
+    # The free arch's mechanisms both hinge at joint 0 (+x: 0, 5, 10, 13; -x: 0, 3, 8, 13):
+    # a left bracket raises both; +x only a little (its hinge moves to joint 1 of a long
+    # left segment), -x much (its short left segment of three voussoirs grows).
+    d = load("restrained_left.nml")
+    check(free < d["load_factor"] < d["load_factor_neg"],
+          f"left bracket: free {free} < +x {d['load_factor']} < -x {d['load_factor_neg']}")
+    rc, out, err = run("restrained_left.nml")
+    check(rc == 0 and "do not model the restraint brackets" in out and "towards -x" in out,
+          "left bracket: the table says the LP models the brackets")
+elif case == "joint_friction":
+    # &arch joint_friction(j), the friction of joint j alone in the dynamics, in both
+    # analyses. Every joint at 0.395 through joint_friction is the arch at friction 0.395.
+    with open(nml) as f:
+        text = f.read().replace("friction = 0.5", "friction = 10")
+    with open("all_joints.nml", "w") as f:
+        f.write(text.replace("friction = 10", "friction = 10, " + ", ".join(f"joint_friction({j}) = 0.395"
+                                                                           for j in range(14))))
+    with open("everywhere.nml", "w") as f:
+        f.write(text.replace("friction = 10", "friction = 0.395"))
+    d, e = load("all_joints.nml"), load("everywhere.nml")
+    for key in ("load_factor", "load_factor_nonassociative", "load_factor_neg", "load_factor_nonassociative_neg"):
+        check(close(d[key], e[key], rtol=1e-9), f"joint_friction 0.395 at every joint: {key} {d[key]} = "
+                                                f"friction 0.395's {e[key]}")
+    check(d["sliding"] == e["sliding"] and d["sliding"], f"the same joints slide in the friction check ({d['sliding']})")
+    # Joint 0 alone at 0.2 (the others at 10): every static field keeps |S| <= 0.2 N there;
+    # less friction never carries more, and towards -x (the arch leaning onto its left
+    # springing, joint 0 at 12 degrees to the horizontal) the capacity drops, the mechanism
+    # sliding at joint 0; the four-hinge friction check flags joint 0 alone (its |T|/N at
+    # collapse is above 0.2, the others far below 10).
+    with open("joint0.nml", "w") as f:
+        f.write(text.replace("friction = 10", "friction = 10, joint_friction(0) = 0.2"))
+    with open("friction10.nml", "w") as f:
+        f.write(text)
+    d, e = load("joint0.nml"), load("friction10.nml")
+    worst = 0.0
+    for key in ("contact_forces", "contact_forces_nonassociative", "contact_forces_neg",
+                "contact_forces_nonassociative_neg"):
+        for f in d[key]:
+            if f["joint"] == 0:
+                worst = max(worst, abs(f["shear_n"]) / sum(f["normal_n"]))
+    check(worst <= 0.2 * (1 + 1e-9), f"joint 0: |S|/N <= 0.2 in every static field ({worst})")
+    check(d["load_factor"] <= e["load_factor"] * (1 + 1e-9) and e["sliding"] == [],
+          f"joint 0 at 0.2: load_factor {d['load_factor']} <= friction 10's {e['load_factor']}")
+    check(d["load_factor_neg"] < e["load_factor_neg"] * (1 - 1e-6),
+          f"joint 0 at 0.2: load_factor_neg {d['load_factor_neg']} below friction 10's {e['load_factor_neg']}")
+    moving = {m["joint"]: m["mode"] for m in d["mechanism_neg"] if m["mode"] != "closed"}
+    check(moving.get(0) == "sliding", f"joint 0 at 0.2: the -x mechanism slides at joint 0 ({moving})")
+    check(d["sliding"] == [0], f"joint 0 at 0.2: the friction check flags joint 0 alone ({d['sliding']})")
+    rc, out, err = run("joint0.nml")
+    check(rc == 0 and "joint_friction where set" in out, "joint 0 at 0.2: the table says joint_friction is used")
+elif case == "crushing":
+    # &limit compressive_strength_pa: every interface force kept a = N / (2 sigma_c w) from
+    # the ends. input/rocking_block.nml (b = 0.2, h = 1, w = 0.2 m, W = 784.8 N) tips about
+    # a point a = W / (2 sigma_c w) in from its corner: lambda W h/2 = W (b/2 - a),
+    # lambda = (b - W / (sigma_c w)) / h, both ways (sliding needs mu = 0.7).
+    with open(nml) as f:
+        text = f.read().replace("blocks/", os.path.dirname(os.path.abspath(nml)) + "/blocks/")
+    w = 2000 * 0.2 * 1.0 * 0.2 * 9.81
+    for sigma in (1e12, 98100.0, 50000.0):
+        path = f"block_sigma_{sigma:g}.nml"
+        with open(path, "w") as f:
+            f.write(text + f"&limit compressive_strength_pa = {sigma} /\n")
+        d = load(path)
+        expected = (0.2 - w / (sigma * 0.2)) / 1.0
+        for key in ("load_factor", "load_factor_nonassociative", "load_factor_neg", "load_factor_nonassociative_neg"):
+            check(close(d[key], expected, rtol=1e-9), f"block, sigma_c {sigma:g} Pa: {key} {d[key]} = "
+                                                      f"(b - W/(sigma_c w))/h = {expected}")
+        check(d["compressive_strength_pa"] == sigma and d["crushing_converged"] and not d["crushed_through"],
+              f"block, sigma_c {sigma:g} Pa: the JSON says so, converged")
+        hinge = d["mechanism"][0]["hinge_xy_m"]
+        check(close(hinge[0], 0.1 - w / (2 * sigma * 0.2), atol=1e-12),
+              f"block, sigma_c {sigma:g} Pa: the hinge {hinge} set in by a = W/(2 sigma_c w) from the +x corner")
+    d = load(f"block_sigma_{1e12:g}.nml")
+    check(close(d["load_factor"], 0.2, rtol=1e-6), f"block, sigma_c 1e12 Pa: the rigid b/h to 1e-6 ({d['load_factor']})")
+    rc, out, err = run("block_sigma_98100.nml")
+    check(rc == 0 and "compressive strength 98100 Pa" in out, "block: the table names the strength")
+    # The seed arch at 30 kPa: below its rigid lambda; every interface force at the ends of
+    # its joint (from the geometry conventions) moved in by N / (2 sigma_c w).
+    with open(os.path.join(os.path.dirname(os.path.abspath(nml)), "limit_seed_156.nml")) as f:
+        text = f.read().replace("minimum_thickness = .true.", "minimum_thickness = .false.")
+    with open("seed_rigid.nml", "w") as f:
+        f.write(text)
+    with open("seed_crushing.nml", "w") as f:
+        f.write(text.replace("&limit\n", "&limit\n  compressive_strength_pa = 3e4,\n"))
+    rigid, d = load("seed_rigid.nml"), load("seed_crushing.nml")
+    check(d["compressive_strength_pa"] == 3e4, "seed arch: a finite strength read")
+    for key in ("load_factor", "load_factor_neg"):
+        check(d[key] < rigid[key] * (1 - 1e-3), f"seed arch, 30 kPa: {key} {d[key]} below the rigid {rigid[key]}")
+    a = d["arch"]
+    worst = 0.0
+    for key in ("contact_forces", "contact_forces_neg", "contact_forces_nonassociative"):
+        for f in d[key]:
+            j = f["joint"]
+            ends = [a["joint_intrados_xy_m"][j], a["joint_extrados_xy_m"][j]]
+            offset = sum(f["normal_n"]) / (2 * 3e4 * 0.145)
+            for p in f["ends_xy_m"]:
+                dist = min(math.dist(p, e) for e in ends)
+                worst = max(worst, abs(dist - offset) / a["thickness_m"])
+    check(worst < 1e-6, f"seed arch, 30 kPa: every force N / (2 sigma_c w) in from its joint's ends ({worst:.1e})")
+    for sfx in ("", "_neg"):
+        check(close(d["load_factor_upper" + sfx], d["load_factor" + sfx], rtol=1e-6),
+              f"seed arch, 30 kPa: upper{sfx} = lower bound")
 elif case == "bad_inputs":
     cases = [
         ("unknown_limit_variable", "&limit", "&arch /\n&limit minimum_thicknes = .false. /\n"),
@@ -440,7 +625,8 @@ elif case == "bad_inputs":
          "&arch n_voussoirs = 600 /\n"),
         ("limit_inset_too_big", "inset_m = 0.04.*thickness_m/2", "&arch /\n&limit inset_m = 0.04 /\n"),
         ("limit_inset_negative", "inset_m = -0.001", "&arch /\n&limit inset_m = -0.001 /\n"),
-        ("restrained", "restrained_springings = 'left'.*restraint", "&arch restrained_springings = 'left' /\n"),
+        ("limit_strength_zero", r"compressive_strength_pa = 0.*compressive_strength_pa > 0",
+         "&arch /\n&limit compressive_strength_pa = 0 /\n"),
         ("polygon_overhang", "dead load alone brings the assembly down",
          "&arch polygon_file = 'overhang.txt' /\n"),
         ("polygon_against_wall", "unbounded.*block 1 is held against the load", "&arch polygon_file = 'against_wall.txt' /\n"),
