@@ -71,7 +71,7 @@ echo "== 6. Fragility of the 156-degree arch under $records_text (IDA, 2 MPI ran
   echo "! the set exported by scripts/setup.sh, docs/earthquakes.md)."
   echo "&arch embrace_deg = 156, n_voussoirs = 13, r_ext_m = 0.508, thickness_m = 0.071, width_m = 0.145,"
   echo "  density_kg_m3 = 700, friction = 0.5 /"
-  echo "&motion rest_s = 0.5 /"
+  echo "&motion lead_s = 0.5, rest_s = 2.0 /"
   echo "&solver dt_s = 1.0e-3 /"
   echo "&sweep mode = 'ida', record_set = '$records', record_components = '$components',"
   echo "  scale_tol = 0.05, scale_max = 20, n_samples = 2, sample_seed = 1, friction_range = 0.45, 0.6,"

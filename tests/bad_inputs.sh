@@ -137,6 +137,14 @@ case_ accel_scale_neg   "record_scale = -2.*record_scale > 0" "&motion waveform 
 $o"
 case_ accel_rest        "rest_s = -1.*rest_s >= 0" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', rest_s = -1 /
 $o"
+case_ accel_lead        "&motion lead_s = -1 is outside the allowed range lead_s >= 0" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', lead_s = -1 /
+$o"
+case_ lead_text         ":1: &motion lead_s = 'half' is not a number" "&motion lead_s = 'half' /
+$o"
+case_ lead_nan          "&motion lead_s = NaN is not a finite number" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', lead_s = NaN /
+$o"
+case_ lead_huge         "steps.*limit of 1e8" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', lead_s = 1e9 /
+$o"
 # The vertical component, the polarity and the unit of a record (issue 24).
 case_ vertical_ratio_big "&motion vertical_ratio = 3 is outside the allowed range -2 <= vertical_ratio <= 2" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', vertical_ratio = 3 /
 $o"
