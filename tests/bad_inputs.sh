@@ -288,6 +288,8 @@ case_ polygon_no_free   "all_driven.txt: every block is driven" "&arch polygon_f
 $o"
 case_ polygon_overlap   "overlap.txt: blocks 1 and 2 overlap by 0.01 m" "&arch polygon_file = 'overlap.txt' /
 $o"
+# voussoir-limit reads the polygon file as voussoir-run does: overlapping blocks refused (issue 25).
+driver=voussoir-limit case_ limit_polygon_overlap "overlap.txt: blocks 1 and 2 overlap by 0.01 m" "&arch polygon_file = 'overlap.txt' /"
 
 # &sweep mode = 'msa' (issue 24): the levels stated, each > 0 and finite, increasing;
 # the variables of the other modes refused (voussoir-sweep on one rank, no mpirun).
