@@ -342,17 +342,27 @@ def resample_clusters(rng: np.random.Generator, clusters, events=None) -> np.nda
     of their labels), all the rows of each; with ``events`` (one per row, the same for
     every row of a cluster): the events drawn with replacement, then within each drawn
     event its clusters with replacement (two-stage)."""
-    clusters = np.asarray(clusters)
-    names, code = np.unique(clusters, return_inverse=True)
+    return _draw_clusters(rng, *_cluster_layout(clusters, events))
+
+
+def _cluster_layout(clusters, events=None) -> tuple[list, list | None]:
+    """(the rows of each cluster, the clusters of each event or None), in sorted order of
+    the labels: what :func:`resample_clusters` draws from, worked out once."""
+    names, code = np.unique(np.asarray(clusters), return_inverse=True)
     members = [np.flatnonzero(code == k) for k in range(names.size)]
     if events is None:
-        pick = rng.integers(0, names.size, names.size)
+        return members, None
+    event_names, event_code = np.unique(np.asarray(events), return_inverse=True)
+    return members, [np.unique(code[event_code == e]) for e in range(event_names.size)]
+
+
+def _draw_clusters(rng: np.random.Generator, members: list, inside: list | None) -> np.ndarray:
+    """One resample of :func:`resample_clusters` from its :func:`_cluster_layout`."""
+    if inside is None:
+        pick = rng.integers(0, len(members), len(members))
         return np.concatenate([members[k] for k in pick])
-    events = np.asarray(events)
-    event_names, event_code = np.unique(events, return_inverse=True)
-    inside = [np.unique(code[event_code == e]) for e in range(event_names.size)]
     rows = []
-    for e in rng.integers(0, event_names.size, event_names.size):
+    for e in rng.integers(0, len(inside), len(inside)):
         for k in inside[e][rng.integers(0, inside[e].size, inside[e].size)]:
             rows.append(members[k])
     return np.concatenate(rows)
@@ -413,9 +423,10 @@ def clustered_resamples(statistic, n_rows: int, clusters=None, events=None, n_re
             if label.setdefault(c, e) != e:
                 raise FitError(f"cluster '{c}' belongs to two events, '{label[c]}' and '{e}'")
     rng = np.random.default_rng(seed)
+    layout = _cluster_layout(clusters, events)
     values = []
     for _ in range(n_resamples):
-        pick = resample_clusters(rng, clusters, events)
+        pick = _draw_clusters(rng, *layout)
         try:
             values.append(statistic(pick))
         except FitError:
