@@ -97,8 +97,8 @@ def test_the_same_ida_at_both_steps_changes_nothing(tmp_path, capsys):
 def test_thresholds_scaled_by_k_move_the_median_by_k_and_leave_beta(tmp_path, capsys):
     """Every bracket (stood, threshold] of B is k times A's: the likelihood of B at
     (mu + ln k, beta) is A's at (mu, beta), so the median ratio is k and the beta change
-    0, in the fit and in every paired resample; each row moved by ln k / ln(1 / (1 -
-    scale_tol)) scale steps."""
+    0, in the fit and in every paired resample; each row moved by ln k / ln(1 / 0.95)
+    scale steps (its bracket at dt_A the step: scale_stood = 0.95 scale_threshold)."""
     k = 0.93
     scales = thresholds()
     a = write_ida(tmp_path / "a.h5", scales)
@@ -109,7 +109,7 @@ def test_thresholds_scaled_by_k_move_the_median_by_k_and_leave_beta(tmp_path, ca
     assert out["median_ratio_band"] == pytest.approx([k, k], rel=1e-6)
     assert out["beta_change_band"] == pytest.approx([0.0, 0.0], abs=1e-6)
     assert out["rows_moved"] == 12
-    steps = math.log(k) / -math.log(1.0 - SCALE_TOL)  # -1.41: B's threshold below A's stand
+    steps = math.log(k) / -math.log(0.95)  # -1.41: B's threshold below A's stand
     assert [m["steps"] for m in out["rows_moved_detail"]] == pytest.approx([steps] * 12, rel=1e-9)
     assert main(["dtcheck", str(a), str(b), "--bootstrap", "50"]) == 0
     text = capsys.readouterr().out

@@ -10,9 +10,9 @@ the ratio of the medians B / A and the difference of the betas B - A, each with 
 within them (:func:`.fragility.clustered_resamples`, as the fragility's band), and
 refits both files on the same drawn rows, so what the two share (the records' own
 spread) cancels in the ratio and only the time step's effect and its scatter remain.
-A row whose bracket moved is counted, with its shift in scale steps,
-ln(threshold_B / threshold_A) / ln(1 / (1 - scale_tol)): -1 is B's threshold one final
-bracket lower (at A's stand).
+A row whose bracket moved is counted, with its shift in scale steps, ln(threshold_B /
+threshold_A) / ln(threshold_A / stood_A), A's own final bracket the step (ln(1 / (1 -
+scale_tol)) for a row of no width): -1 is B's threshold at A's stand.
 
 What may differ between A and B: ``&solver dt_s`` (B's smaller), the records chosen
 (``record_files``, ``record_set``, ``record_components``), how the model samples are
@@ -60,7 +60,8 @@ class MovedRow:
     param_set: int
     bracket_a: tuple[float, float]  #: (scale_stood, scale_threshold) at dt_A (censored: (scale_max, inf))
     bracket_b: tuple[float, float]
-    steps: float | None  #: ln(threshold_B / threshold_A) / ln(1 / (1 - scale_tol)); None if one is censored or failed
+    #: ln(threshold_B / threshold_A) / ln(threshold_A / stood_A); None if one is censored or failed
+    steps: float | None
 
 
 @dataclass
@@ -132,7 +133,7 @@ class DtCheck:
         by_steps = ", ".join(f"{s:+.1f} scale steps ({steps.count(s)} row{'s' if steps.count(s) > 1 else ''})"
                              for s in sorted(set(steps)))
         out.append(f"brackets moved: {len(self.moved)} of {self.n_rows} rows"
-                   + (f", by {by_steps}; one step: the final bracket, scale_tol = {self.scale_tol:g}" if steps else "")
+                   + (f", by {by_steps}; a step: the row's final bracket at dt_A" if steps else "")
                    + (f"; {len(self.moved) - len(steps)} changed between censored, failed and collapsed"
                       if len(steps) < len(self.moved) else ""))
         return out + [f"note: {n}" for n in self.notes]
@@ -239,7 +240,9 @@ def _moved(a: IdaResult, b: IdaResult, rows_a, rows_b, scale_tol: float) -> list
         if same:
             continue
         both = fit_a[j] == FIT_BRACKET and fit_b[k] == FIT_BRACKET
-        steps = math.log(bb[1] / ba[1]) / -math.log1p(-scale_tol) if both else None
+        width = math.log(ba[1] / ba[0]) if both and ba[0] > 0.0 else 0.0
+        step = width if width > 0.0 else -math.log1p(-scale_tol)
+        steps = math.log(bb[1] / ba[1]) / step if both else None
         out.append(MovedRow(a.record[j], int(a.param_set[j]), ba, bb, steps))
     return out
 
