@@ -175,7 +175,8 @@ def test_the_paired_band_covers_the_known_change(tmp_path):
 
 @pytest.mark.parametrize("change, words", [
     ({"records": RECORDS[:4] + ["PUL164", "PUL254"]}, "record PUL164, param_set 0, is not in A"),
-    ({"rows": [(0, 0), (2, 1)], "params": np.vstack([PARAMS, [0.6, 0.07]]), "scales": np.ones((3, 6))}, "param_set 2, is not in A"),
+    ({"rows": [(0, 0), (2, 1)], "params": np.vstack([PARAMS, [0.6, 0.07]]), "scales": np.ones((3, 6))},
+     "param_set 2, is not in A"),
     ({"params": np.array([[0.52, 0.071], [0.55, 0.069]])}, "param_set 0 has friction = 0.5 in A"),
     ({"sample_seed": 2}, "&sweep sample_seed: 1 in A, 2 in B"),
     ({"thickness_m": 0.07}, "&arch thickness_m: 0.071 in A, 0.07 in B"),
