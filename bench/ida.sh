@@ -26,7 +26,7 @@ print(', '.join(repr(str(record_path(k))) for k in ('ELC180', 'ELC270', 'CLS000'
 cat > ida.nml <<NML
 &arch embrace_deg = 156, n_voussoirs = 13, r_ext_m = 0.508, thickness_m = 0.071, width_m = 0.145,
   density_kg_m3 = 700, friction = 0.5 /
-&motion rest_s = 0.5 /
+&motion lead_s = 0.5, rest_s = 2.0 /
 &solver dt_s = 1.0e-3 /
 &sweep mode = 'ida', record_files = $files,
   scale_tol = 0.05, scale_max = 10, n_samples = 20, sample_seed = 1,

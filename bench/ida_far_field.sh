@@ -31,7 +31,7 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
 arch="&arch embrace_deg = 156, n_voussoirs = 13, r_ext_m = 0.508, thickness_m = 0.071, width_m = 0.145,
   density_kg_m3 = 700, friction = 0.5 /
-&motion rest_s = 0.5 /
+&motion lead_s = 0.5, rest_s = 2.0 /
 &solver dt_s = 1.0e-3 /"
 cat > ida_far_field.nml <<NML
 $arch

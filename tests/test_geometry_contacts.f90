@@ -8,7 +8,7 @@ program test_geometry_contacts
   use voussoir_assembly, only: assembly_t, build_arch
   use voussoir_contacts, only: polygon_contact
   use voussoir_nlgs, only: coulomb_local
-  use voussoir_motion, only: motion_t, motion_afd, motion_eval
+  use voussoir_motion, only: motion_t, motion_afd, motion_ramp, motion_eval, motion_duration_s
   use voussoir_assert, only: assert_true, assert_close, assert_summary
   implicit none
 
@@ -17,6 +17,7 @@ program test_geometry_contacts
   call contacts()
   call local_solver()
   call afd_waveform()
+  call motion_lead()
   call assert_summary()
 
 contains
@@ -185,5 +186,34 @@ contains
       call assert_close(h, 1.1_dp*a, 'actuator model acceleration = gain x command(t - delay)', atol=1.0e-12_dp)
     end do
   end subroutine afd_waveform
+
+  !> &motion lead_s (motion_t%start_s): the table still until then, the motion shifted by
+  !> it (dyadic times, so the shift is exact) and its end later by it.
+  subroutine motion_lead()
+    type(motion_t) :: m, led
+    real(dp) :: x, v, a, xl, vl, al
+    integer :: k
+    m = motion_afd(2.0_dp, 0.01_dp, 1, 1, 1)
+    led = m
+    led%start_s = 0.25_dp
+    call assert_close(motion_duration_s(led), motion_duration_s(m) + 0.25_dp, 'afd lead: the end later by it', &
+                      rtol=1.0e-15_dp)
+    do k = 1, 7
+      call motion_eval(led, 0.03125_dp*k, xl, vl, al)
+      call assert_true(xl == 0.0_dp .and. vl == 0.0_dp .and. al == 0.0_dp, 'afd lead: the table still before it')
+    end do
+    do k = 0, 12
+      call motion_eval(m, 0.125_dp*k, x, v, a)
+      call motion_eval(led, 0.25_dp + 0.125_dp*k, xl, vl, al)
+      call assert_true(xl == x .and. vl == v .and. al == a, 'afd lead: the motion played lead_s later')
+    end do
+    m = motion_ramp(0.5_dp)
+    m%start_s = 0.25_dp
+    call motion_eval(m, 0.125_dp, x, v, a)
+    call assert_true(a == 0.0_dp, 'ramp lead: no load before it')
+    call motion_eval(m, 0.75_dp, x, v, a)
+    call assert_close(a, 0.25_dp, 'ramp lead: the load grows from lead_s', rtol=1.0e-15_dp)
+    call assert_close(motion_duration_s(m), 0.25_dp, 'ramp lead: its end is its start', rtol=1.0e-15_dp)
+  end subroutine motion_lead
 
 end program test_geometry_contacts

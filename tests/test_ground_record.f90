@@ -41,7 +41,7 @@ program test_ground_record
 
   ! The table: at rest until start_s, then the record, then constant velocity.
   m = motion_accelerogram([0.0_dp, 3.0_dp, 3.0_dp], 1.0_dp, 0.25_dp)
-  call assert_close(motion_duration_s(m), 2.25_dp, 'table: duration = rest + record', rtol=1.0e-12_dp)
+  call assert_close(motion_duration_s(m), 2.25_dp, 'table: duration = lead + record', rtol=1.0e-12_dp)
   call motion_eval(m, 0.2_dp, xt, vt, at)
   call assert_true(xt == 0.0_dp .and. vt == 0.0_dp .and. at == 0.0_dp, 'table: at rest before start_s')
   call motion_eval(m, 0.75_dp, xt, vt, at)  ! half way through the first step: a = 3 t

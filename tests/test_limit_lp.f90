@@ -9,6 +9,7 @@ program test_limit_lp
   use voussoir_wall_config, only: wall_config_t
   use voussoir_wall, only: build_wall, box, block_stack
   use voussoir_limit_analysis, only: limit_result_t, horizontal_capacity
+  use voussoir_minimum_thickness, only: minimum_thickness
   use voussoir_block_interfaces, only: interface_set_t, find_interfaces
   use voussoir_limit_lp, only: block_loads_t, lp_result_t, block_loads, lp_capacity, nonassociative_capacity, &
                                joint_hinge, joint_sliding, joint_closed
@@ -22,6 +23,7 @@ program test_limit_lp
   call test_block_on_incline(mu=0.35_dp)
   call test_wall_panel()
   call test_seed_arches()
+  call test_minimum_thickness()
   call test_refusals()
   call assert_summary()
 
@@ -196,6 +198,37 @@ contains
       end do
     end do
   end subroutine test_seed_arches
+
+  !> The LP's own minimum thickness is that of the exact analysis (minimum_thickness: a
+  !> symmetric thrust line, golden section and bisection; 0.10188 r_ext published for 20
+  !> chord-faced voussoirs) to 1e-6: the semicircle of 20 voussoirs (r_ext 1 m, no inset,
+  !> friction 10) carries its weight 1e-6 above that thickness, with a load factor that
+  !> vanishes there, and cannot 1e-6 below it (infeasible: the dead load alone).
+  subroutine test_minimum_thickness()
+    type(assembly_t) :: arch
+    type(interface_set_t) :: faces
+    type(block_loads_t) :: loads
+    type(lp_result_t) :: a
+    type(status_t) :: status
+    real(dp) :: ratio_ext, ratio_mean
+    integer, allocatable :: hinges(:), sides(:)
+    call minimum_thickness(180.0_dp, 20, 1.0_dp, 0.0_dp, ratio_ext, ratio_mean, hinges, sides, status)
+    call assert_true(status%ok, 'minimum thickness of 20 voussoirs found')
+    call build_arch(180.0_dp, 20, 1.0_dp, ratio_ext*(1 + 1.0e-6_dp), arch)
+    call find_interfaces(arch, 1.0e-9_dp, 0.0_dp, faces, status)
+    call block_loads(arch, 700.0_dp, 0.145_dp, 9.81_dp, loads)
+    call lp_capacity(arch, faces, loads, spread(10.0_dp, 1, faces%n), spread(0.0_dp, 1, faces%n), a, status)
+    call assert_true(status%ok, '20 voussoirs, 1e-6 above the minimum thickness: the LP carries the weight')
+    call assert_true(a%load_factor >= 0.0_dp .and. a%load_factor < 1.0e-4_dp, &
+                     '20 voussoirs, 1e-6 above the minimum thickness: the load factor vanishes')
+    status = status_t()
+    call build_arch(180.0_dp, 20, 1.0_dp, ratio_ext*(1 - 1.0e-6_dp), arch)
+    call find_interfaces(arch, 1.0e-9_dp, 0.0_dp, faces, status)
+    call block_loads(arch, 700.0_dp, 0.145_dp, 9.81_dp, loads)
+    call lp_capacity(arch, faces, loads, spread(10.0_dp, 1, faces%n), spread(0.0_dp, 1, faces%n), a, status)
+    call assert_true(.not. status%ok .and. index(status%message, 'dead load alone') > 0, &
+                     '20 voussoirs, 1e-6 below the minimum thickness: infeasible, the dead load alone')
+  end subroutine test_minimum_thickness
 
   !> A block whose centroid overhangs its support falls under its own weight (infeasible);
   !> a block against a driven wall on its +x side carries any lambda (unbounded); a block

@@ -83,7 +83,7 @@ contains
     write (u, '(a)') "&arch polygon_file = '"//name//".txt', thickness_m = 0.2, width_m = 0.2, "// &
       'density_kg_m3 = 2000, friction = 0.7 /'
     write (u, '(a,es24.16,a)') "&motion waveform = 'accelerogram', record_file = '"//name//".csv', record_scale = ", &
-      scale, ', rest_s = 0.2 /'
+      scale, ', lead_s = 0.2, rest_s = 0 /'
     write (u, '(a)') '&solver dt_s = 1e-4 /'
     write (u, '(a)') "&output file = '"//name//".h5', stop_after_collapse_s = -1 /"
     close (u)

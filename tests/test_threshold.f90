@@ -20,6 +20,7 @@ program test_threshold
     afd_peak_accel_per_m, static_capacity_m_s2
   use voussoir_assembly, only: build_arch, mirrored_blocks
   use voussoir_limit_lp_study, only: lp_study_t, lp_study
+  use voussoir_limit_analysis, only: limit_result_t, horizontal_capacity
   use voussoir_assert, only: assert_true, assert_close, assert_summary
   implicit none
 
@@ -76,6 +77,7 @@ program test_threshold
                    'friction 0.395: below 0.9 x the four-hinge capacity')
   cfg%arch%friction = 0.5_dp
   call test_loaded_capacity(cfg)
+  call test_lp_only_capacities(cfg)
 
   ! Monotone case: collapse from 63.3 mm, still below 58 mm.
   settings = threshold_settings_t()
@@ -114,16 +116,16 @@ program test_threshold
                    'island mid-bracket: bisection (factor 2) ends at the upper edge of the island')
   settings = threshold_settings_t()
 
-  ! No onset estimate (brackets beside the springings): come down from amp_max_m.
-  cfg%arch%restrained_springings = 'both'
-  call assert_true(static_onset_amplitude_m(cfg, 1.25_dp) == 0.0_dp, 'brackets: no static estimate')
+  ! No onset estimate (a polygon file: not read here, it has none): come down from amp_max_m.
+  cfg%arch%polygon_file = 'ring.txt'
+  call assert_true(static_onset_amplitude_m(cfg, 1.25_dp) == 0.0_dp, 'polygon file: no static estimate')
   call drive(cfg, settings, oracle_monotone, r, amps, n)
   call assert_close(amps(1), settings%amp_max_m, 'no estimate: first run at amp_max_m', rtol=1.0e-12_dp)
   call assert_true(r%threshold_m >= 0.0633_dp .and. r%threshold_m <= 0.0633_dp + settings%amp_tol_m, &
                    'no estimate: threshold within amp_tol')
   call assert_true(.not. r%non_monotonic, 'no estimate: collapses above are not non-monotonic')
   write (*, '(a,i0,a)') '      ', n, ' runs without an estimate'
-  cfg%arch%restrained_springings = 'none'
+  cfg%arch%polygon_file = ''
 
   ! Nothing collapses up to amp_max_m.
   settings%amp_max_m = 0.062_dp
@@ -142,6 +144,43 @@ program test_threshold
   call assert_summary()
 
 contains
+
+  !> Assemblies the four-hinge analysis does not model start from the LP's capacity (the
+  !> weaker direction, non-associative). The seed arch with restraint brackets, friction
+  !> 10 (hinging governs): a left bracket leaves the least four-hinge mechanism with no
+  !> hinge at joint 0, 0.3842135120804658 towards +x (the work equation over every set of
+  !> four joints and sides, computed in Python as tests/limit/check_limit.py restrained
+  !> does; -x: 0.6498); brackets at both springings fix the end voussoirs, leaving the
+  !> 11 voussoirs of 12 degrees between them: the 132-degree seed arch, whose four-hinge
+  !> lambda this is. A 3 x 3 wall of 0.2 x 0.1 m blocks at friction 0.3 < B/H = 2 slides
+  !> on its foundation at lambda = mu (the &arch default arch's capacity was taken before).
+  subroutine test_lp_only_capacities(base)
+    type(config_t), intent(in) :: base
+    type(config_t) :: c
+    type(assembly_t) :: arch_132
+    type(limit_result_t) :: exact
+    type(status_t) :: status
+    c = base
+    c%arch%friction = 10.0_dp
+    c%arch%restrained_springings = 'left'
+    call assert_close(static_capacity_m_s2(c), 0.3842135120804658_dp*g_m_s2, &
+                      'left bracket: the least four-hinge mechanism without a hinge at joint 0', rtol=1.0e-6_dp)
+    c%arch%restrained_springings = 'both'
+    call build_arch(132.0_dp, 11, c%arch%r_ext_m, c%arch%thickness_m, arch_132)
+    call horizontal_capacity(arch_132, 0.0_dp, 10.0_dp, exact, status)
+    call assert_true(status%ok, 'the 132-degree arch: four-hinge analysis')
+    call assert_close(static_capacity_m_s2(c), min(exact%lambda_pos, exact%lambda_neg)*g_m_s2, &
+                      'brackets at both springings: the four-hinge capacity of the 132-degree arch between them', &
+                      rtol=1.0e-6_dp)
+    c = base
+    c%wall%courses = 3
+    c%wall%blocks_per_course = 3
+    c%wall%block_width_m = 0.2_dp
+    c%wall%block_height_m = 0.1_dp
+    c%arch%friction = 0.3_dp
+    call assert_close(static_capacity_m_s2(c), 0.3_dp*g_m_s2, '3 x 3 wall, friction 0.3: slides at mu g', &
+                      rtol=1.0e-9_dp)
+  end subroutine test_lp_only_capacities
 
   !> &load in the sweep's static capacity (issue 25). A dead vertical load k W_i at the
   !> centroid of every voussoir i makes gravity 1 + k times stronger while the

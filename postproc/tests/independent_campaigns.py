@@ -292,7 +292,7 @@ def _motion(tmp: Path, test_id: str, f: float, amp: float, gain: float, truth: T
     t, _, acc = actuator_record(f, amp, gain, truth)
     path = tmp / f"{test_id}_table.csv"
     path.write_text("t_s,accel_m_s2\n" + "\n".join(f"{a:.6f},{b:.9e}" for a, b in zip(t, acc)) + "\n")
-    return {"waveform": "accelerogram", "record_file": str(path), "rest_s": 1.0}, 1.0
+    return {"waveform": "accelerogram", "record_file": str(path), "lead_s": 1.0, "rest_s": 0.0}, 1.0
 
 
 def _write_test(folder: Path, arch: Arch, test_id: str, f: float, amp: float, run, t0: float, joints, rng,

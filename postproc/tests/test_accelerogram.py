@@ -37,7 +37,7 @@ block driven
 """
 
 
-def block_nml(folder: Path, record: Path, out: str, scale=1.0, rest_s=0.0, duration_s=0.0,
+def block_nml(folder: Path, record: Path, out: str, scale=1.0, lead_s=0.0, rest_s=0.0, duration_s=0.0,
               dt_s=1.0e-3, every=1) -> Path:
     (folder / "block.txt").write_text(BLOCK)
     nml = folder / (Path(out).stem + ".nml")
@@ -46,7 +46,8 @@ def block_nml(folder: Path, record: Path, out: str, scale=1.0, rest_s=0.0, durat
   polygon_file = 'block.txt', thickness_m = 0.2, width_m = 0.2, density_kg_m3 = 2000, friction = 0.7
 /
 &motion
-  waveform = 'accelerogram', record_file = '{record}', record_scale = {scale!r}, rest_s = {rest_s!r}{duration}
+  waveform = 'accelerogram', record_file = '{record}', record_scale = {scale!r}, lead_s = {lead_s!r},
+  rest_s = {rest_s!r}{duration}
 /
 &solver
   dt_s = {dt_s!r}
@@ -87,29 +88,29 @@ def elcentro():
 
 def test_table_is_the_scaled_record_and_its_exact_integrals(voussoir_run_exe, tmp_path, elcentro):
     path, accel_g, dt = elcentro
-    scale, rest_s = 1.7, 0.2537  # the rest ends off the output grid
-    nml = block_nml(tmp_path, path, "table.h5", scale=scale, rest_s=rest_s, duration_s=6.0, every=7)
+    scale, lead_s = 1.7, 0.2537  # the lead ends off the output grid
+    nml = block_nml(tmp_path, path, "table.h5", scale=scale, lead_s=lead_s, duration_s=6.0, every=7)
     run_executable([voussoir_run_exe, nml], tmp_path)
     run = read_run(tmp_path / "table.h5")
     accel = scale * G * accel_g
     t = run.time_s
-    before = t < rest_s
+    before = t < lead_s
     # At rest before the first sample, then the scaled record, linear between samples.
     assert np.all(run.table_a_m_s2[before] == 0.0) and np.all(run.table_v_m_s[before] == 0.0)
-    expected_a = np.interp(t - rest_s, np.arange(accel.size) * dt, accel)
+    expected_a = np.interp(t - lead_s, np.arange(accel.size) * dt, accel)
     np.testing.assert_allclose(run.table_a_m_s2[~before], expected_a[~before], rtol=0, atol=1e-9 * accel.max())
     # Velocity and displacement: the integrals of that acceleration (dense quadrature here).
     td, _, vd, xd = dense(accel, dt)
-    np.testing.assert_allclose(run.table_v_m_s[~before], np.interp(t[~before] - rest_s, td, vd),
+    np.testing.assert_allclose(run.table_v_m_s[~before], np.interp(t[~before] - lead_s, td, vd),
                                rtol=0, atol=1e-6 * np.abs(vd).max())
-    np.testing.assert_allclose(run.table_x_m[~before], np.interp(t[~before] - rest_s, td, xd),
+    np.testing.assert_allclose(run.table_x_m[~before], np.interp(t[~before] - lead_s, td, xd),
                                rtol=0, atol=1e-6 * np.abs(xd[td <= 6.0]).max())
 
 
 def test_intensity_measures_of_the_record(voussoir_run_exe, tmp_path, elcentro):
     path, accel_g, dt = elcentro
     scale = 0.5
-    nml = block_nml(tmp_path, path, "im.h5", scale=scale, rest_s=0.5, duration_s=0.6, every=100)
+    nml = block_nml(tmp_path, path, "im.h5", scale=scale, lead_s=0.5, duration_s=0.6, every=100)
     run_executable([voussoir_run_exe, nml], tmp_path)
     rec = read_run(tmp_path / "im.h5").record
     assert rec is not None
@@ -159,7 +160,7 @@ def test_both_at2_header_variants_and_csv_drive_the_same_table(voussoir_run_exe,
     files = write_records(tmp_path, accel_g, dt)
     tables = {}
     for key, path in files.items():
-        nml = block_nml(tmp_path, path, f"{key}.h5", rest_s=0.1, every=5)
+        nml = block_nml(tmp_path, path, f"{key}.h5", lead_s=0.1, every=5)
         run_executable([voussoir_run_exe, nml], tmp_path)
         run = read_run(tmp_path / f"{key}.h5")
         tables[key] = run.table_a_m_s2

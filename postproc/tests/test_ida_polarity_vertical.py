@@ -26,7 +26,7 @@ from voussoir_post.readers.results import read_run
 SCALE_TOL, SCALE_MAX = 0.05, 3.0
 RATIO = 0.5
 ARCH = "&arch embrace_deg = 156, n_voussoirs = 13 /\n"
-MOTION = f"&motion rest_s = 0.5, duration_s = 6.0, vertical_ratio = {RATIO} /\n"
+MOTION = f"&motion lead_s = 0.5, duration_s = 6.0, vertical_ratio = {RATIO} /\n"
 
 
 @pytest.fixture(scope="module")
@@ -83,7 +83,7 @@ def test_the_vertical_component_is_played(ida, voussoir_run_exe):
     outcomes = []
     for scale, name in ((float(row["scale_stood"]), "plain_stood"), (float(row["scale_threshold"]), "plain_thr")):
         nml = folder / f"{name}.nml"
-        nml.write_text(ARCH + f"&motion rest_s = 0.5, duration_s = 6.0, waveform = 'accelerogram', "
+        nml.write_text(ARCH + f"&motion lead_s = 0.5, duration_s = 6.0, waveform = 'accelerogram', "
                        f"record_file = '{record}', record_scale = {scale!r} /\n"
                        f"&output file = '{name}.h5', every = 100 /\n")
         run_executable([voussoir_run_exe, nml], folder)

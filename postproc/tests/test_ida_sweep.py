@@ -27,7 +27,7 @@ from voussoir_post.readers.results import read_run
 
 SCALE_TOL, SCALE_MAX = 0.05, 3.0
 ARCH = "&arch embrace_deg = 156, n_voussoirs = 13 /\n"
-MOTION = "&motion rest_s = 0.5, duration_s = 6.0 /\n"
+MOTION = "&motion lead_s = 0.5, duration_s = 6.0 /\n"
 
 
 def mpi_env() -> dict:
@@ -111,7 +111,7 @@ def test_the_fragility_of_the_ida(ida, capsys):
 def test_the_same_ida_on_1_and_3_ranks(voussoir_sweep_exe, tmp_path):
     """The searches are deterministic: the rows do not depend on how many ranks ran them."""
     files = ", ".join(f"'{record_path(k)}'" for k in ("ELC270", "PUL254"))
-    text = (ARCH + "&motion rest_s = 0.5, duration_s = 4.0 /\n"
+    text = (ARCH + "&motion lead_s = 0.5, duration_s = 4.0 /\n"
             f"&sweep mode = 'ida', record_files = {files}, scale_tol = 0.1, scale_max = {SCALE_MAX}, "
             "n_samples = 2, friction_range = 0.5, 0.6, size_imperfection_range = 0.0, 0.04 /\n"
             "&output file = 'ida.h5' /\n")

@@ -32,7 +32,7 @@ from voussoir_post.readers.results import read_run
 
 G_M_S2 = 9.81  # the kernel's g, in which the levels are given
 ARCH = "&arch embrace_deg = 156, n_voussoirs = 13, r_ext_m = 0.508, thickness_m = 0.071 /\n"
-BASE = ARCH + "&motion rest_s = 0.5 /\n&solver dt_s = 2.0e-3 /\n"
+BASE = ARCH + "&motion lead_s = 0.5, rest_s = 0.0 /\n&solver dt_s = 2.0e-3 /\n"
 
 
 def mpi_env() -> dict:
@@ -220,7 +220,7 @@ def test_residual_drift_is_that_of_voussoir_run(stripes, voussoir_run_exe):
     (row,) = [r for r in rows if r["record"] == "p6.csv" and float(r["level_g"]) == 1.3]
     assert row["collapsed"] == "0" and abs(float(row["residual_drift_mm"])) > 0.5, row
     scale = 1.3 * G_M_S2 / pga["p6.csv"]
-    (folder / "alone.nml").write_text(BASE.replace("&motion rest_s = 0.5 /", "&motion rest_s = 0.5, waveform = "
+    (folder / "alone.nml").write_text(BASE.replace("&motion lead_s = 0.5, rest_s = 0.0 /", "&motion lead_s = 0.5, rest_s = 0.0, waveform = "
                                                    f"'accelerogram', record_file = 'p6.csv', record_scale = {scale!r} /")
                                       + "&output file = 'alone.h5', every = 1 /\n")
     proc = subprocess.run([str(voussoir_run_exe), "alone.nml"], cwd=folder, capture_output=True, text=True,

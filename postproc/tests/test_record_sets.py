@@ -103,7 +103,7 @@ def _tiny_set(root, name: str) -> list[float]:
 def test_sweep_plays_a_set_first_components_with_their_metadata(tmp_path, voussoir_sweep_exe):
     amplitudes = _tiny_set(tmp_path / "sets", "fema_p695_far_field")
     (tmp_path / "ida.nml").write_text(
-        "&arch embrace_deg = 156, n_voussoirs = 13 /\n&motion rest_s = 0.2 /\n"
+        "&arch embrace_deg = 156, n_voussoirs = 13 /\n&motion lead_s = 0.2, rest_s = 0.0 /\n"
         "&sweep mode = 'ida', record_set = 'fema_p695_far_field', record_components = 'first', scale_tol = 0.1, "
         "scale_max = 3 /\n&output file = 'ida.h5' /\n")
     env = dict(os.environ, VOUSSOIR_RECORD_SETS=str(tmp_path / "sets"), OMPI_ALLOW_RUN_AS_ROOT="1",

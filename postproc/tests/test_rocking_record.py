@@ -37,7 +37,7 @@ from voussoir_post.readers.results import read_run
 
 G = 9.81
 B, H = 0.1, 0.5
-REST_S = 0.5  # the table rests before the first sample
+LEAD_S = 0.5  # the table is still before the first sample
 END_S = 8.0  # compared window: [0, END_S] of simulated time
 
 
@@ -119,16 +119,16 @@ def elcentro():
 @pytest.fixture(scope="module")
 def housner(elcentro):
     _, accel, dt = elcentro
-    t, theta = housner_rocking(accel, dt, REST_S, END_S, 5.0e-5)
+    t, theta = housner_rocking(accel, dt, LEAD_S, END_S, 5.0e-5)
     # The reference is converged: halving its step changes it by far less than the
     # tolerance of the comparison below.
-    t2, theta2 = housner_rocking(accel, dt, REST_S, END_S, 1.0e-4)
+    t2, theta2 = housner_rocking(accel, dt, LEAD_S, END_S, 1.0e-4)
     assert np.abs(np.interp(t2, t, theta) - theta2).max() < 1e-3 * np.abs(theta).max()
     return t, theta
 
 
 def simulated_rotation(exe, folder, record, dt_s):
-    nml = block_nml(folder, record, f"elcentro_dt{dt_s:g}.h5", rest_s=REST_S, duration_s=END_S, dt_s=dt_s,
+    nml = block_nml(folder, record, f"elcentro_dt{dt_s:g}.h5", lead_s=LEAD_S, duration_s=END_S, dt_s=dt_s,
                     every=max(1, round(1.0e-4 / dt_s)))
     run_executable([exe, nml], folder)
     run = read_run(folder / f"elcentro_dt{dt_s:g}.h5")
@@ -158,7 +158,7 @@ def test_uplift_starts_when_the_record_first_exceeds_g_b_over_h(voussoir_run_exe
     i = int(np.argmax(np.abs(accel) > threshold))
     a0, a1 = accel[i - 1], accel[i]
     target = math.copysign(threshold, a1)
-    t_star = REST_S + (i - 1 + (target - a0) / (a1 - a0)) * dt
+    t_star = LEAD_S + (i - 1 + (target - a0) / (a1 - a0)) * dt
     t, theta = simulated_rotation(voussoir_run_exe, tmp_path, record, 1.0e-5)
     assert np.abs(theta[t < t_star]).max() < 1e-7, "the block moved before the record reached g b/h"
     # Rotation grows from zero like (t - t*)^3: compare the time it reaches 1e-5 rad

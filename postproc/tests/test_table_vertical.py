@@ -90,7 +90,7 @@ def arch_runs(exe: Path, folder: Path, tol: float):
   embrace_deg = 156, n_voussoirs = 13
 /
 &motion
-  waveform = 'accelerogram', record_file = '{record}', record_scale = 1.5, rest_s = 0.2,
+  waveform = 'accelerogram', record_file = '{record}', record_scale = 1.5, lead_s = 0.2,
   duration_s = 1.5, record_polarity = {polarity}
 /
 &solver

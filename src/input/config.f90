@@ -69,8 +69,8 @@ module voussoir_config
     character(len=path_len) :: record_file = ''
     real(dp) :: record_cutoff_hz = 20.0_dp    !! low-pass cut-off of the record
     real(dp) :: ramp_rate_m_s3 = 0.1_dp       !! growth of the ramp's load acceleration
-    !> simulated time after the motion ends; accelerogram: time at rest before its first sample
-    real(dp) :: rest_s = 1.0_dp
+    real(dp) :: lead_s = 0.0_dp               !! the table still before the motion starts [s]
+    real(dp) :: rest_s = 1.0_dp               !! the table still after the motion ends [s]
     real(dp) :: duration_s = 0.0_dp           !! total simulated time; 0: motion + rest
     real(dp) :: table_gain = 1.0_dp           !! actuator model: table / commanded amplitude
     real(dp) :: table_delay_s = 0.0_dp        !! actuator model: lag of the table [s]
@@ -178,6 +178,7 @@ contains
       call g%add('record_cutoff_hz', m%record_cutoff_hz, unit='Hz', range='record_cutoff_hz >= 0 (0: no filter)', &
                  when=waveform_record)
       call g%add('ramp_rate_m_s3', m%ramp_rate_m_s3, unit='m/s3', range='ramp_rate_m_s3 /= 0', when=waveform_ramp)
+      call g%add('lead_s', m%lead_s, unit='s', range='lead_s >= 0')
       call g%add('rest_s', m%rest_s, unit='s', range='rest_s >= 0')
       call g%add('duration_s', m%duration_s, unit='s', range='duration_s >= 0')
       call g%add('table_gain', m%table_gain, range='table_gain > 0', when=waveform_afd)

@@ -1,5 +1,7 @@
 !> Base motion of the shaking table.
 !>
+!> Every motion starts at `start_s` (&motion lead_s), the table still before it.
+!>
 !> `afd`: the commanded sinusoid with attack, full and decay envelopes of
 !> shared/MEASURED_DATA.md, velocity and acceleration its exact derivatives.
 !> `record`: a measured table displacement record, low-pass filtered (zero-phase
@@ -7,7 +9,7 @@
 !> `ramp`: no table motion; an inertial horizontal load whose acceleration grows at a
 !> constant rate (the quasi-static capacity test, in the frame of the table).
 !> `accelerogram`: a ground-motion record drives the table by its acceleration, linear
-!> between samples, after a time at rest; velocity and displacement are its exact
+!> between samples; velocity and displacement are its exact
 !> integrals (piecewise quadratic and cubic), and after the last sample the table keeps
 !> its final velocity (the exact integral of a zero acceleration).
 !>
@@ -43,7 +45,7 @@ module voussoir_motion
     ! Record (filtered samples) or accelerogram (samples and their exact integrals).
     real(dp) :: dt_record_s = 0.0_dp
     real(dp), allocatable :: x_m(:), v_m_s(:), a_m_s2(:)
-    real(dp) :: start_s = 0.0_dp                 !! accelerogram: time of its first sample
+    real(dp) :: start_s = 0.0_dp                 !! when the motion starts, the table still before [s]
     type(record_intensity_t) :: intensity        !! accelerogram: of the acceleration as played
     character(len=512) :: record_name = ''        !! accelerogram: its file name without extension
     character(len=512) :: record_description = '' !! accelerogram: event and station, if the file says
@@ -81,7 +83,7 @@ contains
   end function motion_ramp
 
   !> The table driven by the acceleration samples `accel_m_s2` (already scaled), `dt_s`
-  !> apart, the first one at `start_s` after a rest.
+  !> apart, the first one at `start_s` (the table still before it).
   pure function motion_accelerogram(accel_m_s2, dt_s, start_s) result(m)
     real(dp), intent(in) :: accel_m_s2(:), dt_s, start_s
     type(motion_t) :: m
@@ -94,18 +96,18 @@ contains
     m%intensity = record_intensity(m%a_m_s2, dt_s)
   end function motion_accelerogram
 
-  !> Length [s] of the motion itself (0 for the ramp, which has no end).
+  !> End [s] of the motion: its start and its length (the ramp, which has no end: its start).
   pure real(dp) function motion_duration_s(m)
     type(motion_t), intent(in) :: m
     select case (m%waveform)
     case (waveform_afd)
-      motion_duration_s = m%t_attack_s + m%t_full_s + m%t_decay_s + m%delay_s
+      motion_duration_s = m%t_attack_s + m%t_full_s + m%t_decay_s + m%delay_s + m%start_s
     case (waveform_record)
-      motion_duration_s = (size(m%x_m) - 1)*m%dt_record_s
+      motion_duration_s = (size(m%x_m) - 1)*m%dt_record_s + m%start_s
     case (waveform_accelerogram)
       motion_duration_s = m%start_s + (size(m%a_m_s2) - 1)*m%dt_record_s
     case default
-      motion_duration_s = 0.0_dp
+      motion_duration_s = m%start_s
     end select
   end function motion_duration_s
 
@@ -123,7 +125,7 @@ contains
     a = 0.0_dp
     select case (m%waveform)
     case (waveform_afd)
-      t = t_s - m%delay_s
+      t = t_s - m%start_s - m%delay_s
       if (t < 0.0_dp) return
       if (t < m%t_attack_s) then
         f = pi/m%t_attack_s
@@ -150,13 +152,14 @@ contains
       v = m%gain*m%amplitude_m*(de*s + e*w*c)
       a = m%gain*m%amplitude_m*(d2e*s + 2.0_dp*de*w*c - e*w*w*s)
     case (waveform_ramp)
-      a = m%ramp_rate_m_s3*max(t_s, 0.0_dp)
+      a = m%ramp_rate_m_s3*max(t_s - m%start_s, 0.0_dp)
     case (waveform_record)
-      if (t_s <= 0.0_dp) then
+      t = t_s - m%start_s
+      if (t <= 0.0_dp) then
         x = m%x_m(1)
         return
       end if
-      f = t_s/m%dt_record_s
+      f = t/m%dt_record_s
       i = int(f) + 1
       if (i >= size(m%x_m)) then
         x = m%x_m(size(m%x_m))

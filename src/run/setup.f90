@@ -92,12 +92,12 @@ contains
         call fail(status, 'unknown waveform '//trim(m%waveform))
         return
       end select
+      model%motion%start_s = m%lead_s
       duration_s = m%duration_s
-      ! The rest comes after the motion, but before an accelerogram (already in its duration).
-      if (duration_s == 0.0_dp) duration_s = motion_duration_s(model%motion) + &
-                                             merge(0.0_dp, m%rest_s, m%waveform == waveform_accelerogram)
+      ! The lead is in the motion's end (its start), the rest comes after it.
+      if (duration_s == 0.0_dp) duration_s = motion_duration_s(model%motion) + m%rest_s
       if (duration_s <= 0.0_dp) then
-        call fail(status, trim(cfg%source_file)//': nothing to simulate: set &motion rest_s or duration_s > 0')
+        call fail(status, trim(cfg%source_file)//': nothing to simulate: set &motion lead_s, rest_s or duration_s > 0')
         return
       end if
       with_contacts = .false.
@@ -135,9 +135,9 @@ contains
     character(len=:), allocatable :: what
     associate (m => cfg%motion)
       if (m%record_polarity == -1) then
-        motion = motion_accelerogram(-(m%record_scale*rec%accel_m_s2), rec%dt_s, m%rest_s)
+        motion = motion_accelerogram(-(m%record_scale*rec%accel_m_s2), rec%dt_s, m%lead_s)
       else
-        motion = motion_accelerogram(m%record_scale*rec%accel_m_s2, rec%dt_s, m%rest_s)
+        motion = motion_accelerogram(m%record_scale*rec%accel_m_s2, rec%dt_s, m%lead_s)
       end if
       motion%record_name = rec%name
       motion%record_description = rec%description
@@ -182,7 +182,8 @@ contains
     steps = duration_s/cfg%solver%dt_s
     if (.not. (steps <= max_steps)) then
       call fail(status, f//': the run would take '//fmt_significant(steps, 3)//' steps (simulated time '// &
-                fmt_significant(duration_s, 4)//' s from &motion duration_s, rest_s and the motion itself, over &solver dt_s = '// &
+                fmt_significant(duration_s, 4)//' s from &motion duration_s, lead_s, rest_s and the motion, '// &
+                'over &solver dt_s = '// &
                 fmt_significant(cfg%solver%dt_s, 4)//' s): more than the limit of 1e8; shorten the motion or raise dt_s')
       return
     end if

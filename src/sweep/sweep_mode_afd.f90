@@ -149,7 +149,7 @@ contains
     associate (c => plan%set_cfg(job_param_set(plan, job)))
       duration_s = c%motion%duration_s
       if (duration_s == 0.0_dp) duration_s = (c%motion%n_attack + c%motion%n_full + c%motion%n_decay)/ &
-                                             this%frequency_hz(plan, job) + c%motion%rest_s
+                                             this%frequency_hz(plan, job) + c%motion%lead_s + c%motion%rest_s
       cost = duration_s/c%solver%dt_s*(c%arch%n_voussoirs + 2)
     end associate
   end function cost

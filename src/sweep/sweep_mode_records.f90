@@ -286,7 +286,8 @@ contains
     real(dp) :: duration_s
     associate (c => plan%set_cfg(job_param_set(plan, job)))
       duration_s = c%motion%duration_s
-      if (duration_s == 0.0_dp) duration_s = c%motion%rest_s + plan%records%duration_s(job_record(plan, job))
+      if (duration_s == 0.0_dp) duration_s = c%motion%lead_s + plan%records%duration_s(job_record(plan, job)) + &
+                                             c%motion%rest_s
       cost = duration_s/c%solver%dt_s*(c%arch%n_voussoirs + 2)
     end associate
   end function cost

@@ -7,6 +7,7 @@ module voussoir_threshold
   use voussoir_status, only: status_t, fail
   use voussoir_config, only: config_t, fmt_real, waveform_afd, springings_none, has_loads
   use voussoir_assembly, only: assembly_t, build_arch, voussoir_angle_factors
+  use voussoir_config_assembly, only: build_config_assembly
   use voussoir_limit_analysis, only: limit_result_t, horizontal_capacity
   use voussoir_limit_lp_study, only: lp_study_t, lp_study
   use voussoir_limit_lp, only: lp_result_t
@@ -80,7 +81,7 @@ contains
 
   !> Amplitude [m] at which the peak afd table acceleration reaches the horizontal
   !> collapse capacity lambda g of the limit analysis: below it the rigid arch does not
-  !> move. 0 when it does not apply (polygon assemblies, restraint brackets, no capacity).
+  !> move. 0 when it does not apply (polygon assemblies, no capacity).
   real(dp) function static_onset_amplitude_m(cfg, frequency_hz) result(amp_m)
     type(config_t), intent(in) :: cfg
     real(dp), intent(in) :: frequency_hz
@@ -89,12 +90,13 @@ contains
   end function static_onset_amplitude_m
 
   !> The horizontal collapse capacity lambda g [m/s2] of the arch of `cfg` (limit
-  !> analysis, the weaker direction); 0 when it does not apply (polygon assemblies,
-  !> restraint brackets, no capacity). Where the four-hinge mechanism's static field
-  !> breaks Coulomb's law at a joint (`&arch friction`), sliding may govern: the capacity
-  !> is then the lesser of the four-hinge one and the non-associative LP capacity (the
-  !> joints slide without dilating) in that direction (docs/limit_analysis.md). With the
-  !> loads of &load, the LP's capacity with them (`loaded_capacity`).
+  !> analysis, the weaker direction); 0 when it does not apply (polygon assemblies, no
+  !> capacity). Where the four-hinge mechanism's static field breaks Coulomb's law at a
+  !> joint (`&arch friction`), sliding may govern: the capacity is then the lesser of the
+  !> four-hinge one and the non-associative LP capacity (the joints slide without
+  !> dilating) in that direction (docs/limit_analysis.md). With the loads of &load, the
+  !> LP's capacity with them (`loaded_capacity`); a &wall or an arch with restraint
+  !> brackets, which the four-hinge analysis does not model, has the LP's alone.
   real(dp) function static_capacity_m_s2(cfg) result(capacity)
     type(config_t), intent(in) :: cfg
     type(assembly_t) :: arch
@@ -103,7 +105,12 @@ contains
     real(dp) :: lambda
 
     capacity = 0.0_dp
-    if (len_trim(cfg%arch%polygon_file) > 0 .or. cfg%arch%restrained_springings /= springings_none) return
+    if (len_trim(cfg%arch%polygon_file) > 0) return
+    if (cfg%wall%courses > 0 .or. cfg%arch%restrained_springings /= springings_none) then
+      call build_config_assembly(cfg, arch, status)
+      if (status%ok) capacity = loaded_capacity(arch, cfg)
+      return
+    end if
     if (cfg%arch%n_voussoirs < 3) return
     call build_arch(cfg%arch%embrace_deg, cfg%arch%n_voussoirs, cfg%arch%r_ext_m, cfg%arch%thickness_m, arch, &
                     angle_factors=voussoir_angle_factors(cfg%arch%n_voussoirs, cfg%arch%size_imperfection, &
@@ -145,9 +152,10 @@ contains
                                                                          study%neg%nonassociative_solved))
   end function sliding_capacity
 
-  !> The capacity lambda g [m/s2] of the arch `asm` loaded by &load as a run applies the
-  !> loads (all dead, at their places; the four-hinge analysis takes the weights alone):
-  !> the LP's non-associative load factor of the weaker direction; 0 when it has none.
+  !> The capacity lambda g [m/s2] of the assembly `asm` loaded by &load (if any) as a run
+  !> applies the loads (all dead, at their places; the four-hinge analysis takes the
+  !> weights alone): the LP's non-associative load factor of the weaker direction; 0 when
+  !> it has none.
   real(dp) function loaded_capacity(asm, cfg) result(capacity)
     type(assembly_t), intent(in) :: asm
     type(config_t), intent(in) :: cfg

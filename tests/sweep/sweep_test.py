@@ -527,7 +527,7 @@ IDA_BASE = """&arch
   embrace_deg = 156, n_voussoirs = 13, r_ext_m = 0.508, thickness_m = 0.071
 /
 &motion
-  rest_s = 0.5
+  lead_s = 0.5, rest_s = 0.0
 /
 &solver
   dt_s = 2.0e-3
@@ -623,7 +623,7 @@ def case_ida_samples(r, work):
         for scale, word in ((row["scale_stood"], "stood;"), (row["scale_threshold"], "collapsed")):
             nml = f"alone_{s}_{word[:5]}.nml"
             with open(nml, "w") as fh:
-                fh.write(arch_group(sample, SAMPLE_SEED + s) + "&motion rest_s = 0.5, waveform = 'accelerogram', "
+                fh.write(arch_group(sample, SAMPLE_SEED + s) + "&motion lead_s = 0.5, rest_s = 0.0, waveform = 'accelerogram', "
                          f"record_file = 'pulse.csv', record_scale = {scale} /\n&solver dt_s = 2.0e-3 /\n"
                          f"&output file = '{nml[:-4]}.h5', stop_after_collapse_s = 0 /\n")
             p = subprocess.run([r.run_exe, nml], capture_output=True, text=True)

@@ -37,6 +37,7 @@ from ..readers.campaign import read_campaign
 from ..readers.results import read_limit_json, read_run, read_sweep
 from ..runner import find_bin_dir
 from ..tables import ReportTable, format_table, write_csv
+from .dtcheck import add_dtcheck_parser
 from .entry import run_command
 
 __all__ = ["main", "build_parser", "output_path"]
@@ -466,6 +467,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--drift-mm", type=float, default=None, metavar="MM",
                    help="residual-drift: the residual crown drift [mm] beyond which the limit state is exceeded")
     p.set_defaults(func=cmd_fragility)
+
+    add_dtcheck_parser(sub)
 
     p = sub.add_parser("records", help="the suite of real ground-motion records and where they are installed")
     p.add_argument("keys", nargs="*", metavar="KEY", help="only these records (e.g. ELC180 CLS000)")

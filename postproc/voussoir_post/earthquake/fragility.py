@@ -23,7 +23,9 @@ likelihood estimate, not the n - 1 one).
 
 The band is a bootstrap refitted on resamples of *clusters* of rows (the rows of one
 record over the model samples are not independent; records of one event neither), with
-pointwise percentiles. The goodness of fit is a Kolmogorov-Smirnov test of the
+pointwise percentiles (:func:`clustered_resamples` draws them for any statistic of
+the rows: two fits on the same resample make the paired bootstrap of voussoir-post
+dtcheck). The goodness of fit is a Kolmogorov-Smirnov test of the
 probability integral transform of the rows, randomised within each row's bracket.
 
 With several model samples the spread splits into a record-to-record part and a model
@@ -46,8 +48,8 @@ from ..errors import FitError
 
 __all__ = ["FitError", "FragilityFit", "FragilityBand", "FitCheck", "BetaSplit", "fit_lognormal", "fit_intervals",
            "max_likelihood", "max_likelihood_intervals", "log_likelihood", "interval_log_likelihood", "fragility",
-           "bootstrap_band", "clustered_band", "refitted_band", "resample_clusters", "goodness_of_fit", "normal_cdf",
-           "empirical_collapse_fraction", "split_beta", "confidence_curve"]
+           "bootstrap_band", "clustered_band", "refitted_band", "clustered_resamples", "resample_clusters",
+           "goodness_of_fit", "normal_cdf", "empirical_collapse_fraction", "split_beta", "confidence_curve"]
 
 _LOG_SQRT_2PI = 0.5 * math.log(2.0 * math.pi)
 
@@ -340,17 +342,27 @@ def resample_clusters(rng: np.random.Generator, clusters, events=None) -> np.nda
     of their labels), all the rows of each; with ``events`` (one per row, the same for
     every row of a cluster): the events drawn with replacement, then within each drawn
     event its clusters with replacement (two-stage)."""
-    clusters = np.asarray(clusters)
-    names, code = np.unique(clusters, return_inverse=True)
+    return _draw_clusters(rng, *_cluster_layout(clusters, events))
+
+
+def _cluster_layout(clusters, events=None) -> tuple[list, list | None]:
+    """(the rows of each cluster, the clusters of each event or None), in sorted order of
+    the labels: what :func:`resample_clusters` draws from, worked out once."""
+    names, code = np.unique(np.asarray(clusters), return_inverse=True)
     members = [np.flatnonzero(code == k) for k in range(names.size)]
     if events is None:
-        pick = rng.integers(0, names.size, names.size)
+        return members, None
+    event_names, event_code = np.unique(np.asarray(events), return_inverse=True)
+    return members, [np.unique(code[event_code == e]) for e in range(event_names.size)]
+
+
+def _draw_clusters(rng: np.random.Generator, members: list, inside: list | None) -> np.ndarray:
+    """One resample of :func:`resample_clusters` from its :func:`_cluster_layout`."""
+    if inside is None:
+        pick = rng.integers(0, len(members), len(members))
         return np.concatenate([members[k] for k in pick])
-    events = np.asarray(events)
-    event_names, event_code = np.unique(events, return_inverse=True)
-    inside = [np.unique(code[event_code == e]) for e in range(event_names.size)]
     rows = []
-    for e in rng.integers(0, event_names.size, event_names.size):
+    for e in rng.integers(0, len(inside), len(inside)):
         for k in inside[e][rng.integers(0, inside[e].size, inside[e].size)]:
             rows.append(members[k])
     return np.concatenate(rows)
@@ -377,7 +389,31 @@ def refitted_band(fit_rows, n_rows: int, im_grid, clusters=None, events=None, cl
     :func:`resample_clusters`) and returns a :class:`FragilityFit`, or raises FitError
     (the resample is then left out, and counted)."""
     rows = clusters is None
-    if rows:
+    fits, n_clusters = clustered_resamples(fit_rows, n_rows, clusters, events, n_resamples, seed)
+    curves = [fragility(im_grid, fit.median, fit.beta) for fit in fits]
+    ln_medians = [math.log(fit.median) for fit in fits]
+    betas = [fit.beta for fit in fits]
+    tails = [50.0 * (1.0 - level), 50.0 * (1.0 + level)]
+    p_low, p_high = np.percentile(np.array(curves), tails, axis=0)
+    m_low, m_high = np.exp(np.percentile(ln_medians, tails))
+    b_low, b_high = np.percentile(betas, tails)
+    return FragilityBand(np.asarray(im_grid, float), p_low, p_high, level, float(m_low), float(m_high),
+                         float(b_low), float(b_high), len(curves),
+                         cluster_by="row" if rows else (cluster_by or "cluster"), n_clusters=n_clusters,
+                         ln_median_sd=float(np.std(ln_medians, ddof=1)), beta_sd=float(np.std(betas, ddof=1)),
+                         n_unfitted=n_resamples - len(curves))
+
+
+def clustered_resamples(statistic, n_rows: int, clusters=None, events=None, n_resamples: int = 400,
+                        seed: int = 20261124) -> tuple[list, int]:
+    """(the values of ``statistic(pick)`` over ``n_resamples`` bootstrap resamples of the
+    ``n_rows`` rows, the number of clusters drawn from): each ``pick`` an index array
+    drawn by :func:`resample_clusters` (``clusters`` None: each row its own cluster;
+    ``events``: two stages) from ``numpy.random.default_rng(seed)``. A statistic of
+    several fits on the same ``pick`` (e.g. two IDAs of paired rows) gets a paired
+    bootstrap. Resamples whose statistic raises FitError are left out; FitError when
+    fewer than 10 remain."""
+    if clusters is None:
         clusters = np.arange(n_rows)
     if len(clusters) != n_rows or (events is not None and len(events) != n_rows):
         raise FitError("one cluster (and event) label per row is needed")
@@ -387,28 +423,18 @@ def refitted_band(fit_rows, n_rows: int, im_grid, clusters=None, events=None, cl
             if label.setdefault(c, e) != e:
                 raise FitError(f"cluster '{c}' belongs to two events, '{label[c]}' and '{e}'")
     rng = np.random.default_rng(seed)
-    curves, ln_medians, betas = [], [], []
+    layout = _cluster_layout(clusters, events)
+    values = []
     for _ in range(n_resamples):
-        pick = resample_clusters(rng, clusters, events)
+        pick = _draw_clusters(rng, *layout)
         try:
-            fit = fit_rows(pick)
+            values.append(statistic(pick))
         except FitError:
             continue
-        curves.append(fragility(im_grid, fit.median, fit.beta))
-        ln_medians.append(math.log(fit.median))
-        betas.append(fit.beta)
-    if len(curves) < 10:
-        raise FitError(f"only {len(curves)} of {n_resamples} bootstrap resamples could be fitted")
-    tails = [50.0 * (1.0 - level), 50.0 * (1.0 + level)]
-    p_low, p_high = np.percentile(np.array(curves), tails, axis=0)
-    m_low, m_high = np.exp(np.percentile(ln_medians, tails))
-    b_low, b_high = np.percentile(betas, tails)
+    if len(values) < 10:
+        raise FitError(f"only {len(values)} of {n_resamples} bootstrap resamples could be fitted")
     n_clusters = np.unique(np.asarray(events if events is not None else clusters)).size
-    return FragilityBand(np.asarray(im_grid, float), p_low, p_high, level, float(m_low), float(m_high),
-                         float(b_low), float(b_high), len(curves),
-                         cluster_by="row" if rows else (cluster_by or "cluster"), n_clusters=int(n_clusters),
-                         ln_median_sd=float(np.std(ln_medians, ddof=1)), beta_sd=float(np.std(betas, ddof=1)),
-                         n_unfitted=n_resamples - len(curves))
+    return values, int(n_clusters)
 
 
 def confidence_curve(im, fit: FragilityFit, band: FragilityBand) -> np.ndarray:

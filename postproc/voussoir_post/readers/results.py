@@ -158,7 +158,7 @@ class GroundMotion:
     scale: float  #: record_scale, the factor on the acceleration
     n_samples: int
     dt_s: float
-    start_s: float  #: time of the first sample (the rest before it)
+    start_s: float  #: time of the first sample (&motion lead_s: the table still before it)
     pga_m_s2: float
     pga_g: float
     pgv_m_s: float
