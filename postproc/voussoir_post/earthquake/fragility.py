@@ -342,18 +342,26 @@ def resample_clusters(rng: np.random.Generator, clusters, events=None) -> np.nda
     event its clusters with replacement (two-stage)."""
     clusters = np.asarray(clusters)
     names, code = np.unique(clusters, return_inverse=True)
-    members = [np.flatnonzero(code == k) for k in range(names.size)]
+    # The rows of cluster k are order[bounds[k]:bounds[k + 1]] (ascending: a stable sort).
+    order = np.argsort(code, kind="stable")
+    bounds = np.searchsorted(code[order], np.arange(names.size + 1))
     if events is None:
         pick = rng.integers(0, names.size, names.size)
-        return np.concatenate([members[k] for k in pick])
-    events = np.asarray(events)
-    event_names, event_code = np.unique(events, return_inverse=True)
-    inside = [np.unique(code[event_code == e]) for e in range(event_names.size)]
-    rows = []
-    for e in rng.integers(0, event_names.size, event_names.size):
-        for k in inside[e][rng.integers(0, inside[e].size, inside[e].size)]:
-            rows.append(members[k])
-    return np.concatenate(rows)
+    else:
+        events = np.asarray(events)
+        event_names, event_code = np.unique(events, return_inverse=True)
+        # The clusters of event e, ascending: by_event[starts[e]:starts[e + 1]].
+        cluster_event = event_code[order[bounds[:-1]]]
+        by_event = np.argsort(cluster_event, kind="stable")
+        starts = np.searchsorted(cluster_event[by_event], np.arange(event_names.size + 1))
+        picks = []
+        for e in rng.integers(0, event_names.size, event_names.size):
+            size = starts[e + 1] - starts[e]
+            picks.append(by_event[starts[e] + rng.integers(0, size, size)])
+        pick = np.concatenate(picks)
+    sizes = bounds[pick + 1] - bounds[pick]
+    within = np.arange(int(sizes.sum())) - np.repeat(np.cumsum(sizes) - sizes, sizes)
+    return order[np.repeat(bounds[pick], sizes) + within]
 
 
 def clustered_band(low, high, im_grid, clusters=None, events=None, cluster_by: str = "",
