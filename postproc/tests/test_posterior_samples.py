@@ -4,7 +4,8 @@ those samples through an IDA of voussoir-sweep.
 A small posterior is built here with known model probabilities and parameter weights;
 the draws must reproduce it (model frequencies, parameter means within a model), and
 the written CSV must map each draw to &arch values as the module's docstring says
-(thickness f t about the mean radius; table gains and restraints dropped). Then the
+(thickness f t about the mean radius; table gains and restraints dropped) and carry
+the format and nominal arch lines that the IDA checks. Then the
 written file is the `model_samples_file` of a tiny IDA, whose file must carry each
 sample's values and whose searches start at the static capacity of each sample's arch.
 """
@@ -104,6 +105,15 @@ def test_written_rows_are_the_draws_as_arch_values(tmp_path, spec):
     assert list(rows[0]) == list(SAMPLE_COLUMNS) == ["sample", "model", "friction", "contact_inset_m",
                                                        "thickness_m", "r_ext_m"]
     assert f"specimen {spec.specimen_id}" in path.read_text() and "campaign synthetic" in path.read_text()
+    # The two lines the IDA checks (src/sweep/model_samples.f90): the layout's version
+    # first, and the specimen's nominal &arch values, exactly.
+    comments = [line for line in path.read_text().splitlines() if line.startswith("#")]
+    assert comments[0] == "# format: voussoir posterior samples 1"
+    (nominal,) = [line for line in comments if line.startswith("# nominal arch: ")]
+    given = dict(item.split(" = ") for item in nominal[len("# nominal arch: "):].split(", "))
+    assert {k: float(v) for k, v in given.items()} == {
+        "embrace_deg": spec.embrace_deg, "n_voussoirs": spec.n_voussoirs, "r_ext_m": 0.508, "thickness_m": 0.071,
+        "width_m": 0.145, "density_kg_m3": 700.0}
     draws = draw_samples(posterior(), n)
     assert len(rows) == n
     r_mean = 0.508 - 0.071 / 2
@@ -173,6 +183,7 @@ def test_written_samples_reach_the_runs_of_an_ida(tmp_path, voussoir_sweep_exe, 
     proc = subprocess.run(["mpirun", "--oversubscribe", "-np", "1", str(voussoir_sweep_exe), "ida.nml"],
                           cwd=tmp_path, capture_output=True, text=True, env=env, timeout=600)
     assert proc.returncode == 0, proc.stdout + proc.stderr
+    assert "could not be checked" not in proc.stdout  # its nominal arch line is the base &arch's
     names = ["friction", "contact_inset_m", "thickness_m", "r_ext_m"]
     with h5py.File(tmp_path / "ida.h5") as h5:
         columns = h5.attrs["parameter_names"]
