@@ -3,11 +3,11 @@
 The fit is checked against the closed form (uncensored data), against known lognormal
 populations sampled here (with and without censoring, and bracketed as an IDA brackets
 them, within the sampling error that the observed information of a likelihood written
-here gives), the clustered bootstrap against constructions whose answer is known and by its
-coverage of the true median on clustered rows drawn here, and
-the goodness of fit on data from the fitted law and from another, and the split of beta
-into record-to-record and model parts on model samples drawn here with known medians
-and a known common beta. The IDA files and the command: test_fragility_ida.py.
+here gives), the clustered bootstrap against constructions whose answer is known and by
+its coverage of the true median of clustered rows drawn here, and the goodness of fit
+on data from the fitted law and from another, and the split of beta into
+record-to-record and model parts on model samples drawn here with known medians and a
+known common beta. The IDA files and the command: test_fragility_ida.py.
 """
 
 from __future__ import annotations
