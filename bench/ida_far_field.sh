@@ -41,7 +41,7 @@ $arch
   size_imperfection_range = 0.0, 0.05, progress_every_s = 120 /
 &output file = 'ida_far_field.h5' /
 NML
-head -n 7 "$root/docs/seed_2013/posterior_samples_A156.csv" > posterior_samples_A156_first4.csv
+awk '/^#/ || n++ < 5' "$root/docs/seed_2013/posterior_samples_A156.csv" > posterior_samples_A156_first4.csv  # comments, header, 4 rows
 cat > ida_far_field_calibrated.nml <<NML
 $arch
 &sweep mode = 'ida', record_set = 'fema_p695_far_field', record_components = '$components',

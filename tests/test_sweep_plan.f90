@@ -25,6 +25,7 @@ program test_sweep_plan
   call test_ida()
   call test_ida_refusals()
   call test_ida_samples_file()
+  call test_ida_samples_provenance()
   call test_msa()
   call test_msa_refusals()
   call test_ida_polarity()
@@ -286,6 +287,76 @@ contains
     call refused('ida_file_missing', "&sweep mode = 'ida', record_files = 'rec_a.csv', "// &
                  "model_samples_file = 'none.csv' /", 'model_samples_file: none.csv: cannot open')
   end subroutine test_ida_samples_file
+
+  !> The `# format:` and `# nominal arch:` lines of a samples file (samples.py writes
+  !> them): the base's own arch is read, with no note; another specimen's arch, a real
+  !> off by more than 1e-9 relative, an unknown format, a format without a nominal arch
+  !> and a nominal arch without one of its values are refused; a value off by less is
+  !> read; a file without the lines (hand-made, as the seed's old files) is read, with a
+  !> note that it could not be checked.
+  subroutine test_ida_samples_provenance()
+    type(sweep_plan_t) :: plan
+    type(status_t) :: status
+    character(len=*), parameter :: group = "&sweep mode = 'ida', record_files = 'rec_a.csv', "// &
+                                           "model_samples_file = 'prov.csv' /"
+    character(len=*), parameter :: format_1 = '# format: voussoir posterior samples 1', &
+      a156 = '# nominal arch: embrace_deg = 156.0, n_voussoirs = 13, r_ext_m = 0.508, thickness_m = 0.071, '// &
+             'width_m = 0.145, density_kg_m3 = 700.0'
+    call write_records()
+    call write_provenance(format_1, a156)
+    call plan_of('prov_same', group, plan, status)
+    call assert_true(status%ok .and. plan%n_sets == 2, 'provenance: the base arch''s own samples read: '// &
+                     trim(status%message))
+    if (.not. status%ok) return
+    call assert_true(plan%note == '', 'provenance: a checked file leaves no note')
+    call write_provenance(format_1, '# nominal arch: embrace_deg = 132.0, n_voussoirs = 11, r_ext_m = 0.508, '// &
+                          'thickness_m = 0.071, width_m = 0.145, density_kg_m3 = 700.0')
+    call refused('prov_a132', group, 'prov.csv:2: the samples are relative to the nominal arch embrace_deg = 132, '// &
+                 'but the base &arch has embrace_deg = 156: samples of another specimen or campaign')
+    call write_provenance(format_1, replace_text(a156, 'n_voussoirs = 13', 'n_voussoirs = 11'))
+    call refused('prov_n', group, 'nominal arch n_voussoirs = 11, but the base &arch has n_voussoirs = 13')
+    ! 0.508 (1 + 2e-9) is refused, 0.508 (1 + 5e-10) read: the tolerance is 1e-9 relative.
+    call write_provenance(format_1, replace_text(a156, 'r_ext_m = 0.508', 'r_ext_m = 0.508000001016'))
+    call refused('prov_r', group, 'nominal arch r_ext_m = 0.508000001, but the base &arch has r_ext_m = 0.508')
+    call write_provenance(format_1, replace_text(a156, 'r_ext_m = 0.508', 'r_ext_m = 0.508000000254'))
+    call plan_of('prov_r_close', group, plan, status)
+    call assert_true(status%ok, 'provenance: a nominal value within 1e-9 relative is the base''s: '// &
+                     trim(status%message))
+    call write_provenance('# format: voussoir posterior samples 2', a156)
+    call refused('prov_format', group, "prov.csv:1: format 'voussoir posterior samples 2' is not one this code "// &
+                 "reads ('voussoir posterior samples 1'): a file of another code version")
+    call write_provenance(format_1, '# written by hand')
+    call refused('prov_no_nominal', group, "prov.csv: format 'voussoir posterior samples 1' but no "// &
+                 "'# nominal arch:' line")
+    call write_provenance(format_1, replace_text(a156, ', density_kg_m3 = 700.0', ''))
+    call refused('prov_missing', group, 'prov.csv:2: nominal arch: density_kg_m3 is missing')
+    call write_provenance(format_1, replace_text(a156, 'width_m', 'depth_m'))
+    call refused('prov_key', group, "prov.csv:2: nominal arch: 'depth_m = 0.145' is not 'name = value' with a name "// &
+                 'among embrace_deg')
+    call write_provenance('# made by hand', '# friction only')
+    call plan_of('prov_hand', group, plan, status)
+    call assert_true(status%ok .and. index(plan%note, 'prov.csv has no ''# nominal arch:'' line') > 0 .and. &
+                     index(plan%note, 'could not be checked against the base &arch') > 0, &
+                     'provenance: a hand-made file is read, with a note: "'//plan%note//'"')
+  end subroutine test_ida_samples_provenance
+
+  !> prov.csv: the comment lines `first` and `second`, then two samples.
+  subroutine write_provenance(first, second)
+    character(len=*), intent(in) :: first, second
+    integer :: unit
+    open (newunit=unit, file='prov.csv', status='replace', action='write')
+    write (unit, '(a)') first, second, 'sample,model,friction,thickness_m', '0,none,0.5,0.071', '1,friction,0.4,0.071'
+    close (unit)
+  end subroutine write_provenance
+
+  !> `text` with its first `old` replaced by `new`.
+  function replace_text(text, old, new) result(out)
+    character(len=*), intent(in) :: text, old, new
+    character(len=:), allocatable :: out
+    integer :: k
+    k = index(text, old)
+    out = text(:k - 1)//new//text(k + len(old):)
+  end function replace_text
 
   !> samples.csv with `last` as the thickness_m, friction, r_ext_m of its third row.
   subroutine write_samples(last)

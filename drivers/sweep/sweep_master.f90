@@ -277,6 +277,9 @@ contains
     write (output_unit, '(a)') 'voussoir-sweep: '//trim(plan%mode%name)//' sweep of '//itoa(plan%n_jobs)// &
       ' jobs ('//plan%mode%jobs_text(plan)//') on '//itoa(net%size)//' ranks -> '//m%path
     call estimate(plan, net%size)
+    if (allocated(plan%note)) then
+      if (len(plan%note) > 0) write (output_unit, '(a)') 'voussoir-sweep: '//plan%note
+    end if
     ! Said, so that a quiet sweep is not taken for a hung one (issue 26).
     if (plan%progress_every_s == 0.0_dp) write (output_unit, '(a)') 'voussoir-sweep: progress_every_s = 0: '// &
       'no progress lines; the final done: line only'

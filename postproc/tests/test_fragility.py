@@ -3,10 +3,11 @@
 The fit is checked against the closed form (uncensored data), against known lognormal
 populations sampled here (with and without censoring, and bracketed as an IDA brackets
 them, within the sampling error that the observed information of a likelihood written
-here gives), the clustered bootstrap against constructions whose answer is known, and
-the goodness of fit on data from the fitted law and from another, and the split of beta
-into record-to-record and model parts on model samples drawn here with known medians
-and a known common beta. The IDA files and the command: test_fragility_ida.py.
+here gives), the clustered bootstrap against constructions whose answer is known and by
+its coverage of the true median of clustered rows drawn here, and the goodness of fit
+on data from the fitted law and from another, and the split of beta into
+record-to-record and model parts on model samples drawn here with known medians and a
+known common beta. The IDA files and the command: test_fragility_ida.py.
 """
 
 from __future__ import annotations
@@ -351,3 +352,66 @@ def test_confidence_curve_is_the_fit_moved_to_the_lower_bound_of_the_median():
     assert confidence_curve([band.median_low], fit, band)[0] == pytest.approx(0.5, abs=1e-12)
     np.testing.assert_allclose(curve, fragility(grid, band.median_low, fit.beta), rtol=1e-15)
     assert np.all(curve >= fragility(grid, fit.median, fit.beta))
+
+
+def test_clustered_band_covers_the_true_median_of_clustered_rows():
+    """Coverage of the 90 % band of the median on synthetic rows clustered as an IDA's
+    are: E = 14 events (as the FEMA P695 far-field set), R = 2 records (components) in
+    each, M = 4 model samples on each record, ln IM_c = ln 4 + a_event + b_record +
+    c_row with standard deviations s_a = 0.25, s_b = 0.3, s_c = 0.1; exact rows (the
+    closed-form fit, mu_hat = the mean of ln IM_c, balanced), 200 independent draws.
+
+    The expected coverage, derived here, not measured: with V_E = s_a^2 + (s_b^2 +
+    s_c^2 / M) / R the variance of an event's mean, mu_hat has the variance V_E / E. The
+    two-stage resample (events, then records within them) has on average the variance
+    [(E - 1) / E V_E + (R - 1) / R^2 (s_b^2 + s_c^2 / M)] / E, rho^2 times the true one;
+    its spread is estimated from E events, so (mu_hat - mu) / sd* is roughly t with
+    E - 1 degrees of freedom, and the percentiles of B resamples (numpy's interpolation
+    at 0.05 (B - 1)) span about the fraction L_B = 1 - 2 (1 + 0.05 (B - 1)) / (B + 1) of
+    the resamples' law. Expected coverage p = 2 F_t(z_B rho) - 1, z_B the normal
+    quantile of (1 + L_B) / 2: about 0.86 for B = 40 (the nominal 0.90 less the few
+    events and the few resamples; rho = 1.07, the second stage adds a little). The row bootstrap draws 112 rows as independent:
+    its variance is on average (s^2 - V_E / E) / N, N = 112, s^2 = s_a^2 + s_b^2 +
+    s_c^2, so rho_row = 0.42 and it covers about 2 Phi(z_B rho_row) - 1 = 0.46 of the
+    time: it under-covers, which is why the band is clustered.
+
+    Tolerance: a coverage count over n = 200 draws is binomial, standard deviation
+    sqrt(p (1 - p) / n) (0.025 at p = 0.86, 0.035 at 0.46); each rate is asserted within
+    3.5 of them of its expectation (a false alarm below 1 in 2000), and the clustered
+    band's rate is also asserted above the row band's expectation + 3.5 of its own. The
+    seeds are fixed; B = 40 resamples per band keep it near 10 s of CPU (16 000 fits)."""
+    n_events, n_records, n_models = 14, 2, 4
+    s_a, s_b, s_c = 0.25, 0.3, 0.1
+    median, n_draws, n_boot = 4.0, 200, 40
+    n_rows = n_events * n_records * n_models
+    events = np.repeat([f"event{e:02d}" for e in range(n_events)], n_records * n_models)
+    records = np.repeat([f"record{k:02d}" for k in range(n_events * n_records)], n_models)
+    covered = {"event": 0, "row": 0}
+    for draw in range(n_draws):
+        rng = np.random.default_rng(4000 + draw)
+        ln_x = (math.log(median) + np.repeat(rng.normal(0.0, s_a, n_events), n_records * n_models)
+                + np.repeat(rng.normal(0.0, s_b, n_events * n_records), n_models) + rng.normal(0.0, s_c, n_rows))
+        x = np.exp(ln_x)
+        bands = {"event": clustered_band(x, x, [median], records, events, cluster_by="event", n_resamples=n_boot,
+                                         seed=draw),
+                 "row": clustered_band(x, x, [median], None, n_resamples=n_boot, seed=draw)}
+        for name, band in bands.items():
+            covered[name] += band.median_low <= median <= band.median_high
+    assert bands["event"].cluster_by == "event" and bands["event"].n_clusters == n_events
+    assert bands["event"].n_resamples == n_boot and bands["row"].n_clusters == n_rows
+    rate = {name: count / n_draws for name, count in covered.items()}
+
+    level_b = 1.0 - 2.0 * (1.0 + 0.05 * (n_boot - 1)) / (n_boot + 1)
+    z_b = stats.norm.ppf(0.5 * (1.0 + level_b))
+    var_event = s_a ** 2 + (s_b ** 2 + s_c ** 2 / n_models) / n_records
+    true_var = var_event / n_events
+    two_stage = ((n_events - 1) / n_events * var_event
+                 + (n_records - 1) / n_records ** 2 * (s_b ** 2 + s_c ** 2 / n_models)) / n_events
+    rows_var = (s_a ** 2 + s_b ** 2 + s_c ** 2 - true_var) / n_rows
+    expected = {"event": 2.0 * stats.t.cdf(z_b * math.sqrt(two_stage / true_var), n_events - 1) - 1.0,
+                "row": 2.0 * stats.norm.cdf(z_b * math.sqrt(rows_var / true_var)) - 1.0}
+    assert 0.82 < expected["event"] < 0.90 and 0.40 < expected["row"] < 0.60, expected  # the derivation's numbers
+    sd = {name: math.sqrt(p * (1.0 - p) / n_draws) for name, p in expected.items()}
+    for name in ("event", "row"):
+        assert abs(rate[name] - expected[name]) < 3.5 * sd[name], (name, rate, expected)
+    assert rate["event"] > expected["row"] + 3.5 * sd["row"], (rate, expected)

@@ -11,11 +11,19 @@
 !> `sample_seed + s`, as a Latin hypercube sample does), each checked by the &arch rule
 !> of its variable and the sample's whole case by validate_config, with the messages of
 !> &arch; every error names the file and the line (and the column).
+!>
+!> Two comment lines before the header, when present, say what the samples are for
+!> (samples.py writes them): `# format: voussoir posterior samples 1`, the layout's
+!> version, and `# nominal arch: embrace_deg = 156.0, n_voussoirs = 13, ...`, the
+!> specimen's &arch values the samples are relative to. A format this reader does not
+!> know is refused (a file of another code version), and so is a nominal arch unlike the
+!> IDA's base &arch (another specimen or campaign: reals within 1e-9 relative). A file
+!> without them (made by hand) is read unchecked, and a note says so.
 module voussoir_model_samples
   use, intrinsic :: iso_fortran_env, only: int8, int64
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
-  use voussoir_text, only: itoa, join_words
+  use voussoir_text, only: itoa, join_words, fmt_real
   use voussoir_config, only: config_t, validate_config, resolve_path, arch_rule, arch_rule_text
   use voussoir_input_range, only: need
   use voussoir_numeric_csv, only: read_csv_columns, read_csv_header, csv_cell_len
@@ -28,28 +36,39 @@ module voussoir_model_samples
   integer, parameter :: max_model_samples = 10000   !! rows of a file of model samples at most
   !> Text columns a file of samples may carry (the diagnosis writes them); not read.
   character(len=8), parameter :: ignored_columns(2) = [character(len=8) :: 'sample', 'model']
+  !> The layout this reader knows, as the `# format:` line names it.
+  character(len=*), parameter :: known_format = 'voussoir posterior samples 1'
+  character(len=*), parameter :: format_prefix = '# format:', nominal_prefix = '# nominal arch:'
+  !> The &arch variables of the nominal arch line, all of them needed.
+  character(len=13), parameter :: nominal_keys(6) = [character(len=13) :: 'embrace_deg', 'n_voussoirs', &
+                                                     'r_ext_m', 'thickness_m', 'width_m', 'density_kg_m3']
+  real(dp), parameter :: nominal_rel_tol = 1.0e-9_dp   !! a nominal value and the base's agree within this
 
 contains
 
   !> The model samples of the file `given` (as written in &sweep model_samples_file,
   !> relative to the folder of the input `path`) on the base case `base`: `names` the
   !> columns given (in the order of `sample_variables`), `values(n_params, n_samples)`
-  !> the rows, `set_cfg(0:n_samples-1)` the validated case of each sample.
-  subroutine read_model_samples(path, given, base, seed, names, values, set_cfg, status)
+  !> the rows, `set_cfg(0:n_samples-1)` the validated case of each sample; `note` a line
+  !> for the log when the file could not be checked against the base case ('' if it was).
+  subroutine read_model_samples(path, given, base, seed, names, values, set_cfg, note, status)
     character(len=*), intent(in) :: path, given
     type(config_t), intent(in) :: base
     integer, intent(in) :: seed
     character(len=24), allocatable, intent(out) :: names(:)
     real(dp), allocatable, intent(out) :: values(:, :)
     type(config_t), allocatable, intent(out) :: set_cfg(:)
+    character(len=:), allocatable, intent(out) :: note
     type(status_t), intent(inout) :: status
     character(len=:), allocatable :: file
     character(len=csv_cell_len), allocatable :: header(:)
     integer, allocatable :: lines(:)
     integer :: header_line
 
+    note = ''
     file = trim(resolve_path(path, given))
     call read_csv_header(file, header, header_line, status)
+    if (status%ok) call check_provenance(file, base, note, status)
     if (status%ok) call sample_columns(file, header, header_line, base, names, status)
     if (status%ok) call read_csv_columns(file, names, values, lines, status)
     if (status%ok) then
@@ -63,6 +82,116 @@ contains
     if (status%ok) call sample_cases(path, file, base, seed, names, values, lines, set_cfg, status)
     if (.not. status%ok) status%message = path//': &sweep model_samples_file: '//trim(status%message)
   end subroutine read_model_samples
+
+  !> The `# format:` and `# nominal arch:` comment lines of `file` (before its header):
+  !> refused when the format is not `known_format`, when a format line comes without a
+  !> nominal arch, or when the nominal arch is not the base case's &arch; without either
+  !> line, `note` says that the file could not be checked.
+  subroutine check_provenance(file, base, note, status)
+    character(len=*), intent(in) :: file
+    type(config_t), intent(in) :: base
+    character(len=:), allocatable, intent(inout) :: note
+    type(status_t), intent(inout) :: status
+    character(len=1024) :: line
+    character(len=512) :: iomsg
+    character(len=:), allocatable :: text
+    integer :: unit, ios, line_no
+    logical :: has_format, has_nominal
+
+    has_format = .false.
+    has_nominal = .false.
+    open (newunit=unit, file=file, status='old', action='read', iostat=ios, iomsg=iomsg)
+    if (ios /= 0) then
+      call fail(status, file//': cannot open: '//trim(iomsg))
+      return
+    end if
+    line_no = 0
+    do
+      read (unit, '(a)', iostat=ios) line
+      if (ios /= 0) exit
+      line_no = line_no + 1
+      text = trim(adjustl(line))
+      if (len(text) > 0) then
+        if (text(len(text):) == achar(13)) text = trim(text(:len(text) - 1))
+      end if
+      if (len(text) == 0) cycle
+      if (text(1:1) /= '#') exit   ! the header row: the comments before it are read
+      if (index(text, format_prefix) == 1) then
+        has_format = .true.
+        text = trim(adjustl(text(len(format_prefix) + 1:)))
+        if (text /= known_format) then
+          call fail(status, file//':'//itoa(line_no)//": format '"//text//"' is not one this code reads ('"// &
+                    known_format//"'): a file of another code version")
+          exit
+        end if
+      else if (index(text, nominal_prefix) == 1) then
+        has_nominal = .true.
+        call check_nominal(file//':'//itoa(line_no)//': ', text(len(nominal_prefix) + 1:), base, status)
+        if (.not. status%ok) exit
+      end if
+    end do
+    close (unit)
+    if (.not. status%ok) return
+    if (has_format .and. .not. has_nominal) then
+      call fail(status, file//": format '"//known_format//"' but no '"//nominal_prefix//"' line: the file is "// &
+                'incomplete')
+    else if (.not. has_nominal) then
+      note = 'note: '//file//" has no '"//nominal_prefix//"' line (a hand-made file?): its samples could not "// &
+             'be checked against the base &arch'
+    end if
+  end subroutine check_provenance
+
+  !> The nominal arch `text` ("embrace_deg = 156.0, n_voussoirs = 13, ...") against the
+  !> base case's &arch: every one of `nominal_keys` once, each within `nominal_rel_tol`.
+  subroutine check_nominal(at, text, base, status)
+    character(len=*), intent(in) :: at, text
+    type(config_t), intent(in) :: base
+    type(status_t), intent(inout) :: status
+    real(dp) :: nominal(size(nominal_keys)), base_value(size(nominal_keys)), value
+    logical :: seen(size(nominal_keys))
+    character(len=:), allocatable :: item, key
+    integer :: start, comma, eq, k, ios
+
+    associate (a => base%arch)
+      base_value = [a%embrace_deg, real(a%n_voussoirs, dp), a%r_ext_m, a%thickness_m, a%width_m, a%density_kg_m3]
+    end associate
+    seen = .false.
+    start = 1
+    do while (start <= len(text))
+      comma = index(text(start:), ',')
+      if (comma == 0) comma = len(text) - start + 2
+      item = trim(adjustl(text(start:start + comma - 2)))
+      start = start + comma
+      eq = index(item, '=')
+      key = trim(item(:max(eq - 1, 0)))
+      k = findloc(nominal_keys, key, dim=1)
+      if (eq == 0 .or. k == 0) then
+        call fail(status, at//"nominal arch: '"//item//"' is not 'name = value' with a name among "// &
+                  join_words(nominal_keys, ', '))
+        return
+      end if
+      read (item(eq + 1:), *, iostat=ios) value
+      if (ios /= 0) then
+        call fail(status, at//'nominal arch: '//key//" = '"//trim(adjustl(item(eq + 1:)))//"' is not a number")
+        return
+      end if
+      seen(k) = .true.
+      nominal(k) = value
+    end do
+    if (.not. all(seen)) then
+      call fail(status, at//'nominal arch: '//trim(nominal_keys(findloc(seen, .false., dim=1)))//' is missing '// &
+                '(the line gives '//join_words(nominal_keys, ', ')//')')
+      return
+    end if
+    do k = 1, size(nominal_keys)
+      if (abs(nominal(k) - base_value(k)) > nominal_rel_tol*max(abs(nominal(k)), abs(base_value(k)))) then
+        call fail(status, at//'the samples are relative to the nominal arch '//trim(nominal_keys(k))//' = '// &
+                  fmt_real(nominal(k))//', but the base &arch has '//trim(nominal_keys(k))//' = '// &
+                  fmt_real(base_value(k))//': samples of another specimen or campaign')
+        return
+      end if
+    end do
+  end subroutine check_nominal
 
   !> The sample columns of the header row `header` (line `header_line` of `file`), in the
   !> order of `sample_variables`; an unknown or repeated column is refused, and so are

@@ -74,6 +74,7 @@ module voussoir_sweep_mode
     type(config_t), allocatable :: set_cfg(:)     !! (0:n_sets-1) the validated case of each set
     character(len=:), allocatable :: sweep_nml    !! the effective &sweep group
     character(len=:), allocatable :: signature    !! what a resumed file must match
+    character(len=:), allocatable :: note         !! a line for the log from reading the plan ('' or unset: none)
   end type sweep_plan_t
 
   abstract interface

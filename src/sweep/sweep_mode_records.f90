@@ -171,7 +171,7 @@ contains
     end if
     if (len_trim(this%samples_file) > 0) then
       call read_model_samples(path, trim(this%samples_file), base, this%sample_seed, plan%param_names, &
-                              plan%param_values, plan%set_cfg, status)
+                              plan%param_values, plan%set_cfg, plan%note, status)
     else
       call sample_sets(path, base, this%n_samples, this%sample_seed, this%ranges, this%ranges(1, :) /= unset_real, &
                        plan%param_names, plan%param_values, plan%set_cfg, status)

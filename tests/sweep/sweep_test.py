@@ -20,7 +20,9 @@ CASE is one of:
                     static capacity voussoir-limit gives for the file's &arch values
                     (r_ext_m and the imperfection pattern included), voussoir-run
                     stands at scale_stood and falls at scale_threshold, another file
-                    content is another sweep, and bad files and settings are refused
+                    content is another sweep, a file without a nominal arch line is
+                    read with a note, and bad files (another specimen's nominal arch,
+                    an unknown format) and settings are refused
 
 Files are compared on every dataset and attribute except the wall times and
 created_utc, which differ between any two runs. Without h5py and numpy the test fails
@@ -594,6 +596,8 @@ def case_ida_samples(r, work):
     rc, out = r.sweep_run(2, "ida.nml")
     if rc != 0:
         return
+    check("samples.csv has no '# nominal arch:' line (a hand-made file?): its samples could not be checked" in out,
+          "a hand-made samples file is read, with a note in the log that it could not be checked")
     rows = list(csv.DictReader(open("ida.csv")))
     names = ["friction", "thickness_m", "r_ext_m", "size_imperfection"]
     check(len(rows) == 2 and [int(row["param_set"]) for row in rows] == [0, 1],
@@ -656,6 +660,12 @@ IDA_SAMPLES_BAD = [
      r"thickness_m/2 = 0\.015"),
     ("empty", "# nothing\n", "", r"empty\.csv: no header row"),
     ("no_rows", "friction,r_ext_m\n", "", r"no_rows\.csv:1: no sample rows after the header"),
+    ("other_specimen", "# format: voussoir posterior samples 1\n# nominal arch: embrace_deg = 132.0, n_voussoirs = 11, "
+     "r_ext_m = 0.508, thickness_m = 0.071, width_m = 0.145, density_kg_m3 = 700.0\nfriction\n0.5\n", "",
+     r"other_specimen\.csv:2: the samples are relative to the nominal arch embrace_deg = 132, but the base &arch has "
+     r"embrace_deg = 156: samples of another specimen or campaign"),
+    ("other_format", "# format: voussoir posterior samples 7\nfriction\n0.5\n", "",
+     r"other_format\.csv:1: format 'voussoir posterior samples 7' is not one this code reads"),
     ("with_n_samples", "friction\n0.5\n", "n_samples = 4, friction_range = 0.4, 0.6,",
      r"&sweep n_samples = 4 draws model samples, but model_samples_file gives them"),
     ("with_range", "friction\n0.5\n", "thickness_range_m = 0.06, 0.07,",

@@ -12,6 +12,16 @@ laboratory's actuator and a restraint the laboratory's set-up, so a sample of
 `contact_edges+table_motion` keeps its inset and drops its gain, and one of
 `base_restraint` is the nominal arch. The file is what `&sweep model_samples_file` of an
 IDA reads (docs/earthquakes.md): the fragility of the arch as the table tests revealed it.
+
+Two comment lines let the IDA check that the file is meant for its arch
+(src/sweep/model_samples.f90 refuses it otherwise):
+
+    # format: voussoir posterior samples 1
+    # nominal arch: embrace_deg = 156.0, n_voussoirs = 13, r_ext_m = 0.508, ...
+
+the version of this layout, and the specimen's nominal &arch values the samples are
+relative to (embrace_deg, n_voussoirs, r_ext_m, thickness_m, width_m, density_kg_m3,
+each written to round-trip exactly), which must be those of the IDA's base &arch.
 """
 
 from __future__ import annotations
@@ -20,12 +30,25 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import __version__
+from ..readers.campaign import Specimen
 from .observations import Observations
 from .posterior import Posterior
 
-__all__ = ["write_samples", "draw_samples", "SAMPLE_COLUMNS"]
+__all__ = ["write_samples", "draw_samples", "nominal_arch_line", "SAMPLE_COLUMNS", "FORMAT_LINE", "NOMINAL_KEYS"]
 
 SAMPLE_COLUMNS = ("sample", "model", "friction", "contact_inset_m", "thickness_m", "r_ext_m")
+#: The first line of a file; a new layout gets a new number (and the IDA's reader learns it).
+FORMAT_LINE = "# format: voussoir posterior samples 1"
+#: The &arch variables of the nominal arch line, in its order.
+NOMINAL_KEYS = ("embrace_deg", "n_voussoirs", "r_ext_m", "thickness_m", "width_m", "density_kg_m3")
+
+
+def nominal_arch_line(spec: Specimen) -> str:
+    """"# nominal arch: embrace_deg = ..., ..." of a specimen (reals as repr: exact)."""
+    values = [f"{key} = {int(spec.n_voussoirs) if key == 'n_voussoirs' else float(getattr(spec, key))!r}"
+              for key in NOMINAL_KEYS]
+    return "# nominal arch: " + ", ".join(values)
 
 
 def draw_samples(post: Posterior, n: int, seed: int = 2026) -> list[tuple[str, dict]]:
@@ -48,11 +71,14 @@ def write_samples(out_dir: Path, post: Posterior, obs: Observations, n: int, cam
     for sid in sorted({p.specimen_id for p in obs.pairs}):
         spec = obs.specimens[sid]
         r_mean = spec.r_ext_m - 0.5 * spec.thickness_m
-        lines = [f"# Posterior samples of the model of specimen {sid}, from voussoir-diagnose on campaign "
+        lines = [FORMAT_LINE,
+                 f"# Posterior samples of the model of specimen {sid}, from voussoir-diagnose (voussoir_post "
+                 f"{__version__}) on campaign "
                  f"{campaign_name} ({n} draws: a model by its probability, its parameters by their posterior "
                  "weights).",
                  "# &arch values of the arch itself: table gains and restraints (the laboratory's) are not "
                  "carried; a thickness factor f gives thickness f t about the mean radius.",
+                 nominal_arch_line(spec),
                  ",".join(SAMPLE_COLUMNS)]
         for k, (model, values) in enumerate(draws):
             f = float(values.get("geometry", 1.0))
