@@ -52,20 +52,15 @@ echo "== 3. Collapse envelope of the 156-degree arch, 0.5 to 4 Hz (2 MPI ranks)"
 echo "== 4. The four seed arches at the frequencies of their tests (2 MPI ranks)"
 (cd results && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" "$root/input/sweep_seed_tests.nml" | tail -n 2)
 
-echo "== 5. Figures (drawn beside the IDA of section 6, which leaves a core idle between its fits;"
-echo "   their lines are printed after section 8)"
-figures() {
-  "$post" history results/seed_156_A66mm.h5 --out results/ >/dev/null
-  "$post" sequence results/seed_156_A66mm.h5 --out results/ >/dev/null
-  "$post" xdmf results/seed_156_A66mm.h5 >/dev/null
-  "$post" reactions results/seed_156_A66mm.h5 --out results/ >/dev/null
-  "$post" thrust results/seed_156_A66mm.h5 --out results/ >/dev/null
-  "$post" mechanism results/limit_seed_156.json --out results/ >/dev/null
-  "$post" envelope results/sweep_envelope_156.h5 --campaign "$seed" --specimen A156 --limit results/limit_seed_156.json --out results/ >/dev/null
-  "$post" compare results/sweep_seed_tests.h5 "$seed" --out results/ | sed 's/^/   /'
-}
-figures > results/figures.log 2>&1 &
-figures_pid=$!
+echo "== 5. Figures"
+"$post" history results/seed_156_A66mm.h5 --out results/ >/dev/null
+"$post" sequence results/seed_156_A66mm.h5 --out results/ >/dev/null
+"$post" xdmf results/seed_156_A66mm.h5 >/dev/null
+"$post" reactions results/seed_156_A66mm.h5 --out results/ >/dev/null
+"$post" thrust results/seed_156_A66mm.h5 --out results/ >/dev/null
+"$post" mechanism results/limit_seed_156.json --out results/ >/dev/null
+"$post" envelope results/sweep_envelope_156.h5 --campaign "$seed" --specimen A156 --limit results/limit_seed_156.json --out results/ >/dev/null
+"$post" compare results/sweep_seed_tests.h5 "$seed" --out results/ | sed 's/^/   /'
 
 records=${VOUSSOIR_MAIN_JOB_RECORDS:-fema_p695_far_field}
 case $records in
@@ -121,14 +116,6 @@ sed -e "s/n_samples = 2, sample_seed = 1, friction_range = 0.45, 0.6,/model_samp
 echo "== 8. The nominal and the calibrated fragility side by side"
 "$post" fragility results/ida_156.h5 --compare results/ida_156_calibrated.h5 \
     --labels 'nominal model' 'as the tests revealed it' --out results/ | tail -n 5 | sed 's/^/   /'
-
-echo "== 5. Figures (their lines)"
-if ! wait "$figures_pid"; then
-  cat results/figures.log
-  echo "[main] error: a figure of section 5 failed (above)" >&2
-  exit 1
-fi
-cat results/figures.log
 
 # An index of everything the job made, with what each shows (results/index.md).
 missing=()  # files the job should have made and did not
