@@ -116,7 +116,7 @@ ReliabilityBin = tuple[float, float, int, float, float, float, float]
 
 def reliability_figure(out: Path, bins: Sequence[ReliabilityBin], note: str | None = None) -> str:
     """Stated probability of the most probable model against how often it is the truth."""
-    fig = new_figure(5.4, 5.0)
+    fig = new_figure(6.6, 5.0)  # wide enough for the provenance line of the bench
     ax = fig.subplots()
     ax.plot([0, 1], [0, 1], color="0.45", lw=0.8, label="perfectly calibrated")
     for _, _, n, stated, right, ci_low, ci_high in bins:

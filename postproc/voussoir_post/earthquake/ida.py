@@ -248,44 +248,78 @@ def _read_csv(path: str) -> IdaResult:
         parameters={name: arr[name] for name in extra})
 
 
+@dataclass
+class SweepRows:
+    """What an IDA and an MSA file share, read by :func:`read_sweep_rows`: the record
+    files, the /results columns, each row's record index, its model sample's parameters,
+    its event, and the file's configuration."""
+
+    files: list[str]
+    columns: dict[str, np.ndarray]
+    index: np.ndarray
+    parameters: dict[str, np.ndarray]
+    events: list[str] | None
+    config: dict
+    code_version: str
+    record_set: str
+
+
+def read_sweep_rows(h5: h5py.File, path: str, mode: str, label: str, required: tuple[str, ...],
+                    optional: tuple[str, ...]) -> SweepRows:
+    """The rows of a voussoir-sweep file of `mode` ('ida', 'msa'; `label` names it in
+    messages, 'IDA'): the /results columns `required` (each refused when missing) and
+    `optional` (left out when missing), of one length, their records among the file's."""
+    producer = _text(h5.attrs.get("producer", ""))
+    if producer != "voussoir-sweep":
+        raise ResultsError(path, f"written by '{producer}', but an {label} comes from 'voussoir-sweep'")
+    found = _text(h5.attrs.get("mode", ""))
+    if found != mode:
+        raise ResultsError(path, f"a '{found}' sweep, not an {label} (&sweep mode = '{mode}')")
+    if "record_files" not in h5.attrs:
+        raise ResultsError(path, "missing root attribute 'record_files'")
+    files = [f for f in _text(h5.attrs["record_files"]).split("\n") if f.strip()]
+    columns = {}
+    for name in required + optional:
+        key = f"results/{name}"
+        if key not in h5:
+            if name in optional:
+                continue
+            raise ResultsError(path, f"missing dataset '/{key}'")
+        columns[name] = np.asarray(h5[key][()]).reshape(-1)
+    n = columns["param_set"].shape[0]
+    for name, values in columns.items():
+        if values.shape[0] != n:
+            raise ResultsError(path, f"'/results/{name}' has {values.shape[0]} rows, '/results/param_set' {n}")
+    index = columns["record"].astype(int)
+    if n and (index.min() < 0 or index.max() >= len(files)):
+        raise ResultsError(path, f"'/results/record' refers to a record that 'record_files' "
+                                 f"({len(files)} files) does not have")
+    names = [s.strip() for s in _text(h5.attrs.get("parameter_names", "")).split(",") if s.strip()]
+    parameters = {}
+    if names:
+        values = np.asarray(h5["parameters/values"][()], dtype=float).reshape(-1, len(names))
+        sets = columns["param_set"].astype(int)
+        parameters = {name: values[sets, k] for k, name in enumerate(names)}
+    events = None
+    if "record_events" in h5.attrs:
+        event_names = _text(h5.attrs["record_events"]).split("\n")
+        if len(event_names) == len(files):
+            events = _events([event_names[i].strip() for i in index], [files[i] for i in index])
+    return SweepRows(files=files, columns=columns, index=index, parameters=parameters, events=events,
+                     config=parse_namelist(_text(h5.attrs.get("config_nml", ""))),
+                     code_version=_text(h5.attrs.get("code_version", "")),
+                     record_set=_text(h5.attrs.get("record_set", "")))
+
+
 def _read_h5(path: str) -> IdaResult:
     if not h5py.is_hdf5(path):
         raise ResultsError(path, "not an HDF5 file (nor a .csv)")
     with h5py.File(path, "r") as h5:
-        producer = _text(h5.attrs.get("producer", ""))
-        if producer != "voussoir-sweep":
-            raise ResultsError(path, f"written by '{producer}', but an IDA comes from 'voussoir-sweep'")
-        mode = _text(h5.attrs.get("mode", ""))
-        if mode != "ida":
-            raise ResultsError(path, f"a '{mode}' sweep, not an IDA (&sweep mode = 'ida')")
-        if "record_files" not in h5.attrs:
-            raise ResultsError(path, "missing root attribute 'record_files'")
-        files = [f for f in _text(h5.attrs["record_files"]).split("\n") if f.strip()]
-        columns = {}
-        for name in ("param_set", "record", "scale_stood", "scale_threshold", "pga_threshold_m_s2",
-                     "pgv_threshold_m_s", "censored") + _OPTIONAL_INT + ("static_capacity_m_s2",):
-            key = f"results/{name}"
-            if key not in h5:
-                if name in _OPTIONAL_INT + ("static_capacity_m_s2",):
-                    continue
-                raise ResultsError(path, f"missing dataset '/{key}'")
-            columns[name] = np.asarray(h5[key][()]).reshape(-1)
+        rows = read_sweep_rows(h5, path, "ida", "IDA",
+                               ("param_set", "record", "scale_stood", "scale_threshold", "pga_threshold_m_s2",
+                                "pgv_threshold_m_s", "censored"), _OPTIONAL_INT + ("static_capacity_m_s2",))
+        columns, index, files = rows.columns, rows.index, rows.files
         n = columns["param_set"].shape[0]
-        for name, values in columns.items():
-            if values.shape[0] != n:
-                raise ResultsError(path, f"'/results/{name}' has {values.shape[0]} rows, '/results/param_set' {n}")
-        index = columns["record"].astype(int)
-        if n and (index.min() < 0 or index.max() >= len(files)):
-            raise ResultsError(path, f"'/results/record' refers to a record that 'record_files' "
-                                     f"({len(files)} files) does not have")
-        names = [s.strip() for s in _text(h5.attrs.get("parameter_names", "")).split(",") if s.strip()]
-        parameters = {}
-        if names:
-            values = np.asarray(h5["parameters/values"][()], dtype=float).reshape(-1, len(names))
-            sets = columns["param_set"].astype(int)
-            parameters = {name: values[sets, k] for k, name in enumerate(names)}
-        config = parse_namelist(_text(h5.attrs.get("config_nml", "")))
-        code_version = _text(h5.attrs.get("code_version", ""))
         failed = columns["failed"].astype(bool) if "failed" in columns else np.zeros(n, bool)
         stood = columns["scale_stood"].astype(float)
         if failed.any() and "results/job" in h5:
@@ -298,23 +332,17 @@ def _read_h5(path: str) -> IdaResult:
                 values = np.asarray(h5[f"sweep/{name}"][()], dtype=float).reshape(-1)
                 if values.size == len(files):
                     units[name] = values[index]
-        events = None
-        if "record_events" in h5.attrs:
-            names = _text(h5.attrs["record_events"]).split("\n")
-            if len(names) == len(files):
-                events = _events([names[i].strip() for i in index], [files[i] for i in index])
-        record_set = _text(h5.attrs.get("record_set", ""))
     return IdaResult(
         failed=failed, unit_pga_m_s2=units.get("record_pga_m_s2"), unit_pgv_m_s=units.get("record_pgv_m_s"),
-        magnitude=units.get("record_magnitude"), distance_km=units.get("record_distance_km"), event=events,
-        record_set=record_set, static_capacity_m_s2=columns.get("static_capacity_m_s2"),
+        magnitude=units.get("record_magnitude"), distance_km=units.get("record_distance_km"), event=rows.events,
+        record_set=rows.record_set, static_capacity_m_s2=columns.get("static_capacity_m_s2"),
         path=path, record=[files[i] for i in index], param_set=columns["param_set"].astype(int),
         scale_stood=stood, scale_threshold=columns["scale_threshold"].astype(float),
         pga_m_s2=columns["pga_threshold_m_s2"].astype(float), pgv_m_s=columns["pgv_threshold_m_s"].astype(float),
         censored=columns["censored"].astype(bool),
         non_monotonic=columns["non_monotonic"].astype(bool) if "non_monotonic" in columns else None,
         n_runs=columns["n_runs"].astype(int) if "n_runs" in columns else None,
-        parameters=parameters, config=config, code_version=code_version)
+        parameters=rows.parameters, config=rows.config, code_version=rows.code_version)
 
 
 def _events(events: list[str] | None, records: list[str]) -> list[str] | None:

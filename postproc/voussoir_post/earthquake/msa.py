@@ -27,9 +27,8 @@ import h5py
 import numpy as np
 
 from ..errors import ResultsError
-from ..namelist import parse_namelist
 from ..readers.csv_table import read_csv_table
-from .ida import _events, _text
+from .ida import _events, _text, read_sweep_rows
 
 __all__ = ["MsaResult", "MSA_COLUMNS", "LIMIT_STATES", "read_msa", "is_msa"]
 
@@ -208,52 +207,15 @@ def _read_h5(path: str) -> MsaResult:
     if not h5py.is_hdf5(path):
         raise ResultsError(path, "not an HDF5 file (nor a .csv)")
     with h5py.File(path, "r") as h5:
-        producer = _text(h5.attrs.get("producer", ""))
-        if producer != "voussoir-sweep":
-            raise ResultsError(path, f"written by '{producer}', but an MSA comes from 'voussoir-sweep'")
-        mode = _text(h5.attrs.get("mode", ""))
-        if mode != "msa":
-            raise ResultsError(path, f"a '{mode}' sweep, not an MSA (&sweep mode = 'msa')")
-        if "record_files" not in h5.attrs:
-            raise ResultsError(path, "missing root attribute 'record_files'")
-        files = [f for f in _text(h5.attrs["record_files"]).split("\n") if f.strip()]
-        columns = {}
-        optional = ("static_capacity_m_s2", "pga_m_s2", "max_joint_opening_mm", "residual_drift_mm")
-        for name in ("param_set", "record", "level_g", "scale", "collapsed", "failed") + optional:
-            key = f"results/{name}"
-            if key not in h5:
-                if name in optional:
-                    continue
-                raise ResultsError(path, f"missing dataset '/{key}'")
-            columns[name] = np.asarray(h5[key][()]).reshape(-1)
-        n = columns["param_set"].shape[0]
-        for name, values in columns.items():
-            if values.shape[0] != n:
-                raise ResultsError(path, f"'/results/{name}' has {values.shape[0]} rows, '/results/param_set' {n}")
-        index = columns["record"].astype(int)
-        if n and (index.min() < 0 or index.max() >= len(files)):
-            raise ResultsError(path, f"'/results/record' refers to a record that 'record_files' "
-                                     f"({len(files)} files) does not have")
-        names = [s.strip() for s in _text(h5.attrs.get("parameter_names", "")).split(",") if s.strip()]
-        parameters = {}
-        if names:
-            values = np.asarray(h5["parameters/values"][()], dtype=float).reshape(-1, len(names))
-            sets = columns["param_set"].astype(int)
-            parameters = {name: values[sets, k] for k, name in enumerate(names)}
-        events = None
-        if "record_events" in h5.attrs:
-            event_names = _text(h5.attrs["record_events"]).split("\n")
-            if len(event_names) == len(files):
-                events = _events([event_names[i].strip() for i in index], [files[i] for i in index])
-        config = parse_namelist(_text(h5.attrs.get("config_nml", "")))
-        code_version = _text(h5.attrs.get("code_version", ""))
-        record_set = _text(h5.attrs.get("record_set", ""))
-    return MsaResult(path=path, record=[files[i] for i in index], param_set=columns["param_set"].astype(int),
+        rows = read_sweep_rows(h5, path, "msa", "MSA", ("param_set", "record", "level_g", "scale", "collapsed", "failed"),
+                               ("static_capacity_m_s2", "pga_m_s2", "max_joint_opening_mm", "residual_drift_mm"))
+    columns = rows.columns
+    return MsaResult(path=path, record=[rows.files[i] for i in rows.index], param_set=columns["param_set"].astype(int),
                      level_g=columns["level_g"].astype(float), scale=columns["scale"].astype(float),
                      collapsed=columns["collapsed"].astype(bool), failed=columns["failed"].astype(bool),
-                     event=events, pga_m_s2=columns.get("pga_m_s2"),
-                     static_capacity_m_s2=columns.get("static_capacity_m_s2"), parameters=parameters,
-                     config=config, code_version=code_version, record_set=record_set,
+                     event=rows.events, pga_m_s2=columns.get("pga_m_s2"),
+                     static_capacity_m_s2=columns.get("static_capacity_m_s2"), parameters=rows.parameters,
+                     config=rows.config, code_version=rows.code_version, record_set=rows.record_set,
                      max_joint_opening_mm=_real(columns.get("max_joint_opening_mm")),
                      residual_drift_mm=_real(columns.get("residual_drift_mm")))
 
