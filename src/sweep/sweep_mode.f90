@@ -219,7 +219,7 @@ contains
   !> What the mode adds to the validated case of each set once the sets are made (nothing
   !> here).
   subroutine prepare_sets(this, group, plan, status)
-    class(sweep_mode_t), intent(in) :: this
+    class(sweep_mode_t), intent(inout) :: this
     type(sweep_group_t), intent(in) :: group
     type(sweep_plan_t), intent(inout) :: plan
     type(status_t), intent(inout) :: status

@@ -15,13 +15,13 @@ module voussoir_sweep_mode_ida
   use voussoir_simulation, only: run_result_t
   use voussoir_setup, only: simulate => run_config
   use voussoir_threshold_search, only: threshold_search_t, threshold_result_t, run_outcome_t, threshold_init_onset
-  use voussoir_threshold, only: static_capacity_m_s2
   use voussoir_sweep_group, only: sweep_group_t
   use voussoir_sweep_table, only: sweep_table_t, name_len, table_init, table_row, table_set, table_append, &
                                   table_value
   use voussoir_sweep_mode, only: sweep_plan_t, job_param_set
   use voussoir_sweep_ida, only: record_label
-  use voussoir_sweep_mode_records, only: record_mode_t, job_record, check_records_and_samples, records_settings_text
+  use voussoir_sweep_mode_records, only: record_mode_t, job_record, check_records_and_samples, records_settings_text, &
+                                        record_csv_cells
   implicit none
   private
 
@@ -115,7 +115,8 @@ contains
     type(threshold_search_t), intent(out) :: search
     type(status_t), intent(inout) :: status
     associate (c => plan%set_cfg(job_param_set(plan, job)))
-      call threshold_init_onset(search, c, static_capacity_m_s2(c)/plan%records%pga_m_s2(job_record(plan, job)), &
+      call threshold_init_onset(search, c, this%capacity_m_s2(job_param_set(plan, job))/ &
+                                plan%records%pga_m_s2(job_record(plan, job)), &
                                 plan%search, status)
     end associate
   end subroutine search_init
@@ -167,10 +168,7 @@ contains
     call table_set(results, row, 'n_runs', real(r%n_runs, dp))
     call table_set(results, row, 'mean_iterations', r%mean_iterations)
     call table_set(results, row, 'wall_time_s', r%wall_time_s)
-    call table_set(results, row, 'magnitude', plan%records%magnitude(rec))
-    call table_set(results, row, 'distance_km', plan%records%distance_km(rec))
-    call table_set(results, row, 'pga_m_s2', plan%records%pga_m_s2(rec))
-    call table_set(results, row, 'static_capacity_m_s2', static_capacity_m_s2(plan%set_cfg(job_param_set(plan, job))))
+    call this%set_record_columns(plan, job, results, row)
   end subroutine result_row
 
   function csv_header(this, names) result(text)
@@ -196,8 +194,7 @@ contains
            fmt_exact(table_value(results, 'pgv_threshold_m_s', r))//','// &
            itoa(nint(table_value(results, 'censored', r)))//','//itoa(nint(table_value(results, 'non_monotonic', r)))// &
            ','//itoa(nint(table_value(results, 'n_runs', r)))//','//itoa(nint(table_value(results, 'failed', r)))// &
-           ','//trim(plan%records%events(rec))//','//fmt_exact(plan%records%magnitude(rec))//','// &
-           fmt_exact(plan%records%distance_km(rec))//','//fmt_exact(plan%records%pga_m_s2(rec))//','// &
+           record_csv_cells(plan, rec)//','// &
            fmt_exact(table_value(results, 'static_capacity_m_s2', r))
   end function csv_line
 

@@ -14,14 +14,13 @@ module voussoir_sweep_mode_msa
   use voussoir_config, only: config_t
   use voussoir_input_range, only: need_range
   use voussoir_threshold_search, only: threshold_result_t, run_outcome_t
-  use voussoir_threshold, only: static_capacity_m_s2
   use voussoir_sweep_group, only: sweep_group_t, unset_real
   use voussoir_sweep_table, only: sweep_table_t, named_values_t, named_text_t, name_len, table_init, table_set, &
                                   table_value
   use voussoir_sweep_mode, only: sweep_plan_t, job_param_set
   use voussoir_sweep_ida, only: record_label
   use voussoir_sweep_mode_records, only: record_mode_t, job_record, check_records_and_samples, records_settings_text, &
-                                         records_file_items
+                                         records_file_items, record_csv_cells
   use voussoir_sweep_mode_ida, only: scale_warn_low, scale_warn_high
   implicit none
   private
@@ -171,10 +170,7 @@ contains
     call table_set(results, row, 'mean_iterations', o%mean_iterations)
     call table_set(results, row, 'nonconverged_steps', real(o%nonconverged_steps, dp))
     call table_set(results, row, 'wall_time_s', o%wall_time_s)
-    call table_set(results, row, 'magnitude', plan%records%magnitude(rec))
-    call table_set(results, row, 'distance_km', plan%records%distance_km(rec))
-    call table_set(results, row, 'pga_m_s2', plan%records%pga_m_s2(rec))
-    call table_set(results, row, 'static_capacity_m_s2', static_capacity_m_s2(plan%set_cfg(job_param_set(plan, job))))
+    call this%set_record_columns(plan, job, results, row)
     ! The limit states short of collapse, in mm: hinge onset (an opening above about 1 mm)
     ! and a residual drift come from the same stripes.
     call table_set(results, row, 'max_joint_opening_mm', 1.0e3_dp*o%peak_joint_opening_m)
@@ -212,8 +208,7 @@ contains
     line = record_label(plan%records, rec)//','//set_columns//','// &
            fmt_exact(table_value(results, 'level_g', r))//','//fmt_exact(table_value(results, 'scale', r))//','// &
            itoa(nint(table_value(results, 'collapsed', r)))//','//itoa(nint(table_value(results, 'failed', r)))// &
-           ','//trim(plan%records%events(rec))//','//fmt_exact(plan%records%magnitude(rec))//','// &
-           fmt_exact(plan%records%distance_km(rec))//','//fmt_exact(plan%records%pga_m_s2(rec))//','// &
+           record_csv_cells(plan, rec)//','// &
            fmt_exact(table_value(results, 'collapse_time_s', r))//','// &
            fmt_exact(table_value(results, 'peak_crown_disp_m', r))//','// &
            fmt_exact(table_value(results, 'mean_iterations', r))//','// &

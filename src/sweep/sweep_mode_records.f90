@@ -8,7 +8,7 @@
 module voussoir_sweep_mode_records
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
-  use voussoir_text, only: itoa, fmt_exact_list, join_words
+  use voussoir_text, only: itoa, fmt_exact, fmt_exact_list, join_words
   use voussoir_config, only: config_t, waveform_accelerogram
   use voussoir_input_range, only: need_range
   use voussoir_threshold, only: search_run_config, static_capacity_m_s2
@@ -18,13 +18,13 @@ module voussoir_sweep_mode_records
   use voussoir_record_set, only: components_both
   use voussoir_model_samples, only: read_model_samples, samples_digest
   use voussoir_sweep_group, only: sweep_group_t, lengths_text, unset_real
-  use voussoir_sweep_table, only: named_values_t, named_text_t, name_len
+  use voussoir_sweep_table, only: sweep_table_t, named_values_t, named_text_t, name_len, table_set
   use voussoir_sweep_mode, only: sweep_mode_t, sweep_plan_t, job_param_set
   implicit none
   private
 
   public :: record_mode_t, job_record, check_records_and_samples, records_settings_text, &
-            records_file_items
+            records_file_items, record_csv_cells
 
   !> A mode whose runs play the records of &sweep on model samples.
   type, abstract, extends(sweep_mode_t) :: record_mode_t
@@ -36,9 +36,14 @@ module voussoir_sweep_mode_records
     character(len=16) :: record_polarity = polarity_forward  !! records forward, reversed, or both as rows
     real(dp) :: ranges(2, n_sampled) = unset_real !! bounds of the sampled variables
     logical :: skip_at_rest = .true.              !! steps at rest below the static capacity not solved
+    !> The static capacity lambda g of each set [m/s2] (0:n_sets-1; 0 where it does not
+    !> apply), computed once by prepare_sets: the searches start from it, the rows carry
+    !> it, and with skip_at_rest the runs ride at rest below it.
+    real(dp), allocatable :: capacity_m_s2(:)
   contains
     procedure :: draw_sets
     procedure :: prepare_sets
+    procedure :: set_record_columns
     procedure :: definition_text
     procedure :: job_label
     procedure :: run_config
@@ -215,24 +220,51 @@ contains
     end do
   end function records_settings_text
 
-  !> With skip_at_rest, each set's static capacity lambda g in its solver settings: its
-  !> runs do not solve the steps in which the arch rides at rest on the table
-  !> (src/run/rest_window.f90). Not with loads (&load: the capacity is that of the arch
-  !> alone) or where the capacity does not apply (static_capacity_m_s2 gives 0).
+  !> Each set's static capacity lambda g, once; with skip_at_rest, also in the set's
+  !> solver settings: its runs do not solve the steps in which the arch rides at rest on
+  !> the table (src/run/rest_window.f90). Not with loads (&load: the rest window is not
+  !> checked on loaded runs) or where the capacity does not apply (0).
   subroutine prepare_sets(this, group, plan, status)
-    class(record_mode_t), intent(in) :: this
+    class(record_mode_t), intent(inout) :: this
     type(sweep_group_t), intent(in) :: group
     type(sweep_plan_t), intent(inout) :: plan
     type(status_t), intent(inout) :: status
     integer :: s
-    if (.not. this%skip_at_rest) return
+    allocate (this%capacity_m_s2(0:plan%n_sets - 1))
     do s = 0, plan%n_sets - 1
       associate (c => plan%set_cfg(s))
+        this%capacity_m_s2(s) = static_capacity_m_s2(c)
+        if (.not. this%skip_at_rest) cycle
         if (c%load%n_point_loads > 0 .or. c%load%dead_load_n_per_m /= 0.0_dp) cycle
-        c%solver%rest_capacity_m_s2 = static_capacity_m_s2(c)
+        c%solver%rest_capacity_m_s2 = this%capacity_m_s2(s)
       end associate
     end do
   end subroutine prepare_sets
+
+  !> The columns every record mode's row carries of its record and sample: magnitude,
+  !> distance_km, the record's own pga_m_s2 and the sample's static_capacity_m_s2.
+  subroutine set_record_columns(this, plan, job, results, row)
+    class(record_mode_t), intent(in) :: this
+    type(sweep_plan_t), intent(in) :: plan
+    integer, intent(in) :: job
+    type(sweep_table_t), intent(in) :: results
+    real(dp), intent(inout) :: row(:)
+    integer :: rec
+    rec = job_record(plan, job)
+    call table_set(results, row, 'magnitude', plan%records%magnitude(rec))
+    call table_set(results, row, 'distance_km', plan%records%distance_km(rec))
+    call table_set(results, row, 'pga_m_s2', plan%records%pga_m_s2(rec))
+    call table_set(results, row, 'static_capacity_m_s2', this%capacity_m_s2(job_param_set(plan, job)))
+  end subroutine set_record_columns
+
+  !> The CSV cells of record `rec`'s metadata: ',event,magnitude,distance_km,pga_m_s2'.
+  function record_csv_cells(plan, rec) result(text)
+    type(sweep_plan_t), intent(in) :: plan
+    integer, intent(in) :: rec
+    character(len=:), allocatable :: text
+    text = ','//trim(plan%records%events(rec))//','//fmt_exact(plan%records%magnitude(rec))//','// &
+           fmt_exact(plan%records%distance_km(rec))//','//fmt_exact(plan%records%pga_m_s2(rec))
+  end function record_csv_cells
 
   !> The records of a packaged set by name; with model_samples_file, the samples it gave
   !> (their number, their columns and a digest of their values): another content of the
