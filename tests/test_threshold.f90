@@ -116,9 +116,10 @@ program test_threshold
                    'island mid-bracket: bisection (factor 2) ends at the upper edge of the island')
   settings = threshold_settings_t()
 
-  ! No onset estimate (a polygon file: not read here, it has none): come down from amp_max_m.
-  cfg%arch%polygon_file = 'ring.txt'
-  call assert_true(static_onset_amplitude_m(cfg, 1.25_dp) == 0.0_dp, 'polygon file: no static estimate')
+  ! No onset estimate (a polygon file that is not there: no LP, no capacity): come down
+  ! from amp_max_m.
+  cfg%arch%polygon_file = 'no_such_ring.txt'
+  call assert_true(static_onset_amplitude_m(cfg, 1.25_dp) == 0.0_dp, 'unreadable polygon file: no static estimate')
   call drive(cfg, settings, oracle_monotone, r, amps, n)
   call assert_close(amps(1), settings%amp_max_m, 'no estimate: first run at amp_max_m', rtol=1.0e-12_dp)
   call assert_true(r%threshold_m >= 0.0633_dp .and. r%threshold_m <= 0.0633_dp + settings%amp_tol_m, &
@@ -180,7 +181,33 @@ contains
     c%arch%friction = 0.3_dp
     call assert_close(static_capacity_m_s2(c), 0.3_dp*g_m_s2, '3 x 3 wall, friction 0.3: slides at mu g', &
                       rtol=1.0e-9_dp)
+    call test_polygon_file_capacity(base)
   end subroutine test_lp_only_capacities
+
+  !> A polygon file's capacity is the LP's, its driven blocks the fixed supports: one
+  !> block 0.2 m wide and 0.5 m tall on a driven base rocks about its toe at
+  !> lambda = b / h = 0.4 when friction holds it (mu = 10), and slides at lambda = mu
+  !> when friction is below b / h (mu = 0.25): the two closed forms of a rigid block.
+  subroutine test_polygon_file_capacity(base)
+    type(config_t), intent(in) :: base
+    type(config_t) :: c
+    character(len=*), parameter :: path = 'test_threshold_block.txt'
+    integer :: unit
+    open (newunit=unit, file=path, status='replace', action='write')
+    write (unit, '(a)') '# a 0.2 x 0.5 m block on a driven base', 'block driven', '-0.5 -0.2', '0.7 -0.2', &
+      '0.7 0', '-0.5 0', 'block free', '0 0', '0.2 0', '0.2 0.5', '0 0.5'
+    close (unit)
+    c = base
+    c%arch%polygon_file = path
+    c%arch%friction = 10.0_dp
+    call assert_close(static_capacity_m_s2(c), 0.4_dp*g_m_s2, 'polygon file, one block: rocks at (b/h) g', &
+                      rtol=1.0e-9_dp)
+    c%arch%friction = 0.25_dp
+    call assert_close(static_capacity_m_s2(c), 0.25_dp*g_m_s2, 'polygon file, one block, mu < b/h: slides at mu g', &
+                      rtol=1.0e-9_dp)
+    open (newunit=unit, file=path, status='old')
+    close (unit, status='delete')
+  end subroutine test_polygon_file_capacity
 
   !> &load in the sweep's static capacity (issue 25). A dead vertical load k W_i at the
   !> centroid of every voussoir i makes gravity 1 + k times stronger while the

@@ -81,7 +81,7 @@ contains
 
   !> Amplitude [m] at which the peak afd table acceleration reaches the horizontal
   !> collapse capacity lambda g of the limit analysis: below it the rigid arch does not
-  !> move. 0 when it does not apply (polygon assemblies, no capacity).
+  !> move. 0 when there is no capacity (the LP has no answer).
   real(dp) function static_onset_amplitude_m(cfg, frequency_hz) result(amp_m)
     type(config_t), intent(in) :: cfg
     real(dp), intent(in) :: frequency_hz
@@ -90,13 +90,14 @@ contains
   end function static_onset_amplitude_m
 
   !> The horizontal collapse capacity lambda g [m/s2] of the arch of `cfg` (limit
-  !> analysis, the weaker direction); 0 when it does not apply (polygon assemblies, no
-  !> capacity). Where the four-hinge mechanism's static field breaks Coulomb's law at a
+  !> analysis, the weaker direction); 0 when there is none (the LP has no answer, a polygon
+  !> file cannot be read). Where the four-hinge mechanism's static field breaks Coulomb's law at a
   !> joint (`&arch friction`), sliding may govern: the capacity is then the lesser of the
   !> four-hinge one and the non-associative LP capacity (the joints slide without
   !> dilating) in that direction (docs/limit_analysis.md). With the loads of &load, the
-  !> LP's capacity with them (`loaded_capacity`); a &wall or an arch with restraint
-  !> brackets, which the four-hinge analysis does not model, has the LP's alone.
+  !> LP's capacity with them (`loaded_capacity`); a &wall, a polygon file or an arch with
+  !> restraint brackets, which the four-hinge analysis does not model, has the LP's alone
+  !> (a polygon file's driven blocks are its fixed supports).
   real(dp) function static_capacity_m_s2(cfg) result(capacity)
     type(config_t), intent(in) :: cfg
     type(assembly_t) :: arch
@@ -105,8 +106,8 @@ contains
     real(dp) :: lambda
 
     capacity = 0.0_dp
-    if (len_trim(cfg%arch%polygon_file) > 0) return
-    if (cfg%wall%courses > 0 .or. cfg%arch%restrained_springings /= springings_none) then
+    if (cfg%wall%courses > 0 .or. len_trim(cfg%arch%polygon_file) > 0 .or. &
+        cfg%arch%restrained_springings /= springings_none) then
       call build_config_assembly(cfg, arch, status)
       if (status%ok) capacity = loaded_capacity(arch, cfg)
       return
