@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 import pytest
+from scipy import stats as scipy_stats
 
 from voussoir_post.cli.post import main
 from voussoir_post.earthquake.ida import IdaResult, read_ida
@@ -152,7 +153,39 @@ def test_pgv_residuals_carry_the_frequency_that_pga_does_not():
     pga, pgv = (m.sufficiency["ln_frequency_ratio"] for m in result.fits)
     assert pgv.slope == pytest.approx(pga.slope - 1.0, abs=1e-9)
     assert pga.p_value > 0.01 and pgv.p_value < 1e-6
-    assert set(result.skipped) == {"magnitude", "distance_km", "pulse"}
+    assert set(result.skipped) == {"magnitude", "distance_km", "pulse", "ln_pulse_frequency_ratio"}
+
+
+def test_pulse_frequency_ratio_is_regressed_over_the_records_with_a_pulse_period():
+    """Half the records carry a pulse period Tp: the covariate ln(omega_p / p), omega_p =
+    2 pi / Tp, is regressed over their rows only, the same line as scipy's on those rows
+    (the residuals from the fit over all the rows)."""
+    ida, motions, _ = synthetic_ida()
+    rng = np.random.default_rng(3)
+    tp = {name: (rng.uniform(1.0, 6.0) if k % 2 else math.nan) for k, name in enumerate(motions)}
+    motions = {name: RecordMotion(m.name, m.dt_s, m.accel_m_s2, pulse_period_s=tp[name]) for name, m in motions.items()}
+    result = compare_measures(ida, ["pga"], sa_period_s=0.5, motions=motions, n_bootstrap=0)
+    (pga,) = result.fits
+    s = pga.sufficiency["ln_pulse_frequency_ratio"]
+    p = math.sqrt(3.0 * G / (4.0 * 0.45))
+    with_tp = np.array([math.isfinite(tp[r]) for r in ida.record])
+    x = np.log(2.0 * math.pi / (np.array([tp[r] for r in ida.record]) * p))
+    residual = np.log(pga.low) - math.log(pga.fit.median)  # exact rows: low = high = IM_c
+    line = scipy_stats.linregress(x[with_tp], residual[with_tp])
+    assert s.n == 12 and s.n_records == 12
+    assert s.slope == pytest.approx(line.slope, rel=1e-9) and s.p_value == pytest.approx(line.pvalue, rel=1e-9)
+    assert "ln_pulse_frequency_ratio" not in result.skipped
+
+
+def test_a_pulse_record_of_the_near_field_set_brings_its_period():
+    """An IDA of record_set 'fema_p695_near_field_pulse' reads each record's Tp from the set
+    (Rinaldi, RSN 1063: 1.25 s, Shahi & Baker 2014)."""
+    ida = IdaResult(path="synthetic", record=["NORTHR/RRS_032", "ERZIKAN/ERZ_032"], param_set=np.zeros(2, int),
+                    scale_stood=np.ones(2), scale_threshold=np.ones(2), pga_m_s2=np.full(2, np.nan),
+                    pgv_m_s=np.full(2, np.nan), censored=np.zeros(2, bool), record_set="fema_p695_near_field_pulse")
+    motions = record_motions(ida)
+    assert motions["NORTHR/RRS_032"].pulse == 1 and motions["NORTHR/RRS_032"].pulse_period_s == 1.25
+    assert math.isnan(motions["ERZIKAN/ERZ_032"].pulse_period_s)
 
 
 # ------------------------------------------------------------------ the command
@@ -207,7 +240,9 @@ def test_cli_im_all_json_keeps_every_key_and_adds_the_measures(tmp_path, capsys)
     assert records["rec/b.AT2"]["cav_m_s"] == pytest.approx(4 * 0.5 * G * DT / 2.0, rel=1e-14)
     settings = out["intensity_settings"]
     assert settings["sa_period_s"] == 1.0 and settings["damping"] == 0.05 and "pyRotd 0.6.1" in settings["spectra"]
-    assert set(settings["not_available"]) == {"magnitude", "distance_km", "pulse", "ln_frequency_ratio"}
+    assert set(settings["not_available"]) == {"magnitude", "distance_km", "pulse", "ln_frequency_ratio",
+                                              "ln_pulse_frequency_ratio"}
+    assert "omega_p = 2 pi / Tp" in settings["pulse_frequency_ratio"]
     assert out["intensity_efficiency_rank"][0] in MEASURES
 
 

@@ -9,6 +9,12 @@ Northridge 1994, Beverly Hills - Mulhol, PGAmax 0.52 g; record 6, Imperial Valle
 El Centro Array #11, PGAmax 0.38 g. Appendix A: the far-field set is 22 pairs of
 horizontal components from 14 events; the near-field set 28 pairs, 14 with a velocity
 pulse and 14 without.
+
+Pulse periods: Shahi & Baker (2014), their table of the NGA-West2 records classified as
+pulse-like (https://web.stanford.edu/~bakerjw/pulse_classification_v2/Pulse-like-records.html,
+column "Tp (s)"): RSN 181, Imperial Valley-06, El Centro Array #6, 3.77 s; RSN 1063,
+Northridge-01, Rinaldi Receiving Sta, 1.25 s; RSN 1529, Chi-Chi Taiwan, TCU102, 9.63 s.
+RSN 821 (Erzincan 1992), a FEMA P695 pulse record, is not in that table.
 """
 
 from __future__ import annotations
@@ -24,7 +30,7 @@ import pytest
 
 from voussoir_post.earthquake.ida import read_ida
 from voussoir_post.earthquake.record_sets import (G_M_S2, RecordsError, export_sets, read_at2, read_index,
-                                                  read_set, write_at2)
+                                                  read_pulse_periods, read_set, write_at2)
 
 
 @pytest.fixture(scope="module")
@@ -59,6 +65,47 @@ def test_near_field_is_28_pairs_half_with_a_pulse():
     assert len({r.pair for r in near if r.pulse == 0}) == 14
 
 
+@pytest.fixture(scope="module")
+def near_field():
+    return read_set("fema_p695_near_field")
+
+
+@pytest.mark.parametrize("pair, station, published_s", [(1, "El Centro Array #6", 3.77),
+                                                        (9, "Rinaldi Receiving Sta", 1.25), (13, "TCU102", 9.63)])
+def test_pulse_periods_are_shahi_baker_2014(near_field, pair, station, published_s):
+    """Both components of a pulse pair carry the pair's Tp as the source prints it."""
+    found = [r for r in near_field if r.pair == pair]
+    assert {r.station for r in found} == {station} and {r.pulse for r in found} == {1}
+    assert [r.pulse_period_s for r in found] == [published_s, published_s]
+
+
+def test_every_pulse_record_has_a_period_but_erzincan_and_no_other_record_has_one(near_field, far_field):
+    """13 of the 14 pulse pairs have Tp; pair 6 (RSN 821, Erzincan 1992) is not in Shahi &
+    Baker's table and stays nan; no record without a pulse has one."""
+    pulse = [r for r in near_field if r.pulse == 1]
+    missing = {(r.pair, r.station) for r in pulse if not np.isfinite(r.pulse_period_s)}
+    assert missing == {(6, "Erzincan")}
+    assert len({r.pair for r in pulse if np.isfinite(r.pulse_period_s)}) == 13
+    assert all(0.5 < r.pulse_period_s < 15.0 for r in pulse if r.pair != 6)
+    others = [r for r in near_field if r.pulse == 0] + far_field
+    assert len(others) == 28 + 44 and all(np.isnan(r.pulse_period_s) for r in others)
+    periods = read_pulse_periods()
+    assert len(periods) == 14 and np.isnan(periods[821]) and periods[1503] == 5.74
+
+
+def test_a_malformed_pulse_period_table_is_refused(tmp_path):
+    path = tmp_path / "tp.csv"
+    path.write_text("# a source\nrsn,earthquake,year,station,tp_s\n181,A,1979,S,3.77\n182,A,1979,T,-1\n")
+    with pytest.raises(RecordsError, match="tp.csv:4: five cells, an rsn not seen before and a tp_s > 0"):
+        read_pulse_periods(path)
+    path.write_text("rsn,earthquake,year,station,tp_s\nx,A,1979,S,3.77\n")
+    with pytest.raises(RecordsError, match="tp.csv:2: not rsn,earthquake,year,station,tp_s"):
+        read_pulse_periods(path)
+    path.write_text("rsn,tp_s\n181,3.77\n")
+    with pytest.raises(RecordsError, match="the header is not rsn,earthquake,year,station,tp_s"):
+        read_pulse_periods(path)
+
+
 def test_export_writes_at2_files_read_back_exactly(tmp_path, far_field):
     (index,) = export_sets(tmp_path, ["fema_p695_far_field"])
     rows = read_index(index)
@@ -70,6 +117,15 @@ def test_export_writes_at2_files_read_back_exactly(tmp_path, far_field):
     assert dt == far_field[0].dt_s and np.array_equal(accel, far_field[0].accel_g)
     assert float(first["pga_m_s2"]) == pytest.approx(np.max(np.abs(accel)) * G_M_S2, rel=1e-9)
     assert all("," not in row["event"] for row in rows)
+    assert {row["pulse_period_s"] for row in rows} == {"nan"}
+
+
+def test_export_index_carries_the_pulse_periods(tmp_path):
+    (index,) = export_sets(tmp_path, ["fema_p695_near_field_pulse"])
+    rows = read_index(index)
+    assert len(rows) == 28
+    tp = {row["station"]: row["pulse_period_s"] for row in rows}
+    assert tp["TCU102"] == "9.63" and tp["Petrolia"] == "3" and tp["Erzincan"] == "nan"
 
 
 def test_unknown_set_is_refused_with_the_known_ones():

@@ -450,8 +450,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="seed of the bootstrap and of the PIT within the brackets (default 20261124)")
     p.add_argument("--im", metavar="LIST",
                    help="also fit the fragility in each intensity measure and compare them (efficiency: beta; "
-                        "sufficiency: the residuals' slope on magnitude, distance, pulse, frequency ratio): 'all' or "
-                        "a comma-separated list of pga, pgv, pgd, arias, cav, sa, avgsa, pga_lambda_g "
+                        "sufficiency: the residuals' slope on magnitude, distance, pulse, frequency ratio, pulse "
+                        "frequency ratio): 'all' or a comma-separated list of pga, pgv, pgd, arias, cav, sa, avgsa, pga_lambda_g "
                         "(docs/earthquakes.md); the records are read again")
     p.add_argument("--sa-period", type=float, default=None, metavar="T_S",
                    help="period of Sa(T) with --im, 5 %% damping (default 1 s)")

