@@ -16,10 +16,11 @@ log-likelihood
 an *interval-censored* row; b = infinity for a row known only to exceed a (right-
 censored: a record that never brought the arch down, or a search that failed after a
 stand), and a row with a = b is an exact intensity, ln phi(z) - ln beta (the constant
--ln IM left out). The maximum is found by BFGS on (mu, ln beta) with the analytic
-gradient (scipy.optimize); with exact rows only it is the closed form, median =
-exp(mean ln x) and beta = the standard deviation of ln x with divisor n (the maximum-
-likelihood estimate, not the n - 1 one).
+-ln IM left out). The maximum is found by damped Newton on (mu, ln beta) with the
+analytic gradient and Hessian (a few steps; BFGS of scipy.optimize where Newton
+fails); with exact rows only it is the closed form, median = exp(mean ln x) and beta =
+the standard deviation of ln x with divisor n (the maximum-likelihood estimate, not
+the n - 1 one).
 
 The band is a bootstrap refitted on resamples of *clusters* of rows (the rows of one
 record over the model samples are not independent; records of one event neither), with
@@ -156,27 +157,45 @@ def _log_pdf(z: np.ndarray) -> np.ndarray:
         return -0.5 * z * z - _LOG_SQRT_2PI
 
 
+def _derivatives(mu: float, beta: float, x: np.ndarray, ln_a: np.ndarray,
+                 ln_b: np.ndarray) -> tuple[float, np.ndarray, np.ndarray]:
+    """:func:`interval_log_likelihood` of exact rows ``x`` and brackets (``ln_a``,
+    ``ln_b``], its gradient and its Hessian with respect to (mu, s = ln beta).
+
+    With z = (ln IM - mu) / beta, dz/dmu = -1 / beta and dz/ds = -z. An exact row adds
+    (z / beta, z^2 - 1) to the gradient and [[-1, -2 z beta], [., -2 z^2 beta^2]] / beta^2
+    to the Hessian. A bracket, P = Phi(zb) - Phi(za) and r = phi(z) / P at each end (0
+    at an infinite end), adds g = ((ra - rb) / beta, za ra - zb rb) and, from
+    d(phi(z) dz/di)/dj = phi(z) (d2z/didj - z dz/di dz/dj), the Hessian
+    q(zb) - q(za) - g g^T, q(z) = r [[-z / beta^2, (1 - z^2) / beta], [., z (1 - z^2)]]."""
+    z = (x - mu) / beta
+    n, sum_z, sum_zz = z.size, float(z.sum()), float((z * z).sum())
+    value = -0.5 * sum_zz - n * (_LOG_SQRT_2PI + math.log(beta))
+    g_mu, g_s = sum_z / beta, sum_zz - n
+    h_mu_mu, h_mu_s, h_s_s = -n / beta ** 2, -2.0 * sum_z / beta, -2.0 * sum_zz
+    if ln_a.size:
+        za, zb = (ln_a - mu) / beta, (ln_b - mu) / beta
+        log_p = _log_phi_between(za, zb)
+        if not np.all(np.isfinite(log_p)):  # a row the law cannot produce: stop before inf - inf
+            return -math.inf, np.zeros(2), np.full((2, 2), math.nan)
+        ra, rb = np.exp(_log_pdf(za) - log_p), np.exp(_log_pdf(zb) - log_p)
+        za, zb = np.where(np.isfinite(za), za, 0.0), np.where(np.isfinite(zb), zb, 0.0)  # r = 0 there
+        row_mu, row_s = (ra - rb) / beta, za * ra - zb * rb
+        ra_1, rb_1 = ra * (1.0 - za * za), rb * (1.0 - zb * zb)
+        sums = np.array([log_p, row_mu, row_s, (za * ra - zb * rb) / beta ** 2 - row_mu * row_mu,
+                         (rb_1 - ra_1) / beta - row_mu * row_s, zb * rb_1 - za * ra_1 - row_s * row_s]).sum(axis=1)
+        value += sums[0]
+        g_mu, g_s = g_mu + sums[1], g_s + sums[2]
+        h_mu_mu, h_mu_s, h_s_s = h_mu_mu + sums[3], h_mu_s + sums[4], h_s_s + sums[5]
+    if not math.isfinite(value):
+        return -math.inf, np.zeros(2), np.full((2, 2), math.nan)
+    return float(value), np.array([g_mu, g_s]), np.array([[h_mu_mu, h_mu_s], [h_mu_s, h_s_s]])
+
+
 def _value_and_score(mu: float, beta: float, ln_low: np.ndarray, ln_high: np.ndarray,
                      exact: np.ndarray) -> tuple[float, np.ndarray]:
     """:func:`interval_log_likelihood` and its gradient with respect to (mu, ln beta)."""
-    z = (ln_low[exact] - mu) / beta
-    value = float(np.sum(_log_pdf(z))) - z.size * math.log(beta)
-    d_mu = float(np.sum(z)) / beta
-    d_beta = float(np.sum(z * z - 1.0)) / beta
-    if not exact.all():
-        za, zb = (ln_low[~exact] - mu) / beta, (ln_high[~exact] - mu) / beta
-        log_p = _log_phi_between(za, zb)
-        value += float(np.sum(log_p))
-        # phi(z) / P and z phi(z) / P, zero at an infinite end
-        ra = np.exp(_log_pdf(za) - log_p)
-        rb = np.exp(_log_pdf(zb) - log_p)
-        za_ra = np.where(np.isfinite(za), za, 0.0) * ra
-        zb_rb = np.where(np.isfinite(zb), zb, 0.0) * rb
-        d_mu += float(np.sum(ra - rb)) / beta
-        d_beta += float(np.sum(za_ra - zb_rb)) / beta
-    if not math.isfinite(value):
-        return -math.inf, np.zeros(2)
-    return value, np.array([d_mu, beta * d_beta])
+    return _derivatives(mu, beta, ln_low[exact], ln_low[~exact], ln_high[~exact])[:2]
 
 
 def interval_log_likelihood(mu: float, beta: float, ln_low, ln_high) -> float:
@@ -193,44 +212,55 @@ def log_likelihood(mu: float, beta: float, ln_x: np.ndarray, censored: np.ndarra
     return interval_log_likelihood(mu, beta, ln_x, np.where(np.asarray(censored, bool), math.inf, ln_x))
 
 
+def _newton(p: np.ndarray, rows: tuple, tol: float, max_steps: int = 50) -> tuple[np.ndarray, float] | None:
+    """(mu, ln beta) and the log-likelihood after damped Newton steps from ``p`` on the
+    analytic Hessian until a step is below ``tol`` (relative); None when the Hessian is
+    not negative definite or no halving of the step climbs (the caller falls back)."""
+    value, score, hess = _derivatives(p[0], math.exp(p[1]), *rows)
+    for _ in range(max_steps):
+        if not (math.isfinite(value) and hess[0, 0] < 0.0 and hess[0, 0] * hess[1, 1] - hess[0, 1] ** 2 > 0.0):
+            return None  # not negative definite (or NaN)
+        step = -np.linalg.solve(hess, score)
+        for _ in range(30):  # halve until the likelihood does not fall (beyond rounding)
+            trial = _derivatives(p[0] + step[0], math.exp(p[1] + step[1]), *rows)
+            if trial[0] >= value - 1e-12 * (1.0 + abs(value)):
+                break
+            step = 0.5 * step
+        else:
+            return None
+        p = p + step
+        value, score, hess = trial
+        if np.max(np.abs(step)) <= tol * (1.0 + np.max(np.abs(p))):
+            return p, value
+    return None
+
+
 def max_likelihood_intervals(ln_low, ln_high, tol: float = 1e-12) -> tuple[float, float, float]:
-    """(mu, beta, log-likelihood) maximising :func:`interval_log_likelihood`: BFGS on
-    (mu, ln beta) with the analytic gradient, from the mean and spread of one point per
-    row (the exact value, the middle of a bracket, the finite end of a censored row),
-    then Newton steps until the step is below ``tol`` (relative)."""
+    """(mu, beta, log-likelihood) maximising :func:`interval_log_likelihood`: damped
+    Newton on (mu, ln beta) with the analytic Hessian until the step is below ``tol``
+    (relative), from the mean and spread of one point per row (the exact value, the
+    middle of a bracket, the finite end of a censored row). Where Newton fails (a
+    Hessian not negative definite on the way, or no halving of a step that climbs),
+    BFGS with the analytic gradient from the same start, then Newton from BFGS's
+    answer (which stands if Newton fails again). The maximum is unique, so the path
+    does not change the answer."""
     ln_low, ln_high = np.asarray(ln_low, float), np.asarray(ln_high, float)
     exact = _split(ln_low, ln_high)
+    rows = (ln_low[exact], ln_low[~exact], ln_high[~exact])
     point = np.where(np.isfinite(ln_low) & np.isfinite(ln_high), 0.5 * (ln_low + ln_high),
                      np.where(np.isfinite(ln_low), ln_low, ln_high))
     start = np.array([point.mean(), math.log(max(float(np.std(point)), 0.05))])
+    found = _newton(start, rows, tol)
+    if found is None:
+        def cost(p):
+            value, score, _ = _derivatives(p[0], math.exp(p[1]), *rows)
+            return -value, -score
 
-    def cost(p):
-        value, score = _value_and_score(p[0], math.exp(p[1]), ln_low, ln_high, exact)
-        return -value, -score
-
-    result = optimize.minimize(cost, start, jac=True, method="BFGS", options={"gtol": 1e-9 * max(1, ln_low.size)})
-    p = np.asarray(result.x, float)
-    # Newton with the Hessian from central differences of the gradient: from BFGS's
-    # answer it converges in a few steps to the precision of the arithmetic.
-    h = 1e-6
-    f_p, g_p = cost(p)
-    for _ in range(20):
-        hess = np.empty((2, 2))
-        for j in range(2):
-            e = np.zeros(2)
-            e[j] = h
-            hess[:, j] = (cost(p + e)[1] - cost(p - e)[1]) / (2.0 * h)
-        hess = 0.5 * (hess + hess.T)
-        if not (np.all(np.isfinite(hess)) and np.all(np.linalg.eigvalsh(hess) > 0.0)):
-            break
-        step = -np.linalg.solve(hess, g_p)
-        f_new, g_new = cost(p + step)
-        if not f_new <= f_p + 1e-12 * (1.0 + abs(f_p)):
-            break  # not a descent: BFGS's answer stands
-        p, f_p, g_p = p + step, f_new, g_new
-        if np.max(np.abs(step)) <= tol * (1.0 + np.max(np.abs(p))):
-            break
-    value = -f_p
+        result = optimize.minimize(cost, start, jac=True, method="BFGS",
+                                   options={"gtol": 1e-9 * max(1, ln_low.size)})
+        p = np.asarray(result.x, float)
+        found = _newton(p, rows, tol) or (p, -cost(p)[0])
+    p, value = found
     if not (math.isfinite(value) and np.all(np.isfinite(p))):
         raise FitError("the maximum-likelihood fit did not converge")
     return float(p[0]), math.exp(p[1]), value
