@@ -17,7 +17,8 @@ from scipy import stats as scipy_stats
 from voussoir_post.cli.post import main
 from voussoir_post.earthquake.ida import IdaResult, read_ida
 from voussoir_post.earthquake.im_fragility import (MEASURES, RecordMotion, compare_measures, fit_measure,
-                                                   frequency_parameter_rad_s, record_motions, sufficiency)
+                                                   frequency_parameter_rad_s, record_motions, record_pulses,
+                                                   sufficiency)
 from voussoir_post.errors import RecordsError
 from voussoir_post.earthquake.record_sets import write_at2
 
@@ -186,6 +187,26 @@ def test_a_pulse_record_of_the_near_field_set_brings_its_period():
     motions = record_motions(ida)
     assert motions["NORTHR/RRS_032"].pulse == 1 and motions["NORTHR/RRS_032"].pulse_period_s == 1.25
     assert math.isnan(motions["ERZIKAN/ERZ_032"].pulse_period_s)
+
+
+def test_the_rows_own_pulse_columns_come_before_the_records():
+    """A file with the pulse and pulse_period_s columns: the sufficiency takes them (here
+    other than the records' own, which a file without them falls back to)."""
+    ida, motions, _ = synthetic_ida()
+    n = ida.n_rows
+    motions = {name: RecordMotion(m.name, m.dt_s, m.accel_m_s2, pulse=0, pulse_period_s=9.0)
+               for name, m in motions.items()}
+    assert np.all(record_pulses(ida, motions)[1] == 9.0) and np.all(record_pulses(ida, motions)[0] == 0.0)
+    rng = np.random.default_rng(5)
+    ida.pulse = np.where(np.arange(n) % 2 == 1, 1.0, 0.0)
+    ida.pulse_period_s = np.where(ida.pulse == 1.0, rng.uniform(1.0, 6.0, n), np.nan)
+    pulse, tp = record_pulses(ida, motions)
+    np.testing.assert_array_equal(pulse, ida.pulse)
+    np.testing.assert_array_equal(tp, ida.pulse_period_s)
+    result = compare_measures(ida, ["pga"], sa_period_s=0.5, motions=motions, n_bootstrap=0)
+    s = result.fits[0].sufficiency["ln_pulse_frequency_ratio"]
+    assert s.n == n // 2
+    assert result.fits[0].sufficiency["pulse"].n == n
 
 
 # ------------------------------------------------------------------ the command

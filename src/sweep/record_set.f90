@@ -9,7 +9,8 @@
 !> (no cell holds a comma): file (relative to the set's folder, or absolute), record,
 !> event, station, pair, component (1 or 2 within the pair), magnitude, distance_km,
 !> vs30_m_s, pulse, pulse_period_s, dt_s, npts, pga_m_s2; `nan` for an unknown number.
-!> The columns read here are found by name, so more may follow.
+!> The columns read here are found by name, so more may follow. `pulse` is 1 (a velocity
+!> pulse), 0 (none) or nan (not classified); `pulse_period_s` is nan without a pulse.
 module voussoir_record_set
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use voussoir_kinds, only: dp
@@ -31,8 +32,8 @@ module voussoir_record_set
   character(len=*), parameter :: components_both = 'both', components_first = 'first'
   character(len=16), parameter :: components_names(2) = [character(len=16) :: components_both, components_first]
   !> The columns the sweep reads, in the order of `record_set_t`'s numbers.
-  character(len=16), parameter :: needed(8) = [character(len=16) :: 'file', 'record', 'event', 'pair', &
-    'component', 'magnitude', 'distance_km', 'pga_m_s2']
+  character(len=16), parameter :: needed(11) = [character(len=16) :: 'file', 'record', 'event', 'pair', &
+    'component', 'magnitude', 'distance_km', 'pga_m_s2', 'vs30_m_s', 'pulse', 'pulse_period_s']
   integer, parameter :: text_len = 512
 
   !> The components chosen from a set, with their metadata.
@@ -42,6 +43,9 @@ module voussoir_record_set
     character(len=text_len), allocatable :: names(:)  !! the record's name in the set
     character(len=text_len), allocatable :: events(:) !! earthquake and year
     real(dp), allocatable :: magnitude(:), distance_km(:), index_pga_m_s2(:)
+    real(dp), allocatable :: vs30_m_s(:)        !! the site's time-averaged shear-wave speed, top 30 m
+    real(dp), allocatable :: pulse(:)           !! 1 a velocity pulse, 0 none, NaN not classified
+    real(dp), allocatable :: pulse_period_s(:)  !! Tp of the pulse; NaN without one or not published
   end type record_set_t
 
 contains
@@ -86,7 +90,7 @@ contains
       return
     end if
     allocate (set%files(0), set%names(0), set%events(0), set%magnitude(0), set%distance_km(0), &
-              set%index_pga_m_s2(0))
+              set%index_pga_m_s2(0), set%vs30_m_s(0), set%pulse(0), set%pulse_period_s(0))
     open (newunit=unit, file=index_path, status='old', action='read', iostat=ios, iomsg=iomsg)
     if (ios /= 0) then
       call fail(status, index_path//': cannot open: '//trim(iomsg))
@@ -123,7 +127,16 @@ contains
       set%magnitude = [set%magnitude, real_cell(cells(col(6)), 'magnitude', where, status)]
       set%distance_km = [set%distance_km, real_cell(cells(col(7)), 'distance_km', where, status)]
       set%index_pga_m_s2 = [set%index_pga_m_s2, real_cell(cells(col(8)), 'pga_m_s2', where, status)]
+      set%vs30_m_s = [set%vs30_m_s, real_cell(cells(col(9)), 'vs30_m_s', where, status)]
+      set%pulse = [set%pulse, real_cell(cells(col(10)), 'pulse', where, status)]
+      set%pulse_period_s = [set%pulse_period_s, real_cell(cells(col(11)), 'pulse_period_s', where, status)]
       if (.not. status%ok) exit
+      associate (p => set%pulse(size(set%pulse)))
+        if (p == p .and. p /= 0.0_dp .and. p /= 1.0_dp) then
+          call fail(status, where//": pulse = '"//trim(cells(col(10)))//"' is not 1, 0 or nan")
+          exit
+        end if
+      end associate
     end do
     close (unit)
     if (.not. status%ok) return

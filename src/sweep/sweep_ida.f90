@@ -55,6 +55,9 @@ module voussoir_sweep_ida
     !> and closest distance to the rupture; '' and NaN for files of record_files.
     character(len=512), allocatable :: events(:)
     real(dp), allocatable :: magnitude(:), distance_km(:)
+    !> Of a packaged set too: the site's Vs30 [m/s], the pulse classification (1, 0, NaN
+    !> not classified) and the pulse period [s] (NaN without a pulse); NaN for record_files.
+    real(dp), allocatable :: vs30_m_s(:), pulse(:), pulse_period_s(:)
     integer, allocatable :: polarity(:)             !! &motion record_polarity of each: 1, or -1 reversed
   end type ida_records_t
 
@@ -71,10 +74,14 @@ contains
     records%n = size(given)
     allocate (records%files(records%n), records%given(records%n), records%pga_m_s2(records%n), &
               records%pgv_m_s(records%n), records%duration_s(records%n), records%events(records%n), &
-              records%magnitude(records%n), records%distance_km(records%n))
+              records%magnitude(records%n), records%distance_km(records%n), records%vs30_m_s(records%n), &
+              records%pulse(records%n), records%pulse_period_s(records%n))
     records%events = ''
     records%magnitude = ieee_value(1.0_dp, ieee_quiet_nan)
     records%distance_km = records%magnitude
+    records%vs30_m_s = records%magnitude
+    records%pulse = records%magnitude
+    records%pulse_period_s = records%magnitude
     do k = 1, records%n
       records%given(k) = given(k)
       records%files(k) = resolve_path(path, given(k))
@@ -97,6 +104,9 @@ contains
     records%events = set%events
     records%magnitude = set%magnitude
     records%distance_km = set%distance_km
+    records%vs30_m_s = set%vs30_m_s
+    records%pulse = set%pulse
+    records%pulse_period_s = set%pulse_period_s
     allocate (records%pga_m_s2(set%n), records%pgv_m_s(set%n), records%duration_s(set%n))
     call read_records(path, "record_set = '"//trim(name)//"' record", records, status)
   end subroutine read_set_records
@@ -174,6 +184,9 @@ contains
       records%events = records%events(twice)
       records%magnitude = records%magnitude(twice)
       records%distance_km = records%distance_km(twice)
+      records%vs30_m_s = records%vs30_m_s(twice)
+      records%pulse = records%pulse(twice)
+      records%pulse_period_s = records%pulse_period_s(twice)
       records%polarity = [(merge(1, -1, modulo(k, 2) == 1), k = 1, 2*records%n)]
       records%n = 2*records%n
     end select

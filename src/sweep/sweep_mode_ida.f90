@@ -7,7 +7,7 @@
 module voussoir_sweep_mode_ida
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
-  use voussoir_text, only: itoa, fmt_real, fmt_exact, fmt_exact_list
+  use voussoir_text, only: itoa, fmt_real, fmt_exact, fmt_exact_list, join_words
   use voussoir_config, only: config_t
   use voussoir_input_range, only: need_range
   use voussoir_assembly, only: assembly_t
@@ -21,7 +21,7 @@ module voussoir_sweep_mode_ida
   use voussoir_sweep_mode, only: sweep_plan_t, job_param_set
   use voussoir_sweep_ida, only: record_label
   use voussoir_sweep_mode_records, only: record_mode_t, job_record, check_records_and_samples, records_settings_text, &
-                                        record_csv_cells
+                                        record_csv_cells, record_site_cells, record_site_columns
   implicit none
   private
 
@@ -133,9 +133,9 @@ contains
     call table_init(t, [character(len=name_len) :: 'job', 'param_set', 'record', 'scale_stood', &
                         'scale_threshold', 'pga_threshold_m_s2', 'pgv_threshold_m_s', 'censored', &
                         'non_monotonic', 'n_runs', 'mean_iterations', 'wall_time_s', 'failed', 'magnitude', &
-                        'distance_km', 'pga_m_s2', 'static_capacity_m_s2'], &
+                        'distance_km', 'pga_m_s2', 'static_capacity_m_s2', record_site_columns], &
                     [.true., .true., .true., .false., .false., .false., .false., .true., .true., .true., &
-                     .false., .false., .true., .false., .false., .false., .false.])
+                     .false., .false., .true., .false., .false., .false., .false., .false., .false., .false.])
   end function results_table
 
   !> The row of a finished search: one with no collapse up to scale_max is censored, its
@@ -176,7 +176,8 @@ contains
     character(len=*), intent(in) :: names
     character(len=:), allocatable :: text
     text = 'record,param_set'//names//',scale_stood,scale_threshold,pga_threshold_m_s2,pgv_threshold_m_s,'// &
-           'censored,non_monotonic,n_runs,failed,event,magnitude,distance_km,pga_m_s2,static_capacity_m_s2'
+           'censored,non_monotonic,n_runs,failed,event,magnitude,distance_km,pga_m_s2,static_capacity_m_s2,'// &
+           join_words(record_site_columns, ',')
   end function csv_header
 
   function csv_line(this, plan, results, r, set_columns) result(line)
@@ -195,7 +196,7 @@ contains
            itoa(nint(table_value(results, 'censored', r)))//','//itoa(nint(table_value(results, 'non_monotonic', r)))// &
            ','//itoa(nint(table_value(results, 'n_runs', r)))//','//itoa(nint(table_value(results, 'failed', r)))// &
            record_csv_cells(plan, rec)//','// &
-           fmt_exact(table_value(results, 'static_capacity_m_s2', r))
+           fmt_exact(table_value(results, 'static_capacity_m_s2', r))//record_site_cells(plan, rec)
   end function csv_line
 
   !> "<record>: threshold scale ... (PGA ... g), n runs".

@@ -10,7 +10,7 @@
 module voussoir_sweep_mode_msa
   use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
-  use voussoir_text, only: itoa, fmt_real, fmt_exact, fmt_exact_list
+  use voussoir_text, only: itoa, fmt_real, fmt_exact, fmt_exact_list, join_words
   use voussoir_config, only: config_t
   use voussoir_input_range, only: need_range
   use voussoir_threshold_search, only: threshold_result_t, run_outcome_t
@@ -20,7 +20,8 @@ module voussoir_sweep_mode_msa
   use voussoir_sweep_mode, only: sweep_plan_t, job_param_set
   use voussoir_sweep_ida, only: record_label
   use voussoir_sweep_mode_records, only: record_mode_t, job_record, check_records_and_samples, records_settings_text, &
-                                         records_file_items, record_csv_cells
+                                         records_file_items, record_csv_cells, record_site_cells, &
+                                         record_site_columns
   use voussoir_sweep_mode_ida, only: scale_warn_low, scale_warn_high
   implicit none
   private
@@ -142,9 +143,9 @@ contains
     call table_init(t, [character(len=name_len) :: 'job', 'param_set', 'record', 'level_g', 'scale', 'collapsed', &
                         'collapse_time_s', 'peak_crown_disp_m', 'mean_iterations', 'nonconverged_steps', &
                         'wall_time_s', 'failed', 'magnitude', 'distance_km', 'pga_m_s2', 'static_capacity_m_s2', &
-                        'max_joint_opening_mm', 'residual_drift_mm'], &
+                        'max_joint_opening_mm', 'residual_drift_mm', record_site_columns], &
                     [.true., .true., .true., .false., .false., .true., .false., .false., .false., .true., &
-                     .false., .true., .false., .false., .false., .false., .false., .false.])
+                     .false., .true., .false., .false., .false., .false., .false., .false., .false., .false., .false.])
   end function results_table
 
   !> The row of the job's one run.
@@ -193,7 +194,7 @@ contains
     character(len=:), allocatable :: text
     text = 'record,param_set'//names//',level_g,scale,collapsed,failed,event,magnitude,distance_km,pga_m_s2,'// &
            'collapse_time_s,peak_crown_disp_m,mean_iterations,static_capacity_m_s2,max_joint_opening_mm,'// &
-           'residual_drift_mm'
+           'residual_drift_mm,'//join_words(record_site_columns, ',')
   end function csv_header
 
   function csv_line(this, plan, results, r, set_columns) result(line)
@@ -214,7 +215,7 @@ contains
            fmt_exact(table_value(results, 'mean_iterations', r))//','// &
            fmt_exact(table_value(results, 'static_capacity_m_s2', r))//','// &
            fmt_exact(table_value(results, 'max_joint_opening_mm', r))//','// &
-           fmt_exact(table_value(results, 'residual_drift_mm', r))
+           fmt_exact(table_value(results, 'residual_drift_mm', r))//record_site_cells(plan, rec)
   end function csv_line
 
   !> None per row: the stripes are summed up after the runs (closing_check).

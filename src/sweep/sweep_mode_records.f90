@@ -23,8 +23,14 @@ module voussoir_sweep_mode_records
   implicit none
   private
 
+  !> The columns of a record's site and pulse (from its set's index; NaN for record_files),
+  !> after the others of a record mode's rows: they came later, and readers of the files
+  !> find the earlier columns where they were.
+  character(len=name_len), parameter :: record_site_columns(3) = [character(len=name_len) :: 'vs30_m_s', 'pulse', &
+    'pulse_period_s']
+
   public :: record_mode_t, job_record, check_records_and_samples, records_settings_text, &
-            records_file_items, record_csv_cells
+            records_file_items, record_csv_cells, record_site_cells, record_site_columns
 
   !> A mode whose runs play the records of &sweep on model samples.
   type, abstract, extends(sweep_mode_t) :: record_mode_t
@@ -242,7 +248,8 @@ contains
   end subroutine prepare_sets
 
   !> The columns every record mode's row carries of its record and sample: magnitude,
-  !> distance_km, the record's own pga_m_s2 and the sample's static_capacity_m_s2.
+  !> distance_km, the record's own pga_m_s2, the sample's static_capacity_m_s2, and the
+  !> record's record_site_columns.
   subroutine set_record_columns(this, plan, job, results, row)
     class(record_mode_t), intent(in) :: this
     type(sweep_plan_t), intent(in) :: plan
@@ -255,6 +262,9 @@ contains
     call table_set(results, row, 'distance_km', plan%records%distance_km(rec))
     call table_set(results, row, 'pga_m_s2', plan%records%pga_m_s2(rec))
     call table_set(results, row, 'static_capacity_m_s2', this%capacity_m_s2(job_param_set(plan, job)))
+    call table_set(results, row, 'vs30_m_s', plan%records%vs30_m_s(rec))
+    call table_set(results, row, 'pulse', plan%records%pulse(rec))
+    call table_set(results, row, 'pulse_period_s', plan%records%pulse_period_s(rec))
   end subroutine set_record_columns
 
   !> The CSV cells of record `rec`'s metadata: ',event,magnitude,distance_km,pga_m_s2'.
@@ -265,6 +275,18 @@ contains
     text = ','//trim(plan%records%events(rec))//','//fmt_exact(plan%records%magnitude(rec))//','// &
            fmt_exact(plan%records%distance_km(rec))//','//fmt_exact(plan%records%pga_m_s2(rec))
   end function record_csv_cells
+
+  !> The CSV cells of record `rec`'s site and pulse, the last of a record mode's line:
+  !> ',vs30_m_s,pulse,pulse_period_s' (pulse 1, 0 or nan).
+  function record_site_cells(plan, rec) result(text)
+    type(sweep_plan_t), intent(in) :: plan
+    integer, intent(in) :: rec
+    character(len=:), allocatable :: text
+    character(len=:), allocatable :: pulse
+    pulse = 'nan'
+    if (plan%records%pulse(rec) == plan%records%pulse(rec)) pulse = itoa(nint(plan%records%pulse(rec)))
+    text = ','//fmt_exact(plan%records%vs30_m_s(rec))//','//pulse//','//fmt_exact(plan%records%pulse_period_s(rec))
+  end function record_site_cells
 
   !> The records of a packaged set by name; with model_samples_file, the samples it gave
   !> (their number, their columns and a digest of their values): another content of the

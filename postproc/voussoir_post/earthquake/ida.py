@@ -11,7 +11,9 @@ that ended by a run that failed (``failed`` = 1) has no threshold: it is kept, w
 largest scale that stood before the failure as ``scale_stood`` (voussoir-sweep writes it;
 NaN when nothing stood; in a file of an older version, NaN there is read from the HDF5
 file's ``/runs``), a lower bound too. With a packaged record set (``&sweep record_set``),
-each row also carries its record's event, magnitude, distance and own PGA.
+each row also carries its record's event, magnitude, distance, own PGA, site Vs30, pulse
+classification and pulse period (:data:`RECORD_COLUMNS`; NaN where the set does not tell
+and for record files; absent from files of versions before them).
 
 :meth:`IdaResult.intensity_brackets` turns the rows into what the fragility fit takes:
 each row's collapse intensity between the intensity at ``scale_stood`` and that at
@@ -34,7 +36,8 @@ from ..errors import ResultsError
 from ..namelist import parse_namelist
 from ..readers.csv_table import read_csv_table
 
-__all__ = ["IdaResult", "IDA_COLUMNS", "read_ida", "FIT_BRACKET", "FIT_CENSORED", "FIT_FAILED", "FIT_LEFT_OUT"]
+__all__ = ["IdaResult", "IDA_COLUMNS", "RECORD_COLUMNS", "read_ida", "FIT_BRACKET", "FIT_CENSORED", "FIT_FAILED",
+           "FIT_LEFT_OUT"]
 
 #: The columns every IDA CSV has (others, e.g. the sampled parameters, are kept apart).
 IDA_COLUMNS = ("record", "param_set", "scale_stood", "scale_threshold", "pga_threshold_m_s2",
@@ -46,7 +49,13 @@ _OPTIONAL_INT = ("non_monotonic", "n_runs", "failed")
 _OPTIONAL_TEXT = ("event",)
 #: Optional numbers of each row's record (voussoir-sweep writes them): moment magnitude,
 #: closest distance to the rupture [km] (NaN unknown), and its own PGA at scale 1 [m/s2].
-_OPTIONAL_REAL = ("magnitude", "distance_km", "pga_m_s2", "static_capacity_m_s2")
+#: Optional numbers of each row's record from its set's index, after the others
+#: (voussoir-sweep writes them, NaN unknown and for record files): the site's Vs30 [m/s],
+#: the pulse classification (1 a pulse, 0 none, NaN not classified) and the pulse period
+#: Tp [s] (Shahi & Baker 2014; NaN without a pulse or not published). Files of older
+#: versions lack them.
+RECORD_COLUMNS = ("vs30_m_s", "pulse", "pulse_period_s")
+_OPTIONAL_REAL = ("magnitude", "distance_km", "pga_m_s2", "static_capacity_m_s2") + RECORD_COLUMNS
 
 #: How a row enters the fragility fit (:attr:`IdaResult.fit_as`).
 FIT_BRACKET = "bracket"  #: IM_c in (IM at scale_stood, IM at scale_threshold]
@@ -85,6 +94,9 @@ class IdaResult:
     record_set: str = ""  #: the packaged set the records came from ('' : record files, or unknown)
     #: lambda g of each row's model by limit analysis [m/s2], where its search started (when the file has it)
     static_capacity_m_s2: np.ndarray | None = None
+    vs30_m_s: np.ndarray | None = None  #: the site's Vs30 of each row's record (NaN: unknown), when the file has it
+    pulse: np.ndarray | None = None  #: float: 1 a pulse, 0 none, NaN not classified; when the file has it
+    pulse_period_s: np.ndarray | None = None  #: Tp of the record's pulse (NaN: none or unknown), when the file has it
 
     def __post_init__(self):
         if self.failed is None:
@@ -238,7 +250,7 @@ def _read_csv(path: str) -> IdaResult:
     return IdaResult(
         failed=arr["failed"].astype(bool) if "failed" in arr else None, event=_events(data.get("event"), data["record"]),
         magnitude=arr.get("magnitude"), distance_km=arr.get("distance_km"), unit_pga_m_s2=arr.get("pga_m_s2"),
-        static_capacity_m_s2=arr.get("static_capacity_m_s2"),
+        static_capacity_m_s2=arr.get("static_capacity_m_s2"), **record_columns(arr),
         path=path, record=data["record"], param_set=arr["param_set"].astype(int),
         scale_stood=arr["scale_stood"], scale_threshold=arr["scale_threshold"],
         pga_m_s2=arr["pga_threshold_m_s2"], pgv_m_s=arr["pgv_threshold_m_s"],
@@ -248,11 +260,17 @@ def _read_csv(path: str) -> IdaResult:
         parameters={name: arr[name] for name in extra})
 
 
+def record_columns(columns: dict) -> dict[str, np.ndarray | None]:
+    """The RECORD_COLUMNS of ``columns`` as float arrays, None where a file lacks one."""
+    return {name: None if columns.get(name) is None else np.asarray(columns[name], dtype=float)
+            for name in RECORD_COLUMNS}
+
+
 @dataclass
 class SweepRows:
     """What an IDA and an MSA file share, read by :func:`read_sweep_rows`: the record
-    files, the /results columns, each row's record index, its model sample's parameters,
-    its event, and the file's configuration."""
+    files, the /results columns (with RECORD_COLUMNS where the file has them), each row's
+    record index, its model sample's parameters, its event, and the file's configuration."""
 
     files: list[str]
     columns: dict[str, np.ndarray]
@@ -268,7 +286,8 @@ def read_sweep_rows(h5: h5py.File, path: str, mode: str, label: str, required: t
                     optional: tuple[str, ...]) -> SweepRows:
     """The rows of a voussoir-sweep file of `mode` ('ida', 'msa'; `label` names it in
     messages, 'IDA'): the /results columns `required` (each refused when missing) and
-    `optional` (left out when missing), of one length, their records among the file's."""
+    `optional` (left out when missing) and RECORD_COLUMNS (left out when missing), of
+    one length, their records among the file's."""
     producer = _text(h5.attrs.get("producer", ""))
     if producer != "voussoir-sweep":
         raise ResultsError(path, f"written by '{producer}', but an {label} comes from 'voussoir-sweep'")
@@ -279,6 +298,7 @@ def read_sweep_rows(h5: h5py.File, path: str, mode: str, label: str, required: t
         raise ResultsError(path, "missing root attribute 'record_files'")
     files = [f for f in _text(h5.attrs["record_files"]).split("\n") if f.strip()]
     columns = {}
+    optional = optional + tuple(name for name in RECORD_COLUMNS if name not in optional)
     for name in required + optional:
         key = f"results/{name}"
         if key not in h5:
@@ -336,6 +356,7 @@ def _read_h5(path: str) -> IdaResult:
         failed=failed, unit_pga_m_s2=units.get("record_pga_m_s2"), unit_pgv_m_s=units.get("record_pgv_m_s"),
         magnitude=units.get("record_magnitude"), distance_km=units.get("record_distance_km"), event=rows.events,
         record_set=rows.record_set, static_capacity_m_s2=columns.get("static_capacity_m_s2"),
+        **record_columns(columns),
         path=path, record=[files[i] for i in index], param_set=columns["param_set"].astype(int),
         scale_stood=stood, scale_threshold=columns["scale_threshold"].astype(float),
         pga_m_s2=columns["pga_threshold_m_s2"].astype(float), pgv_m_s=columns["pgv_threshold_m_s"].astype(float),

@@ -21,7 +21,8 @@ measure's power (2 for the Arias intensity). Besides the measures of the record 
   constant of R is a choice: it shifts ln(omega_g / p) alike on every row of one
   arch and leaves the regression's slope as it is;
 - the pulse's frequency ratio omega_p / p, omega_p = 2 pi / Tp with Tp the record's
-  pulse period (Shahi & Baker 2014, :mod:`.record_sets`): the group that governs a
+  pulse period (Shahi & Baker 2014, :mod:`.record_sets`; the rows' pulse_period_s
+  column, or in a file written before it the packaged set's): the group that governs a
   rocking block under a pulse (Dimitrakopoulos & DeJong 2012), a covariate of the
   records with a pulse only (the FEMA P695 near-field pulse records; the others have no
   Tp and are left out of its regression).
@@ -365,6 +366,20 @@ def bootstrap_efficiency(fits: list[MeasureFit], clusters, events=None, n_resamp
     return len(betas)
 
 
+def record_pulses(ida: IdaResult, motions: dict[str, RecordMotion]) -> tuple[np.ndarray, np.ndarray]:
+    """(pulse, Tp [s]) per row: the rows' own pulse and pulse_period_s columns (written by
+    voussoir-sweep from its set's index), each where the file has it; in a file written
+    before them, the record's (:class:`RecordMotion`, from the packaged set). NaN: not
+    classified, no pulse, or no period published."""
+    pulse = ida.pulse
+    if pulse is None:
+        pulse = [math.nan if motions[r].pulse is None else float(motions[r].pulse) for r in ida.record]
+    tp = ida.pulse_period_s
+    if tp is None:
+        tp = [motions[r].pulse_period_s for r in ida.record]
+    return np.asarray(pulse, float), np.asarray(tp, float)
+
+
 def compare_measures(ida: IdaResult, measures: list[str], sa_period_s: float = 1.0,
                      avgsa_range_s: tuple[float, float] = (0.2, 3.0),
                      motions: dict[str, RecordMotion] | None = None, n_bootstrap: int = 200,
@@ -385,14 +400,13 @@ def compare_measures(ida: IdaResult, measures: list[str], sa_period_s: float = 1
             covariates[name] = np.asarray(values, float)
         else:
             skipped[name] = "the rows do not give it"
-    pulse = np.array([math.nan if motions[r].pulse is None else float(motions[r].pulse) for r in ida.record])
+    pulse, tp = record_pulses(ida, motions)
     if np.sum(np.isfinite(pulse)) >= 3:
         covariates["pulse"] = pulse
     else:
         skipped["pulse"] = "the records are not classified (only the FEMA P695 near-field sets are)"
     p = frequency_parameter_rad_s(ida)
     no_arch = "the file does not give the arch (r_ext_m, thickness_m): an HDF5 file does"
-    tp = np.array([motions[r].pulse_period_s for r in ida.record], float)
     if p is None:
         skipped["ln_frequency_ratio"] = no_arch
     else:

@@ -28,7 +28,7 @@ import numpy as np
 
 from ..errors import ResultsError
 from ..readers.csv_table import read_csv_table
-from .ida import _events, _text, read_sweep_rows
+from .ida import RECORD_COLUMNS, _events, _text, read_sweep_rows, record_columns
 
 __all__ = ["MsaResult", "MSA_COLUMNS", "LIMIT_STATES", "read_msa", "is_msa"]
 
@@ -38,9 +38,9 @@ _TEXT = ("record", "event")
 _FLAGS = ("collapsed", "failed")
 #: Optional numbers of each row: its record's magnitude, distance [km] and own PGA [m/s2],
 #: the run's collapse time [s], peak crown displacement [m] and mean NLGS iterations, and
-#: lambda g of its model [m/s2].
+#: lambda g of its model [m/s2]; its record's Vs30, pulse and pulse period (RECORD_COLUMNS).
 _OPTIONAL_REAL = ("magnitude", "distance_km", "pga_m_s2", "collapse_time_s", "peak_crown_disp_m", "mean_iterations",
-                  "static_capacity_m_s2", "max_joint_opening_mm", "residual_drift_mm")
+                  "static_capacity_m_s2", "max_joint_opening_mm", "residual_drift_mm") + RECORD_COLUMNS
 #: The limit states a run's outcome can be read against: its column (None: collapsed) and
 #: what exceeding it means.
 LIMIT_STATES = {"collapse": (None, "collapse"),
@@ -68,6 +68,9 @@ class MsaResult:
     record_set: str = ""
     max_joint_opening_mm: np.ndarray | None = None  #: the run's largest joint opening [mm]
     residual_drift_mm: np.ndarray | None = None  #: the crown's horizontal drift from the table at the end [mm]
+    vs30_m_s: np.ndarray | None = None  #: the site's Vs30 of the run's record (NaN: unknown), when the file has it
+    pulse: np.ndarray | None = None  #: float: 1 a pulse, 0 none, NaN not classified; when the file has it
+    pulse_period_s: np.ndarray | None = None  #: Tp of the record's pulse (NaN: none or unknown), when the file has it
 
     @property
     def n_rows(self) -> int:
@@ -200,7 +203,7 @@ def _read_csv(path: str) -> MsaResult:
                      failed=arr["failed"].astype(bool), event=_events(data.get("event"), data["record"]),
                      pga_m_s2=arr.get("pga_m_s2"), static_capacity_m_s2=arr.get("static_capacity_m_s2"),
                      max_joint_opening_mm=arr.get("max_joint_opening_mm"), residual_drift_mm=arr.get("residual_drift_mm"),
-                     parameters={name: arr[name] for name in extra})
+                     **record_columns(arr), parameters={name: arr[name] for name in extra})
 
 
 def _read_h5(path: str) -> MsaResult:
@@ -217,7 +220,7 @@ def _read_h5(path: str) -> MsaResult:
                      static_capacity_m_s2=columns.get("static_capacity_m_s2"), parameters=rows.parameters,
                      config=rows.config, code_version=rows.code_version, record_set=rows.record_set,
                      max_joint_opening_mm=_real(columns.get("max_joint_opening_mm")),
-                     residual_drift_mm=_real(columns.get("residual_drift_mm")))
+                     residual_drift_mm=_real(columns.get("residual_drift_mm")), **record_columns(columns))
 
 
 def _real(values) -> np.ndarray | None:

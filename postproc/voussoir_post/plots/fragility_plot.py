@@ -386,8 +386,10 @@ def fragility_data(ida: IdaResult, n_bootstrap: int = 400, seed: int = 20261124,
     pgv = fragility_of("PGV", "m/s", *ida.intensity_brackets("pgv"), clusters, events, cluster_by, n_bootstrap,
                        seed + 1, fit_as, ida.param_set, im_max.get("pgv"))
     non_monotonic = ida.non_monotonic
-    # the records' own numbers, when the file has them (a packaged set: magnitude, distance)
-    metadata = {name: values for name, values in (("magnitude", ida.magnitude), ("distance_km", ida.distance_km))
+    # the records' own numbers, when the file has them (a packaged set: magnitude, distance,
+    # the site's Vs30, the pulse period of a pulse record)
+    metadata = {name: values for name, values in (("magnitude", ida.magnitude), ("distance_km", ida.distance_km),
+                                                  ("vs30_m_s", ida.vs30_m_s), ("pulse_period_s", ida.pulse_period_s))
                 if values is not None and np.any(np.isfinite(values))}
     rows = []
     for k in range(ida.n_rows):
