@@ -11,6 +11,8 @@ program test_sweep_plan
   use voussoir_sweep_jobs, only: job_param_set, job_frequency_hz, job_amplitude_m, job_run_config
   use voussoir_sweep_mode_records, only: job_record
   use voussoir_assert, only: assert_true, assert_close, assert_summary
+  use voussoir_text, only: itoa
+  use voussoir_version, only: model_version
   implicit none
 
   character(len=*), parameter :: base_groups = &
@@ -26,6 +28,7 @@ program test_sweep_plan
   call test_ida_refusals()
   call test_ida_samples_file()
   call test_ida_samples_provenance()
+  call test_ida_samples_model_version()
   call test_msa()
   call test_msa_refusals()
   call test_ida_polarity()
@@ -340,12 +343,57 @@ contains
                      'provenance: a hand-made file is read, with a note: "'//plan%note//'"')
   end subroutine test_ida_samples_provenance
 
-  !> prov.csv: the comment lines `first` and `second`, then two samples.
-  subroutine write_provenance(first, second)
+  !> The `# model version:` and `# code:` lines of a samples file: this code's model
+  !> version is read and its code line kept for the sweep's file; another version, a
+  !> format line without a model version, and a version that is not a whole number are
+  !> refused, with what to do; a hand-made file (no format line) needs none.
+  subroutine test_ida_samples_model_version()
+    type(sweep_plan_t) :: plan
+    type(status_t) :: status
+    character(len=*), parameter :: group = "&sweep mode = 'ida', record_files = 'rec_a.csv', "// &
+                                           "model_samples_file = 'prov.csv' /"
+    character(len=*), parameter :: format_1 = '# format: voussoir posterior samples 1', &
+      a156 = '# nominal arch: embrace_deg = 156.0, n_voussoirs = 13, r_ext_m = 0.508, thickness_m = 0.071, '// &
+             'width_m = 0.145, density_kg_m3 = 700.0', code = '# code: voussoir-post 9.8.7'
+    call write_records()
+    call write_provenance(format_1, a156, '# model version: '//itoa(model_version), code)
+    call plan_of('model_same', group, plan, status)
+    call assert_true(status%ok .and. plan%n_sets == 2 .and. plan%note == '', &
+                     'model version: this code''s version is read, with no note: '//trim(status%message))
+    if (.not. status%ok) return
+    call assert_true(plan%samples_code == 'voussoir-post 9.8.7', &
+                     'model version: the code line is kept for the file: "'//plan%samples_code//'"')
+    call write_provenance(format_1, a156, '# model version: '//itoa(model_version + 1), code)
+    call refused('model_other', group, 'prov.csv:3: written by a code whose model is version '// &
+                 itoa(model_version + 1)//'; this code''s is '//itoa(model_version)// &
+                 ': rerun voussoir-diagnose on the campaign')
+    call write_provenance(format_1, a156, code)
+    call refused('model_missing', group, "prov.csv: format 'voussoir posterior samples 1' but no '# model "// &
+                 "version:' line: written by a code from before model versions (this code's model is version "// &
+                 itoa(model_version)//'): rerun voussoir-diagnose on the campaign')
+    call write_provenance(format_1, a156, '# model version: 1b')
+    call refused('model_text', group, "prov.csv:3: model version '1b' is not a whole number")
+    call write_provenance('# made by hand', '# friction only', '# no model version either')
+    call plan_of('model_hand', group, plan, status)
+    call assert_true(status%ok .and. index(plan%note, 'could not be checked') > 0 .and. plan%samples_code == '', &
+                     'model version: a hand-made file needs none (a note, no code line)')
+  end subroutine test_ida_samples_model_version
+
+  !> prov.csv: the comment lines `first` and `second` (then `third` and `fourth`, where
+  !> given; without `third` this code's `# model version:` line), then two samples.
+  subroutine write_provenance(first, second, third, fourth)
     character(len=*), intent(in) :: first, second
+    character(len=*), intent(in), optional :: third, fourth
     integer :: unit
     open (newunit=unit, file='prov.csv', status='replace', action='write')
-    write (unit, '(a)') first, second, 'sample,model,friction,thickness_m', '0,none,0.5,0.071', '1,friction,0.4,0.071'
+    write (unit, '(a)') first, second
+    if (present(third)) then
+      write (unit, '(a)') third
+    else
+      write (unit, '(a)') '# model version: '//itoa(model_version)
+    end if
+    if (present(fourth)) write (unit, '(a)') fourth
+    write (unit, '(a)') 'sample,model,friction,thickness_m', '0,none,0.5,0.071', '1,friction,0.4,0.071'
     close (unit)
   end subroutine write_provenance
 

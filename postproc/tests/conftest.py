@@ -165,7 +165,8 @@ def drawn_figures(monkeypatch) -> list:
         figures.append(fig)
         return fig
 
-    plots = ("sequence", "envelope", "compare", "history", "mechanism", "fragility_plot", "fragility_compare")
+    plots = ("sequence", "envelope", "compare", "history", "mechanism", "fragility_plot", "fragility_compare",
+             "fragility_lambda_g")
     for name in [f"plots.{p}" for p in plots] + ["diagnosis.figures"]:
         module = importlib.import_module(f"voussoir_post.{name}")
         if hasattr(module, "new_figure"):

@@ -23,6 +23,7 @@ from voussoir_post.diagnosis.observations import PairObservation
 from voussoir_post.plots.drawing import new_figure, provenance, save_png
 from voussoir_post.readers.campaign import Record, Test as CampaignTest
 from test_fragility_ida import SCALES, csv_fixture
+from test_fragility_lambda_g import CAPACITIES, ratio_fixture
 
 
 def test_the_check_sees_an_overlap_and_a_cut(tmp_path):
@@ -64,6 +65,19 @@ def test_fragility_text(tmp_path, drawn_figures, compare):
     assert drawn_figures
     for fig in drawn_figures:
         assert text_clashes(fig) == []
+
+
+@pytest.mark.parametrize("compare", [False, True])
+def test_fragility_lambda_g_text(tmp_path, drawn_figures, compare):
+    """The dimensionless figure (--axis pga-lambda-g), alone and with --compare."""
+    a, _ = ratio_fixture(tmp_path / "a.csv")
+    args = ["fragility", str(a), "--axis", "pga-lambda-g", "--bootstrap", "20", "--out", str(tmp_path)]
+    if compare:
+        b, _ = ratio_fixture(tmp_path / "b.csv", CAPACITIES * 0.6, seed=3)
+        args += ["--compare", str(b), "--labels", "nominal model", "as the tests revealed it"]
+    assert post.main(args) == 0
+    assert len(drawn_figures) == 1
+    assert text_clashes(drawn_figures[0]) == []
 
 
 # The diagnosis's figures (report.md's and the calibration's reliability figure), each from

@@ -5,7 +5,8 @@ A small posterior is built here with known model probabilities and parameter wei
 the draws must reproduce it (model frequencies, parameter means within a model), and
 the written CSV must map each draw to &arch values as the module's docstring says
 (thickness f t about the mean radius; table gains and restraints dropped) and carry
-the format and nominal arch lines that the IDA checks. Then the
+the format, model version and nominal arch lines that the IDA checks (the model version
+that of the sweep's source). Then the
 written file is the `model_samples_file` of a tiny IDA, whose file must carry each
 sample's values and whose searches start at the static capacity of each sample's arch.
 """
@@ -16,7 +17,9 @@ import csv
 import json
 import math
 import os
+import re
 import subprocess
+from pathlib import Path
 
 import h5py
 import numpy as np
@@ -25,7 +28,8 @@ import pytest
 from voussoir_post.diagnosis.models import ModelGrid
 from voussoir_post.diagnosis.observations import Observations, PairObservation
 from voussoir_post.diagnosis.posterior import ModelPosterior, Posterior
-from voussoir_post.diagnosis.samples import SAMPLE_COLUMNS, draw_samples, write_samples
+from voussoir_post import __version__
+from voussoir_post.diagnosis.samples import MODEL_VERSION, SAMPLE_COLUMNS, draw_samples, write_samples
 from voussoir_post.readers.campaign import Specimen
 
 #: The posterior built here: model -> (probability, {parameter: grid values}, weights).
@@ -109,6 +113,8 @@ def test_written_rows_are_the_draws_as_arch_values(tmp_path, spec):
     # first, and the specimen's nominal &arch values, exactly.
     comments = [line for line in path.read_text().splitlines() if line.startswith("#")]
     assert comments[0] == "# format: voussoir posterior samples 1"
+    # then the model version the values mean and the code that wrote them
+    assert comments[1:3] == [f"# model version: {MODEL_VERSION}", f"# code: voussoir-post {__version__}"]
     (nominal,) = [line for line in comments if line.startswith("# nominal arch: ")]
     given = dict(item.split(" = ") for item in nominal[len("# nominal arch: "):].split(", "))
     assert {k: float(v) for k, v in given.items()} == {
@@ -131,6 +137,16 @@ def test_written_rows_are_the_draws_as_arch_values(tmp_path, spec):
     lab = [row for row in rows if row["model"] == "base_restraint+table_motion"]
     assert lab and all((float(r["friction"]), float(r["contact_inset_m"]), float(r["thickness_m"]),
                         float(r["r_ext_m"])) == (0.5, 0.0, 0.071, 0.508) for r in lab)
+
+
+def test_the_model_version_is_the_sweeps():
+    """MODEL_VERSION here and model_version of the sweep's reader (src/core/version.f90.in,
+    which src/sweep/model_samples.f90 checks a file's '# model version:' line against)
+    are one number: a file this package writes is one the sweep reads."""
+    source = (Path(__file__).resolve().parents[2] / "src" / "core" / "version.f90.in").read_text()
+    found = re.findall(r"^\s*integer, parameter :: model_version = (\d+)\s*$", source, flags=re.MULTILINE)
+    assert len(found) == 1, found
+    assert int(found[0]) == MODEL_VERSION
 
 
 # ------------------------------------------------------------------ through an IDA
@@ -191,6 +207,9 @@ def test_written_samples_reach_the_runs_of_an_ida(tmp_path, voussoir_sweep_exe, 
         values = h5["parameters/values"][()]
         job, run, scale = h5["runs/job"][()], h5["runs/run"][()], h5["runs/scale"][()]
         capacity = h5["results/static_capacity_m_s2"][()]
+        code = h5.attrs["model_samples_code"]
+    # the file's '# code:' line, echoed into the sweep's provenance
+    assert (code.decode() if isinstance(code, bytes) else str(code)) == f"voussoir-post {__version__}"
     assert sorted(columns) == sorted(names) and values.shape == (3, 4)
     for s, row in enumerate(picked):
         assert all(values[s, columns.index(k)] == float(row[k]) for k in names), (s, row)

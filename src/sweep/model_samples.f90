@@ -12,13 +12,18 @@
 !> of its variable and the sample's whole case by validate_config, with the messages of
 !> &arch; every error names the file and the line (and the column).
 !>
-!> Two comment lines before the header, when present, say what the samples are for
+!> Comment lines before the header, when present, say what the samples are for
 !> (samples.py writes them): `# format: voussoir posterior samples 1`, the layout's
-!> version, and `# nominal arch: embrace_deg = 156.0, n_voussoirs = 13, ...`, the
-!> specimen's &arch values the samples are relative to. A format this reader does not
-!> know is refused (a file of another code version), and so is a nominal arch unlike the
-!> IDA's base &arch (another specimen or campaign: reals within 1e-9 relative). A file
-!> without them (made by hand) is read unchecked, and a note says so.
+!> version; `# model version: 1`, the version of the meaning of the sampled values
+!> (voussoir_version's model_version: the contact inset, the thickness factor, the
+!> friction law...); `# code: voussoir-post 0.1.0`, the code that wrote the file (read
+!> for the provenance of the sweep's file); and `# nominal arch: embrace_deg = 156.0,
+!> n_voussoirs = 13, ...`, the specimen's &arch values the samples are relative to. A
+!> format this reader does not know is refused, and so is a model version other than
+!> this code's or a format line without a model version (a file of another code
+!> version), and a nominal arch unlike the IDA's base &arch (another specimen or
+!> campaign: reals within 1e-9 relative). A file without a format line (made by hand) is
+!> read unchecked, and a note says so.
 module voussoir_model_samples
   use, intrinsic :: iso_fortran_env, only: int8, int64
   use voussoir_kinds, only: dp
@@ -27,6 +32,7 @@ module voussoir_model_samples
   use voussoir_config, only: config_t, validate_config, resolve_path, arch_rule, arch_rule_text
   use voussoir_input_range, only: need
   use voussoir_numeric_csv, only: read_csv_columns, read_csv_header, csv_cell_len
+  use voussoir_version, only: model_version
   use voussoir_sweep_ida, only: sample_variables, sample_case
   implicit none
   private
@@ -38,7 +44,8 @@ module voussoir_model_samples
   character(len=8), parameter :: ignored_columns(2) = [character(len=8) :: 'sample', 'model']
   !> The layout this reader knows, as the `# format:` line names it.
   character(len=*), parameter :: known_format = 'voussoir posterior samples 1'
-  character(len=*), parameter :: format_prefix = '# format:', nominal_prefix = '# nominal arch:'
+  character(len=*), parameter :: format_prefix = '# format:', nominal_prefix = '# nominal arch:', &
+                                 model_prefix = '# model version:', code_prefix = '# code:'
   !> The &arch variables of the nominal arch line, all of them needed.
   character(len=13), parameter :: nominal_keys(6) = [character(len=13) :: 'embrace_deg', 'n_voussoirs', &
                                                      'r_ext_m', 'thickness_m', 'width_m', 'density_kg_m3']
@@ -50,15 +57,16 @@ contains
   !> relative to the folder of the input `path`) on the base case `base`: `names` the
   !> columns given (in the order of `sample_variables`), `values(n_params, n_samples)`
   !> the rows, `set_cfg(0:n_samples-1)` the validated case of each sample; `note` a line
-  !> for the log when the file could not be checked against the base case ('' if it was).
-  subroutine read_model_samples(path, given, base, seed, names, values, set_cfg, note, status)
+  !> for the log when the file could not be checked against the base case ('' if it was);
+  !> `code` the file's `# code:` line without its prefix ('' without one).
+  subroutine read_model_samples(path, given, base, seed, names, values, set_cfg, note, code, status)
     character(len=*), intent(in) :: path, given
     type(config_t), intent(in) :: base
     integer, intent(in) :: seed
     character(len=24), allocatable, intent(out) :: names(:)
     real(dp), allocatable, intent(out) :: values(:, :)
     type(config_t), allocatable, intent(out) :: set_cfg(:)
-    character(len=:), allocatable, intent(out) :: note
+    character(len=:), allocatable, intent(out) :: note, code
     type(status_t), intent(inout) :: status
     character(len=:), allocatable :: file
     character(len=csv_cell_len), allocatable :: header(:)
@@ -66,9 +74,10 @@ contains
     integer :: header_line
 
     note = ''
+    code = ''
     file = trim(resolve_path(path, given))
     call read_csv_header(file, header, header_line, status)
-    if (status%ok) call check_provenance(file, base, note, status)
+    if (status%ok) call check_provenance(file, base, note, code, status)
     if (status%ok) call sample_columns(file, header, header_line, base, names, status)
     if (status%ok) call read_csv_columns(file, names, values, lines, status)
     if (status%ok) then
@@ -83,23 +92,26 @@ contains
     if (.not. status%ok) status%message = path//': &sweep model_samples_file: '//trim(status%message)
   end subroutine read_model_samples
 
-  !> The `# format:` and `# nominal arch:` comment lines of `file` (before its header):
-  !> refused when the format is not `known_format`, when a format line comes without a
-  !> nominal arch, or when the nominal arch is not the base case's &arch; without either
-  !> line, `note` says that the file could not be checked.
-  subroutine check_provenance(file, base, note, status)
+  !> The `# format:`, `# model version:`, `# code:` and `# nominal arch:` comment lines of
+  !> `file` (before its header): refused when the format is not `known_format`, when the
+  !> model version is not this code's `model_version`, when a format line comes without
+  !> a model version or a nominal arch, or when the nominal arch is not the base case's
+  !> &arch; without a format and a nominal arch, `note` says that the file could not be
+  !> checked. `code` gets the text of the `# code:` line.
+  subroutine check_provenance(file, base, note, code, status)
     character(len=*), intent(in) :: file
     type(config_t), intent(in) :: base
-    character(len=:), allocatable, intent(inout) :: note
+    character(len=:), allocatable, intent(inout) :: note, code
     type(status_t), intent(inout) :: status
     character(len=1024) :: line
     character(len=512) :: iomsg
     character(len=:), allocatable :: text
     integer :: unit, ios, line_no
-    logical :: has_format, has_nominal
+    logical :: has_format, has_nominal, has_model
 
     has_format = .false.
     has_nominal = .false.
+    has_model = .false.
     open (newunit=unit, file=file, status='old', action='read', iostat=ios, iomsg=iomsg)
     if (ios /= 0) then
       call fail(status, file//': cannot open: '//trim(iomsg))
@@ -124,6 +136,12 @@ contains
                     known_format//"'): a file of another code version")
           exit
         end if
+      else if (index(text, model_prefix) == 1) then
+        has_model = .true.
+        call check_model_version(file//':'//itoa(line_no)//': ', trim(adjustl(text(len(model_prefix) + 1:))), status)
+        if (.not. status%ok) exit
+      else if (index(text, code_prefix) == 1) then
+        code = trim(adjustl(text(len(code_prefix) + 1:)))
       else if (index(text, nominal_prefix) == 1) then
         has_nominal = .true.
         call check_nominal(file//':'//itoa(line_no)//': ', text(len(nominal_prefix) + 1:), base, status)
@@ -132,7 +150,11 @@ contains
     end do
     close (unit)
     if (.not. status%ok) return
-    if (has_format .and. .not. has_nominal) then
+    if (has_format .and. .not. has_model) then
+      call fail(status, file//": format '"//known_format//"' but no '"//model_prefix//"' line: written by a "// &
+                'code from before model versions (this code''s model is version '//itoa(model_version)// &
+                '): rerun voussoir-diagnose on the campaign')
+    else if (has_format .and. .not. has_nominal) then
       call fail(status, file//": format '"//known_format//"' but no '"//nominal_prefix//"' line: the file is "// &
                 'incomplete')
     else if (.not. has_nominal) then
@@ -140,6 +162,21 @@ contains
              'be checked against the base &arch'
     end if
   end subroutine check_provenance
+
+  !> The model version `text` of a `# model version:` line against this code's
+  !> `model_version`: another number means the samples' values mean something else here.
+  subroutine check_model_version(at, text, status)
+    character(len=*), intent(in) :: at, text
+    type(status_t), intent(inout) :: status
+    integer :: version, ios
+    read (text, *, iostat=ios) version
+    if (ios /= 0 .or. verify(text, '0123456789') /= 0 .or. len(text) == 0) then
+      call fail(status, at//"model version '"//text//"' is not a whole number")
+    else if (version /= model_version) then
+      call fail(status, at//'written by a code whose model is version '//itoa(version)//'; this code''s is '// &
+                itoa(model_version)//': rerun voussoir-diagnose on the campaign')
+    end if
+  end subroutine check_model_version
 
   !> The nominal arch `text` ("embrace_deg = 156.0, n_voussoirs = 13, ...") against the
   !> base case's &arch: every one of `nominal_keys` once, each within `nominal_rel_tol`.

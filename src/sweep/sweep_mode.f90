@@ -75,6 +75,8 @@ module voussoir_sweep_mode
     character(len=:), allocatable :: sweep_nml    !! the effective &sweep group
     character(len=:), allocatable :: signature    !! what a resumed file must match
     character(len=:), allocatable :: note         !! a line for the log from reading the plan ('' or unset: none)
+    !> The `# code:` line of the model samples file (the code that wrote it; '' or unset: none)
+    character(len=:), allocatable :: samples_code
   end type sweep_plan_t
 
   abstract interface

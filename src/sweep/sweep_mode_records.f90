@@ -182,7 +182,7 @@ contains
     end if
     if (len_trim(this%samples_file) > 0) then
       call read_model_samples(path, trim(this%samples_file), base, this%sample_seed, plan%param_names, &
-                              plan%param_values, plan%set_cfg, plan%note, status)
+                              plan%param_values, plan%set_cfg, plan%note, plan%samples_code, status)
     else
       call sample_sets(path, base, this%n_samples, this%sample_seed, this%ranges, this%ranges(1, :) /= unset_real, &
                        plan%param_names, plan%param_values, plan%set_cfg, status)
@@ -346,8 +346,9 @@ contains
     end associate
   end function cost
 
-  !> The record files (as given, one per line), their events, the set, and the records'
-  !> unscaled PGA and PGV, magnitude and distance.
+  !> The record files (as given, one per line), their events, the set, with
+  !> model_samples_file the code that wrote that file (its `# code:` line, '' without
+  !> one), and the records' unscaled PGA and PGV, magnitude and distance.
   subroutine records_file_items(this, plan, datasets, attributes)
     class(record_mode_t), intent(in) :: this
     type(sweep_plan_t), intent(in) :: plan
@@ -365,11 +366,16 @@ contains
     end do
     ! Component by component: gfortran mixes up the texts of a structure constructor of
     ! deferred-length components inside an array constructor.
-    allocate (attributes(3))
-    attributes%name = [character(len=name_len) :: 'record_files', 'record_events', 'record_set']
+    allocate (attributes(merge(4, 3, len_trim(this%samples_file) > 0)))
+    attributes(1:3)%name = [character(len=name_len) :: 'record_files', 'record_events', 'record_set']
     attributes(1)%text = lines
     attributes(2)%text = events
     attributes(3)%text = trim(this%record_set)
+    if (size(attributes) == 4) then
+      attributes(4)%name = 'model_samples_code'
+      attributes(4)%text = ''
+      if (allocated(plan%samples_code)) attributes(4)%text = plan%samples_code
+    end if
     datasets = [named_values_t('record_pga_m_s2', plan%records%pga_m_s2), &
                 named_values_t('record_pgv_m_s', plan%records%pgv_m_s), &
                 named_values_t('record_magnitude', plan%records%magnitude), &

@@ -605,6 +605,8 @@ def case_ida_samples(r, work):
     check(all(all(float(row[k]) == samples[s][k] for k in names) for s, row in enumerate(rows)),
           "the CSV rows carry exactly the file's values, row by row")
     data, attrs = read("ida.h5")
+    check(attrs["model_samples_code"].decode().strip() == "",
+          "a samples file without a '# code:' line leaves the file's model_samples_code blank")
     file_names = attrs["parameter_names"].decode().split(",")
     check(sorted(file_names) == sorted(names), f"/parameters: the file's columns ({file_names})")
     values = data["parameters/values"]
@@ -666,6 +668,10 @@ IDA_SAMPLES_BAD = [
      r"embrace_deg = 156: samples of another specimen or campaign"),
     ("other_format", "# format: voussoir posterior samples 7\nfriction\n0.5\n", "",
      r"other_format\.csv:1: format 'voussoir posterior samples 7' is not one this code reads"),
+    ("other_model", "# format: voussoir posterior samples 1\n# model version: 999\n# code: voussoir-post 0.0.1\n"
+     "friction\n0.5\n", "",
+     r"other_model\.csv:2: written by a code whose model is version 999; this code's is \d+: rerun "
+     r"voussoir-diagnose on the campaign"),
     ("with_n_samples", "friction\n0.5\n", "n_samples = 4, friction_range = 0.4, 0.6,",
      r"&sweep n_samples = 4 draws model samples, but model_samples_file gives them"),
     ("with_range", "friction\n0.5\n", "thickness_range_m = 0.06, 0.07,",

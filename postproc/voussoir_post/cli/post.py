@@ -205,8 +205,13 @@ def _fragility_compare(args) -> int:
     """`fragility A --compare B`: both fits in one figure."""
     ida_a, ida_b = _read_ida_warned(args.ida), _read_ida_warned(args.compare)
     labels = args.labels or [os.path.splitext(os.path.basename(p))[0] for p in (args.ida, args.compare)]
-    png = output_path(args.ida, "compare_fragility", args.out)
-    data = plot_fragility_compare(ida_a, ida_b, labels, png, n_bootstrap=args.bootstrap, seed=args.seed)
+    if args.axis == "pga-lambda-g":
+        from ..plots.fragility_lambda_g import plot_lambda_g_compare
+        png = output_path(args.ida, "compare_fragility_pga_lambda_g", args.out)
+        data = plot_lambda_g_compare(ida_a, ida_b, labels, png, n_bootstrap=args.bootstrap, seed=args.seed)
+    else:
+        png = output_path(args.ida, "compare_fragility", args.out)
+        data = plot_fragility_compare(ida_a, ida_b, labels, png, n_bootstrap=args.bootstrap, seed=args.seed)
     curve_csv = write_csv(data.curve_table, os.path.splitext(data.png_path)[0] + ".csv")
     if args.json:
         print(json.dumps(data.summary(), indent=1))
@@ -264,13 +269,21 @@ def cmd_fragility(args) -> int:
     if is_msa(args.ida):
         if measures:
             raise InputError("--im fits the rows of an IDA file; an MSA file (&sweep mode = 'msa') has stripes")
+        if args.axis != "pga":
+            raise InputError(f"--axis {args.axis} fits the rows of an IDA file, each over its model's static "
+                             f"capacity; an MSA file (&sweep mode = 'msa') is fitted against PGA")
         return _fragility_msa(args)
     if args.limit_state != "collapse":
         raise InputError(f"--limit-state {args.limit_state} reads the runs of an MSA file (&sweep mode = 'msa'); "
                          f"{args.ida} is an IDA, whose rows are collapse intensities")
     ida = _read_ida_warned(args.ida)
-    png = output_path(args.ida, "fragility", args.out)
-    data = plot_fragility(ida, png, n_bootstrap=args.bootstrap, seed=args.seed)
+    if args.axis == "pga-lambda-g":
+        from ..plots.fragility_lambda_g import plot_lambda_g_fragility
+        png = output_path(args.ida, "fragility_pga_lambda_g", args.out)
+        data = plot_lambda_g_fragility(ida, png, n_bootstrap=args.bootstrap, seed=args.seed)
+    else:
+        png = output_path(args.ida, "fragility", args.out)
+        data = plot_fragility(ida, png, n_bootstrap=args.bootstrap, seed=args.seed)
     stem = os.path.splitext(data.png_path)[0]
     curve_csv = write_csv(data.curve_table, stem + ".csv")
     points_csv = write_csv(data.table, stem + "_points.csv")
@@ -458,6 +471,12 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--avgsa-periods", type=float, nargs=2, metavar=("T_LOW", "T_HIGH"),
                    help="periods of AvgSa with --im: the geometric mean of Sa at 10 periods spread in ln T over "
                         "T_LOW..T_HIGH s (default 0.2 3.0)")
+    p.add_argument("--axis", choices=["pga", "pga-lambda-g"], default="pga",
+                   help="IDA only: pga (default), the fragility against PGA and PGV; pga-lambda-g, against the "
+                        "dimensionless PGA / (lambda g), each row's PGA over the static capacity of its own model "
+                        "sample (the static capacity is then 1; with --compare both files on that one axis; "
+                        "written as <stem>_fragility_pga_lambda_g.png; --json adds median_pga_lambda_g, "
+                        "beta_pga_lambda_g, median_pga_lambda_g_band); the file must give static_capacity_m_s2")
     p.add_argument("--limit-state", choices=["collapse", "hinge-onset", "residual-drift"], default="collapse",
                    help="MSA only: the limit state fitted: collapse (default); hinge-onset, a joint opened by more "
                         "than --opening-mm; residual-drift, a residual crown drift above --drift-mm (a collapse "

@@ -13,15 +13,22 @@ laboratory's actuator and a restraint the laboratory's set-up, so a sample of
 `base_restraint` is the nominal arch. The file is what `&sweep model_samples_file` of an
 IDA reads (docs/earthquakes.md): the fragility of the arch as the table tests revealed it.
 
-Two comment lines let the IDA check that the file is meant for its arch
+Comment lines let the IDA check that the file is meant for its arch and its code
 (src/sweep/model_samples.f90 refuses it otherwise):
 
     # format: voussoir posterior samples 1
+    # model version: 1
+    # code: voussoir-post 0.1.0
     # nominal arch: embrace_deg = 156.0, n_voussoirs = 13, r_ext_m = 0.508, ...
 
-the version of this layout, and the specimen's nominal &arch values the samples are
-relative to (embrace_deg, n_voussoirs, r_ext_m, thickness_m, width_m, density_kg_m3,
-each written to round-trip exactly), which must be those of the IDA's base &arch.
+the version of this layout; the version of the model the values mean (MODEL_VERSION,
+which must equal the sweep's model_version in src/core/version.f90.in: raised, on both
+sides, when a sampled parameter changes meaning, e.g. the contact inset, the thickness
+factor or the friction law); the code that wrote the file (provenance, which the IDA's
+HDF5 file repeats as model_samples_code); and the specimen's nominal &arch values the
+samples are relative to (embrace_deg, n_voussoirs, r_ext_m, thickness_m, width_m,
+density_kg_m3, each written to round-trip exactly), which must be those of the IDA's
+base &arch.
 """
 
 from __future__ import annotations
@@ -35,11 +42,16 @@ from ..readers.campaign import Specimen
 from .observations import Observations
 from .posterior import Posterior
 
-__all__ = ["write_samples", "draw_samples", "nominal_arch_line", "SAMPLE_COLUMNS", "FORMAT_LINE", "NOMINAL_KEYS"]
+__all__ = ["write_samples", "draw_samples", "nominal_arch_line", "SAMPLE_COLUMNS", "FORMAT_LINE", "NOMINAL_KEYS",
+           "MODEL_VERSION", "model_lines"]
 
 SAMPLE_COLUMNS = ("sample", "model", "friction", "contact_inset_m", "thickness_m", "r_ext_m")
 #: The first line of a file; a new layout gets a new number (and the IDA's reader learns it).
 FORMAT_LINE = "# format: voussoir posterior samples 1"
+#: The version of what the samples' values mean (the contact inset, the thickness factor
+#: about the mean radius, the friction law, ...): raised with model_version of
+#: src/core/version.f90.in when one changes meaning; the IDA refuses a file of another.
+MODEL_VERSION = 1
 #: The &arch variables of the nominal arch line, in its order.
 NOMINAL_KEYS = ("embrace_deg", "n_voussoirs", "r_ext_m", "thickness_m", "width_m", "density_kg_m3")
 
@@ -49,6 +61,11 @@ def nominal_arch_line(spec: Specimen) -> str:
     values = [f"{key} = {int(spec.n_voussoirs) if key == 'n_voussoirs' else float(getattr(spec, key))!r}"
               for key in NOMINAL_KEYS]
     return "# nominal arch: " + ", ".join(values)
+
+
+def model_lines() -> list[str]:
+    """The model version and code lines of a samples file."""
+    return [f"# model version: {MODEL_VERSION}", f"# code: voussoir-post {__version__}"]
 
 
 def draw_samples(post: Posterior, n: int, seed: int = 2026) -> list[tuple[str, dict]]:
@@ -71,7 +88,7 @@ def write_samples(out_dir: Path, post: Posterior, obs: Observations, n: int, cam
     for sid in sorted({p.specimen_id for p in obs.pairs}):
         spec = obs.specimens[sid]
         r_mean = spec.r_ext_m - 0.5 * spec.thickness_m
-        lines = [FORMAT_LINE,
+        lines = [FORMAT_LINE, *model_lines(),
                  f"# Posterior samples of the model of specimen {sid}, from voussoir-diagnose (voussoir_post "
                  f"{__version__}) on campaign "
                  f"{campaign_name} ({n} draws: a model by its probability, its parameters by their posterior "

@@ -57,7 +57,8 @@ from .record_sets import read_at2, read_set
 
 __all__ = ["MEASURES", "COVARIATES", "RecordMotion", "Sufficiency", "MeasureFit", "MeasureComparison",
            "parse_measures", "record_motions", "frequency_parameter_rad_s", "sufficiency", "residuals",
-           "fit_measure", "bootstrap_efficiency", "compare_measures", "FREQUENCY_WORDS"]
+           "fit_measure", "bootstrap_efficiency", "compare_measures", "FREQUENCY_WORDS", "row_capacities_m_s2",
+           "pga_lambda_g_brackets"]
 
 #: The measures, in the order of the table: (label, unit, power of the scale).
 MEASURES = {
@@ -73,6 +74,36 @@ FREQUENCY_WORDS = ("ln(omega_g / p): omega_g = PGA / PGV of the record [rad/s], 
 PULSE_FREQUENCY_WORDS = ("ln(omega_p / p): omega_p = 2 pi / Tp, Tp the record's pulse period (Shahi & Baker 2014, "
                          "the records with a pulse only), p as in frequency_ratio")
 _CHECK_RTOL = 1e-6  #: the record read here and the one the sweep played: PGA and PGV to this
+
+
+def row_capacities_m_s2(ida: IdaResult) -> np.ndarray:
+    """Each row's static capacity lambda g [m/s2], that of the row's own model sample
+    (the column ``static_capacity_m_s2``), the denominator of PGA / (lambda g);
+    InputError naming the file when the rows do not give it (a file of a voussoir-sweep
+    from before the column) or a row's is not > 0 (0: the limit analysis does not apply
+    to its model, e.g. under &load)."""
+    capacity = ida.static_capacity_m_s2
+    if capacity is None:
+        raise InputError(f"{ida.path}: the rows do not give static_capacity_m_s2 (each row's static capacity "
+                         f"lambda g, which PGA / (lambda g) divides by): a file of a voussoir-sweep from before that "
+                         f"column; run the IDA again with this code")
+    capacity = np.asarray(capacity, float)
+    bad = ~(np.isfinite(capacity) & (capacity > 0.0))
+    if bad.any():
+        k = int(np.argmax(bad))
+        raise InputError(f"{ida.path}: row {k + 1} (record {ida.record[k]}, param_set {int(ida.param_set[k])}): "
+                         f"static_capacity_m_s2 = {float(capacity[k])!r}, not a capacity > 0 (the limit analysis does not "
+                         f"apply to this model, e.g. under &load): PGA / (lambda g) is not defined")
+    return capacity
+
+
+def pga_lambda_g_brackets(ida: IdaResult) -> tuple[np.ndarray, np.ndarray]:
+    """(low, high) per row: the collapse intensity in PGA / (lambda g) lies in (low,
+    high], the row's PGA bracket (:meth:`.ida.IdaResult.intensity_brackets`) over its
+    own model's static capacity (:func:`row_capacities_m_s2`; InputError without it)."""
+    capacity = row_capacities_m_s2(ida)
+    low, high = ida.intensity_brackets("pga")
+    return low / capacity, high / capacity
 
 
 @dataclass(frozen=True)
@@ -423,10 +454,12 @@ def compare_measures(ida: IdaResult, measures: list[str], sa_period_s: float = 1
     fits = []
     for name in measures:
         if name == "pga_lambda_g":
-            if ida.static_capacity_m_s2 is None or not np.all(np.isfinite(ida.static_capacity_m_s2)):
-                skipped[name] = "the rows do not give static_capacity_m_s2"
+            try:
+                capacity = row_capacities_m_s2(ida)
+            except InputError as exc:
+                skipped[name] = str(exc)
                 continue
-            unit = np.array([records[r].pga_m_s2 for r in ida.record]) / ida.static_capacity_m_s2
+            unit = np.array([records[r].pga_m_s2 for r in ida.record]) / capacity
         else:
             unit = np.array([records[r].value(name) for r in ida.record])
         try:
