@@ -162,7 +162,8 @@ contains
       n = -1
       do k = 1, size(t%names)
         if (.not. h5_exists(g, trim(t%names(k)))) then
-          call fail(st, trim(path)//': /'//name//'/'//trim(t%names(k))//' is missing')
+          call fail(st, trim(path)//': /'//name//'/'//trim(t%names(k))//' is missing (a file of an earlier '// &
+                    'version, without that column? It cannot be continued: move it away and run the sweep anew)')
           exit
         end if
         if (t%is_int(k)) then
