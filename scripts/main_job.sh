@@ -15,7 +15,8 @@
 #     6b. the time-step check: sample 0 of that IDA again at dt_s / 2, and the change of
 #     the median and of beta with its band (voussoir-post dtcheck);
 #  7. the same for the arch as the seed campaign revealed it: 4 model samples of the
-#     diagnosis's posterior (docs/seed_2013/posterior_samples_A156.csv);
+#     diagnosis's posterior (docs/seed_2013/posterior_samples_A156.csv); its IDA runs
+#     beside those of sections 6 and 6b;
 #  8. the two fragilities side by side, with the split of beta into record-to-record and
 #     model parts.
 # Everything goes to results/.
@@ -82,6 +83,24 @@ echo "== 6. Fragility of the 156-degree arch under $records_text (IDA, 2 MPI ran
   echo "  size_imperfection_range = 0.0, 0.05, progress_every_s = 60 /"
   echo "&output file = 'ida_156.h5' /"
 } > results/ida_156.nml
+# Section 7's IDA (the calibrated model) needs nothing from this one: it runs beside
+# sections 6 and 6b (two sweeps of 2 ranks on the machine's cores), where it fills the
+# cores that a sweep leaves idle at its end, when its last searches run one after the
+# other (its log in results/ida_156_calibrated.log, printed in section 7).
+# The first 4 of the 200 posterior samples of A156 that the diagnosis of the seed campaign
+# wrote (docs/seed_2013.md; drawn in random order, so the first 4 are a random subset: the
+# posterior's rivals fall at different accelerations, so its model part needs more samples
+# than the nominal model's 2). Its comment lines (format, nominal arch: checked by the
+# sweep), its header and 4 rows.
+awk '/^#/ || n++ < 5' docs/seed_2013/posterior_samples_A156.csv > results/posterior_samples_A156_first4.csv
+sed -e "s/n_samples = 2, sample_seed = 1, friction_range = 0.45, 0.6,/model_samples_file = 'posterior_samples_A156_first4.csv',/" \
+    -e "/contact_inset_range_m = 0.0, 0.002, thickness_range_m = 0.068, 0.074,/d" \
+    -e "s/  size_imperfection_range = 0.0, 0.05, progress_every_s = 60 \//  progress_every_s = 60 \//" \
+    -e "s/ida_156.h5/ida_156_calibrated.h5/" results/ida_156.nml > results/ida_156_calibrated.nml
+(cd results && exec mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156_calibrated.nml \
+   > ida_156_calibrated.log 2>&1) &
+calibrated_pid=$!
+trap 'kill "$calibrated_pid" 2>/dev/null || true' EXIT  # a failure before section 7 stops it too
 (cd results && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156.nml | grep -E 'done|nothing to do')
 "$post" fragility results/ida_156.h5 --out results/ | tail -n 13 | sed 's/^/   /'
 
@@ -100,17 +119,13 @@ sed -e "s/&solver dt_s = 1.0e-3 \//\&solver dt_s = 5.0e-4 \//" \
 "$post" dtcheck results/ida_156.h5 results/ida_156_dt_half.h5 | sed 's/^/   /'
 
 echo "== 7. The same fragility, of the arch as the table tests revealed it (the diagnosis's posterior)"
-# The first 4 of the 200 posterior samples of A156 that the diagnosis of the seed campaign
-# wrote (docs/seed_2013.md; drawn in random order, so the first 4 are a random subset: the
-# posterior's rivals fall at different accelerations, so its model part needs more samples
-# than the nominal model's 2). Its comment lines (format, nominal arch: checked by the
-# sweep), its header and 4 rows.
-awk '/^#/ || n++ < 5' docs/seed_2013/posterior_samples_A156.csv > results/posterior_samples_A156_first4.csv
-sed -e "s/n_samples = 2, sample_seed = 1, friction_range = 0.45, 0.6,/model_samples_file = 'posterior_samples_A156_first4.csv',/" \
-    -e "/contact_inset_range_m = 0.0, 0.002, thickness_range_m = 0.068, 0.074,/d" \
-    -e "s/  size_imperfection_range = 0.0, 0.05, progress_every_s = 60 \//  progress_every_s = 60 \//" \
-    -e "s/ida_156.h5/ida_156_calibrated.h5/" results/ida_156.nml > results/ida_156_calibrated.nml
-(cd results && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156_calibrated.nml | grep -E 'done|nothing to do')
+if ! wait "$calibrated_pid"; then
+  sed 's/^/   /' results/ida_156_calibrated.log >&2
+  echo "[main] error: the IDA of the calibrated model failed (its log above: results/ida_156_calibrated.log)" >&2
+  exit 1
+fi
+trap - EXIT
+grep -E 'done|nothing to do' results/ida_156_calibrated.log
 "$post" fragility results/ida_156_calibrated.h5 --out results/ | tail -n 13 | sed 's/^/   /'
 
 echo "== 8. The nominal and the calibrated fragility side by side"
@@ -144,7 +159,7 @@ missing=()  # files the job should have made and did not
   describe ida_156_fragility.png "the fragility curve: probability of collapse against PGA (g) and PGV, with its bootstrap band (clustered by event, then record) and the static capacity"
   describe ida_156_fragility.csv "the fitted curve, and ida_156_fragility_points.csv the points"
   describe ida_156_dt_half.h5 "model sample 0 of that IDA again at dt_s / 2: voussoir-post dtcheck gives the change of the median and of beta (in the log)"
-  describe ida_156_calibrated.h5 "the same IDA with 4 model samples of the diagnosis's posterior of the seed campaign (the arch as the table tests revealed it)"
+  describe ida_156_calibrated.h5 "the same IDA with 4 model samples of the diagnosis's posterior of the seed campaign (the arch as the table tests revealed it); its log ida_156_calibrated.log"
   describe ida_156_calibrated_fragility.png "its fragility curve, to set beside the nominal one"
   describe ida_156_compare_fragility.png "the two side by side (blue nominal, orange as the tests revealed it; PGA solid, PGV dash-dot; the fit at the median's lower 5 % bound PGA dashed, PGV dotted; the static capacities as wide pale lines), medians and betas split into record-to-record and model parts in the legend; the curves in ida_156_compare_fragility.csv"
 } > results/index.md
