@@ -21,11 +21,14 @@ import sys
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from .errors import BinDirError, RunError
 from .namelist import format_namelist
 from .readers.csv_table import read_csv_table
-from .readers.results import LimitResult, RunResult, SweepResult, read_limit_json, read_run, read_sweep
+
+if TYPE_CHECKING:  # h5py, through the readers: imported when a run is read, not by voussoir-diagnose's parser
+    from .readers.results import LimitResult, RunResult, SweepResult
 
 __all__ = ["RunError", "Runner", "read_csv_rows", "find_bin_dir", "BIN_DIR_ENV", "installed_bin_dir_file"]
 
@@ -143,6 +146,8 @@ class Runner:
         groups = self._with_output(groups, f"{name}.h5")
         nml = self.write(groups, name)
         self.execute("voussoir-run", nml)
+        from .readers.results import read_run
+
         h5 = self.work_dir / f"{name}.h5"
         result = read_run(h5)
         if not keep:
@@ -153,6 +158,8 @@ class Runner:
                   ) -> tuple[SweepResult, list[dict[str, str]]]:
         """voussoir-sweep (under MPI when n_ranks > 1): the HDF5 result and the CSV rows.
         A finished sweep of the same input in the work folder is reused when ``reuse``."""
+        from .readers.results import read_sweep
+
         groups = self._with_output(groups, f"{name}.h5")
         nml, done = self._fresh(groups, name, [f"{name}.h5", f"{name}.csv"])
         if done and reuse:
@@ -163,6 +170,8 @@ class Runner:
 
     def run_limit(self, groups: Mapping[str, Mapping[str, object]], name: str) -> LimitResult:
         """voussoir-limit --json on the groups."""
+        from .readers.limit_results import read_limit_json
+
         nml = self.write(groups, name)
         proc = self.execute("voussoir-limit", nml, "--json")
         path = self.work_dir / f"{name}.json"

@@ -8,14 +8,15 @@ from __future__ import annotations
 
 import json
 
-from ..earthquake.dt_check import dt_check
-from ..earthquake.ida import read_ida
 from ..errors import DONE, InputError
 
 __all__ = ["add_dtcheck_parser", "cmd_dtcheck"]
 
 
 def cmd_dtcheck(args) -> int:
+    from ..earthquake.dt_check import dt_check  # scipy: imported when the command runs (cli/post.py)
+    from ..earthquake.ida import read_ida
+
     if args.bootstrap < 10:
         raise InputError(f"--bootstrap {args.bootstrap}: at least 10 resamples")
     check = dt_check(read_ida(args.ida_a), read_ida(args.ida_b), n_bootstrap=args.bootstrap, seed=args.seed)

@@ -5,6 +5,10 @@ Every subcommand writes its PNG(s) beside the input (``<input stem>_<kind>.png``
 with ``--csv``, writes them as CSV beside the PNG (same stem, ``.csv``). Errors and exit
 statuses are :func:`.entry.run_command`'s: 0 done, 1 the work failed, 2 bad input (the
 message on stderr names the file).
+
+Each command imports its readers and plots when it runs, not at the top: the program
+starts once per subcommand, and matplotlib, scipy.stats and h5py cost seconds that a
+command which does not draw or fit should not pay (tests/test_cli_imports.py).
 """
 
 from __future__ import annotations
@@ -15,27 +19,8 @@ import math
 import os
 import sys
 
-from ..analysis.assembly_joints import joints_table, run_joints
-from ..earthquake.ida import FIT_FAILED, read_ida
-from ..earthquake.im_fragility import compare_measures, parse_measures
-from ..earthquake.msa import is_msa, read_msa
-from ..earthquake.record_sets import SET_NAMES, export_sets, read_set, set_table
-from ..earthquake.records import record_files_line, select_records, suite, suite_table
+from ..earthquake.record_sets import SET_NAMES
 from ..errors import DONE, InputError
-from ..plots.compare import mean_error_lines, plot_compare
-from ..plots.envelope import plot_envelope
-from ..plots.fragility_compare import plot_fragility_compare
-from ..plots.fragility_plot import plot_fragility
-from ..plots.history import plot_history
-from ..plots.mechanism import plot_mechanism
-from ..plots.msa_plot import plot_msa_fragility
-from ..plots.reactions import plot_reactions
-from ..plots.thrust_line import plot_thrust_line
-from ..plots.sequence import default_frame_times, plot_sequence, write_sequence_gif
-from ..plots.xdmf import check_xdmf, write_xdmf
-from ..readers.campaign import read_campaign
-from ..readers.results import read_limit_json, read_run, read_sweep
-from ..runner import find_bin_dir
 from ..tables import ReportTable, format_table, write_csv
 from .dtcheck import add_dtcheck_parser
 from .entry import run_command
@@ -86,6 +71,10 @@ def _positive_int(text: str) -> int:
 
 
 def cmd_envelope(args) -> int:
+    from ..plots.envelope import plot_envelope
+    from ..readers.campaign import read_campaign
+    from ..readers.results import read_limit_json, read_sweep
+
     sweep = read_sweep(args.sweep)
     campaign = read_campaign(args.campaign) if args.campaign else None
     if args.specimen and campaign is None:
@@ -106,6 +95,9 @@ def cmd_envelope(args) -> int:
 
 
 def cmd_sequence(args) -> int:
+    from ..plots.sequence import default_frame_times, plot_sequence, write_sequence_gif
+    from ..readers.results import read_run
+
     run = read_run(args.run)
     png = output_path(args.run, "sequence", args.out)
     open_tol = None if args.open_tol_mm is None else 1e-3 * args.open_tol_mm
@@ -121,6 +113,9 @@ def cmd_sequence(args) -> int:
 
 
 def cmd_history(args) -> int:
+    from ..plots.history import plot_history
+    from ..readers.results import read_run
+
     run = read_run(args.run)
     png = output_path(args.run, "history", args.out)
     data = plot_history(run, png)
@@ -134,6 +129,10 @@ def cmd_history(args) -> int:
 
 
 def cmd_compare(args) -> int:
+    from ..plots.compare import mean_error_lines, plot_compare
+    from ..readers.campaign import read_campaign
+    from ..readers.results import read_sweep
+
     sweep = read_sweep(args.sweep)
     campaign = read_campaign(args.campaign)
     png = output_path(args.sweep, "compare", args.out)
@@ -147,6 +146,9 @@ def cmd_compare(args) -> int:
 
 
 def cmd_xdmf(args) -> int:
+    from ..plots.xdmf import check_xdmf, write_xdmf
+    from ..readers.results import read_run
+
     run = read_run(args.run)
     xmf = None
     if args.out is not None:
@@ -163,6 +165,8 @@ def cmd_xdmf(args) -> int:
 def _statics_figure(args, kind: str, plot) -> int:
     """A figure of a run's contact forces over time (reactions, thrust): its summary
     printed, its samples as CSV with --csv."""
+    from ..readers.results import read_run
+
     run = read_run(args.run)
     data = plot(run, output_path(args.run, kind, args.out))
     print(format_table(data.summary))
@@ -173,14 +177,21 @@ def _statics_figure(args, kind: str, plot) -> int:
 
 
 def cmd_reactions(args) -> int:
+    from ..plots.reactions import plot_reactions
+
     return _statics_figure(args, "reactions", plot_reactions)
 
 
 def cmd_thrust(args) -> int:
+    from ..plots.thrust_line import plot_thrust_line
+
     return _statics_figure(args, "thrust", plot_thrust_line)
 
 
 def cmd_mechanism(args) -> int:
+    from ..plots.mechanism import plot_mechanism
+    from ..readers.results import read_limit_json
+
     limit = read_limit_json(args.limit)
     png = output_path(args.limit, "mechanism", args.out)
     data = plot_mechanism(limit, png)
@@ -190,6 +201,8 @@ def cmd_mechanism(args) -> int:
 
 def _read_ida_warned(path: str):
     """read_ida, and a warning on stderr about the searches that failed."""
+    from ..earthquake.ida import FIT_FAILED, read_ida
+
     ida = read_ida(path)
     if ida.n_failed:
         kept = sum(1 for how in ida.fit_as if how == FIT_FAILED)
@@ -203,6 +216,8 @@ def _read_ida_warned(path: str):
 
 def _fragility_compare(args) -> int:
     """`fragility A --compare B`: both fits in one figure."""
+    from ..plots.fragility_compare import plot_fragility_compare
+
     ida_a, ida_b = _read_ida_warned(args.ida), _read_ida_warned(args.compare)
     labels = args.labels or [os.path.splitext(os.path.basename(p))[0] for p in (args.ida, args.compare)]
     if args.axis == "pga-lambda-g":
@@ -225,6 +240,9 @@ def _fragility_compare(args) -> int:
 
 def _fragility_msa(args) -> int:
     """`fragility MSA.h5`: Baker's binomial fit to the stripes."""
+    from ..earthquake.msa import read_msa
+    from ..plots.msa_plot import plot_msa_fragility
+
     msa = read_msa(args.ida)
     if msa.n_failed:
         print(f"warning: {args.ida}: {msa.n_failed} runs stopped with an error (column failed = 1; voussoir-sweep "
@@ -255,6 +273,8 @@ def _fragility_msa(args) -> int:
 
 
 def cmd_fragility(args) -> int:
+    from ..earthquake.msa import is_msa
+
     if args.labels and not args.compare:
         raise InputError("--labels names the two files of --compare: give --compare B.h5 too")
     if args.labels and any(not label.strip() for label in args.labels):
@@ -276,6 +296,8 @@ def cmd_fragility(args) -> int:
     if args.limit_state != "collapse":
         raise InputError(f"--limit-state {args.limit_state} reads the runs of an MSA file (&sweep mode = 'msa'); "
                          f"{args.ida} is an IDA, whose rows are collapse intensities")
+    from ..plots.fragility_plot import plot_fragility
+
     ida = _read_ida_warned(args.ida)
     if args.axis == "pga-lambda-g":
         from ..plots.fragility_lambda_g import plot_lambda_g_fragility
@@ -287,8 +309,12 @@ def cmd_fragility(args) -> int:
     stem = os.path.splitext(data.png_path)[0]
     curve_csv = write_csv(data.curve_table, stem + ".csv")
     points_csv = write_csv(data.table, stem + "_points.csv")
-    by_measure = (compare_measures(ida, measures, args.sa_period, tuple(args.avgsa_periods or (0.2, 3.0)),
-                                   n_bootstrap=args.bootstrap, seed=args.seed) if measures else None)
+    by_measure = None
+    if measures:
+        from ..earthquake.im_fragility import compare_measures
+
+        by_measure = compare_measures(ida, measures, args.sa_period, tuple(args.avgsa_periods or (0.2, 3.0)),
+                                      n_bootstrap=args.bootstrap, seed=args.seed)
     if args.json:
         print(json.dumps({**data.summary(), **(by_measure.summary() if by_measure else {})}, indent=1))
         return DONE
@@ -321,6 +347,8 @@ def _measures(args) -> list[str]:
         if args.sa_period is not None or args.avgsa_periods:
             raise InputError("--sa-period and --avgsa-periods set the spectra of --im: give --im too")
         return []
+    from ..earthquake.im_fragility import parse_measures
+
     measures = parse_measures(args.im)
     if args.sa_period is None:
         args.sa_period = 1.0
@@ -336,12 +364,17 @@ def _measures(args) -> list[str]:
 def record_sets_dir() -> str:
     """Where voussoir-sweep looks for the exported record sets without $VOUSSOIR_RECORD_SETS:
     record_sets/ beside the folder of the executables (build/record_sets for build/drivers)."""
+    from ..runner import find_bin_dir
+
     if os.environ.get("VOUSSOIR_RECORD_SETS"):
         return os.environ["VOUSSOIR_RECORD_SETS"]
     return str(find_bin_dir(programs=("voussoir-sweep",)).parent / "record_sets")
 
 
 def cmd_records(args) -> int:
+    from ..earthquake.record_sets import export_sets, read_set, set_table
+    from ..earthquake.records import record_files_line, select_records, suite, suite_table
+
     if args.export is not None:
         root = args.export or record_sets_dir()
         for index in export_sets(root, args.set or SET_NAMES):
@@ -357,6 +390,9 @@ def cmd_records(args) -> int:
 
 
 def cmd_joints(args) -> int:
+    from ..analysis.assembly_joints import joints_table, run_joints
+    from ..readers.results import read_run
+
     if not args.tol_mm > 0.0:
         raise InputError(f"--tol-mm {args.tol_mm:g}: the touching tolerance must be > 0 mm (default 0.1)")
     run = read_run(args.run)
