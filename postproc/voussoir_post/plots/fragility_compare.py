@@ -152,13 +152,20 @@ def _legend_entries(k: int, label: str, data: FragilityData, ida: IdaResult) -> 
         entries.append(Line2D([], [], color=color, linewidth=3, alpha=0.35,
                               label=f"{label}: static capacity lambda g (limit analysis): "
                                     + ", ".join(f"{c / G_M_S2:.3g}" for c in capacities) + " g"))
-    kinds = set(data.pga.fit_as)
+    return entries + lower_bound_entries(color, f"{label}: ", data.pga.fit_as)
+
+
+def lower_bound_entries(color: str, who: str, fit_as) -> list:
+    """The legend entries of the rows fitted as lower bounds (``fit_as``: each row's
+    kind), ``who`` the words before each ("nominal model: ")."""
+    kinds = set(fit_as)
+    entries = []
     if FIT_CENSORED in kinds:
         entries.append(Line2D([], [], color=color, marker=">", linestyle="none", markersize=7,
-                              label=f"{label}: no collapse up to the largest scale tried (lower bound)"))
+                              label=f"{who}no collapse up to the largest scale tried (lower bound)"))
     if FIT_FAILED in kinds:
         entries.append(Line2D([], [], color=color, marker=">", markerfacecolor="none", linestyle="none",
-                              markersize=7, label=f"{label}: search failed (lower bound at its last stand)"))
+                              markersize=7, label=f"{who}search failed (lower bound at its last stand)"))
     return entries
 
 

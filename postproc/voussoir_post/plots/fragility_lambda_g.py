@@ -25,7 +25,7 @@ from ..earthquake.ida import FIT_BRACKET, FIT_CENSORED, FIT_FAILED, IdaResult
 from ..earthquake.im_fragility import MEASURES, pga_lambda_g_brackets, row_capacities_m_s2
 from ..tables import ReportTable
 from .drawing import legend_pad, new_figure, provenance, save_png, wrap_text
-from .fragility_compare import COMPARE_COLORS, FragilityComparison
+from .fragility_compare import COMPARE_COLORS, FragilityComparison, lower_bound_entries
 from .fragility_plot import (G_M_S2, FragilityData, IntensityFragility, arch_words, band_words, confidence_words,
                              fragility_data, fragility_of, records_words, samples_words, scale_warning)
 
@@ -164,14 +164,7 @@ def _legend(frag: IntensityFragility, color: str, marker: str, label: str = "") 
                markersize=4, label=f"{who}IDA points: fraction of the rows (record × model) collapsed at or below "
                                    f"(Kaplan-Meier, top of each bracket / λ g)"),
     ]
-    kinds = set(frag.fit_as)
-    if FIT_CENSORED in kinds:
-        entries.append(Line2D([], [], color=color, marker=">", linestyle="none", markersize=7,
-                              label=f"{who}no collapse up to the largest scale tried: lower bound"))
-    if FIT_FAILED in kinds:
-        entries.append(Line2D([], [], color=color, marker=">", markerfacecolor="none", linestyle="none",
-                              markersize=7, label=f"{who}search failed: lower bound at its last stand"))
-    return entries
+    return entries + lower_bound_entries(color, who, frag.fit_as)
 
 
 def _capacity_entry(words: str) -> Line2D:
