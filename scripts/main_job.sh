@@ -18,7 +18,8 @@
 #     diagnosis's posterior (docs/seed_2013/posterior_samples_A156.csv); its IDA runs
 #     beside those of sections 6 and 6b;
 #  8. the two fragilities side by side, with the split of beta into record-to-record and
-#     model parts.
+#     model parts, against PGA and against PGA / (lambda g) (each row over its own
+#     model's static capacity).
 # Everything goes to results/.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -131,6 +132,9 @@ grep -E 'done|nothing to do' results/ida_156_calibrated.log
 echo "== 8. The nominal and the calibrated fragility side by side"
 "$post" fragility results/ida_156.h5 --compare results/ida_156_calibrated.h5 \
     --labels 'nominal model' 'as the tests revealed it' --out results/ | tail -n 5 | sed 's/^/   /'
+echo "   Against PGA / (lambda g), each row over the static capacity of its own model:"
+"$post" fragility results/ida_156.h5 --compare results/ida_156_calibrated.h5 --axis pga-lambda-g \
+    --labels 'nominal model' 'as the tests revealed it' --out results/ | tail -n 3 | sed 's/^/   /'
 
 # An index of everything the job made, with what each shows (results/index.md).
 missing=()  # files the job should have made and did not
@@ -161,6 +165,7 @@ missing=()  # files the job should have made and did not
   describe ida_156_dt_half.h5 "model sample 0 of that IDA again at dt_s / 2: voussoir-post dtcheck gives the change of the median and of beta (in the log)"
   describe ida_156_calibrated.h5 "the same IDA with 4 model samples of the diagnosis's posterior of the seed campaign (the arch as the table tests revealed it); its log ida_156_calibrated.log"
   describe ida_156_calibrated_fragility.png "its fragility curve, to set beside the nominal one"
+  describe ida_156_compare_fragility_pga_lambda_g.png "the two against PGA / (lambda g), each row's PGA over the static capacity of its own model sample (the line at 1); the curves in ida_156_compare_fragility_pga_lambda_g.csv"
   describe ida_156_compare_fragility.png "the two side by side (blue nominal, orange as the tests revealed it; PGA solid, PGV dash-dot; the fit at the median's lower 5 % bound PGA dashed, PGV dotted; the static capacities as wide pale lines), medians and betas split into record-to-record and model parts in the legend; the curves in ida_156_compare_fragility.csv"
 } > results/index.md
 if (( ${#missing[@]} )); then
