@@ -3,7 +3,8 @@ figure's edge (titles, axis labels, tick labels, legends, the provenance strip),
 matplotlib's renderer extents (figure_text.py). The envelope and compare figures are
 checked on their sweep in test_sweep.py, the sequence and the history in
 test_run_plots.py; here the mechanism (a real voussoir-limit JSON), and the fragility
-figures (IDA tables written by hand, as test_fragility_ida.py writes them), and the
+figures (IDA tables written by hand, as test_fragility_ida.py writes them), the IDA's
+record table (rows written as test_record_table.py writes them), and the
 diagnosis's figures (report.md's and the calibration's reliability figure) from a few
 numbers written here. Each figure is drawn once, small inputs: seconds in all."""
 
@@ -24,6 +25,8 @@ from voussoir_post.plots.drawing import new_figure, provenance, save_png
 from voussoir_post.readers.campaign import Record, Test as CampaignTest
 from test_fragility_ida import SCALES, csv_fixture
 from test_fragility_lambda_g import CAPACITIES, ratio_fixture
+from test_record_table import SCALES as RECORD_SCALES, _ida as record_rows
+from voussoir_post.plots.record_table import plot_record_table
 
 
 def test_the_check_sees_an_overlap_and_a_cut(tmp_path):
@@ -76,8 +79,21 @@ def test_fragility_lambda_g_text(tmp_path, drawn_figures, compare):
         b, _ = ratio_fixture(tmp_path / "b.csv", CAPACITIES * 0.6, seed=3)
         args += ["--compare", str(b), "--labels", "nominal model", "as the tests revealed it"]
     assert post.main(args) == 0
-    assert len(drawn_figures) == 1
-    assert text_clashes(drawn_figures[0]) == []
+    assert len(drawn_figures) == (1 if compare else 2)  # alone, the record table too
+    for fig in drawn_figures:
+        assert text_clashes(fig) == []
+
+
+@pytest.mark.parametrize("n_samples", [2, 6])
+def test_record_table_text(tmp_path, drawn_figures, n_samples):
+    """The record table, with flagged and bounded cells: a column per model sample, and
+    the median and range of six."""
+    scales = np.vstack([RECORD_SCALES] * (n_samples // 2))
+    censored = np.zeros(scales.shape, bool)
+    censored[0, 2] = True
+    plot_record_table(record_rows(scales, censored), str(tmp_path / "a_fragility_records.png"))
+    (fig,) = drawn_figures
+    assert text_clashes(fig) == []
 
 
 # The diagnosis's figures (report.md's and the calibration's reliability figure), each from

@@ -297,6 +297,7 @@ def cmd_fragility(args) -> int:
         raise InputError(f"--limit-state {args.limit_state} reads the runs of an MSA file (&sweep mode = 'msa'); "
                          f"{args.ida} is an IDA, whose rows are collapse intensities")
     from ..plots.fragility_plot import plot_fragility
+    from ..plots.record_table import plot_record_table
 
     ida = _read_ida_warned(args.ida)
     if args.axis == "pga-lambda-g":
@@ -309,6 +310,7 @@ def cmd_fragility(args) -> int:
     stem = os.path.splitext(data.png_path)[0]
     curve_csv = write_csv(data.curve_table, stem + ".csv")
     points_csv = write_csv(data.table, stem + "_points.csv")
+    records_png = plot_record_table(ida, stem + "_records.png").png_path  # the table of the records
     by_measure = None
     if measures:
         from ..earthquake.im_fragility import compare_measures
@@ -324,6 +326,7 @@ def cmd_fragility(args) -> int:
     print(f"wrote {data.png_path}")
     print(f"wrote {curve_csv}")
     print(f"wrote {points_csv}")
+    print(f"wrote {records_png} (the records: event, M, R, PGA, scale and PGA at the collapse)")
     if by_measure:
         print()
         print(format_table(by_measure.table()))
