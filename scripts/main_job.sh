@@ -162,9 +162,11 @@ missing=()  # files the job should have made and did not
   describe ida_156.h5 "incremental dynamic analysis under $records_text (CSV beside it)"
   describe ida_156_fragility.png "the fragility curve: probability of collapse against PGA (g) and PGV, with its bootstrap band (clustered by event, then record) and the static capacity"
   describe ida_156_fragility.csv "the fitted curve, and ida_156_fragility_points.csv the points"
+  describe ida_156_fragility_records.png "its records as a table for a report: event, M, R, Vs30, the record's PGA, the scale and the PGA at collapse on each model sample (a scale beyond 4 or below 0.25 marked)"
   describe ida_156_dt_half.h5 "model sample 0 of that IDA again at dt_s / 2: voussoir-post dtcheck gives the change of the median and of beta (in the log)"
   describe ida_156_calibrated.h5 "the same IDA with 4 model samples of the diagnosis's posterior of the seed campaign (the arch as the table tests revealed it); its log ida_156_calibrated.log"
   describe ida_156_calibrated_fragility.png "its fragility curve, to set beside the nominal one"
+  describe ida_156_calibrated_fragility_records.png "its record table: the scale at collapse on each of the 4 model samples"
   describe ida_156_compare_fragility_pga_lambda_g.png "the two against PGA / (lambda g), each row's PGA over the static capacity of its own model sample (the line at 1); the curves in ida_156_compare_fragility_pga_lambda_g.csv"
   describe ida_156_compare_fragility.png "the two side by side (blue nominal, orange as the tests revealed it; PGA solid, PGV dash-dot; the fit at the median's lower 5 % bound PGA dashed, PGV dotted; the static capacities as wide pale lines), medians and betas split into record-to-record and model parts in the legend; the curves in ida_156_compare_fragility.csv"
 } > results/index.md
