@@ -165,7 +165,6 @@ contains
     type(limit_result_t), intent(in) :: res
     type(thickness_result_t), intent(in) :: tmin
     type(lp_study_t), intent(in) :: lp
-    integer :: j
     integer, allocatable :: sliding(:)
     character(len=1), parameter :: nl = achar(10)
     character(len=:), allocatable :: text
