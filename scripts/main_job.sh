@@ -103,7 +103,7 @@ sed -e "s/n_samples = 2, sample_seed = 1, friction_range = 0.45, 0.6,/model_samp
 calibrated_pid=$!
 trap 'kill "$calibrated_pid" 2>/dev/null || true' EXIT  # a failure before section 7 stops it too
 (cd results && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156.nml | grep -E 'done|nothing to do')
-"$post" fragility results/ida_156.h5 --out results/ | tail -n 14 | sed 's/^/   /'
+"$post" fragility results/ida_156.h5 --out results/ | tail -n 15 | sed 's/^/   /'
 
 echo "== 6b. Time-step check: model sample 0 of that IDA again at dt_s / 2 (2 MPI ranks)"
 # Sample 0's values from the IDA's rows (the columns between param_set and scale_stood,
@@ -127,7 +127,7 @@ if ! wait "$calibrated_pid"; then
 fi
 trap - EXIT
 grep -E 'done|nothing to do' results/ida_156_calibrated.log
-"$post" fragility results/ida_156_calibrated.h5 --out results/ | tail -n 14 | sed 's/^/   /'
+"$post" fragility results/ida_156_calibrated.h5 --out results/ | tail -n 15 | sed 's/^/   /'
 
 echo "== 8. The nominal and the calibrated fragility side by side"
 "$post" fragility results/ida_156.h5 --compare results/ida_156_calibrated.h5 \

@@ -135,3 +135,26 @@ def test_a_capacity_of_zero_is_refused(tmp_path, capsys):
     assert main(["fragility", str(path), "--axis", "pga-lambda-g", "--bootstrap", "20"]) == 2
     assert f"row {N_RECORDS + 1} (record rec/R00.AT2, param_set 1): static_capacity_m_s2 = 0.0" in \
         capsys.readouterr().err
+
+
+def test_the_pga_fit_says_what_its_tail_puts_below_the_static_capacity(tmp_path, capsys):
+    """No rigid model collapses below its own static capacity, but the PGA lognormal has
+    a tail there: the report gives the lowest capacity and the fit's probability at it,
+    which must be the lognormal's cdf there (scipy's, from the reported median and beta);
+    a file without capacities gives none."""
+    from scipy.stats import norm
+
+    path, _ = ratio_fixture(tmp_path / "ida.csv", seed=3)
+    assert main(["fragility", str(path), "--json", "--bootstrap", "20"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["pga_floor_m_s2"] == pytest.approx(CAPACITIES.min(), rel=1e-12)
+    expected = norm.cdf(math.log(CAPACITIES.min() / out["median_pga_m_s2"]) / out["beta_pga"])
+    assert out["p_collapse_at_floor"] == pytest.approx(expected, rel=1e-9)
+    assert 0.0 < out["p_collapse_at_floor"] < 0.5
+    assert main(["fragility", str(path), "--bootstrap", "20", "--out", str(tmp_path)]) == 0
+    assert (f"floor: no rigid model moves below its static capacity (the lowest here {CAPACITIES.min() / G:.3g} g)"
+            in capsys.readouterr().out)
+    old, _ = ratio_fixture(tmp_path / "old.csv", capacity_column=False)
+    assert main(["fragility", str(old), "--json", "--bootstrap", "20"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["pga_floor_m_s2"] is None and out["p_collapse_at_floor"] is None

@@ -83,6 +83,9 @@ class FragilityData:
     table: ReportTable = field(default_factory=lambda: ReportTable([]))
     curve_table: ReportTable = field(default_factory=lambda: ReportTable([]))
     n_non_monotonic: int | None = None  #: rows flagged non_monotonic (None: the file does not say)
+    #: the lowest static capacity lambda g of the models [m/s2] (None: the file has none):
+    #: no rigid model moves below its own, so no collapse there, but a lognormal has a tail
+    floor_m_s2: float | None = None
 
     def _count(self, how: str) -> int:
         return sum(1 for k in self.pga.fit_as if k == how)
@@ -116,6 +119,7 @@ class FragilityData:
             "ks_d_pga": self.pga.check.statistic, "ks_p_pga": self.pga.check.p_value,
             "ks_d_pgv": self.pgv.check.statistic, "ks_p_pgv": self.pgv.check.p_value,
             "pit_seed": self.pga.check.seed,
+            "pga_floor_m_s2": self.floor_m_s2, "p_collapse_at_floor": self.p_at_floor(),
             "n_rows": f.n, "n_interval": f.n_interval, "n_censored": self._count(FIT_CENSORED),
             "n_failed_censored": self._count(FIT_FAILED), "n_failed_left_out": self._count(FIT_LEFT_OUT),
             "n_non_monotonic": self.n_non_monotonic, "g_m_s2": G_M_S2,
@@ -125,6 +129,21 @@ class FragilityData:
             "model_samples": None if self.pga.split is None else self.pga.split.samples,
             "beta_split": BETA_SPLIT if self.pga.split is not None else self.pga.split_note,
         }
+
+    def p_at_floor(self) -> float | None:
+        """The PGA fit's probability of collapse at the lowest static capacity (None
+        without one): the mass the lognormal's tail puts where no rigid model collapses."""
+        if self.floor_m_s2 is None:
+            return None
+        return float(fragility(np.array([self.floor_m_s2]), self.pga.fit.median, self.pga.fit.beta)[0])
+
+    def floor_words(self) -> list[str]:
+        """The line on the static capacity's floor (none without a capacity)."""
+        if self.floor_m_s2 is None:
+            return []
+        return [f"floor: no rigid model moves below its static capacity (the lowest here {self.floor_m_s2 / G_M_S2:.3g} "
+                f"g); the PGA lognormal gives P(collapse) = {self.p_at_floor():.2g} there, the mass its tail puts "
+                f"below the floor"]
 
     def report_lines(self) -> list[str]:
         """The fits in words: the median and beta of PGA and PGV with their bands, the
@@ -155,7 +174,7 @@ class FragilityData:
         ] + ([BETA_SPLIT] if pga.split is not None else []) + [
             f"{confidence_words(pga.band)}: PGA {pga.band.median_low / G_M_S2:.4g} g, PGV {pgv.band.median_low:.4g} "
             f"m/s (the dashed PGA and dotted PGV curves)",
-        ]
+        ] + self.floor_words()
 
 
 def _split_keys(measure: str, frag: IntensityFragility, scale: float) -> dict:
@@ -412,7 +431,9 @@ def fragility_data(ida: IdaResult, n_bootstrap: int = 400, seed: int = 20261124,
                              pga.band.high, pga.confidence(pga.band.im))],
                         title=f"fragility against PGA; p_low, p_high: {int(round(100 * pga.band.level))} % band "
                               f"of {band_words(pga.band)}; p_conf: the {confidence_words(pga.band)}")
-    return FragilityData(pga, pgv, None, table, curve, None if non_monotonic is None else int(np.sum(non_monotonic)))
+    capacities = static_capacities_m_s2(ida)
+    return FragilityData(pga, pgv, None, table, curve, None if non_monotonic is None else int(np.sum(non_monotonic)),
+                         float(capacities.min()) if capacities.size else None)
 
 
 def plot_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootstrap: int = 400,
