@@ -27,6 +27,7 @@ from pathlib import Path
 
 from ..readers.campaign import Specimen
 from ..runner import Runner
+from ..units import G_M_S2
 from .effects import COMBINED, EFFECTS_BY_ID, RESTRAINTS, Variant, arch_group
 from .settings import DiagnosisSettings
 from .simulator import Simulator
@@ -36,7 +37,7 @@ __all__ = ["BANK_VERSION", "SpecimenBank", "Bank", "variant_key", "key_variant",
            "REPLICAS", "FINE_DT", "G"]
 
 BANK_VERSION = 1
-G = 9.81
+G = G_M_S2  #: the kernel's gravity [m/s2] (units.py)
 #: Time-step factors of the replicas of the nominal model that measure the simulator's
 #: own spread (a threshold search near a chaotic boundary answers differently to a
 #: change of dt of a few percent); the fine-dt check is at dt / 2.

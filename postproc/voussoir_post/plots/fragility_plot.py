@@ -19,6 +19,7 @@ from ..earthquake.fragility import (BetaSplit, FitCheck, FitError, FragilityBand
                                     goodness_of_fit, split_beta)
 from ..earthquake.ida import FIT_BRACKET, FIT_CENSORED, FIT_FAILED, FIT_LEFT_OUT, IdaResult
 from ..tables import ReportTable
+from ..units import G_M_S2
 from .drawing import legend_pad, new_figure, provenance, save_png
 
 __all__ = ["FragilityData", "IntensityFragility", "fragility_of", "fragility_data", "plot_fragility", "G_M_S2",
@@ -26,7 +27,6 @@ __all__ = ["FragilityData", "IntensityFragility", "fragility_of", "fragility_dat
            "band_words", "arch_words", "samples_words", "records_words", "top_intensity", "FIT_STYLES",
            "BOUND_STYLES", "POINTS_WORDS", "SCALE_WARN", "scale_warning", "static_capacities_m_s2"]
 
-G_M_S2 = 9.81  #: the kernel's gravity, also its g for PGA in g
 #: One line style per measure, in every fragility figure: the fit, and the fit at the
 #: lower bound of its median.
 FIT_STYLES = {"PGA": "-", "PGV": "-."}

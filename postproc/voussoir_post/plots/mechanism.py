@@ -20,6 +20,7 @@ from matplotlib.patches import Polygon
 from ..analysis.contact_forces import LpJointResultants, lp_joint_resultants
 from ..readers.results import LimitResult
 from ..tables import ReportTable
+from ..units import G_M_S2
 from .drawing import HINGE_COLOURS, legend_pad, new_figure, provenance, save_png
 
 #: The LP's joint forces: dark grey, a colour that no hinge, joint or collapse uses.
@@ -28,7 +29,6 @@ FORCE_COLOUR = "#444444"
 __all__ = ["G_M_S2", "MechanismPanel", "MechanismData", "voussoir_polygons", "foundation_polygons",
            "plot_mechanism"]
 
-G_M_S2 = 9.81  #: gravity [m/s2] of the Fortran kernel (voussoir_kinds), when the JSON has no g_m_s2
 
 
 def voussoir_polygons(intrados_xy_m: np.ndarray, extrados_xy_m: np.ndarray) -> list[np.ndarray]:

@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..units import G_M_S2
 from .results_common import SIDE_NAMES, ResultsError
 
 __all__ = ["LimitResult", "LpInterfaceForce", "read_limit_json"]
@@ -129,7 +130,7 @@ def read_limit_json(path: str | os.PathLike) -> LimitResult:
         sliding_pos=list(data["sliding_pos"]) if data.get("sliding_pos") is not None else None,
         sliding_neg=list(data["sliding_neg"]) if data.get("sliding_neg") is not None else None,
         friction=_json_float(data.get("friction")),
-        g_m_s2=_json_float(data.get("g_m_s2", 9.81)),
+        g_m_s2=_json_float(data.get("g_m_s2", G_M_S2)),
         code_version=str(data.get("code_version", "")),
         thrust_fraction_pos=_fractions(data.get("thrust_fraction_pos")),
         thrust_fraction_neg=_fractions(data.get("thrust_fraction_neg")),
