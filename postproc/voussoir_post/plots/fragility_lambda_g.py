@@ -27,7 +27,8 @@ from ..tables import ReportTable
 from .drawing import legend_pad, new_figure, provenance, save_png, wrap_text
 from .fragility_compare import COMPARE_COLORS, FragilityComparison, lower_bound_entries
 from .fragility_plot import (G_M_S2, FragilityData, IntensityFragility, arch_words, band_words, confidence_words,
-                             fragility_data, fragility_of, records_words, samples_words, scale_warning)
+                             fragility_data, fragility_of, records_words, samples_words, scale_warning,
+                             static_capacities_m_s2)
 
 __all__ = ["LambdaGFragility", "LambdaGComparison", "lambda_g_fragility", "plot_lambda_g_fragility",
            "plot_lambda_g_compare", "RATIO_NAME", "AXIS_LABEL", "lambda_g_keys"]
@@ -53,8 +54,11 @@ def lambda_g_fragility(ida: IdaResult, n_bootstrap: int = 400, seed: int = 20261
 
 
 def _capacities(ida: IdaResult) -> np.ndarray:
-    """The distinct static capacities of the rows' models [m/s2], sorted."""
-    return np.unique(np.round(row_capacities_m_s2(ida), 9))
+    """The distinct static capacities of the rows' models [m/s2], sorted
+    (:func:`.fragility_plot.static_capacities_m_s2`); InputError first when a row does
+    not give one > 0 (:func:`.im_fragility.row_capacities_m_s2`)."""
+    row_capacities_m_s2(ida)
+    return static_capacities_m_s2(ida)
 
 
 def lambda_g_keys(ratio: IntensityFragility, capacities_m_s2: np.ndarray) -> dict:
