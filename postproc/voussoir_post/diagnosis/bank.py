@@ -12,8 +12,18 @@ kernel the same questions and gets the same answers. The bank of one specimen is
 as JSON under a key of the executables' bytes, the specimen, its frequencies and
 cycles, the time step and the grids: a second diagnosis re-simulates nothing.
 
+The simulator's own spread is measured by replicas (the same model at dt x 0.97 and x
+1.03, and for the nominal model also at other scan steps) at the nominal model and at
+the two ends of every single effect's grid, so that the spread is known over the
+parameter space, not at one point. Where the response is steep, the bank simulates more
+nodes: between two neighbouring values of a single effect whose thresholds differ (at
+any frequency) by more than `REFINE_SPREADS` times the larger of the pair's replica
+spread and 1 %, the midpoint is simulated, for `REFINE_ROUNDS` rounds (models.py
+interpolates between the nodes, so a steep step must be resolved by nodes, not guessed).
+
 Cost, per specimen and tested frequency, in threshold searches (each about 12 runs of
-the ramp): 1 nominal + 5 replicas + about 28 single-effect values + about 107 pairs.
+the ramp): 1 nominal + 5 replicas + about 28 single-effect values + about 107 pairs +
+about 14 replicas at the effects' ends + the refined nodes.
 """
 
 from __future__ import annotations
@@ -25,6 +35,8 @@ import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
+
 from ..readers.campaign import Specimen
 from ..runner import Runner
 from ..units import G_M_S2
@@ -34,9 +46,9 @@ from .simulator import Simulator
 
 __all__ = ["BANK_VERSION", "SpecimenBank", "Bank", "variant_key", "key_variant", "bank_variants", "build_bank",
            "load", "save", "load_banks", "onset_amplitudes",
-           "REPLICAS", "FINE_DT", "G"]
+           "REPLICAS", "FINE_DT", "NODE_REPLICAS", "G", "spread_nodes", "refine_values", "replica_groups", "pooled_spread"]
 
-BANK_VERSION = 1
+BANK_VERSION = 2
 G = G_M_S2  #: the kernel's gravity [m/s2] (units.py)
 #: Time-step factors of the replicas of the nominal model that measure the simulator's
 #: own spread (a threshold search near a chaotic boundary answers differently to a
@@ -47,6 +59,12 @@ G = G_M_S2  #: the kernel's gravity [m/s2] (units.py)
 REPLICAS = (("dt x0.97", 0.97, None), ("dt x1.03", 1.03, None), ("scan 3 %", 1.0, 0.03),
             ("scan 7 %", 1.0, 0.07))
 FINE_DT = ("dt / 2", 0.5, None)  #: the discretisation check of each specimen
+#: The replicas made at the ends of every single effect's grid.
+NODE_REPLICAS = (("dt x0.97", 0.97, None), ("dt x1.03", 1.03, None))
+REFINE_SPREADS = 3.0  #: neighbouring nodes this many spreads apart get a node between them
+REFINE_ROUNDS = 2
+#: The smallest spacing refinement goes down to, per effect (in its parameter's unit).
+REFINE_MIN_STEP = {"contact_edges": 0.00025, "friction": 0.0125, "geometry": 0.015}
 
 
 def variant_key(v: Variant) -> str:
@@ -103,6 +121,8 @@ class SpecimenBank:
     dt_s: float
     thresholds: dict[str, list[float]] = field(default_factory=dict)
     replicas: dict[str, list[float]] = field(default_factory=dict)  #: 'dt x0.97' ... and 'dt / 2'
+    #: Replicas of other models: {variant key: {replica name: thresholds per frequency}}.
+    node_replicas: dict[str, dict[str, list[float]]] = field(default_factory=dict)
     searches: int = 0  #: threshold searches made to fill it
 
     def index(self, frequency_hz: float) -> int:
@@ -154,6 +174,7 @@ def save(bank: SpecimenBank, path: Path) -> None:
     d = dataclasses.asdict(bank)
     d["thresholds"] = {k: [_clean(x) for x in v] for k, v in bank.thresholds.items()}
     d["replicas"] = {k: [_clean(x) for x in v] for k, v in bank.replicas.items()}
+    d["node_replicas"] = {k: {n: [_clean(x) for x in v] for n, v in r.items()} for k, r in bank.node_replicas.items()}
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(d, separators=(",", ":")) + "\n")
 
@@ -163,6 +184,7 @@ def load(path: Path) -> SpecimenBank:
     nan = lambda v: [math.nan if x is None else float(x) for x in v]
     d["thresholds"] = {k: nan(v) for k, v in d["thresholds"].items()}
     d["replicas"] = {k: nan(v) for k, v in d["replicas"].items()}
+    d["node_replicas"] = {k: {n: nan(v) for n, v in r.items()} for k, r in d.get("node_replicas", {}).items()}
     d["cycles"] = tuple(d["cycles"])
     return SpecimenBank(**d)
 
@@ -174,6 +196,65 @@ def onset_amplitudes(runner: Runner, spec: Specimen, freqs: list[float]) -> list
              if k in ("embrace_deg", "n_voussoirs", "r_ext_m", "thickness_m")}
     lam = runner.run_limit({"arch": group}, f"limit_{spec.specimen_id}").lambda_pos
     return [lam * G / (2.0 * math.pi * f) ** 2 for f in freqs]
+
+
+def spread_nodes(spec: Specimen, settings: DiagnosisSettings) -> list[Variant]:
+    """The models whose replicas measure the simulator's spread beside the nominal one's:
+    the two ends of every single effect's grid (and brackets at both springings)."""
+    out = []
+    for e in ("contact_edges", "friction", "geometry", "base_restraint"):
+        values = EFFECTS_BY_ID[e].simulated(spec, settings)
+        if e == "base_restraint":
+            out += [v for v in values if v.value == "both"]
+        elif values:
+            out += [values[0], values[-1]]
+    return out
+
+
+def replica_groups(bank: SpecimenBank, k: int) -> list[np.ndarray]:
+    """The log thresholds at frequency index k of every model that has replicas: its own
+    search and its replicas (the nominal model's without the dt / 2 check)."""
+    groups = [[bank.thresholds["nominal"][k]] + [v[k] for n, v in bank.replicas.items() if n != FINE_DT[0]]]
+    groups += [[bank.thresholds[key][k]] + [v[k] for v in reps.values()]
+               for key, reps in bank.node_replicas.items() if key in bank.thresholds]
+    out = []
+    for g in groups:
+        vals = np.array([x for x in g if math.isfinite(x) and x > 0])
+        if vals.size > 1:
+            out.append(np.log(vals))
+    return out
+
+
+def pooled_spread(bank: SpecimenBank, k: int) -> tuple[float, int]:
+    """The simulator's own spread at frequency index k: the pooled standard deviation of
+    log threshold within the replica groups, and its degrees of freedom."""
+    groups = replica_groups(bank, k)
+    ss = sum(float(np.sum((g - g.mean()) ** 2)) for g in groups)
+    dof = sum(g.size - 1 for g in groups)
+    return (math.sqrt(ss / dof) if dof else math.nan), dof
+
+
+def _replica_spread(bank: SpecimenBank) -> float:
+    """The largest pooled spread over the frequencies (the refinement's yardstick)."""
+    spreads = [pooled_spread(bank, k)[0] for k in range(len(bank.frequencies_hz))]
+    return max([s for s in spreads if math.isfinite(s)], default=0.0)
+
+
+def refine_values(effect_id: str, values: list[float], thresholds: dict[float, list[float]], spread: float
+                  ) -> list[float]:
+    """The midpoints to simulate between neighbouring values of one effect whose log
+    thresholds differ at any frequency by more than REFINE_SPREADS x max(spread, 1 %)."""
+    limit = REFINE_SPREADS * max(spread, 0.01)
+    out = []
+    xs = sorted(values)
+    for a, b in zip(xs[:-1], xs[1:]):
+        if b - a < 2 * REFINE_MIN_STEP[effect_id] - 1e-12:
+            continue
+        ya, yb = np.asarray(thresholds[a], float), np.asarray(thresholds[b], float)
+        ok = np.isfinite(ya) & np.isfinite(yb) & (ya > 0) & (yb > 0)
+        if np.any(np.abs(np.log(yb[ok]) - np.log(ya[ok])) > limit) or np.any(np.isfinite(ya) != np.isfinite(yb)):
+            out.append(round(0.5 * (a + b), 7))
+    return out
 
 
 def _simulate(spec: Specimen, freqs, cycles, settings: DiagnosisSettings, work: Path) -> SpecimenBank:
@@ -188,13 +269,46 @@ def _simulate(spec: Specimen, freqs, cycles, settings: DiagnosisSettings, work: 
     found = sim.thresholds_at(spec, freqs, cycles, variants, amp_max, amp_tol)
     for v in variants:
         bank.thresholds[variant_key(v)] = [found.get((v, f), math.nan) for f in freqs]
+    searches = len(variants)
     for name, dt_factor, scan in REPLICAS + (FINE_DT,):
         other = Simulator(dataclasses.replace(settings, dt_s=settings.dt_s * dt_factor,
                                               scan_step=scan or settings.scan_step), work)
         other._count = 1000 + 10 * len(bank.replicas)
         found = other.thresholds_at(spec, freqs, cycles, [Variant()], amp_max, amp_tol)
         bank.replicas[name] = [found.get((Variant(), f), math.nan) for f in freqs]
-    bank.searches = (len(variants) + len(REPLICAS) + 1) * len(freqs)
+        searches += 1
+    nodes = spread_nodes(spec, settings)
+    for k, (name, dt_factor, scan) in enumerate(NODE_REPLICAS):
+        other = Simulator(dataclasses.replace(settings, dt_s=settings.dt_s * dt_factor,
+                                              scan_step=scan or settings.scan_step), work)
+        other._count = 2000 + 100 * k
+        found = other.thresholds_at(spec, freqs, cycles, nodes, amp_max, amp_tol)
+        for v in nodes:
+            bank.node_replicas.setdefault(variant_key(v), {})[name] = [found.get((v, f), math.nan) for f in freqs]
+        searches += len(nodes)
+    # Steep responses: more nodes where neighbouring ones differ by more than the spread.
+    spread = _replica_spread(bank)
+    for round_ in range(REFINE_ROUNDS):
+        new = []
+        for e in ("contact_edges", "friction", "geometry"):
+            nominal = {"contact_edges": 0.0, "friction": spec.friction, "geometry": 1.0}[e]
+            table = {nominal: bank.thresholds["nominal"]}
+            for key, values in bank.thresholds.items():
+                parts = key_variant(key).parts()
+                if len(parts) == 1 and parts[0][0] == e:
+                    table[float(parts[0][1])] = values
+            new += [Variant(e, x) for x in refine_values(e, list(table), table, spread)
+                    if variant_key(Variant(e, x)) not in bank.thresholds]
+        if not new:
+            break
+        settings.log(f"[bank] {spec.specimen_id}: {len(new)} more nodes where the response is steep "
+                     f"(round {round_ + 1})")
+        sim._count = 3000 + 100 * round_
+        found = sim.thresholds_at(spec, freqs, cycles, new, amp_max, amp_tol)
+        for v in new:
+            bank.thresholds[variant_key(v)] = [found.get((v, f), math.nan) for f in freqs]
+        searches += len(new)
+    bank.searches = searches * len(freqs)
     return bank
 
 

@@ -1,8 +1,9 @@
-"""Stage 5 of the diagnosis: the verdict of shared/MEASURED_DATA.md (version 3) from the
-posterior probabilities.
+"""Stage 5 of the diagnosis: the verdict of shared/MEASURED_DATA.md (version 4) from the
+posterior probabilities, and the flags a reader must know before trusting the numbers.
 
 - a cause (one effect, or `combined` for a pair) is named when its probability is at
-  least 0.9 and the most probable model is adequate (posterior predictive check);
+  least 0.9 and the most probable model is adequate (posterior.adequacy, a check that
+  can fail);
 - `none` when the nominal model's probability is at least 0.9;
 - otherwise `inconclusive`, with `rivals` the most probable models, best first, whose
   probabilities first reach 0.9 together (empty when no model is adequate).
@@ -14,12 +15,21 @@ study (bench/diagnosis_calibration.sh, docs/diagnosis.md) checks that causes nam
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
+
+import numpy as np
 
 from .models import members
 from .posterior import ADEQUATE_P, Posterior, adequacy
 
-__all__ = ["NAME_AT", "Decision", "decide", "credible_set"]
+__all__ = ["NAME_AT", "Decision", "decide", "credible_set", "flags", "prior_bound", "EDGE_FRACTION", "EDGE_MASS"]
+
+EDGE_FRACTION = 0.05  #: the outer part of a prior's range that counts as its edge
+EDGE_MASS = 0.15  #: posterior mass there (three times the prior's) that flags the parameter
+#: A common gain offset of the records within this many transducer calibrations is a
+#: possible sensor bias (shared/MEASURED_DATA.md).
+BIAS_CALIBRATIONS = 3.0
 
 NAME_AT = 0.9  #: probability at which a cause is named, and mass of the rivals' set
 
@@ -63,3 +73,42 @@ def decide(post: Posterior) -> Decision:
         verdict = "none" if not eff else (eff[0] if len(eff) == 1 else "combined")
         return Decision(verdict, eff, [], True, p, top, probs)
     return Decision("inconclusive", [], credible_set(probs), True, p, top, probs)
+
+
+#: The name of each effect's parameter in diagnosis.json.
+PARAMETER_NAMES = {"contact_edges": "inset_m", "friction": "friction", "geometry": "thickness_factor",
+                   "table_motion": "accel_gain"}
+
+
+def prior_bound(post: Posterior, model_id: str) -> list[str]:
+    """The parameters of a model whose posterior lies against an edge of its prior: more
+    than EDGE_MASS of the posterior in the outer EDGE_FRACTION of the range at one end."""
+    mp = post.models[model_id]
+    out = []
+    for name, v in zip(mp.grid.names, mp.grid.values):
+        if v.dtype == object:
+            continue
+        lo, hi = float(v.min()), float(v.max())
+        edge = EDGE_FRACTION * (hi - lo)
+        if mp.weights[v <= lo + edge].sum() > EDGE_MASS or mp.weights[v >= hi - edge].sum() > EDGE_MASS:
+            out.append(PARAMETER_NAMES[name])
+    return out
+
+
+def flags(post: Posterior, decision: Decision, reported: str | None) -> list[str]:
+    """diagnosis.json's `flags` (shared/MEASURED_DATA.md version 4)."""
+    out = []
+    if any(p.low_m <= 0 for p in post.pairs):
+        out.append("one_sided")
+    if reported and reported != "none":
+        out += [f"prior_bound:{name}" for name in prior_bound(post, reported)]
+    gains = np.concatenate([np.asarray(p.gains, float) for p in post.pairs]) if post.pairs else np.zeros(0)
+    sc = post.scales
+    if gains.size > 1 and "table_motion" not in decision.effects:
+        offset = float(gains.mean() - 1.0)
+        se = sc.sigma_gain / math.sqrt(gains.size)
+        if abs(offset) > 2.0 * se and abs(offset) <= BIAS_CALIBRATIONS * sc.gain_bias_sd:
+            out.append("sensor_bias")
+    if not decision.adequate:
+        out.append("inadequate")
+    return out

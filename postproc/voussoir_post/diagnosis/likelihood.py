@@ -3,61 +3,79 @@
 A pair's rows bracket its collapse threshold t (in commanded amplitude): low < t <= high.
 Under a model at parameter theta,
 
-    log t = mu(theta) - log g + delta_s + eps,
+    log t = mu(theta) - log g + delta_c + delta_s + eps,
 
-- mu: the simulated threshold (models.py);
+- mu: the emulated threshold (models.py), with the emulator's variance v(theta);
 - g: the table gain of the pair (1 when the model says the table followed the command;
   the pair's measured gain under table_motion with records);
-- eps ~ N(0, s^2), s^2 = sigma_sim^2 + sigma_gain^2 (+ the standard error of a measured
-  gain): the simulator's own spread at that pair, pooled from the bank's replicas of the
-  nominal model (dt x 0.97 and x 1.03, scan steps of 3 and 7 %) and the jitter of every
-  model's simulated values about its smooth fit (models.py), at least 1 %; and the test-to-test scatter of the table gain that the records
-  measure (1 % when there are none; at least 3 % when read from peak accelerations);
-- delta_s ~ N(0, tau_s^2), shared by the pairs of a specimen: a discrepancy of the model
-  that no parameter carries, tau_s^2 = tau0^2 + d_s^2 with d_s the change of the
-  specimen's nominal thresholds from dt to dt / 2 and tau0 integrated over 1, 3 and 6 %
-  (equal weights); integrated by Gauss-Hermite quadrature.
+- eps ~ N(0, s^2), s^2 = sigma_sim^2 + v(theta) + sigma_gain^2 (+ the standard error of a
+  measured gain): the simulator's own spread at that pair (the bank's replicas, pooled
+  over the models that have them), the emulator's, and the test-to-test scatter of the
+  table gain that the records measure (1 % when there are none; at least 3 % when read
+  from peak accelerations);
+- delta_s ~ N(0, tau_s^2), shared by the pairs of a specimen: how far that specimen's
+  build and set-up lie from its nominal model (a thickness or span a little off, a
+  support offset), with tau_s^2 = tau0^2 + d_s^2, d_s the change of the specimen's nominal
+  thresholds from dt to dt / 2, and tau0 integrated over TAU_SPECIMEN (equal weights);
+- delta_c ~ N(0, tau_c^2), shared by every pair of the campaign: what any two codes or a
+  code and a laboratory differ by over the whole campaign (and, for a model that divides
+  by the measured gains, the transducer's calibration), tau_c integrated over
+  TAU_CAMPAIGN (equal weights).
+
+The two discrepancies are integrated on a grid of log shifts (SHIFTS): each specimen's
+likelihood is tabulated against its total shift, convolved with delta_s's density and
+then, over the specimens, with delta_c's. A cause is therefore named only where its
+effect on the thresholds exceeds what these can make.
 
 Each pair's probability is mixed with an outlier model (probability 0.05: log t uniform
-within a factor 3 of mu), so one odd pair cannot carry a verdict. The table records add
-their own factor: each test's measured gain is N(1, s_g^2) when the table followed the
-command, or N(g_pair, s_g^2) with g_pair uniform on 0.7 .. 1.4 under table_motion.
+within a factor 3 of mu), so one odd pair cannot carry a verdict (the adequacy check of
+posterior.py has no outliers: an odd pair makes it fail).
+
+The table records add their own factor. Each test's measured gain reads the table
+through its transducer, whose calibration may be off by a common factor 1 + b,
+b ~ N(0, gain_sd^2) with gain_sd from table.csv (`displacement_gain_sd`, 1 % by
+default): when the table followed the command, the gains are N(1 + b, s_g^2) with b
+integrated out; under table_motion each pair has its own gain, uniform on 0.7 .. 1.4
+(Laplace: the records pin it), and the bias is part of it.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 from scipy.special import log_ndtr, logsumexp
 
 from .bank import FINE_DT, Bank
-from .models import GAIN_RANGE, ModelGrid, roughness
+from .models import GAIN_RANGE, SIM_FLOOR, ModelGrid, sim_spread
 from .observations import Observations, PairObservation
 
-__all__ = ["Scales", "scales", "adjusted_mu", "log_likelihood", "records_log_factor", "TAU0", "OUTLIER_PROB", "OUTLIER_FACTOR"]
+__all__ = ["Scales", "scales", "adjusted_mu", "pair_variance", "log_likelihood", "records_log_factor",
+           "TAU_SPECIMEN", "TAU_CAMPAIGN", "SHIFTS", "OUTLIER_PROB", "OUTLIER_FACTOR", "GAIN_SD_DEFAULT"]
 
-TAU0 = (0.01, 0.03, 0.06)  #: model discrepancy per specimen (relative), integrated with equal weights
+TAU_SPECIMEN = (0.01, 0.03, 0.06)  #: discrepancy of a specimen (relative), integrated with equal weights
+TAU_CAMPAIGN = (0.01, 0.03, 0.06)  #: discrepancy of the campaign (relative), integrated with equal weights
+SHIFTS = np.linspace(-0.45, 0.45, 91)  #: grid of log shifts on which the discrepancies are integrated
 OUTLIER_PROB = 0.05
 OUTLIER_FACTOR = 3.0  #: an outlier's threshold lies within this factor of the prediction
-SIM_FLOOR = 0.01  #: the smallest simulator spread assumed (relative)
 GAIN_SCATTER_DEFAULT = 0.01  #: test-to-test gain scatter assumed without records
 GAIN_SCATTER_FLOOR = 0.003
 PEAK_SCATTER_FLOOR = 0.03  #: scatter of a gain read from measured peak accelerations (no records)
-_GH_X, _GH_W = np.polynomial.hermite_e.hermegauss(9)
-_GH_LOGW = np.log(_GH_W / _GH_W.sum())
+GAIN_SD_DEFAULT = 0.01  #: the transducer's calibration without table.csv (shared/MEASURED_DATA.md)
 
 
 @dataclass
 class Scales:
-    """The scales of the likelihood, from the bank and the records."""
+    """The scales of the likelihood, from the bank, the records and table.csv."""
 
     sigma_sim: np.ndarray  #: simulator spread of each pair (relative)
     sigma_gain: float  #: test-to-test table gain scatter (relative)
     d_fine: dict[str, float]  #: per specimen: RMS change of log threshold from dt to dt / 2
     gain_mean: np.ndarray  #: measured gain of each pair (1 without records)
     gain_se: np.ndarray  #: its standard error
+    gain_bias_sd: float = GAIN_SD_DEFAULT  #: the transducer's calibration (relative)
 
 
 def scales(bank: Bank, obs: Observations, pairs: list[PairObservation]) -> Scales:
@@ -67,21 +85,8 @@ def scales(bank: Bank, obs: Observations, pairs: list[PairObservation]) -> Scale
         half = np.log(np.asarray(sb.replicas.get(FINE_DT[0], sb.thresholds["nominal"]), dtype=float)) - base
         half = half[np.isfinite(half)]
         fine[sid] = float(np.sqrt(np.mean(half ** 2))) if half.size else 0.0
-    sigma_sim = np.full(len(pairs), SIM_FLOOR)
-    if bank.specimens:
-        # Per pair: the spread of the nominal model's replicas and the jitter of every
-        # model's simulated values about its smooth fit, pooled.
-        ss, dof = roughness(bank, obs, pairs)
-        for j, p in enumerate(pairs):
-            sb = bank.specimens[p.specimen_id]
-            k = sb.index(p.frequency_hz)
-            reps = np.log([sb.thresholds["nominal"][k]] + [v[k] for name, v in sb.replicas.items()
-                                                           if name != FINE_DT[0]])
-            reps = reps[np.isfinite(reps)]
-            rep_ss = float(np.sum((reps - reps.mean()) ** 2)) if reps.size > 1 else 0.0
-            total_dof = dof[j] + max(0, reps.size - 1)
-            if total_dof > 0:
-                sigma_sim[j] = max(SIM_FLOOR, math.sqrt((ss[j] + rep_ss) / total_dof))
+    sigma_sim = np.array([sim_spread(bank.specimens[p.specimen_id], p.frequency_hz) if p.specimen_id in bank.specimens
+                          else SIM_FLOOR for p in pairs])
     within = [np.asarray(p.gains) - np.mean(p.gains) for p in pairs if len(p.gains) > 1]
     dof = sum(w.size - 1 for w in within)
     sigma_gain = (max(GAIN_SCATTER_FLOOR, float(np.sqrt(sum(float(w @ w) for w in within) / dof)))
@@ -90,7 +95,7 @@ def scales(bank: Bank, obs: Observations, pairs: list[PairObservation]) -> Scale
         sigma_gain = max(sigma_gain, PEAK_SCATTER_FLOOR)
     gm = np.array([np.mean(p.gains) if p.gains else 1.0 for p in pairs])
     gse = np.array([sigma_gain / math.sqrt(len(p.gains)) if p.gains else 0.0 for p in pairs])
-    return Scales(sigma_sim, sigma_gain, fine, gm, gse)
+    return Scales(sigma_sim, sigma_gain, fine, gm, gse, obs.gain_bias_sd)
 
 
 def _log_bracket(lo: np.ndarray, hi: np.ndarray, m: np.ndarray, s: np.ndarray) -> np.ndarray:
@@ -125,52 +130,106 @@ def adjusted_mu(grid: ModelGrid, sc: Scales) -> np.ndarray:
     return mu
 
 
-def log_likelihood(grid: ModelGrid, obs: Observations, pairs: list[PairObservation], sc: Scales) -> np.ndarray:
-    """log p(brackets | model, theta) at every grid point (records apart)."""
-    lo = np.log(np.array([p.low_m if p.low_m > 0 else 0.0 for p in pairs]) + 1e-300)
-    lo = np.where(np.array([p.low_m > 0 for p in pairs]), lo, -np.inf)
-    hi = np.log(np.array([p.high_m for p in pairs]))
-    mu = adjusted_mu(grid, sc)
-    var = np.full(len(pairs), sc.sigma_sim ** 2 + sc.sigma_gain ** 2)
+def pair_variance(grid: ModelGrid, sc: Scales) -> np.ndarray:
+    """(n_points, n_pairs) variance of eps: simulator, emulator and table scatter."""
+    var = sc.sigma_sim[None, :] ** 2 + sc.sigma_gain ** 2 + grid.emu_var
     if grid.gain_per_pair:
-        var += (sc.gain_se / sc.gain_mean) ** 2
-    s = np.sqrt(var)[None, :]
-    specimens = sorted({p.specimen_id for p in pairs})
-    total = np.zeros((len(TAU0), grid.n))
-    for sid in specimens:
-        j = [k for k, p in enumerate(pairs) if p.specimen_id == sid]
-        # Every (tau0, Gauss-Hermite node) at once: shift (n_tau, n_nodes, 1, 1).
-        tau = np.sqrt(np.asarray(TAU0) ** 2 + sc.d_fine.get(sid, 0.0) ** 2)
-        shift = (tau[:, None] * _GH_X[None, :])[:, :, None, None]
-        m = mu[None, None, :, j] + shift
-        normal = _log_bracket(lo[j], hi[j], m, s[:, j])
+        var = var + ((sc.gain_se / sc.gain_mean) ** 2)[None, :]
+    return var
+
+
+def brackets(pairs: list[PairObservation]) -> tuple[np.ndarray, np.ndarray]:
+    """The log ends of each pair's bracket (low -inf where no stand row lies below)."""
+    lo = np.array([math.log(p.low_m) if p.low_m > 0 else -np.inf for p in pairs])
+    hi = np.log(np.array([p.high_m for p in pairs]))
+    return lo, hi
+
+
+@lru_cache(maxsize=64)
+def _shift_weights(tau: float) -> np.ndarray:
+    """(shift, shift) matrix: the normalised density of one shift about another."""
+    d = SHIFTS[:, None] - SHIFTS[None, :]
+    w = np.exp(-0.5 * (d / tau) ** 2)
+    return w / w.sum(axis=0, keepdims=True)
+
+
+def _campaign_taus(grid: ModelGrid, sc: Scales) -> list[float]:
+    extra = sc.gain_bias_sd ** 2 if grid.gain_per_pair else 0.0
+    return [math.sqrt(t * t + extra) for t in TAU_CAMPAIGN]
+
+
+def specimen_log_tables(grid: ModelGrid, pairs: list[PairObservation], sc: Scales) -> dict[str, np.ndarray]:
+    """Per specimen, log p(its brackets | theta, total shift) on SHIFTS: (n_points, n_shifts)."""
+    lo, hi = brackets(pairs)
+    mu = adjusted_mu(grid, sc)
+    s = np.sqrt(pair_variance(grid, sc))
+    out = {}
+    for j, p in enumerate(pairs):
+        m = mu[:, j, None] + SHIFTS[None, :]
+        normal = _log_bracket(lo[j], hi[j], m, s[:, j, None])
         mixed = np.logaddexp(math.log1p(-OUTLIER_PROB) + normal,
                              math.log(OUTLIER_PROB) + _log_outlier(lo[j], hi[j], m))
-        total += logsumexp(_GH_LOGW[None, :, None] + mixed.sum(axis=3), axis=1)
-    return logsumexp(total, axis=0) - math.log(len(TAU0))
+        out[p.specimen_id] = out.get(p.specimen_id, 0.0) + mixed
+    return out
+
+
+def _log_matmul(log_table: np.ndarray, weights: np.ndarray) -> np.ndarray:
+    """log of exp(log_table) @ weights, stably: (n_points, n_columns)."""
+    top = np.max(log_table, axis=1, keepdims=True)
+    top = np.where(np.isfinite(top), top, 0.0)
+    with np.errstate(divide="ignore"):
+        return np.log(np.exp(log_table - top) @ weights) + top
+
+
+def log_likelihood(grid: ModelGrid, obs: Observations, pairs: list[PairObservation], sc: Scales,
+                   tables: dict | None = None) -> np.ndarray:
+    """log p(brackets | model, theta) at every grid point (records apart), the specimen
+    and campaign discrepancies integrated."""
+    tables = specimen_log_tables(grid, pairs, sc) if tables is None else tables
+    centre = SHIFTS.size // 2
+    prior_c = np.column_stack([_shift_weights(t)[:, centre] for t in _campaign_taus(grid, sc)])
+    levels = len(TAU_SPECIMEN) * prior_c.shape[1]
+    total = None
+    for sid, table in tables.items():
+        taus = [round(math.sqrt(t0 * t0 + sc.d_fine.get(sid, 0.0) ** 2), 12) for t0 in TAU_SPECIMEN]
+        # Every specimen level at once: (n, shifts x levels).
+        conv = _log_matmul(table, np.hstack([_shift_weights(t) for t in taus]))
+        total = conv if total is None else total + conv
+    per_level = [_log_matmul(total[:, k * SHIFTS.size:(k + 1) * SHIFTS.size], prior_c)
+                 for k in range(len(TAU_SPECIMEN))]
+    return logsumexp(np.hstack(per_level), axis=1) - math.log(levels)
 
 
 def records_log_factor(table_motion: bool, obs: Observations, pairs: list[PairObservation], sc: Scales) -> float:
-    """log p(measured gains | model): the table followed the command (gain 1), or each pair
-    has its own gain, uniform on 0.7 .. 1.4, integrated (Laplace: the records pin it)."""
+    """log p(measured gains | model): the table followed the command (every gain
+    N(1 + b, s^2), b the transducer's common bias, integrated), or each pair has its own
+    gain, uniform on 0.7 .. 1.4, integrated (Laplace: the records pin it)."""
     if obs.gain_source == "none":
         return 0.0
     s = sc.sigma_gain
+    g = np.concatenate([np.asarray(p.gains, float) for p in pairs]) if pairs else np.zeros(0)
+    if g.size == 0:
+        return 0.0
+    if not table_motion:
+        # N(1 + b, s^2) each, b ~ N(0, beta): covariance s^2 I + beta 1 1^T (Sherman-Morrison).
+        r = g - 1.0
+        n, beta = g.size, sc.gain_bias_sd ** 2
+        return float(-0.5 * n * math.log(2 * math.pi * s * s) - 0.5 * math.log1p(n * beta / (s * s))
+                     - 0.5 * (r @ r) / (s * s) + 0.5 * beta * r.sum() ** 2 / (s * s * (s * s + n * beta)))
     total = 0.0
     width = GAIN_RANGE[1] - GAIN_RANGE[0]
     for p in pairs:
-        g = np.asarray(p.gains, dtype=float)
-        if g.size == 0:
+        gp = np.asarray(p.gains, dtype=float)
+        if gp.size == 0:
             continue
-        centre = float(g.mean()) if table_motion else 1.0
-        total += float(np.sum(-0.5 * ((g - centre) / s) ** 2 - math.log(s * math.sqrt(2 * math.pi))))
-        if table_motion:
-            total += math.log(s * math.sqrt(2 * math.pi / g.size) / width)
+        total += float(np.sum(-0.5 * ((gp - gp.mean()) / s) ** 2 - math.log(s * math.sqrt(2 * math.pi))))
+        total += math.log(s * math.sqrt(2 * math.pi / gp.size) / width)
     return total
 
 
-def predictive_scale(sc: Scales, j: int, sid: str) -> float:
-    """Standard deviation of pair j's log threshold about a model's prediction (tau0 at its
-    middle value): for the posterior predictive check and the next test."""
-    return math.sqrt(sc.sigma_sim[j] ** 2 + sc.sigma_gain ** 2 + TAU0[1] ** 2 + sc.d_fine.get(sid, 0.0) ** 2)
-
+def predictive_sd(grid: ModelGrid, sc: Scales, pairs: list[PairObservation]) -> np.ndarray:
+    """(n_points, n_pairs) standard deviation of a pair's log threshold about a model's
+    prediction at each grid point, the discrepancies at their middle values."""
+    tau_s = np.array([TAU_SPECIMEN[1] ** 2 + sc.d_fine.get(p.specimen_id, 0.0) ** 2 for p in pairs])
+    tau_c = _campaign_taus(grid, sc)[1] ** 2
+    return np.sqrt(pair_variance(grid, sc) + tau_s[None, :] + tau_c)

@@ -13,12 +13,13 @@ its parameters, stated here and in the report, evaluated on a fine grid:
   (the records' own likelihood, in likelihood.py, weighs it); without them one gain for
   the campaign, uniform on 0.7 .. 1.4.
 
-Through the simulated values the log threshold is smoothed by least squares (a cubic
-along one parameter, a quadratic x quadratic surface in a pair, one cubic per side for a
-restraint with another effect): near a chaotic band a search jitters from one simulated
-value to the next, and the residuals of the fit measure that jitter (likelihood.py).
-The nominal model is the mean of its search and its replicas. A search that found no
-collapse below its ceiling counts as twice the ceiling.
+Between the simulated values the log threshold is emulated (emulator.py: a Gaussian
+process through the bank's nodes, whose nugget is the simulator's own spread measured by
+the replicas): at a node the prediction is what the bank simulated there, the nominal
+node is the mean of the nominal search and its replicas, and between nodes the
+emulator's variance goes with the prediction (likelihood.py). The leave-one-node-out
+residuals measure the emulator's lack of fit; they are reported, not taken for noise.
+A search that found no collapse below its ceiling counts as twice the ceiling.
 A table gain g divides any model's threshold exactly (rigid blocks): nothing to simulate.
 """
 
@@ -29,11 +30,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .bank import FINE_DT, Bank, SpecimenBank, key_variant
+from .bank import FINE_DT, Bank, SpecimenBank, key_variant, pooled_spread
+from .emulator import emulate
 from .effects import RESTRAINTS
 from .observations import Observations
 
-__all__ = ["EFFECT_IDS", "MODEL_IDS", "CANDIDATES", "ModelGrid", "model_grid", "model_prior", "members", "roughness", "nominal_log"]
+__all__ = ["EFFECT_IDS", "MODEL_IDS", "CANDIDATES", "ModelGrid", "model_grid", "model_prior", "members", "nominal_log",
+           "sim_spread", "SIM_FLOOR"]
 
 EFFECT_IDS = ("base_restraint", "contact_edges", "friction", "geometry", "table_motion")
 MODEL_IDS = ("none",) + EFFECT_IDS + tuple(f"{a}+{b}" for i, a in enumerate(EFFECT_IDS) for b in EFFECT_IDS[i + 1:])
@@ -41,8 +44,9 @@ MODEL_IDS = ("none",) + EFFECT_IDS + tuple(f"{a}+{b}" for i, a in enumerate(EFFE
 CANDIDATES = MODEL_IDS[1:]
 #: Gain range of the table_motion prior without records.
 GAIN_RANGE = (0.7, 1.4)
-FINE = 41  #: grid points of a continuous parameter
-SMOOTH_DEGREE = 3  #: of the least-squares fit of log threshold along one parameter
+FINE_1D = 81  #: grid points of a continuous parameter alone
+FINE_2D = 21  #: grid points of each continuous parameter of a pair
+SIM_FLOOR = 0.003  #: the smallest simulator spread assumed (relative)
 
 
 def members(model_id: str) -> tuple[str, ...]:
@@ -67,28 +71,39 @@ class ModelGrid:
     mu: np.ndarray  #: (n_points, n_pairs) predicted log threshold, table gain 1 [log m]
     gain_per_pair: bool  #: table_motion with records: each pair's measured gain divides it
     log_gain: np.ndarray | None = None  #: (n_points,) log of a campaign gain (table_motion, no records)
-    resid_ss: np.ndarray | None = None  #: (n_pairs,) residual sum of squares of the smooth fits
-    resid_dof: np.ndarray | None = None  #: (n_pairs,) their degrees of freedom
+    emu_var: np.ndarray | None = None  #: (n_points, n_pairs) the emulator's variance of mu
+    loo_z: list | None = None  #: per pair, the emulator's standardised leave-one-node-out residuals
 
     @property
     def n(self) -> int:
         return self.mu.shape[0]
 
 
-def _node_log(bank: SpecimenBank, key: str, f: float) -> float:
-    t = bank.threshold(key, f)
-    return math.log(t if math.isfinite(t) else 2.0 * bank.amp_max_m)
+def _node(bank: SpecimenBank, key: str, k: int) -> tuple[float, int]:
+    """(log threshold, number of searches averaged) of a node at frequency index k: the
+    mean of its search and its replicas (the nominal model's at the bank's dt scale)."""
+    values = [bank.thresholds[key][k]]
+    if key == "nominal":
+        values += [v[k] for name, v in bank.replicas.items() if name != FINE_DT[0]]
+    else:
+        values += [v[k] for v in bank.node_replicas.get(key, {}).values()]
+    logs = [math.log(v if math.isfinite(v) else 2.0 * bank.amp_max_m) for v in values
+            if not (math.isfinite(v) and v <= 0)]
+    return float(np.mean(logs)), len(logs)
 
 
 def nominal_log(bank: SpecimenBank, f: float) -> float:
     """The nominal model's log threshold: the mean over its search and the replicas at
     the same dt scale (dt x 0.97, x 1.03, other scan steps), which the chaotic band
     scatters."""
-    keys = [k for k in bank.replicas if k != FINE_DT[0]]
-    k = bank.index(f)
-    values = [_node_log(bank, "nominal", f)] + [math.log(bank.replicas[r][k]) for r in keys
-                                                 if math.isfinite(bank.replicas[r][k])]
-    return float(np.mean(values))
+    return _node(bank, "nominal", bank.index(f))[0]
+
+
+def sim_spread(bank: SpecimenBank, f: float) -> float:
+    """The simulator's own spread (relative) at one frequency: the replicas' pooled
+    standard deviation, at least SIM_FLOOR."""
+    s, _ = pooled_spread(bank, bank.index(f))
+    return max(SIM_FLOOR, s if math.isfinite(s) else SIM_FLOOR)
 
 
 def _axis(bank: SpecimenBank, effect_id: str, in_pair: bool, spec) -> list:
@@ -113,141 +128,109 @@ def _key(parts: list[tuple]) -> str:
     return "+".join(f"{e}={v}" for e, v in sorted(parts)) if parts else "nominal"
 
 
-def _table_at(bank: SpecimenBank, spec, effects: tuple[str, ...], axes: list[list], f: float) -> np.ndarray:
-    """Log thresholds on the product of the simulated axes of `effects` (nominal value = no part)."""
-    shape = [len(a) for a in axes]
-    out = np.empty(shape)
-    for idx in np.ndindex(*shape):
-        parts = []
-        for e, a, i in zip(effects, axes, idx):
-            v = a[i]
-            parts.append((e, None if v == _nominal_value(e, spec) else v))
+def _nodes(bank: SpecimenBank, spec, effects: tuple[str, ...], axes: list[list], f: float
+           ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Every simulated node on the product of `axes`: (indices (n, d), log thresholds,
+    number of searches averaged). A product point the bank lacks is left out."""
+    k = bank.index(f)
+    idx, ys, counts = [], [], []
+    for ii in np.ndindex(*[len(a) for a in axes]):
+        parts = [(e, None if a[i] == _nominal_value(e, spec) else a[i]) for e, a, i in zip(effects, axes, ii)]
         key = _key(parts)
         if key not in bank.thresholds:  # declared brackets: base_restraint leaves them as they are
             key = _key([(e, v) for e, v in parts if e != "base_restraint"])
-        out[idx] = _node_log(bank, key, f)
-    return out
+        if key not in bank.thresholds:
+            continue
+        y, c = _node(bank, key, k)
+        idx.append(ii)
+        ys.append(y)
+        counts.append(c)
+    return np.array(idx, dtype=int), np.array(ys), np.array(counts, dtype=float)
 
 
-def _fine(effect_id: str, axis: list) -> np.ndarray:
+def _fine(effect_id: str, axis: list, in_pair: bool) -> np.ndarray:
     if effect_id == "base_restraint":
         return np.arange(len(axis), dtype=float)
-    return np.linspace(min(axis), max(axis), FINE)
+    return np.linspace(min(axis), max(axis), FINE_2D if in_pair else FINE_1D)
 
 
-def _basis(x: np.ndarray, degree: int) -> np.ndarray:
-    return np.vstack([x ** k for k in range(degree + 1)]).T
-
-
-def _smooth_1d(nodes: list, y: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, float, int]:
-    """Least-squares cubic (fewer terms with few nodes) of log threshold over one axis,
-    evaluated at x; the residual sum of squares and its degrees of freedom."""
-    lo, hi = min(nodes), max(nodes)
-    scale = lambda v: (np.asarray(v, dtype=float) - lo) / (hi - lo) * 2.0 - 1.0
-    degree = min(SMOOTH_DEGREE, len(nodes) - 2) if len(nodes) > 2 else len(nodes) - 1
-    a = _basis(scale(nodes), degree)
-    coef, *_ = np.linalg.lstsq(a, y, rcond=None)
-    resid = y - a @ coef
-    return _basis(scale(x), degree) @ coef, float(resid @ resid), len(nodes) - degree - 1
-
-
-def _smooth_2d(axes: list[list], table: np.ndarray, points: list[np.ndarray]) -> tuple[np.ndarray, float, int]:
-    """Least-squares quadratic x quadratic surface of log threshold over two axes."""
-    scaled = [(np.asarray(a, float) - min(a)) / (max(a) - min(a)) * 2.0 - 1.0 for a in axes]
-    gx, gy = np.meshgrid(scaled[0], scaled[1], indexing="ij")
-    design = lambda x, y: np.vstack([x ** i * y ** j for i in range(3) for j in range(3)]).T
-    a = design(gx.ravel(), gy.ravel())
-    coef, *_ = np.linalg.lstsq(a, table.ravel(), rcond=None)
-    resid = table.ravel() - a @ coef
-    px = (points[0] - min(axes[0])) / (max(axes[0]) - min(axes[0])) * 2.0 - 1.0
-    py = (points[1] - min(axes[1])) / (max(axes[1]) - min(axes[1])) * 2.0 - 1.0
-    return design(px, py) @ coef, float(resid @ resid), table.size - a.shape[1]
+def _scaled(values, axis) -> np.ndarray:
+    lo, hi = min(axis), max(axis)
+    return (np.asarray(values, float) - lo) / (hi - lo)
 
 
 def _predict(bank: SpecimenBank, spec, effects: tuple[str, ...], f: float, points: list[np.ndarray],
-             in_pair: bool) -> tuple[np.ndarray, float, int]:
-    """Smoothed log threshold at every grid point (one array per effect), with the
-    residual sum of squares of the smooth fit through the simulated nodes and its degrees
-    of freedom: a search near a chaotic band jitters from node to node, and the fit keeps
-    the trend while the residuals measure the jitter."""
+             in_pair: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The emulated log threshold at every grid point (one array per effect), its
+    emulator variance, and the standardised leave-one-node-out residuals."""
     axes = [_axis(bank, e, in_pair, spec) for e in effects]
-    table = _table_at(bank, spec, effects, axes, f)
+    idx, y, counts = _nodes(bank, spec, effects, axes, f)
+    noise = sim_spread(bank, f) ** 2 / counts
     categorical = [e == "base_restraint" for e in effects]
-    if len(effects) == 1:
-        if categorical[0]:
-            return table[points[0].astype(int)], 0.0, 0
-        return _smooth_1d(axes[0], table, points[0])
+    if all(categorical):  # the restraint alone: the node itself
+        k = points[0].astype(int)
+        lookup = {int(i[0]): (yy, nn) for i, yy, nn in zip(idx, y, noise)}
+        return (np.array([lookup[i][0] for i in k]), np.array([lookup[i][1] for i in k]), np.zeros(0))
     if not any(categorical):
-        return _smooth_2d(axes, table, points)
-    # A restraint (categorical) with a continuous effect: one cubic per side.
+        x = np.column_stack([_scaled(np.asarray(a)[idx[:, c]], a) for c, a in enumerate(axes)])
+        at = np.column_stack([_scaled(p, a) for p, a in zip(points, axes)])
+        em = emulate(x, y, noise, at)
+        return em.mean, em.var, em.loo_z
+    # A restraint (categorical) with a continuous effect: one emulator per side.
     c = categorical.index(True)
-    k, x = points[c].astype(int), points[1 - c]
-    rows = table if c == 0 else table.T
-    out = np.empty_like(x)
-    ss, dof = 0.0, 0
-    for side in range(rows.shape[0]):
-        sel = k == side
-        pred, s_side, d_side = _smooth_1d(axes[1 - c], rows[side], x[sel])
-        out[sel] = pred
-        ss, dof = ss + s_side, dof + d_side
-    return out, ss, dof
-
-
-def roughness(bank: Bank, obs: Observations, pairs) -> tuple[np.ndarray, np.ndarray]:
-    """Per pair: the residual sum of squares of every model's smooth fit through its
-    simulated nodes, and the degrees of freedom (the simulator's jitter between nearby
-    models; likelihood.py pools it with the replicas' spread)."""
-    ss, dof = np.zeros(len(pairs)), np.zeros(len(pairs))
-    for m in MODEL_IDS:
-        grid = model_grid(m, bank, obs, pairs)
-        ss += grid.resid_ss
-        dof += grid.resid_dof
-    return ss, dof
+    side, x = points[c].astype(int), points[1 - c]
+    mean, var, loo = np.empty_like(x), np.empty_like(x), []
+    for s in range(len(axes[c])):
+        on = idx[:, c] == s
+        sel = side == s
+        cont = axes[1 - c]
+        em = emulate(_scaled(np.asarray(cont)[idx[on, 1 - c]], cont)[:, None], y[on], noise[on],
+                     _scaled(x[sel], cont)[:, None])
+        mean[sel], var[sel] = em.mean, em.var
+        loo.append(em.loo_z)
+    return mean, var, np.concatenate(loo)
 
 
 def model_grid(model_id: str, bank: Bank, obs: Observations, pairs=None) -> ModelGrid:
-    """The grid of one model over the pairs `pairs` (default: the observations' pairs);
-    made once per bank, model and set of pairs (it does not depend on the brackets)."""
+    """The grid of one model over the pairs `pairs` (default: the observations' pairs).
+    Each pair's emulation is made once per bank and model (it does not depend on the
+    brackets) and kept in bank.grids."""
     pairs = obs.pairs if pairs is None else pairs
-    key = (model_id, obs.pairs[0].specimen_id, obs.gain_source != "none",
-           tuple((p.specimen_id, round(p.frequency_hz, 9)) for p in pairs))
-    if key not in bank.grids:
-        bank.grids[key] = _model_grid(model_id, bank, obs, pairs)
-    return bank.grids[key]
-
-
-def _model_grid(model_id: str, bank: Bank, obs: Observations, pairs) -> ModelGrid:
     effects = members(model_id)
     simulated = tuple(e for e in effects if e != "table_motion")
     in_pair = len(simulated) == 2
     # The grid of each simulated parameter: the same for every subset of pairs (from the
     # campaign's first specimen), so that a posterior on some pairs predicts the others.
     ref = obs.pairs[0].specimen_id
-    fine = {e: _fine(e, _axis(bank.specimens[ref], e, in_pair, obs.specimens[ref])) for e in simulated}
+    fine = {e: _fine(e, _axis(bank.specimens[ref], e, in_pair, obs.specimens[ref]), in_pair) for e in simulated}
     mesh = np.meshgrid(*[fine[e] for e in simulated], indexing="ij") if simulated else []
     points = [m.ravel() for m in mesh]
     n = points[0].size if points else 1
-    mu = np.empty((n, len(pairs)))
-    resid_ss, resid_dof = np.zeros(len(pairs)), np.zeros(len(pairs))
+    mu, var, loo = np.empty((n, len(pairs))), np.empty((n, len(pairs))), []
     for j, p in enumerate(pairs):
-        sb, spec = bank.specimens[p.specimen_id], obs.specimens[p.specimen_id]
-        if simulated:
-            mu[:, j], resid_ss[j], resid_dof[j] = _predict(sb, spec, simulated, p.frequency_hz, points, in_pair)
-        else:
-            mu[:, j] = nominal_log(sb, p.frequency_hz)
+        key = ("emulation", model_id, ref, p.specimen_id, round(p.frequency_hz, 9))
+        if key not in bank.grids:
+            sb, spec = bank.specimens[p.specimen_id], obs.specimens[p.specimen_id]
+            if simulated:
+                bank.grids[key] = _predict(sb, spec, simulated, p.frequency_hz, points, in_pair)
+            else:
+                y, count = _node(sb, "nominal", sb.index(p.frequency_hz))
+                bank.grids[key] = (np.array([y]), np.array([sim_spread(sb, p.frequency_hz) ** 2 / count]),
+                                   np.zeros(0))
+        mu[:, j], var[:, j], z = bank.grids[key]
+        loo.append(z)
     values = [RESTRAINTS_ARRAY[pt.astype(int)] if e == "base_restraint" else pt for e, pt in zip(simulated, points)]
     names = simulated
     log_gain = None
     gain_per_pair = "table_motion" in effects and obs.gain_source != "none"
     if "table_motion" in effects and not gain_per_pair:
-        gains = np.linspace(*GAIN_RANGE, 71)
-        mu = np.repeat(mu, gains.size, axis=0)
+        gains = np.linspace(*GAIN_RANGE, 36)
+        mu, var = np.repeat(mu, gains.size, axis=0), np.repeat(var, gains.size, axis=0)
         log_gain = np.tile(np.log(gains), n)
         values = [np.repeat(v, gains.size) for v in values] + [np.tile(gains, n)]
         names = simulated + ("table_motion",)
         n *= gains.size
-    return ModelGrid(model_id, names, values, np.full(n, -math.log(n)), mu, gain_per_pair, log_gain,
-                     resid_ss, resid_dof)
+    return ModelGrid(model_id, names, values, np.full(n, -math.log(n)), mu, gain_per_pair, log_gain, var, loo)
 
 
 RESTRAINTS_ARRAY = np.array(RESTRAINTS, dtype=object)

@@ -23,7 +23,7 @@ import numpy as np
 
 from .bank import onset_amplitudes, variant_key
 from .effects import arch_group
-from .likelihood import TAU0
+from .likelihood import TAU_CAMPAIGN, TAU_SPECIMEN
 from .models import members
 from .observations import Observations
 from .posterior import Posterior, tested_separation
@@ -50,7 +50,7 @@ def next_test(post: Posterior, obs: Observations, rivals: list[str], runs: dict,
     best = {"specimen_id": post.pairs[j].specimen_id, "frequency_hz": post.pairs[j].frequency_hz, "new": False,
             "score": float(tested[j]), "predicted_m": {}}
     sc = post.scales
-    var = float(np.mean(sc.sigma_sim ** 2)) + sc.sigma_gain ** 2 + TAU0[1] ** 2
+    var = float(np.mean(sc.sigma_sim ** 2)) + sc.sigma_gain ** 2 + TAU_SPECIMEN[1] ** 2 + TAU_CAMPAIGN[1] ** 2
     gain = float(np.mean(sc.gain_mean)) if obs.gain_source != "none" else 1.0
     for sid in sorted({p.specimen_id for p in obs.pairs}):
         spec, freqs = obs.specimens[sid], _new_frequencies(obs, sid, settings)

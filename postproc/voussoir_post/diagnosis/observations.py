@@ -51,6 +51,8 @@ class Observations:
     delay_s: float = 0.0  #: mean delay of the records (reported, not inferred)
     delay_se_s: float = math.nan
     apart: list[PairObservation] = field(default_factory=list)  #: specimens with setup_certain = 0
+    #: The table transducer's calibration (relative standard deviation; table.csv).
+    gain_bias_sd: float = 0.01
 
     def of(self, specimen_id: str) -> list[PairObservation]:
         return [p for p in self.pairs if p.specimen_id == specimen_id]
@@ -79,4 +81,4 @@ def from_campaign(campaign: Campaign) -> tuple[Observations, TableEvidence]:
         cycles.setdefault(m.specimen_id, cycles_of(campaign, m.test_ids[0]))
     specimens = {sid: s for sid, s in campaign.specimens.items() if any(p.specimen_id == sid for p in pairs + apart)}
     return (Observations(campaign.name, specimens, pairs, cycles, table.source, table.delay_s, table.delay_se,
-                         apart), table)
+                         apart, campaign.table.displacement_gain_sd), table)

@@ -9,7 +9,7 @@ The stages, each handing its result to the next (docs/diagnosis.md explains them
    discrepancy;
 4. posterior.py: the models' posterior probabilities, their parameters, the posterior
    predictive check, the held-out errors and the next test;
-5. decision.py: the verdict of shared/MEASURED_DATA.md version 3;
+5. decision.py: the verdict of shared/MEASURED_DATA.md version 4 and its flags;
 6. report.py: report.md, its figures and diagnosis.json; samples.py: the posterior as
    model samples of each arch (posterior_samples_<specimen>.csv), for the fragility.
 
@@ -30,12 +30,12 @@ import numpy as np
 from ..errors import InputError
 from ..readers.campaign import read_campaign
 from .bank import Bank, build_bank
-from .decision import Decision, decide
+from .decision import Decision, decide, flags
 from .effects import COMBINED, Variant
 from .models import CANDIDATES, MODEL_IDS, members, model_prior
 from .observations import Observations, from_campaign
 from .next_test import next_test
-from .posterior import Posterior, held_out, infer
+from .posterior import SENSITIVITY_FACTORS, Posterior, held_out, infer, prior_sensitivity
 from .report import write_report
 from .samples import write_samples
 from .screen import specimen_screen
@@ -45,7 +45,7 @@ from .single_runs import crown_comparison, hinge_matches
 
 __all__ = ["DiagnosisSettings", "diagnose", "infer_campaign", "parameters", "model_run", "CONTRACT_VERSION"]
 
-CONTRACT_VERSION = 3
+CONTRACT_VERSION = 4
 
 
 def parameters(post: Posterior, model_id: str | None, obs: Observations) -> dict:
@@ -66,10 +66,14 @@ def parameters(post: Posterior, model_id: str | None, obs: Observations) -> dict
             name, unit = names[e]
             out[name] = {"value": value, "low": low, "high": high, "unit": unit}
     if "table_motion" in members(model_id) and mp.grid.gain_per_pair:
+        # The campaign's mean gain over its pairs, with the 90 % interval of that mean: the
+        # tests' scatter over their number and the transducer's calibration, which no
+        # number of tests removes (each pair's own gain is in the report).
         g = post.scales.gain_mean
-        se = post.scales.sigma_gain / math.sqrt(max(1, sum(len(p.gains) for p in post.pairs)))
-        out["accel_gain"] = {"value": float(np.mean(g)), "low": float(np.min(g) - 1.645 * se),
-                             "high": float(np.max(g) + 1.645 * se), "unit": ""}
+        n_tests = max(1, sum(len(p.gains) for p in post.pairs))
+        se = math.sqrt(post.scales.sigma_gain ** 2 / n_tests + post.scales.gain_bias_sd ** 2) * float(np.mean(g))
+        out["accel_gain"] = {"value": float(np.mean(g)), "low": float(np.mean(g) - 1.645 * se),
+                             "high": float(np.mean(g) + 1.645 * se), "unit": ""}
         if obs.gain_source == "records":  # peak accelerations say nothing of a delay
             se_d = obs.delay_se_s if math.isfinite(obs.delay_se_s) else 0.0
             out["delay_s"] = {"value": obs.delay_s, "low": obs.delay_s - 1.645 * se_d,
@@ -135,6 +139,8 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     baseline_error = float(np.mean(np.abs(baseline_pred - meas) / meas))
     shown = decision.top if decision.adequate and decision.top != "none" else None
     shown_params = parameters(post, shown, obs)
+    flag_list = flags(post, decision, shown)
+    sensitivity = {f: prior_sensitivity(post, f) for f in SENSITIVITY_FACTORS}
     rivals = decision.rivals
     suggestion = None
     if decision.verdict == "inconclusive" and len(rivals) > 1:
@@ -166,11 +172,13 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
         "candidates": [candidate_entry(m, post, held[m], obs) for m in CANDIDATES],
         "next_test": None if suggestion is None else {"specimen_id": suggestion["specimen_id"],
                                                       "frequency_hz": suggestion["frequency_hz"]},
+        "flags": flag_list,
+        "adequacy_p_value": decision.p_value,
         "notes": "",
     }
     info = {"elapsed_s": time.time() - t0, "bank": bank, "settings": settings, "table": table, "crown": crown, "screen": screen,
-            "held": held, "baseline_pred": baseline_pred, "samples": samples, "next_test": suggestion, "runs": sim.n_runs, "prior": {m: model_prior(m)
-                                                                                    for m in MODEL_IDS}}
+            "held": held, "baseline_pred": baseline_pred, "samples": samples, "next_test": suggestion, "runs": sim.n_runs,
+            "prior": {m: model_prior(m) for m in MODEL_IDS}, "sensitivity": sensitivity}
     result["notes"] = write_report(out_dir, campaign, obs, post, decision, result, info)
     (out_dir / "diagnosis.json").write_text(json.dumps(result, indent=2) + "\n")
     log(f"[diagnose] verdict: {decision.verdict} ({info['elapsed_s']:.0f} s, {bank.searches} threshold searches, "
@@ -179,11 +187,9 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
 
 
 def candidate_entry(model_id: str, post: Posterior, held: tuple, obs: Observations) -> dict:
-    """One entry of diagnosis.json's `candidates`; a pair is `combined` with its `effects`."""
-    eff = members(model_id)
-    entry = {"effect": eff[0] if len(eff) == 1 else "combined"}
-    if len(eff) > 1:
-        entry["effects"] = list(eff)
+    """One entry of diagnosis.json's `candidates`: its model id (a pair's ids joined by
+    `+`), with its `effects`."""
+    entry = {"effect": model_id, "effects": list(members(model_id))}
     entry.update({"cv_error_pct": 100 * held[1], "probability": post.probabilities[model_id],
                   "parameters": parameters(post, model_id, obs)})
     return entry

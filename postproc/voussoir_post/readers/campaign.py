@@ -43,6 +43,7 @@ __all__ = [
     "Record",
     "HingeObservation",
     "Campaign",
+    "TableLimits",
     "MeasuredThreshold",
     "read_campaign",
     "measured_thresholds",
@@ -150,6 +151,18 @@ class HingeObservation:
     line: int = 0
 
 
+@dataclass(frozen=True)
+class TableLimits:
+    """table.csv (version 4): what the table can do and how well its transducer is known;
+    the defaults of shared/MEASURED_DATA.md without the file."""
+
+    stroke_m: float = 0.15  #: largest displacement amplitude the table can command
+    max_velocity_m_s: float = 1.0
+    max_accel_m_s2: float = 20.0
+    displacement_gain_sd: float = 0.01  #: the transducer's calibration, relative standard deviation
+    from_file: bool = False
+
+
 @dataclass
 class Campaign:
     """A validated campaign folder."""
@@ -160,6 +173,7 @@ class Campaign:
     records: dict[str, Record] = field(default_factory=dict)
     hinges: dict[str, list[HingeObservation]] = field(default_factory=dict)
     warnings: list[str] = field(default_factory=list)
+    table: TableLimits = field(default_factory=TableLimits)
 
     @property
     def name(self) -> str:
@@ -353,6 +367,28 @@ def _read_hinges(path: str, n_voussoirs: int, warn_list: list[str]) -> list[Hing
     return hinges
 
 
+_TABLE_COLUMNS = ("stroke_m", "max_velocity_m_s", "max_accel_m_s2", "displacement_gain_sd")
+
+
+def _read_table_limits(path: str, warn_list: list[str]) -> TableLimits:
+    """table.csv: one header row and one data row; every column optional (its default)."""
+    table = read_table(path)
+    check_columns(table, (), _TABLE_COLUMNS, warn_list)
+    if len(table.rows) != 1:
+        raise CampaignError(path, f"table.csv must have one data row, it has {len(table.rows)}", table.header_line)
+    c = Cells(table, table.rows[0])
+    values = {"stroke_m": c.number("stroke_m", required=False, length=True, low=0.0, low_inclusive=False,
+                                   rule="stroke_m > 0"),
+              "max_velocity_m_s": c.number("max_velocity_m_s", required=False, low=0.0, low_inclusive=False,
+                                           rule="max_velocity_m_s > 0"),
+              "max_accel_m_s2": c.number("max_accel_m_s2", required=False, low=0.0, low_inclusive=False,
+                                         rule="max_accel_m_s2 > 0"),
+              "displacement_gain_sd": c.number("displacement_gain_sd", required=False, low=0.0, high=0.5,
+                                               rule="0 <= displacement_gain_sd <= 0.5")}
+    c.raise_first()
+    return TableLimits(**{k: v for k, v in values.items() if v is not None}, from_file=True)
+
+
 def _csv_files(folder: str) -> list[str]:
     """Names of the .csv files directly in ``folder`` (sorted), [] when it is absent. An
     entry named like a CSV that is not a file (a folder, a broken link) is refused."""
@@ -406,7 +442,9 @@ def read_campaign(folder: str | os.PathLike) -> Campaign:
 
     records = {t: records[t] for t in tests if t in records}
     hinges = {t: hinges[t] for t in tests if t in hinges}
-    return Campaign(folder, specimens, tests, records, hinges, warn_list)
+    table_path = os.path.join(folder, "table.csv")
+    limits = _read_table_limits(table_path, warn_list) if os.path.isfile(table_path) else TableLimits()
+    return Campaign(folder, specimens, tests, records, hinges, warn_list, limits)
 
 
 # ------------------------------------------------------------------- thresholds

@@ -1,0 +1,124 @@
+"""Campaigns made by another code: LMGC90's thresholds of hidden truths, replayed as a laboratory.
+
+bench/lmgc90/truths.py draws truths from the diagnosis's own prior (and truths outside
+its catalogue), builds each specimen as it really is in LMGC90 (chamfered polygons, a
+thinner ring, brackets with play, an actuator, a heavier crown, a spreading support; each
+specimen a little off its nominal size), and finds each (arch, frequency) pair's collapse
+threshold in commanded amplitude by a scan and a bisection. The stored truths
+(data/lmgc90/*.json) hold those searches' probes; they are made once, with LMGC90, and
+replayed here without it.
+
+A replay (`draw_campaign`) plays a laboratory over a truth, with the faults of real ones
+drawn per campaign (`LabFaults`):
+
+- a ramp per pair of 1 to 5 mm steps (snapped to 0.5 mm), from a start between 0.5 and
+  0.9 times the nominal onset of rocking, up to the first collapse;
+- each test's real table gain scatters (1 % by default) about the actuator's gain;
+- the table transducer reads every gain off by a common factor (up to +-2 %);
+- a campaign-wide offset of the thresholds, of the size two codes differ by (normal,
+  1 % by default);
+- in some campaigns only the collapse rows are kept (the seed paper's tables), so every
+  bracket is an upper bound.
+
+A test's outcome is the truth's at the amplitude the table really made (command x gain x
+offset): collapse at or above the stored threshold, unless a probe just above it stood
+(a window of standing beyond the first collapse, kept as the search saw it).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from independent_campaigns import ARCHES
+from voussoir_post.diagnosis.observations import Observations, PairObservation
+from voussoir_post.readers.campaign import Specimen
+
+__all__ = ["TRUTH_DIR", "LabFaults", "load_truth", "stored_truths", "draw_campaign", "truth_model", "SNAP_M"]
+
+TRUTH_DIR = Path(__file__).resolve().parent / "data" / "lmgc90"
+SNAP_M = 5e-4  #: amplitudes a laboratory commands are multiples of this
+
+
+@dataclass(frozen=True)
+class LabFaults:
+    """How a laboratory's campaign departs from an ideal one (ranges drawn per campaign)."""
+
+    step_mm: tuple[float, float] = (1.0, 5.0)  #: ramp step, uniform [mm]
+    start_fraction: tuple[float, float] = (0.5, 0.9)  #: first amplitude, times the nominal onset
+    gain_scatter: float = 0.01  #: test-to-test table gain scatter (relative)
+    transducer_bias: float = 0.02  #: the transducer's common gain error, uniform within +-
+    gain_noise: float = 0.002  #: noise of one measured gain (relative)
+    offset_sd: float = 0.01  #: campaign-wide offset of the thresholds (relative, normal)
+    collapses_only_p: float = 0.2  #: probability that a campaign keeps only its collapse rows
+    max_tests: int = 40
+
+
+#: Ideal campaigns: the faults off (a check that the faults matter, and a baseline).
+IDEAL = LabFaults(step_mm=(2.0, 2.0), start_fraction=(0.7, 0.7), transducer_bias=0.0, offset_sd=0.0,
+                  collapses_only_p=0.0)
+
+
+def load_truth(path: Path) -> dict:
+    return json.loads(Path(path).read_text())
+
+
+def stored_truths(folder: Path = TRUTH_DIR) -> list[dict]:
+    """Every stored truth, by index."""
+    out = [load_truth(p) | {"slug": p.stem} for p in sorted(Path(folder).glob("t*.json"))]
+    return sorted(out, key=lambda t: t["truth"]["index"])
+
+
+def truth_model(truth: dict) -> str:
+    """The model id the diagnosis should name ('outside' for a truth outside the catalogue)."""
+    return truth["truth"]["model"]
+
+
+def _collapsed(pair: dict, amp_m: float) -> bool:
+    """The truth's outcome at a real amplitude (see the module docstring)."""
+    thr = pair["threshold_m"]
+    if thr is None or amp_m < thr:
+        return False
+    above = [(a, c) for a, c, *_ in pair["probes"] if a >= thr]
+    return bool(min(above, key=lambda ac: abs(ac[0] - amp_m))[1]) if above else True
+
+
+def draw_campaign(truth: dict, rng: np.random.Generator, faults: LabFaults = LabFaults(),
+                  name: str = "lmgc90") -> tuple[Observations, dict]:
+    """One campaign over a stored truth; returns its observations and the drawn faults."""
+    bias = rng.uniform(-faults.transducer_bias, faults.transducer_bias) if faults.transducer_bias else 0.0
+    offset = math.exp(faults.offset_sd * rng.standard_normal()) if faults.offset_sd else 1.0
+    collapses_only = bool(rng.random() < faults.collapses_only_p)
+    by_id = {a.specimen_id: a for a in ARCHES}
+    pairs = []
+    for pair in truth["pairs"]:
+        step = max(SNAP_M, round(rng.uniform(*faults.step_mm) * 1e-3 / SNAP_M) * SNAP_M)
+        amp = max(SNAP_M, round(rng.uniform(*faults.start_fraction) * pair["onset_m"] / SNAP_M) * SNAP_M)
+        tests = []
+        for _ in range(faults.max_tests):
+            g = pair["table_gain"] * (1.0 + faults.gain_scatter * rng.standard_normal())
+            measured = g * (1.0 + bias) * (1.0 + faults.gain_noise * rng.standard_normal())
+            fell = _collapsed(pair, amp * g / pair["table_gain"] * offset)
+            tests.append((amp, fell, measured, f"{pair['specimen_id']}_f{pair['frequency_hz']:g}_A{1e3 * amp:.1f}"))
+            if fell:
+                break
+            amp = round((amp + step) / SNAP_M) * SNAP_M
+        if not tests[-1][1]:
+            continue
+        if collapses_only:
+            tests = [t for t in tests if t[1]]
+        high = min(a for a, fell, _, _ in tests if fell)
+        low = max((a for a, fell, _, _ in tests if not fell and a < high), default=0.0)
+        pairs.append(PairObservation(pair["specimen_id"], float(pair["frequency_hz"]), float(low), float(high),
+                                     tuple(float(t[2]) for t in tests), tuple(t[3] for t in tests)))
+    ids = list(dict.fromkeys(p.specimen_id for p in pairs))
+    specimens = {sid: Specimen(sid, by_id[sid].embrace_deg, by_id[sid].n_voussoirs, by_id[sid].r_ext_m,
+                               by_id[sid].thickness_m, by_id[sid].width_m, by_id[sid].density_kg_m3,
+                               friction=by_id[sid].friction, restrained_springings="none", setup_certain=True)
+                 for sid in ids}
+    obs = Observations(name, specimens, pairs, {sid: (1, 1, 1) for sid in ids}, gain_source="records")
+    return obs, {"transducer_bias": bias, "offset": offset, "collapses_only": collapses_only}

@@ -1,0 +1,97 @@
+"""A Gaussian-process emulator of the bank: a model's log threshold between its simulated nodes.
+
+The bank simulates each model at a few values of its parameters (the nodes). Between
+them the diagnosis needs a prediction and an honest statement of how well it is known:
+
+- the mean follows the simulator: at a node it is what the bank simulated there (the
+  mean of the node's search and its replicas), to within the simulator's own spread,
+  which is the GP's nugget (the replicas' pooled variance over the node's number of
+  searches). So every effect's curve passes through the nominal model at its nominal
+  value, and a steep response is followed, not smoothed away;
+- between nodes the GP's own variance says how much the emulator does not know; it
+  vanishes at the nodes and enters the likelihood as the emulator's error (likelihood.py),
+  never as simulator noise;
+- the lack of fit is measured apart: the leave-one-node-out residuals, standardised by
+  their predictive spread (about 1 when the emulator is as good as it says), reported.
+
+Kernel: Matern 5/2 on parameters scaled to [0, 1], plus a linear trend fitted first by
+least squares. Its length scales and amplitude are chosen by the largest marginal
+likelihood on a fixed grid (deterministic, no optimiser start to depend on).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.linalg import cho_factor, cho_solve
+
+__all__ = ["Emulation", "emulate", "LENGTH_SCALES", "AMPLITUDES"]
+
+#: Length scales tried, in units of the parameter's range.
+LENGTH_SCALES = (0.04, 0.07, 0.12, 0.2, 0.35, 0.6, 1.0, 2.0)
+#: Amplitudes tried, as multiples of the residual standard deviation about the trend.
+AMPLITUDES = (0.3, 1.0, 3.0)
+AMPLITUDE_FLOOR = 0.003  #: smallest GP amplitude [log units], for nodes lying on a line
+
+
+@dataclass
+class Emulation:
+    """The emulator's prediction at the points asked for."""
+
+    mean: np.ndarray  #: predicted log threshold
+    var: np.ndarray  #: the emulator's variance of it (0 at a node without noise)
+    loo_z: np.ndarray  #: standardised leave-one-node-out residuals of the nodes
+    length_scales: tuple[float, ...]
+    amplitude: float
+
+
+def _matern52(a: np.ndarray, b: np.ndarray, scales: np.ndarray) -> np.ndarray:
+    d = (a[:, None, :] - b[None, :, :]) / scales[None, None, :]
+    r = np.sqrt(np.sum(d * d, axis=2)) * math.sqrt(5.0)
+    return (1.0 + r + r * r / 3.0) * np.exp(-r)
+
+
+def _trend(x: np.ndarray) -> np.ndarray:
+    return np.hstack([np.ones((x.shape[0], 1)), x])
+
+
+def emulate(x: np.ndarray, y: np.ndarray, noise_var: np.ndarray, points: np.ndarray) -> Emulation:
+    """Emulate y(x) from the nodes x (n, d) scaled to [0, 1], their log thresholds y (n,)
+    and noise variances (n,), at `points` (m, d)."""
+    x = np.asarray(x, float).reshape(len(y), -1)
+    points = np.asarray(points, float).reshape(-1, x.shape[1])
+    y = np.asarray(y, float)
+    noise = np.maximum(np.asarray(noise_var, float), 1e-10)
+    n, d = x.shape
+    h = _trend(x)
+    n_trend = h.shape[1] if n > h.shape[1] + 1 else 1
+    h = h[:, :n_trend]
+    beta, *_ = np.linalg.lstsq(h, y, rcond=None)
+    r = y - h @ beta
+    base = max(AMPLITUDE_FLOOR, float(np.sqrt(np.mean(r * r))))
+    best = None
+    for scales in itertools.product(LENGTH_SCALES, repeat=d):
+        k0 = _matern52(x, x, np.array(scales))
+        for a in AMPLITUDES:
+            amp2 = (a * base) ** 2
+            k = amp2 * k0 + np.diag(noise)
+            try:
+                c = cho_factor(k, lower=True)
+            except np.linalg.LinAlgError:
+                continue
+            alpha = cho_solve(c, r)
+            logml = -0.5 * float(r @ alpha) - float(np.sum(np.log(np.diag(c[0]))))
+            if best is None or logml > best[0]:
+                best = (logml, scales, amp2, c, alpha)
+    _, scales, amp2, c, alpha = best
+    ks = amp2 * _matern52(points, x, np.array(scales))
+    mean = _trend(points)[:, :n_trend] @ beta + ks @ alpha
+    v = cho_solve(c, ks.T)
+    var = np.maximum(amp2 - np.sum(ks * v.T, axis=1), 0.0)
+    # Leave one node out, in closed form: residual alpha_i / [K^-1]_ii, variance 1 / [K^-1]_ii.
+    kinv = cho_solve(c, np.eye(n))
+    loo_z = alpha / np.sqrt(np.diag(kinv))
+    return Emulation(mean, var, loo_z, tuple(scales), math.sqrt(amp2))
