@@ -1,145 +1,186 @@
-"""Calibration of the diagnosis's probabilities (issue 23): are causes named at 0.9 right
-at least 85 % of the time, and is the truth in the 90 % set at least 85 % of the time?
+"""Calibration of the diagnosis's probabilities on campaigns made by another code (LMGC90).
 
-    python bench/diagnosis_calibration.py BIN_DIR OUT_DIR [--truths N] [--draws D] [--seed S]
+    python bench/diagnosis_calibration.py OUT_DIR [--draws D] [--truths DIR] [--faults lab|ideal]
 
-Truths are drawn from a prior over the catalogue, with values off every grid and in both
-directions, pairs, and truths outside it (a gap at the intrados, brackets on one specimen
-only); each truth is made by the independent generator (postproc/tests/replay_maps.py
-outcome maps: polygon blocks, chamfers, an integrated actuator, dt 5e-4 s) and diagnosed
-in D noise draws on the stored simulation bank of the test arches
-(postproc/tests/data/replay/bank). Prints the table of rates and writes
-OUT_DIR/calibration.json and the reliability figure OUT_DIR/diagnosis_reliability.png
-(stated probability of the most probable model against how often it is the truth).
+The truths are those LMGC90 made (bench/lmgc90/truths.sh, stored in
+postproc/tests/data/lmgc90): drawn from the diagnosis's own prior with values off every
+grid, pairs and truths outside the catalogue, each specimen a little off its nominal
+size. Each is replayed in D laboratory campaigns with the faults of real laboratories
+(postproc/tests/lmgc90_campaigns.py: ramps of 1 to 5 mm, a transducer off by up to 2 %,
+a campaign-wide offset, a fifth of the campaigns with collapse rows only) and diagnosed on
+the stored simulation bank of the test arches (Voussoir's). Nothing here runs LMGC90 or
+the kernel: the bench is fast and can be rerun after any change of the inference.
+
+Prints, and writes into OUT_DIR/calibration.json: the rates of the done-when of issue 33
+(causes named at 0.9 right, with a 95 % lower bound by truth from a bootstrap over the
+truths; the truth in the 90 % set, by kind of truth; the nominal arch and the single
+effects that move the thresholds by 10 % or more named at 0.9; truths outside the
+catalogue named and flagged inadequate), the log and Brier scores of the stated
+probability of the truth against a diagnosis that returns its prior, the mean size of the
+90 % sets, the reliability of the stated probabilities (OUT_DIR/diagnosis_reliability.png)
+and a simulation-based calibration of the parameters (the posterior CDF of the truth's
+value, uniform when the posteriors are right: its 90 % coverage and a KS test).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import math
 import sys
 import time
 from pathlib import Path
 
 import numpy as np
-from scipy.stats import binomtest
+from scipy.stats import binomtest, kstest
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT / "postproc"), str(ROOT / "postproc" / "tests")]
 
-from voussoir_post.diagnosis.bank import Bank, load_banks  # noqa: E402
-from voussoir_post.diagnosis.rates import draw_outcomes  # noqa: E402
+from voussoir_post.diagnosis.bank import load_banks  # noqa: E402
 from voussoir_post.diagnosis.figures import reliability_figure  # noqa: E402
+from voussoir_post.diagnosis.models import MODEL_IDS, model_prior, nominal_log  # noqa: E402
 from voussoir_post.plots.drawing import provenance  # noqa: E402
 
-from independent_campaigns import ARCHES, Truth  # noqa: E402
-from replay_maps import draw_observations, outcome_map, save_map, load_map  # noqa: E402
+from lmgc90_campaigns import IDEAL, TRUTH_DIR, LabFaults, stored_truths, truth_model  # noqa: E402
+from test_diagnosis_lmgc90 import outcomes  # noqa: E402
 
-DATA = ROOT / "postproc" / "tests" / "data" / "replay"
-
-
-def draw_truth(rng: np.random.Generator) -> tuple[str, Truth]:
-    """One truth from the calibration prior (equal weight per kind)."""
-    kind = rng.choice(["none", "edges", "friction", "geometry", "actuator", "brackets", "edges+friction",
-                       "geometry+friction", "intrados gap", "brackets on one"])
-    u = lambda a, b: float(np.round(rng.uniform(a, b), 4))
-    low_or_high = lambda lo, hi: lo if rng.random() < 0.7 else hi
-    if kind == "none":
-        return kind, Truth()
-    if kind == "edges":
-        return kind, Truth(chamfer_m=u(0.001, 0.007))
-    if kind == "friction":
-        return kind, Truth(friction=low_or_high(u(0.30, 0.46), u(0.55, 0.70)))
-    if kind == "geometry":
-        return kind, Truth(thickness_factor=low_or_high(u(0.78, 0.95), u(1.05, 1.10)))
-    if kind == "actuator":
-        return kind, Truth(actuator_hz=u(4.0, 10.0), actuator_damping=u(0.1, 0.4))
-    if kind == "brackets":
-        return kind, Truth(bracket_gap_m=u(0.0, 0.0005))
-    if kind == "edges+friction":
-        return kind, Truth(chamfer_m=u(0.002, 0.006), friction=u(0.32, 0.45))
-    if kind == "geometry+friction":
-        return kind, Truth(thickness_factor=u(0.80, 0.92), friction=u(0.32, 0.45))
-    if kind == "intrados gap":
-        return kind, Truth(intrados_cut_m=u(0.003, 0.008))
-    return kind, Truth(bracket_gap_m=u(0.0, 0.0005), bracket_specimens=(str(rng.choice([a.specimen_id for a in ARCHES])),))
+BANK = ROOT / "postproc" / "tests" / "data" / "replay" / "bank"
 
 
-def stored_bank() -> Bank:
-    return load_banks(DATA / "bank")
+def kind(truth: dict) -> str:
+    m = truth_model(truth)
+    return "outside" if m == "outside" else ("none" if m == "none" else ("pair" if "+" in m else m))
 
 
-def reliability(outcomes: list[dict], out: Path, note: str) -> list[tuple]:
-    stated = np.array([o["p_top"] for o in outcomes if o["truth"] != "outside"])
-    right = np.array([o["top_right"] for o in outcomes if o["truth"] != "outside"])
+def effect_size(truth: dict, bank) -> float:
+    """The largest change of a pair's threshold from the nominal model's (Voussoir's, the
+    bank's), in relative terms."""
+    sizes = []
+    for p in truth["pairs"]:
+        if p["threshold_m"] is None:
+            continue
+        sb = bank.specimens[p["specimen_id"]]
+        sizes.append(abs(math.log(p["threshold_m"]) - nominal_log(sb, p["frequency_hz"])))
+    return math.expm1(max(sizes)) if sizes else math.inf
+
+
+def bootstrap_by_truth(outs: list[dict], stat, n: int = 2000, seed: int = 5) -> tuple[float, float]:
+    """A statistic of the draws and its 95 % lower bound, resampling truths (not draws)."""
+    slugs = sorted({o["slug"] for o in outs})
+    by = {s: [o for o in outs if o["slug"] == s] for s in slugs}
+    rng = np.random.default_rng(seed)
+    values = []
+    for _ in range(n):
+        pick = rng.choice(len(slugs), len(slugs))
+        sample = [o for k in pick for o in by[slugs[k]]]
+        v = stat(sample)
+        if v is not None:
+            values.append(v)
+    return stat(outs), float(np.quantile(values, 0.05)) if values else math.nan
+
+
+def named_right(outs):
+    named = [o for o in outs if o["named"] and o["truth"] != "outside"]
+    return (sum(o["right_named"] for o in named) / len(named)) if named else None
+
+
+def reliability(outs: list[dict], out: Path, note: str) -> list[tuple]:
+    inside = [o for o in outs if o["truth"] != "outside"]
+    stated = np.array([o["p_top"] for o in inside])
+    right = np.array([o["top_right"] for o in inside])
     edges = np.array([0.0, 0.2, 0.4, 0.6, 0.8, 0.9, 1.0001])
-    rows = []
+    bins = []
     for a, b in zip(edges[:-1], edges[1:]):
         sel = (stated >= a) & (stated < b)
         if sel.any():
-            rows.append((a, min(b, 1.0), int(sel.sum()), float(stated[sel].mean()), float(right[sel].mean())))
-    bins = []
-    for a, b, n, s, r in rows:
-        ci = binomtest(int(round(r * n)), n).proportion_ci(0.95, method="wilson")
-        bins.append((a, b, n, s, r, ci.low, ci.high))
+            n, r = int(sel.sum()), float(right[sel].mean())
+            ci = binomtest(int(round(r * n)), n).proportion_ci(0.95, method="wilson")
+            bins.append((float(a), float(min(b, 1.0)), n, float(stated[sel].mean()), r, ci.low, ci.high))
     reliability_figure(out, bins, note)
-    return rows
+    return bins
 
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("bin_dir", type=Path)
     ap.add_argument("out", type=Path)
-    ap.add_argument("--truths", type=int, default=20)
     ap.add_argument("--draws", type=int, default=10)
-    ap.add_argument("--seed", type=int, default=23)
+    ap.add_argument("--truths", type=Path, default=TRUTH_DIR)
+    ap.add_argument("--faults", choices=("lab", "ideal"), default="lab")
     args = ap.parse_args()
     args.out.mkdir(parents=True, exist_ok=True)
-    rng = np.random.default_rng(args.seed)
-    bank = stored_bank()
-    outcomes, per_truth = [], []
+    bank = load_banks(BANK)
+    truths = stored_truths(args.truths)
+    faults = LabFaults() if args.faults == "lab" else IDEAL
     t0 = time.time()
-    for k in range(args.truths):
-        kind, truth = draw_truth(rng)
-        path = args.out / "maps" / f"truth_{k:03d}.json"
-        if path.exists():
-            omap = load_map(path)
-        else:
-            omap = outcome_map(truth, args.bin_dir, log=lambda m: None)
-            path.parent.mkdir(parents=True, exist_ok=True)
-            save_map(omap, path)
-        got = draw_outcomes(bank, omap, args.draws, draw_observations, seed=1000 + k)
-        outcomes += got
-        per_truth.append({"kind": kind, "truth": str(truth), "model": omap["truth_model"],
-                          "in_set": sum(o["in_set"] for o in got), "named_right": sum(o["right_named"] for o in got),
-                          "named_wrong": sum(o["wrong_named"] for o in got), "draws": len(got)})
-        r = per_truth[-1]
-        print(f"[{time.time() - t0:6.0f} s] truth {k:2d} {kind:18s} {r['model']:28s} in set {r['in_set']:2d}/{r['draws']}"
-              f"  named right {r['named_right']:2d}  named wrong {r['named_wrong']:2d}   ({truth})", flush=True)
-    inside = [o for o in outcomes if o["truth"] != "outside"]
+    outs = []
+    for t in truths:
+        got = outcomes(bank, [t], args.draws, faults)
+        size = effect_size(t, bank)
+        for o in got:
+            o["kind"], o["effect_size"] = kind(t), size
+        outs += got
+        print(f"[{time.time() - t0:5.0f} s] {t['slug']:44s} effect {100 * size:5.1f} %  in set "
+              f"{sum(o['in_set'] for o in got):2d}/{len(got)}  named right {sum(o['right_named'] for o in got):2d}  "
+              f"wrong {sum(o['wrong_named'] for o in got):2d}  mean P(truth) {np.mean([o['p_truth'] for o in got]):.2f}"
+              f"  inadequate {sum(not o['adequate'] for o in got)}", flush=True)
+    inside = [o for o in outs if o["truth"] != "outside"]
+    outside = [o for o in outs if o["truth"] == "outside"]
     named = [o for o in inside if o["named"]]
-    outside_named = sum(o["named"] for o in outcomes if o["truth"] == "outside")
+    right, right_low = bootstrap_by_truth(outs, named_right)
+    log_score = float(np.mean([math.log(max(o["p_truth"], 1e-300)) for o in inside]))
+    log_prior = float(np.mean([math.log(o["prior_truth"]) for o in inside]))
+    brier = float(np.mean([sum((p - (m == o["truth"])) ** 2 for m, p in o["probabilities"].items()) for o in inside]))
+    prior_brier = float(np.mean([sum((model_prior(m) - (m == o["truth"])) ** 2 for m in MODEL_IDS) for o in inside]))
+    by_kind = {}
+    for k in sorted({o["kind"] for o in outs}):
+        sel = [o for o in outs if o["kind"] == k]
+        by_kind[k] = {"draws": len(sel), "truths": len({o["slug"] for o in sel}),
+                      "in_set": sum(o["in_set"] for o in sel) / len(sel),
+                      "named_right": sum(o["right_named"] for o in sel), "named_wrong": sum(o["wrong_named"] for o in sel),
+                      "inadequate": sum(not o["adequate"] for o in sel)}
+    strong = [o for o in inside if o["kind"] == "none" or (o["kind"] not in ("pair",) and o["effect_size"] >= 0.10)]
+    cdfs = np.array([c for o in inside for c in o["cdf"].values()])
     table = {
-        "draws": len(outcomes), "truths": args.truths,
-        "named_at_0.9": len(named),
-        "named_right_fraction": (sum(o["right_named"] for o in named) / len(named)) if named else None,
-        "truth_in_90pct_set_fraction": sum(o["in_set"] for o in inside) / len(inside) if inside else None,
-        "outside_named": outside_named,
-        "outside_draws": sum(o["truth"] == "outside" for o in outcomes),
+        "draws": len(outs), "truths": len(truths), "faults": args.faults,
+        "named_at_0.9": len(named), "named_right": right, "named_right_95pct_lower_bound_by_truth": right_low,
+        "truth_in_90pct_set": sum(o["in_set"] for o in inside) / len(inside),
+        "mean_90pct_set_size": float(np.mean([o["set_size"] for o in inside if not o["named"]] or [math.nan])),
+        "strong_truths_named_right": (sum(o["right_named"] for o in strong) / len(strong)) if strong else None,
+        "strong_draws": len(strong),
+        "log_score": log_score, "log_score_of_the_prior": log_prior, "brier": brier, "brier_of_the_prior": prior_brier,
+        "outside_named": sum(o["named"] for o in outside), "outside_inadequate": sum(not o["adequate"] for o in outside),
+        "outside_draws": len(outside),
+        "parameter_cdf_in_90pct": float(np.mean((cdfs >= 0.05) & (cdfs <= 0.95))) if cdfs.size else None,
+        "parameter_cdf_ks_p": float(kstest(cdfs, "uniform").pvalue) if cdfs.size > 4 else None,
+        "by_kind": by_kind,
     }
-    note = provenance("bench/diagnosis_calibration.sh",
-                      f"{args.truths} truths x {args.draws} noise draws, seed {args.seed}; the test arches' bank")
-    rows = reliability(outcomes, args.out, note)
+    note = provenance("bench/diagnosis_calibration.sh", f"{len(truths)} LMGC90 truths x {args.draws} campaigns "
+                      f"({args.faults} faults); the test arches' bank")
+    bins = reliability(outs, args.out, note)
     print()
-    print(f"draws {table['draws']} ({args.truths} truths x {args.draws})")
-    print(f"causes named at >= 0.9: {table['named_at_0.9']}, right {table['named_right_fraction']}  (goal >= 0.85)")
-    print(f"truth in the 90 % set: {table['truth_in_90pct_set_fraction']}  (goal >= 0.85)")
-    print(f"out-of-catalogue truths named at >= 0.9: {outside_named} of {table['outside_draws']}  (goal 0)")
-    print("reliability (stated bin, draws, mean stated, observed):")
-    for a, b, n, s, r in rows:
-        print(f"  {a:.1f}-{b:.1f}  {n:4d}  {s:.2f}  {r:.2f}")
-    (args.out / "calibration.json").write_text(json.dumps({"table": table, "per_truth": per_truth,
-                                                           "reliability": rows}, indent=1) + "\n")
+    print(f"{len(outs)} campaigns of {len(truths)} LMGC90 truths ({args.faults} faults), {time.time() - t0:.0f} s")
+    print(f"causes named at >= 0.9: {len(named)}, right {right} (95 % lower bound by truth {right_low:.2f}; "
+          "goals 0.9 and 0.8)")
+    print(f"truth in the 90 % set: {table['truth_in_90pct_set']:.3f} (goal 0.85 in every kind); mean size of the "
+          f"sets of inconclusive draws {table['mean_90pct_set_size']:.2f}")
+    for k, v in by_kind.items():
+        print(f"  {k:16s} {v['truths']:3d} truths {v['draws']:4d} draws: in set {v['in_set']:.2f}, named right "
+              f"{v['named_right']}, wrong {v['named_wrong']}, inadequate {v['inadequate']}")
+    print(f"nominal arch and single effects moving thresholds >= 10 %: named right {table['strong_truths_named_right']}"
+          f" of {len(strong)} draws (goal 0.8)")
+    print(f"log score {log_score:.2f} against the prior's {log_prior:.2f}; Brier {brier:.3f} against the prior's "
+          f"{prior_brier:.3f}")
+    print(f"outside the catalogue: named {table['outside_named']} of {len(outside)}, flagged inadequate "
+          f"{table['outside_inadequate']} (goal: never named, inadequate in half)")
+    print(f"parameters: truth's posterior CDF within 5-95 % in {table['parameter_cdf_in_90pct']} (goal 0.9), "
+          f"KS p {table['parameter_cdf_ks_p']}")
+    print("reliability (stated bin, draws, mean stated, observed, 95 % interval):")
+    for a, b, n, s, r, lo, hi in bins:
+        print(f"  {a:.1f}-{b:.1f}  {n:4d}  {s:.2f}  {r:.2f}  [{lo:.2f}, {hi:.2f}]")
+    clean = [{k: v for k, v in o.items() if k != "probabilities"} for o in outs]
+    (args.out / "calibration.json").write_text(json.dumps({"table": table, "reliability": bins, "draws": clean},
+                                                          indent=1, default=str) + "\n")
     return 0
 
 

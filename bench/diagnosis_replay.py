@@ -4,11 +4,13 @@
 
 Builds the simulation bank of the test arches (postproc/tests/independent_campaigns.py
 ARCHES, all their frequencies) with the executables of BIN_DIR into OUT_DIR, then replays
-the 20 noise draws of every stored truth (postproc/tests/data/replay/maps) on the stored
-bank and on the new one, and prints, per truth and in all, how often each is right (truth
-in the 90 % set, and no wrong cause named) and the exact McNemar test of the paired draws:
-a change of the kernel's last bits is judged better or no worse, not "the same seed
-passes". With --store the new bank replaces the stored one.
+the campaigns of every stored LMGC90 truth (postproc/tests/data/lmgc90, as the tests do)
+on the stored bank and on the new one, and prints, per truth and in all, how often each
+is right (truth in the 90 % set, and no wrong cause named), the exact McNemar test of the
+paired draws (a change of the kernel's last bits is judged better or no worse, not "the
+same seed passes") and whether the tests' judgement (test_diagnosis_lmgc90.judge) still
+holds on the new bank. With --store the new bank replaces the stored one only when the
+judgement holds and it is no worse.
 """
 
 from __future__ import annotations
@@ -22,15 +24,15 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT / "postproc"), str(ROOT / "postproc" / "tests")]
 
 from voussoir_post.diagnosis.bank import Bank, build_bank, load_banks  # noqa: E402
-from voussoir_post.diagnosis.rates import draw_outcomes, mcnemar  # noqa: E402
+from voussoir_post.diagnosis.rates import mcnemar  # noqa: E402
 from voussoir_post.diagnosis.settings import DiagnosisSettings  # noqa: E402
 from voussoir_post.readers.campaign import Specimen  # noqa: E402
 
 from independent_campaigns import ARCHES  # noqa: E402
-from replay_maps import draw_observations, load_map  # noqa: E402
+from lmgc90_campaigns import stored_truths  # noqa: E402
+from test_diagnosis_lmgc90 import DRAWS, judge, outcomes  # noqa: E402
 
 DATA = ROOT / "postproc" / "tests" / "data" / "replay"
-DRAWS = 20
 
 
 def arches_bank(bin_dir: Path, out: Path) -> Bank:
@@ -54,29 +56,34 @@ def main() -> int:
     t0 = time.time()
     new = arches_bank(bin_dir, out)
     print(f"bank: {new.searches} threshold searches in {time.time() - t0:.0f} s")
+    before_all, after_all, new_outcomes = [], [], []
+    print(f"{'truth':44s} {'stored':>8s} {'new':>8s} {'better':>7s} {'worse':>6s} {'p':>6s}")
+    for truth in stored_truths():
+        old_o, new_o = outcomes(stored(), [truth]), outcomes(new, [truth])
+        a, b = [right(o) for o in old_o], [right(o) for o in new_o]
+        m = mcnemar(a, b)
+        print(f"{truth['slug']:44s} {sum(a):5d}/{len(a)} {sum(b):5d}/{len(b)} {m['better']:7d} {m['worse']:6d} "
+              f"{m['p_value']:6.3f}")
+        before_all += a
+        after_all += b
+        new_outcomes += new_o
+    m = mcnemar(before_all, after_all)
+    worse = m["worse"] > m["better"] and m["p_value"] < 0.05
+    print(f"{'all':44s} {sum(before_all):5d}/{len(before_all)} {sum(after_all):5d}/{len(after_all)} "
+          f"{m['better']:7d} {m['worse']:6d} {m['p_value']:6.3f}  -> the new bank is "
+          f"{'worse' if worse else 'better or no worse'} ({DRAWS} campaigns a truth)")
+    failed = judge(new_outcomes)
+    print("the tests' judgement on the new bank: " + ("holds" if not failed else "FAILS: " + "; ".join(failed)))
     if "--store" in sys.argv:
+        if failed or worse:
+            print("not stored: the new bank fails the judgement or is worse")
+            return 1
         (DATA / "bank").mkdir(parents=True, exist_ok=True)
         for old in (DATA / "bank").glob("*.json"):
             old.unlink()
         for f in out.glob("*.json"):
-            shutil.copy(f, DATA / "bank" / f.name.split("-")[0].__add__(".json"))
+            shutil.copy(f, DATA / "bank" / (f.name.split("-")[0] + ".json"))
         print(f"stored in {DATA / 'bank'}")
-        return 0
-    before_all, after_all = [], []
-    print(f"{'truth':32s} {'stored':>8s} {'new':>8s} {'better':>7s} {'worse':>6s} {'p':>6s}")
-    for path in sorted((DATA / "maps").glob("*.json")):
-        omap = load_map(path)
-        a = [right(o) for o in draw_outcomes(stored(), omap, DRAWS, draw_observations)]
-        b = [right(o) for o in draw_outcomes(new, omap, DRAWS, draw_observations)]
-        m = mcnemar(a, b)
-        print(f"{path.stem:32s} {sum(a):5d}/{DRAWS} {sum(b):5d}/{DRAWS} {m['better']:7d} {m['worse']:6d} "
-              f"{m['p_value']:6.3f}")
-        before_all += a
-        after_all += b
-    m = mcnemar(before_all, after_all)
-    verdict = "worse" if m["worse"] > m["better"] and m["p_value"] < 0.05 else "better or no worse"
-    print(f"{'all':32s} {sum(before_all):5d}/{len(before_all)} {sum(after_all):5d}/{len(after_all)} "
-          f"{m['better']:7d} {m['worse']:6d} {m['p_value']:6.3f}  -> the new bank is {verdict}")
     return 0
 
 

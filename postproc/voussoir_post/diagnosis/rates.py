@@ -21,11 +21,11 @@ import numpy as np
 from scipy.stats import binomtest
 
 from .bank import Bank
-from .decision import decide
-from .models import members
+from .decision import decide, flags
+from .models import MODEL_IDS, members, model_prior
 from .posterior import infer
 
-__all__ = ["covers", "outcome", "draw_outcomes", "mcnemar"]
+__all__ = ["covers", "outcome", "draw_outcomes", "mcnemar", "truth_prior", "parameter_cdf", "power"]
 
 
 def covers(model_id: str, truth: str) -> bool:
@@ -33,17 +33,41 @@ def covers(model_id: str, truth: str) -> bool:
     return model_id == truth or (truth == "base_restraint" and "base_restraint" in members(model_id))
 
 
-def outcome(bank: Bank, obs, truth: str) -> dict:
+def truth_prior(truth: str) -> float:
+    """The prior probability of what `covers` counts as the truth (0 outside the catalogue)."""
+    return sum(model_prior(m) for m in MODEL_IDS if covers(m, truth))
+
+
+def parameter_cdf(post, truth: str, values: dict) -> dict[str, float]:
+    """The posterior CDF, under the truth's model, of each continuous parameter at its true
+    value (a simulation-based calibration: uniform over draws when the posterior is right)."""
+    if truth not in post.models:
+        return {}
+    mp = post.models[truth]
+    out = {}
+    for name, v in zip(mp.grid.names, mp.grid.values):
+        if v.dtype == object or name not in values:
+            continue
+        below = float(mp.weights[v < values[name]].sum())
+        at = float(mp.weights[v == values[name]].sum())
+        out[name] = below + 0.5 * at
+    return out
+
+
+def outcome(bank: Bank, obs, truth: str, truth_values: dict | None = None) -> dict:
     post = infer(bank, obs)
     d = decide(post)
     named = d.verdict != "inconclusive"
     chosen = [d.top] if named else d.rivals
     right = covers(d.top, truth)
+    reported = d.top if d.adequate and d.top != "none" else None
     return {"truth": truth, "verdict": d.verdict, "top": d.top, "p_top": post.probabilities[d.top],
             "p_truth": sum(p for m, p in post.probabilities.items() if covers(m, truth)),
-            "top_right": right, "adequate": d.adequate, "named": named,
-            "in_set": any(covers(m, truth) for m in chosen), "right_named": named and right,
-            "wrong_named": named and not right, "probabilities": post.probabilities}
+            "prior_truth": truth_prior(truth),
+            "top_right": right, "adequate": d.adequate, "p_value": d.p_value, "named": named,
+            "in_set": any(covers(m, truth) for m in chosen), "set_size": len(chosen), "right_named": named and right,
+            "wrong_named": named and not right, "probabilities": post.probabilities,
+            "flags": flags(post, d, reported), "cdf": parameter_cdf(post, truth, truth_values or {})}
 
 
 def draw_outcomes(bank: Bank, omap: dict, draws: int, draw: Callable, seed: int = 2026) -> list[dict]:
@@ -67,3 +91,11 @@ def mcnemar(before: list[bool], after: list[bool]) -> dict:
     n = worse + better
     p = 1.0 if n == 0 else float(binomtest(better, n, 0.5).pvalue)
     return {"better": better, "worse": worse, "p_value": p}
+
+
+def power(outcomes: list[dict]) -> float:
+    """The mean of log P(truth) - log prior(truth) over draws of truths in the catalogue:
+    0 for a diagnosis that ignores the data, positive when the data move it toward the
+    truth (an information gain, in nats)."""
+    inside = [o for o in outcomes if o["prior_truth"] > 0]
+    return float(np.mean([np.log(max(o["p_truth"], 1e-300)) - np.log(o["prior_truth"]) for o in inside]))

@@ -40,6 +40,7 @@ import numpy as np
 from .. import __version__
 from ..readers.campaign import Specimen
 from .observations import Observations
+from .decision import PARAMETER_NAMES, prior_bound
 from .posterior import Posterior
 
 __all__ = ["write_samples", "draw_samples", "nominal_arch_line", "SAMPLE_COLUMNS", "FORMAT_LINE", "NOMINAL_KEYS",
@@ -66,6 +67,23 @@ def nominal_arch_line(spec: Specimen) -> str:
 def model_lines() -> list[str]:
     """The model version and code lines of a samples file."""
     return [f"# model version: {MODEL_VERSION}", f"# code: voussoir-post {__version__}"]
+
+
+def constraint_line(post: Posterior, at_least: float = 0.05) -> str:
+    """Which parameters of the models drawn (probability >= at_least) the data bound, and
+    which lie against an edge of their prior (there the prior, not the data, bounds them)."""
+    bound, edge = [], []
+    for m in post.ranked():
+        if post.probabilities[m] < at_least or m == "none":
+            continue
+        at_edge = set(prior_bound(post, m))
+        for name, v in zip(post.models[m].grid.names, post.models[m].grid.values):
+            if v.dtype == object:
+                continue
+            label = f"{PARAMETER_NAMES[name]} in {m}"
+            (edge if PARAMETER_NAMES[name] in at_edge else bound).append(label)
+    return ("# bounded by the data: " + (", ".join(bound) or "none") + "; against an edge of the prior (the prior, "
+            "not the data, bounds it): " + (", ".join(edge) or "none"))
 
 
 def draw_samples(post: Posterior, n: int, seed: int = 2026) -> list[tuple[str, dict]]:
@@ -95,7 +113,7 @@ def write_samples(out_dir: Path, post: Posterior, obs: Observations, n: int, cam
                  "weights).",
                  "# &arch values of the arch itself: table gains and restraints (the laboratory's) are not "
                  "carried; a thickness factor f gives thickness f t about the mean radius.",
-                 nominal_arch_line(spec),
+                 nominal_arch_line(spec), constraint_line(post),
                  ",".join(SAMPLE_COLUMNS)]
         for k, (model, values) in enumerate(draws):
             f = float(values.get("geometry", 1.0))

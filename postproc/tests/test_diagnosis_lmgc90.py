@@ -1,0 +1,159 @@
+"""The diagnosis on campaigns made by another code, with the faults real laboratories have.
+
+The truths are LMGC90's (lmgc90_campaigns.py; made by bench/lmgc90/truths.sh and stored
+in data/lmgc90): drawn from the diagnosis's own prior, values off every grid, pairs of
+effects and truths outside the catalogue, each specimen built a little off. Each is
+replayed as DRAWS laboratory campaigns (ramps of 1 to 5 mm, a transducer off by up to
+2 %, a campaign-wide offset, some campaigns with collapse rows only) and diagnosed on the
+stored simulation bank of the test arches (data/replay/bank, Voussoir's).
+
+What is asserted (`judge`) must fail when the method ignores the data: power (the mean
+of log P(truth) - log prior(truth), an information gain in nats, above POWER_MARGIN),
+causes named at 0.9 right at least 90 % of the time, truths outside the catalogue never
+named, the truth in the 90 % set at least 80 % of the time, and the truth's parameter
+inside its 90 % interval at least 75 % of the time. The mutation tests run the same
+judgement on a posterior equal to the prior and on a bank whose thresholds are all 5 %
+high, and require it to fail.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from functools import lru_cache
+
+import numpy as np
+
+from voussoir_post.diagnosis import posterior as posterior_module
+from voussoir_post.diagnosis.bank import Bank
+from voussoir_post.diagnosis.rates import outcome, power
+
+from conftest import VERDICTS
+from lmgc90_campaigns import LabFaults, draw_campaign, stored_truths, truth_model
+from test_diagnosis import stored_bank
+
+DRAWS = 3
+POWER_MARGIN = 1.0  #: nats of information about the truth, on average over the draws
+NAMED_RIGHT = 0.9
+IN_SET = 0.8
+PARAMETER_COVERAGE = 0.75
+
+#: The parameter names of the grids, from a truth's parameters.
+TRUTH_VALUES = {"contact_edges": ("contact_edges", "inset_m"), "friction": ("friction", "friction"),
+                "geometry": ("geometry", "thickness_factor")}
+
+
+def truth_values(truth: dict) -> dict:
+    params = truth["truth"].get("parameters", {})
+    return {grid: params[e][key] for e, (grid, key) in TRUTH_VALUES.items() if e in params}
+
+
+def outcomes(bank: Bank, truths: list[dict], draws: int = DRAWS, faults: LabFaults = LabFaults()) -> list[dict]:
+    out = []
+    for t in truths:
+        for k in range(draws):
+            obs, drawn = draw_campaign(t, np.random.default_rng([2026, t["truth"]["index"], k]), faults)
+            if not obs.pairs:
+                continue
+            o = outcome(bank, obs, truth_model(t), truth_values(t))
+            o.update(slug=t["slug"], faults=drawn)
+            out.append(o)
+    return out
+
+
+def judge(outs: list[dict]) -> list[str]:
+    """The criteria the outcomes fail (empty: every one holds)."""
+    failed = []
+    inside = [o for o in outs if o["truth"] != "outside"]
+    named = [o for o in inside if o["named"]]
+    gain = power(inside)
+    if not gain > POWER_MARGIN:
+        failed.append(f"power {gain:.2f} nats <= {POWER_MARGIN}")
+    if named and sum(o["right_named"] for o in named) < NAMED_RIGHT * len(named):
+        failed.append(f"named right {sum(o['right_named'] for o in named)}/{len(named)} < {NAMED_RIGHT}")
+    if any(o["named"] for o in outs if o["truth"] == "outside"):
+        failed.append("a truth outside the catalogue was named")
+    if sum(o["in_set"] for o in inside) < IN_SET * len(inside):
+        failed.append(f"truth in the 90 % set {sum(o['in_set'] for o in inside)}/{len(inside)} < {IN_SET}")
+    cdfs = [c for o in inside for c in o["cdf"].values()]
+    covered = sum(0.05 <= c <= 0.95 for c in cdfs)
+    if cdfs and covered < PARAMETER_COVERAGE * len(cdfs):
+        failed.append(f"truth's parameter in its 90 % interval {covered}/{len(cdfs)} < {PARAMETER_COVERAGE}")
+    return failed
+
+
+def summary(outs: list[dict]) -> str:
+    inside = [o for o in outs if o["truth"] != "outside"]
+    named = [o for o in inside if o["named"]]
+    outside = [o for o in outs if o["truth"] == "outside"]
+    return (f"{len(outs)} campaigns of {len({o['slug'] for o in outs})} LMGC90 truths: power "
+            f"{power(inside):.2f} nats, named {len(named)}/{len(inside)} (right {sum(o['right_named'] for o in named)}), "
+            f"truth in the 90 % set {sum(o['in_set'] for o in inside)}/{len(inside)}, outside truths named "
+            f"{sum(o['named'] for o in outside)}/{len(outside)} and flagged inadequate "
+            f"{sum(not o['adequate'] for o in outside)}/{len(outside)}")
+
+
+@lru_cache(maxsize=1)
+def truths() -> list[dict]:
+    found = stored_truths()
+    assert len(found) >= 10, "fewer than 10 LMGC90 truths in data/lmgc90 (bench/lmgc90/truths.sh makes them)"
+    return found
+
+
+@lru_cache(maxsize=1)
+def real_outcomes() -> list[dict]:
+    return outcomes(stored_bank(), truths())
+
+
+def test_lmgc90_truths_are_named_with_power_and_never_wrongly():
+    outs = real_outcomes()
+    line = "[LMGC90 truths] " + summary(outs)
+    print("\n" + line)
+    for o in outs:
+        print(f"  {o['slug']}: {o['verdict']} top {o['top']} {o['p_top']:.2f} P(truth) {o['p_truth']:.2f} "
+              f"p {o['p_value']:.3f} {o['flags']}")
+    VERDICTS.append(line)
+    assert judge(outs) == [], line
+
+
+def test_a_posterior_equal_to_the_prior_fails_the_judgement(monkeypatch):
+    """Mutation: the likelihood and the records' factor set to zero."""
+    monkeypatch.setattr(posterior_module, "log_likelihood", lambda grid, *a, **k: np.zeros(grid.n))
+    monkeypatch.setattr(posterior_module, "records_log_factor", lambda *a, **k: 0.0)
+    failed = judge(outcomes(stored_bank(), truths(), draws=1))
+    assert any(f.startswith("power") for f in failed), failed
+
+
+def _biased(bank: Bank, factor: float) -> Bank:
+    scale = lambda d: {k: [factor * x for x in v] for k, v in d.items()}
+    return Bank({sid: dataclasses.replace(sb, thresholds=scale(sb.thresholds), replicas=scale(sb.replicas),
+                                          node_replicas={k: scale(r) for k, r in sb.node_replicas.items()})
+                 for sid, sb in bank.specimens.items()}, bank.code + "-biased")
+
+
+def test_a_bank_biased_by_5_percent_fails_the_judgement():
+    failed = judge(outcomes(_biased(stored_bank(), 1.05), truths(), draws=1))
+    assert failed, "a bank whose thresholds are all 5 % high passed every criterion"
+
+
+def test_a_transducer_off_by_1_5_percent_names_no_cause_and_is_flagged():
+    nominal = [t for t in truths() if truth_model(t) == "none"]
+    assert nominal, "no nominal truth among the LMGC90 truths"
+    faults = LabFaults(transducer_bias=0.0, offset_sd=0.0, collapses_only_p=0.0)
+    outs = []
+    for t in nominal:
+        for k in range(4):
+            obs, _ = draw_campaign(t, np.random.default_rng([7, t["truth"]["index"], k]), faults)
+            biased = [dataclasses.replace(p, gains=tuple(1.015 * g for g in p.gains)) for p in obs.pairs]
+            outs.append(outcome(stored_bank(), dataclasses.replace(obs, pairs=biased), "none"))
+    assert not any(o["wrong_named"] for o in outs), [(o["verdict"], o["top"], o["p_top"]) for o in outs]
+    assert sum("sensor_bias" in o["flags"] for o in outs) >= 0.75 * len(outs), [o["flags"] for o in outs]
+
+
+def test_collapse_rows_only_are_flagged_one_sided():
+    t = truths()[0]
+    obs, drawn = draw_campaign(t, np.random.default_rng(3), LabFaults(collapses_only_p=1.0))
+    assert drawn["collapses_only"] and all(p.low_m == 0 for p in obs.pairs)
+    assert "one_sided" in outcome(stored_bank(), obs, truth_model(t))["flags"]
+    obs, drawn = draw_campaign(t, np.random.default_rng(3), LabFaults(collapses_only_p=0.0, step_mm=(1.0, 1.0)))
+    assert "one_sided" not in outcome(stored_bank(), obs, truth_model(t))["flags"] or any(
+        p.low_m == 0 for p in obs.pairs)
