@@ -42,7 +42,7 @@ import h5py
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-PAPER = ROOT.parent / "shared" / "data" / "seed_2013" / "paper_dem_results.csv"
+PAPER = ROOT / "data" / "seed_2013" / "paper_dem_results.csv"
 G = 9.81
 
 
