@@ -1,4 +1,4 @@
-"""Stage 5 of the diagnosis: the verdict of shared/MEASURED_DATA.md (version 3) from the
+"""Stage 5 of the diagnosis: the verdict of docs/measured_data.md (version 3) from the
 posterior probabilities.
 
 - a cause (one effect, or `combined` for a pair) is named when its probability is at

@@ -1,4 +1,4 @@
-"""Reader of a shaking-table campaign folder, exactly per shared/MEASURED_DATA.md.
+"""Reader of a shaking-table campaign folder, exactly per docs/measured_data.md.
 
 A campaign is a folder with ``specimens.csv``, ``tests.csv`` and optionally
 ``records/<test_id>.csv`` and ``hinges/<test_id>.csv``. :func:`read_campaign` accepts
