@@ -32,7 +32,7 @@ rm -f results/sweep_envelope_156.h5 results/sweep_seed_tests.h5 results/ida_156.
       results/ida_156_dt_half.h5
 bin=$root/build/drivers
 post=$root/.venv/bin/voussoir-post
-seed=$root/../shared/data/seed_2013
+seed=$root/data/seed_2013
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
 echo "== 1. The 156-degree arch at 1.25 Hz"

@@ -77,8 +77,8 @@ def tree_state() -> tuple[str, bool]:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--results", default=os.path.join(ROOT, "results"), help="the main job's results (results/)")
-    parser.add_argument("--campaign", default=os.path.join(os.path.dirname(ROOT), "shared", "data", "seed_2013"),
-                        help="the seed campaign folder (../shared/data/seed_2013)")
+    parser.add_argument("--campaign", default=os.path.join(ROOT, "data", "seed_2013"),
+                        help="the seed campaign folder (data/seed_2013)")
     parser.add_argument("--out", default=os.path.join(ROOT, "docs", "figures"), help="where the PNGs go")
     args = parser.parse_args(argv)
     head, modified = tree_state()

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The seed paper's campaign (shared/data/seed_2013) through the diagnosis, as it is
+"""The seed paper's campaign (data/seed_2013) through the diagnosis, as it is
 declared (A180's brackets; A180 and A118 with an uncertain set-up), and the paper's own
 LMGC90 errors beside it. Writes docs/seed_2013/.
 
@@ -7,7 +7,7 @@ LMGC90 errors beside it. Writes docs/seed_2013/.
 
 Nothing is analysed by hand here: the diagnosis's report.md and diagnosis.json are the
 result; paper_comparison.json adds only the paper's published thresholds (Table 2, read
-from shared/data/seed_2013/paper_dem_results.csv) against the measured ones.
+from data/seed_2013/paper_dem_results.csv) against the measured ones.
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ sys.path.insert(0, str(ROOT / "postproc"))
 from voussoir_post.readers.campaign import measured_thresholds, read_campaign  # noqa: E402
 from voussoir_post.diagnosis.pipeline import DiagnosisSettings, diagnose  # noqa: E402
 
-SEED = ROOT.parent / "shared" / "data" / "seed_2013"
+SEED = ROOT / "data" / "seed_2013"
 OUT = ROOT / "docs" / "seed_2013"
 STAGING = ROOT / "build" / "seed_2013.new"  #: where the output is made before it replaces OUT
 T = TypeVar("T")

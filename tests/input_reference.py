@@ -7,7 +7,7 @@ carries one line `! reference: RULE` naming an answer derived independently of t
 dynamic code; this script verifies the rule's premise independently and then the run:
 
   below_capacity   the peak of the commanded afd table acceleration (the closed form of
-                   shared/MEASURED_DATA.md, differentiated numerically here) stays below
+                   docs/measured_data.md, differentiated numerically here) stays below
                    the static capacity lambda g of the limit analysis (voussoir-limit on
                    the same &arch): no mechanism can open, so the run must print `stood`.
   above_min_thickness  the ring is thicker than its minimum thickness (voussoir-limit's
@@ -42,7 +42,7 @@ import h5py
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-PAPER = ROOT.parent / "shared" / "data" / "seed_2013" / "paper_dem_results.csv"
+PAPER = ROOT / "data" / "seed_2013" / "paper_dem_results.csv"
 G = 9.81
 
 

@@ -1,7 +1,7 @@
 # Tests of the voussoir-limit executable (issue 3). Each test runs the real program on a
 # namelist and checks its JSON (and table) with tests/limit/check_limit.py. Expected
 # numbers are derived independently of the module: symmetry of
-# the arch, the geometry conventions of shared/MEASURED_DATA.md, published values
+# the arch, the geometry conventions of docs/measured_data.md, published values
 # (t/R_ext = 0.10188 for 20 chord-faced voussoirs), an independent static LP
 # (tests/test_limit_analysis.f90) and statics (a 180-degree arch whose friction is below
 # lambda must slide at a springing: the springings carry the whole horizontal load

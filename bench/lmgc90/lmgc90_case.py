@@ -16,7 +16,7 @@ alert distance:
      "crown": [0-based body indices], "collapse_drop_m", "collapse_rotation_rad",
      "table_t_s": [...], "table_v_m_s": [...], "every": N}
 
-The model (shared/LMGC90.md): rigid polygons (RBDY2 + POLYG, 'Rxx2D'), the contact law
+The model (docs/lmgc90.md, "The build notes"): rigid polygons (RBDY2 + POLYG, 'Rxx2D'), the contact law
 IQS_CLB (Signorini + Coulomb) between every pair of blocks and between blocks and the
 foundations, Moreau-Jean with theta, the NLGS of
 ExSolver('Stored_Delassus_Loops', 'Quad ', tol, 1., 10, 1000) (a convergence check every

@@ -20,7 +20,7 @@ matplotlib.use("Agg")
 
 POSTPROC_DIR = Path(__file__).resolve().parents[1]
 REPO_ROOT = POSTPROC_DIR.parent
-SEED_CAMPAIGN = REPO_ROOT.parent / "shared" / "data" / "seed_2013"
+SEED_CAMPAIGN = REPO_ROOT / "data" / "seed_2013"
 
 #: The short run every run-file test reads: the seed's 156-degree wooden arch, one
 #: attack, one full and one decay cycle at 2.5 Hz and 50 mm (about 12 m/s2, far above
@@ -144,7 +144,7 @@ def run_copy(run_file, tmp_path) -> Path:
 
 @pytest.fixture(scope="session")
 def seed_campaign() -> Path:
-    """<repo>/../shared/data/seed_2013."""
+    """<repo>/data/seed_2013 (the seed paper's campaign, in the repository)."""
     if not (SEED_CAMPAIGN / "tests.csv").is_file():
         pytest.fail(f"seed campaign not found at {SEED_CAMPAIGN}")
     return SEED_CAMPAIGN

@@ -236,7 +236,7 @@ def write_campaign(folder: Path, truth: Truth, bin_dir: Path, arches=ARCHES, see
                    step_fraction: float = 0.05, start_fraction: float = 0.8, max_steps: int = 30,
                    hinges: bool = True) -> dict:
     """Ramp every (arch, frequency) in amplitude steps until it falls, under `truth`,
-    and write the campaign in the format of shared/MEASURED_DATA.md."""
+    and write the campaign in the format of docs/measured_data.md."""
     folder = Path(folder)
     (folder / "records").mkdir(parents=True, exist_ok=True)
     (folder / "hinges").mkdir(parents=True, exist_ok=True)

@@ -13,7 +13,7 @@ from voussoir_post.analysis.afd import afd_peak_accel_m_s2, afd_peak_accel_per_m
 
 
 def _dense_peak(amp_m, f_hz, n_attack, n_full, n_decay, per_cycle=200000):
-    """Largest |x''| of x = A e(t) sin(2 pi f t) (shared/MEASURED_DATA.md's envelopes),
+    """Largest |x''| of x = A e(t) sin(2 pi f t) (docs/measured_data.md's envelopes),
     x'' by second differences on a grid of `per_cycle` points a cycle."""
     ta, tf, td = n_attack / f_hz, n_full / f_hz, n_decay / f_hz
     t = np.linspace(0.0, ta + tf + td, per_cycle * (n_attack + n_full + n_decay) + 1)

@@ -1,4 +1,4 @@
-"""Campaign reader (shared/MEASURED_DATA.md): valid folders are read, invalid ones are
+"""Campaign reader (docs/measured_data.md): valid folders are read, invalid ones are
 rejected with the exact file, line and column."""
 
 from __future__ import annotations

@@ -68,7 +68,7 @@ HARD_CASES = sorted(p.stem for p in (DATA / "maps").glob("*.json"))
 def test_a_tenth_of_the_uncertainty_moves_no_probability_by_more_than_005(slug):
     """Moving any one measured threshold by a tenth of its uncertainty, up or down, changes
     no model's probability by more than 0.05. The uncertainty of a measured threshold
-    (the midpoint of its bracket, shared/MEASURED_DATA.md) is half its bracket; with no
+    (the midpoint of its bracket, docs/measured_data.md) is half its bracket; with no
     stand row below, half the campaign's median relative bracket."""
     bank = stored_bank()
     omap = load_map(DATA / "maps" / f"{slug}.json")
@@ -216,7 +216,7 @@ def test_variant_keys_round_trip():
 def test_a_table_that_follows_the_command_has_gain_one_from_its_peak():
     """Without records the gain is the measured peak over the command's own peak, not
     over A (2 pi f)^2: the attack and decay envelopes add their derivatives to the full
-    cycles (here the command's peak by second differences of shared/MEASURED_DATA.md's
+    cycles (here the command's peak by second differences of docs/measured_data.md's
     displacement, sampled densely)."""
     f, amp = 1.25, 0.046
     t = np.linspace(0.0, 3.0 / f, 300001)

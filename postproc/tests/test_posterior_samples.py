@@ -45,7 +45,7 @@ MODELS = {
                                           "table_motion": np.array([0.8, 0.9, 1.1, 1.2])},
                                     np.array([0.25, 0.25, 0.25, 0.25])),
 }
-#: Two specimens of the seed's campaign (specimens.csv of shared/data/seed_2013).
+#: Two specimens of the seed's campaign (specimens.csv of data/seed_2013).
 A156 = Specimen("A156", 156.0, 13, 0.508, 0.071, 0.145, 700.0, 0.5)
 A132 = Specimen("A132", 132.0, 11, 0.508, 0.071, 0.145, 700.0, 0.5)
 

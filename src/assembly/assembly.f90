@@ -2,7 +2,7 @@
 !> walls: voussoir_wall).
 !>
 !> An assembly is geometry only (vertices, which bodies are driven by the table, and for
-!> arches the joint numbering of shared/MEASURED_DATA.md); the dynamic state lives in
+!> arches the joint numbering of docs/measured_data.md); the dynamic state lives in
 !> `bodies_t`.
 module voussoir_assembly
   use voussoir_kinds, only: dp, pi
@@ -85,7 +85,7 @@ contains
     f = 1.0_dp + amplitude*(f - sum(f)/n_voussoirs)
   end function voussoir_angle_factors
 
-  !> The arch of shared/MEASURED_DATA.md: n equal voussoirs with radial joints and chord
+  !> The arch of docs/measured_data.md: n equal voussoirs with radial joints and chord
   !> faces, centre of the circle at the origin, on two foundation blocks whose top faces
   !> are the springing joints. Bodies 1..n are the voussoirs from left to right, n+1 the
   !> left foundation, n+2 the right one. With `restrained`, a bracket carried by the

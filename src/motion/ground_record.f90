@@ -6,7 +6,7 @@
 !>   of the two variants PEER has written, "NPTS=   5372, DT=   .0100 SEC" (NGA-West2)
 !>   or "  4000    0.01000   NPTS, DT" (the older database); then NPTS numbers, any
 !>   number of them per line.
-!> - `.csv`: columns `t_s` and `accel_m_s2` (shared/MEASURED_DATA.md's CSV rules),
+!> - `.csv`: columns `t_s` and `accel_m_s2` (docs/measured_data.md's CSV rules),
 !>   uniformly sampled, time increasing.
 !> - `.asc` (any case): an ESM or ITACA ASCII file, in the unit its header's UNITS names
 !>   (cm/s^2 as those databases write it; src/motion/esm_record.f90).

@@ -3,7 +3,7 @@
 !> Every motion starts at `start_s` (&motion lead_s), the table still before it.
 !>
 !> `afd`: the commanded sinusoid with attack, full and decay envelopes of
-!> shared/MEASURED_DATA.md, velocity and acceleration its exact derivatives.
+!> docs/measured_data.md, velocity and acceleration its exact derivatives.
 !> `record`: a measured table displacement record, low-pass filtered (zero-phase
 !> Butterworth), velocity and acceleration by central differences of the filtered record.
 !> `ramp`: no table motion; an inertial horizontal load whose acceleration grows at a

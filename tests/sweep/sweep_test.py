@@ -172,7 +172,7 @@ def read(path):
 
 def afd_peak_accel_per_m(f_hz):
     """Largest |d2x/dt2| per metre of the 1-1-1 afd displacement x = e(t) sin(2 pi f t)
-    (shared/MEASURED_DATA.md), by second differences of x on a fine grid."""
+    (docs/measured_data.md), by second differences of x on a fine grid."""
     t = np.linspace(0.0, 3.0 / f_hz, 600001)
     h = t[1] - t[0]
     e = np.where(t < 1.0 / f_hz, np.sin(0.5 * np.pi * f_hz * t) ** 2,

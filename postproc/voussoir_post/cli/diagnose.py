@@ -1,4 +1,4 @@
-"""``voussoir-diagnose``: campaign diagnosis (shared/MEASURED_DATA.md).
+"""``voussoir-diagnose``: campaign diagnosis (docs/measured_data.md).
 
 Subcommands:
 
@@ -34,7 +34,7 @@ def cmd_check(args) -> int:
         campaign = read_campaign(args.campaign)
     print(campaign_summary(campaign))
     from ..diagnosis.report import METHOD_CHECK, PRIOR_TEXT
-    print("\nHow `voussoir-diagnose run` would weigh it (shared/MEASURED_DATA.md version 3): posterior "
+    print("\nHow `voussoir-diagnose run` would weigh it (docs/measured_data.md version 3): posterior "
           "probabilities of the nominal model, of each effect and of each pair, a cause named at 0.9.\n"
           + PRIOR_TEXT.replace("`", "") + "\n" + METHOD_CHECK)
     return DONE
@@ -63,7 +63,7 @@ def cmd_run(args) -> int:
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="voussoir-diagnose",
                                      description="Diagnosis of a shaking-table campaign folder "
-                                                 "(shared/MEASURED_DATA.md).")
+                                                 "(docs/measured_data.md).")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
     p = sub.add_parser("check", help="validate a campaign folder and print a summary")
     p.add_argument("campaign", metavar="CAMPAIGN")

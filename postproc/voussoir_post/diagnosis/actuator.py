@@ -1,5 +1,5 @@
 """The table's motion: what the records (or the measured peak accelerations) say of how
-the table followed the afd command of shared/MEASURED_DATA.md (analysis/afd.py).
+the table followed the afd command of docs/measured_data.md (analysis/afd.py).
 
 Every record of an `afd` test is fitted as gain x command(t - delay) by least squares,
 which measures the actuator's gain and lag test by test (and so their scatter); without

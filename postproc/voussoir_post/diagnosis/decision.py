@@ -1,4 +1,4 @@
-"""Stage 5 of the diagnosis: the verdict of shared/MEASURED_DATA.md (version 4) from the
+"""Stage 5 of the diagnosis: the verdict of docs/measured_data.md (version 4) from the
 posterior probabilities, and the flags a reader must know before trusting the numbers.
 
 - a cause (one effect, or `combined` for a pair) is named when its probability is at
@@ -28,7 +28,7 @@ __all__ = ["NAME_AT", "Decision", "decide", "credible_set", "flags", "prior_boun
 EDGE_FRACTION = 0.05  #: the outer part of a prior's range that counts as its edge
 EDGE_MASS = 0.15  #: posterior mass there (three times the prior's) that flags the parameter
 #: A common gain offset of the records within this many transducer calibrations is a
-#: possible sensor bias (shared/MEASURED_DATA.md).
+#: possible sensor bias (docs/measured_data.md).
 BIAS_CALIBRATIONS = 3.0
 
 NAME_AT = 0.9  #: probability at which a cause is named, and mass of the rivals' set
@@ -96,7 +96,7 @@ def prior_bound(post: Posterior, model_id: str) -> list[str]:
 
 
 def flags(post: Posterior, decision: Decision, reported: str | None) -> list[str]:
-    """diagnosis.json's `flags` (shared/MEASURED_DATA.md version 4)."""
+    """diagnosis.json's `flags` (docs/measured_data.md version 4)."""
     out = []
     if any(p.low_m <= 0 for p in post.pairs):
         out.append("one_sided")

@@ -1,4 +1,4 @@
-"""The candidate causes of shared/MEASURED_DATA.md, as changes of the kernel's model.
+"""The candidate causes of docs/measured_data.md, as changes of the kernel's model.
 
 An effect knows how it is simulated: the values of its parameter that the bank
 simulates for a specimen, how a value changes the specimen's &arch group, and the &sweep

@@ -63,7 +63,7 @@ OUTLIER_FACTOR = 3.0  #: an outlier's threshold lies within this factor of the p
 GAIN_SCATTER_DEFAULT = 0.01  #: test-to-test gain scatter assumed without records
 GAIN_SCATTER_FLOOR = 0.003
 PEAK_SCATTER_FLOOR = 0.03  #: scatter of a gain read from measured peak accelerations (no records)
-GAIN_SD_DEFAULT = 0.01  #: the transducer's calibration without table.csv (shared/MEASURED_DATA.md)
+GAIN_SD_DEFAULT = 0.01  #: the transducer's calibration without table.csv (docs/measured_data.md)
 
 
 @dataclass

@@ -1,7 +1,7 @@
 """Stage 3a of the diagnosis: each model's predicted thresholds over its parameter prior.
 
 A model is `none` (the nominal model), one effect, or two effects together (ids joined by
-`+` in alphabetical order, as shared/MEASURED_DATA.md writes them). Each has a prior over
+`+` in alphabetical order, as docs/measured_data.md writes them). Each has a prior over
 its parameters, stated here and in the report, evaluated on a fine grid:
 
 - contact_edges: inset uniform on 0 .. the largest simulated inset (10 mm; 8 mm in a pair);

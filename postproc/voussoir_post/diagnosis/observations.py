@@ -35,7 +35,7 @@ class PairObservation:
 
     @property
     def threshold_m(self) -> float:
-        """The measured threshold of shared/MEASURED_DATA.md (midpoint of the bracket)."""
+        """The measured threshold of docs/measured_data.md (midpoint of the bracket)."""
         return 0.5 * (self.low_m + self.high_m) if self.low_m > 0 else self.high_m
 
 

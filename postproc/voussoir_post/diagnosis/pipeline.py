@@ -9,7 +9,7 @@ The stages, each handing its result to the next (docs/diagnosis.md explains them
    discrepancy;
 4. posterior.py: the models' posterior probabilities, their parameters, the posterior
    predictive check, the held-out errors and the next test;
-5. decision.py: the verdict of shared/MEASURED_DATA.md version 4 and its flags;
+5. decision.py: the verdict of docs/measured_data.md version 4 and its flags;
 6. report.py: report.md, its figures and diagnosis.json; samples.py: the posterior as
    model samples of each arch (posterior_samples_<specimen>.csv), for the fragility.
 

@@ -1,4 +1,4 @@
-"""Reader of a shaking-table campaign folder, exactly per shared/MEASURED_DATA.md.
+"""Reader of a shaking-table campaign folder, exactly per docs/measured_data.md.
 
 A campaign is a folder with ``specimens.csv``, ``tests.csv`` and optionally
 ``records/<test_id>.csv`` and ``hinges/<test_id>.csv``. :func:`read_campaign` accepts
@@ -154,7 +154,7 @@ class HingeObservation:
 @dataclass(frozen=True)
 class TableLimits:
     """table.csv (version 4): what the table can do and how well its transducer is known;
-    the defaults of shared/MEASURED_DATA.md without the file."""
+    the defaults of docs/measured_data.md without the file."""
 
     stroke_m: float = 0.15  #: largest displacement amplitude the table can command
     max_velocity_m_s: float = 1.0

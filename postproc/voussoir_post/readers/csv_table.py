@@ -1,7 +1,7 @@
 """The one CSV reader of the package: a file read with the physical line of every row,
 so that every error names the file, the line and the column.
 
-The rules (shared/MEASURED_DATA.md's, and what the executables write): UTF-8 with an
+The rules (docs/measured_data.md's, and what the executables write): UTF-8 with an
 optional byte order mark, comma separated, quoted fields, LF or CRLF, ``#`` comment
 lines anywhere outside a quoted field, blank lines skipped, cells stripped. Campaign
 files (:mod:`.campaign_csv`), IDA summaries (:mod:`voussoir_post.earthquake.ida`) and
