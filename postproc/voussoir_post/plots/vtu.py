@@ -36,6 +36,7 @@ from __future__ import annotations
 import contextlib
 import io
 import os
+import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 
@@ -164,6 +165,9 @@ def write_vtu(run: RunResult, out_dir: str | os.PathLike | None = None, every: i
     folder_name = f"{stem}_vtu"
     folder = os.path.join(out_dir, folder_name)
     os.makedirs(folder, exist_ok=True)
+    for name in os.listdir(folder):  # an earlier export's samples, which the new .pvd would not list
+        if re.fullmatch(r"(blocks|joints|contacts)_\d{6}\.vtu", name):
+            os.remove(os.path.join(folder, name))
     samples = list(range(0, run.n_samples, max(int(every), 1)))
     if samples[-1] != run.n_samples - 1:
         samples.append(run.n_samples - 1)
