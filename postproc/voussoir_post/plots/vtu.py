@@ -152,6 +152,88 @@ def _body_velocities(run: RunResult) -> np.ndarray:
     return np.gradient(run.body_position, run.time_s, axis=0)
 
 
+@dataclass
+class _JointFields:
+    """Every joint's drawing and fields at every output sample of the run."""
+
+    joints: list  #: Joint, as run_joints_for_export gives them
+    numbers: np.ndarray  #: (nj,) arch joint 0..n or -1
+    arch: bool
+    openings_m: np.ndarray  #: (nt, nj, 2) at each end
+    sliding_m: np.ndarray  #: (nt, nj)
+    hinge: np.ndarray  #: (nt, nj) hinge_codes
+    drawn_m: np.ndarray  #: (nt, nj, 2 ends, 2): each end midway between its copies on either block
+
+
+def _joint_fields(run: RunResult, open_tol_m: float, joint_tol_m: float) -> _JointFields:
+    joints, numbers, arch = run_joints_for_export(run, joint_tol_m)
+    nt, q = run.n_samples, run.body_position
+    if not joints:
+        return _JointFields([], numbers, arch, np.zeros((nt, 0, 2)), np.zeros((nt, 0)), np.zeros((nt, 0), np.int32),
+                            np.zeros((nt, 0, 2, 2)))
+    series = [joint_series(j, q) for j in joints]
+    openings = np.stack([o for o, _ in series], axis=1)
+    drawn = np.stack([0.5 * (carried_points(q, j.a, j.ends_m) + carried_points(q, j.b, j.ends_m)) for j in joints],
+                     axis=1)
+    return _JointFields(joints, numbers, arch, openings, np.stack([s for _, s in series], axis=1),
+                        hinge_codes(openings, open_tol_m), drawn)
+
+
+def _blocks_mesh(meshio, run: RunResult, k: int, cells: list, velocity: np.ndarray):
+    disp = run.body_position[k, :, :2] - run.body_position[0, :, :2]
+    cell_data = {
+        "body": np.arange(1, run.n_bodies + 1, dtype=np.int32),
+        "role": run.body_role.astype(np.int32),
+        "rotation_rad": run.body_position[k, :, 2],
+        "displacement_m": _xyz(disp),
+        "velocity_m_s": _xyz(velocity[k, :, :2]),
+        "angular_velocity_rad_s": velocity[k, :, 2],
+    }
+    return meshio.Mesh(_vertex_coordinates(run, k), cells,
+                       cell_data={name: _split(v, cells) for name, v in cell_data.items()})
+
+
+def _joints_mesh(meshio, run: RunResult, k: int, f: _JointFields):
+    nj = len(f.joints)
+    if run.contacts is not None:
+        pair = pair_forces(run, k)
+        forces = np.array([pair.get((min(j.a, j.b), max(j.a, j.b)), (0.0, 0.0)) for j in f.joints]).reshape(nj, 2)
+    else:
+        forces = np.full((nj, 2), np.nan)
+    ends = ("opening_intrados_m", "opening_extrados_m") if f.arch else ("opening_end1_m", "opening_end2_m")
+    cell_data = {
+        "joint": f.numbers.astype(np.int32),
+        "body_a": np.array([j.a + 1 for j in f.joints], dtype=np.int32),
+        "body_b": np.array([j.b + 1 for j in f.joints], dtype=np.int32),
+        ends[0]: f.openings_m[k, :, 0],
+        ends[1]: f.openings_m[k, :, 1],
+        "opening_m": f.openings_m[k].max(axis=-1, initial=-np.inf),
+        "sliding_m": f.sliding_m[k],
+        "hinge": f.hinge[k],
+        "normal_force_n": forces[:, 0],
+        "shear_force_n": forces[:, 1],
+    }
+    lines = [("line", np.arange(2 * nj, dtype=np.int64).reshape(nj, 2))]
+    return meshio.Mesh(_xyz(f.drawn_m[k].reshape(-1, 2)), lines, cell_data={n: [v] for n, v in cell_data.items()})
+
+
+def _contacts_mesh(meshio, run: RunResult, k: int, force_on_a_n: np.ndarray):
+    c = run.contacts
+    rows = c.rows(k)
+    point_data = {
+        "force_n": _xyz(force_on_a_n[rows]),
+        "normal": _xyz(c.normal[rows]),
+        "normal_force_n": c.normal_force_n[rows],
+        "tangent_force_n": c.tangent_force_n[rows],
+        "body_a": (c.body[rows, 0] + 1).astype(np.int32),
+        "body_b": (c.body[rows, 1] + 1).astype(np.int32),
+        "joint": c.joint[rows].astype(np.int32),
+    }
+    nc = rows.stop - rows.start
+    return meshio.Mesh(_xyz(c.point_m[rows]), [("vertex", np.arange(nc, dtype=np.int64)[:, None])],
+                       point_data=point_data)
+
+
 def write_vtu(run: RunResult, out_dir: str | os.PathLike | None = None, every: int = 1,
               open_tol_m: float | None = None, joint_tol_m: float = 1e-4) -> VtuExport:
     """Write the .vtu files of every ``every``-th output sample (and the last) and the
@@ -162,8 +244,7 @@ def write_vtu(run: RunResult, out_dir: str | os.PathLike | None = None, every: i
 
     stem = os.path.splitext(os.path.basename(run.path))[0]
     out_dir = os.path.dirname(os.path.abspath(run.path)) if out_dir is None else os.fspath(out_dir)
-    folder_name = f"{stem}_vtu"
-    folder = os.path.join(out_dir, folder_name)
+    folder = os.path.join(out_dir, f"{stem}_vtu")
     os.makedirs(folder, exist_ok=True)
     for name in os.listdir(folder):  # an earlier export's samples, which the new .pvd would not list
         if re.fullmatch(r"(blocks|joints|contacts)_\d{6}\.vtu", name):
@@ -173,82 +254,17 @@ def write_vtu(run: RunResult, out_dir: str | os.PathLike | None = None, every: i
         samples.append(run.n_samples - 1)
     tol = default_open_tol_m(run) if open_tol_m is None else float(open_tol_m)
 
-    nb = run.n_bodies
     body_cells = _polygon_cells(run.n_vertices)
     velocity = _body_velocities(run)
-    ref = run.body_position[0]
-    joints, numbers, arch_joints = run_joints_for_export(run, joint_tol_m)
-    series = [joint_series(j, run.body_position) for j in joints]
-    openings = np.stack([s[0] for s in series], axis=1) if joints else np.zeros((run.n_samples, 0, 2))
-    sliding = np.stack([s[1] for s in series], axis=1) if joints else np.zeros((run.n_samples, 0))
-    hinge = hinge_codes(openings, tol)
-    # Each end carried by both blocks, drawn midway: (nt, n_joints, 2 ends, 2).
-    drawn = np.stack([0.5 * (carried_points(run.body_position, j.a, j.ends_m)
-                             + carried_points(run.body_position, j.b, j.ends_m)) for j in joints], axis=1) \
-        if joints else np.zeros((run.n_samples, 0, 2, 2))
-    end_names = ("opening_intrados_m", "opening_extrados_m") if arch_joints else ("opening_end1_m", "opening_end2_m")
-    contacts = run.contacts
-    forces = contacts.force_on_a_n() if contacts is not None else None
-    parts = PARTS if contacts is not None else PARTS[:2]
+    joints = _joint_fields(run, tol, joint_tol_m)
+    parts = PARTS if run.contacts is not None else PARTS[:2]
+    force_on_a = run.contacts.force_on_a_n() if run.contacts is not None else None
     files = {p: [] for p in parts}
-    n_contact_points = 0
-
     for k in samples:
-        # Blocks
-        disp = run.body_position[k, :, :2] - ref[:, :2]
-        cell_data = {
-            "body": np.arange(1, nb + 1, dtype=np.int32),
-            "role": run.body_role.astype(np.int32),
-            "rotation_rad": run.body_position[k, :, 2],
-            "displacement_m": _xyz(disp),
-            "velocity_m_s": _xyz(velocity[k, :, :2]),
-            "angular_velocity_rad_s": velocity[k, :, 2],
-        }
-        mesh = meshio.Mesh(_vertex_coordinates(run, k), body_cells,
-                           cell_data={name: _split(v, body_cells) for name, v in cell_data.items()})
-        files["blocks"].append(_write(meshio, mesh, folder, "blocks", k))
-
-        # Joints
-        nj = len(joints)
-        if contacts is not None:
-            pair = pair_forces(run, k)
-            n_s = np.array([pair.get((min(j.a, j.b), max(j.a, j.b)), (0.0, 0.0)) for j in joints]).reshape(nj, 2)
-        else:
-            n_s = np.full((nj, 2), np.nan)
-        joint_data = {
-            "joint": numbers.astype(np.int32),
-            "body_a": np.array([j.a + 1 for j in joints], dtype=np.int32),
-            "body_b": np.array([j.b + 1 for j in joints], dtype=np.int32),
-            end_names[0]: openings[k, :, 0],
-            end_names[1]: openings[k, :, 1],
-            "opening_m": openings[k].max(axis=-1) if nj else np.zeros(0),
-            "sliding_m": sliding[k],
-            "hinge": hinge[k],
-            "normal_force_n": n_s[:, 0],
-            "shear_force_n": n_s[:, 1],
-        }
-        lines = [("line", np.arange(2 * nj, dtype=np.int64).reshape(nj, 2))]
-        mesh = meshio.Mesh(_xyz(drawn[k].reshape(-1, 2)), lines, cell_data={n: [v] for n, v in joint_data.items()})
-        files["joints"].append(_write(meshio, mesh, folder, "joints", k))
-
-        # Contacts
-        if contacts is None:
-            continue
-        rows = contacts.rows(k)
-        nc = rows.stop - rows.start
-        n_contact_points += nc
-        point_data = {
-            "force_n": _xyz(forces[rows]),
-            "normal": _xyz(contacts.normal[rows]),
-            "normal_force_n": contacts.normal_force_n[rows],
-            "tangent_force_n": contacts.tangent_force_n[rows],
-            "body_a": (contacts.body[rows, 0] + 1).astype(np.int32),
-            "body_b": (contacts.body[rows, 1] + 1).astype(np.int32),
-            "joint": contacts.joint[rows].astype(np.int32),
-        }
-        mesh = meshio.Mesh(_xyz(contacts.point_m[rows]), [("vertex", np.arange(nc, dtype=np.int64)[:, None])],
-                           point_data=point_data)
-        files["contacts"].append(_write(meshio, mesh, folder, "contacts", k))
+        files["blocks"].append(_write(meshio, _blocks_mesh(meshio, run, k, body_cells, velocity), folder, "blocks", k))
+        files["joints"].append(_write(meshio, _joints_mesh(meshio, run, k, joints), folder, "joints", k))
+        if run.contacts is not None:
+            files["contacts"].append(_write(meshio, _contacts_mesh(meshio, run, k, force_on_a), folder, "contacts", k))
 
     times = [float(run.time_s[k]) for k in samples]
     pvd = os.path.join(out_dir, f"{stem}.pvd")
@@ -257,7 +273,9 @@ def write_vtu(run: RunResult, out_dir: str | os.PathLike | None = None, every: i
     for p in parts:
         part_pvds[p] = os.path.join(out_dir, f"{stem}_{p}.pvd")
         _write_pvd(part_pvds[p], times, [(0, files[p])])
-    return VtuExport(pvd, part_pvds, folder, samples, nb, len(joints), arch_joints, tol, n_contact_points, files)
+    n_contact_points = int(run.contact_count[samples].sum()) if run.contacts is not None else 0
+    return VtuExport(pvd, part_pvds, folder, samples, run.n_bodies, len(joints.joints), joints.arch, tol,
+                     n_contact_points, files)
 
 
 def _write(meshio, mesh, folder: str, part: str, sample: int) -> str:
