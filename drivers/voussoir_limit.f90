@@ -10,10 +10,13 @@
 program voussoir_limit
   use, intrinsic :: iso_fortran_env, only: error_unit, output_unit
   use voussoir_status, only: status_t
-  use voussoir_config, only: config_t, read_config
+  use voussoir_config, only: config_t, read_config, config_groups
+  use voussoir_wall_config, only: wall_group
+  use voussoir_load_config, only: load_group
+  use voussoir_namelist_group, only: nml_group_t
   use voussoir_assembly, only: assembly_t
   use voussoir_limit_analysis, only: limit_result_t
-  use voussoir_limit_study, only: limit_options_t, thickness_result_t, read_limit_group, analyse
+  use voussoir_limit_study, only: limit_options_t, thickness_result_t, read_limit_group, analyse, limit_table
   use voussoir_limit_lp_study, only: lp_study_t
   use voussoir_limit_output, only: write_table, write_json
   use voussoir_command_line, only: input_argument
@@ -52,11 +55,20 @@ contains
     logical, intent(out) :: json
     logical :: given(1)
     integer :: exit_code
+    type(config_t), target :: defaults          ! what --help lists the tables over
+    type(limit_options_t), target :: limit_defaults
+    type(nml_group_t) :: tables(7)
+    call config_groups(defaults, tables(1:4))
+    call wall_group(defaults%wall, tables(5))
+    call limit_table(limit_defaults, tables(6))
+    call load_group(defaults%load, tables(7))
     call input_argument('voussoir-limit', 'voussoir-limit FILE.nml [--json]', &
       'Limit analysis of the assembly of FILE.nml (arch, &wall or polygon file): the horizontal acceleration '// &
       '(in g) that brings it down statically, by linear programming with Coulomb friction (associative and '// &
       'non-associative) and, for an arch, by its four-hinge mechanism, with optionally the minimum thickness '// &
-      '(&limit; docs/limit_analysis.md). --json prints the result as JSON.', path, exit_code, ['--json'], given)
+      '(&limit; docs/limit_analysis.md). --json prints the result as JSON. It reads the groups of voussoir-run '// &
+      'and &limit, listed below.', path, exit_code, ['--json'], &
+      given, tables)
     if (exit_code >= 0) stop exit_code, quiet=.true.
     json = given(1)
   end subroutine parse_arguments

@@ -17,7 +17,11 @@
 program voussoir_sweep
   use, intrinsic :: iso_fortran_env, only: output_unit
   use voussoir_status, only: status_t
-  use voussoir_config, only: config_t, read_config
+  use voussoir_config, only: config_t, read_config, config_groups
+  use voussoir_load_config, only: load_group
+  use voussoir_namelist_group, only: nml_group_t
+  use voussoir_sweep_group, only: sweep_group_t, sweep_table
+  use voussoir_sweep_mode_factory, only: default_mode
   use voussoir_sweep_plan, only: sweep_plan_t, read_sweep_plan
   use voussoir_sweep_comm, only: sweep_comm_t, comm_start, comm_end, comm_agree
   use voussoir_sweep_master, only: master_t, master_prepare, master_run
@@ -26,17 +30,26 @@ program voussoir_sweep
   implicit none
   type(sweep_comm_t) :: net
   type(config_t) :: cfg
+  type(config_t), target :: defaults          ! what --help lists the tables over
+  type(sweep_group_t), target :: sweep_defaults
+  type(nml_group_t) :: tables(6)
   type(sweep_plan_t) :: plan
   type(master_t) :: master
   type(status_t) :: status
   character(len=1024) :: path
   integer :: exit_code
 
+  call config_groups(defaults, tables(1:4))
+  sweep_defaults%mode = default_mode
+  call sweep_table(sweep_defaults, tables(5))
+  call load_group(defaults%load, tables(6))
   call input_argument('voussoir-sweep', 'mpirun -np N voussoir-sweep FILE.nml', &
     'A sweep of simulations over MPI ranks (rank 0 schedules, the others run): collapse envelopes over '// &
     'frequencies and amplitudes, threshold searches, lists of arch parameters, or an incremental dynamic '// &
     'analysis under records (&sweep mode; docs/sweep.md, docs/earthquakes.md). Writes an HDF5 file and a CSV '// &
-    'beside it, updated as jobs finish; a rerun continues a killed sweep.', path, exit_code)
+    'beside it, updated as jobs finish; a rerun continues a killed sweep. The groups &arch, &motion, &solver '// &
+    'and &output give the base case as for voussoir-run, &sweep what varies (its ranges depend on the mode: '// &
+    'docs/sweep.md).', path, exit_code, groups=tables)
   if (exit_code >= 0) stop exit_code, quiet=.true.
   call comm_start(net)
   call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'sweep', 'load'], cfg, &

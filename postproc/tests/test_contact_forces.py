@@ -135,12 +135,16 @@ def test_xdmf_draws_the_contact_forces(rest_run, tmp_path):
         g = h5[f"samples/{rest_run.n_samples - 1:06d}/contacts"]
         xyz, force, a = g["xyz_m"][()], g["force_n"][()], g["body_a"][()]
         b = g["body_b"][()]
+        cell_body = h5["cells/body"][()]
+    # One numbering with the text outputs and figures: bodies from 1.
+    assert cell_body.tolist() == list(range(1, rest_run.n_bodies + 1))
+    assert np.array_equal(a, c.body[rows, 0] + 1) and np.array_equal(b, c.body[rows, 1] + 1)
     assert np.array_equal(xyz[:, :2], c.point_m[rows]) and np.all(xyz[:, 2] == 0.0)
     # Independent of the reader's force_on_a_n: N n + T t with t = n turned +90 degrees.
     n = c.normal[rows]
     expected = c.normal_force_n[rows, None] * n + c.tangent_force_n[rows, None] * np.column_stack([-n[:, 1], n[:, 0]])
     assert np.allclose(force[:, :2], expected, rtol=1e-12, atol=0)
-    driven = np.nonzero(rest_run.body_role == 2)[0]
+    driven = np.nonzero(rest_run.body_role == 2)[0] + 1  # the export numbers bodies from 1
     on_ring = np.where(np.isin(b, driven), force[:, 1], 0.0) - np.where(np.isin(a, driven), force[:, 1], 0.0)
     assert on_ring.sum() == pytest.approx(ring_weight_n(156.0, 13, 0.508, 0.071, 0.145, 700.0), rel=1e-6)
 

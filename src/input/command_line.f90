@@ -4,6 +4,8 @@
 module voussoir_command_line
   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
   use voussoir_version, only: code_version
+  use voussoir_namelist_group, only: nml_group_t
+  use voussoir_namelist_help, only: groups_help
   implicit none
   private
   public :: input_argument
@@ -12,15 +14,17 @@ contains
 
   !> The input file named on the command line, and which of the driver's own `flags`
   !> were given. `exit_code` is -1 when the program should go on; else the program stops
-  !> with it: `--help` prints `usage` and `about` (0); `--version` prints the code
-  !> version (0); anything but one file name and those flags prints the usage on
+  !> with it: `--help` prints `usage`, `about` and the variables of the namelist
+  !> `groups` the driver reads (their tables, built over a default configuration) (0);
+  !> `--version` prints the code version (0); anything but one file name and those flags prints the usage on
   !> standard error (2), after naming the first unknown option or extra argument.
-  subroutine input_argument(program, usage, about, path, exit_code, flags, given)
+  subroutine input_argument(program, usage, about, path, exit_code, flags, given, groups)
     character(len=*), intent(in) :: program, usage, about
     character(len=*), intent(out) :: path
     integer, intent(out) :: exit_code
     character(len=*), intent(in), optional :: flags(:)
     logical, intent(out), optional :: given(:)
+    type(nml_group_t), intent(in), optional :: groups(:)
     character(len=1024) :: arg
     character(len=:), allocatable :: why
     integer :: k, j
@@ -36,6 +40,7 @@ contains
       select case (trim(arg))
       case ('--help', '-h')
         write (output_unit, '(a)') 'usage: '//usage, '', about
+        if (present(groups)) write (output_unit, '(a)') '', groups_help(groups)
         exit_code = 0
         return
       case ('--version')

@@ -19,7 +19,9 @@ module voussoir_limit_study
   implicit none
   private
 
-  public :: limit_options_t, thickness_result_t, read_limit_group, analyse
+  public :: limit_options_t, thickness_result_t, read_limit_group, analyse, limit_table
+
+  real(dp), parameter :: unset = -huge(1.0_dp)  !! inset_m, compressive_strength_pa not given
 
   !> The exhaustive four-hinge search costs n^4: 0.5 s at 100 voussoirs, 9 s at 200,
   !> 40 s at 300 (docs/limit_analysis.md); beyond 200 the answer hardly moves.
@@ -41,21 +43,28 @@ module voussoir_limit_study
 
 contains
 
-  !> Read the optional &limit group of `path`; the inset defaults to &arch contact_inset_m.
-  subroutine read_limit_group(path, cfg, opts, status)
-    character(len=*), intent(in) :: path
-    type(config_t), intent(in) :: cfg
-    type(limit_options_t), intent(out), target :: opts
-    type(status_t), intent(inout) :: status
-    real(dp), parameter :: unset = -huge(1.0_dp)
-    type(nml_group_t) :: g
-
+  !> The &limit table over `opts`, set to the defaults: inset_m and compressive_strength_pa
+  !> unset (read_limit_group resolves them).
+  subroutine limit_table(opts, g)
+    type(limit_options_t), intent(inout), target :: opts
+    type(nml_group_t), intent(out) :: g
     opts%inset_m = unset
     opts%compressive_strength_pa = unset
     g%name = 'limit'
     call g%add('minimum_thickness', opts%minimum_thickness)
     call g%add('inset_m', opts%inset_m, unit='m')
     call g%add('compressive_strength_pa', opts%compressive_strength_pa, unit='Pa')
+  end subroutine limit_table
+
+  !> Read the optional &limit group of `path`; the inset defaults to &arch contact_inset_m.
+  subroutine read_limit_group(path, cfg, opts, status)
+    character(len=*), intent(in) :: path
+    type(config_t), intent(in) :: cfg
+    type(limit_options_t), intent(out), target :: opts
+    type(status_t), intent(inout) :: status
+    type(nml_group_t) :: g
+
+    call limit_table(opts, g)
     call g%read(path, status)
     if (.not. status%ok) return
     if (opts%compressive_strength_pa == unset) then

@@ -14,7 +14,7 @@ module voussoir_sweep_group
   implicit none
   private
 
-  public :: sweep_group_t, read_sweep_group, lengths_text
+  public :: sweep_group_t, read_sweep_group, lengths_text, sweep_table
   public :: max_list, unset_real, max_records, record_len, n_kinds, param_kinds, list_names
 
   integer, parameter :: max_list = 256              !! entries of every &sweep list

@@ -27,7 +27,7 @@ from ..tables import ReportTable
 from .contact_forces import pair_forces
 from .kinematics import rotation_matrix
 
-__all__ = ["Joint", "JointMotion", "find_joints", "joint_motion", "run_joints", "joints_table"]
+__all__ = ["Joint", "JointMotion", "find_joints", "carried_points", "joint_series", "joint_motion", "run_joints", "joints_table"]
 
 
 @dataclass(frozen=True)
@@ -95,23 +95,33 @@ def find_joints(centroids_m: np.ndarray, vertices_local_m: list[np.ndarray], tol
     return joints
 
 
-def joint_motion(joint: Joint, positions: np.ndarray) -> JointMotion:
-    """Opening and sliding of `joint` over the samples of `positions` (nt, nb, 3):
-    centroid x, y [m] and rotation [rad] from the reference (sample 0)."""
-    ref = positions[0, :, :2]
+def carried_points(positions: np.ndarray, body: int, points_m: np.ndarray) -> np.ndarray:
+    """(nt, p, 2): the points (p, 2) of the reference configuration moved with `body` to
+    every sample of `positions` (as :func:`joint_series`)."""
+    rot = rotation_matrix(positions[:, body, 2] - positions[0, body, 2])
+    return positions[:, body, None, :2] + np.einsum("kij,pj->kpi", rot, points_m - positions[0, body, :2])
+
+
+def joint_series(joint: Joint, positions: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The opening (nt, 2) of each end of `joint` [m] (positive apart, negative
+    interpenetration) and the sliding (nt,) at its middle [m, signed] at every sample of
+    `positions` (nt, nb, 3): centroid x, y [m] and rotation [rad] from the reference
+    (sample 0)."""
     tangent = np.array([-joint.normal[1], joint.normal[0]])
     points = np.vstack([joint.ends_m, joint.ends_m.mean(axis=0)])  # the two ends and the middle
-
-    def carried(body):  # (nt, 3, 2): the points moved with `body` at every sample
-        rot = rotation_matrix(positions[:, body, 2] - positions[0, body, 2])
-        return positions[:, body, None, :2] + np.einsum("kij,pj->kpi", rot, points - ref[body])
-
     rot_a = rotation_matrix(positions[:, joint.a, 2] - positions[0, joint.a, 2])
     n = rot_a @ joint.normal
     t = rot_a @ tangent
-    rel = carried(joint.b) - carried(joint.a)
+    rel = carried_points(positions, joint.b, points) - carried_points(positions, joint.a, points)
     openings = np.einsum("kpi,ki->kp", rel[:, :2], n)
     slidings = np.einsum("ki,ki->k", rel[:, 2], t)
+    return openings, slidings
+
+
+def joint_motion(joint: Joint, positions: np.ndarray) -> JointMotion:
+    """Opening and sliding of `joint` over the samples of `positions` (as
+    :func:`joint_series`): the largest and the final ones."""
+    openings, slidings = joint_series(joint, positions)
     return JointMotion(joint, float(openings.max()), float(openings[-1].max()), float(slidings[-1]),
                        float(np.abs(slidings).max()))
 

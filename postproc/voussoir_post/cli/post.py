@@ -162,6 +162,26 @@ def cmd_xdmf(args) -> int:
     return DONE
 
 
+def cmd_vtk(args) -> int:
+    from ..plots.vtu import write_vtu
+    from ..readers.results import read_run
+
+    if args.open_tol_mm is not None and not args.open_tol_mm > 0.0:
+        raise InputError(f"--open-tol-mm {args.open_tol_mm:g}: the opening tolerance must be > 0 mm")
+    run = read_run(args.run)
+    if args.out is not None and os.path.exists(args.out) and not os.path.isdir(args.out):
+        raise InputError(f"--out {args.out}: is a file, expected a folder")
+    tol = None if args.open_tol_mm is None else 1e-3 * args.open_tol_mm
+    data = write_vtu(run, args.out, every=args.every, open_tol_m=tol)
+    print(format_table(data.table(run.path)))
+    if "contacts" not in data.part_pvd_paths:
+        print(f"note: {run.path} has no /contacts (written before runs recorded them): no contact forces")
+    print(f"wrote {len(data.samples)} samples x {len(data.files)} parts of .vtu into {data.vtu_folder}")
+    for path in [data.pvd_path, *data.part_pvd_paths.values()]:
+        print(f"wrote {path}")
+    return DONE
+
+
 def _statics_figure(args, kind: str, plot) -> int:
     """A figure of a run's contact forces over time (reactions, thrust): its summary
     printed, its samples as CSV with --csv."""
@@ -480,6 +500,18 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--every", type=int, default=1, metavar="N", help="export every N-th sample (default 1)")
     p.add_argument("--out", help="output .xmf file or folder (default: beside the run)")
     p.set_defaults(func=cmd_xdmf)
+
+    p = sub.add_parser("vtk", help="write RUN.pvd + .vtu files for ParaView (meshio): blocks, joints with their "
+                                   "opening and hinge state, contact forces; bodies numbered from 1")
+    p.add_argument("run", metavar="RUN.h5")
+    p.add_argument("--every", type=_positive_int, default=1, metavar="N",
+                   help="export every N-th sample and the last (default 1)")
+    p.add_argument("--open-tol-mm", type=float, metavar="MM",
+                   help="joint opening counted as open for the hinge field [mm] (default: the run's &output "
+                        "hinge_gap_m, else 1%% of the ring thickness)")
+    p.add_argument("--out", metavar="DIR", help="folder of the .pvd files and of <stem>_vtu/ (default: beside "
+                                                "the run)")
+    p.set_defaults(func=cmd_vtk)
 
     p = sub.add_parser("fragility", help="lognormal fragility of collapse from an IDA sweep (&sweep mode = 'ida', "
                                          "interval-censored fit) or an MSA sweep (mode = 'msa', binomial fit of "

@@ -17,7 +17,7 @@ Companion file layout:
 
     /topology/mixed          (n_conn,) int64   3, nv_0, ids..., 3, nv_1, ids...
     /time_s                  (nt,)
-    /cells/body              (nb,) int32       0-based body index
+    /cells/body              (nb,) int32       body number, from 1 (as /bodies and the text outputs)
     /cells/role              (nb,) int32       1 voussoir, 2 foundation, 3 bracket
     /samples/NNNNNN/xyz_m    (nv_total, 3)     vertex coordinates at sample NNNNNN
     /samples/NNNNNN/rotation_rad      (nb,)    cell data
@@ -25,7 +25,7 @@ Companion file layout:
     /samples/NNNNNN/contacts/xyz_m    (nc, 3)  contact points (z = 0); point data:
     /samples/NNNNNN/contacts/force_n  (nc, 3)  force on body a [N] (z = 0)
     /samples/NNNNNN/contacts/normal_force_n, tangent_force_n (nc,)  its components [N]
-    /samples/NNNNNN/contacts/body_a, body_b, joint (nc,) int32  0-based bodies, arch joint or -1
+    /samples/NNNNNN/contacts/body_a, body_b, joint (nc,) int32  bodies from 1, arch joint 0..n or -1
 """
 
 from __future__ import annotations
@@ -112,7 +112,7 @@ def write_xdmf(run: RunResult, xmf_path: str | os.PathLike | None = None,
         h5.attrs["source_run"] = os.path.abspath(run.path)
         h5["topology/mixed"] = conn
         h5["time_s"] = run.time_s[samples]
-        h5["cells/body"] = np.arange(nb, dtype=np.int32)
+        h5["cells/body"] = np.arange(1, nb + 1, dtype=np.int32)
         h5["cells/role"] = run.body_role.astype(np.int32)
         ref = run.body_position[0, :, :2]
         contacts = run.contacts
@@ -136,8 +136,8 @@ def write_xdmf(run: RunResult, xmf_path: str | os.PathLike | None = None,
             c["force_n"] = np.hstack([forces[rows], zero])
             c["normal_force_n"] = contacts.normal_force_n[rows]
             c["tangent_force_n"] = contacts.tangent_force_n[rows]
-            c["body_a"] = contacts.body[rows, 0].astype(np.int32)
-            c["body_b"] = contacts.body[rows, 1].astype(np.int32)
+            c["body_a"] = (contacts.body[rows, 0] + 1).astype(np.int32)
+            c["body_b"] = (contacts.body[rows, 1] + 1).astype(np.int32)
             c["joint"] = contacts.joint[rows].astype(np.int32)
 
     root = ET.Element("Xdmf", Version="3.0")
