@@ -9,6 +9,12 @@ skipped: a skip is counted as a failure at the end of the session.
 from __future__ import annotations
 
 import os
+
+# One BLAS thread per pytest worker: two workers on two cores, and the diagnosis's small
+# matrix products are slower with threads fighting over the cores than with one each.
+for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_name, "1")
+
 import shutil
 import subprocess
 from pathlib import Path

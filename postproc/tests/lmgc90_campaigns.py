@@ -21,8 +21,9 @@ drawn per campaign (`LabFaults`):
   bracket is an upper bound.
 
 A test's outcome is the truth's at the amplitude the table really made (command x gain x
-offset): collapse at or above the stored threshold, unless a probe just above it stood
-(a window of standing beyond the first collapse, kept as the search saw it).
+offset): stand below the stored threshold; at or above it, the outcome of the nearest
+probe the search made above it (a window of standing beyond the first collapse, kept as
+the search saw it), and collapse past the last probe.
 """
 
 from __future__ import annotations
@@ -84,7 +85,9 @@ def _collapsed(pair: dict, amp_m: float) -> bool:
     if thr is None or amp_m < thr:
         return False
     above = [(a, c) for a, c, *_ in pair["probes"] if a >= thr]
-    return bool(min(above, key=lambda ac: abs(ac[0] - amp_m))[1]) if above else True
+    if not above or amp_m > max(a for a, _ in above):
+        return True  # past what the search probed: it falls (a window of standing is narrow)
+    return bool(min(above, key=lambda ac: abs(ac[0] - amp_m))[1])
 
 
 def draw_campaign(truth: dict, rng: np.random.Generator, faults: LabFaults = LabFaults(),

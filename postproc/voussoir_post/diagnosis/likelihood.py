@@ -8,11 +8,15 @@ Under a model at parameter theta,
 - mu: the emulated threshold (models.py), with the emulator's variance v(theta);
 - g: the table gain of the pair (1 when the model says the table followed the command;
   the pair's measured gain under table_motion with records);
-- eps ~ N(0, s^2), s^2 = sigma_sim^2 + v(theta) + sigma_gain^2 (+ the standard error of a
-  measured gain): the simulator's own spread at that pair (the bank's replicas, pooled
-  over the models that have them), the emulator's, and the test-to-test scatter of the
-  table gain that the records measure (1 % when there are none; at least 3 % when read
-  from peak accelerations);
+- eps ~ N(0, s^2), s^2 = sigma_sim^2 + v(theta) + sigma_gain^2 + tau_p^2 (+ the standard
+  error of a measured gain): the simulator's own spread at that pair (the bank's
+  replicas, pooled over the models that have them), the emulator's, the test-to-test
+  scatter of the table gain that the records measure (1 % when there are none; at least
+  3 % when read from peak accelerations), and a discrepancy of each pair of its own: how
+  far another code's threshold, or a laboratory's, lies from this kernel's at the same
+  parameters (a chaotic band answers to every detail of a model; LMGC90's nominal
+  thresholds of the test arches lie -4 to +10 % from Voussoir's), tau_p integrated over
+  TAU_PAIR (equal weights);
 - delta_s ~ N(0, tau_s^2), shared by the pairs of a specimen: how far that specimen's
   build and set-up lie from its nominal model (a thickness or span a little off, a
   support offset), with tau_s^2 = tau0^2 + d_s^2, d_s the change of the specimen's nominal
@@ -53,11 +57,12 @@ from .models import GAIN_RANGE, SIM_FLOOR, ModelGrid, sim_spread
 from .observations import Observations, PairObservation
 
 __all__ = ["Scales", "scales", "adjusted_mu", "pair_variance", "log_likelihood", "records_log_factor",
-           "TAU_SPECIMEN", "TAU_CAMPAIGN", "SHIFTS", "OUTLIER_PROB", "OUTLIER_FACTOR", "GAIN_SD_DEFAULT"]
+           "TAU_PAIR", "TAU_SPECIMEN", "TAU_CAMPAIGN", "SHIFTS", "OUTLIER_PROB", "OUTLIER_FACTOR", "GAIN_SD_DEFAULT"]
 
+TAU_PAIR = (0.01, 0.03, 0.06)  #: discrepancy of each pair (relative), integrated with equal weights
 TAU_SPECIMEN = (0.01, 0.03, 0.06)  #: discrepancy of a specimen (relative), integrated with equal weights
 TAU_CAMPAIGN = (0.005, 0.01, 0.02, 0.04, 0.08)  #: discrepancy of the campaign (relative), integrated with equal weights
-SHIFTS = np.linspace(-0.45, 0.45, 91)  #: grid of log shifts on which the discrepancies are integrated
+SHIFTS = np.linspace(-0.45, 0.45, 61)  #: grid of log shifts on which the discrepancies are integrated
 OUTLIER_PROB = 0.05
 OUTLIER_FACTOR = 3.0  #: an outlier's threshold lies within this factor of the prediction
 GAIN_SCATTER_DEFAULT = 0.01  #: test-to-test gain scatter assumed without records
@@ -158,11 +163,13 @@ def _campaign_taus(grid: ModelGrid, sc: Scales) -> list[float]:
     return [math.sqrt(t * t + extra) for t in TAU_CAMPAIGN]
 
 
-def specimen_log_tables(grid: ModelGrid, pairs: list[PairObservation], sc: Scales) -> dict[str, np.ndarray]:
-    """Per specimen, log p(its brackets | theta, total shift) on SHIFTS: (n_points, n_shifts)."""
+def specimen_log_tables(grid: ModelGrid, pairs: list[PairObservation], sc: Scales, tau_pair: float
+                        ) -> dict[str, np.ndarray]:
+    """Per specimen, log p(its brackets | theta, total shift) on SHIFTS: (n_points, n_shifts),
+    each pair's own discrepancy (scale tau_pair) in its spread."""
     lo, hi = brackets(pairs)
     mu = adjusted_mu(grid, sc)
-    s = np.sqrt(pair_variance(grid, sc))
+    s = np.sqrt(pair_variance(grid, sc) + tau_pair ** 2)
     out = {}
     for j, p in enumerate(pairs):
         m = mu[:, j, None] + SHIFTS[None, :]
@@ -181,23 +188,23 @@ def _log_matmul(log_table: np.ndarray, weights: np.ndarray) -> np.ndarray:
         return np.log(np.exp(log_table - top) @ weights) + top
 
 
-def log_likelihood(grid: ModelGrid, obs: Observations, pairs: list[PairObservation], sc: Scales,
-                   tables: dict | None = None) -> np.ndarray:
-    """log p(brackets | model, theta) at every grid point (records apart), the specimen
-    and campaign discrepancies integrated."""
-    tables = specimen_log_tables(grid, pairs, sc) if tables is None else tables
+def log_likelihood(grid: ModelGrid, obs: Observations, pairs: list[PairObservation], sc: Scales) -> np.ndarray:
+    """log p(brackets | model, theta) at every grid point (records apart), the pair,
+    specimen and campaign discrepancies integrated."""
     centre = SHIFTS.size // 2
     prior_c = np.column_stack([_shift_weights(t)[:, centre] for t in _campaign_taus(grid, sc)])
-    levels = len(TAU_SPECIMEN) * prior_c.shape[1]
-    total = None
-    for sid, table in tables.items():
-        taus = [round(math.sqrt(t0 * t0 + sc.d_fine.get(sid, 0.0) ** 2), 12) for t0 in TAU_SPECIMEN]
-        # Every specimen level at once: (n, shifts x levels).
-        conv = _log_matmul(table, np.hstack([_shift_weights(t) for t in taus]))
-        total = conv if total is None else total + conv
-    per_level = [_log_matmul(total[:, k * SHIFTS.size:(k + 1) * SHIFTS.size], prior_c)
-                 for k in range(len(TAU_SPECIMEN))]
-    return logsumexp(np.hstack(per_level), axis=1) - math.log(levels)
+    per_level = []
+    for tau_pair in TAU_PAIR:
+        total = None
+        for sid, table in specimen_log_tables(grid, pairs, sc, tau_pair).items():
+            taus = [round(math.sqrt(t0 * t0 + sc.d_fine.get(sid, 0.0) ** 2), 12) for t0 in TAU_SPECIMEN]
+            # Every specimen level at once: (n, shifts x levels).
+            conv = _log_matmul(table, np.hstack([_shift_weights(t) for t in taus]))
+            total = conv if total is None else total + conv
+        per_level += [_log_matmul(total[:, k * SHIFTS.size:(k + 1) * SHIFTS.size], prior_c)
+                      for k in range(len(TAU_SPECIMEN))]
+    per_level = np.hstack(per_level)
+    return logsumexp(per_level, axis=1) - math.log(per_level.shape[1])
 
 
 def records_log_factor(table_motion: bool, obs: Observations, pairs: list[PairObservation], sc: Scales) -> float:
@@ -231,5 +238,5 @@ def predictive_sd(grid: ModelGrid, sc: Scales, pairs: list[PairObservation]) -> 
     """(n_points, n_pairs) standard deviation of a pair's log threshold about a model's
     prediction at each grid point, the discrepancies at their middle values."""
     tau_s = np.array([TAU_SPECIMEN[1] ** 2 + sc.d_fine.get(p.specimen_id, 0.0) ** 2 for p in pairs])
-    tau_c = _campaign_taus(grid, sc)[1] ** 2
-    return np.sqrt(pair_variance(grid, sc) + tau_s[None, :] + tau_c)
+    tau_c = _campaign_taus(grid, sc)[len(TAU_CAMPAIGN) // 2] ** 2
+    return np.sqrt(pair_variance(grid, sc) + TAU_PAIR[1] ** 2 + tau_s[None, :] + tau_c)
