@@ -19,6 +19,7 @@ high, and require it to fail.
 from __future__ import annotations
 
 import dataclasses
+import math
 from functools import lru_cache
 
 import numpy as np
@@ -74,10 +75,15 @@ def judge(outs: list[dict]) -> list[str]:
         failed.append("a truth outside the catalogue was named")
     if sum(o["in_set"] for o in inside) < IN_SET * len(inside):
         failed.append(f"truth in the 90 % set {sum(o['in_set'] for o in inside)}/{len(inside)} < {IN_SET}")
-    cdfs = [c for o in inside for c in o["cdf"].values()]
-    covered = sum(0.05 <= c <= 0.95 for c in cdfs)
-    if cdfs and covered < PARAMETER_COVERAGE * len(cdfs):
-        failed.append(f"truth's parameter in its 90 % interval {covered}/{len(cdfs)} < {PARAMETER_COVERAGE}")
+    cdfs = np.array([c for o in inside for c in o["cdf"].values()])
+    covered = int(np.sum((cdfs >= 0.05) & (cdfs <= 0.95)))
+    if cdfs.size and covered < PARAMETER_COVERAGE * cdfs.size:
+        failed.append(f"truth's parameter in its 90 % interval {covered}/{cdfs.size} < {PARAMETER_COVERAGE}")
+    # Simulation-based calibration: the posterior CDF at the true value is uniform when the
+    # posteriors are right, so its mean is 1/2 within 3 standard errors (1 / sqrt(12 n)); a
+    # bank that predicts every threshold a few percent off shifts every parameter one way.
+    if cdfs.size >= 5 and abs(float(cdfs.mean()) - 0.5) > 3.0 / math.sqrt(12.0 * cdfs.size):
+        failed.append(f"the truth's posterior CDF averages {cdfs.mean():.2f} over {cdfs.size} parameters, not 1/2")
     return failed
 
 

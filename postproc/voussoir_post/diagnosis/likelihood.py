@@ -61,7 +61,7 @@ __all__ = ["Scales", "scales", "adjusted_mu", "pair_variance", "log_likelihood",
 
 TAU_PAIR = (0.01, 0.03, 0.06)  #: discrepancy of each pair (relative), integrated with equal weights
 TAU_SPECIMEN = (0.01, 0.03, 0.06)  #: discrepancy of a specimen (relative), integrated with equal weights
-TAU_CAMPAIGN = (0.005, 0.01, 0.02, 0.04, 0.08)  #: discrepancy of the campaign (relative), integrated with equal weights
+TAU_CAMPAIGN = (0.005, 0.01, 0.02, 0.04)  #: discrepancy of the campaign (relative), integrated with equal weights
 SHIFTS = np.linspace(-0.45, 0.45, 61)  #: grid of log shifts on which the discrepancies are integrated
 OUTLIER_PROB = 0.05
 OUTLIER_FACTOR = 3.0  #: an outlier's threshold lies within this factor of the prediction
