@@ -235,6 +235,55 @@ case_ every_memory      "GB of samples in memory.*every" "&arch n_voussoirs = 10
 case_ repeated_group    ":2: namelist group &arch appears a second time \(first at line 1\)" "&arch n_voussoirs = 13 /
 &arch n_voussoirs = 9 /
 $o"
+# Namelist layouts (issue 34): every group is read wherever it stands on a line, as
+# gfortran reads it, or the file is refused with its line; no group is ever ignored.
+# The five bad values that a second group on a line once hid, refused again.
+case_ line_dt           "&solver dt_s = 0 is outside the allowed range 0 < dt_s" "&arch friction = 0.5 / &solver dt_s = 0 / $o"
+case_ line_theta        "&solver theta = 0.2 is outside the allowed range 0.5 <= theta <= 1" "&arch friction = 0.5 / &solver theta = 0.2 / $o"
+case_ line_waveform     "&motion waveform = 'square' is not one of" "&arch friction=0.3 / &motion waveform='square' / &output file='out.h5' /"
+case_ line_record       "record_file = .*nothere.csv.*no such file" "&arch friction = 0.5 / &motion waveform = 'record', record_file = 'nothere.csv' / $o"
+case_ line_amplitude    ":1: &motion amplitude_m = 'big' is not a number" "&arch friction = 0.5 / &motion amplitude_m = 'big' / $o"
+# Several groups on a line: one not closed before the next begins.
+case_ line_unclosed     ":1: group &motion begins before &arch is closed: end &arch with /" "&arch friction = 0.5 &motion amplitude_m = 0.01 / $o"
+# A group over many lines whose '/' is missing: the next group, lines later, is not swallowed.
+case_ lines_unclosed    ":3: group &output begins before &motion is closed" "&motion amplitude_m = 0.01,
+  frequency_hz = 1.5
+$o"
+# A group written without its '&' (gfortran would skip it, and run on defaults).
+case_ group_no_ampersand ":1: 'solver dt_s = 0 /' stands outside every namelist group" "solver dt_s = 0 /
+$o"
+case_ group_bad_name    ":1: '&solver\\(dt_s = 0 /' is not the start of a namelist group" "&solver(dt_s = 0 /
+$o"
+# Comments: a '/' in a comment closes nothing; a comment without '!' is refused.
+case_ comment_slash     ":2: group &output begins before &solver is closed" "&solver dt_s = 2e-3 ! the end /
+$o"
+case_ comment_hash      ":1: '# the arch of the tests' stands outside every namelist group" "# the arch of the tests
+$o"
+# &end misspelt is another group, begun before this one is closed.
+case_ end_misspelt      ":1: group &edn begins before &solver is closed" "&solver dt_s = 2e-3 &edn
+$o"
+case_ end_stray_text    ":1: 'dt_s = 2e-3 /' stands outside every namelist group" "&solver &end dt_s = 2e-3 /
+$o"
+# Repeated commas: a null value is one more value, refused for a single-valued variable.
+case_ commas_scalar     ":1: &solver dt_s takes one value; it is given 2" "&solver dt_s = 1e-3,, theta = 0.6 /
+$o"
+case_ commas_list       ":1: &arch joint_friction has 257 values; at most 256" "&arch joint_friction = 256*0.3,, /
+$o"
+# Strings with slashes: unquoted, the '/' ends the group and the rest stands outside it;
+# a string is closed on its own line.
+case_ slash_unquoted    ":1: 'run.h5 /' stands outside every namelist group" "&output file = out/run.h5 /"
+case_ slash_open_string ":1: &output file: the text 'out/ has no closing quote" "&output file = 'out/
+run.h5' /"
+# An input that is not a readable file: a folder is refused by every driver.
+mkdir -p input_folder
+for d in voussoir-run voussoir-limit voussoir-sweep; do
+  out=$("$bin/$d" input_folder 2>&1); rc=$?
+  if [[ $rc -eq 1 ]] && grep -q "^$d: error: input_folder: is a folder, not an input file" <<<"$out" \
+     && [[ ! -e voussoir_run.h5 ]]; then
+    passed=$((passed+1)); echo "PASS  $d input_folder"
+  else failed=$((failed+1)); echo "FAIL  $d input_folder (exit $rc): $out"; fi
+done
+
 # A sweep's plan (issue 26): its cost is printed before the first run, and a plan beyond
 # &sweep max_runs is refused with its count. 256 frequencies x 256 amplitudes = 65,536 jobs.
 freqs=$(for k in $(seq 0 255); do printf '%s, ' "$(awk "BEGIN{printf \"%.2f\", 1 + 0.01*$k}")"; done)
