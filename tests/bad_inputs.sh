@@ -284,6 +284,34 @@ for d in voussoir-run voussoir-limit voussoir-sweep; do
   else failed=$((failed+1)); echo "FAIL  $d input_folder (exit $rc): $out"; fi
 done
 
+# Plausibility against the assembly's own scale (issue 34): millimetres given as metres
+# pass every range but make another arch or another motion; refused with a hint.
+case_ mm_amplitude      "&motion amplitude_m = 46 m is larger than the arch's span \\(0.994 m; allowed: amplitude_m <= 0.994 m\\): did you mean millimetres \\(amplitude_m = 0.046 m\\)\\?" "&motion amplitude_m = 46 /
+$o"
+case_ mm_arch           "&arch r_ext_m = 508 m and embrace_deg = 156 make an arch 993.8 m wide, wider than any masonry arch .*did you mean millimetres \\(r_ext_m = 0.508 m, thickness_m = 0.071 m\\)\\?" "&arch r_ext_m = 508, thickness_m = 71, width_m = 145 /
+$o"
+case_ mm_radius         "make an arch 993.8 m wide.*did you mean millimetres \\(r_ext_m = 0.508 m\\)\\?" "&arch r_ext_m = 508 /
+$o"
+driver=voussoir-limit case_ mm_radius_limit "make an arch 993.8 m wide.*did you mean millimetres \\(r_ext_m = 0.508 m\\)\\?" "&arch r_ext_m = 508 /"
+case_ mm_thickness      "&arch thickness_m = 12 m is thicker than any masonry arch ring \\(allowed: at most 10 m\\): did you mean millimetres \\(thickness_m = 0.012 m\\)\\?" "&arch r_ext_m = 20, thickness_m = 12 /
+$o"
+case_ mm_wall_amplitude "&motion amplitude_m = 0.5 m is larger than the wall's length \\(0.4 m" "&wall courses = 2, blocks_per_course = 2 / &motion amplitude_m = 0.5 /
+$o"
+# Where a real case could need it, a warning and the run goes on: a table acceleration
+# beyond 10 g (a small block at a high frequency), a barrel over 100 m wide.
+warned() {
+  local name=$1 expect=$2 text=$3
+  printf '%s\n' "$text" > "$name.nml"
+  out=$("$bin/${driver:-voussoir-run}" "$name.nml" 2>&1); rc=$?
+  if [[ $rc -eq 0 ]] && grep -Eq -- "^${driver:-voussoir-run}: warning: $name.nml: $expect" <<<"$out"; then
+    passed=$((passed+1)); echo "PASS  $name"
+  else failed=$((failed+1)); echo "FAIL  $name (exit $rc): $out"; fi
+  rm -f warned.h5
+}
+warned warn_accel "&motion amplitude_m = 0.3 m at frequency_hz = 4 commands a full-cycle table acceleration A \\(2 pi f\\)\\^2 of 19.3 g, beyond any shaking table or earthquake \\(10 g\\)" "&motion amplitude_m = 0.3, frequency_hz = 4 /
+&output file = 'warned.h5' /"
+driver=voussoir-limit warned warn_width "&arch width_m = 145 m is the out-of-plane width of the blocks \\(more than 100 m\\): did you mean millimetres \\(width_m = 0.145 m\\)\\?" "&arch width_m = 145 /"
+
 # A sweep's plan (issue 26): its cost is printed before the first run, and a plan beyond
 # &sweep max_runs is refused with its count. 256 frequencies x 256 amplitudes = 65,536 jobs.
 freqs=$(for k in $(seq 0 255); do printf '%s, ' "$(awk "BEGIN{printf \"%.2f\", 1 + 0.01*$k}")"; done)

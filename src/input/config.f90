@@ -117,6 +117,9 @@ module voussoir_config
     type(wall_config_t) :: wall               !! a wall instead of the arch, where courses > 0
     type(load_config_t) :: load               !! point, axle and distributed loads (&load; none: no loads)
     character(len=path_len) :: source_file = ''
+    !> What validate_config found plausible but unusual, one line each, for the drivers to
+    !> print (config_plausible.f90); not a setting.
+    character(len=1024) :: warnings = ''
   end type config_t
 
   !> Check every value of `cfg` against its physical range (config_validate.f90).
@@ -125,6 +128,18 @@ module voussoir_config
       type(config_t), intent(inout), target :: cfg
       type(status_t), intent(inout) :: status
     end subroutine validate_config
+    !> The arch builder's ring against the sizes of real masonry arches (config_plausible.f90).
+    module subroutine check_plausible_arch(cfg, f, status)
+      type(config_t), intent(inout) :: cfg
+      character(len=*), intent(in) :: f
+      type(status_t), intent(inout) :: status
+    end subroutine check_plausible_arch
+    !> The afd motion against the assembly's span, and its table acceleration (config_plausible.f90).
+    module subroutine check_plausible_motion(cfg, f, status)
+      type(config_t), intent(inout) :: cfg
+      character(len=*), intent(in) :: f
+      type(status_t), intent(inout) :: status
+    end subroutine check_plausible_motion
   end interface
 
 contains
