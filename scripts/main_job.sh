@@ -27,10 +27,11 @@ set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
 results=results
+out_given=''  # the folder as given on the command line, for the index
 while (($#)); do
   case $1 in
-    --out) [[ $# -ge 2 && -n $2 ]] || { echo "[main] error: --out needs a folder" >&2; exit 2; }; results=$2; shift 2 ;;
-    --out=*) results=${1#--out=}; [[ -n $results ]] || { echo "[main] error: --out needs a folder" >&2; exit 2; }; shift ;;
+    --out) [[ $# -ge 2 && -n $2 ]] || { echo "[main] error: --out needs a folder" >&2; exit 2; }; results=$2; out_given=$2; shift 2 ;;
+    --out=*) results=${1#--out=}; out_given=$results; [[ -n $results ]] || { echo "[main] error: --out needs a folder" >&2; exit 2; }; shift ;;
     -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     *) echo "[main] error: unknown argument '$1' (usage: bash scripts/main_job.sh [--out DIR])" >&2; exit 2 ;;
   esac
@@ -153,7 +154,7 @@ missing=()  # files the job should have made and did not
 {
   echo "# Results of the main job ($(date -u +%Y-%m-%dT%H:%MZ), $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo 'no git'))"
   echo
-  echo "The seed paper's 156-degree wooden arch (shared/data/seed_2013), made by \`bash scripts/main_job.sh\`."
+  echo "The seed paper's 156-degree wooden arch (shared/data/seed_2013), made by \`bash scripts/main_job.sh${out_given:+ --out $out_given}\`."
   echo
   echo "| file | what it shows |"
   echo "|---|---|"
