@@ -297,6 +297,14 @@ case_ mm_thickness      "&arch thickness_m = 12 m is thicker than any masonry ar
 $o"
 case_ mm_wall_amplitude "&motion amplitude_m = 0.5 m is larger than the wall's length \\(0.4 m" "&wall courses = 2, blocks_per_course = 2 / &motion amplitude_m = 0.5 /
 $o"
+case_ amplitude_over_span "&motion amplitude_m = 0.9 m is larger than the arch's span \\(0.6 m; allowed: amplitude_m <= 0.6 m\\)\$" "&arch r_ext_m = 0.3, embrace_deg = 180 / &motion amplitude_m = 0.9, frequency_hz = 0.5 /
+$o"
+# A grid sweep's amplitudes against every parameter set's arch, before any run.
+driver=voussoir-sweep case_ sweep_mm_amplitudes "&sweep amplitudes_m\\(2\\) = 46 m is larger than the arch's span \\(0.994 m; allowed: amplitudes_m <= 0.994 m\\): did you mean millimetres \\(0.046 m\\)\\?" "&sweep mode = 'grid', frequencies_hz = 1.25, amplitudes_m = 0.02, 46 /
+$o"
+driver=voussoir-sweep case_ sweep_amplitude_set "&sweep amplitudes_m\\(2\\) = 0.9 m is larger than the arch's span of parameter set 0 \\(thickness_m = 0.071\\) \\(0.6 m" "&sweep mode = 'grid', frequencies_hz = 1.25, amplitudes_m = 0.02, 0.9, thickness_list_m = 0.071, 0.08 /
+&arch r_ext_m = 0.3, embrace_deg = 180 /
+$o"
 # Where a real case could need it, a warning and the run goes on: a table acceleration
 # beyond 10 g (a small block at a high frequency), a barrel over 100 m wide.
 warned() {

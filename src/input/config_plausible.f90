@@ -84,7 +84,8 @@ contains
       if (span_m > 0.0_dp .and. m%amplitude_m > span_m) then
         call fail(status, f//': &motion amplitude_m = '//fmt_real(m%amplitude_m)//' m is larger than '//what// &
                   ' ('//fmt_significant(span_m, 3)//' m; allowed: amplitude_m <= '//fmt_significant(span_m, 3)// &
-                  ' m)'//millimetres_hint('amplitude_m', m%amplitude_m, m%amplitude_m/1000.0_dp <= span_m, ''))
+                  ' m)'//millimetres_hint('amplitude_m', m%amplitude_m, &
+                  m%amplitude_m >= 1.0_dp .and. m%amplitude_m/1000.0_dp <= span_m, ''))
         return
       end if
       accel_g = m%amplitude_m*m%table_gain*(2.0_dp*pi*m%frequency_hz)**2/g_m_s2
@@ -99,7 +100,7 @@ contains
 
   !> The horizontal extent of the assembly that the config builds [m] and its name in
   !> messages; 0 for a polygon file (its blocks are read later, by the assembly).
-  subroutine assembly_span(cfg, span_m, what)
+  module subroutine assembly_span(cfg, span_m, what)
     type(config_t), intent(in) :: cfg
     real(dp), intent(out) :: span_m
     character(len=:), allocatable, intent(out) :: what
@@ -120,7 +121,8 @@ contains
     arch_span_m = 2.0_dp*r_ext_m*sin(0.5_dp*min(embrace_deg, 180.0_dp)*pi/180.0_dp)
   end function arch_span_m
 
-  !> ': did you mean millimetres (name = value/1000 m)?' when that would pass.
+  !> ': did you mean millimetres (name = value/1000 m)?' when that would pass (and the
+  !> value reads as millimetres: an amplitude of at least 1).
   function millimetres_hint(name, value, passes, also) result(text)
     character(len=*), intent(in) :: name, also
     real(dp), intent(in) :: value
