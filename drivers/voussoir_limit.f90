@@ -19,7 +19,7 @@ program voussoir_limit
   use voussoir_limit_study, only: limit_options_t, thickness_result_t, read_limit_group, analyse, limit_table
   use voussoir_limit_lp_study, only: lp_study_t
   use voussoir_limit_output, only: write_table, write_json
-  use voussoir_command_line, only: input_argument
+  use voussoir_command_line, only: input_argument, write_warnings
   implicit none
 
   type(config_t) :: cfg
@@ -35,6 +35,7 @@ program voussoir_limit
   call parse_arguments(path, json)
   call read_config(trim(path), [character(len=8) :: 'arch', 'wall', 'motion', 'solver', 'output', 'limit', 'load'], &
                    cfg, status)
+  if (status%ok) call write_warnings('voussoir-limit', cfg%warnings)
   if (status%ok) call read_limit_group(trim(path), cfg, opts, status)
   if (status%ok) call analyse(cfg, opts, arch, res, tmin, lp, status)
   if (.not. status%ok) then

@@ -14,7 +14,7 @@ program voussoir_run
   use voussoir_simulation, only: run_result_t
   use voussoir_setup, only: run_config
   use voussoir_run_output, only: write_run_file
-  use voussoir_command_line, only: input_argument
+  use voussoir_command_line, only: input_argument, write_warnings
   use voussoir_interrupt, only: catch_stop_signals
   implicit none
   type(config_t) :: cfg
@@ -38,6 +38,7 @@ program voussoir_run
     'range.', path, exit_code, groups=tables)
   if (exit_code >= 0) stop exit_code, quiet=.true.
   call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'wall', 'load'], cfg, status)
+  if (status%ok) call write_warnings('voussoir-run', cfg%warnings)
   if (status%ok .and. .not. catch_stop_signals()) &
     write (error_unit, '(a)') 'voussoir-run: warning: cannot catch Ctrl-C / SIGTERM: an interrupted run writes nothing'
   if (status%ok) call run_config(cfg, assembly, model, res, status, record_contacts=.true.)

@@ -26,7 +26,7 @@ program voussoir_sweep
   use voussoir_sweep_comm, only: sweep_comm_t, comm_start, comm_end, comm_agree
   use voussoir_sweep_master, only: master_t, master_prepare, master_run
   use voussoir_sweep_worker, only: worker_run
-  use voussoir_command_line, only: input_argument
+  use voussoir_command_line, only: input_argument, write_warnings
   implicit none
   type(sweep_comm_t) :: net
   type(config_t) :: cfg
@@ -54,6 +54,7 @@ program voussoir_sweep
   call comm_start(net)
   call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'sweep', 'load'], cfg, &
                    status)
+  if (status%ok .and. net%rank == 0) call write_warnings('voussoir-sweep', cfg%warnings)
   if (status%ok) call read_sweep_plan(trim(path), cfg, plan, status)
   if (status%ok .and. net%rank == 0) call master_prepare(plan, cfg, net%size, master, status)
   ! Every rank read the same input; only rank 0 knows whether the result file is usable.

@@ -20,16 +20,29 @@
 #  8. the two fragilities side by side, with the split of beta into record-to-record and
 #     model parts, against PGA and against PGA / (lambda g) (each row over its own
 #     model's static capacity).
-# Everything goes to results/.
+# Everything goes to results/, or to the folder of --out DIR (the test command writes its
+# run into build/test-main-job/ and so leaves results/ as this job made it).
+#   bash scripts/main_job.sh [--out DIR]
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
+results=results
+out_given=''  # the folder as given on the command line, for the index
+while (($#)); do
+  case $1 in
+    --out) [[ $# -ge 2 && -n $2 ]] || { echo "[main] error: --out needs a folder" >&2; exit 2; }; results=$2; out_given=$2; shift 2 ;;
+    --out=*) results=${1#--out=}; out_given=$results; [[ -n $results ]] || { echo "[main] error: --out needs a folder" >&2; exit 2; }; shift ;;
+    -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
+    *) echo "[main] error: unknown argument '$1' (usage: bash scripts/main_job.sh [--out DIR])" >&2; exit 2 ;;
+  esac
+done
 bash scripts/setup.sh
-mkdir -p results
+mkdir -p "$results"
+results=$(cd "$results" && pwd)  # absolute: the sections run in it and in $root
 # The job remakes its sweeps: a sweep file left by an earlier version holds another
 # sweep (its signature differs) and voussoir-sweep rightly refuses to mix them.
-rm -f results/sweep_envelope_156.h5 results/sweep_seed_tests.h5 results/ida_156.h5 results/ida_156_calibrated.h5 \
-      results/ida_156_dt_half.h5
+rm -f "$results"/sweep_envelope_156.h5 "$results"/sweep_seed_tests.h5 "$results"/ida_156.h5 "$results"/ida_156_calibrated.h5 \
+      "$results"/ida_156_dt_half.h5
 bin=$root/build/drivers
 post=$root/.venv/bin/voussoir-post
 seed=$root/data/seed_2013
@@ -39,30 +52,30 @@ echo "== 1. The 156-degree arch at 1.25 Hz"
 for amplitude_mm in 46 66; do
   sed -e "s/amplitude_m = 0.046/amplitude_m = 0.0$amplitude_mm/" \
       -e "s/file = 'seed_156.h5'/file = 'seed_156_A${amplitude_mm}mm.h5'/" \
-      input/seed_156.nml > "results/seed_156_A${amplitude_mm}mm.nml"
+      input/seed_156.nml > "$results/seed_156_A${amplitude_mm}mm.nml"
   printf '   A = %s mm: ' "$amplitude_mm"
-  (cd results && "$bin/voussoir-run" "seed_156_A${amplitude_mm}mm.nml")
+  (cd "$results" && "$bin/voussoir-run" "seed_156_A${amplitude_mm}mm.nml")
 done
 
 echo "== 2. Limit analysis of the 156-degree arch"
 "$bin/voussoir-limit" input/limit_seed_156.nml | sed 's/^/   /'
-"$bin/voussoir-limit" input/limit_seed_156.nml --json > results/limit_seed_156.json
+"$bin/voussoir-limit" input/limit_seed_156.nml --json > "$results"/limit_seed_156.json
 
 echo "== 3. Collapse envelope of the 156-degree arch, 0.5 to 4 Hz (2 MPI ranks)"
-(cd results && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" "$root/input/sweep_envelope_156.nml" | tail -n 2)
+(cd "$results" && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" "$root/input/sweep_envelope_156.nml" | tail -n 2)
 
 echo "== 4. The four seed arches at the frequencies of their tests (2 MPI ranks)"
-(cd results && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" "$root/input/sweep_seed_tests.nml" | tail -n 2)
+(cd "$results" && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" "$root/input/sweep_seed_tests.nml" | tail -n 2)
 
 echo "== 5. Figures"
-"$post" history results/seed_156_A66mm.h5 --out results/ >/dev/null
-"$post" sequence results/seed_156_A66mm.h5 --out results/ >/dev/null
-"$post" xdmf results/seed_156_A66mm.h5 >/dev/null
-"$post" reactions results/seed_156_A66mm.h5 --out results/ >/dev/null
-"$post" thrust results/seed_156_A66mm.h5 --out results/ >/dev/null
-"$post" mechanism results/limit_seed_156.json --out results/ >/dev/null
-"$post" envelope results/sweep_envelope_156.h5 --campaign "$seed" --specimen A156 --limit results/limit_seed_156.json --out results/ >/dev/null
-"$post" compare results/sweep_seed_tests.h5 "$seed" --out results/ | sed 's/^/   /'
+"$post" history "$results"/seed_156_A66mm.h5 --out "$results"/ >/dev/null
+"$post" sequence "$results"/seed_156_A66mm.h5 --out "$results"/ >/dev/null
+"$post" xdmf "$results"/seed_156_A66mm.h5 >/dev/null
+"$post" reactions "$results"/seed_156_A66mm.h5 --out "$results"/ >/dev/null
+"$post" thrust "$results"/seed_156_A66mm.h5 --out "$results"/ >/dev/null
+"$post" mechanism "$results"/limit_seed_156.json --out "$results"/ >/dev/null
+"$post" envelope "$results"/sweep_envelope_156.h5 --campaign "$seed" --specimen A156 --limit "$results"/limit_seed_156.json --out "$results"/ >/dev/null
+"$post" compare "$results"/sweep_seed_tests.h5 "$seed" --out "$results"/ | sed 's/^/   /'
 
 records=${VOUSSOIR_MAIN_JOB_RECORDS:-fema_p695_far_field}
 case $records in
@@ -83,69 +96,69 @@ echo "== 6. Fragility of the 156-degree arch under $records_text (IDA, 2 MPI ran
   echo "  contact_inset_range_m = 0.0, 0.002, thickness_range_m = 0.068, 0.074,"
   echo "  size_imperfection_range = 0.0, 0.05, progress_every_s = 60 /"
   echo "&output file = 'ida_156.h5' /"
-} > results/ida_156.nml
+} > "$results"/ida_156.nml
 # Section 7's IDA (the calibrated model) needs nothing from this one: it runs beside
 # sections 6 and 6b (two sweeps of 2 ranks on the machine's cores), where it fills the
 # cores that a sweep leaves idle at its end, when its last searches run one after the
-# other (its log in results/ida_156_calibrated.log, printed in section 7).
+# other (its log in ida_156_calibrated.log, printed in section 7).
 # The first 4 of the 200 posterior samples of A156 that the diagnosis of the seed campaign
 # wrote (docs/seed_2013.md; drawn in random order, so the first 4 are a random subset: the
 # posterior's rivals fall at different accelerations, so its model part needs more samples
 # than the nominal model's 2). Its comment lines (format, nominal arch: checked by the
 # sweep), its header and 4 rows.
-awk '/^#/ || n++ < 5' docs/seed_2013/posterior_samples_A156.csv > results/posterior_samples_A156_first4.csv
+awk '/^#/ || n++ < 5' docs/seed_2013/posterior_samples_A156.csv > "$results"/posterior_samples_A156_first4.csv
 sed -e "s/n_samples = 2, sample_seed = 1, friction_range = 0.45, 0.6,/model_samples_file = 'posterior_samples_A156_first4.csv',/" \
     -e "/contact_inset_range_m = 0.0, 0.002, thickness_range_m = 0.068, 0.074,/d" \
     -e "s/  size_imperfection_range = 0.0, 0.05, progress_every_s = 60 \//  progress_every_s = 60 \//" \
-    -e "s/ida_156.h5/ida_156_calibrated.h5/" results/ida_156.nml > results/ida_156_calibrated.nml
-(cd results && exec mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156_calibrated.nml \
+    -e "s/ida_156.h5/ida_156_calibrated.h5/" "$results"/ida_156.nml > "$results"/ida_156_calibrated.nml
+(cd "$results" && exec mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156_calibrated.nml \
    > ida_156_calibrated.log 2>&1) &
 calibrated_pid=$!
 trap 'kill "$calibrated_pid" 2>/dev/null || true' EXIT  # a failure before section 7 stops it too
-(cd results && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156.nml | grep -E 'done|nothing to do')
-"$post" fragility results/ida_156.h5 --out results/ | tail -n 15 | sed 's/^/   /'
+(cd "$results" && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156.nml | grep -E 'done|nothing to do')
+"$post" fragility "$results"/ida_156.h5 --out "$results"/ | tail -n 15 | sed 's/^/   /'
 
 echo "== 6b. Time-step check: model sample 0 of that IDA again at dt_s / 2 (2 MPI ranks)"
 # Sample 0's values from the IDA's rows (the columns between param_set and scale_stood,
 # 17 digits: the same model, and the same imperfection pattern from sample_seed + 0).
 awk -F, 'NR==1{for(i=1;i<=NF;i++) if($i=="scale_stood") last=i-1}
          (NR==1 || ($2==0 && !done)){for(i=3;i<=last;i++) printf "%s%s",$i,(i<last?",":"\n"); if(NR>1) done=1}' \
-    results/ida_156.csv > results/ida_156_sample0.csv
+    "$results"/ida_156.csv > "$results"/ida_156_sample0.csv
 sed -e "s/&solver dt_s = 1.0e-3 \//\&solver dt_s = 5.0e-4 \//" \
     -e "s/n_samples = 2, sample_seed = 1, friction_range = 0.45, 0.6,/sample_seed = 1, model_samples_file = 'ida_156_sample0.csv',/" \
     -e "/contact_inset_range_m = 0.0, 0.002, thickness_range_m = 0.068, 0.074,/d" \
     -e "s/  size_imperfection_range = 0.0, 0.05, progress_every_s = 60 \//  progress_every_s = 60 \//" \
-    -e "s/ida_156.h5/ida_156_dt_half.h5/" results/ida_156.nml > results/ida_156_dt_half.nml
-(cd results && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156_dt_half.nml | grep -E 'done|nothing to do')
-"$post" dtcheck results/ida_156.h5 results/ida_156_dt_half.h5 | sed 's/^/   /'
+    -e "s/ida_156.h5/ida_156_dt_half.h5/" "$results"/ida_156.nml > "$results"/ida_156_dt_half.nml
+(cd "$results" && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156_dt_half.nml | grep -E 'done|nothing to do')
+"$post" dtcheck "$results"/ida_156.h5 "$results"/ida_156_dt_half.h5 | sed 's/^/   /'
 
 echo "== 7. The same fragility, of the arch as the table tests revealed it (the diagnosis's posterior)"
 if ! wait "$calibrated_pid"; then
-  sed 's/^/   /' results/ida_156_calibrated.log >&2
-  echo "[main] error: the IDA of the calibrated model failed (its log above: results/ida_156_calibrated.log)" >&2
+  sed 's/^/   /' "$results"/ida_156_calibrated.log >&2
+  echo "[main] error: the IDA of the calibrated model failed (its log above: $results/ida_156_calibrated.log)" >&2
   exit 1
 fi
 trap - EXIT
-grep -E 'done|nothing to do' results/ida_156_calibrated.log
-"$post" fragility results/ida_156_calibrated.h5 --out results/ | tail -n 15 | sed 's/^/   /'
+grep -E 'done|nothing to do' "$results"/ida_156_calibrated.log
+"$post" fragility "$results"/ida_156_calibrated.h5 --out "$results"/ | tail -n 15 | sed 's/^/   /'
 
 echo "== 8. The nominal and the calibrated fragility side by side"
-"$post" fragility results/ida_156.h5 --compare results/ida_156_calibrated.h5 \
-    --labels 'nominal model' 'as the tests revealed it' --out results/ | tail -n 5 | sed 's/^/   /'
+"$post" fragility "$results"/ida_156.h5 --compare "$results"/ida_156_calibrated.h5 \
+    --labels 'nominal model' 'as the tests revealed it' --out "$results"/ | tail -n 5 | sed 's/^/   /'
 echo "   Against PGA / (lambda g), each row over the static capacity of its own model:"
-"$post" fragility results/ida_156.h5 --compare results/ida_156_calibrated.h5 --axis pga-lambda-g \
-    --labels 'nominal model' 'as the tests revealed it' --out results/ | tail -n 3 | sed 's/^/   /'
+"$post" fragility "$results"/ida_156.h5 --compare "$results"/ida_156_calibrated.h5 --axis pga-lambda-g \
+    --labels 'nominal model' 'as the tests revealed it' --out "$results"/ | tail -n 3 | sed 's/^/   /'
 
-# An index of everything the job made, with what each shows (results/index.md).
+# An index of everything the job made, with what each shows (index.md).
 missing=()  # files the job should have made and did not
 {
   echo "# Results of the main job ($(date -u +%Y-%m-%dT%H:%MZ), $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo 'no git'))"
   echo
-  echo "The seed paper's 156-degree wooden arch (shared/data/seed_2013), made by \`bash scripts/main_job.sh\`."
+  echo "The seed paper's 156-degree wooden arch (shared/data/seed_2013), made by \`bash scripts/main_job.sh${out_given:+ --out $out_given}\`."
   echo
   echo "| file | what it shows |"
   echo "|---|---|"
-  describe() { if [[ -e results/$1 ]]; then echo "| [$1]($1) | $2 |"; else missing+=("$1"); fi; }
+  describe() { if [[ -e "$results"/$1 ]]; then echo "| [$1]($1) | $2 |"; else missing+=("$1"); fi; }
   describe seed_156_A46mm.h5 "run at 1.25 Hz, 46 mm (the amplitude that brought the real arch down): the model stands"
   describe seed_156_A66mm.h5 "run at 1.25 Hz, 66 mm (where the paper's LMGC90 fell): the model collapses"
   describe seed_156_A66mm_history.png "that run against time: table motion (acceleration in m/s2 and g), crown, NLGS iterations, contacts"
@@ -169,10 +182,10 @@ missing=()  # files the job should have made and did not
   describe ida_156_calibrated_fragility_records.png "its record table: the scale at collapse on each of the 4 model samples"
   describe ida_156_compare_fragility_pga_lambda_g.png "the two against PGA / (lambda g), each row's PGA over the static capacity of its own model sample (the line at 1); the curves in ida_156_compare_fragility_pga_lambda_g.csv"
   describe ida_156_compare_fragility.png "the two side by side (blue nominal, orange as the tests revealed it; PGA solid, PGV dash-dot; the fit at the median's lower 5 % bound PGA dashed, PGV dotted; the static capacities as wide pale lines), medians and betas split into record-to-record and model parts in the legend; the curves in ida_156_compare_fragility.csv"
-} > results/index.md
+} > "$results"/index.md
 if (( ${#missing[@]} )); then
   echo "[main] error: the job did not make ${missing[*]} (see the log above)" >&2
   exit 1
 fi
-ls results/*.png | sed 's/^/   /'
-echo "[main] results in $root/results/ (index: results/index.md)"
+ls "$results"/*.png | sed 's/^/   /'
+echo "[main] results in $results/ (index: $results/index.md)"

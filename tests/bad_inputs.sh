@@ -235,6 +235,91 @@ case_ every_memory      "GB of samples in memory.*every" "&arch n_voussoirs = 10
 case_ repeated_group    ":2: namelist group &arch appears a second time \(first at line 1\)" "&arch n_voussoirs = 13 /
 &arch n_voussoirs = 9 /
 $o"
+# Namelist layouts (issue 34): every group is read wherever it stands on a line, as
+# gfortran reads it, or the file is refused with its line; no group is ever ignored.
+# The five bad values that a second group on a line once hid, refused again.
+case_ line_dt           "&solver dt_s = 0 is outside the allowed range 0 < dt_s" "&arch friction = 0.5 / &solver dt_s = 0 / $o"
+case_ line_theta        "&solver theta = 0.2 is outside the allowed range 0.5 <= theta <= 1" "&arch friction = 0.5 / &solver theta = 0.2 / $o"
+case_ line_waveform     "&motion waveform = 'square' is not one of" "&arch friction=0.3 / &motion waveform='square' / &output file='out.h5' /"
+case_ line_record       "record_file = .*nothere.csv.*no such file" "&arch friction = 0.5 / &motion waveform = 'record', record_file = 'nothere.csv' / $o"
+case_ line_amplitude    ":1: &motion amplitude_m = 'big' is not a number" "&arch friction = 0.5 / &motion amplitude_m = 'big' / $o"
+# Several groups on a line: one not closed before the next begins.
+case_ line_unclosed     ":1: group &motion begins before &arch is closed: end &arch with /" "&arch friction = 0.5 &motion amplitude_m = 0.01 / $o"
+# A group over many lines whose '/' is missing: the next group, lines later, is not swallowed.
+case_ lines_unclosed    ":3: group &output begins before &motion is closed" "&motion amplitude_m = 0.01,
+  frequency_hz = 1.5
+$o"
+# A group written without its '&' (gfortran would skip it, and run on defaults).
+case_ group_no_ampersand ":1: 'solver dt_s = 0 /' stands outside every namelist group" "solver dt_s = 0 /
+$o"
+case_ group_bad_name    ":1: '&solver\\(dt_s = 0 /' is not the start of a namelist group" "&solver(dt_s = 0 /
+$o"
+# Comments: a '/' in a comment closes nothing; a comment without '!' is refused.
+case_ comment_slash     ":2: group &output begins before &solver is closed" "&solver dt_s = 2e-3 ! the end /
+$o"
+case_ comment_hash      ":1: '# the arch of the tests' stands outside every namelist group" "# the arch of the tests
+$o"
+# &end misspelt is another group, begun before this one is closed.
+case_ end_misspelt      ":1: group &edn begins before &solver is closed" "&solver dt_s = 2e-3 &edn
+$o"
+case_ end_stray_text    ":1: 'dt_s = 2e-3 /' stands outside every namelist group" "&solver &end dt_s = 2e-3 /
+$o"
+# Repeated commas: a null value is one more value, refused for a single-valued variable.
+case_ commas_scalar     ":1: &solver dt_s takes one value; it is given 2" "&solver dt_s = 1e-3,, theta = 0.6 /
+$o"
+case_ commas_list       ":1: &arch joint_friction has 257 values; at most 256" "&arch joint_friction = 256*0.3,, /
+$o"
+# Strings with slashes: unquoted, the '/' ends the group and the rest stands outside it;
+# a string is closed on its own line.
+case_ slash_unquoted    ":1: 'run.h5 /' stands outside every namelist group" "&output file = out/run.h5 /"
+case_ slash_open_string ":1: &output file: the text 'out/ has no closing quote" "&output file = 'out/
+run.h5' /"
+# An input that is not a readable file: a folder is refused by every driver.
+mkdir -p input_folder
+for d in voussoir-run voussoir-limit voussoir-sweep; do
+  out=$("$bin/$d" input_folder 2>&1); rc=$?
+  if [[ $rc -eq 1 ]] && grep -q "^$d: error: input_folder: is a folder, not an input file" <<<"$out" \
+     && [[ ! -e voussoir_run.h5 ]]; then
+    passed=$((passed+1)); echo "PASS  $d input_folder"
+  else failed=$((failed+1)); echo "FAIL  $d input_folder (exit $rc): $out"; fi
+done
+
+# Plausibility against the assembly's own scale (issue 34): millimetres given as metres
+# pass every range but make another arch or another motion; refused with a hint.
+case_ mm_amplitude      "&motion amplitude_m = 46 m is larger than the arch's span \\(0.994 m; allowed: amplitude_m <= 0.994 m\\): did you mean millimetres \\(amplitude_m = 0.046 m\\)\\?" "&motion amplitude_m = 46 /
+$o"
+case_ mm_arch           "&arch r_ext_m = 508 m and embrace_deg = 156 make an arch 993.8 m wide, wider than any masonry arch .*did you mean millimetres \\(r_ext_m = 0.508 m, thickness_m = 0.071 m\\)\\?" "&arch r_ext_m = 508, thickness_m = 71, width_m = 145 /
+$o"
+case_ mm_radius         "make an arch 993.8 m wide.*did you mean millimetres \\(r_ext_m = 0.508 m\\)\\?" "&arch r_ext_m = 508 /
+$o"
+driver=voussoir-limit case_ mm_radius_limit "make an arch 993.8 m wide.*did you mean millimetres \\(r_ext_m = 0.508 m\\)\\?" "&arch r_ext_m = 508 /"
+case_ mm_thickness      "&arch thickness_m = 12 m is thicker than any masonry arch ring \\(allowed: at most 10 m\\): did you mean millimetres \\(thickness_m = 0.012 m\\)\\?" "&arch r_ext_m = 20, thickness_m = 12 /
+$o"
+case_ mm_wall_amplitude "&motion amplitude_m = 0.5 m is larger than the wall's length \\(0.4 m" "&wall courses = 2, blocks_per_course = 2 / &motion amplitude_m = 0.5 /
+$o"
+case_ amplitude_over_span "&motion amplitude_m = 0.9 m is larger than the arch's span \\(0.6 m; allowed: amplitude_m <= 0.6 m\\)\$" "&arch r_ext_m = 0.3, embrace_deg = 180 / &motion amplitude_m = 0.9, frequency_hz = 0.5 /
+$o"
+# A grid sweep's amplitudes against every parameter set's arch, before any run.
+driver=voussoir-sweep case_ sweep_mm_amplitudes "&sweep amplitudes_m\\(2\\) = 46 m is larger than the arch's span \\(0.994 m; allowed: amplitudes_m <= 0.994 m\\): did you mean millimetres \\(0.046 m\\)\\?" "&sweep mode = 'grid', frequencies_hz = 1.25, amplitudes_m = 0.02, 46 /
+$o"
+driver=voussoir-sweep case_ sweep_amplitude_set "&sweep amplitudes_m\\(2\\) = 0.9 m is larger than the arch's span of parameter set 0 \\(thickness_m = 0.071\\) \\(0.6 m" "&sweep mode = 'grid', frequencies_hz = 1.25, amplitudes_m = 0.02, 0.9, thickness_list_m = 0.071, 0.08 /
+&arch r_ext_m = 0.3, embrace_deg = 180 /
+$o"
+# Where a real case could need it, a warning and the run goes on: a table acceleration
+# beyond 10 g (a small block at a high frequency), a barrel over 100 m wide.
+warned() {
+  local name=$1 expect=$2 text=$3
+  printf '%s\n' "$text" > "$name.nml"
+  out=$("$bin/${driver:-voussoir-run}" "$name.nml" 2>&1); rc=$?
+  if [[ $rc -eq 0 ]] && grep -Eq -- "^${driver:-voussoir-run}: warning: $name.nml: $expect" <<<"$out"; then
+    passed=$((passed+1)); echo "PASS  $name"
+  else failed=$((failed+1)); echo "FAIL  $name (exit $rc): $out"; fi
+  rm -f warned.h5
+}
+warned warn_accel "&motion amplitude_m = 0.3 m at frequency_hz = 4 commands a full-cycle table acceleration A \\(2 pi f\\)\\^2 of 19.3 g, beyond any shaking table or earthquake \\(10 g\\)" "&motion amplitude_m = 0.3, frequency_hz = 4 /
+&output file = 'warned.h5' /"
+driver=voussoir-limit warned warn_width "&arch width_m = 145 m is the out-of-plane width of the blocks \\(more than 100 m\\): did you mean millimetres \\(width_m = 0.145 m\\)\\?" "&arch width_m = 145 /"
+
 # A sweep's plan (issue 26): its cost is printed before the first run, and a plan beyond
 # &sweep max_runs is refused with its count. 256 frequencies x 256 amplitudes = 65,536 jobs.
 freqs=$(for k in $(seq 0 255); do printf '%s, ' "$(awk "BEGIN{printf \"%.2f\", 1 + 0.01*$k}")"; done)

@@ -91,7 +91,8 @@ contains
     call assert_true(s%mode == 'ramp' .and. mode == 'RAMP', 'a choice is kept in lower case')
     call assert_true(size(g%entries()) == 9 + 5 + 4 - 2, 'entries: a sparse list gives its set entries')
 
-    ! &end closes a group as / does, and so does the end of the file (as in gfortran).
+    ! &end closes a group as / does, and so does the end of the file (gfortran reads its
+    ! values, then reports the end of the file).
     call write_file('test_input_end.nml', '&test n = 4'//nl//'&end'//nl)
     s = sample_t()
     call g%read('test_input_end.nml', status)

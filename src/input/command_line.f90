@@ -8,7 +8,7 @@ module voussoir_command_line
   use voussoir_namelist_help, only: groups_help
   implicit none
   private
-  public :: input_argument
+  public :: input_argument, write_warnings
 
 contains
 
@@ -69,5 +69,23 @@ contains
       exit_code = 2
     end if
   end subroutine input_argument
+
+  !> Each line of `warnings` (voussoir_config's config_t%warnings) on standard error as
+  !> 'program: warning: line'; nothing when there is none.
+  subroutine write_warnings(program, warnings)
+    character(len=*), intent(in) :: program, warnings
+    integer :: first, last
+    first = 1
+    do while (first <= len_trim(warnings))
+      last = index(warnings(first:), new_line('a'))
+      if (last == 0) then
+        last = len_trim(warnings) + 1
+      else
+        last = first + last - 1
+      end if
+      write (error_unit, '(a)') program//': warning: '//warnings(first:last - 1)
+      first = last + 1
+    end do
+  end subroutine write_warnings
 
 end module voussoir_command_line

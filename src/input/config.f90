@@ -20,7 +20,7 @@ module voussoir_config
 
   public :: config_t, arch_config_t, motion_config_t, solver_config_t, output_config_t
   public :: config_entry_t, read_config, validate_config, config_entries, config_to_nml
-  public :: resolve_path, fmt_real, arch_rule, arch_rule_text, config_groups, has_loads
+  public :: resolve_path, fmt_real, arch_rule, arch_rule_text, config_groups, has_loads, assembly_span
 
   !> The waveforms of &motion (the `select case` on them: validate_motion and setup).
   character(len=*), parameter, public :: waveform_afd = 'afd', waveform_ramp = 'ramp', &
@@ -117,6 +117,9 @@ module voussoir_config
     type(wall_config_t) :: wall               !! a wall instead of the arch, where courses > 0
     type(load_config_t) :: load               !! point, axle and distributed loads (&load; none: no loads)
     character(len=path_len) :: source_file = ''
+    !> What validate_config found plausible but unusual, one line each, for the drivers to
+    !> print (config_plausible.f90); not a setting.
+    character(len=1024) :: warnings = ''
   end type config_t
 
   !> Check every value of `cfg` against its physical range (config_validate.f90).
@@ -125,6 +128,26 @@ module voussoir_config
       type(config_t), intent(inout), target :: cfg
       type(status_t), intent(inout) :: status
     end subroutine validate_config
+    !> The arch builder's ring against the sizes of real masonry arches (config_plausible.f90).
+    module subroutine check_plausible_arch(cfg, f, status)
+      type(config_t), intent(inout) :: cfg
+      character(len=*), intent(in) :: f
+      type(status_t), intent(inout) :: status
+    end subroutine check_plausible_arch
+    !> The afd motion against the assembly's span, and its table acceleration (config_plausible.f90).
+    module subroutine check_plausible_motion(cfg, f, status)
+      type(config_t), intent(inout) :: cfg
+      character(len=*), intent(in) :: f
+      type(status_t), intent(inout) :: status
+    end subroutine check_plausible_motion
+    !> The horizontal extent [m] of the assembly `cfg` builds (an arch's chord between
+    !> its extrados ends, a wall's length) and its name in messages ("the arch's span");
+    !> 0 and '' for a polygon file, whose blocks the assembly reads (config_plausible.f90).
+    module subroutine assembly_span(cfg, span_m, what)
+      type(config_t), intent(in) :: cfg
+      real(dp), intent(out) :: span_m
+      character(len=:), allocatable, intent(out) :: what
+    end subroutine assembly_span
   end interface
 
 contains

@@ -24,6 +24,7 @@ contains
     character(len=:), allocatable :: f
 
     f = trim(cfg%source_file)
+    cfg%warnings = ''
     call check_finite(cfg, f, status)
     if (.not. status%ok) return
     cfg%arch%restrained_springings = lower(cfg%arch%restrained_springings)
@@ -46,6 +47,7 @@ contains
                   (2.0_dp*pi*m%frequency_hz)**2), 4)//' m (a full-cycle table acceleration A (2 pi f)^2 of at '// &
                   'most 1000 g)', status)
     end associate
+    call check_plausible_motion(cfg, f, status)   ! within the bounds above, against the assembly
     if (.not. status%ok) return
     call check_output_file(cfg%output%file, f, status)
     call groups(4)%check(f, status)
@@ -74,7 +76,7 @@ contains
   !> &arch: the arch's shape (or the polygon file, or the wall's), the material, the
   !> joints' friction, the imperfection and the contact inset.
   subroutine validate_arch(cfg, g, f, status)
-    type(config_t), intent(in) :: cfg
+    type(config_t), intent(inout) :: cfg
     type(nml_group_t), intent(in) :: g
     character(len=*), intent(in) :: f
     type(status_t), intent(inout) :: status
@@ -88,11 +90,13 @@ contains
         return
       end if
       if (cfg%wall%courses > 0) then
-        continue   ! the wall's own group was checked when read; &arch gives its material
+        call check_plausible_arch(cfg, f, status)   ! the wall's own group was checked when read
       else if (len_trim(a%polygon_file) == 0) then
         call g%check(f, status, when=arch_builder)
         call need(a%thickness_m > 0.0_dp .and. a%thickness_m < a%r_ext_m, &
           f, 'arch', 'thickness_m', a%thickness_m, '0 < thickness_m < r_ext_m = '//fmt_real(a%r_ext_m), status)
+        ! Before the ring's proportions: r_ext_m = 508 (millimetres) is a slip of units.
+        call check_plausible_arch(cfg, f, status)
         ! A ring thinner than a thousandth of its radius is no masonry arch (the thinnest
         ! that stand are some hundredths of it), and its voussoirs are slivers whose area
         ! the geometry cannot resolve (1e-9 m ended in "zero or negative area").
@@ -109,6 +113,7 @@ contains
           return
         end if
         call g%check(f, status, when=polygon_assembly)
+        call check_plausible_arch(cfg, f, status)
       end if
       call g%check(f, status)
       do j = 0, max_joint

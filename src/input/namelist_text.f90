@@ -2,19 +2,26 @@
 !> `name = values` or `name(k) = value`, its values as written (a repeat count `r*`
 !> kept apart, a null value marked), for voussoir_namelist_group to convert.
 !>
-!> Accepted: `&group` (or `$group`) at the start of a line, ended by `/`, `&end`,
-!> `$end` or the end of the file; values separated by commas, semicolons or blanks over any number of lines;
-!> `!` comments; strings in ' or " (a doubled quote stands for one); `r*value` and `r*`.
+!> The whole file is read as a sequence of groups, wherever they stand on a line: `&group`
+!> (or `$group`) opens one, `/`, `&end` or `$end` closes it, and the next may follow on
+!> the same line (`&arch friction = 0.3 / &motion waveform = 'afd' /`), as gfortran's
+!> namelist read finds each group; the end of the file closes the last group. Inside a
+!> group: values separated by commas, semicolons or blanks over any number of lines; `!`
+!> comments; strings in ' or " (a doubled quote stands for one); `r*value` and `r*`.
+!> Never silently skipped: text outside every group (where gfortran skips, and a group
+!> written without its `&` would be lost) and a folder or unreadable file given as the
+!> input are refused, naming the file and line.
 !> What the project's own rules refuse here, gfortran refuses as well (an unquoted text,
 !> an element with more than one value), but with a message naming the variable.
 module voussoir_namelist_text
+  use, intrinsic :: iso_fortran_env, only: iostat_end
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: lower, itoa
   use voussoir_line_reader, only: read_line
   implicit none
   private
 
-  public :: nml_value_t, nml_assignment_t, read_group_text
+  public :: nml_value_t, nml_assignment_t, nml_group_place_t, read_group_text, list_groups
 
   !> One value as written, or a null value (`,,` or `r*`): the entry keeps what it held.
   type :: nml_value_t
@@ -33,6 +40,12 @@ module voussoir_namelist_text
     type(nml_value_t), allocatable :: values(:)
   end type nml_assignment_t
 
+  !> A group of the file: its name (lower case, without '&') and the line it opens on.
+  type :: nml_group_place_t
+    character(len=:), allocatable :: name
+    integer :: line = 0
+  end type nml_group_place_t
+
   integer, parameter :: word = 1, equals = 2, comma = 3
 
   !> A piece of the group's text: a word (a name or a value, quoted strings included),
@@ -43,103 +56,216 @@ module voussoir_namelist_text
     integer :: line = 0
   end type token_t
 
+  !> Blanks: space, tab and the carriage return of a file written on Windows.
+  character(len=*), parameter :: blanks = ' '//achar(9)//achar(13)
+  !> What may follow a group's name: a blank, a separator, its end or a comment.
+  character(len=*), parameter :: after_name = blanks//',;/!'
+  character(len=*), parameter :: name_characters = &
+    'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_'
+
 contains
 
   !> The assignments of group `group` in `path`; found = .false. (and no assignment)
-  !> when the file has no such group. A malformed group fails `status` with its line.
+  !> when the file has no such group (the first of that name when it has several:
+  !> voussoir_namelist_check refuses a second). A malformed file fails `status` with its line.
   subroutine read_group_text(path, group, found, assignments, status)
     character(len=*), intent(in) :: path, group
     logical, intent(out) :: found
     type(nml_assignment_t), allocatable, intent(out) :: assignments(:)
     type(status_t), intent(inout) :: status
     type(token_t), allocatable :: tokens(:)
+    type(nml_group_place_t), allocatable :: places(:)
 
     allocate (assignments(0))
-    call group_tokens(path, group, found, tokens, status)
-    if (.not. (found .and. status%ok)) return
+    call scan_groups(path, lower(group), found, tokens, places, status)
+    if (.not. (found .and. status%ok)) then
+      found = found .and. status%ok
+      return
+    end if
     call split_assignments(path, group, tokens, assignments, status)
   end subroutine read_group_text
 
-  !> The tokens of group `group` in `path`, from its name to its end.
-  subroutine group_tokens(path, group, found, tokens, status)
-    character(len=*), intent(in) :: path, group
+  !> Every group of `path` in the order written, with the line each opens on; a
+  !> malformed file fails `status` with its line.
+  subroutine list_groups(path, places, status)
+    character(len=*), intent(in) :: path
+    type(nml_group_place_t), allocatable, intent(out) :: places(:)
+    type(status_t), intent(inout) :: status
+    type(token_t), allocatable :: tokens(:)
+    logical :: found
+    call scan_groups(path, '', found, tokens, places, status)
+  end subroutine list_groups
+
+  !> Read the whole of `path` as namelist groups: `places` lists them all, and `tokens`
+  !> holds the text of the first group named `wanted` (lower case; '' for none).
+  subroutine scan_groups(path, wanted, found, tokens, places, status)
+    character(len=*), intent(in) :: path, wanted
     logical, intent(out) :: found
     type(token_t), allocatable, intent(out) :: tokens(:)
+    type(nml_group_place_t), allocatable, intent(out) :: places(:)
     type(status_t), intent(inout) :: status
-    character(len=:), allocatable :: line
+    type(token_t), allocatable :: discarded(:)
+    character(len=:), allocatable :: line, group
     character(len=512) :: iomsg
-    integer :: unit, ios, line_no, start
-    logical :: ended
+    integer :: unit, ios, line_no, i, next
+    logical :: inside, ended, folder, collect
 
     found = .false.
-    allocate (tokens(0))
+    allocate (tokens(0), places(0), discarded(0))
+    ! gfortran opens a folder and reads it as an empty file: it would run on defaults.
+    inquire (file=path//'/.', exist=folder)
+    if (folder) then
+      call fail(status, path//': is a folder, not an input file: name a namelist file (e.g. input/seed_156.nml)')
+      return
+    end if
     open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=iomsg)
     if (ios /= 0) then
       call fail(status, path//': cannot open input: '//trim(iomsg))
       return
     end if
     line_no = 0
-    ended = .false.
+    inside = .false.
+    collect = .false.
+    group = ''
     do
-      call read_line(unit, line, ios)
-      if (ios /= 0) exit
-      line_no = line_no + 1
-      if (.not. found) then
-        start = group_start(line, group)
-        if (start == 0) cycle
-        found = .true.
-        line = line(start:)
+      iomsg = ''
+      call read_line(unit, line, ios, iomsg)
+      if (ios == iostat_end) exit
+      if (ios /= 0) then
+        call fail(status, path//':'//itoa(line_no + 1)//': cannot read input: '//trim(iomsg))
+        exit
       end if
-      call line_tokens(path, group, line, line_no, tokens, ended, status)
-      if (ended .or. .not. status%ok) exit
+      line_no = line_no + 1
+      i = 1
+      do while (i <= len(line) .and. status%ok)
+        if (inside) then
+          ended = .false.
+          if (collect) then
+            call line_tokens(path, group, line, i, line_no, tokens, ended, next, status)
+          else
+            call line_tokens(path, group, line, i, line_no, discarded, ended, next, status)
+            deallocate (discarded)
+            allocate (discarded(0))
+          end if
+          i = next
+          if (ended) then
+            inside = .false.
+            if (collect) found = .true.
+            collect = .false.
+          end if
+        else
+          call group_opening(path, line, line_no, i, group, status)
+          if (.not. status%ok .or. len(group) == 0) exit   ! a comment, or the end of the line
+          if (group == 'end') cycle                         ! a stray &end closes nothing: nothing lost
+          places = [places, nml_group_place_t(group, line_no)]
+          inside = .true.
+          collect = group == wanted .and. len(wanted) > 0 .and. .not. found
+        end if
+      end do
+      if (.not. status%ok) exit
     end do
-    close (unit)   ! the end of the file ends the last group, as in gfortran's read
-  end subroutine group_tokens
+    close (unit)
+    ! The end of the file ends the last group (gfortran reads its values, then reports
+    ! the end of the file).
+    if (status%ok .and. collect) found = .true.
+    if (.not. status%ok) found = .false.
+  end subroutine scan_groups
 
-  !> Where the text of group `group` starts in `line` (after its name), or 0 when the
-  !> line does not open it.
-  pure integer function group_start(line, group) result(start)
-    character(len=*), intent(in) :: line, group
-    integer :: first, after
-    start = 0
-    first = verify(line, ' '//achar(9))
-    if (first == 0) return
-    if (line(first:first) /= '&' .and. line(first:first) /= '$') return
-    after = first + len(group) + 1
-    if (len(line) < after - 1) return
-    if (lower(line(first + 1:after - 1)) /= lower(group)) return
-    if (len(line) >= after) then
-      if (verify(line(after:after), ' ,/!'//achar(9)) /= 0) return
-    end if
-    start = after
-  end function group_start
-
-  !> Append the tokens of one line of the group; ended when its '/' or &end is reached.
-  subroutine line_tokens(path, group, line, line_no, tokens, ended, status)
-    character(len=*), intent(in) :: path, group, line
+  !> Outside every group, from line(i:): skip blanks; at `&name` (or `$name`) return its
+  !> name in lower case and move i past it; at a comment or the end of the line return
+  !> '' with i past the line. Any other text is refused: gfortran would skip it, and with
+  !> it a group written without its '&' or after a '/' left in an unquoted text.
+  subroutine group_opening(path, line, line_no, i, group, status)
+    character(len=*), intent(in) :: path, line
     integer, intent(in) :: line_no
+    integer, intent(inout) :: i
+    character(len=:), allocatable, intent(out) :: group
+    type(status_t), intent(inout) :: status
+    integer :: first, after
+    character(len=:), allocatable :: stray
+
+    group = ''
+    first = verify(line(i:), blanks)
+    if (first == 0) then
+      i = len(line) + 1
+      return
+    end if
+    i = i + first - 1
+    if (line(i:i) == '!') then
+      i = len(line) + 1
+      return
+    end if
+    if (line(i:i) == '&' .or. line(i:i) == '$') then
+      after = verify(line(i + 1:), name_characters)
+      if (after == 0) then
+        after = len(line) + 1
+      else
+        after = i + after
+      end if
+      group = lower(line(i + 1:after - 1))
+      if (len(group) > 0) then
+        if (after > len(line)) then
+          i = after
+          return
+        else if (scan(line(after:after), after_name) > 0) then
+          i = after
+          return
+        end if
+      end if
+      group = ''
+      stray = line(i:)
+      call fail(status, path//':'//itoa(line_no)//": '"//short(stray)//"' is not the start of a namelist "// &
+                'group: write &name followed by a blank (e.g. &arch friction = 0.5 /)')
+      return
+    end if
+    stray = line(i:)
+    call fail(status, path//':'//itoa(line_no)//": '"//short(stray)//"' stands outside every namelist group "// &
+              "(a group begins with &name and ends with /, a comment with !; a text with '/' in it goes in quotes)")
+  end subroutine group_opening
+
+  !> At most 40 characters of `text`, trimmed.
+  pure function short(text) result(s)
+    character(len=*), intent(in) :: text
+    character(len=:), allocatable :: s
+    s = trim(text)
+    if (len(s) > 40) s = s(:37)//'...'
+  end function short
+
+  !> Append the tokens of line(from:) inside group `group`; ended when its '/' or &end
+  !> is reached, and `next` is where the text after it starts (past the line when the
+  !> group goes on).
+  subroutine line_tokens(path, group, line, from, line_no, tokens, ended, next, status)
+    character(len=*), intent(in) :: path, group, line
+    integer, intent(in) :: from, line_no
     type(token_t), allocatable, intent(inout) :: tokens(:)
     logical, intent(inout) :: ended
+    integer, intent(out) :: next
     type(status_t), intent(inout) :: status
     character(len=:), allocatable :: current
     integer :: i, close_at
 
     current = ''
-    i = 1
+    i = from
+    next = len(line) + 1
     do while (i <= len(line))
       select case (line(i:i))
-      case (' ', achar(9))
+      case (' ', achar(9), achar(13))
         call end_word()
       case (',', ';')
         call end_word()
-        tokens = [tokens, token_t(comma, ',', line_no)]
+        if (.not. ended) tokens = [tokens, token_t(comma, ',', line_no)]
       case ('=')
         call end_word()
-        tokens = [tokens, token_t(equals, '=', line_no)]
+        if (.not. ended) tokens = [tokens, token_t(equals, '=', line_no)]
       case ('/')
         call end_word()
-        ended = .true.
+        if (.not. ended) then
+          ended = .true.
+          i = i + 1
+        end if
       case ('!')
+        call end_word()
+        if (.not. ended) i = len(line) + 1
         exit
       case ("'", '"')
         close_at = closing_quote(line, i)
@@ -153,7 +279,11 @@ contains
       case default
         current = current//line(i:i)
       end select
-      if (ended .or. .not. status%ok) return
+      if (.not. status%ok) return
+      if (ended) then
+        next = i
+        return
+      end if
       i = i + 1
     end do
     call end_word()

@@ -5,10 +5,10 @@
 module voussoir_sweep_plan
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
-  use voussoir_text, only: itoa, int_list, fmt_exact_list
+  use voussoir_text, only: itoa, int_list, fmt_exact_list, fmt_real, fmt_significant
   use voussoir_input_range, only: need
   use voussoir_config, only: config_t, config_entry_t, config_entries, config_to_nml, validate_config, &
-                             arch_rule, arch_rule_text, has_loads
+                             arch_rule, arch_rule_text, has_loads, assembly_span
   use voussoir_sweep_group, only: sweep_group_t, read_sweep_group, lengths_text, n_kinds, param_kinds, list_names, &
                                   combine_paired
   use voussoir_sweep_mode, only: sweep_mode_t, sweep_plan_t, set_description, job_param_set
@@ -69,6 +69,7 @@ contains
     end if
     plan%n_jobs = plan%n_sets*plan%n_freq_per_set*plan%n_amp
     call check_loads_placed(path, plan, status)
+    call check_amplitudes_span(path, group, plan, status)
     if (.not. status%ok) return
     call make_texts(mode, base, group%lists, group%lengths, plan)
     call move_alloc(mode, plan%mode)
@@ -95,6 +96,38 @@ contains
       end if
     end do
   end subroutine check_loads_placed
+
+  !> The grid's amplitudes (&sweep amplitudes_m; no other mode takes them) against the
+  !> assembly of every parameter set, as config_plausible.f90 checks &motion amplitude_m:
+  !> an amplitude larger than the arch's span is a slip of units (millimetres as metres).
+  subroutine check_amplitudes_span(path, group, plan, status)
+    character(len=*), intent(in) :: path
+    type(sweep_group_t), intent(in) :: group
+    type(sweep_plan_t), intent(in) :: plan
+    type(status_t), intent(inout) :: status
+    real(dp) :: span_m
+    character(len=:), allocatable :: what, hint, of_set
+    integer :: s, k
+    if (.not. status%ok) return
+    do s = 0, plan%n_sets - 1
+      call assembly_span(plan%set_cfg(s), span_m, what)
+      if (span_m <= 0.0_dp) cycle
+      do k = 1, group%n_amplitudes
+        associate (a => group%amplitudes_m(k))
+          if (a <= span_m) cycle
+          hint = ''
+          if (a >= 1.0_dp .and. a/1000.0_dp <= span_m) &
+            hint = ': did you mean millimetres ('//fmt_significant(a/1000.0_dp, 4)//' m)?'
+          of_set = ''
+          if (plan%n_sets > 1) of_set = ' of parameter set '//itoa(s)//' ('//set_description(plan, s)//')'
+          call fail(status, path//': &sweep amplitudes_m('//itoa(k)//') = '//fmt_real(a)//' m is larger than '// &
+                    what//of_set//' ('//fmt_significant(span_m, 3)//' m; allowed: amplitudes_m <= '// &
+                    fmt_significant(span_m, 3)//' m)'//hint)
+          return
+        end associate
+      end do
+    end do
+  end subroutine check_amplitudes_span
 
   !> The plan's cost (its runs, simulated seconds and steps x blocks; voussoir-sweep
   !> prints them before it starts), and the cap on its runs, &sweep max_runs: a grid job
