@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The main job: the seed paper's 156-degree wooden arch (shared/data/seed_2013).
+# The main job: the seed paper's 156-degree wooden arch (data/seed_2013).
 #  1. one run at 1.25 Hz with the amplitude that brought it down on the table (46 mm) and
 #     one with the amplitude at which the paper's LMGC90 model fell (66 mm);
 #  2. its limit analysis (capacity and mechanism);
@@ -154,7 +154,7 @@ missing=()  # files the job should have made and did not
 {
   echo "# Results of the main job ($(date -u +%Y-%m-%dT%H:%MZ), $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo 'no git'))"
   echo
-  echo "The seed paper's 156-degree wooden arch (shared/data/seed_2013), made by \`bash scripts/main_job.sh${out_given:+ --out $out_given}\`."
+  echo "The seed paper's 156-degree wooden arch (data/seed_2013), made by \`bash scripts/main_job.sh${out_given:+ --out $out_given}\`."
   echo
   echo "| file | what it shows |"
   echo "|---|---|"
