@@ -19,7 +19,7 @@ from matplotlib.patches import Patch
 from ..earthquake.fragility import empirical_collapse_fraction, fragility
 from ..earthquake.ida import FIT_BRACKET, FIT_CENSORED, FIT_FAILED, IdaResult
 from ..tables import ReportTable
-from .drawing import new_figure, provenance, save_png
+from .drawing import new_figure, provenance, save_figure
 from .fragility_plot import (BOUND_STYLES, FIT_STYLES, G_M_S2, LEGEND_PAD, FragilityData,
                              IntensityFragility, arch_words, confidence_words, fragility_data, records_words,
                              samples_words, scale_warning, split_label, static_capacities_m_s2, top_intensity)
@@ -198,7 +198,7 @@ def plot_fragility_compare(ida_a: IdaResult, ida_b: IdaResult, labels: list[str]
     note = provenance(ida_a.code_version or ida_b.code_version, os.path.basename(ida_a.path),
                       os.path.basename(ida_b.path))
     warnings = [f"{label}: {w}" for label, w in zip(labels, (scale_warning(ida) for ida in idas)) if w]
-    png = save_png(fig, out_png, note=" | ".join(warnings + [note]))
+    png = save_figure(fig, out_png, note=" | ".join(warnings + [note]))
 
     a, b = data[0].pga, data[1].pga
     assert np.array_equal(a.band.im, b.band.im)  # one grid

@@ -24,7 +24,7 @@ from ..earthquake.fragility import empirical_collapse_fraction, fragility
 from ..earthquake.ida import FIT_BRACKET, FIT_CENSORED, FIT_FAILED, IdaResult
 from ..earthquake.im_fragility import MEASURES, pga_lambda_g_brackets, row_capacities_m_s2
 from ..tables import ReportTable
-from .drawing import legend_pad, new_figure, provenance, save_png, wrap_text
+from .drawing import legend_pad, new_figure, provenance, save_figure, wrap_text
 from .fragility_compare import COMPARE_COLORS, FragilityComparison, lower_bound_entries
 from .fragility_plot import (G_M_S2, FragilityData, IntensityFragility, arch_words, band_words, confidence_words,
                              fragility_data, fragility_of, records_words, samples_words, scale_warning,
@@ -221,7 +221,7 @@ def plot_lambda_g_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootst
         "each row's PGA divided by the static capacity λ g of its own model sample",
         "lognormal fit by interval-censored maximum likelihood on each row's bracket (last scale that stood, first "
         "that collapsed] / λ g"] + [w for w in [scale_warning(ida)] if w], _WIDTH_IN), fontsize=10)
-    png = save_png(fig, out_png, note=provenance(getattr(ida, "code_version", ""), os.path.basename(ida.path)))
+    png = save_figure(fig, out_png, note=provenance(getattr(ida, "code_version", ""), os.path.basename(ida.path)))
 
     capacity = row_capacities_m_s2(ida)
     pit = ratio.check.pit
@@ -302,7 +302,7 @@ def plot_lambda_g_compare(ida_a: IdaResult, ida_b: IdaResult, labels: list[str],
         "lognormal fits by interval-censored maximum likelihood on each row's bracket (last scale that stood, first "
         "that collapsed] / λ g"] + [f"{label}: {w}" for label, w in zip(labels, map(scale_warning, idas)) if w],
         _WIDTH_IN), fontsize=10)
-    png = save_png(fig, out_png, note=provenance(ida_a.code_version or ida_b.code_version,
+    png = save_figure(fig, out_png, note=provenance(ida_a.code_version or ida_b.code_version,
                                                  os.path.basename(ida_a.path), os.path.basename(ida_b.path)))
 
     a, b = ratios

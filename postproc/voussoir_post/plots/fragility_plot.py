@@ -20,7 +20,7 @@ from ..earthquake.fragility import (BetaSplit, FitCheck, FitError, FragilityBand
 from ..earthquake.ida import FIT_BRACKET, FIT_CENSORED, FIT_FAILED, FIT_LEFT_OUT, IdaResult
 from ..tables import ReportTable
 from ..units import G_M_S2
-from .drawing import legend_pad, new_figure, provenance, save_png
+from .drawing import legend_pad, new_figure, provenance, save_figure
 
 __all__ = ["FragilityData", "IntensityFragility", "fragility_of", "fragility_data", "plot_fragility", "G_M_S2",
            "BETA_CONVENTION", "BETA_SPLIT", "LEGEND_PAD", "confidence_words", "split_words", "split_label",
@@ -40,7 +40,7 @@ SCALE_WARN = (0.25, 4.0)
 #: How beta and the bootstrap standard deviations are computed (said in every output).
 BETA_CONVENTION = ("beta: maximum likelihood (divisor n, not n - 1); bootstrap standard deviations: "
                    "divisor n - 1 over the resamples")
-#: Pad of a figure legend under the axes, in font sizes (8 pt): its 0.5 plus save_png's 10-pt
+#: Pad of a figure legend under the axes, in font sizes (8 pt): its 0.5 plus save_figure's 10-pt
 #: strip for the small print, which the legend would otherwise cross.
 LEGEND_PAD = legend_pad(8.0)
 #: How beta is split (said in every output that gives the split).
@@ -459,5 +459,5 @@ def plot_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootstrap: int 
     fig.suptitle(_title(ida), fontsize=10)
     note = provenance(getattr(ida, "code_version", ""), os.path.basename(ida.path))
     warning = scale_warning(ida)
-    data.png_path = save_png(fig, out_png, note=f"{warning} | {note}" if warning else note)
+    data.png_path = save_figure(fig, out_png, note=f"{warning} | {note}" if warning else note)
     return data

@@ -17,7 +17,7 @@ from ..earthquake.fragility import FitError, FragilityBand, FragilityFit, fragil
 from ..earthquake.msa import MsaResult
 from ..earthquake.stripes_fit import fit_stripes, stripes_band, stripes_of
 from ..tables import ReportTable
-from .drawing import new_figure, provenance, save_png
+from .drawing import new_figure, provenance, save_figure
 from .fragility_plot import BETA_CONVENTION, G_M_S2, LEGEND_PAD, SCALE_WARN, band_words
 
 __all__ = ["MsaFragilityData", "msa_fragility_data", "plot_msa_fragility", "FIT_WORDS"]
@@ -150,5 +150,5 @@ def plot_msa_fragility(msa: MsaResult, out_png: str | os.PathLike, n_bootstrap: 
     note = provenance(msa.code_version, os.path.basename(msa.path))
     if data.n_scale_warned:
         note = f"{data.n_scale_warned} runs scaled beyond {SCALE_WARN[1]:g} or below {SCALE_WARN[0]:g} | {note}"
-    data.png_path = save_png(fig, out_png, note=note)
+    data.png_path = save_figure(fig, out_png, note=note)
     return data

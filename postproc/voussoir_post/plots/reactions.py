@@ -12,7 +12,7 @@ from ..analysis.contact_forces import Reactions, reactions, reactions_table
 from ..analysis.kinematics import ROLE_FOUNDATION, ROLE_VOUSSOIR
 from ..readers.results import RunResult
 from ..tables import ReportTable
-from .drawing import G_M_S2, add_g_axis, legend_pad, new_figure, provenance, run_caption, save_png
+from .drawing import G_M_S2, add_g_axis, legend_pad, new_figure, provenance, run_caption, save_figure
 
 __all__ = ["ReactionsData", "plot_reactions", "free_weight_n", "support_names"]
 
@@ -104,7 +104,7 @@ def plot_reactions(run: RunResult, out_png: str | os.PathLike) -> ReactionsData:
                          fontsize=8)
     fig.suptitle(f"Reactions of the supports over time: the force each exerts on the blocks it carries\n"
                  f"(mean over the time step that ends at each output sample)\n{run_caption(run)}", fontsize=9)
-    data.png_path = save_png(fig, out_png, note=provenance(run.code_version, run.input_file,
+    data.png_path = save_figure(fig, out_png, note=provenance(run.code_version, run.input_file,
                                                            os.path.basename(run.path)))
     rows = []
     for k, name in enumerate(data.names):

@@ -14,7 +14,7 @@ from ..analysis.kinematics import (ROLE_FOUNDATION, ROLE_RESTRAINT, JointState, 
                                    default_open_tol_m, joint_states)
 from ..readers.results import RunResult
 from ..tables import ReportTable
-from .drawing import HINGE_COLOURS, legend_pad, new_figure, provenance, run_caption, save_png, wrap_text
+from .drawing import HINGE_COLOURS, legend_pad, new_figure, provenance, run_caption, save_figure, wrap_text
 
 __all__ = ["SequenceFrame", "SequenceData", "default_frame_times", "sequence_frames",
            "plot_sequence", "write_sequence_gif"]
@@ -156,7 +156,7 @@ def plot_sequence(run: RunResult, out_png: str | os.PathLike, times_s=None, n_fr
                                 label="separated joint (s): both edges open, the blocks part or slide")[0]]
         fig.legend(handles=handles, loc="outside lower center", borderaxespad=legend_pad(7), ncols=legend_cols,
                    fontsize=7)
-    png = save_png(fig, out_png, note=provenance(run.code_version, run.input_file, os.path.basename(run.path)))
+    png = save_figure(fig, out_png, note=provenance(run.code_version, run.input_file, os.path.basename(run.path)))
     table = ReportTable(["frame", "sample", "time_s", "crown_dx_mm", "crown_dy_mm", "open_joints"],
                         [(i + 1, f.sample, f.time_s, 1e3 * float(run.crown_dx_m[f.sample]),
                           1e3 * float(run.crown_dy_m[f.sample]), f.hinge_labels() or "-")
