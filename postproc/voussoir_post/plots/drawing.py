@@ -16,8 +16,8 @@ from ..analysis.afd import afd_peak_accel_per_m
 from ..units import G_M_S2
 
 __all__ = ["new_figure", "save_figure", "save_png", "FIGURE_FORMATS", "RASTER_DPI", "figure_format", "MARKERS",
-           "COLORS", "G_M_S2", "provenance", "add_g_axis", "run_caption", "arch_caption", "legend_pad", "NOTE_STRIP_PT", "HINGE_COLOURS", "COLLAPSE_COLOUR", "wrap_text",
-           "parameters_in_words", "drawing_tree", "PNG_COMMIT_KEY", "PNG_TREE_KEY", "png_provenance"]
+           "COLORS", "G_M_S2", "provenance", "add_g_axis", "run_caption", "arch_caption", "legend_pad", "NOTE_STRIP_PT",
+           "HINGE_COLOURS", "COLLAPSE_COLOUR", "wrap_text", "parameters_in_words", "drawing_tree", "PNG_COMMIT_KEY", "PNG_TREE_KEY", "png_provenance"]
 
 #: Marker style per specimen or parameter set, in order.
 MARKERS = ("o", "s", "^", "D", "v", "P", "X", "<", ">", "h")
