@@ -42,7 +42,7 @@ RATIO_NAME = MEASURES["pga_lambda_g"][0]
 _FIGURE_NAME = "PGA / (λ g)"
 AXIS_LABEL = "PGA / (λ g)   (static capacity = 1)"
 _LEGEND_FONT = 8.0
-_WIDTH_IN = 10.5  #: of both figures
+_WIDTH_IN = 12.5  #: of both figures (as wide as the comparison against PGA and PGV)
 
 
 def lambda_g_fragility(ida: IdaResult, n_bootstrap: int = 400, seed: int = 20261124,
@@ -207,7 +207,7 @@ def plot_lambda_g_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootst
     ratio = lambda_g_fragility(ida, n_bootstrap, seed)
     data = fragility_data(ida, n_bootstrap, seed)
 
-    fig = new_figure(_WIDTH_IN, 7.4)
+    fig = new_figure(_WIDTH_IN, 7.2)
     ax = fig.subplots()
     _panel(ax, [ratio], ["tab:blue"], ["o"])
     entries = _legend(ratio, "tab:blue", "o")
@@ -222,7 +222,7 @@ def plot_lambda_g_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootst
     scale_max = ida.config.get("sweep", {}).get("scale_max")
     top = f" (up to x {scale_max:g})" if isinstance(scale_max, (int, float)) else ""
     fig.suptitle(two_line_title(
-        f"Probability of collapse of the {arch_words(ida)}, {samples_words(ida)}, against {_FIGURE_NAME}",
+        f"Probability of collapse against {_FIGURE_NAME} of the {arch_words(ida)}, {samples_words(ida)}",
         f"under {records_words(ida)}, scaled{top}: each row's PGA over the static capacity λ g of its own model",
         _WIDTH_IN - 0.2, second_short=f"under {len(ida.records)} ground-motion records, scaled{top}: each row's PGA "
                                       f"over the static capacity λ g of its own model"), fontsize=10)
@@ -312,7 +312,7 @@ def plot_lambda_g_compare(ida_a: IdaResult, ida_b: IdaResult, labels: list[str],
     data = [fragility_data(ida, n_bootstrap, seed) for ida in idas]
     same_records = ida_a.records == ida_b.records
 
-    fig = new_figure(_WIDTH_IN + 2.0, 7.8)
+    fig = new_figure(_WIDTH_IN, 7.8)
     ax = fig.subplots()
     _panel(ax, ratios, COMPARE_COLORS, POINT_MARKERS)
     models = []
@@ -327,7 +327,7 @@ def plot_lambda_g_compare(ida_a: IdaResult, ida_b: IdaResult, labels: list[str],
     warnings = [f"{label}: {w}" for label, w in zip(labels, map(scale_warning, idas)) if w]
     model_and_kind_legend(fig, models, _kinds(ratios), [f"{w} (the record then stands for another earthquake)"
                                                          for w in warnings])
-    fig.suptitle(compare_title(idas, labels, same_records, _WIDTH_IN + 1.8, f" against {_FIGURE_NAME}"),
+    fig.suptitle(compare_title(idas, labels, same_records, _WIDTH_IN - 0.2, f" against {_FIGURE_NAME}"),
                  fontsize=10)
     note = provenance(ida_a.code_version or ida_b.code_version, os.path.basename(ida_a.path),
                       os.path.basename(ida_b.path))
