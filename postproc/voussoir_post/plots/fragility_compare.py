@@ -28,13 +28,16 @@ from .fragility_plot import (BOUND_STYLES, FIT_STYLES, G_M_S2, LEGEND_PAD, POINT
                              split_label, static_capacities_m_s2, top_intensity, two_line_title, warning_entry)
 
 __all__ = ["FragilityComparison", "plot_fragility_compare", "COMPARE_COLORS", "FIT_STYLES", "POINT_MARKERS",
-           "compare_title", "lower_bound_entries", "band_kind_words"]
+           "compare_title", "lower_bound_entries", "band_kind_words", "MODEL_WRAP_IN"]
 
 #: One colour per file (the first, the second).
 COMPARE_COLORS = ("tab:blue", "tab:orange")
 #: One marker of the IDA points per file.
 POINT_MARKERS = ("o", "s")
 _WIDTH_IN = 12.5
+#: Width [in] to which a model's legend entry is wrapped (wrap_text's estimate is generous:
+#: 92 characters of 8-pt text take about 5.3 in).
+MODEL_WRAP_IN = 5.6
 
 
 @dataclass
@@ -144,7 +147,7 @@ def _model_entry(k: int, label: str, data: FragilityData, ida: IdaResult) -> tup
     handle = (Line2D([], [], color=color, linewidth=6, alpha=0.35),
               Line2D([], [], color=color, marker=POINT_MARKERS[k], markeredgecolor="black", markeredgewidth=0.4,
                      linestyle="none", markersize=5))
-    return handle, "\n".join(wrap_text(w, 5.2, 8.0) for w in words)
+    return handle, "\n".join(wrap_text(w, MODEL_WRAP_IN, 8.0) for w in words)
 
 
 def _kind_entries(data: list[FragilityData], idas: list[IdaResult]) -> list[tuple[object, str]]:

@@ -27,8 +27,8 @@ from ..earthquake.ida import FIT_BRACKET, FIT_CENSORED, FIT_FAILED, IdaResult
 from ..earthquake.im_fragility import MEASURES, pga_lambda_g_brackets, row_capacities_m_s2
 from ..tables import ReportTable
 from .drawing import legend_pad, new_figure, provenance, save_figure, wrap_text
-from .fragility_compare import (COMPARE_COLORS, POINT_MARKERS, FragilityComparison, band_kind_words, compare_title,
-                                lower_bound_entries, model_and_kind_legend)
+from .fragility_compare import (COMPARE_COLORS, MODEL_WRAP_IN, POINT_MARKERS, FragilityComparison, band_kind_words,
+                                compare_title, lower_bound_entries, model_and_kind_legend)
 from .fragility_plot import (G_M_S2, POINTS_WORDS, TUPLE_HANDLER, FragilityData, IntensityFragility, arch_words,
                              band_words, bracket_points, confidence_words, draw_bracket_points, fragility_data,
                              fragility_of, points_handle, records_words, samples_words, scale_warning,
@@ -321,7 +321,7 @@ def plot_lambda_g_compare(ida_a: IdaResult, ida_b: IdaResult, labels: list[str],
                   Line2D([], [], color=COMPARE_COLORS[k], marker=POINT_MARKERS[k], markeredgecolor="black",
                          markeredgewidth=0.4, linestyle="none", markersize=5))
         tail = 50.0 * (1.0 - ratio.band.level)
-        models.append((handle, "\n".join(wrap_text(w, 5.2, _LEGEND_FONT) for w in (
+        models.append((handle, "\n".join(wrap_text(w, MODEL_WRAP_IN, _LEGEND_FONT) for w in (
             f"{label}: {samples_words(ida)}", _fit_words(ratio),
             f"lower {tail:g} % bound of the median {ratio.band.median_low:.3g}; static capacity λ g {_g_list(c)}"))))
     warnings = [f"{label}: {w}" for label, w in zip(labels, map(scale_warning, idas)) if w]
