@@ -16,6 +16,7 @@ program voussoir_run
   use voussoir_run_output, only: write_run_file
   use voussoir_command_line, only: input_argument, write_warnings
   use voussoir_interrupt, only: catch_stop_signals
+  use voussoir_text, only: fmt_fixed, itoa
   implicit none
   type(config_t) :: cfg
   type(config_t), target :: defaults          ! what --help lists the tables over
@@ -48,20 +49,21 @@ program voussoir_run
     stop 1, quiet=.true.
   end if
   if (res%interrupted_by /= 0) then
-    write (*, '(a,f0.3,a,i0,a)') 'interrupted at t = ', res%time_s(size(res%time_s)), ' s by signal ', &
-      res%interrupted_by, ': the result holds the run until then (/result interrupted_by_signal), '// &
+    ! fmt_fixed, not f0.d: '0.018', never '.018'
+    write (*, '(a)') 'interrupted at t = '//fmt_fixed(res%time_s(size(res%time_s)), 3)//' s by signal '// &
+      itoa(res%interrupted_by)//': the result holds the run until then (/result interrupted_by_signal), '// &
       trim(merge('collapsed so far', 'stood so far    ', res%collapsed))//'; result '//trim(cfg%output%file)
     stop 128 + res%interrupted_by, quiet=.true.
   end if
   if (res%collapsed) then
-    write (*, '(a,f0.3,a)', advance='no') 'collapsed at ', res%collapse_time_s, ' s;'
+    write (*, '(a)', advance='no') 'collapsed at '//fmt_fixed(res%collapse_time_s, 3)//' s;'
   else
     write (*, '(a)', advance='no') 'stood;'
   end if
-  write (*, '(a,f0.3,a,f0.3,a,i0,a,f0.1,a,f0.2,a,a)') ' peak crown displacement ', &
-    1.0e3_dp*res%peak_crown_disp_m, ' mm; largest final block displacement ', 1.0e3_dp*res%max_residual_disp_m, &
-    ' mm (body ', res%max_residual_body, '); mean NLGS iterations ', res%mean_iterations, '; wall time ', &
-    res%wall_time_s, ' s; result ', trim(cfg%output%file)
+  write (*, '(a)') ' peak crown displacement '//fmt_fixed(1.0e3_dp*res%peak_crown_disp_m, 3)// &
+    ' mm; largest final block displacement '//fmt_fixed(1.0e3_dp*res%max_residual_disp_m, 3)//' mm (body '// &
+    itoa(res%max_residual_body)//'); mean NLGS iterations '//fmt_fixed(res%mean_iterations, 1)//'; wall time '// &
+    fmt_fixed(res%wall_time_s, 2)//' s; result '//trim(cfg%output%file)
   if (res%nonconverged_steps > 0) write (*, '(a,i0,a)') 'warning: ', res%nonconverged_steps, &
     ' steps ended without NLGS convergence'
 end program voussoir_run

@@ -20,6 +20,9 @@ case "$name" in
     if [[ "$first" != "stood;" && "$first" != "collapsed" ]]; then
       echo "first word is '$first', not stood/collapsed"; exit 1
     fi
+    if grep -Eq '(^|[ (=])\.[0-9]' output.txt; then  # '.018 mm' reads badly: '0.018 mm'
+      echo "a number without its leading zero: $(grep -Eo '(^|[ (=])\.[0-9]+' output.txt | head -n 1)"; exit 1
+    fi
     result=$(sed -n 's/.*; result \(.*\)$/\1/p' output.txt | head -n 1)
     [[ -s "$result" ]] || { echo "no result file $result"; exit 1; } ;;
 esac

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from matplotlib.figure import Figure
 
+from voussoir_post.plots.drawing import RASTER_DPI
+
 
 def _all_axes(fig: Figure):
     out = []
@@ -22,8 +24,8 @@ def _all_axes(fig: Figure):
 
 
 def text_boxes(fig: Figure) -> list[tuple[str, object]]:
-    """(name, window extent) of every text box of the figure, drawn at save_png's dpi."""
-    fig.set_dpi(120)
+    """(name, window extent) of every text box of the figure, drawn at save_figure's dpi."""
+    fig.set_dpi(RASTER_DPI)
     fig.canvas.draw()
     renderer = fig.canvas.get_renderer()
     boxes = []

@@ -2,7 +2,8 @@
 figure's edge (titles, axis labels, tick labels, legends, the provenance strip), by
 matplotlib's renderer extents (figure_text.py). The envelope and compare figures are
 checked on their sweep in test_sweep.py, the sequence and the history in
-test_run_plots.py; here the mechanism (a real voussoir-limit JSON), and the fragility
+test_run_plots.py; here the mechanism (a real voussoir-limit JSON), the reactions and the
+thrust line (the short real run of conftest.py), and the fragility
 figures (IDA tables written by hand, as test_fragility_ida.py writes them), the IDA's
 record table (rows written as test_record_table.py writes them), and the
 diagnosis's figures (report.md's and the calibration's reliability figure) from a few
@@ -55,6 +56,19 @@ def test_mechanism_text(voussoir_limit_exe, tmp_path, drawn_figures):
     assert post.main(["mechanism", str(path), "--out", str(tmp_path / "m.png")]) == 0
     (fig,) = drawn_figures
     assert text_clashes(fig) == []
+
+
+@pytest.mark.parametrize("command", ["reactions", "thrust"])
+def test_reactions_and_thrust_text(run_copy, tmp_path, drawn_figures, command):
+    """The figures of a run's contact forces: their titles (the run's caption is long) not
+    cut by the figure's edge, and clear of it by a tenth of an inch (the reactions' caption
+    line ran the figure's full width and lost its first character in the PNG)."""
+    assert post.main([command, str(run_copy), "--out", str(tmp_path)]) == 0
+    (fig,) = drawn_figures
+    assert text_clashes(fig) == []
+    (title,) = [box for name, box in text_boxes(fig) if name.startswith("suptitle")]
+    margin = 0.1 * fig.dpi
+    assert margin <= title.x0 and title.x1 <= fig.bbox.width - margin
 
 
 @pytest.mark.parametrize("compare", [False, True])

@@ -92,8 +92,17 @@ def test_points_curve_and_figure_are_in_the_ratio(tmp_path, capsys, drawn_figure
     assert "λ g" in ax.get_xlabel() and "static capacity = 1" in ax.get_xlabel()
     verticals = [line for line in ax.lines if np.ptp(line.get_xdata()) == 0 and len(line.get_xdata()) == 2]
     assert any(float(line.get_xdata()[0]) == 1.0 for line in verticals)  # the static capacity at 1
+    # the points at the geometric middle of their brackets (STOOD x, x], each with a bar over its bracket
     points = [line for line in ax.lines if line.get_marker() == "o"]
-    assert len(points) == 1 and set(np.round(points[0].get_xdata(), 9)) <= set(np.round(ratios, 9))
+    assert len(points) == 1 and set(np.round(points[0].get_xdata(), 9)) <= set(np.round(math.sqrt(STOOD) * ratios, 9))
+    (bars,) = ax.collections[1:]  # after the band
+    for (x0, _), (x1, _) in (segment for segment in bars.get_segments()):
+        assert np.isclose(x1 * STOOD, x0, rtol=1e-9) and np.round(x1, 9) in set(np.round(ratios, 9))
+    # the x-range fitted to the data: from just below the static capacity 1 (or the lowest bracket) to just
+    # beyond the last point
+    left, right = ax.get_xlim()
+    lowest = min(1.0, STOOD * ratios.min())
+    assert lowest - 0.1 * (right - lowest) < left < lowest and ratios.max() < right < 1.1 * ratios.max()
     labels = [t.get_text() for t in fig.legends[0].get_texts()]
     assert any(label.startswith("static capacity: PGA = λ g") for label in labels)
 

@@ -188,6 +188,23 @@ def stripes(voussoir_sweep_exe, tmp_path_factory):
     return folder, rows, pga
 
 
+def test_the_scale_warning_is_in_the_legend(stripes, tmp_path, drawn_figures):
+    """Pulses of about 1 m/s2 scaled to 0.4-1.3 g: most runs beyond a scale of 4, said in
+    the figure's legend (where it is read), not only in its small print."""
+    from figure_text import text_clashes
+
+    folder, rows, _ = stripes
+    beyond = sum(1 for r in rows if not 0.25 <= float(r["scale"]) <= 4.0)
+    assert beyond > 0
+    assert main(["fragility", str(folder / "stripes.h5"), "--bootstrap", "20", "--out", str(tmp_path / "f.png")]) == 0
+    (fig,) = drawn_figures
+    (legend,) = fig.legends
+    warned = [t.get_text() for t in legend.get_texts() if t.get_text().startswith("warning: ")]
+    assert warned == [f"warning: {beyond} of 28 runs scaled their record beyond 4 or below 0.25 (the record then "
+                      f"stands for another earthquake)"]
+    assert text_clashes(fig) == []
+
+
 def test_hinge_onset_fragility_from_the_same_stripes(stripes, capsys):
     folder, rows, _ = stripes
     capsys.readouterr()

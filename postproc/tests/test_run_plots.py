@@ -86,6 +86,22 @@ def test_sequence_frames_and_polygons(run_file, tmp_path):
     assert data.table.column("sample") == [f.sample for f in data.frames]
 
 
+def test_sequence_frames_show_distinct_states(run_file, tmp_path):
+    """No two frames of the default strip show the same still arch: the first is the
+    start, the others run from the first opening of a joint, each a state other than the
+    one before (another set of open joints, or openings changed by more than the
+    tolerance)."""
+    run = read_run(run_file)
+    tol = default_open_tol_m(run)
+    data = plot_sequence(run, tmp_path / "seq.png", n_frames=6)
+    assert data.frames[0].sample == 0 and data.frames[0].open_joints == []
+    first_open = next(k for k in range(run.n_samples) if joint_openings(run, k).max() > tol)
+    assert data.frames[1].sample == first_open and data.frames[1].open_joints
+    for before, after in zip(data.frames, data.frames[1:]):
+        change = np.abs(joint_openings(run, after.sample) - joint_openings(run, before.sample)).max()
+        assert before.hinge_labels() != after.hinge_labels() or change > tol, (before.time_s, after.time_s)
+
+
 def test_sequence_amplification(run_file, tmp_path):
     run = read_run(run_file)
     k = int(np.argmin(abs(run.time_s - 0.6 * run.collapse_time_s)))

@@ -1,10 +1,11 @@
 """``voussoir-post``: plots of Voussoir result files.
 
-Every subcommand writes its PNG(s) beside the input (``<input stem>_<kind>.png``) or to
-``--out`` (a ``.png`` file, or a folder), prints the plotted numbers as a table and,
-with ``--csv``, writes them as CSV beside the PNG (same stem, ``.csv``). Errors and exit
-statuses are :func:`.entry.run_command`'s: 0 done, 1 the work failed, 2 bad input (the
-message on stderr names the file).
+Every figure subcommand writes its figure(s) beside the input (``<input stem>_<kind>.png``)
+or to ``--out`` (a file, written exactly there, or a folder), as PNG (200 dpi), PDF or SVG:
+``--format``, or the suffix of ``--out`` (the two must agree; :func:`figure_path`). It
+prints the plotted numbers as a table and, with ``--csv``, writes them as CSV beside the
+figure (same stem, ``.csv``). Errors and exit statuses are :func:`.entry.run_command`'s:
+0 done, 1 the work failed, 2 bad input (the message on stderr names the file).
 
 Each command imports its readers and plots when it runs, not at the top: the program
 starts once per subcommand, and matplotlib, scipy.stats and h5py cost seconds that a
@@ -25,7 +26,13 @@ from ..tables import ReportTable, format_table, write_csv
 from .dtcheck import add_dtcheck_parser
 from .entry import run_command
 
-__all__ = ["main", "build_parser", "output_path"]
+__all__ = ["main", "build_parser", "output_path", "figure_path", "FIGURE_FORMATS"]
+
+#: The formats of every figure command (--format; the suffix of an --out file).
+FIGURE_FORMATS = ("png", "pdf", "svg")
+#: Suffixes of image formats that voussoir-post does not write: an --out ending so is
+#: refused rather than made a folder of that name.
+_OTHER_IMAGE_SUFFIXES = (".jpg", ".jpeg", ".eps", ".ps", ".tif", ".tiff", ".gif", ".webp", ".bmp")
 
 
 def output_path(input_path: str, kind: str, out: str | None, ext: str = ".png") -> str:
@@ -38,6 +45,24 @@ def output_path(input_path: str, kind: str, out: str | None, ext: str = ".png") 
     if out.lower().endswith(ext):
         return out
     return os.path.join(out, name)
+
+
+def figure_path(input_path: str, kind: str, args) -> str:
+    """Where a figure command writes (:func:`output_path` with the figure's suffix): an
+    ``--out`` ending in .png, .pdf or .svg is that file, in that format; otherwise
+    ``--format`` (default png) names the suffix. InputError when the suffix of ``--out``
+    contradicts ``--format``, or names an image format that is not written."""
+    out, fmt = args.out, args.format
+    suffix = os.path.splitext(out)[1].lower() if out is not None else ""
+    if suffix in tuple(f".{f}" for f in FIGURE_FORMATS):
+        if fmt is not None and suffix != f".{fmt}":
+            raise InputError(f"--out {out} names a {suffix[1:].upper()} file but --format is {fmt}: give one of "
+                             f"them, or make them agree (--out {os.path.splitext(out)[0]}.{fmt})")
+        return out
+    if suffix in _OTHER_IMAGE_SUFFIXES:
+        raise InputError(f"--out {out}: voussoir-post writes figures as {', '.join(FIGURE_FORMATS)}; name a "
+                         f".png, .pdf or .svg file, or a folder")
+    return output_path(input_path, kind, out, f".{fmt or 'png'}")
 
 
 def _emit(table: ReportTable, png_path: str, csv_wanted: bool, extra: list[tuple[ReportTable, str]] = ()) -> None:
@@ -88,7 +113,7 @@ def cmd_envelope(args) -> int:
         limit = read_limit_json(args.limit)
         capacity = min(limit.lambda_pos, limit.lambda_neg) * limit.g_m_s2
         source = os.path.basename(args.limit)
-    png = output_path(args.sweep, "envelope", args.out)
+    png = figure_path(args.sweep, "envelope", args)
     data = plot_envelope(sweep, png, campaign, args.specimen, capacity_m_s2=capacity, capacity_source=source)
     _emit(data.table, data.png_path, args.csv)
     return DONE
@@ -99,7 +124,7 @@ def cmd_sequence(args) -> int:
     from ..readers.results import read_run
 
     run = read_run(args.run)
-    png = output_path(args.run, "sequence", args.out)
+    png = figure_path(args.run, "sequence", args)
     open_tol = None if args.open_tol_mm is None else 1e-3 * args.open_tol_mm
     data = plot_sequence(run, png, times_s=args.times, n_frames=args.n_frames, amplify=args.amplify,
                          open_tol_m=open_tol)
@@ -117,7 +142,7 @@ def cmd_history(args) -> int:
     from ..readers.results import read_run
 
     run = read_run(args.run)
-    png = output_path(args.run, "history", args.out)
+    png = figure_path(args.run, "history", args)
     data = plot_history(run, png)
     print(format_table(data.summary))
     print(f"wrote {data.png_path}")
@@ -135,7 +160,7 @@ def cmd_compare(args) -> int:
 
     sweep = read_sweep(args.sweep)
     campaign = read_campaign(args.campaign)
-    png = output_path(args.sweep, "compare", args.out)
+    png = figure_path(args.sweep, "compare", args)
     data = plot_compare(sweep, campaign, png, args.specimen)
     for note in data.notes:
         print(note)
@@ -188,7 +213,7 @@ def _statics_figure(args, kind: str, plot) -> int:
     from ..readers.results import read_run
 
     run = read_run(args.run)
-    data = plot(run, output_path(args.run, kind, args.out))
+    data = plot(run, figure_path(args.run, kind, args))
     print(format_table(data.summary))
     print(f"wrote {data.png_path}")
     if args.csv:
@@ -213,7 +238,7 @@ def cmd_mechanism(args) -> int:
     from ..readers.results import read_limit_json
 
     limit = read_limit_json(args.limit)
-    png = output_path(args.limit, "mechanism", args.out)
+    png = figure_path(args.limit, "mechanism", args)
     data = plot_mechanism(limit, png)
     _emit(data.table, data.png_path, args.csv)
     return DONE
@@ -242,10 +267,10 @@ def _fragility_compare(args) -> int:
     labels = args.labels or [os.path.splitext(os.path.basename(p))[0] for p in (args.ida, args.compare)]
     if args.axis == "pga-lambda-g":
         from ..plots.fragility_lambda_g import plot_lambda_g_compare
-        png = output_path(args.ida, "compare_fragility_pga_lambda_g", args.out)
+        png = figure_path(args.ida, "compare_fragility_pga_lambda_g", args)
         data = plot_lambda_g_compare(ida_a, ida_b, labels, png, n_bootstrap=args.bootstrap, seed=args.seed)
     else:
-        png = output_path(args.ida, "compare_fragility", args.out)
+        png = figure_path(args.ida, "compare_fragility", args)
         data = plot_fragility_compare(ida_a, ida_b, labels, png, n_bootstrap=args.bootstrap, seed=args.seed)
     curve_csv = write_csv(data.curve_table, os.path.splitext(data.png_path)[0] + ".csv")
     if args.json:
@@ -274,7 +299,7 @@ def _fragility_msa(args) -> int:
     if threshold_mm is not None and not (math.isfinite(threshold_mm) and threshold_mm > 0.0):
         raise InputError(f"--opening-mm / --drift-mm = {threshold_mm:g}: a threshold > 0 mm is needed")
     kind = "fragility" if args.limit_state == "collapse" else f"fragility_{args.limit_state.replace('-', '_')}"
-    png = output_path(args.ida, kind, args.out)
+    png = figure_path(args.ida, kind, args)
     data = plot_msa_fragility(msa, png, n_bootstrap=args.bootstrap, seed=args.seed, limit_state=args.limit_state,
                               threshold_mm=threshold_mm)
     stem = os.path.splitext(data.png_path)[0]
@@ -322,15 +347,16 @@ def cmd_fragility(args) -> int:
     ida = _read_ida_warned(args.ida)
     if args.axis == "pga-lambda-g":
         from ..plots.fragility_lambda_g import plot_lambda_g_fragility
-        png = output_path(args.ida, "fragility_pga_lambda_g", args.out)
+        png = figure_path(args.ida, "fragility_pga_lambda_g", args)
         data = plot_lambda_g_fragility(ida, png, n_bootstrap=args.bootstrap, seed=args.seed)
     else:
-        png = output_path(args.ida, "fragility", args.out)
+        png = figure_path(args.ida, "fragility", args)
         data = plot_fragility(ida, png, n_bootstrap=args.bootstrap, seed=args.seed)
     stem = os.path.splitext(data.png_path)[0]
     curve_csv = write_csv(data.curve_table, stem + ".csv")
     points_csv = write_csv(data.table, stem + "_points.csv")
-    records_png = plot_record_table(ida, stem + "_records.png").png_path  # the table of the records
+    # the table of the records, in the figure's format
+    records_png = plot_record_table(ida, stem + "_records" + os.path.splitext(data.png_path)[1]).png_path
     by_measure = None
     if measures:
         from ..earthquake.im_fragility import compare_measures
@@ -437,8 +463,15 @@ def build_parser() -> argparse.ArgumentParser:
                     "JSON from voussoir-limit --json).")
     sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
 
+    def figure_format(p):
+        p.add_argument("--format", choices=FIGURE_FORMATS, default=None,
+                       help="figure format: png (200 dpi), pdf or svg (default png, or the suffix of an --out file, "
+                            "which must agree)")
+
     def common(p, csv=True):
-        p.add_argument("--out", help="output .png file, or a folder (default: beside the input)")
+        p.add_argument("--out", help="output figure file (.png, .pdf or .svg: its suffix is the format), or a "
+                                     "folder (default: beside the input)")
+        figure_format(p)
         if csv:
             p.add_argument("--csv", action="store_true", help="also write the plotted numbers as CSV")
 
@@ -517,9 +550,11 @@ def build_parser() -> argparse.ArgumentParser:
                                          "interval-censored fit) or an MSA sweep (mode = 'msa', binomial fit of "
                                          "the stripes)")
     p.add_argument("ida", metavar="SWEEP.h5|SWEEP.csv", help="the IDA or MSA sweep's HDF5 file, or its CSV summary")
-    p.add_argument("--out", help="output .png file, or a folder (default: beside the input); the fit's "
+    p.add_argument("--out", help="output figure file (.png, .pdf or .svg), or a folder (default: beside the "
+                                 "input); the fit's "
                                  "curve and points are written beside it as <stem>.csv and <stem>_points.csv "
                                  "(with --compare: <IDA stem>_compare_fragility.png and the curves' .csv)")
+    figure_format(p)
     p.add_argument("--compare", metavar="B.h5|B.csv",
                    help="a second IDA (e.g. of the calibrated model) drawn with the first in one figure; the "
                         "text and --json give both fits and the ratio of the medians")

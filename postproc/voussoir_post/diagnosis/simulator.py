@@ -1,11 +1,15 @@
 """The diagnosis's simulations, through the project's one runner: thresholds of every
 variant by voussoir-sweep (the bank's ceiling and tolerance, never the data's), single
 tests (hinges, crown records) by voussoir-run. Simulations are never re-implemented
-here."""
+here. A batch of searches or runs that lasts prints its progress through settings.log, at
+most every PROGRESS_EVERY_S: done of total, time elapsed and an estimate of the time left
+(the sweeps' own progress lines are off: the runner keeps their output)."""
 
 from __future__ import annotations
 
 import math
+import threading
+import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
@@ -14,11 +18,48 @@ from ..runner import Runner
 from .effects import Variant, arch_group, effect
 from .settings import DiagnosisSettings
 
-__all__ = ["Simulator", "HINGE_GAP_M"]
+__all__ = ["Simulator", "HINGE_GAP_M", "PROGRESS_EVERY_S", "duration_words"]
 
 #: Opening of a joint's other edge at which a hinge counts as open: 1 mm, as a
 #: laboratory sees it (and as the test generator counts it).
 HINGE_GAP_M = 1.0e-3
+#: Least time [s] between two progress lines of a batch.
+PROGRESS_EVERY_S = 10.0
+
+
+def duration_words(seconds: float) -> str:
+    """'45 s', '3 min 05 s', '1 h 02 min'."""
+    s = int(round(max(seconds, 0.0)))
+    if s < 60:
+        return f"{s} s"
+    if s < 3600:
+        return f"{s // 60} min {s % 60:02d} s"
+    return f"{s // 3600} h {s % 3600 // 60:02d} min"
+
+
+class _Progress:
+    """Items (searches, runs) done of a batch, logged with the time elapsed and the time
+    left at the rate of the items simulated so far (items found in the cache cost
+    nothing and do not count in the rate), at most every PROGRESS_EVERY_S."""
+
+    def __init__(self, log, what: str, total: int, clock):
+        self.log, self.what, self.total, self.clock = log, what, total, clock
+        self.done = self.simulated = 0
+        self.start = self.last = clock()
+        self.lock = threading.Lock()
+
+    def advance(self, n: int, simulated: bool = True, detail: str = "") -> None:
+        with self.lock:
+            self.done += n
+            self.simulated += n if simulated else 0
+            now = self.clock()
+            if now - self.last < PROGRESS_EVERY_S:
+                return
+            self.last = now
+            elapsed = now - self.start
+            left = (f"about {duration_words(elapsed / self.simulated * (self.total - self.done))} left"
+                    if self.simulated else "no estimate yet")
+            self.log(f"{self.what}: {self.done} of {self.total}{detail}, {duration_words(elapsed)} elapsed, {left}")
 
 
 class Simulator:
@@ -31,6 +72,7 @@ class Simulator:
         self.n_runs = 0
         self.code_version = ""  #: of the executables, from the first sweep file
         self._count = 0
+        self.clock = time.monotonic  #: of the progress lines
 
     def _solver(self) -> dict:
         return {"dt_s": float(self.s.dt_s), "allow_nonconvergence": True}
@@ -52,7 +94,9 @@ class Simulator:
             listed = bool(parts) and effect(listed_first[0][0]).sweep_list is not None
             key = (listed_first[0][0], tuple(listed_first[1:])) if listed else ("single", v)
             groups.setdefault(key, []).append(v)
-        for key, vs in groups.items():
+        progress = _Progress(self.s.log, f"[thresholds] {spec.specimen_id}: searches", len(variants) * len(freqs),
+                             self.clock)
+        for n_sweep, (key, vs) in enumerate(groups.items(), start=1):
             self._count += 1
             name = f"sweep_{self._count:03d}_{spec.specimen_id}"
             sweep = {"mode": "threshold", "frequencies_hz": [float(f) for f in freqs], "amp_tol_m": float(amp_tol),
@@ -72,6 +116,8 @@ class Simulator:
             result, rows = self.runner.run_sweep(groups_nml, name)
             if self.runner.reused == before:
                 self.n_sweeps += 1
+            progress.advance(len(vs) * len(freqs), simulated=self.runner.reused == before,
+                             detail=f" ({n_sweep} of {len(groups)} sweeps)")
             if not self.code_version:
                 self.code_version = result.code_version
             for row in rows:
@@ -87,6 +133,7 @@ class Simulator:
         job: collapsed, collapse_time_s, hinges {(joint, side)}, and the crown time series."""
         self._count += 1
         batch = self._count
+        progress = _Progress(self.s.log, "[runs] single tests", len(jobs), self.clock)
 
         def one(k_job):
             k, (spec, test, variant, motion) = k_job
@@ -99,6 +146,7 @@ class Simulator:
                       "output": {"every": max(1, round(0.005 / self.s.dt_s)), "stop_after_collapse_s": 0.3,
                                  "hinge_gap_m": HINGE_GAP_M}}
             r = self.runner.run_single(groups, f"run_{batch:03d}_{k:04d}", keep=False)
+            progress.advance(1)
             return {"collapsed": r.collapsed, "collapse_time_s": r.collapse_time_s,
                     # One window for the model and the laboratory: hinges up to the collapse.
                     "hinges": {(int(j), r.hinge_side_names[int(s)])

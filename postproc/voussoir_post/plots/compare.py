@@ -33,7 +33,7 @@ from ..errors import MatchError
 from ..readers.campaign import Campaign, measured_thresholds
 from ..readers.results import SweepResult
 from ..tables import ReportTable
-from .drawing import COLORS, new_figure, parameters_in_words, provenance, save_png, wrap_text
+from .drawing import COLORS, new_figure, parameters_in_words, provenance, save_figure, wrap_text
 from .envelope import grid_maps
 
 __all__ = ["MatchError", "ComparisonRow", "CompareData", "arch_of_set", "match_specimens",
@@ -293,7 +293,7 @@ def plot_compare(sweep: SweepResult, campaign: Campaign, out_png: str | os.PathL
                 bbox_to_anchor=(1.01, 1.0))
     fig.suptitle(wrap_text(f"Collapse thresholds under sinusoidal shaking: simulation against the shaking-table "
                            f"tests of {campaign.name}", fig.get_figwidth() - 0.3, 11), fontsize=11)
-    png = save_png(fig, out_png, note=provenance(sweep.code_version, os.path.basename(sweep.path), campaign.path))
+    png = save_figure(fig, out_png, note=provenance(sweep.code_version, os.path.basename(sweep.path), campaign.path))
     table = ReportTable(["param_set", "parameters", "specimen_id", "frequency_hz", "measured_mm", "low_mm",
                          "high_mm", "simulated_mm", "error_pct", "measured_full_cycle_accel_m_s2",
                          "simulated_full_cycle_accel_m_s2"],

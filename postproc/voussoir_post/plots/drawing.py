@@ -1,4 +1,6 @@
-"""Figure helpers: Agg figures without pyplot (no global figure state), PNG output."""
+"""Figure helpers: Agg figures without pyplot (no global figure state), and the one
+function that writes a figure (:func:`save_figure`: PNG at 200 dpi, PDF or SVG, chosen by
+the file's suffix)."""
 
 from __future__ import annotations
 
@@ -13,9 +15,9 @@ from matplotlib.figure import Figure
 from ..analysis.afd import afd_peak_accel_per_m
 from ..units import G_M_S2
 
-__all__ = ["new_figure", "save_png", "MARKERS", "COLORS", "G_M_S2", "provenance", "add_g_axis", "run_caption",
-           "arch_caption", "legend_pad", "NOTE_STRIP_PT", "HINGE_COLOURS", "COLLAPSE_COLOUR", "wrap_text",
-           "parameters_in_words", "drawing_tree", "PNG_COMMIT_KEY", "PNG_TREE_KEY", "png_provenance"]
+__all__ = ["new_figure", "save_figure", "save_png", "FIGURE_FORMATS", "RASTER_DPI", "figure_format", "MARKERS",
+           "COLORS", "G_M_S2", "provenance", "add_g_axis", "run_caption", "arch_caption", "legend_pad", "NOTE_STRIP_PT",
+           "HINGE_COLOURS", "COLLAPSE_COLOUR", "wrap_text", "parameters_in_words", "drawing_tree", "PNG_COMMIT_KEY", "PNG_TREE_KEY", "png_provenance"]
 
 #: Marker style per specimen or parameter set, in order.
 MARKERS = ("o", "s", "^", "D", "v", "P", "X", "<", ">", "h")
@@ -156,11 +158,30 @@ def png_provenance(path: str | os.PathLike) -> dict[str, str]:
     return {k: text[k] for k in (PNG_COMMIT_KEY, PNG_TREE_KEY) if k in text}
 
 
-def save_png(fig: Figure, path: str | os.PathLike, dpi: int = 120, note: str | None = None) -> str:
-    """Save ``fig`` as PNG at ``path`` (parent folders created); returns the path.
+#: The formats :func:`save_figure` writes, by the suffix of the file's name.
+FIGURE_FORMATS = ("png", "pdf", "svg")
+#: Resolution of the raster format (PNG) [dots per inch]: print quality for a paper.
+RASTER_DPI = 200
+
+
+def figure_format(path: str | os.PathLike) -> str:
+    """'png', 'pdf' or 'svg' from the suffix of ``path`` (any case); ValueError for any
+    other suffix."""
+    suffix = os.path.splitext(os.fspath(path))[1].lower().lstrip(".")
+    if suffix not in FIGURE_FORMATS:
+        raise ValueError(f"{os.fspath(path)}: a figure is written as .png, .pdf or .svg (the suffix chooses), "
+                         f"not {'.' + suffix if suffix else 'without a suffix'}")
+    return suffix
+
+
+def save_figure(fig: Figure, path: str | os.PathLike, note: str | None = None, dpi: int = RASTER_DPI) -> str:
+    """Save ``fig`` at ``path`` in the format its suffix names (:func:`figure_format`:
+    PNG at ``dpi``, or the vector PDF or SVG), parent folders created; returns the path.
     ``note`` (see :func:`provenance`) is printed small in the bottom right corner,
     followed by the commit of the code that drew the figure ('+modified' when its tree
-    had changes), which the PNG's text chunks also record (:func:`png_provenance`)."""
+    had changes), which the file's metadata also records (a PNG's text chunks, read by
+    :func:`png_provenance`; a PDF's or SVG's keywords)."""
+    fmt = figure_format(path)
     commit, tree = drawing_tree()
     if note:
         note += f" | drawn by {commit[:10]}" + ("" if tree == "clean" else f" ({tree} tree)")
@@ -173,5 +194,12 @@ def save_png(fig: Figure, path: str | os.PathLike, dpi: int = 120, note: str | N
     path = os.fspath(path)
     parent = os.path.dirname(os.path.abspath(path))
     os.makedirs(parent, exist_ok=True)
-    fig.savefig(path, dpi=dpi, format="png", metadata={PNG_COMMIT_KEY: commit, PNG_TREE_KEY: tree})
+    stamp = {PNG_COMMIT_KEY: commit, PNG_TREE_KEY: tree}
+    metadata = (stamp if fmt == "png" else
+                {"Creator": "voussoir-post", "Keywords": "; ".join(f"{k}: {v}" for k, v in stamp.items())})
+    fig.savefig(path, dpi=dpi, format=fmt, metadata=metadata)
     return path
+
+
+#: The name the diagnosis's figures (diagnosis/figures.py) call :func:`save_figure` by.
+save_png = save_figure

@@ -24,7 +24,7 @@ from ..readers.campaign import Campaign, MeasuredThreshold, measured_thresholds
 from ..readers.results import SweepResult
 from ..tables import ReportTable
 from .drawing import (COLLAPSE_COLOUR, COLORS, G_M_S2, MARKERS, add_g_axis, arch_caption, legend_pad, new_figure,
-                      provenance, save_png, wrap_text)
+                      provenance, save_figure, wrap_text)
 
 __all__ = ["ThresholdCurve", "GridMap", "MeasuredOverlay", "EnvelopeData", "threshold_curves",
            "grid_maps", "measured_overlays", "plot_envelope"]
@@ -292,7 +292,7 @@ def _plot_threshold(sweep: SweepResult, overlays, out_png, capacity_m_s2: float 
                          "full_cycle_accel_m_s2", "non_monotonic", "n_runs"], rows,
                         title=f"Thresholds of {sweep.path}")
     return EnvelopeData("threshold", curves=curves, measured=overlays,
-                        png_path=save_png(fig, out_png, note=_note(sweep)), table=table)
+                        png_path=save_figure(fig, out_png, note=_note(sweep)), table=table)
 
 
 def _plot_grid(sweep: SweepResult, overlays, out_png) -> EnvelopeData:
@@ -330,7 +330,7 @@ def _plot_grid(sweep: SweepResult, overlays, out_png) -> EnvelopeData:
                          float(full_cycle_accel_m_s2(a, f))))
     table = ReportTable(["param_set", "parameters", "frequency_hz", "n_runs", "n_collapse", "envelope_mm",
                          "envelope_peak_accel_m_s2", "envelope_full_cycle_accel_m_s2"], rows, title=f"Grid envelope of {sweep.path}")
-    return EnvelopeData("grid", maps=maps, measured=overlays, png_path=save_png(fig, out_png, note=_note(sweep)),
+    return EnvelopeData("grid", maps=maps, measured=overlays, png_path=save_figure(fig, out_png, note=_note(sweep)),
                         table=table)
 
 

@@ -5,7 +5,9 @@ bands clustered by record (or event), the fits at the lower bound of the median
 (one line style per measure: PGA fit solid and bound dashed, PGV dash-dot and dotted) and
 the IDA points, on common axes, with the static capacity lambda g of the models where the
 files give it (/results/static_capacity_m_s2); the text and JSON give both fits with the
-split of beta and the ratio of the medians."""
+split of beta and the ratio of the medians. The legend has one entry per model (its
+colour, its numbers) and one per kind of mark (its style, in both colours): a dashed
+bound belongs to the model of its colour."""
 
 from __future__ import annotations
 
@@ -16,19 +18,26 @@ import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from ..earthquake.fragility import empirical_collapse_fraction, fragility
+from ..earthquake.fragility import fragility
 from ..earthquake.ida import FIT_BRACKET, FIT_CENSORED, FIT_FAILED, IdaResult
 from ..tables import ReportTable
-from .drawing import new_figure, provenance, save_png
-from .fragility_plot import (BOUND_STYLES, FIT_STYLES, G_M_S2, LEGEND_PAD, FragilityData,
-                             IntensityFragility, arch_words, confidence_words, fragility_data, records_words,
-                             samples_words, scale_warning, split_label, static_capacities_m_s2, top_intensity)
+from .drawing import new_figure, provenance, save_figure, wrap_text
+from .fragility_plot import (BOUND_STYLES, FIT_STYLES, G_M_S2, LEGEND_PAD, POINTS_WORDS, TUPLE_HANDLER,
+                             FragilityData, IntensityFragility, arch_words, confidence_words, draw_bracket_points,
+                             fragility_data, points_handle, records_words, samples_words, scale_warning,
+                             split_label, static_capacities_m_s2, top_intensity, two_line_title, warning_entry)
 
-__all__ = ["FragilityComparison", "plot_fragility_compare", "COMPARE_COLORS", "FIT_STYLES"]
+__all__ = ["FragilityComparison", "plot_fragility_compare", "COMPARE_COLORS", "FIT_STYLES", "POINT_MARKERS",
+           "compare_title", "lower_bound_entries", "band_kind_words", "MODEL_WRAP_IN"]
 
 #: One colour per file (the first, the second).
 COMPARE_COLORS = ("tab:blue", "tab:orange")
-_POINT_MARKERS = ("o", "s")
+#: One marker of the IDA points per file.
+POINT_MARKERS = ("o", "s")
+_WIDTH_IN = 12.5
+#: Width [in] to which a model's legend entry is wrapped (wrap_text's estimate is generous:
+#: 92 characters of 8-pt text take about 5.3 in).
+MODEL_WRAP_IN = 5.6
 
 
 @dataclass
@@ -78,20 +87,23 @@ def _split_change(fa: IntensityFragility, fb: IntensityFragility) -> str:
             f"{fa.split.beta_model:.3f} -> {fb.split.beta_model:.3f}")
 
 
-def _title(idas: list[IdaResult], labels: list[str], same_records: bool, data: list[FragilityData]) -> str:
+def compare_title(idas: list[IdaResult], labels: list[str], same_records: bool, width_in: float,
+                  what: str = "") -> str:
+    """Two lines: the arch (or both), `what` after it, and the records."""
     arches = [arch_words(ida) for ida in idas]
     arch = (f"the {arches[0]}" if arches[0] == arches[1] and idas[0].config.get("arch")
             else f"{arches[0]} ({labels[0]}) and {arches[1]} ({labels[1]})")
-    records = (f"the same {records_words(idas[0])}, scaled" if same_records else
-               f"{len(idas[0].records)} and {len(idas[1].records)} scaled records (NOT the same)")
-    band = data[0].pga.band
-    clustered = {"record": "clustered by record", "event": "clustered by event"}.get(band.cluster_by, "of the rows")
-    colours = [c.removeprefix("tab:") for c in COMPARE_COLORS]
-    return (f"Probability of collapse of {arch}\nunder {records}\n"
-            f"{colours[0]}: {labels[0]}, {samples_words(idas[0])}; {colours[1]}: {labels[1]}, "
-            f"{samples_words(idas[1])}\n"
-            f"lognormal fits by interval-censored maximum likelihood; bands: {int(round(100 * band.level))} % "
-            f"bootstrap {clustered} ({band.n_resamples} resamples)")
+    records = (f"under the same {records_words(idas[0])}, scaled" if same_records else
+               f"under {len(idas[0].records)} and {len(idas[1].records)} scaled records (NOT the same)")
+    short = (f"under the same {len(idas[0].records)} ground-motion records, scaled" if same_records else None)
+    return two_line_title(f"Probability of collapse of {arch}{what}", records, width_in, second_short=short)
+
+
+def band_kind_words(band) -> str:
+    """'90 % bootstrap band of the fit (400 resamples of the 14 events, clustered by event)'."""
+    what = {"record": f"the {band.n_clusters} records, clustered by record",
+            "event": f"the {band.n_clusters} events, clustered by event"}.get(band.cluster_by, "the rows")
+    return f"{int(round(100 * band.level))} % bootstrap band of the fit ({band.n_resamples} resamples of {what})"
 
 
 def _panel(ax, frags: list[IntensityFragility], scale: float, unit_label: str,
@@ -107,10 +119,7 @@ def _panel(ax, frags: list[IntensityFragility], scale: float, unit_label: str,
         ax.fill_between(x, band.low, band.high, color=color, alpha=0.18, linewidth=0)
         ax.plot(x, fragility(band.im, fit.median, fit.beta), FIT_STYLES[frag.name], color=color, linewidth=2)
         ax.plot(x, frag.confidence(band.im), BOUND_STYLES[frag.name], color=color, linewidth=1.1)
-        used = np.isfinite(frag.im)
-        xs, ps = empirical_collapse_fraction(frag.im[used], frag.censored[used])
-        ax.plot(xs / scale, ps, _POINT_MARKERS[k], color=color, markersize=4, markeredgecolor="black",
-                markeredgewidth=0.4, linestyle="none")
+        draw_bracket_points(ax, frag, scale, color, POINT_MARKERS[k], edge="black")
         kinds = np.array(frag.fit_as if frag.fit_as else [FIT_CENSORED if c else FIT_BRACKET for c in frag.censored])
         for kind, y, face in ((FIT_CENSORED, 0.02 + 0.04 * k, color), (FIT_FAILED, 0.10 + 0.04 * k, "none")):
             mine = kinds == kind
@@ -124,35 +133,67 @@ def _panel(ax, frags: list[IntensityFragility], scale: float, unit_label: str,
     ax.grid(True, which="both", alpha=0.3)
 
 
-def _legend_entries(k: int, label: str, data: FragilityData, ida: IdaResult) -> list:
-    """The legend of file k: its two fits, band, dashed curve, points, censored rows."""
+def _model_entry(k: int, label: str, data: FragilityData, ida: IdaResult) -> tuple[object, str]:
+    """File k's one legend entry: its colour, and its fits' numbers in words."""
     color = COMPARE_COLORS[k]
-    entries = []
+    tail = 50.0 * (1.0 - data.pga.band.level)
+    words = [f"{label}: {samples_words(ida)}"]
     for frag, scale, unit in ((data.pga, G_M_S2, "g"), (data.pgv, 1.0, "m/s")):
-        entries.append(Line2D([], [], color=color, linewidth=2, linestyle=FIT_STYLES[frag.name],
-                              label=f"{label}: {frag.name} fit, median {frag.fit.median / scale:.3g} {unit}, "
-                                    f"beta {frag.fit.beta:.2f}{split_label(frag.split)}"))
-    band = data.pga.band
-    tail = 50.0 * (1.0 - band.level)
-    what = {"record": f"the {band.n_clusters} records", "event": f"the {band.n_clusters} events"}.get(
-        band.cluster_by, "the rows")
-    entries += [
-        Patch(color=color, alpha=0.18, label=f"{label}: {int(round(100 * band.level))} % band, clustered by "
-                                             f"{band.cluster_by} (resamples of {what})"),
-    ]
-    for frag, scale, unit in ((data.pga, G_M_S2, "g"), (data.pgv, 1.0, "m/s")):
-        entries.append(Line2D([], [], color=color, linestyle=BOUND_STYLES[frag.name], linewidth=1.1,
-                              label=f"{label}: {frag.name} fit at the median's lower {tail:g} % bound "
-                                    f"({frag.band.median_low / scale:.3g} {unit}), same beta"))
-    entries.append(Line2D([], [], color=color, marker=_POINT_MARKERS[k], markeredgecolor="black",
-                          markeredgewidth=0.4, linestyle="none", markersize=4,
-                          label=f"{label}: IDA points, fraction of the rows (record x model) collapsed at or below"))
+        words.append(f"{frag.name} median {frag.fit.median / scale:.3g} {unit} (lower {tail:g} % bound "
+                     f"{frag.band.median_low / scale:.3g}), beta {frag.fit.beta:.2f}{split_label(frag.split)}")
     capacities = static_capacities_m_s2(ida)
     if capacities.size:
-        entries.append(Line2D([], [], color=color, linewidth=3, alpha=0.35,
-                              label=f"{label}: static capacity lambda g (limit analysis): "
-                                    + ", ".join(f"{c / G_M_S2:.3g}" for c in capacities) + " g"))
-    return entries + lower_bound_entries(color, f"{label}: ", data.pga.fit_as)
+        words.append("static capacity λ g " + ", ".join(f"{c / G_M_S2:.3g}" for c in capacities) + " g")
+    handle = (Line2D([], [], color=color, linewidth=6, alpha=0.35),
+              Line2D([], [], color=color, marker=POINT_MARKERS[k], markeredgecolor="black", markeredgewidth=0.4,
+                     linestyle="none", markersize=5))
+    return handle, "\n".join(wrap_text(w, MODEL_WRAP_IN, 8.0) for w in words)
+
+
+def _kind_entries(data: list[FragilityData], idas: list[IdaResult]) -> list[tuple[object, str]]:
+    """One legend entry per kind of mark, its handle in both files' colours."""
+    def both(**style):
+        return tuple(Line2D([], [], color=c, **style) for c in COMPARE_COLORS)
+
+    band = data[0].pga.band
+    tail = 50.0 * (1.0 - band.level)
+    entries = []
+    for name, measure in (("PGA", "peak ground acceleration"), ("PGV", "peak ground velocity")):
+        entries.append((both(linewidth=2, linestyle=FIT_STYLES[name]),
+                        f"{name} fit: lognormal, interval-censored maximum likelihood on each row's bracket"))
+    for name in ("PGA", "PGV"):
+        entries.append((both(linewidth=1.1, linestyle=BOUND_STYLES[name]),
+                        f"{name} fit at its median's lower {tail:g} % bound ({100 - tail:g} % confident the median is "
+                        f"above it), same beta: a bound of the model of its colour, not a model"))
+    entries.append((tuple(Patch(color=c, alpha=0.18) for c in COMPARE_COLORS), band_kind_words(band)))
+    entries.append((points_handle(zip(COMPARE_COLORS, POINT_MARKERS), edge="black"), POINTS_WORDS))
+    if any(static_capacities_m_s2(ida).size for ida in idas):
+        entries.append((both(linewidth=3, alpha=0.35),
+                        "static capacity λ g of each model sample (limit analysis): the IDA searches start there"))
+    kinds = set().union(*(d.pga.fit_as for d in data))
+    entries += [(both(marker=h.get_marker(), linestyle="none", markersize=7,
+                      markerfacecolor="none" if h.get_markerfacecolor() == "none" else None),
+                 h.get_label()) for h in lower_bound_entries("black", "", kinds)]
+    return entries
+
+
+def model_and_kind_legend(fig, models: list[tuple[object, str]], kinds: list[tuple[object, str]],
+                          warnings: list[str]) -> None:
+    """The figure's legend under the axes: the models in the left column, the kinds of
+    mark (and the warnings) in the right."""
+    kinds = kinds + [(warning_entry(w), w) for w in warnings]
+    right = [(h, "\n".join(wrap_text(line, 5.2, 8.0) for line in text.split("\n"))) for h, text in kinds]
+    blank = (Line2D([], [], linestyle="none"), " ")
+    # equal columns, so that the models stay in the left one (a legend fills columns first)
+    lines = lambda entries: sum(text.count("\n") + 1 for _, text in entries)  # noqa: E731
+    left = list(models)
+    while lines(left) + 1 <= lines(right) and len(left) < len(right):
+        left.append(blank)
+    left += [blank] * (len(right) - len(left))
+    right += [blank] * (len(left) - len(right))
+    entries = left + right
+    fig.legend([h for h, _ in entries], [t for _, t in entries], fontsize=8, loc="outside lower center", ncol=2,
+               handlelength=4.0, borderaxespad=LEGEND_PAD, handler_map=TUPLE_HANDLER)
 
 
 def lower_bound_entries(color: str, who: str, fit_as) -> list:
@@ -179,7 +220,7 @@ def plot_fragility_compare(ida_a: IdaResult, ida_b: IdaResult, labels: list[str]
     data = [fragility_data(ida, n_bootstrap, seed, im_max) for ida in idas]
     same_records = ida_a.records == ida_b.records
 
-    fig = new_figure(12.5, 7.8)
+    fig = new_figure(_WIDTH_IN, 7.8)
     ax_a, ax_v = fig.subplots(1, 2)
     _panel(ax_a, [d.pga for d in data], G_M_S2, "PGA of the scaled record [g]",
            [static_capacities_m_s2(ida) for ida in idas])
@@ -188,17 +229,14 @@ def plot_fragility_compare(ida_a: IdaResult, ida_b: IdaResult, labels: list[str]
     ax_a.set_title("against peak ground acceleration", fontsize=10)
     _panel(ax_v, [d.pgv for d in data], 1.0, "PGV of the scaled record [m/s]")
     ax_v.set_title("against peak ground velocity", fontsize=10)
-    columns = [_legend_entries(k, labels[k], d, idas[k]) for k, d in enumerate(data)]
-    rows = max(len(c) for c in columns)
-    for c in columns:  # equal columns, so that each file's entries stay in its own column
-        c += [Line2D([], [], linestyle="none", label=" ")] * (rows - len(c))
-    fig.legend(handles=columns[0] + columns[1], fontsize=8, loc="outside lower center", ncol=2, handlelength=3.5,
-               borderaxespad=LEGEND_PAD)
-    fig.suptitle(_title(idas, labels, same_records, data), fontsize=10)
+    warnings = [f"{label}: {w}" for label, w in zip(labels, (scale_warning(ida) for ida in idas)) if w]
+    model_and_kind_legend(fig, [_model_entry(k, labels[k], d, idas[k]) for k, d in enumerate(data)],
+                          _kind_entries(data, idas),
+                          [f"{w} (the record then stands for another earthquake)" for w in warnings])
+    fig.suptitle(compare_title(idas, labels, same_records, _WIDTH_IN - 0.2), fontsize=10)
     note = provenance(ida_a.code_version or ida_b.code_version, os.path.basename(ida_a.path),
                       os.path.basename(ida_b.path))
-    warnings = [f"{label}: {w}" for label, w in zip(labels, (scale_warning(ida) for ida in idas)) if w]
-    png = save_png(fig, out_png, note=" | ".join(warnings + [note]))
+    png = save_figure(fig, out_png, note=" | ".join(warnings + [note]))
 
     a, b = data[0].pga, data[1].pga
     assert np.array_equal(a.band.im, b.band.im)  # one grid

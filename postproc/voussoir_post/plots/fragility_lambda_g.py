@@ -4,7 +4,9 @@ lambda g of the row's own model sample (:func:`.im_fragility.pga_lambda_g_bracke
 fitted by the same interval-censored maximum likelihood, band, goodness of fit and beta
 split as the PGA fragility (:func:`.fragility_plot.fragility_of`). The static capacity is
 then the vertical line at 1 for every model. With ``--compare`` both files' fits on the
-one axis, each row divided by its own model's capacity.
+one axis, each row divided by its own model's capacity. The x-range runs from just below
+the static capacity (or the lowest bracket) to the end of the fits; each IDA point sits
+at the geometric middle of its brackets, a bar over them.
 
 Why: lambda g is where the arch first becomes a mechanism, so a stronger model and a
 larger arch of the same shape fall at the same PGA / (lambda g) as far as the collapse
@@ -20,15 +22,17 @@ import numpy as np
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from ..earthquake.fragility import empirical_collapse_fraction, fragility
+from ..earthquake.fragility import fragility
 from ..earthquake.ida import FIT_BRACKET, FIT_CENSORED, FIT_FAILED, IdaResult
 from ..earthquake.im_fragility import MEASURES, pga_lambda_g_brackets, row_capacities_m_s2
 from ..tables import ReportTable
-from .drawing import legend_pad, new_figure, provenance, save_png, wrap_text
-from .fragility_compare import COMPARE_COLORS, FragilityComparison, lower_bound_entries
-from .fragility_plot import (G_M_S2, FragilityData, IntensityFragility, arch_words, band_words, confidence_words,
-                             fragility_data, fragility_of, records_words, samples_words, scale_warning,
-                             static_capacities_m_s2)
+from .drawing import legend_pad, new_figure, provenance, save_figure, wrap_text
+from .fragility_compare import (COMPARE_COLORS, MODEL_WRAP_IN, POINT_MARKERS, FragilityComparison, band_kind_words,
+                                compare_title, lower_bound_entries, model_and_kind_legend)
+from .fragility_plot import (G_M_S2, POINTS_WORDS, TUPLE_HANDLER, FragilityData, IntensityFragility, arch_words,
+                             band_words, bracket_points, confidence_words, draw_bracket_points, fragility_data,
+                             fragility_of, points_handle, records_words, samples_words, scale_warning,
+                             static_capacities_m_s2, two_line_title, warning_entry)
 
 __all__ = ["LambdaGFragility", "LambdaGComparison", "lambda_g_fragility", "plot_lambda_g_fragility",
            "plot_lambda_g_compare", "RATIO_NAME", "AXIS_LABEL", "lambda_g_keys"]
@@ -38,8 +42,7 @@ RATIO_NAME = MEASURES["pga_lambda_g"][0]
 _FIGURE_NAME = "PGA / (λ g)"
 AXIS_LABEL = "PGA / (λ g)   (static capacity = 1)"
 _LEGEND_FONT = 8.0
-_WIDTH_IN = 10.5  #: of both figures
-_POINT_MARKERS = ("o", "s")
+_WIDTH_IN = 12.5  #: of both figures (as wide as the comparison against PGA and PGV)
 
 
 def lambda_g_fragility(ida: IdaResult, n_bootstrap: int = 400, seed: int = 20261124,
@@ -117,77 +120,78 @@ class LambdaGFragility:
         return self.data.report_lines() + _ratio_lines(self.ratio, self.capacities_m_s2)
 
 
+def x_range(frags: list[IntensityFragility]) -> tuple[float, float]:
+    """The x-range of the data: from a little below the static capacity 1 (or the lowest
+    bracket, if lower) to a little beyond the highest bracket or the point where every
+    fit reaches 0.995, whichever is further (within the fits' grid)."""
+    points = [bracket_points(f) for f in frags]
+    lowest = min([1.0] + [float(p[2].min()) for p in points if p[2].size])
+    highest = max([float(f.fit.median * np.exp(2.576 * f.fit.beta)) for f in frags]
+                  + [float(np.nanmax(f.im)) for f in frags])
+    right = min(float(frags[0].band.im[-1]), highest + 0.05 * (highest - lowest))
+    return max(0.0, lowest - 0.08 * (right - lowest)), right
+
+
 def _panel(ax, frags: list[IntensityFragility], colors, markers) -> None:
     """The fits of `frags` on one dimensionless axis, and the static capacity at 1."""
     ax.axvline(1.0, color="tab:red", linewidth=1.5, alpha=0.8)
+    edge = "black" if len(frags) > 1 else None
     for k, (frag, color, marker) in enumerate(zip(frags, colors, markers)):
         band, fit = frag.band, frag.fit
         ax.fill_between(band.im, band.low, band.high, color=color, alpha=0.18, linewidth=0)
         ax.plot(band.im, fragility(band.im, fit.median, fit.beta), "-", color=color, linewidth=2)
         ax.plot(band.im, frag.confidence(band.im), "--", color=color, linewidth=1.2)
         ax.axvline(fit.median, color=color, linestyle=":", linewidth=1.0)
-        used = np.isfinite(frag.im)
-        xs, ps = empirical_collapse_fraction(frag.im[used], frag.censored[used])
-        ax.plot(xs, ps, marker, color=color, markersize=4, markeredgecolor="black", markeredgewidth=0.4,
-                linestyle="none")
+        draw_bracket_points(ax, frag, 1.0, color, marker, edge=edge)
         kinds = np.array(frag.fit_as if frag.fit_as else [FIT_CENSORED if c else FIT_BRACKET for c in frag.censored])
         for kind, y, face in ((FIT_CENSORED, 0.02 + 0.04 * k, color), (FIT_FAILED, 0.10 + 0.04 * k, "none")):
             mine = kinds == kind
             if mine.any():
                 ax.plot(frag.im[mine], np.full(mine.sum(), y), ">", color=color, markerfacecolor=face,
                         markersize=7, linestyle="none")
-    ax.set_xlim(0.0, frags[0].band.im[-1])
+    ax.set_xlim(*x_range(frags))
     ax.set_ylim(-0.02, 1.02)
     ax.set_ylabel("probability of collapse")
     ax.set_xlabel(AXIS_LABEL)
     ax.grid(True, which="both", alpha=0.3)
 
 
-def _legend(frag: IntensityFragility, color: str, marker: str, label: str = "") -> list:
-    """One file's legend entries: fit, band, bound, median, points, censored rows."""
-    band, fit, split = frag.band, frag.fit, frag.split
-    who = f"{label}: " if label else ""
-    tail = 50.0 * (1.0 - band.level)
+def _fit_words(frag: IntensityFragility) -> str:
+    """'median 1.49, β 0.14 (record-to-record 0.13, model 0.05), goodness of fit p 0.24'."""
+    fit, split = frag.fit, frag.split
     parts = (f" (record-to-record {split.beta_rtr:.2f}, model {split.beta_model:.2f})"
              if split is not None and split.beta_model is not None else "")
-    clusters = {"record": f"{band.n_clusters} records, clustered by record",
-                "event": f"{band.n_clusters} events, clustered by event"}.get(band.cluster_by, "the rows")
+    return f"median {fit.median:.3g}, β {fit.beta:.2f}{parts}, goodness of fit p {frag.check.p_value:.2g}"
+
+
+def _legend(frag: IntensityFragility, color: str, marker: str) -> list[tuple[object, str]]:
+    """The one model's legend entries: fit, band, bound, median, points, censored rows."""
+    band, fit = frag.band, frag.fit
+    tail = 50.0 * (1.0 - band.level)
     entries = [
-        Line2D([], [], color=color, linewidth=2,
-               label=f"{who}lognormal fit in {_FIGURE_NAME}: median {fit.median:.3g}, β {fit.beta:.2f}{parts}, "
-                     f"goodness of fit p {frag.check.p_value:.2g}"),
-        Patch(color=color, alpha=0.18,
-              label=f"{who}{int(round(100 * band.level))} % bootstrap band of the fit ({band.n_resamples} "
-                    f"resamples of the {clusters})"),
-        Line2D([], [], color=color, linestyle="--", linewidth=1.2,
-               label=f"{who}fit at the median's lower {tail:g} % bound ({band.median_low:.3g}; {100 - tail:g} % "
-                     f"confident the median is higher), same β"),
-        Line2D([], [], color=color, linestyle=":", linewidth=1.0,
-               label=f"{who}median: 50 % probability of collapse at {fit.median:.3g} times the static capacity"),
-        Line2D([], [], color=color, marker=marker, markeredgecolor="black", markeredgewidth=0.4, linestyle="none",
-               markersize=4, label=f"{who}IDA points: fraction of the rows (record × model) collapsed at or below "
-                                   f"(Kaplan-Meier, top of each bracket / λ g)"),
+        (Line2D([], [], color=color, linewidth=2), f"lognormal fit in {_FIGURE_NAME} by interval-censored maximum "
+                                                   f"likelihood on each row's bracket: {_fit_words(frag)}"),
+        (Patch(color=color, alpha=0.18), band_kind_words(band)),
+        (Line2D([], [], color=color, linestyle="--", linewidth=1.2),
+         f"fit at the median's lower {tail:g} % bound ({band.median_low:.3g}; {100 - tail:g} % confident the median "
+         f"is higher), same β"),
+        (Line2D([], [], color=color, linestyle=":", linewidth=1.0),
+         f"median: 50 % probability of collapse at {fit.median:.3g} times the static capacity"),
+        (points_handle([(color, marker)]), POINTS_WORDS + ", all over λ g"),
     ]
-    return entries + lower_bound_entries(color, who, frag.fit_as)
+    return entries + [(h, h.get_label()) for h in lower_bound_entries(color, "", frag.fit_as)]
 
 
-def _capacity_entry(words: str) -> Line2D:
-    return Line2D([], [], color="tab:red", linewidth=1.5, alpha=0.8,
-                  label=f"static capacity: PGA = λ g of the row's own model (limit analysis; {words}); the IDA "
-                        f"searches start there")
+def _capacity_entry(words: str) -> tuple[Line2D, str]:
+    return (Line2D([], [], color="tab:red", linewidth=1.5, alpha=0.8),
+            f"static capacity: PGA = λ g of the row's own model (limit analysis; {words}); the IDA searches start "
+            f"there")
 
 
-def _title_lines(lines: list[str], width_in: float) -> str:
-    """The title's lines, each wrapped to the figure's width (10-pt text)."""
-    return "\n".join(wrap_text(line, width_in - 0.2, 10.0) for line in lines)
-
-
-def _wrapped(handles: list) -> list:
-    """The legend's entries, each label wrapped to the width of the figure (the handle
-    and the frame take about an inch)."""
-    for handle in handles:
-        handle.set_label(wrap_text(handle.get_label(), _WIDTH_IN - 1.2, _LEGEND_FONT))
-    return handles
+def _wrapped(entries: list[tuple[object, str]], width_in: float) -> tuple[list, list[str]]:
+    """The legend's handles and labels, each label wrapped to `width_in` (the handle
+    and the frame take about an inch more)."""
+    return [h for h, _ in entries], [wrap_text(t, width_in, _LEGEND_FONT) for _, t in entries]
 
 
 def _g_list(capacities_m_s2: np.ndarray) -> str:
@@ -203,25 +207,27 @@ def plot_lambda_g_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootst
     ratio = lambda_g_fragility(ida, n_bootstrap, seed)
     data = fragility_data(ida, n_bootstrap, seed)
 
-    fig = new_figure(_WIDTH_IN, 8.0)
+    fig = new_figure(_WIDTH_IN, 7.2)
     ax = fig.subplots()
     _panel(ax, [ratio], ["tab:blue"], ["o"])
-    handles = _legend(ratio, "tab:blue", "o")
-    handles.append(_capacity_entry(f"{_g_list(capacities)} for the {ida.n_sets} model"
+    entries = _legend(ratio, "tab:blue", "o")
+    entries.append(_capacity_entry(f"{_g_list(capacities)} for the {ida.n_sets} model"
                                    f"{'s' if ida.n_sets != 1 else ''}"))
-    fig.legend(handles=_wrapped(handles), fontsize=_LEGEND_FONT, loc="outside lower center", ncol=1,
-               borderaxespad=legend_pad(_LEGEND_FONT))
+    warning = scale_warning(ida)
+    if warning:
+        entries.append((warning_entry(""), f"{warning} (the record then stands for another earthquake)"))
+    handles, labels = _wrapped(entries, _WIDTH_IN - 1.2)
+    fig.legend(handles, labels, fontsize=_LEGEND_FONT, loc="outside lower center", ncol=1,
+               borderaxespad=legend_pad(_LEGEND_FONT), handler_map=TUPLE_HANDLER)
     scale_max = ida.config.get("sweep", {}).get("scale_max")
-    top = f" (x {scale_max:g})" if isinstance(scale_max, (int, float)) else ""
-    fig.suptitle(_title_lines([
-        f"Probability of collapse of the {arch_words(ida)} against {_FIGURE_NAME}",
-        f"under {records_words(ida)}, scaled",
-        f"on {samples_words(ida)}: {ida.n_rows} analyses (record × model), {int(ida.censored.sum())} without "
-        f"collapse up to the largest scale tried{top}",
-        "each row's PGA divided by the static capacity λ g of its own model sample",
-        "lognormal fit by interval-censored maximum likelihood on each row's bracket (last scale that stood, first "
-        "that collapsed] / λ g"] + [w for w in [scale_warning(ida)] if w], _WIDTH_IN), fontsize=10)
-    png = save_png(fig, out_png, note=provenance(getattr(ida, "code_version", ""), os.path.basename(ida.path)))
+    top = f" (up to x {scale_max:g})" if isinstance(scale_max, (int, float)) else ""
+    fig.suptitle(two_line_title(
+        f"Probability of collapse against {_FIGURE_NAME} of the {arch_words(ida)}, {samples_words(ida)}",
+        f"under {records_words(ida)}, scaled{top}: each row's PGA over the static capacity λ g of its own model",
+        _WIDTH_IN - 0.2, second_short=f"under {len(ida.records)} ground-motion records, scaled{top}: each row's PGA "
+                                      f"over the static capacity λ g of its own model"), fontsize=10)
+    note = provenance(getattr(ida, "code_version", ""), os.path.basename(ida.path))
+    png = save_figure(fig, out_png, note=f"{warning} | {note}" if warning else note)
 
     capacity = row_capacities_m_s2(ida)
     pit = ratio.check.pit
@@ -237,6 +243,31 @@ def plot_lambda_g_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootst
                         title=f"fragility against {RATIO_NAME}; p_low, p_high: {int(round(100 * ratio.band.level))} "
                               f"% band of {band_words(ratio.band)}; p_conf: the {confidence_words(ratio.band)}")
     return LambdaGFragility(data, ratio, capacities, png, table, curve)
+
+
+def _kinds(ratios: list[IntensityFragility]) -> list[tuple[object, str]]:
+    """One legend entry per kind of mark of the comparison, its handle in both colours."""
+    def both(**style):
+        return tuple(Line2D([], [], color=c, **style) for c in COMPARE_COLORS)
+
+    tail = 50.0 * (1.0 - ratios[0].band.level)
+    entries = [
+        (both(linewidth=2), f"lognormal fit in {_FIGURE_NAME} by interval-censored maximum likelihood on each "
+                            f"row's bracket"),
+        (both(linestyle="--", linewidth=1.2), f"fit at its median's lower {tail:g} % bound ({100 - tail:g} % "
+                                              f"confident the median is above it), same β: a bound of the model of "
+                                              f"its colour, not a model"),
+        (both(linestyle=":", linewidth=1.0), "median: 50 % probability of collapse"),
+        (tuple(Patch(color=c, alpha=0.18) for c in COMPARE_COLORS), band_kind_words(ratios[0].band)),
+        (points_handle(zip(COMPARE_COLORS, POINT_MARKERS), edge="black"), POINTS_WORDS + ", all over λ g"),
+        (Line2D([], [], color="tab:red", linewidth=1.5, alpha=0.8),
+         "static capacity: PGA = λ g of the row's own model (limit analysis): 1 for every model; the IDA searches "
+         "start there"),
+    ]
+    kinds = set().union(*(r.fit_as for r in ratios))
+    return entries + [(both(marker=h.get_marker(), linestyle="none", markersize=7,
+                            markerfacecolor="none" if h.get_markerfacecolor() == "none" else None), h.get_label())
+                      for h in lower_bound_entries("black", "", kinds)]
 
 
 @dataclass
@@ -281,29 +312,26 @@ def plot_lambda_g_compare(ida_a: IdaResult, ida_b: IdaResult, labels: list[str],
     data = [fragility_data(ida, n_bootstrap, seed) for ida in idas]
     same_records = ida_a.records == ida_b.records
 
-    fig = new_figure(_WIDTH_IN, 9.2)
+    fig = new_figure(_WIDTH_IN, 7.8)
     ax = fig.subplots()
-    _panel(ax, ratios, COMPARE_COLORS, _POINT_MARKERS)
-    # one column, the files one after the other (two columns would halve each entry's width)
-    handles = [h for k, r in enumerate(ratios) for h in _legend(r, COMPARE_COLORS[k], _POINT_MARKERS[k], labels[k])]
-    handles.append(_capacity_entry("; ".join(f"{label}: {_g_list(c)}" for label, c in zip(labels, capacities))))
-    fig.legend(handles=_wrapped(handles), fontsize=_LEGEND_FONT,
-               loc="outside lower center", ncol=1, borderaxespad=legend_pad(_LEGEND_FONT))
-    arches = [arch_words(ida) for ida in idas]
-    arch = (f"the {arches[0]}" if arches[0] == arches[1] and ida_a.config.get("arch")
-            else f"{arches[0]} ({labels[0]}) and {arches[1]} ({labels[1]})")
-    records = (f"the same {records_words(ida_a)}, scaled" if same_records else
-               f"{len(ida_a.records)} and {len(ida_b.records)} scaled records (NOT the same)")
-    colours = [c.removeprefix("tab:") for c in COMPARE_COLORS]
-    fig.suptitle(_title_lines([
-        f"Probability of collapse of {arch} against {_FIGURE_NAME}", f"under {records}",
-        f"{colours[0]}: {labels[0]}, {samples_words(ida_a)}; {colours[1]}: {labels[1]}, {samples_words(ida_b)}",
-        "each row's PGA divided by the static capacity λ g of its own model sample",
-        "lognormal fits by interval-censored maximum likelihood on each row's bracket (last scale that stood, first "
-        "that collapsed] / λ g"] + [f"{label}: {w}" for label, w in zip(labels, map(scale_warning, idas)) if w],
-        _WIDTH_IN), fontsize=10)
-    png = save_png(fig, out_png, note=provenance(ida_a.code_version or ida_b.code_version,
-                                                 os.path.basename(ida_a.path), os.path.basename(ida_b.path)))
+    _panel(ax, ratios, COMPARE_COLORS, POINT_MARKERS)
+    models = []
+    for k, (label, ratio, ida, c) in enumerate(zip(labels, ratios, idas, capacities)):
+        handle = (Line2D([], [], color=COMPARE_COLORS[k], linewidth=6, alpha=0.35),
+                  Line2D([], [], color=COMPARE_COLORS[k], marker=POINT_MARKERS[k], markeredgecolor="black",
+                         markeredgewidth=0.4, linestyle="none", markersize=5))
+        tail = 50.0 * (1.0 - ratio.band.level)
+        models.append((handle, "\n".join(wrap_text(w, MODEL_WRAP_IN, _LEGEND_FONT) for w in (
+            f"{label}: {samples_words(ida)}", _fit_words(ratio),
+            f"lower {tail:g} % bound of the median {ratio.band.median_low:.3g}; static capacity λ g {_g_list(c)}"))))
+    warnings = [f"{label}: {w}" for label, w in zip(labels, map(scale_warning, idas)) if w]
+    model_and_kind_legend(fig, models, _kinds(ratios), [f"{w} (the record then stands for another earthquake)"
+                                                         for w in warnings])
+    fig.suptitle(compare_title(idas, labels, same_records, _WIDTH_IN - 0.2, f" against {_FIGURE_NAME}"),
+                 fontsize=10)
+    note = provenance(ida_a.code_version or ida_b.code_version, os.path.basename(ida_a.path),
+                      os.path.basename(ida_b.path))
+    png = save_figure(fig, out_png, note=" | ".join(warnings + [note]))
 
     a, b = ratios
     curves = [np.column_stack([fragility(f.band.im, f.fit.median, f.fit.beta), f.band.low, f.band.high,

@@ -3,7 +3,9 @@ with m/s2 on the top axis) and against PGV, each with its lognormal maximum-like
 fit on the rows' brackets, the bootstrap band clustered by record (or event), the fit
 moved to the lower bound of its median (dashed), the goodness of fit, the split of beta
 into record-to-record and model parts, and the IDA points (Kaplan-Meier fraction of
-records collapsed, right-censored records marked at their lower bound)."""
+records collapsed, each at the middle of its bracket drawn as a bar; right-censored records
+marked at their lower bound). Two title lines at most; what the title leaves out is in the
+legend, and so is a warning about the record scales."""
 
 from __future__ import annotations
 
@@ -11,6 +13,7 @@ import os
 from dataclasses import dataclass, field
 
 import numpy as np
+from matplotlib.legend_handler import HandlerTuple
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
@@ -20,27 +23,31 @@ from ..earthquake.fragility import (BetaSplit, FitCheck, FitError, FragilityBand
 from ..earthquake.ida import FIT_BRACKET, FIT_CENSORED, FIT_FAILED, FIT_LEFT_OUT, IdaResult
 from ..tables import ReportTable
 from ..units import G_M_S2
-from .drawing import legend_pad, new_figure, provenance, save_png
+from .drawing import legend_pad, new_figure, provenance, save_figure, wrap_text
 
 __all__ = ["FragilityData", "IntensityFragility", "fragility_of", "fragility_data", "plot_fragility", "G_M_S2",
            "BETA_CONVENTION", "BETA_SPLIT", "LEGEND_PAD", "confidence_words", "split_words", "split_label",
            "band_words", "arch_words", "samples_words", "records_words", "top_intensity", "FIT_STYLES",
-           "BOUND_STYLES", "POINTS_WORDS", "SCALE_WARN", "scale_warning", "static_capacities_m_s2"]
+           "BOUND_STYLES", "POINTS_WORDS", "SCALE_WARN", "scale_warning", "static_capacities_m_s2", "bracket_points",
+           "draw_bracket_points", "points_handle", "warning_entry", "two_line_title", "TUPLE_HANDLER"]
 
 #: One line style per measure, in every fragility figure: the fit, and the fit at the
 #: lower bound of its median.
 FIT_STYLES = {"PGA": "-", "PGV": "-."}
 BOUND_STYLES = {"PGA": "--", "PGV": ":"}
 #: What an IDA point is: each row is one record on one model.
-POINTS_WORDS = ("IDA points: fraction of the rows (record x model) collapsed at or below (Kaplan-Meier, top of "
-                "each bracket)")
+POINTS_WORDS = ("IDA points: fraction of the rows (record × model) collapsed at or below (Kaplan-Meier), each "
+                "row's collapse at the geometric middle of its bracket; the bar spans the bracket (last stand, "
+                "first collapse]")
+#: A legend handle made of several (a bar and its point, or one mark in each colour).
+TUPLE_HANDLER = {tuple: HandlerTuple(ndivide=None, pad=0.3)}
 #: A row that collapsed at a record scale outside these is warned of (the record then
 #: stands for another earthquake than the one recorded; voussoir-sweep warns too).
 SCALE_WARN = (0.25, 4.0)
 #: How beta and the bootstrap standard deviations are computed (said in every output).
 BETA_CONVENTION = ("beta: maximum likelihood (divisor n, not n - 1); bootstrap standard deviations: "
                    "divisor n - 1 over the resamples")
-#: Pad of a figure legend under the axes, in font sizes (8 pt): its 0.5 plus save_png's 10-pt
+#: Pad of a figure legend under the axes, in font sizes (8 pt): its 0.5 plus save_figure's 10-pt
 #: strip for the small print, which the legend would otherwise cross.
 LEGEND_PAD = legend_pad(8.0)
 #: How beta is split (said in every output that gives the split).
@@ -314,14 +321,81 @@ def static_capacities_m_s2(ida: IdaResult) -> np.ndarray:
     return np.unique(np.round(values, 9))
 
 
-def _title(ida: IdaResult) -> str:
-    failed = f", {ida.n_failed} failed search{'es' if ida.n_failed != 1 else ''}" if ida.n_failed else ""
+def bracket_points(frag: IntensityFragility) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The IDA points where a reader of an interval-censored fit expects them: each row's
+    collapse taken at the geometric middle of its bracket (low, high] (at its top when
+    the bracket starts at 0; a censored row at its lower bound, at risk until there), the
+    Kaplan-Meier fraction of the rows collapsed at or below, one point per distinct
+    middle. Returns (x, p, x_low, x_high): the point, and the span of its brackets."""
+    used = np.isfinite(frag.im)
+    low, high, censored = frag.low[used], frag.high[used], frag.censored[used]
+    top = np.where(np.isfinite(high), high, low)
+    middle = np.where(censored, low, np.where(low > 0.0, np.sqrt(np.clip(low, 0.0, None) * top), top))
+    xs, ps = empirical_collapse_fraction(middle, censored)
+    x_out, p_out, lo_out, hi_out = [], [], [], []
+    for x, p in zip(xs, ps):
+        if x_out and np.isclose(x, x_out[-1], rtol=1e-9, atol=0.0):
+            p_out[-1] = p  # a tie: the fraction after all of its rows
+            continue
+        same = ~censored & np.isclose(middle, x, rtol=1e-9, atol=0.0)
+        x_out.append(x)
+        p_out.append(p)
+        lo_out.append(float(low[same].min()))
+        hi_out.append(float(top[same].max()))
+    return np.array(x_out), np.array(p_out), np.array(lo_out), np.array(hi_out)
+
+
+def draw_bracket_points(ax, frag: IntensityFragility, scale: float, color: str, marker: str = "o",
+                        edge: str | None = None) -> None:
+    """The IDA points of :func:`bracket_points` (x divided by `scale`), each with a bar
+    over its bracket."""
+    x, p, lo, hi = bracket_points(frag)
+    ax.hlines(p, lo / scale, hi / scale, color=color, linewidth=1.0, alpha=0.8)
+    ax.plot(x / scale, p, marker, color=color, markersize=4, linestyle="none",
+            **({"markeredgecolor": edge, "markeredgewidth": 0.4} if edge else {}))
+
+
+def points_handle(colors_markers, edge: str | None = None) -> tuple:
+    """The legend handle of the bracket points: a bar with its point, one per colour."""
+    return tuple(h for color, marker in colors_markers for h in (
+        (Line2D([], [], color=color, linewidth=1.0), Line2D([], [], color=color, marker=marker, linestyle="none",
+                                                            markersize=4,
+                                                            **({"markeredgecolor": edge, "markeredgewidth": 0.4}
+                                                               if edge else {})))))
+
+
+def warning_entry(text: str) -> Line2D:
+    """A warning as a legend entry (a red '!'), where the reader reads the figure."""
+    return Line2D([], [], color="tab:red", marker="$!$", markersize=8, linestyle="none", label=text)
+
+
+def two_line_title(first: str, second: str, width_in: float, fontsize: float = 10.0,
+                   second_short: str | None = None) -> str:
+    """A figure's title in two lines at most: `first` and `second` each on one line at
+    `fontsize` in `width_in` inches (:func:`.drawing.wrap_text`); `second_short` replaces a
+    `second` that does not fit, and what still does not fit is cut at a word with '...'."""
+    lines = []
+    for text, short in ((first, None), (second, second_short)):
+        if short is not None and "\n" in wrap_text(text, width_in, fontsize):
+            text = short
+        wrapped = wrap_text(text, width_in, fontsize).split("\n")
+        lines.append(wrapped[0] + (" ..." if len(wrapped) > 1 else ""))
+    return "\n".join(lines)
+
+
+def _title(ida: IdaResult, width_in: float) -> str:
     scale_max = ida.config.get("sweep", {}).get("scale_max")
-    top = f" (x {scale_max:g})" if isinstance(scale_max, (int, float)) else ""
-    return (f"Probability of collapse of the {arch_words(ida)}\nunder {records_words(ida)}, scaled\non "
-            f"{samples_words(ida)}: {ida.n_rows} analyses (record x model), {int(ida.censored.sum())} without "
-            f"collapse up to the largest scale tried{top}{failed}\nlognormal fits by interval-censored maximum "
-            f"likelihood on each row's bracket (last scale that stood, first that collapsed]")
+    top = f" (up to x {scale_max:g})" if isinstance(scale_max, (int, float)) else ""
+    return two_line_title(f"Probability of collapse of the {arch_words(ida)}, {samples_words(ida)}",
+                          f"under {records_words(ida)}, scaled{top}", width_in,
+                          second_short=f"under {len(ida.records)} ground-motion records, scaled{top}")
+
+
+def rows_words(ida: IdaResult) -> str:
+    """'44 analyses (record × model), 2 without collapse up to the largest scale tried, 1 failed search'."""
+    failed = f", {ida.n_failed} failed search{'es' if ida.n_failed != 1 else ''}" if ida.n_failed else ""
+    return (f"{ida.n_rows} analyses (record × model), {int(ida.censored.sum())} without collapse up to the largest "
+            f"scale tried{failed}")
 
 
 def _draw(ax, frag: IntensityFragility, scale: float, unit_label: str, unit: str,
@@ -336,9 +410,7 @@ def _draw(ax, frag: IntensityFragility, scale: float, unit_label: str, unit: str
     ax.plot(x, frag.confidence(band.im), bound_style, color="tab:blue", linewidth=1.2)
     for c in capacities:
         ax.axvline(c / scale, color="tab:red", linewidth=1.2, alpha=0.7)
-    used = np.isfinite(frag.im)
-    xs, ps = empirical_collapse_fraction(frag.im[used], frag.censored[used])
-    ax.plot(xs / scale, ps, "o", color="black", markersize=4)
+    draw_bracket_points(ax, frag, scale, "black")
     kinds = np.array(frag.fit_as if frag.fit_as else [FIT_CENSORED if c else FIT_BRACKET for c in frag.censored])
     at_max, failed = kinds == FIT_CENSORED, kinds == FIT_FAILED
     if at_max.any():
@@ -378,7 +450,7 @@ def _draw(ax, frag: IntensityFragility, scale: float, unit_label: str, unit: str
         Line2D([], [], color="tab:blue", linestyle=bound_style, linewidth=1.2,
                label=f"{frag.name} fit at the median's lower {tail:g} % bound ({100 - tail:g} % confident the "
                      f"median is higher), same beta"),
-        Line2D([], [], color="black", marker="o", linestyle="none", markersize=4, label=POINTS_WORDS),
+        points_handle([("black", "o")]),
         Line2D([], [], color="0.45", linestyle=fit_style, linewidth=0.8,
                label=f"{frag.name} median: 50 % probability of collapse"),
     ] + extra
@@ -453,11 +525,16 @@ def plot_fragility(ida: IdaResult, out_png: str | os.PathLike, n_bootstrap: int 
     handles[0].set_label("PGA " + handles[0].get_label())
     handles_v[0].set_label("PGV " + handles_v[0].get_label())
     # PGA's and PGV's own lines (fit, bound, median), then the marks both panels share
-    fig.legend(handles=[handles[0], handles_v[0], handles[2], handles_v[2], handles[4], handles_v[4], handles[1],
-                        handles[3]] + handles[5:], fontsize=8, loc="outside lower center", ncol=2,
-               borderaxespad=LEGEND_PAD)
-    fig.suptitle(_title(ida), fontsize=10)
-    note = provenance(getattr(ida, "code_version", ""), os.path.basename(ida.path))
+    entries = [handles[0], handles_v[0], handles[2], handles_v[2], handles[4], handles_v[4], handles[1],
+               handles[3]] + handles[5:]
+    labels = [h.get_label() if not isinstance(h, tuple) else f"{POINTS_WORDS}; {rows_words(ida)}" for h in entries]
     warning = scale_warning(ida)
-    data.png_path = save_png(fig, out_png, note=f"{warning} | {note}" if warning else note)
+    if warning:
+        entries.append(warning_entry(warning + " (the record then stands for another earthquake)"))
+        labels.append(entries[-1].get_label())
+    fig.legend(entries, [wrap_text(label, 5.0, 8.0) for label in labels], fontsize=8, loc="outside lower center",
+               ncol=2, borderaxespad=LEGEND_PAD, handler_map=TUPLE_HANDLER)
+    fig.suptitle(_title(ida, 12.0 - 0.2), fontsize=10)
+    note = provenance(getattr(ida, "code_version", ""), os.path.basename(ida.path))
+    data.png_path = save_figure(fig, out_png, note=f"{warning} | {note}" if warning else note)
     return data

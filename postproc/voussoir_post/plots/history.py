@@ -10,7 +10,7 @@ import numpy as np
 
 from ..readers.results import RunResult
 from ..tables import ReportTable
-from .drawing import add_g_axis, new_figure, provenance, run_caption, save_png
+from .drawing import add_g_axis, new_figure, provenance, run_caption, save_figure
 
 __all__ = ["HistoryData", "plot_history"]
 
@@ -119,7 +119,7 @@ def plot_history(run: RunResult, out_png: str | os.PathLike) -> HistoryData:
     status = f"collapsed at {run.collapse_time_s:.3f} s" if run.collapsed else "stood"
     fig.suptitle(f"Time histories: {run_caption(run, sep=chr(10))}\n{status}; mean {run.mean_iterations:.1f} "
                  f"NLGS iterations/step, {run.nonconverged_steps} non-converged steps", fontsize=9)
-    data.png_path = save_png(fig, out_png, note=provenance(run.code_version, run.input_file,
+    data.png_path = save_figure(fig, out_png, note=provenance(run.code_version, run.input_file,
                                                            os.path.basename(run.path)))
     data.summary = _summary(data)
     data.summary.title = f"History of {run.path}"

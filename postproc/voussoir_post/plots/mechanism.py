@@ -21,7 +21,7 @@ from ..analysis.contact_forces import LpJointResultants, lp_joint_resultants
 from ..readers.results import LimitResult
 from ..tables import ReportTable
 from ..units import G_M_S2
-from .drawing import HINGE_COLOURS, legend_pad, new_figure, provenance, save_png
+from .drawing import HINGE_COLOURS, legend_pad, new_figure, provenance, save_figure
 
 #: The LP's joint forces: dark grey, a colour that no hinge, joint or collapse uses.
 FORCE_COLOUR = "#444444"
@@ -217,7 +217,7 @@ def plot_mechanism(limit: LimitResult, out_png: str | os.PathLike) -> MechanismD
     fig.suptitle(f"Static collapse mechanisms under horizontal acceleration (limit analysis):\n"
                  f"{limit.embrace_deg:g}° arch of {limit.n_voussoirs} voussoirs, t = {limit.thickness_m * 1e3:.4g} mm, "
                  f"R_ext = {limit.r_ext_m * 1e3:.4g} mm{sliding}", fontsize=10)
-    png = save_png(fig, out_png, note=provenance(limit.code_version, limit.input_file,
+    png = save_figure(fig, out_png, note=provenance(limit.code_version, limit.input_file,
                                                  os.path.basename(limit.path)))
     rows = []
     for panel in panels:

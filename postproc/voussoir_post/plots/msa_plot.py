@@ -17,8 +17,8 @@ from ..earthquake.fragility import FitError, FragilityBand, FragilityFit, fragil
 from ..earthquake.msa import MsaResult
 from ..earthquake.stripes_fit import fit_stripes, stripes_band, stripes_of
 from ..tables import ReportTable
-from .drawing import new_figure, provenance, save_png
-from .fragility_plot import BETA_CONVENTION, G_M_S2, LEGEND_PAD, SCALE_WARN, band_words
+from .drawing import new_figure, provenance, save_figure
+from .fragility_plot import BETA_CONVENTION, G_M_S2, LEGEND_PAD, SCALE_WARN, band_words, warning_entry
 
 __all__ = ["MsaFragilityData", "msa_fragility_data", "plot_msa_fragility", "FIT_WORDS"]
 
@@ -144,11 +144,15 @@ def plot_msa_fragility(msa: MsaResult, out_png: str | os.PathLike, n_bootstrap: 
                label="stripes: fraction of the runs exceeding the limit state at each level (exceeded/runs beside)"),
         Line2D([], [], color="0.45", linewidth=0.8, label="median: 50 % probability"),
     ]
+    if data.n_scale_warned:  # where the figure is read, not only in its small print
+        handles.append(warning_entry(f"warning: {data.n_scale_warned} of {int(data.n_runs.sum())} runs scaled their "
+                                     f"record beyond {SCALE_WARN[1]:g} or below {SCALE_WARN[0]:g} (the record then "
+                                     f"stands for another earthquake)"))
     fig.legend(handles=handles, fontsize=8, loc="outside lower center", ncol=1, borderaxespad=LEGEND_PAD)
     fig.suptitle(f"MSA fragility, {data.limit_state_words}: {len(msa.records)} records x {msa.n_sets} model samples x "
                  f"{data.levels_g.size} levels", fontsize=10)
     note = provenance(msa.code_version, os.path.basename(msa.path))
     if data.n_scale_warned:
         note = f"{data.n_scale_warned} runs scaled beyond {SCALE_WARN[1]:g} or below {SCALE_WARN[0]:g} | {note}"
-    data.png_path = save_png(fig, out_png, note=note)
+    data.png_path = save_figure(fig, out_png, note=note)
     return data

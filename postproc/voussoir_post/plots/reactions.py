@@ -12,7 +12,8 @@ from ..analysis.contact_forces import Reactions, reactions, reactions_table
 from ..analysis.kinematics import ROLE_FOUNDATION, ROLE_VOUSSOIR
 from ..readers.results import RunResult
 from ..tables import ReportTable
-from .drawing import G_M_S2, add_g_axis, legend_pad, new_figure, provenance, run_caption, save_png
+from .drawing import (G_M_S2, add_g_axis, legend_pad, new_figure, provenance, run_caption, save_figure,
+                      wrap_text)
 
 __all__ = ["ReactionsData", "plot_reactions", "free_weight_n", "support_names"]
 
@@ -102,9 +103,13 @@ def plot_reactions(run: RunResult, out_png: str | os.PathLike) -> ReactionsData:
         axes[0].annotate(f"collapse {collapse:.3f} s", (collapse, 1.0), xycoords=("data", "axes fraction"),
                          xytext=(0, 2), textcoords="offset points", ha="center", va="bottom", color="tab:red",
                          fontsize=8)
-    fig.suptitle(f"Reactions of the supports over time: the force each exerts on the blocks it carries\n"
-                 f"(mean over the time step that ends at each output sample)\n{run_caption(run)}", fontsize=9)
-    data.png_path = save_png(fig, out_png, note=provenance(run.code_version, run.input_file,
+    # the run's caption a line for the structure and one for the shaking (on one line it is wider than
+    # 8 inches at 9 pt), each wrapped to the figure's width
+    fig.suptitle("\n".join(wrap_text(line, 8.0 - 0.3, 9.0) for line in (
+        "Reactions of the supports over time: the force each exerts on the blocks it carries",
+        "(mean over the time step that ends at each output sample)", *run_caption(run, "\n").split("\n"))),
+        fontsize=9)
+    data.png_path = save_figure(fig, out_png, note=provenance(run.code_version, run.input_file,
                                                            os.path.basename(run.path)))
     rows = []
     for k, name in enumerate(data.names):

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..earthquake.ida import FIT_BRACKET, FIT_LEFT_OUT, IdaResult
-from .drawing import G_M_S2, new_figure, provenance, save_png
+from .drawing import G_M_S2, new_figure, provenance, save_figure
 from .fragility_plot import SCALE_WARN, arch_words, records_words, samples_words
 
 __all__ = ["RecordTable", "record_table", "plot_record_table", "MAX_SAMPLE_COLUMNS", "FLAG_MARK", "LOWER_BOUND"]
@@ -281,7 +281,7 @@ def plot_record_table(ida: IdaResult, png_path: str) -> RecordTable:
     _rule(fig, at(left, bottom), at(left + table_in, bottom), 0.8)
     fig.text(*at(_MARGIN_IN, bottom + 0.08), footnote, fontsize=7.0, ha="left", va="top")
     note = provenance(ida.code_version, ida.path.rsplit("/", 1)[-1])
-    table.png_path = save_png(fig, png_path, note=note)
+    table.png_path = save_figure(fig, png_path, note=note)
     return table
 
 

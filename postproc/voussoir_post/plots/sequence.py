@@ -11,12 +11,12 @@ from matplotlib.animation import FuncAnimation, PillowWriter
 from matplotlib.patches import Polygon
 
 from ..analysis.kinematics import (ROLE_FOUNDATION, ROLE_RESTRAINT, JointState, block_polygons,
-                                   default_open_tol_m, joint_states)
+                                   default_open_tol_m, joint_openings, joint_states)
 from ..readers.results import RunResult
 from ..tables import ReportTable
-from .drawing import HINGE_COLOURS, legend_pad, new_figure, provenance, run_caption, save_png, wrap_text
+from .drawing import HINGE_COLOURS, legend_pad, new_figure, provenance, run_caption, save_figure, wrap_text
 
-__all__ = ["SequenceFrame", "SequenceData", "default_frame_times", "sequence_frames",
+__all__ = ["SequenceFrame", "SequenceData", "default_frame_times", "first_opening_time", "sequence_frames",
            "plot_sequence", "write_sequence_gif"]
 
 _FILL = {1: "#e8c99b", ROLE_FOUNDATION: "#9e9e9e", ROLE_RESTRAINT: "#5f5f5f"}
@@ -50,15 +50,35 @@ class SequenceData:
     table: ReportTable = field(default_factory=lambda: ReportTable([]))
 
 
-def default_frame_times(run: RunResult, n_frames: int) -> np.ndarray:
-    """``n_frames`` times [s] evenly spread from 0 to the collapse time plus 15 %
-    (or the end of the run when it did not collapse), capped at the last sample."""
-    t_last = float(run.time_s[-1])
+def first_opening_time(run: RunResult, open_tol_m: float | None = None) -> float | None:
+    """Time [s] of the first sample at which a joint of an arch opens by more than
+    ``open_tol_m`` (default :func:`.kinematics.default_open_tol_m`); None when none does
+    (or the run is not of an arch)."""
+    if run.arch is None:
+        return None
+    tol = default_open_tol_m(run) if open_tol_m is None else open_tol_m
+    for k in range(run.n_samples):
+        if float(joint_openings(run, k).max()) > tol:
+            return float(run.time_s[k])
+    return None
+
+
+def default_frame_times(run: RunResult, n_frames: int, open_tol_m: float | None = None) -> np.ndarray:
+    """``n_frames`` times [s] up to the collapse time plus 15 % (or the end of the run
+    when it did not collapse), capped at the last sample: the first at the start (the
+    reference), the others evenly spread from the first opening of a joint
+    (:func:`first_opening_time`), so that no two frames show the same still arch; evenly
+    spread from the start when no joint opens."""
+    t_first, t_last = float(run.time_s[0]), float(run.time_s[-1])
     if run.collapsed and math.isfinite(run.collapse_time_s):
         t_end = min(t_last, 1.15 * run.collapse_time_s)
     else:
         t_end = t_last
-    return np.linspace(float(run.time_s[0]), t_end, max(n_frames, 1))
+    n = max(n_frames, 1)
+    t_open = first_opening_time(run, open_tol_m) if n >= 3 else None
+    if t_open is None or not t_first < t_open < t_end:
+        return np.linspace(t_first, t_end, n)
+    return np.concatenate([[t_first], np.linspace(t_open, t_end, n - 1)])
 
 
 def _nearest_samples(run: RunResult, times_s) -> list[int]:
@@ -113,9 +133,10 @@ def plot_sequence(run: RunResult, out_png: str | os.PathLike, times_s=None, n_fr
                   amplify: float = 1.0, open_tol_m: float | None = None) -> SequenceData:
     """Draw a strip of frames of every block polygon, open hinges marked and labelled
     ``<joint>i`` / ``<joint>e`` (``s`` for a separated joint); returns the drawn data."""
-    if times_s is None:
-        times_s = default_frame_times(run, n_frames)
     tol = default_open_tol_m(run) if open_tol_m is None else open_tol_m
+    chosen = times_s is None
+    if chosen:
+        times_s = default_frame_times(run, n_frames, tol)
     frames = sequence_frames(run, times_s, amplify, tol)
     limits = _view_limits(run)
     ncols = min(len(frames), 3)
@@ -132,7 +153,10 @@ def plot_sequence(run: RunResult, out_png: str | os.PathLike, times_s=None, n_fr
     status = (f"collapsed at {run.collapse_time_s:.3f} s" if run.collapsed else "did not collapse")
     scale = ("true scale" if amplify == 1.0 else
              f"displacements exaggerated x{amplify:g} until the collapse, true after it")
-    title = wrap_text(f"Collapse sequence: {run_caption(run)}; {status}; {scale}", fig_w - 0.3, 9)
+    t_open = first_opening_time(run, tol) if chosen and len(frames) >= 3 else None
+    frames_words = (f"; frames: the start, then from the first opening of a joint ({t_open:.3f} s)"
+                    if t_open is not None and frames[1].time_s > frames[0].time_s else "")
+    title = wrap_text(f"Collapse sequence: {run_caption(run)}; {status}; {scale}{frames_words}", fig_w - 0.3, 9)
     legend_in = 0.17 * (3 if legend_cols == 1 else 2) + 0.15 if run.arch is not None else 0.0
     extra_in = 0.2 * (title.count("\n") + 1) + legend_in + 0.25
     fig = new_figure(fig_w, panel_w * height_m / width_m * nrows + 0.6 * nrows + extra_in)
@@ -156,7 +180,7 @@ def plot_sequence(run: RunResult, out_png: str | os.PathLike, times_s=None, n_fr
                                 label="separated joint (s): both edges open, the blocks part or slide")[0]]
         fig.legend(handles=handles, loc="outside lower center", borderaxespad=legend_pad(7), ncols=legend_cols,
                    fontsize=7)
-    png = save_png(fig, out_png, note=provenance(run.code_version, run.input_file, os.path.basename(run.path)))
+    png = save_figure(fig, out_png, note=provenance(run.code_version, run.input_file, os.path.basename(run.path)))
     table = ReportTable(["frame", "sample", "time_s", "crown_dx_mm", "crown_dy_mm", "open_joints"],
                         [(i + 1, f.sample, f.time_s, 1e3 * float(run.crown_dx_m[f.sample]),
                           1e3 * float(run.crown_dy_m[f.sample]), f.hinge_labels() or "-")

@@ -12,7 +12,7 @@ from matplotlib.colors import LinearSegmentedColormap
 from ..analysis.contact_forces import ThrustLine, thrust_line
 from ..readers.results import RunResult
 from ..tables import ReportTable
-from .drawing import HINGE_COLOURS, add_g_axis, new_figure, provenance, run_caption, save_png
+from .drawing import HINGE_COLOURS, add_g_axis, new_figure, provenance, run_caption, save_figure
 
 __all__ = ["ThrustLineData", "plot_thrust_line", "EDGE_FRACTION"]
 
@@ -73,7 +73,7 @@ def plot_thrust_line(run: RunResult, out_png: str | os.PathLike) -> ThrustLineDa
                          xytext=(0, 2), textcoords="offset points", ha="center", va="bottom", fontsize=8)
     fig.suptitle(f"Thrust line over time: where each joint's contact force crosses it (mean over the time step "
                  f"ending at each output sample)\n{run_caption(run)}", fontsize=9)
-    data.png_path = save_png(fig, out_png, note=provenance(run.code_version, run.input_file,
+    data.png_path = save_figure(fig, out_png, note=provenance(run.code_version, run.input_file,
                                                            os.path.basename(run.path)))
     rows = []
     first = 1 if run.contact_count[0] == 0 else 0  # t = 0 before any step: no forces yet
