@@ -39,9 +39,10 @@ from voussoir_post.diagnosis.observations import Observations, PairObservation
 from voussoir_post.diagnosis.pipeline import DiagnosisSettings, diagnose
 from voussoir_post.diagnosis.posterior import ADEQUATE_P, adequacy, infer
 from voussoir_post.diagnosis.rates import draw_outcomes, mcnemar
-from voussoir_post.readers.campaign import Specimen, Test as CampaignTest, read_campaign
+from voussoir_post.diagnosis.next_test import expected_gain_bits, within_limits
+from voussoir_post.readers.campaign import CampaignError, Specimen, TableLimits, Test as CampaignTest, read_campaign
 
-from conftest import VERDICTS, bin_dir, executable
+from conftest import SEED_CAMPAIGN, VERDICTS, bin_dir, executable
 from independent_campaigns import Arch, Truth, write_campaign
 from replay_maps import draw_observations, load_map
 
@@ -197,6 +198,42 @@ def test_the_adequacy_check_holds_its_size_under_its_null_and_fails_a_specimen_o
     assert sum(p < ADEQUATE_P for p in off) >= 15, sorted(off)
 
 
+def test_expected_gain_is_the_mutual_information_of_the_ramps_bin():
+    """Two rivals equally likely whose thresholds lie far apart: the outcome says which,
+    one bit; the same prediction: nothing; a 9:1 split, far apart: H(0.1) bits."""
+    assert abs(expected_gain_bits([0.5, 0.5], [math.log(0.03), math.log(0.06)], [0.01, 0.01]) - 1.0) < 1e-6
+    assert expected_gain_bits([0.5, 0.5], [math.log(0.03)] * 2, [0.02, 0.02]) < 1e-9
+    h = -(0.9 * math.log2(0.9) + 0.1 * math.log2(0.1))
+    assert abs(expected_gain_bits([0.9, 0.1], [math.log(0.03), math.log(0.06)], [0.01, 0.01]) - h) < 1e-6
+    # Half-overlapping predictions tell less than one bit but more than none.
+    mid = expected_gain_bits([0.5, 0.5], [math.log(0.03), math.log(0.0309)], [0.02, 0.02])
+    assert 0.05 < mid < 0.9
+
+
+def test_an_advised_ramp_stays_within_the_tables_limits():
+    table = TableLimits(stroke_m=0.1, max_velocity_m_s=0.5, max_accel_m_s2=10.0)
+    assert within_limits(0.05, 1.0, table)  # 0.31 m/s, 2.0 m/s2
+    assert not within_limits(0.12, 0.5, table)  # stroke
+    assert not within_limits(0.09, 1.0, table)  # 0.57 m/s
+    assert not within_limits(0.03, 3.0, table)  # 10.7 m/s2
+
+
+def test_table_csv_is_read_with_its_defaults_and_refused_when_off(tmp_path):
+    import shutil
+    folder = tmp_path / "c"
+    shutil.copytree(SEED_CAMPAIGN, folder)
+    assert read_campaign(folder).table == TableLimits()
+    (folder / "table.csv").write_text("stroke_m,displacement_gain_sd\n0.1,0.02\n")
+    t = read_campaign(folder).table
+    assert (t.stroke_m, t.displacement_gain_sd, t.max_velocity_m_s, t.from_file) == (0.1, 0.02, 1.0, True)
+    (folder / "table.csv").write_text("stroke_m\n-0.1\n")
+    with pytest.raises(CampaignError, match="stroke_m"):
+        read_campaign(folder)
+    (folder / "table.csv").write_text("stroke_m\n0.1\n0.2\n")
+    with pytest.raises(CampaignError, match="one data row"):
+        read_campaign(folder)
+
+
 def test_credible_set_is_the_smallest_set_reaching_the_mass_best_first():
     p = {"none": 0.05, "friction": 0.6, "geometry": 0.3, "contact_edges": 0.05}
     assert credible_set(p) == ["friction", "geometry"]
@@ -285,6 +322,13 @@ def test_end_to_end_diagnosis_follows_the_contract_and_keeps_the_truth(tmp_path,
     assert all(f in known or f.startswith("prior_bound:") for f in result["flags"]), result["flags"]
     assert ("inadequate" in result["flags"]) == (not result["adequate"])
     assert [c["effect"] for c in result["candidates"]] == list(MODEL_IDS[1:])
+    nt = result["next_test"]
+    if nt is not None:
+        assert {"specimen_id", "frequency_hz", "kind", "amplitudes_m", "expected_gain_bits", "predictions",
+                "alternatives"} <= set(nt)
+        a_from, a_to, a_by = nt["amplitudes_m"]
+        assert 0 < a_by < a_from < a_to and within_limits(a_to, nt["frequency_hz"], TableLimits())
+        assert set(nt["predictions"]) == set(result["rivals"]) and nt["expected_gain_bits"] >= 0
     assert abs(sum(result["probabilities"].values()) - 1.0) < 1e-4
     assert set(result["probabilities"]) == set(MODEL_IDS)
     assert set(result["extended"]) == {"threshold_error_pct", "threshold_error_se_pct", "hinge_match"}

@@ -1,15 +1,26 @@
-"""The test the laboratory should run next: where the rivals disagree most.
+"""The test the laboratory should run next: the one whose outcome is expected to say most
+about which rival is the cause.
 
-For an `inconclusive` verdict, every tested (specimen, frequency) pair and every new
-frequency of `DiagnosisSettings.probe_frequencies_hz` (at least 0.05 Hz from the tested
-ones) on each specimen with a certain set-up is scored by how differently the rivals
-predict its threshold: the sum over pairs of rivals of p_a p_b (m_a - m_b)^2 / (v_a + v_b)
-(m the log threshold, v its predictive variance). At a tested pair the rivals' posteriors
-give m and v (posterior.tested_separation); at a new frequency each rival is simulated
-at its posterior mean (ceiling and tolerance from the limit analysis, as the bank's), so
-v there is the predictive spread alone, without the parameters' (stated in the report).
-A rival's table gain divides its threshold at a new frequency by the campaign's mean
-measured gain.
+For an `inconclusive` verdict each candidate test is an afd ramp of one specimen at one
+frequency: every tested (specimen, frequency) pair again, and every new frequency of
+`DiagnosisSettings.probe_frequencies_hz` (at least 0.05 Hz from the tested ones) on each
+specimen with a certain set-up. Its outcome is the bracket the ramp would give: the
+threshold's bin on a ramp of step `RAMP_STEP` (relative). Each rival predicts that
+outcome as a normal law of the log threshold: at a tested pair its posterior predictive
+(the parameters' posterior spread, the simulator, emulator, table and discrepancies);
+at a new frequency its threshold simulated at its posterior mean, with the same
+predictive spread as the tested pairs (the parameters' own spread there is not
+simulated: stated in the report). A rival's table gain divides its threshold.
+
+The score is the expected information gain of the test about the cause, in bits: the
+mutual information I(M; Y) = H(Y) - sum_m p_m H(Y | m) between the rival M (weights
+their posterior probabilities, renormalised) and the ramp's bin Y. A repeat of a tested
+pair is scored the same way: a ramp that brackets the threshold into a bin it already
+lies in tells little, and its gain says so.
+
+Every candidate is within the table's limits (table.csv, or its defaults): the ramp's
+largest amplitude A (the largest rival prediction plus two predictive spreads) must have
+A <= stroke, A 2 pi f <= peak velocity and A (2 pi f)^2 <= peak acceleration.
 """
 
 from __future__ import annotations
@@ -20,17 +31,57 @@ import math
 from pathlib import Path
 
 import numpy as np
+from scipy.special import ndtr
 
 from .bank import onset_amplitudes, variant_key
 from .effects import arch_group
-from .likelihood import TAU_CAMPAIGN, TAU_SPECIMEN
+from .likelihood import predictive_sd
 from .models import members
 from .observations import Observations
-from .posterior import Posterior, tested_separation
+from .posterior import Posterior, predicted_log
 from .settings import DiagnosisSettings
 from .simulator import Simulator
 
-__all__ = ["next_test"]
+__all__ = ["next_test", "expected_gain_bits", "ramp", "within_limits", "RAMP_STEP"]
+
+RAMP_STEP = 0.025  #: relative step of the advised ramp (a bin of the outcome)
+ALTERNATIVES = 3
+
+
+def expected_gain_bits(probabilities: list[float], means: list[float], sds: list[float],
+                       step: float = RAMP_STEP) -> float:
+    """I(M; Y) in bits for rivals of probabilities p_m predicting log threshold
+    N(mean_m, sd_m^2), Y the bin of width log(1 + step) the threshold falls in."""
+    p = np.asarray(probabilities, float)
+    p = p / p.sum()
+    mu, sd = np.asarray(means, float), np.asarray(sds, float)
+    width = math.log1p(step)
+    lo = float(np.min(mu - 6 * sd))
+    edges = lo + width * np.arange(int(math.ceil((float(np.max(mu + 6 * sd)) - lo) / width)) + 2)
+    cdf = ndtr((edges[None, :] - mu[:, None]) / sd[:, None])
+    py_m = np.clip(np.diff(cdf, axis=1), 0.0, None)  # (rival, bin)
+    py = p @ py_m
+
+    def entropy(q):
+        q = q[q > 0]
+        return float(-(q * np.log2(q)).sum())
+    return max(0.0, entropy(py) - sum(pm * entropy(row) for pm, row in zip(p, py_m)))
+
+
+def within_limits(amplitude_m: float, frequency_hz: float, table) -> bool:
+    w = 2 * math.pi * frequency_hz
+    return (amplitude_m <= table.stroke_m and amplitude_m * w <= table.max_velocity_m_s
+            and amplitude_m * w * w <= table.max_accel_m_s2)
+
+
+def ramp(means: list[float], sds: list[float]) -> list[float]:
+    """[from, to, by] [m] of an afd ramp that brackets every rival's threshold: from the
+    smallest prediction less two spreads to the largest plus two, by RAMP_STEP of the
+    smallest, in 0.5 mm."""
+    lo = min(math.exp(m - 2 * s) for m, s in zip(means, sds))
+    hi = max(math.exp(m + 2 * s) for m, s in zip(means, sds))
+    snap = lambda x: max(5e-4, round(x / 5e-4) * 5e-4)
+    return [snap(lo), snap(hi), snap(RAMP_STEP * lo)]
 
 
 def _new_frequencies(obs: Observations, sid: str, settings: DiagnosisSettings) -> list[float]:
@@ -38,19 +89,43 @@ def _new_frequencies(obs: Observations, sid: str, settings: DiagnosisSettings) -
     return [f for f in settings.probe_frequencies_hz if min(abs(f - t) for t in tested) > 0.05]
 
 
+def _candidate(sid: str, f: float, new: bool, rivals: list[str], probs: list[float], means: list[float],
+               sds: list[float], table) -> dict | None:
+    amps = ramp(means, sds)
+    if not within_limits(amps[1], f, table):
+        return None
+    return {"specimen_id": sid, "frequency_hz": f, "new": new, "kind": "afd_ramp", "amplitudes_m": amps,
+            "expected_gain_bits": expected_gain_bits(probs, means, sds),
+            "predicted_m": {m: math.exp(v) for m, v in zip(rivals, means)},
+            "spread": {m: s for m, s in zip(rivals, sds)}}
+
+
 def next_test(post: Posterior, obs: Observations, rivals: list[str], runs: dict, settings: DiagnosisSettings,
-              work: Path) -> dict | None:
-    """{'specimen_id', 'frequency_hz', 'new', 'predicted_m': {rival: threshold}} of the
-    best test, or None with fewer than two rivals. `runs` gives each rival's (variant,
-    &motion settings) at its posterior mean (pipeline.model_run)."""
+              work: Path, table) -> dict | None:
+    """The best test (specimen_id, frequency_hz, new, kind, amplitudes_m,
+    expected_gain_bits, predicted_m per rival, alternatives: the next best), or None with
+    fewer than two rivals or no test within the table's limits. `runs` gives each
+    rival's (variant, &motion settings) at its posterior mean (pipeline.model_run)."""
     if len(rivals) < 2:
         return None
-    tested = tested_separation(post, rivals)
-    j = int(np.argmax(tested))
-    best = {"specimen_id": post.pairs[j].specimen_id, "frequency_hz": post.pairs[j].frequency_hz, "new": False,
-            "score": float(tested[j]), "predicted_m": {}}
     sc = post.scales
-    var = float(np.mean(sc.sigma_sim ** 2)) + sc.sigma_gain ** 2 + TAU_SPECIMEN[1] ** 2 + TAU_CAMPAIGN[1] ** 2
+    probs = [post.probabilities[m] for m in rivals]
+    candidates = []
+    # Tested pairs: each rival's posterior predictive (mean, and the spread of its mixture).
+    stats = {}
+    for m in rivals:
+        mp = post.models[m]
+        mu = mp.adjusted_mu(sc)
+        mean = predicted_log(mp, sc)
+        sd = predictive_sd(mp.grid, sc, post.pairs)
+        var = mp.weights @ (sd ** 2 + (mu - mean[None, :]) ** 2)
+        stats[m] = (mean, np.sqrt(var))
+    typical_sd = {m: float(np.sqrt(np.mean(stats[m][1] ** 2))) for m in rivals}
+    for j, p in enumerate(post.pairs):
+        c = _candidate(p.specimen_id, p.frequency_hz, False, rivals, probs, [stats[m][0][j] for m in rivals],
+                       [stats[m][1][j] for m in rivals], table)
+        if c:
+            candidates.append(c)
     gain = float(np.mean(sc.gain_mean)) if obs.gain_source != "none" else 1.0
     for sid in sorted({p.specimen_id for p in obs.pairs}):
         spec, freqs = obs.specimens[sid], _new_frequencies(obs, sid, settings)
@@ -69,8 +144,14 @@ def next_test(post: Posterior, obs: Observations, rivals: list[str], runs: dict,
                     for m in rivals}
             if not all(math.isfinite(v) and v > 0 for v in pred.values()):
                 continue
-            score = sum(post.probabilities[a] * post.probabilities[b] * math.log(pred[a] / pred[b]) ** 2 / (2 * var)
-                        for i, a in enumerate(rivals) for b in rivals[i + 1:])
-            if score > best["score"]:
-                best = {"specimen_id": sid, "frequency_hz": f, "new": True, "score": score, "predicted_m": pred}
+            c = _candidate(sid, f, True, rivals, probs, [math.log(pred[m]) for m in rivals],
+                           [typical_sd[m] for m in rivals], table)
+            if c:
+                candidates.append(c)
+    if not candidates:
+        return None
+    candidates.sort(key=lambda c: -c["expected_gain_bits"])
+    best = dict(candidates[0])
+    best["alternatives"] = [{k: c[k] for k in ("specimen_id", "frequency_hz", "kind", "expected_gain_bits")}
+                            for c in candidates[1:1 + ALTERNATIVES]]
     return best

@@ -146,7 +146,7 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     if decision.verdict == "inconclusive" and len(rivals) > 1:
         log(f"[diagnose] looking for the test that separates {', '.join(rivals)} (tested and new frequencies)")
         suggestion = next_test(post, obs, rivals, {m: model_run(m, parameters(post, m, obs), obs) for m in rivals},
-                               settings, cache / "next-test")  # beside the bank: a rerun reuses its sweeps
+                               settings, cache / "next-test", campaign.table)  # beside the bank: a rerun reuses it
     sim = Simulator(settings, out_dir / "work")
     runs = {"nominal": (Variant(), {})}
     if shown:
@@ -170,8 +170,11 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
                      "threshold_error_se_pct": None if not math.isfinite(ext_se) else 100 * ext_se,
                      "hinge_match": hinge[shown] if shown else hinge["nominal"]},
         "candidates": [candidate_entry(m, post, held[m], obs) for m in CANDIDATES],
-        "next_test": None if suggestion is None else {"specimen_id": suggestion["specimen_id"],
-                                                      "frequency_hz": suggestion["frequency_hz"]},
+        "next_test": None if suggestion is None else {
+            "specimen_id": suggestion["specimen_id"], "frequency_hz": suggestion["frequency_hz"],
+            "kind": suggestion["kind"], "amplitudes_m": suggestion["amplitudes_m"],
+            "expected_gain_bits": suggestion["expected_gain_bits"], "predictions": suggestion["predicted_m"],
+            "alternatives": suggestion["alternatives"]},
         "flags": flag_list,
         "adequacy_p_value": decision.p_value,
         "notes": "",

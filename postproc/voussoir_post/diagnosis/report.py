@@ -115,11 +115,13 @@ def notes(decision: Decision, post: Posterior, result: dict, info: dict) -> str:
             text += f" Every rival includes {' and '.join(sorted(common))}: that part is established."
         nt = info.get("next_test")
         if nt:
-            text += (f" The test whose outcome would best separate them: specimen {nt['specimen_id']} at "
-                     f"{nt['frequency_hz']:g} Hz"
-                     + (" (a frequency not tested yet), where the rivals predict thresholds of "
-                        + ", ".join(f"{m} {1e3 * v:.1f} mm" for m, v in nt["predicted_m"].items())
-                        if nt["new"] else ", ramped again in finer steps") + ".")
+            a = nt["amplitudes_m"]
+            text += (f" The test whose outcome is expected to tell most about the cause "
+                     f"({nt['expected_gain_bits']:.2f} bits): specimen {nt['specimen_id']} at "
+                     f"{nt['frequency_hz']:g} Hz" + (" (a frequency not tested yet)" if nt["new"] else "")
+                     + f", an afd ramp from {1e3 * a[0]:.1f} to {1e3 * a[1]:.1f} mm by {1e3 * a[2]:.1f} mm, where "
+                     "the rivals predict thresholds of "
+                     + ", ".join(f"{m} {1e3 * v:.1f} mm" for m, v in nt["predicted_m"].items()) + ".")
     for s in info.get("screen", []):
         text += " " + s["sentence"]
     return text
