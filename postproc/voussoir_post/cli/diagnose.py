@@ -18,6 +18,7 @@ import argparse
 import os
 import sys
 import warnings
+from pathlib import Path
 
 from ..errors import DONE, InputError
 from ..readers.campaign import CampaignWarning, read_campaign
@@ -33,10 +34,13 @@ def cmd_check(args) -> int:
         warnings.simplefilter("ignore", CampaignWarning)  # they are printed in the summary
         campaign = read_campaign(args.campaign)
     print(campaign_summary(campaign))
-    from ..diagnosis.report import METHOD_CHECK, PRIOR_TEXT
-    print("\nHow `voussoir-diagnose run` would weigh it (docs/measured_data.md version 3): posterior "
+    from ..diagnosis.report import METHOD_CHECK, prior_text
+    from ..diagnosis.settings import DiagnosisSettings
+    frictions = {s.friction for s in campaign.specimens.values()}
+    print("\nHow `voussoir-diagnose run` would weigh it (docs/measured_data.md version 4): posterior "
           "probabilities of the nominal model, of each effect and of each pair, a cause named at 0.9.\n"
-          + PRIOR_TEXT.replace("`", "") + "\n" + METHOD_CHECK)
+          + prior_text(DiagnosisSettings(bin_dir=Path(".")), frictions.pop() if len(frictions) == 1 else None
+                       ).replace("`", "") + "\n" + METHOD_CHECK)
     return DONE
 
 

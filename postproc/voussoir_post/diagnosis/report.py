@@ -35,35 +35,25 @@ FLAG_TEXT = {"one_sided": "some pairs have collapse rows only: their brackets ar
                            "campaign, and no cause is named"}
 
 
-def _range(v: np.ndarray, scale: float = 1.0, fmt: str = ".3g", unit: str = "") -> str:
-    return f"{scale * float(np.min(v)):{fmt}} to {scale * float(np.max(v)):{fmt}}{unit}"
-
-
-def prior_text(post: Posterior) -> str:
-    """The prior as the grids of this diagnosis hold it (never a fixed text)."""
-    single = {e: post.models[e].grid for e in ("contact_edges", "friction", "geometry") if e in post.models}
-    pair = {}
-    for m, mp in post.models.items():
-        if len(members(m)) == 2:
-            for name, v in zip(mp.grid.names, mp.grid.values):
-                if v.dtype != object and name != "table_motion":
-                    pair.setdefault(name, v)
-    described = {"contact_edges": ("contact inset", 1e3, ".2g", " mm"), "friction": ("friction", 1.0, ".3g", ""),
-                 "geometry": ("thickness factor", 1.0, ".3g", "")}
-    parts = []
-    for e, (label, scale, fmt, unit) in described.items():
-        if e in single:
-            text = f"{label} {_range(single[e].values[0], scale, fmt, unit)}"
-            if e in pair:
-                text += f" ({_range(pair[e], scale, fmt, unit)} in a pair)"
-            parts.append(text)
-    tm = post.models.get("table_motion")
-    gains = ("each pair's gain as the records measure it" if tm is not None and tm.grid.gain_per_pair
-             else "one table gain for the campaign, 0.7 to 1.4")
+def prior_text(settings, friction: float | None = None) -> str:
+    """The prior, from the settings' grids (the ranges the bank simulates), never a fixed
+    text; `friction` the specimens' nominal coefficient (its range is relative to it)."""
+    inset = [e for e in settings.inset_grid_m]
+    step, pair = max(settings.friction_steps), settings.pair_friction_steps
+    f_text = (f"nominal - {step:g} to nominal + {step:g}" if friction is None else
+              f"{max(settings.min_friction, friction - step):.3g} to {min(settings.max_friction, friction + step):.3g}")
+    f_pair = (f"nominal {min(pair):+g} to {max(pair):+g}" if friction is None else
+              f"{max(settings.min_friction, friction + min(pair)):.3g} to {min(settings.max_friction, friction + max(pair)):.3g}")
+    t, tp = settings.thickness_factors, settings.pair_thickness_factors
     return (f"Prior: `none` {model_prior('none'):.3g}, each of the five single effects "
-            f"{model_prior('friction'):.3g}, each of the ten pairs {model_prior('friction+geometry'):.3g}. Parameters "
-            "uniform on the ranges the simulation bank covers: " + "; ".join(parts)
-            + f"; restraint left, right or both alike; table motion: {gains}.")
+            f"{model_prior('friction'):.3g}, each of the ten pairs {model_prior('friction+geometry'):.3g}. "
+            f"Parameters uniform on the ranges the simulation bank covers: contact inset 0 to "
+            f"{1e3 * max(inset):.3g} mm (0 to {1e3 * max(settings.pair_inset_m):.3g} mm in a pair; at most 0.45 of "
+            f"the ring's thickness), friction {f_text} (within {settings.min_friction:g} to "
+            f"{settings.max_friction:g}; {f_pair} in a pair), thickness factor {min(min(t), 1.0):g} to "
+            f"{max(max(t), 1.0):g} ({min(min(tp), 1.0):g} to {max(max(tp), 1.0):g} in a pair); restraint left, "
+            "right or both alike; table gain 0.7 to 1.4 for the campaign without records, each pair's gain as "
+            "its records measure it with them.")
 
 
 def _pct(x) -> str:
@@ -125,6 +115,11 @@ def notes(decision: Decision, post: Posterior, result: dict, info: dict) -> str:
     for s in info.get("screen", []):
         text += " " + s["sentence"]
     return text
+
+
+def _common_friction(obs) -> float | None:
+    values = {float(obs.specimens[p.specimen_id].friction) for p in obs.pairs}
+    return values.pop() if len(values) == 1 else None
 
 
 def _flag_lines(result: dict) -> list[str]:
@@ -233,7 +228,8 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
                 f"off by a common factor (standard deviation {_pct(sc.gain_bias_sd)}, "
                 + ("table.csv" if campaign.table.from_file else "the default without table.csv")
                 + "), or the pair's own gain under `table_motion`."
-                if obs.gain_source != "none" else ""), "", prior_text(post), "",
+                if obs.gain_source != "none" else ""), "",
+             prior_text(info["settings"], _common_friction(obs)), "",
              f"Check of `{decision.top}`: p = {decision.p_value:.3f} "
              f"({'adequate' if decision.adequate else 'not adequate'}; the threshold is {ADEQUATE_P}). Each "
              "specimen's brackets are predicted by the model fitted without that specimen; the probability "
