@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 from pathlib import Path
 
 import numpy as np
@@ -45,8 +46,9 @@ def prior_text(settings, friction: float | None = None) -> str:
     f_pair = (f"nominal {min(pair):+g} to {max(pair):+g}" if friction is None else
               f"{max(settings.min_friction, friction + min(pair)):.3g} to {min(settings.max_friction, friction + max(pair)):.3g}")
     t, tp = settings.thickness_factors, settings.pair_thickness_factors
-    return (f"Prior: `none` {model_prior('none'):.3g}, each of the five single effects "
-            f"{model_prior('friction'):.3g}, each of the ten pairs {model_prior('friction+geometry'):.3g}. "
+    frac = lambda m: str(Fraction(model_prior(m)).limit_denominator(1000))
+    return (f"Prior: `none` {frac('none')}, each of the five single effects {frac('friction')}, each of the ten "
+            f"pairs {frac('friction+geometry')}. "
             f"Parameters uniform on the ranges the simulation bank covers: contact inset 0 to "
             f"{1e3 * max(inset):.3g} mm (0 to {1e3 * max(settings.pair_inset_m):.3g} mm in a pair; at most 0.45 of "
             f"the ring's thickness), friction {f_text} (within {settings.min_friction:g} to "
