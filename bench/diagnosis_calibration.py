@@ -32,7 +32,7 @@ import time
 from pathlib import Path
 
 import numpy as np
-from scipy.stats import binomtest, kstest
+from scipy.stats import kstest
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT / "postproc"), str(ROOT / "postproc" / "tests")]
@@ -85,18 +85,26 @@ def named_right(outs):
     return (sum(o["right_named"] for o in named) / len(named)) if named else None
 
 
-def reliability(outs: list[dict], out: Path, note: str) -> list[tuple]:
+def reliability(outs: list[dict], out: Path, note: str, n_boot: int = 2000, seed: int = 9) -> list[tuple]:
+    """Draws binned by the stated probability of the most probable model against how often
+    it is the truth; each bin's 95 % interval from a bootstrap over the truths (a truth's
+    campaigns are not independent draws)."""
     inside = [o for o in outs if o["truth"] != "outside"]
-    stated = np.array([o["p_top"] for o in inside])
-    right = np.array([o["top_right"] for o in inside])
     edges = np.array([0.0, 0.2, 0.4, 0.6, 0.8, 0.9, 1.0001])
+    slugs = sorted({o["slug"] for o in inside})
+    by = {s: [o for o in inside if o["slug"] == s] for s in slugs}
+    rng = np.random.default_rng(seed)
+    samples = [[o for k in rng.choice(len(slugs), len(slugs)) for o in by[slugs[k]]] for _ in range(n_boot)]
     bins = []
     for a, b in zip(edges[:-1], edges[1:]):
-        sel = (stated >= a) & (stated < b)
-        if sel.any():
-            n, r = int(sel.sum()), float(right[sel].mean())
-            ci = binomtest(int(round(r * n)), n).proportion_ci(0.95, method="wilson")
-            bins.append((float(a), float(min(b, 1.0)), n, float(stated[sel].mean()), r, ci.low, ci.high))
+        sel = [o for o in inside if a <= o["p_top"] < b]
+        if not sel:
+            continue
+        boot = [np.mean([o["top_right"] for o in smp if a <= o["p_top"] < b]) for smp in samples
+                if any(a <= o["p_top"] < b for o in smp)]
+        bins.append((float(a), float(min(b, 1.0)), len(sel), float(np.mean([o["p_top"] for o in sel])),
+                     float(np.mean([o["top_right"] for o in sel])), float(np.quantile(boot, 0.025)),
+                     float(np.quantile(boot, 0.975))))
     reliability_figure(out, bins, note)
     return bins
 

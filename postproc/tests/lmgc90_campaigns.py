@@ -35,9 +35,8 @@ from pathlib import Path
 
 import numpy as np
 
-from independent_campaigns import ARCHES
-from voussoir_post.diagnosis.observations import Observations, PairObservation
-from voussoir_post.readers.campaign import Specimen
+from replay_maps import bracket, ramp_observations
+from voussoir_post.diagnosis.observations import Observations
 
 __all__ = ["TRUTH_DIR", "LabFaults", "load_truth", "stored_truths", "draw_campaign", "truth_model", "SNAP_M"]
 
@@ -96,7 +95,6 @@ def draw_campaign(truth: dict, rng: np.random.Generator, faults: LabFaults = Lab
     bias = rng.uniform(-faults.transducer_bias, faults.transducer_bias) if faults.transducer_bias else 0.0
     offset = math.exp(faults.offset_sd * rng.standard_normal()) if faults.offset_sd else 1.0
     collapses_only = bool(rng.random() < faults.collapses_only_p)
-    by_id = {a.specimen_id: a for a in ARCHES}
     pairs = []
     for pair in truth["pairs"]:
         step = max(SNAP_M, round(rng.uniform(*faults.step_mm) * 1e-3 / SNAP_M) * SNAP_M)
@@ -114,14 +112,6 @@ def draw_campaign(truth: dict, rng: np.random.Generator, faults: LabFaults = Lab
             continue
         if collapses_only:
             tests = [t for t in tests if t[1]]
-        high = min(a for a, fell, _, _ in tests if fell)
-        low = max((a for a, fell, _, _ in tests if not fell and a < high), default=0.0)
-        pairs.append(PairObservation(pair["specimen_id"], float(pair["frequency_hz"]), float(low), float(high),
-                                     tuple(float(t[2]) for t in tests), tuple(t[3] for t in tests)))
-    ids = list(dict.fromkeys(p.specimen_id for p in pairs))
-    specimens = {sid: Specimen(sid, by_id[sid].embrace_deg, by_id[sid].n_voussoirs, by_id[sid].r_ext_m,
-                               by_id[sid].thickness_m, by_id[sid].width_m, by_id[sid].density_kg_m3,
-                               friction=by_id[sid].friction, restrained_springings="none", setup_certain=True)
-                 for sid in ids}
-    obs = Observations(name, specimens, pairs, {sid: (1, 1, 1) for sid in ids}, gain_source="records")
+        pairs.append(bracket(pair["specimen_id"], pair["frequency_hz"], tests))
+    obs = ramp_observations(name, pairs)
     return obs, {"transducer_bias": bias, "offset": offset, "collapses_only": collapses_only}

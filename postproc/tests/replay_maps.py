@@ -202,7 +202,6 @@ def draw_observations(omap: dict, rng: np.random.Generator, arches=ARCHES, gain_
     table gain g = 1 + gain_sd N(0, 1) and the map's outcome at amplitude x g, and a
     measured gain table_gain g (1 + gain_meas_sd N(0, 1)). Pairs without a collapse are
     left out."""
-    by_id = {a.specimen_id: a for a in arches}
     pairs = []
     for pair in omap["pairs"]:
         amplitudes_m = np.asarray(pair["amplitudes_m"], dtype=float)
@@ -219,13 +218,24 @@ def draw_observations(omap: dict, rng: np.random.Generator, arches=ARCHES, gain_
             if fell:
                 break
             amp_m = round((amp_m + step_m) / SNAP_M) * SNAP_M
-        falls = [a for a, fell, _, _ in tests if fell]
-        if not falls:
-            continue
-        high_m = min(falls)
-        low_m = max((a for a, fell, _, _ in tests if not fell and a < high_m), default=0.0)
-        pairs.append(PairObservation(pair["specimen_id"], float(f), float(low_m), float(high_m),
-                                     tuple(float(t[2]) for t in tests), tuple(t[3] for t in tests)))
+        if any(fell for _, fell, _, _ in tests):
+            pairs.append(bracket(pair["specimen_id"], f, tests))
+    return ramp_observations(name, pairs, arches)
+
+
+def bracket(specimen_id: str, frequency_hz: float, tests: list[tuple]) -> PairObservation:
+    """The bracket of one ramp's tests (commanded amplitude [m], collapsed, measured gain,
+    test id), which hold a collapse: the smallest collapse and the largest stand below it."""
+    high_m = min(a for a, fell, _, _ in tests if fell)
+    low_m = max((a for a, fell, _, _ in tests if not fell and a < high_m), default=0.0)
+    return PairObservation(specimen_id, float(frequency_hz), float(low_m), float(high_m),
+                           tuple(float(t[2]) for t in tests), tuple(t[3] for t in tests))
+
+
+def ramp_observations(name: str, pairs: list[PairObservation], arches=ARCHES) -> Observations:
+    """The observations of a replayed campaign: its pairs on the nominal arches (as the
+    laboratory declares them), records of every test, afd 1-1-1 cycles."""
+    by_id = {a.specimen_id: a for a in arches}
     ids = list(dict.fromkeys(p.specimen_id for p in pairs))
     specimens = {sid: Specimen(sid, by_id[sid].embrace_deg, by_id[sid].n_voussoirs, by_id[sid].r_ext_m,
                                by_id[sid].thickness_m, by_id[sid].width_m, by_id[sid].density_kg_m3,

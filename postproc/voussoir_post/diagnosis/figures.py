@@ -126,13 +126,13 @@ def reliability_figure(out: Path, bins: Sequence[ReliabilityBin], note: str | No
         ax.annotate(f"{n}", (stated, ci_low), textcoords="offset points", xytext=(0, -3), ha="center",
                     va="top", fontsize=7)
     ax.axvline(NAME_AT, label=f"a cause is named at {NAME_AT:g}", **_NAMED_AT_STYLE)
-    ax.plot([], [], "o", color=_MODEL_COLOUR, label="draws binned by stated probability\n(bar: 95 % Wilson "
-                                                    "interval; number: draws)")
+    ax.plot([], [], "o", color=_MODEL_COLOUR, label="campaigns binned by stated probability\n(bar: 95 % interval, "
+                                                    "bootstrap over the truths;\nnumber: campaigns)")
     ax.set_xlim(0, 1.02)
     ax.set_ylim(0, 1.02)
     ax.set_xlabel("stated probability of the most probable model")
     ax.set_ylabel("observed frequency that it is the truth")
-    ax.set_title("Reliability of the diagnosis's probabilities\n(independent generator, truths in the catalogue)",
+    ax.set_title("Reliability of the diagnosis's probabilities\n(campaigns made by LMGC90, truths in the catalogue)",
                  fontsize=10)
     ax.legend(fontsize=7, loc="upper left")
     save_png(fig, out / "diagnosis_reliability.png", note=note)
