@@ -369,3 +369,15 @@ def test_end_to_end_diagnosis_follows_the_contract_and_keeps_the_truth(tmp_path,
     # One window for hinges, for the generator and the model: a model that names the
     # truth reproduces most of what the generator saw.
     assert result["baseline"]["hinge_match"] is not None
+
+
+def test_the_reports_figures_are_written_in_the_format_asked(tmp_path):
+    """voussoir-diagnose run --format: report.md's figures as PDF or SVG, not only PNG."""
+    from voussoir_post.diagnosis.figures import probabilities_figure
+    probs = {"none": 0.6, "friction": 0.3, "geometry": 0.1}
+    assert probabilities_figure(tmp_path, probs, "note", "pdf") == "probabilities.pdf"
+    assert (tmp_path / "probabilities.pdf").read_bytes()[:4] == b"%PDF"
+    assert probabilities_figure(tmp_path, probs, "note", "svg") == "probabilities.svg"
+    assert b"<svg" in (tmp_path / "probabilities.svg").read_bytes()[:2000]
+    assert probabilities_figure(tmp_path, probs, "note") == "probabilities.png"
+    assert (tmp_path / "probabilities.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -53,7 +53,7 @@ def cmd_run(args) -> int:
     if args.np < 1 or args.dt <= 0:
         raise InputError("--np must be >= 1 and --dt > 0")
     out = args.out or os.path.join(os.getcwd(), "diagnosis_" + os.path.basename(os.path.normpath(args.campaign)))
-    settings = DiagnosisSettings(bin_dir=bin_dir, n_ranks=args.np, dt_s=args.dt,
+    settings = DiagnosisSettings(bin_dir=bin_dir, n_ranks=args.np, dt_s=args.dt, figure_format=args.format,
                                  log=lambda m: print(m, flush=True))
     result = diagnose(args.campaign, out, settings)
     top = sorted(result["probabilities"].items(), key=lambda kv: -kv[1])[:3]
@@ -79,6 +79,8 @@ def build_parser() -> argparse.ArgumentParser:
                                                 "(default: ./diagnosis_<campaign>)")
     p.add_argument("--np", type=int, default=2, help="MPI ranks of the sweeps (default 2)")
     p.add_argument("--dt", type=float, default=1.0e-3, help="time step of the simulations [s] (default 1e-3)")
+    p.add_argument("--format", choices=("png", "pdf", "svg"), default="png",
+                   help="format of report.md's figures (default png, 200 dpi)")
     p.add_argument("--bin-dir", help=f"folder of the Fortran executables (default: ${BIN_DIR_ENV}, else the "
                                      f"folder scripts/setup.sh wrote into {installed_bin_dir_file()}, else PATH)")
     p.set_defaults(func=cmd_run)

@@ -13,7 +13,7 @@ from typing import Sequence
 import numpy as np
 
 from ..analysis.afd import afd_command
-from ..plots.drawing import COLORS, new_figure, save_png
+from ..plots.drawing import COLORS, new_figure, save_figure, save_png
 from .decision import NAME_AT
 from .observations import PairObservation
 
@@ -25,7 +25,7 @@ _MODEL_COLOUR, _NOMINAL_COLOUR, _NAMED_AT_STYLE = COLORS[0], "0.45", dict(color=
 
 def thresholds_figure(out: Path, pairs: Sequence[PairObservation], nominal_m: Sequence[float],
                       shown: str | None, shown_probability: float, shown_m: Sequence[float] | None,
-                      note: str) -> str:
+                      note: str, fmt: str = "png") -> str:
     """Each pair's measured bracket (a bound where no test stood below the collapse), the
     nominal model's threshold and the shown model's, fitted without the specimen."""
     fig = new_figure(max(6.5, 1.1 * len(pairs) + 2.5), 4.6)
@@ -58,11 +58,11 @@ def thresholds_figure(out: Path, pairs: Sequence[PairObservation], nominal_m: Se
     ax.set_title("Collapse thresholds: measured brackets against the models")
     # Below the axes, where no point can hide under it.
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=1, frameon=False)
-    save_png(fig, out / "thresholds.png", note=note)
-    return "thresholds.png"
+    save_figure(fig, out / f"thresholds.{fmt}", note=note)
+    return f"thresholds.{fmt}"
 
 
-def probabilities_figure(out: Path, probabilities: dict[str, float], note: str) -> str:
+def probabilities_figure(out: Path, probabilities: dict[str, float], note: str, fmt: str = "png") -> str:
     """The posterior probability of the models above 0.005 (at most ten), most probable on top."""
     ranked = sorted(probabilities, key=lambda m: -probabilities[m])
     shown = [m for m in ranked if probabilities[m] >= 0.005][:10] or ranked[:1]
@@ -77,11 +77,11 @@ def probabilities_figure(out: Path, probabilities: dict[str, float], note: str) 
     ax.set_xlabel("posterior probability")
     ax.set_title("Posterior probability of each model (those above 0.005)")
     ax.legend(fontsize=8, loc="lower right")
-    save_png(fig, out / "probabilities.png", note=note)
-    return "probabilities.png"
+    save_figure(fig, out / f"probabilities.{fmt}", note=note)
+    return f"probabilities.{fmt}"
 
 
-def table_figure(out: Path, campaign, table, note: str) -> str | None:
+def table_figure(out: Path, campaign, table, note: str, fmt: str = "png") -> str | None:
     """The commanded and measured table motion of the largest recorded test, and the
     actuator fit (gain, delay) of every record; None without records."""
     if table.source != "records" or not table.per_test:
@@ -105,8 +105,8 @@ def table_figure(out: Path, campaign, table, note: str) -> str | None:
     axes[1].set_ylabel("fitted gain (measured / commanded)")
     axes[1].set_title("Actuator fit of every record", fontsize=9)
     axes[1].legend(fontsize=8)
-    save_png(fig, out / "table_records.png", note=note)
-    return "table_records.png"
+    save_figure(fig, out / f"table_records.{fmt}", note=note)
+    return f"table_records.{fmt}"
 
 
 #: One bin of the reliability figure: stated probabilities in [low, high), their number

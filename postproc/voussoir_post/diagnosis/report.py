@@ -187,11 +187,12 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
     note = provenance(f"voussoir-diagnose, executables {bank.code}", f"campaign {campaign.name}")
     text = notes(decision, post, result, info)
     shown = decision.shown
+    fmt = info["settings"].figure_format
     figs = [thresholds_figure(out, obs.pairs, info["baseline_pred"], shown,
                               post.probabilities[shown] if shown else float("nan"),
-                              info["held"][shown][0] if shown else None, note),
-            probabilities_figure(out, post.probabilities, note)]
-    tfig = table_figure(out, campaign, info["table"], note)
+                              info["held"][shown][0] if shown else None, note, fmt),
+            probabilities_figure(out, post.probabilities, note, fmt)]
+    tfig = table_figure(out, campaign, info["table"], note, fmt)
     sc = post.scales
     lines = [f"# Diagnosis of campaign `{campaign.name}`", "", f"**Verdict: `{result['verdict']}`.** {text}", "",
              f"![probabilities]({figs[1]})", "", "## Thresholds", "",

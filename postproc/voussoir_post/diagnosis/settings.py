@@ -38,4 +38,5 @@ class DiagnosisSettings:
     posterior_samples: int = 200
     #: Where the simulation bank is cached (None: a folder `voussoir-bank` beside the output).
     bank_dir: Path | None = None
+    figure_format: str = "png"  #: of report.md's figures: png, pdf or svg
     log: object = print
