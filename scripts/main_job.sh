@@ -62,10 +62,10 @@ echo "== 2. Limit analysis of the 156-degree arch"
 "$bin/voussoir-limit" input/limit_seed_156.nml --json > "$results"/limit_seed_156.json
 
 echo "== 3. Collapse envelope of the 156-degree arch, 0.5 to 4 Hz (2 MPI ranks)"
-(cd "$results" && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" "$root/input/sweep_envelope_156.nml" | tail -n 2)
+(cd "$results" && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" "$root/input/sweep_envelope_156.nml" | sed "s/^/   /")
 
 echo "== 4. The four seed arches at the frequencies of their tests (2 MPI ranks)"
-(cd "$results" && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" "$root/input/sweep_seed_tests.nml" | tail -n 2)
+(cd "$results" && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" "$root/input/sweep_seed_tests.nml" | sed "s/^/   /")
 
 echo "== 5. Figures"
 "$post" history "$results"/seed_156_A66mm.h5 --out "$results"/ >/dev/null
