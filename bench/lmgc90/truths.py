@@ -14,6 +14,7 @@ one at a time:
 
     python bench/lmgc90/truths.py --lmgc90-build DIR [--truths N] [--seed S] [--out DIR]
     python bench/lmgc90/truths.py --lmgc90-build DIR --check   # nominal W156 at 1.25 Hz, LMGC90 vs Voussoir
+    python bench/lmgc90/truths.py --summary                    # the stored truths (no LMGC90 needed)
 
 Resumable: truth k is drawn from numpy's default_rng([S, k]) alone, and a truth whose
 file (t<k>_*.json) is already in --out is skipped. docs/lmgc90.md says how the truths
@@ -443,7 +444,7 @@ def make_truth(truth: dict, build: str, bin_dir: Path, work: Path, log=print) ->
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--lmgc90-build", required=True, help="LMGC90 build folder (holds pylmgc90)")
+    ap.add_argument("--lmgc90-build", help="LMGC90 build folder (holds pylmgc90)")
     ap.add_argument("--truths", type=int, default=10, help="truths 0 .. N-1 (those stored are skipped)")
     ap.add_argument("--first", type=int, default=0, help="first truth index")
     ap.add_argument("--seed", type=int, default=2026)
@@ -451,9 +452,12 @@ def main(argv=None) -> int:
     ap.add_argument("--bin-dir", default=os.environ.get("VOUSSOIR_BIN_DIR", str(ROOT / "build" / "drivers")),
                     help="voussoir drivers (voussoir-limit for the onsets; voussoir-run for --check)")
     ap.add_argument("--check", action="store_true", help="nominal W156 at 1.25 Hz: LMGC90 against Voussoir")
+    ap.add_argument("--summary", action="store_true", help="list the stored truths (no LMGC90 needed)")
     args = ap.parse_args(argv)
-    build = os.path.abspath(args.lmgc90_build)
-    if not (Path(build) / "pylmgc90").is_dir():
+    if args.summary:
+        return summary(Path(args.out))
+    build = os.path.abspath(args.lmgc90_build or ".")
+    if not args.lmgc90_build or not (Path(build) / "pylmgc90").is_dir():
         sys.exit(f"truths.py: no pylmgc90 in {build} (give the LMGC90 build folder)")
     bin_dir = Path(args.bin_dir)
     if not (bin_dir / "voussoir-limit").exists():
@@ -476,6 +480,28 @@ def main(argv=None) -> int:
         (out / f"{name}.json").write_text(json.dumps(_rounded(rec), separators=(",", ":")) + "\n")
         print(f"{time.strftime('%H:%M:%S')} truth {k} stored: {rec['n_runs']} runs, {rec['seconds']:.0f} s "
               f"({rec['seconds'] / max(rec['n_runs'], 1):.2f} s a run)", flush=True)
+    return 0
+
+
+def summary(out: Path) -> int:
+    """One line per stored truth: its model, each pair's threshold over the nominal arch's
+    onset, its runs and seconds; then the count per model and the mean time per truth."""
+    files = sorted(out.glob("t*_*.json"), key=lambda p: int(p.name[1:].split("_")[0]))
+    counts: dict[str, int] = {}
+    secs = []
+    print(f"{'truth':58s} threshold / onset: " + " ".join(f"{a.specimen_id}@{f:g}" for a in ARCHES
+                                                         for f in a.frequencies_hz))
+    for path in files:
+        rec = json.loads(path.read_text())
+        model = rec["truth"]["model"] + (f" ({rec['truth']['outside_kind']})" if "outside_kind" in rec["truth"] else "")
+        counts[model] = counts.get(model, 0) + 1
+        secs.append(rec["seconds"])
+        ratios = " ".join("  -  " if p["threshold_m"] is None else f"{p['threshold_m'] / p['onset_m']:.2f}"
+                          for p in rec["pairs"])
+        print(f"{path.stem:58s} {ratios}  {rec['n_runs']:4d} runs {rec['seconds']:5.0f} s")
+    if secs:
+        print(f"{len(files)} truths; " + ", ".join(f"{m}: {n}" for m, n in sorted(counts.items()))
+              + f"; {np.mean(secs):.0f} s a truth (min {min(secs):.0f}, max {max(secs):.0f})")
     return 0
 
 
