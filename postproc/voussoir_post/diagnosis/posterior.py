@@ -15,9 +15,8 @@ that gives the posterior probability of `none`, of each effect and of each pair.
   an odd pair fails the check. Adequate when p >= 0.01;
 - the held-out error of a model, leave one specimen out (one pair out with a single
   specimen), with its standard error over the pairs;
-- how differently the rivals predict each tested pair, in units of their predictive
-  spread, weighted by their probabilities (next_test.py weighs it against new
-  frequencies).
+- the prior sensitivity: the probabilities with every continuous range scaled about its
+  nominal value.
 """
 
 from __future__ import annotations
@@ -33,7 +32,7 @@ from .likelihood import Scales, adjusted_mu, log_likelihood, predictive_sd, reco
 from .models import MODEL_IDS, ModelGrid, members, model_grid, model_prior
 from .observations import Observations, PairObservation
 
-__all__ = ["ModelPosterior", "Posterior", "infer", "held_out", "tested_separation", "predicted_log", "ADEQUATE_P", "adequacy", "pit_values",
+__all__ = ["ModelPosterior", "Posterior", "infer", "held_out", "predicted_log", "ADEQUATE_P", "adequacy", "pit_values",
            "loso_folds", "prior_sensitivity", "SENSITIVITY_FACTORS"]
 
 ADEQUATE_P = 0.01
@@ -47,7 +46,6 @@ class ModelPosterior:
     weights: np.ndarray  #: posterior weight of each grid point
     probability: float = 0.0
     log_lik: np.ndarray | None = field(default=None, repr=False)  #: log likelihood of each grid point, records in
-
 
     def adjusted_mu(self, sc: Scales) -> np.ndarray:
         """Predicted log threshold in commanded amplitude at each grid point, per pair."""
@@ -170,25 +168,6 @@ def held_out(bank: Bank, obs: Observations, model_id: str) -> tuple[np.ndarray, 
     err = np.abs(pred - meas) / meas
     se = float(np.std(err, ddof=1) / math.sqrt(err.size)) if err.size > 1 else math.nan
     return pred, float(np.mean(err)), se
-
-
-def tested_separation(post: Posterior, rivals: list[str]) -> np.ndarray:
-    """How differently the rivals predict each tested pair: the sum over pairs of rivals
-    of p_a p_b (m_a - m_b)^2 / (v_a + v_b), m the posterior mean log threshold and v its
-    predictive variance (simulator, table, discrepancy and the parameters' own spread)."""
-    sc = post.scales
-    means = {m: predicted_log(post.models[m], sc) for m in rivals}
-    var = {}
-    for m in rivals:
-        mu = post.models[m].adjusted_mu(sc)
-        var[m] = post.models[m].weights @ (mu - means[m][None, :]) ** 2
-    base = {m: post.models[m].weights @ predictive_sd(post.models[m].grid, sc, post.pairs) ** 2 for m in rivals}
-    score = np.zeros(len(post.pairs))
-    for i, a in enumerate(rivals):
-        for b in rivals[i + 1:]:
-            pa, pb = post.probabilities[a], post.probabilities[b]
-            score += pa * pb * (means[a] - means[b]) ** 2 / (base[a] + base[b] + var[a] + var[b])
-    return score
 
 
 #: The factors of the prior-sensitivity table (every continuous range about its nominal value).
