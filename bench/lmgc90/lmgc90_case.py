@@ -75,6 +75,20 @@ def gen(case):
     pre.writeDatbox(2, mats, mods, bodies, tacts, svs, post=post, gravy=[0.0, -case["gravity_m_s2"], 0.0])
 
 
+def step(chipy, solver):
+    """One Moreau-Jean step of LMGC90: free velocity, contact detection, the NLGS, update."""
+    chipy.IncrementStep()
+    chipy.ComputeFext()
+    chipy.ComputeBulk()
+    chipy.ComputeFreeVelocity()
+    chipy.SelectProxTactors()
+    chipy.RecupRloc()
+    chipy.ExSolver(*solver)
+    chipy.StockRloc()
+    chipy.ComputeDof()
+    chipy.UpdateStep()
+
+
 def run(case, out_path):
     from pylmgc90 import chipy
 
@@ -106,16 +120,7 @@ def run(case, out_path):
     for k in range(1, case["n_steps"] + 1):
         if k == split + 1:
             t_split = time.perf_counter() - t0
-        chipy.IncrementStep()
-        chipy.ComputeFext()
-        chipy.ComputeBulk()
-        chipy.ComputeFreeVelocity()
-        chipy.SelectProxTactors()
-        chipy.RecupRloc()
-        chipy.ExSolver(*solver)
-        chipy.StockRloc()
-        chipy.ComputeDof()
-        chipy.UpdateStep()
+        step(chipy, solver)
         chipy.WritePostproFiles()
         # The monitors (as voussoir-run's, in a cheaper form): the crown relative to the
         # table every step, the collapse criterion every `every` steps.

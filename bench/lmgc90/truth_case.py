@@ -37,6 +37,8 @@ import time
 
 import numpy as np
 
+from lmgc90_case import step  # the same Moreau-Jean step as the side-by-side bench
+
 
 def gen(model):
     from pylmgc90 import pre
@@ -100,16 +102,7 @@ def run(model, spec, out_path):
     t0 = time.perf_counter()
     k = 0
     for k in range(1, spec["n_steps"] + 1):
-        chipy.IncrementStep()
-        chipy.ComputeFext()
-        chipy.ComputeBulk()
-        chipy.ComputeFreeVelocity()
-        chipy.SelectProxTactors()
-        chipy.RecupRloc()
-        chipy.ExSolver(*solver)
-        chipy.StockRloc()
-        chipy.ComputeDof()
-        chipy.UpdateStep()
+        step(chipy, solver)
         if k == lead:
             settle = max(ref[i][1] - chipy.RBDY2_GetBodyVector("Coor_", i)[1] for i in free)
         if k % every == 0:
