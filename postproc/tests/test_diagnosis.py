@@ -30,7 +30,7 @@ import pytest
 from scipy.stats import binomtest, multivariate_normal, norm
 
 from voussoir_post.diagnosis.actuator import peak_gain
-from voussoir_post.diagnosis.bank import Bank, key_variant, load_banks, variant_key
+from voussoir_post.diagnosis.bank import Bank, build_bank, key_variant, load_banks, variant_key
 from voussoir_post.diagnosis.decision import NAME_AT, credible_set
 from voussoir_post.diagnosis.emulator import emulate
 from voussoir_post.diagnosis.likelihood import _log_bracket, records_log_factor, scales
@@ -366,6 +366,17 @@ def test_end_to_end_diagnosis_follows_the_contract_and_keeps_the_truth(tmp_path,
     # ... and the next test's sweeps are the first run's (the same questions, not new ones).
     assert sorted(p.name for p in (tmp_path / "bank" / "next-test").glob("*")) == questions
     assert max(abs(p[m] - again["probabilities"][m]) for m in p) <= 0.01
+    # A test at a new frequency simulates that frequency only (the cache holds a file per
+    # specimen and frequency), and the merged bank holds both, the first to the bit.
+    spec = campaign.specimens["W156"]
+    first = build_bank({"W156": spec}, {"W156": [1.25]}, {"W156": (1, 1, 1)}, settings, tmp_path / "bank",
+                       tmp_path / "work")
+    grown = build_bank({"W156": spec}, {"W156": [1.25, 2.5]}, {"W156": (1, 1, 1)}, settings, tmp_path / "bank",
+                       tmp_path / "work")
+    merged = grown.specimens["W156"]
+    assert first.searches == 0 and merged.frequencies_hz == [1.25, 2.5]
+    assert grown.searches == merged.searches - first.specimens["W156"].searches > 0
+    assert merged.thresholds["nominal"][0] == first.specimens["W156"].thresholds["nominal"][0]
     # One window for hinges, for the generator and the model: a model that names the
     # truth reproduces most of what the generator saw.
     assert result["baseline"]["hinge_match"] is not None
@@ -381,3 +392,4 @@ def test_the_reports_figures_are_written_in_the_format_asked(tmp_path):
     assert b"<svg" in (tmp_path / "probabilities.svg").read_bytes()[:2000]
     assert probabilities_figure(tmp_path, probs, "note") == "probabilities.png"
     assert (tmp_path / "probabilities.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+

@@ -8,9 +8,11 @@ simulator's own spread (the nominal model at dt x 0.97 and x 1.03, and at dt / 2
 Nothing here reads a measured threshold: the search ceiling and tolerance come from the
 specimen's limit analysis (the onset of rocking, voussoir-limit), so every noise draw
 of a campaign, and every campaign of the same specimens and frequencies, asks the
-kernel the same questions and gets the same answers. The bank of one specimen is cached
-as JSON under a key of the executables' bytes, the specimen, its frequencies and
-cycles, the time step and the grids: a second diagnosis re-simulates nothing.
+kernel the same questions and gets the same answers. The bank is cached as JSON, one
+file per specimen and frequency, under a key of the executables' bytes, the specimen, the
+frequency and cycles, the time step and the grids: a second diagnosis re-simulates
+nothing, and a test at a new frequency simulates that frequency only (`merge` joins a
+specimen's frequencies).
 
 The simulator's own spread is measured by replicas (the same model at dt x 0.97 and x
 1.03, and for the nominal model also at other scan steps) at the nominal model and at
@@ -46,7 +48,7 @@ from .simulator import Simulator
 
 __all__ = ["BANK_VERSION", "SpecimenBank", "Bank", "variant_key", "key_variant", "bank_variants", "build_bank",
            "load", "save", "load_banks", "onset_amplitudes",
-           "REPLICAS", "FINE_DT", "NODE_REPLICAS", "G", "spread_nodes", "refine_values", "replica_groups", "pooled_spread"]
+           "REPLICAS", "FINE_DT", "NODE_REPLICAS", "G", "spread_nodes", "refine_values", "replica_groups", "pooled_spread", "merge", "MISSING"]
 
 BANK_VERSION = 2
 G = G_M_S2  #: the kernel's gravity [m/s2] (units.py)
@@ -318,24 +320,52 @@ def load_banks(folder: Path, code: str = "stored") -> Bank:
     return Bank({b.specimen_id: b for b in map(load, files)}, code)
 
 
+#: A threshold a merged bank does not hold at one frequency (a node refined at another).
+MISSING = -1.0
+
+
+def merge(banks: list[SpecimenBank]) -> SpecimenBank:
+    """One specimen's bank over every frequency, from banks of one frequency each (a model
+    simulated at some frequencies only, a refined node, holds MISSING at the others)."""
+    banks = sorted(banks, key=lambda b: b.frequencies_hz[0])
+    if len(banks) == 1:
+        return banks[0]
+    freqs = [f for b in banks for f in b.frequencies_hz]
+
+    def table(get) -> dict[str, list[float]]:
+        keys = sorted(set().union(*(get(b) for b in banks)))
+        return {k: [v for b in banks for v in get(b).get(k, [MISSING] * len(b.frequencies_hz))] for k in keys}
+
+    node_keys = sorted(set().union(*(b.node_replicas for b in banks)))
+    return SpecimenBank(banks[0].specimen_id, freqs, banks[0].cycles, [o for b in banks for o in b.onset_m],
+                        max(b.amp_max_m for b in banks), min(b.amp_tol_m for b in banks), banks[0].dt_s,
+                        table(lambda b: b.thresholds), table(lambda b: b.replicas),
+                        {k: table(lambda b, k=k: b.node_replicas.get(k, {})) for k in node_keys},
+                        sum(b.searches for b in banks))
+
+
 def build_bank(specimens: dict[str, Specimen], frequencies: dict[str, list[float]], cycles: dict[str, tuple],
                settings: DiagnosisSettings, cache_dir: Path, work_dir: Path) -> Bank:
-    """The bank of every specimen, from the cache where it is there (the key says which)."""
+    """The bank of every specimen, from the cache where it is there. The cache holds one
+    file per specimen and frequency (the key says which: executables, specimen, frequency,
+    cycles, grids), so a test at a new frequency simulates that frequency only."""
     code = _code_hash(settings.bin_dir)
     out, reused, searches = {}, 0, 0
     for sid, spec in specimens.items():
-        freqs = sorted(frequencies[sid])
-        key = _cache_key(code, spec, freqs, cycles[sid], settings)
-        path = Path(cache_dir) / f"{sid}-{key}.json"
-        if path.exists():
-            out[sid] = load(path)
-            reused += 1
-            settings.log(f"[bank] {sid}: cached ({path})")
-            continue
-        made = _simulate(spec, freqs, cycles[sid], settings, Path(work_dir))
-        searches += made.searches
-        save(made, path)
-        # The bank as the cache holds it (thresholds to 9 digits): a second diagnosis reads
-        # the same numbers, so it computes the same posterior to the last bit.
-        out[sid] = load(path)
+        parts, cached = [], 0
+        for f in sorted(frequencies[sid]):
+            key = _cache_key(code, spec, [f], cycles[sid], settings)
+            path = Path(cache_dir) / f"{sid}-{f:g}Hz-{key}.json"
+            if path.exists():
+                cached += 1
+                settings.log(f"[bank] {sid} at {f:g} Hz: cached ({path})")
+            else:
+                made = _simulate(spec, [f], cycles[sid], settings, Path(work_dir) / f"{sid}-{f:g}Hz")
+                searches += made.searches
+                save(made, path)
+            # The bank as the cache holds it (thresholds to 9 digits): a second diagnosis
+            # reads the same numbers, so it computes the same posterior to the last bit.
+            parts.append(load(path))
+        reused += cached == len(parts)
+        out[sid] = merge(parts)
     return Bank(out, code, reused, searches)

@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .bank import FINE_DT, Bank, SpecimenBank, key_variant, pooled_spread
+from .bank import FINE_DT, MISSING, Bank, SpecimenBank, key_variant, pooled_spread
 from .emulator import emulate
 from .effects import RESTRAINTS
 from .observations import Observations
@@ -147,7 +147,7 @@ def _nodes(bank: SpecimenBank, spec, effects: tuple[str, ...], axes: list[list],
         key = _key(parts)
         if key not in bank.thresholds:  # declared brackets: base_restraint leaves them as they are
             key = _key([(e, v) for e, v in parts if e != "base_restraint"])
-        if key not in bank.thresholds:
+        if key not in bank.thresholds or bank.thresholds[key][k] == MISSING:  # simulated at other frequencies
             continue
         y, c = _node(bank, key, k)
         idx.append(ii)
