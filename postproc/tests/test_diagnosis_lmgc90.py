@@ -39,7 +39,9 @@ from test_diagnosis import stored_bank
 
 DRAWS = 3
 POWER_MARGIN = 0.2  #: nats of information about the truth, on average over the draws (a diagnosis blind to the data: 0)
-NOMINAL_P_NONE = 0.6  #: mean probability of `none` on the nominal truths (its prior: 0.25)
+#: Mean probability of `none` on the nominal truths: more probable than not (its prior is
+#: 0.25; banks 5 % off give 0.43 and 0.47 on the stored truths, the stored bank 0.59).
+NOMINAL_P_NONE = 0.5
 NAMED_LEVEL = 0.01  #: p-value below which the named causes are wrong more often than they say
 IN_SET = 0.7
 PARAMETER_COVERAGE = 0.7
