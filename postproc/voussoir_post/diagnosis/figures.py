@@ -123,8 +123,10 @@ def reliability_figure(out: Path, bins: Sequence[ReliabilityBin], note: str | No
         ax.errorbar(stated, right, yerr=[[right - ci_low], [ci_high - right]], fmt="o", color=_MODEL_COLOUR,
                     capsize=3)
         # The count under the bar, centred: clear of the line at 0.9 and of the diagonal.
-        ax.annotate(f"{n}", (stated, ci_low), textcoords="offset points", xytext=(0, -3), ha="center",
-                    va="top", fontsize=7)
+        # (above the bar where it reaches the axis)
+        low_end = ci_low > 0.06
+        ax.annotate(f"{n}", (stated, ci_low if low_end else ci_high), textcoords="offset points",
+                    xytext=(0, -3 if low_end else 3), ha="center", va="top" if low_end else "bottom", fontsize=7)
     ax.axvline(NAME_AT, label=f"a cause is named at {NAME_AT:g}", **_NAMED_AT_STYLE)
     ax.plot([], [], "o", color=_MODEL_COLOUR, label="campaigns binned by stated probability\n(bar: 95 % interval, "
                                                     "bootstrap over the truths;\nnumber: campaigns)")
