@@ -24,6 +24,7 @@ from ..earthquake.record_sets import SET_NAMES
 from ..errors import DONE, InputError
 from ..tables import ReportTable, format_table, write_csv
 from .dtcheck import add_dtcheck_parser
+from .risk import add_risk_parser
 from .entry import run_command
 
 __all__ = ["main", "build_parser", "output_path", "figure_path", "FIGURE_FORMATS"]
@@ -594,6 +595,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=cmd_fragility)
 
     add_dtcheck_parser(sub)
+    add_risk_parser(sub, figure_format)
 
     p = sub.add_parser("records", help="the suite of real ground-motion records and where they are installed")
     p.add_argument("keys", nargs="*", metavar="KEY", help="only these records (e.g. ELC180 CLS000)")
