@@ -32,7 +32,8 @@ def plot_risk(path: str, hazard, median_g: float, beta: float, result) -> str:
     twin.set_ylabel("probability of collapse")
     left.set_title("The site's hazard and the arch's fragility", fontsize=10)
     handles = left.get_legend_handles_labels()[0] + twin.get_legend_handles_labels()[0]
-    left.legend(handles, [h.get_label() for h in handles], fontsize=7, loc="lower left")
+    left.legend(handles, [h.get_label() for h in handles], fontsize=7, loc="upper center",
+                bbox_to_anchor=(0.5, -0.14))
     # Disaggregation: the density of lambda_c over ln PGA (its share per unit of ln PGA).
     share = result.density * result.pga_g / result.annual_rate
     right.plot(result.pga_g, share, color=COLORS[2], lw=1.5,
@@ -48,6 +49,7 @@ def plot_risk(path: str, hazard, median_g: float, beta: float, result) -> str:
                     f"P(50 yr) = {result.p_50yr:.3g}", fontsize=10)
     secondary = right.secondary_xaxis("top", functions=(lambda g: g * G_M_S2, lambda a: a / G_M_S2))
     secondary.set_xlabel("PGA [m/s2]", fontsize=8)
+    right.set_ylim(0, 1.5 * float(np.max(share)))  # room for the legend above the curve
     right.legend(fontsize=7, loc="upper left")
     fig.suptitle("Collapse risk at the site: the fragility integrated with the hazard curve", fontsize=11)
     save_figure(fig, path, note=provenance(f"voussoir-post {__version__}", hazard.source))
