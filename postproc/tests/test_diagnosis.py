@@ -65,6 +65,27 @@ def case_outcomes(slug: str, bank: Bank | None = None) -> list[dict]:
 HARD_CASES = sorted(p.stem for p in (DATA / "maps").glob("*.json"))
 
 
+@pytest.mark.parametrize("slug", HARD_CASES)
+def test_replayed_draws_hold_the_truth_and_name_nothing_wrong(slug):
+    outcomes = case_outcomes(slug)
+    truth = outcomes[0]["truth"]
+    tops = {}
+    for o in outcomes:
+        tops[o["top"]] = tops.get(o["top"], 0) + 1
+    line = (f"[{slug}] truth {truth}: in the 90 % set {sum(o['in_set'] for o in outcomes)}/{DRAWS}, named "
+            f"wrongly {sum(o['wrong_named'] for o in outcomes)}/{DRAWS}, named rightly "
+            f"{sum(o['right_named'] for o in outcomes)}/{DRAWS}, mean P(truth) "
+            f"{np.mean([o['p_truth'] for o in outcomes]):.2f}; most probable: "
+            + ", ".join(f"{m} x{n}" for m, n in sorted(tops.items(), key=lambda kv: -kv[1])))
+    print("\n" + line + "\n" + ", ".join(f"{o['verdict']}:{o['top']} {o['p_top']:.2f}" for o in outcomes))
+    VERDICTS.append(line)
+    assert sum(o["wrong_named"] for o in outcomes) == 0, line
+    if truth == "outside":
+        assert all(not o["named"] for o in outcomes), line
+    else:
+        assert sum(o["in_set"] for o in outcomes) >= 15, line
+
+
 @pytest.mark.parametrize("slug", ["friction_0.43", "chamfer_4mm_friction_0.42"])
 def test_a_tenth_of_the_uncertainty_moves_no_probability_by_more_than_005(slug):
     """Moving any one measured threshold by a tenth of its uncertainty, up or down, changes
