@@ -42,7 +42,7 @@ import numpy as np
 from ..readers.campaign import Specimen
 from ..runner import Runner
 from ..units import G_M_S2
-from .effects import COMBINED, EFFECTS_BY_ID, RESTRAINTS, Variant, arch_group
+from .effects import COMBINED, EFFECTS_BY_ID, RESTRAINTS, Variant, arch_group, nominal_value
 from .settings import DiagnosisSettings
 from .simulator import Simulator
 
@@ -293,8 +293,7 @@ def _simulate(spec: Specimen, freqs, cycles, settings: DiagnosisSettings, work: 
     for round_ in range(REFINE_ROUNDS):
         new = []
         for e in ("contact_edges", "friction", "geometry"):
-            nominal = {"contact_edges": 0.0, "friction": spec.friction, "geometry": 1.0}[e]
-            table = {nominal: bank.thresholds["nominal"]}
+            table = {nominal_value(e, spec): bank.thresholds["nominal"]}
             for key, values in bank.thresholds.items():
                 parts = key_variant(key).parts()
                 if len(parts) == 1 and parts[0][0] == e:

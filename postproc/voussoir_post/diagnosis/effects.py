@@ -14,7 +14,7 @@ from ..readers.campaign import Specimen
 from .settings import DiagnosisSettings
 
 __all__ = ["COMBINED", "Variant", "Effect", "ContactEdges", "TableMotion", "BaseRestraint", "Friction", "Geometry",
-           "EFFECTS", "EFFECTS_BY_ID", "RESTRAINTS", "effect", "arch_group"]
+           "EFFECTS", "EFFECTS_BY_ID", "RESTRAINTS", "effect", "arch_group", "nominal_value"]
 
 RESTRAINTS = ("left", "right", "both")
 #: The Variant effect of two effects acting together.
@@ -34,6 +34,13 @@ class Variant:
         if self.effect is None:
             return ()
         return tuple(self.value) if self.effect == COMBINED else ((self.effect, self.value),)
+
+
+def nominal_value(effect_id: str, spec: Specimen) -> float | None:
+    """The value of an effect's parameter at which it is absent (no inset, the specimen's
+    friction, thickness factor 1, table gain 1); None for a restraint (categorical)."""
+    return {"contact_edges": 0.0, "friction": float(spec.friction), "geometry": 1.0,
+            "table_motion": 1.0}.get(effect_id)
 
 
 def arch_group(spec: Specimen, variant: Variant) -> dict:

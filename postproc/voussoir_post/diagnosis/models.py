@@ -34,7 +34,7 @@ import numpy as np
 
 from .bank import FINE_DT, MISSING, Bank, SpecimenBank, key_variant, pooled_spread
 from .emulator import emulate
-from .effects import RESTRAINTS
+from .effects import RESTRAINTS, nominal_value
 from .observations import Observations
 
 __all__ = ["EFFECT_IDS", "MODEL_IDS", "CANDIDATES", "ModelGrid", "model_grid", "model_prior", "members", "nominal_log",
@@ -124,11 +124,7 @@ def _axis(bank: SpecimenBank, effect_id: str, in_pair: bool, spec) -> list:
         parts = key_variant(key).parts()
         if (len(parts) == 2) == in_pair:
             found |= {v for e, v in parts if e == effect_id}
-    return sorted(found | {_nominal_value(effect_id, spec)})
-
-
-def _nominal_value(effect_id: str, spec):
-    return {"contact_edges": 0.0, "friction": spec.friction, "geometry": 1.0}.get(effect_id)
+    return sorted(found | {nominal_value(effect_id, spec)})
 
 
 def _key(parts: list[tuple]) -> str:
@@ -143,7 +139,7 @@ def _nodes(bank: SpecimenBank, spec, effects: tuple[str, ...], axes: list[list],
     k = bank.index(f)
     idx, ys, counts = [], [], []
     for ii in np.ndindex(*[len(a) for a in axes]):
-        parts = [(e, None if a[i] == _nominal_value(e, spec) else a[i]) for e, a, i in zip(effects, axes, ii)]
+        parts = [(e, None if a[i] == nominal_value(e, spec) else a[i]) for e, a, i in zip(effects, axes, ii)]
         key = _key(parts)
         if key not in bank.thresholds:  # declared brackets: base_restraint leaves them as they are
             key = _key([(e, v) for e, v in parts if e != "base_restraint"])
@@ -253,5 +249,5 @@ def material(effects: tuple[str, ...], values: list[np.ndarray], spec) -> np.nda
     keep = np.ones(values[0].size if values else 1, bool)
     for e, v in zip(effects, values):
         if e in MATERIAL:
-            keep &= np.abs(v.astype(float) - _nominal_value(e, spec)) >= MATERIAL[e] - 1e-12
+            keep &= np.abs(v.astype(float) - nominal_value(e, spec)) >= MATERIAL[e] - 1e-12
     return keep

@@ -7,8 +7,9 @@ The stages, each handing its result to the next (docs/diagnosis.md explains them
 3. models.py, likelihood.py: each model's predictions over its parameter prior and the
    likelihood of the brackets, with the simulator's own spread and a specimen
    discrepancy;
-4. posterior.py: the models' posterior probabilities, their parameters, the posterior
-   predictive check, the held-out errors and the next test;
+4. posterior.py: the models' posterior probabilities, their parameters, the check of the
+   most probable model, the prior sensitivity and the held-out errors; next_test.py the
+   next test;
 5. decision.py: the verdict of docs/measured_data.md version 4 and its flags;
 6. report.py: report.md, its figures and diagnosis.json; samples.py: the posterior as
    model samples of each arch (posterior_samples_<specimen>.csv), for the fragility.
@@ -137,7 +138,7 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     baseline_pred = np.array([bank.specimens[p.specimen_id].threshold("nominal", p.frequency_hz) for p in obs.pairs])
     meas = np.array([p.threshold_m for p in obs.pairs])
     baseline_error = float(np.mean(np.abs(baseline_pred - meas) / meas))
-    shown = decision.top if decision.adequate and decision.top != "none" else None
+    shown = decision.shown
     shown_params = parameters(post, shown, obs)
     flag_list = flags(post, decision, shown)
     sensitivity = {f: prior_sensitivity(post, f) for f in SENSITIVITY_FACTORS}

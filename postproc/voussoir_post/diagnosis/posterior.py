@@ -28,6 +28,7 @@ import numpy as np
 from scipy.special import logsumexp, ndtr, ndtri
 
 from .bank import Bank
+from .effects import nominal_value
 from .likelihood import Scales, adjusted_mu, log_likelihood, predictive_sd, records_log_factor, scales
 from .models import MODEL_IDS, ModelGrid, members, model_grid, model_prior
 from .observations import Observations, PairObservation
@@ -187,8 +188,7 @@ def prior_sensitivity(post: Posterior, factor: float) -> dict[str, float]:
         for name, v in zip(mp.grid.names, mp.grid.values):
             if v.dtype == object:
                 continue
-            nominal = {"contact_edges": 0.0, "geometry": 1.0, "table_motion": 1.0,
-                       "friction": float(post.obs.specimens[post.pairs[0].specimen_id].friction)}[name]
+            nominal = nominal_value(name, post.obs.specimens[post.pairs[0].specimen_id])
             lo, hi = float(v.min()), float(v.max())
             if factor < 1.0:
                 keep &= (v >= nominal - factor * (nominal - lo) - 1e-12) & (v <= nominal + factor * (hi - nominal) + 1e-12)

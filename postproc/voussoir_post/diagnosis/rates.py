@@ -60,14 +60,13 @@ def outcome(bank: Bank, obs, truth: str, truth_values: dict | None = None) -> di
     named = d.verdict != "inconclusive"
     chosen = [d.top] if named else d.rivals
     right = covers(d.top, truth)
-    reported = d.top if d.adequate and d.top != "none" else None
     return {"truth": truth, "verdict": d.verdict, "top": d.top, "p_top": post.probabilities[d.top],
             "p_truth": sum(p for m, p in post.probabilities.items() if covers(m, truth)),
             "prior_truth": truth_prior(truth),
             "top_right": right, "adequate": d.adequate, "p_value": d.p_value, "named": named,
             "in_set": any(covers(m, truth) for m in chosen), "set_size": len(chosen), "right_named": named and right,
             "wrong_named": named and not right, "probabilities": post.probabilities,
-            "flags": flags(post, d, reported), "cdf": parameter_cdf(post, truth, truth_values or {})}
+            "flags": flags(post, d, d.shown), "cdf": parameter_cdf(post, truth, truth_values or {})}
 
 
 def draw_outcomes(bank: Bank, omap: dict, draws: int, draw: Callable, seed: int = 2026) -> list[dict]:
