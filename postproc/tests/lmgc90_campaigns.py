@@ -39,7 +39,8 @@ from replay_maps import bracket, ramp_observations
 from voussoir_post.diagnosis.models import MATERIAL, members
 from voussoir_post.diagnosis.observations import Observations
 
-__all__ = ["TRUTH_DIR", "LabFaults", "load_truth", "stored_truths", "draw_campaign", "truth_model", "SNAP_M"]
+__all__ = ["TRUTH_DIR", "LabFaults", "load_truth", "stored_truths", "draw_campaign", "truth_model", "truth_values",
+           "SNAP_M"]
 
 TRUTH_DIR = Path(__file__).resolve().parent / "data" / "lmgc90"
 SNAP_M = 5e-4  #: amplitudes a laboratory commands are multiples of this
@@ -78,6 +79,13 @@ def stored_truths(folder: Path = TRUTH_DIR) -> list[dict]:
 #: arches' friction 0.5, no inset, thickness factor 1).
 TRUTH_PARAMETERS = {"contact_edges": ("inset_m", 0.0), "friction": ("friction", 0.5),
                     "geometry": ("thickness_factor", 1.0)}
+
+
+def truth_values(truth: dict) -> dict:
+    """The truth's value of each continuous parameter, by the effect ids the diagnosis's
+    grids are named by (for its simulation-based calibration)."""
+    params = truth["truth"].get("parameters", {})
+    return {e: params[e][key] for e, (key, _) in TRUTH_PARAMETERS.items() if e in params}
 
 
 def truth_model(truth: dict) -> str:

@@ -34,7 +34,7 @@ from voussoir_post.diagnosis.bank import Bank
 from voussoir_post.diagnosis.rates import outcome, power
 
 from conftest import VERDICTS
-from lmgc90_campaigns import LabFaults, draw_campaign, stored_truths, truth_model
+from lmgc90_campaigns import LabFaults, draw_campaign, stored_truths, truth_model, truth_values
 from test_diagnosis import stored_bank
 
 DRAWS = 3
@@ -45,16 +45,6 @@ NOMINAL_P_NONE = 0.5
 NAMED_LEVEL = 0.01  #: p-value below which the named causes are wrong more often than they say
 IN_SET = 0.7
 PARAMETER_COVERAGE = 0.7
-
-#: The parameter names of the grids, from a truth's parameters.
-TRUTH_VALUES = {"contact_edges": ("contact_edges", "inset_m"), "friction": ("friction", "friction"),
-                "geometry": ("geometry", "thickness_factor")}
-
-
-def truth_values(truth: dict) -> dict:
-    params = truth["truth"].get("parameters", {})
-    return {grid: params[e][key] for e, (grid, key) in TRUTH_VALUES.items() if e in params}
-
 
 def outcomes(bank: Bank, truths: list[dict], draws: int = DRAWS, faults: LabFaults = LabFaults()) -> list[dict]:
     out = []
