@@ -174,19 +174,18 @@ def _campaign_taus(grid: ModelGrid, sc: Scales) -> list[float]:
     return [math.sqrt(t * t + extra) for t in TAU_CAMPAIGN]
 
 
-def specimen_log_tables(grid: ModelGrid, pairs: list[PairObservation], sc: Scales, tau_pair: float
-                        ) -> dict[str, np.ndarray]:
+def specimen_log_tables(pairs: list[PairObservation], shifted: list[np.ndarray], var: np.ndarray,
+                        outlier: list[np.ndarray], tau_pair: float) -> dict[str, np.ndarray]:
     """Per specimen, log p(its brackets | theta, total shift) on SHIFTS: (n_points, n_shifts),
-    each pair's own discrepancy (scale tau_pair) in its spread."""
+    each pair's own discrepancy (scale tau_pair) in its spread. `shifted` holds each pair's
+    predictions shifted over SHIFTS, `outlier` its outlier term (neither depends on
+    tau_pair)."""
     lo, hi = brackets(pairs)
-    mu = adjusted_mu(grid, sc)
-    s = np.sqrt(pair_variance(grid, sc) + tau_pair ** 2)
+    s = np.sqrt(var + tau_pair ** 2)
     out = {}
     for j, p in enumerate(pairs):
-        m = mu[:, j, None] + SHIFTS[None, :]
-        normal = _log_bracket(lo[j], hi[j], m, s[:, j, None])
-        mixed = np.logaddexp(math.log1p(-OUTLIER_PROB) + normal,
-                             math.log(OUTLIER_PROB) + _log_outlier(lo[j], hi[j], m))
+        normal = _log_bracket(lo[j], hi[j], shifted[j], s[:, j, None])
+        mixed = np.logaddexp(math.log1p(-OUTLIER_PROB) + normal, math.log(OUTLIER_PROB) + outlier[j])
         out[p.specimen_id] = out.get(p.specimen_id, 0.0) + mixed
     return out
 
@@ -204,10 +203,15 @@ def log_likelihood(grid: ModelGrid, obs: Observations, pairs: list[PairObservati
     specimen and campaign discrepancies integrated."""
     centre = SHIFTS.size // 2
     prior_c = np.column_stack([_shift_weights(t)[:, centre] for t in _campaign_taus(grid, sc)])
+    lo, hi = brackets(pairs)
+    mu = adjusted_mu(grid, sc)
+    shifted = [mu[:, j, None] + SHIFTS[None, :] for j in range(len(pairs))]
+    outlier = [_log_outlier(lo[j], hi[j], shifted[j]) for j in range(len(pairs))]
+    var = pair_variance(grid, sc)
     per_level = []
     for tau_pair in TAU_PAIR:
         total = None
-        for sid, table in specimen_log_tables(grid, pairs, sc, tau_pair).items():
+        for sid, table in specimen_log_tables(pairs, shifted, var, outlier, tau_pair).items():
             taus = [round(math.sqrt(t0 * t0 + sc.d_fine.get(sid, 0.0) ** 2), 12) for t0 in TAU_SPECIMEN]
             # Every specimen level at once: (n, shifts x levels).
             conv = _log_matmul(table, np.hstack([_shift_weights(t) for t in taus]))
