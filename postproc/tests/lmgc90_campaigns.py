@@ -36,7 +36,8 @@ from pathlib import Path
 import numpy as np
 
 from replay_maps import bracket, ramp_observations
-from voussoir_post.diagnosis.models import MATERIAL, members
+from voussoir_post.diagnosis.effects import RESTRAINTS
+from voussoir_post.diagnosis.models import MATERIAL, effect_sizes, members
 from voussoir_post.diagnosis.observations import Observations
 
 __all__ = ["TRUTH_DIR", "LabFaults", "load_truth", "stored_truths", "draw_campaign", "truth_model", "truth_values",
@@ -88,11 +89,14 @@ def truth_values(truth: dict) -> dict:
     return {e: params[e][key] for e, (key, _) in TRUTH_PARAMETERS.items() if e in params}
 
 
-def truth_model(truth: dict) -> str:
+def truth_model(truth: dict, bank=None, obs: Observations | None = None) -> str:
     """The model id the diagnosis should name ('outside' for a truth outside the
-    catalogue): the generator's, less any effect whose parameter departs from nominal by
-    less than the diagnosis's MATERIAL (by its definitions that is no cause: a friction of
-    0.52 is the nominal arch)."""
+    catalogue): the generator's, less any effect that is no cause by the diagnosis's
+    definitions: a parameter within MATERIAL of nominal (a friction of 0.52 is the
+    nominal arch) or, given the bank and a campaign's observations, an effect that moves
+    none of the campaign's tested thresholds by MATERIAL_EFFECT (models.effect_sizes, at
+    the truth's parameter values: a friction of 0.56 on arches that rock and never slide,
+    dropped one effect at a time, the smallest first)."""
     model = truth["truth"]["model"]
     if model == "outside":
         return model
@@ -100,6 +104,16 @@ def truth_model(truth: dict) -> str:
     kept = [e for e in members(model)
             if e not in MATERIAL or abs(params[e][TRUTH_PARAMETERS[e][0]] - TRUTH_PARAMETERS[e][1])
             >= MATERIAL[e] - 1e-12]
+    while bank is not None and obs is not None and obs.pairs:
+        simulated = [e for e in kept if e != "table_motion"]
+        if not simulated:
+            break
+        points = [np.array([float(RESTRAINTS.index(params[e]["side"])) if e == "base_restraint"
+                            else params[e][TRUTH_PARAMETERS[e][0]]]) for e in simulated]
+        sizes = effect_sizes(bank, obs, tuple(simulated), points)[0]
+        if sizes.min() >= 1.0:
+            break
+        kept.remove(simulated[int(np.argmin(sizes))])
     return "+".join(sorted(kept)) or "none"
 
 

@@ -220,7 +220,8 @@ def draw_observations(omap: dict, rng: np.random.Generator, arches=ARCHES, gain_
             amp_m = round((amp_m + step_m) / SNAP_M) * SNAP_M
         if any(fell for _, fell, _, _ in tests):
             pairs.append(bracket(pair["specimen_id"], f, tests))
-    return ramp_observations(name, pairs, arches)
+    # The maps' specimens are the kernel's own polygons at their stated sizes.
+    return ramp_observations(name, pairs, arches, build_tolerance=0.0)
 
 
 def bracket(specimen_id: str, frequency_hz: float, tests: list[tuple]) -> PairObservation:
@@ -232,16 +233,20 @@ def bracket(specimen_id: str, frequency_hz: float, tests: list[tuple]) -> PairOb
                            tuple(float(t[2]) for t in tests), tuple(t[3] for t in tests))
 
 
-def ramp_observations(name: str, pairs: list[PairObservation], arches=ARCHES) -> Observations:
+def ramp_observations(name: str, pairs: list[PairObservation], arches=ARCHES,
+                      build_tolerance: float = 0.015) -> Observations:
     """The observations of a replayed campaign: its pairs on the nominal arches (as the
-    laboratory declares them), records of every test, afd 1-1-1 cycles."""
+    laboratory declares them), records of every test, afd 1-1-1 cycles, and the build
+    tolerance of the generator's specimens (the laboratory states it, as it states its
+    transducer's calibration: 1.5 % for LMGC90's truths, 0 for the maps)."""
     by_id = {a.specimen_id: a for a in arches}
     ids = list(dict.fromkeys(p.specimen_id for p in pairs))
     specimens = {sid: Specimen(sid, by_id[sid].embrace_deg, by_id[sid].n_voussoirs, by_id[sid].r_ext_m,
                                by_id[sid].thickness_m, by_id[sid].width_m, by_id[sid].density_kg_m3,
                                friction=by_id[sid].friction, restrained_springings="none", setup_certain=True)
                  for sid in ids}
-    return Observations(name, specimens, pairs, {sid: (1, 1, 1) for sid in ids}, gain_source="records")
+    return Observations(name, specimens, pairs, {sid: (1, 1, 1) for sid in ids}, gain_source="records",
+                        build_tolerance=build_tolerance)
 
 
 # ---------------------------------------------------------------- files

@@ -106,8 +106,7 @@ def test_a_tenth_of_the_uncertainty_moves_no_probability_by_more_than_005(slug):
                 moved = list(obs.pairs)
                 moved[j] = PairObservation(p.specimen_id, p.frequency_hz, p.low_m + shift if p.low_m > 0 else 0.0,
                                            p.high_m + shift, p.gains, p.test_ids)
-                other = infer(bank, Observations(obs.name, obs.specimens, moved, obs.cycles,
-                                                 obs.gain_source)).probabilities
+                other = infer(bank, dataclasses.replace(obs, pairs=moved)).probabilities
                 worst = max(abs(base[m] - other[m]) for m in base)
                 assert worst <= 0.05, (slug, p.specimen_id, p.frequency_hz, sign, worst)
 

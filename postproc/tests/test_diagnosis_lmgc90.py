@@ -53,7 +53,7 @@ def outcomes(bank: Bank, truths: list[dict], draws: int = DRAWS, faults: LabFaul
             obs, drawn = draw_campaign(t, np.random.default_rng([2026, t["truth"]["index"], k]), faults)
             if not obs.pairs:
                 continue
-            o = outcome(bank, obs, truth_model(t), truth_values(t))
+            o = outcome(bank, obs, truth_model(t, bank, obs), truth_values(t))
             o.update(slug=t["slug"], faults=drawn)
             out.append(o)
     return out

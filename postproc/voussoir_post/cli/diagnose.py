@@ -52,8 +52,12 @@ def cmd_run(args) -> int:
     bin_dir = find_bin_dir(args.bin_dir, ("voussoir-run", "voussoir-sweep"))
     if args.np < 1 or args.dt <= 0:
         raise InputError("--np must be >= 1 and --dt > 0")
+    if not 0.0 <= args.build_tolerance <= 0.2:
+        raise InputError(f"--build-tolerance {args.build_tolerance:g}: a relative standard deviation between 0 "
+                         "and 0.2 (0.015 is 1.5 %)")
     out = args.out or os.path.join(os.getcwd(), "diagnosis_" + os.path.basename(os.path.normpath(args.campaign)))
     settings = DiagnosisSettings(bin_dir=bin_dir, n_ranks=args.np, dt_s=args.dt, figure_format=args.format,
+                                 build_tolerance=args.build_tolerance,
                                  log=lambda m: print(m, flush=True))
     result = diagnose(args.campaign, out, settings)
     top = sorted(result["probabilities"].items(), key=lambda kv: -kv[1])[:3]
@@ -81,6 +85,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--dt", type=float, default=1.0e-3, help="time step of the simulations [s] (default 1e-3)")
     p.add_argument("--format", choices=("png", "pdf", "svg"), default="png",
                    help="format of report.md's figures (default png, 200 dpi)")
+    p.add_argument("--build-tolerance", type=float, default=0.015, metavar="FRACTION",
+                   help="how far the specimens as built may lie from their stated ring thickness, a relative "
+                        "standard deviation (default 0.015; 0 for specimens made exactly)")
     p.add_argument("--bin-dir", help=f"folder of the Fortran executables (default: ${BIN_DIR_ENV}, else the "
                                      f"folder scripts/setup.sh wrote into {installed_bin_dir_file()}, else PATH)")
     p.set_defaults(func=cmd_run)

@@ -8,15 +8,21 @@ them the diagnosis needs a prediction and an honest statement of how well it is 
   which is the GP's nugget (the replicas' pooled variance over the node's number of
   searches). So every effect's curve passes through the nominal model at its nominal
   value, and a steep response is followed, not smoothed away;
+- where the nodes do not lie on any smooth curve to within that spread (a pair near a
+  change of mechanism, where one node stands 28 % above its neighbours), a roughness is
+  added to the nugget, chosen with the kernel by the marginal likelihood (0 where the
+  nodes are smooth): the mean then passes among such nodes, not through each;
 - between nodes the GP's own variance says how much the emulator does not know; it
-  vanishes at the nodes and enters the likelihood as the emulator's error (likelihood.py),
-  never as simulator noise;
+  vanishes at the nodes (but for the roughness: a threshold at an unsimulated value
+  varies about the curve as the nodes do) and enters the likelihood as the emulator's
+  error (likelihood.py), never as simulator noise;
 - the lack of fit is measured apart: the leave-one-node-out residuals, standardised by
   their predictive spread (about 1 when the emulator is as good as it says), reported.
 
 Kernel: Matern 5/2 on parameters scaled to [0, 1], plus a linear trend fitted first by
-least squares. Its length scales and amplitude are chosen by the largest marginal
-likelihood on a fixed grid (deterministic, no optimiser start to depend on).
+least squares. Its length scales, amplitude and roughness are chosen by the largest
+marginal likelihood on a fixed grid (deterministic, no optimiser start to depend on),
+once per set of nodes (kept: the same nodes are emulated at other points many times).
 """
 
 from __future__ import annotations
@@ -35,6 +41,11 @@ LENGTH_SCALES = (0.04, 0.07, 0.12, 0.2, 0.35, 0.6, 1.0, 2.0)
 #: Amplitudes tried, as multiples of the residual standard deviation about the trend.
 AMPLITUDES = (0.3, 1.0, 3.0)
 AMPLITUDE_FLOOR = 0.003  #: smallest GP amplitude [log units], for nodes lying on a line
+#: Roughness tried [log units]: a variation of the threshold from node to node that no
+#: smooth curve follows, beyond the replicas' spread (a window of one node at a pair whose
+#: response to the parameter is chaotic). Chosen with the kernel by the marginal
+#: likelihood; 0 where the nodes lie on a smooth curve to within the replicas.
+ROUGHNESS = (0.0, 0.01, 0.02, 0.04, 0.08, 0.16)
 
 
 @dataclass
@@ -46,6 +57,7 @@ class Emulation:
     loo_z: np.ndarray  #: standardised leave-one-node-out residuals of the nodes
     length_scales: tuple[float, ...]
     amplitude: float
+    roughness: float = 0.0  #: the node-to-node variation beyond the replicas [log units]
 
 
 def _matern52(a: np.ndarray, b: np.ndarray, scales: np.ndarray) -> np.ndarray:
@@ -56,6 +68,37 @@ def _matern52(a: np.ndarray, b: np.ndarray, scales: np.ndarray) -> np.ndarray:
 
 def _trend(x: np.ndarray) -> np.ndarray:
     return np.hstack([np.ones((x.shape[0], 1)), x])
+
+
+#: The kernel chosen for each set of nodes (keyed by the nodes' bytes): the same nodes are
+#: emulated at other points many times (each model's grid, the effects' sizes, the folds).
+_CHOSEN: dict[bytes, tuple] = {}
+
+
+def _choose(x: np.ndarray, r: np.ndarray, noise: np.ndarray) -> tuple:
+    """(length scales, amplitude^2, roughness) of the largest marginal likelihood."""
+    key = x.tobytes() + b"|" + r.tobytes() + b"|" + noise.tobytes()
+    if key in _CHOSEN:
+        return _CHOSEN[key]
+    n, d = x.shape
+    base = max(AMPLITUDE_FLOOR, float(np.sqrt(np.mean(r * r))))
+    best = None
+    for scales in itertools.product(LENGTH_SCALES, repeat=d):
+        k0 = _matern52(x, x, np.array(scales))
+        for a, rough in itertools.product(AMPLITUDES, ROUGHNESS if n > d + 3 else (0.0,)):
+            amp2 = (a * base) ** 2
+            try:
+                c = cho_factor(amp2 * k0 + np.diag(noise + rough * rough), lower=True)
+            except np.linalg.LinAlgError:
+                continue
+            alpha = cho_solve(c, r)
+            logml = -0.5 * float(r @ alpha) - float(np.sum(np.log(np.diag(c[0]))))
+            if best is None or logml > best[0]:
+                best = (logml, scales, amp2, rough)
+    if len(_CHOSEN) > 20000:
+        _CHOSEN.clear()
+    _CHOSEN[key] = best[1:]
+    return _CHOSEN[key]
 
 
 def emulate(x: np.ndarray, y: np.ndarray, noise_var: np.ndarray, points: np.ndarray) -> Emulation:
@@ -71,27 +114,15 @@ def emulate(x: np.ndarray, y: np.ndarray, noise_var: np.ndarray, points: np.ndar
     h = h[:, :n_trend]
     beta, *_ = np.linalg.lstsq(h, y, rcond=None)
     r = y - h @ beta
-    base = max(AMPLITUDE_FLOOR, float(np.sqrt(np.mean(r * r))))
-    best = None
-    for scales in itertools.product(LENGTH_SCALES, repeat=d):
-        k0 = _matern52(x, x, np.array(scales))
-        for a in AMPLITUDES:
-            amp2 = (a * base) ** 2
-            k = amp2 * k0 + np.diag(noise)
-            try:
-                c = cho_factor(k, lower=True)
-            except np.linalg.LinAlgError:
-                continue
-            alpha = cho_solve(c, r)
-            logml = -0.5 * float(r @ alpha) - float(np.sum(np.log(np.diag(c[0]))))
-            if best is None or logml > best[0]:
-                best = (logml, scales, amp2, c, alpha)
-    _, scales, amp2, c, alpha = best
+    scales, amp2, rough = _choose(x, r, noise)
+    c = cho_factor(amp2 * _matern52(x, x, np.array(scales)) + np.diag(noise + rough * rough), lower=True)
+    alpha = cho_solve(c, r)
     ks = amp2 * _matern52(points, x, np.array(scales))
     mean = _trend(points)[:, :n_trend] @ beta + ks @ alpha
     v = cho_solve(c, ks.T)
-    var = np.maximum(amp2 - np.sum(ks * v.T, axis=1), 0.0)
+    # A threshold at an unsimulated value varies about the smooth curve as the nodes do.
+    var = np.maximum(amp2 - np.sum(ks * v.T, axis=1), 0.0) + rough * rough
     # Leave one node out, in closed form: residual alpha_i / [K^-1]_ii, variance 1 / [K^-1]_ii.
     kinv = cho_solve(c, np.eye(n))
     loo_z = alpha / np.sqrt(np.diag(kinv))
-    return Emulation(mean, var, loo_z, tuple(scales), math.sqrt(amp2))
+    return Emulation(mean, var, loo_z, tuple(scales), math.sqrt(amp2), rough)

@@ -54,13 +54,13 @@ import numpy as np
 from scipy.special import log_ndtr, logsumexp
 
 from .bank import FINE_DT, Bank
-from .models import GAIN_RANGE, SIM_FLOOR, ModelGrid, sim_spread
+from .models import GAIN_RANGE, SIM_FLOOR, ModelGrid, pair_tolerance, sim_spread
 from .observations import Observations, PairObservation
 
 __all__ = ["Scales", "scales", "adjusted_mu", "pair_variance", "log_likelihood", "records_log_factor",
            "TAU_PAIR", "TAU_SPECIMEN", "TAU_CAMPAIGN", "SHIFTS", "OUTLIER_PROB", "OUTLIER_FACTOR", "GAIN_SD_DEFAULT"]
 
-TAU_PAIR = (0.01, 0.03, 0.06)  #: discrepancy of each pair (relative), integrated with equal weights
+TAU_PAIR = (0.01, 0.03, 0.06, 0.12)  #: discrepancy of each pair (relative), integrated with equal weights
 TAU_SPECIMEN = (0.01, 0.03, 0.06)  #: discrepancy of a specimen (relative), integrated with equal weights
 TAU_CAMPAIGN = (0.005, 0.01, 0.02, 0.04)  #: discrepancy of the campaign (relative), integrated with equal weights
 SHIFTS = np.linspace(-0.45, 0.45, 61)  #: grid of log shifts on which the discrepancies are integrated
@@ -88,6 +88,7 @@ class Scales:
     gain_mean: np.ndarray  #: measured gain of each pair (1 without records)
     gain_se: np.ndarray  #: its standard error
     gain_bias_sd: float = GAIN_SD_DEFAULT  #: the transducer's calibration (relative)
+    sigma_tol: np.ndarray | None = None  #: what the specimens' build tolerance moves each pair by (relative)
 
 
 def scales(bank: Bank, obs: Observations, pairs: list[PairObservation]) -> Scales:
@@ -107,7 +108,8 @@ def scales(bank: Bank, obs: Observations, pairs: list[PairObservation]) -> Scale
         sigma_gain = max(sigma_gain, PEAK_SCATTER_FLOOR)
     gm = np.array([np.mean(p.gains) if p.gains else 1.0 for p in pairs])
     gse = np.array([sigma_gain / math.sqrt(len(p.gains)) if p.gains else 0.0 for p in pairs])
-    return Scales(sigma_sim, sigma_gain, fine, gm, gse, obs.gain_bias_sd)
+    sigma_tol = np.array([pair_tolerance(bank, obs, p) for p in pairs])
+    return Scales(sigma_sim, sigma_gain, fine, gm, gse, obs.gain_bias_sd, sigma_tol)
 
 
 def _log_bracket(lo: np.ndarray, hi: np.ndarray, m: np.ndarray, s: np.ndarray) -> np.ndarray:
@@ -146,6 +148,8 @@ def pair_variance(grid: ModelGrid, sc: Scales) -> np.ndarray:
     """(n_points, n_pairs) variance of eps: simulator, emulator and table scatter, and
     under table_motion the actuator's dynamics that a gain does not carry."""
     var = sc.sigma_sim[None, :] ** 2 + sc.sigma_gain ** 2 + grid.emu_var
+    if sc.sigma_tol is not None:
+        var = var + sc.sigma_tol[None, :] ** 2
     if grid.gain_per_pair:
         var = var + ((sc.gain_se / sc.gain_mean) ** 2)[None, :]
         var = var + (ACTUATOR_SPREAD * np.log(sc.gain_mean))[None, :] ** 2

@@ -22,6 +22,11 @@ node is the mean of the nominal search and its replicas, and between nodes the
 emulator's variance goes with the prediction (likelihood.py). The leave-one-node-out
 residuals measure the emulator's lack of fit; they are reported, not taken for noise.
 A search that found no collapse below its ceiling counts as twice the ceiling.
+
+Only material points enter a prior: a parameter at least MATERIAL from nominal whose
+effect moves at least one of the campaign's tested thresholds by its material threshold
+(MATERIAL_EFFECT, and twice what a specimen's build tolerance moves that pair by:
+effect_sizes, material_threshold). Smaller effects are the nominal model.
 A table gain g divides any model's threshold exactly (rigid blocks): nothing to simulate.
 """
 
@@ -38,7 +43,7 @@ from .effects import RESTRAINTS, nominal_value
 from .observations import Observations
 
 __all__ = ["EFFECT_IDS", "MODEL_IDS", "CANDIDATES", "ModelGrid", "model_grid", "model_prior", "members", "nominal_log",
-           "sim_spread", "SIM_FLOOR", "MATERIAL", "material"]
+           "sim_spread", "tolerance_spread", "BUILD_TOLERANCE", "SIM_FLOOR", "MATERIAL", "MATERIAL_EFFECT", "material", "effect_sizes", "material_threshold", "pair_tolerance"]
 
 EFFECT_IDS = ("base_restraint", "contact_edges", "friction", "geometry", "table_motion")
 MODEL_IDS = ("none",) + EFFECT_IDS + tuple(f"{a}+{b}" for i, a in enumerate(EFFECT_IDS) for b in EFFECT_IDS[i + 1:])
@@ -52,9 +57,24 @@ GAIN_RANGE = (0.7, 1.4)
 #: the models' priors leave these bands out, so that no two models hold the same
 #: hypothesis and no model's probability is another's in disguise.
 MATERIAL = {"contact_edges": 0.001, "friction": 0.05, "geometry": 0.04}
+#: The smallest change of a tested threshold an effect must make to count as a cause: at
+#: each grid point, each simulated effect of the model must move the log threshold of at
+#: least one of the campaign's tested pairs by this much from the model without it (the
+#: nominal model, or the pair's other effect alone), by the emulators. A smaller change is
+#: within what the campaign discrepancy (up to 4 %) and a transducer's bias (1-2 %) make
+#: by themselves (likelihood.py): no data of these tests could tell it from no effect, so
+#: the priors leave it out, as they leave out the parameter bands of MATERIAL. It is
+#: computed on the campaign's tested pairs (its design, not its outcomes), once per model.
+MATERIAL_EFFECT = 0.05
 FINE_1D = 81  #: grid points of a continuous parameter alone
 FINE_2D = 21  #: grid points of each continuous parameter of a pair
 SIM_FLOOR = 0.003  #: the smallest simulator spread assumed (relative)
+#: A laboratory's specimen is never built to its nominal size: its ring's thickness is off
+#: by about this much (relative standard deviation; the LMGC90 truths' specimens are built
+#: with 1.5 %, a joiner's or mason's tolerance on a 25-40 mm ring is about the same). Too
+#: small to be a cause (MATERIAL), but near a change of mechanism it moves a threshold by
+#: far more than the replicas' spread: tolerance_spread measures by how much, pair by pair.
+BUILD_TOLERANCE = 0.015
 
 
 def members(model_id: str) -> tuple[str, ...]:
@@ -112,6 +132,24 @@ def sim_spread(bank: SpecimenBank, f: float) -> float:
     standard deviation, at least SIM_FLOOR."""
     s, _ = pooled_spread(bank, bank.index(f))
     return max(SIM_FLOOR, s if math.isfinite(s) else SIM_FLOOR)
+
+
+def tolerance_spread(bank: SpecimenBank, spec, f: float, tolerance: float = BUILD_TOLERANCE) -> float:
+    """How far the specimen's build tolerance moves its nominal threshold at frequency f
+    (relative): the root mean square, over a thickness factor 1 + e with e ~ N(0,
+    tolerance^2) (Gauss-Hermite, 9 points), of the geometry emulator's change from
+    its value at 1 (its mean: the emulator's variance goes with each model's own
+    prediction). 0 where the bank has no geometry nodes."""
+    try:
+        nodes, weights = np.polynomial.hermite_e.hermegauss(9)
+        if tolerance <= 0.0:
+            return 0.0
+        factors = 1.0 + tolerance * nodes
+        mean, _, _ = _predict(bank, spec, ("geometry",), f, [np.append(factors, 1.0)], False)
+    except (ValueError, IndexError, np.linalg.LinAlgError):
+        return 0.0
+    change = mean[:-1] - mean[-1]
+    return float(np.sqrt(np.sum(weights * change ** 2) / np.sum(weights)))
 
 
 def _axis(bank: SpecimenBank, effect_id: str, in_pair: bool, spec) -> list:
@@ -225,6 +263,11 @@ def model_grid(model_id: str, bank: Bank, obs: Observations, pairs=None) -> Mode
         loo.append(z)
     values = [RESTRAINTS_ARRAY[pt.astype(int)] if e == "base_restraint" else pt for e, pt in zip(simulated, points)]
     keep = material(simulated, values, obs.specimens[ref])
+    if simulated:
+        keep &= _material_response(model_id, bank, obs, points)
+    impossible = not keep.any()  # no material point on this design: the model holds no hypothesis
+    if impossible:
+        keep[:] = True
     mu, var, values = mu[keep], var[keep], [v[keep] for v in values]
     n = int(keep.sum())
     names = simulated
@@ -232,12 +275,14 @@ def model_grid(model_id: str, bank: Bank, obs: Observations, pairs=None) -> Mode
     gain_per_pair = "table_motion" in effects and obs.gain_source != "none"
     if "table_motion" in effects and not gain_per_pair:
         gains = np.linspace(*GAIN_RANGE, 36)
+        gains = gains[np.abs(np.log(gains)) >= MATERIAL_EFFECT]
         mu, var = np.repeat(mu, gains.size, axis=0), np.repeat(var, gains.size, axis=0)
         log_gain = np.tile(np.log(gains), n)
         values = [np.repeat(v, gains.size) for v in values] + [np.tile(gains, n)]
         names = simulated + ("table_motion",)
         n *= gains.size
-    return ModelGrid(model_id, names, values, np.full(n, -math.log(n)), mu, gain_per_pair, log_gain, var, loo)
+    log_prior = np.full(n, -math.inf if impossible else -math.log(n))
+    return ModelGrid(model_id, names, values, log_prior, mu, gain_per_pair, log_gain, var, loo)
 
 
 RESTRAINTS_ARRAY = np.array(RESTRAINTS, dtype=object)
@@ -251,3 +296,59 @@ def material(effects: tuple[str, ...], values: list[np.ndarray], spec) -> np.nda
         if e in MATERIAL:
             keep &= np.abs(v.astype(float) - nominal_value(e, spec)) >= MATERIAL[e] - 1e-12
     return keep
+
+
+def material_threshold(bank: Bank, obs: Observations, pair) -> float:
+    """The smallest change of a pair's log threshold that counts as an effect there: at
+    least MATERIAL_EFFECT, and at least twice what the specimens' build tolerance moves
+    it by (tolerance_spread: near a change of mechanism a joiner's tolerance alone moves a
+    threshold by 10 % or more, and no test of that pair can tell an effect from it)."""
+    return max(MATERIAL_EFFECT, 2.0 * pair_tolerance(bank, obs, pair))
+
+
+def pair_tolerance(bank: Bank, obs: Observations, pair) -> float:
+    """tolerance_spread of one pair at the campaign's build tolerance, kept in bank.grids."""
+    if pair.specimen_id not in bank.specimens:
+        return 0.0
+    key = ("tolerance", pair.specimen_id, round(pair.frequency_hz, 9), obs.build_tolerance)
+    if key not in bank.grids:
+        bank.grids[key] = tolerance_spread(bank.specimens[pair.specimen_id], obs.specimens[pair.specimen_id],
+                                           pair.frequency_hz, obs.build_tolerance)
+    return bank.grids[key]
+
+
+def effect_sizes(bank: Bank, obs: Observations, effects: tuple[str, ...], points: list[np.ndarray]) -> np.ndarray:
+    """(n_points, n_effects): for each simulated effect of a model at each point, the
+    largest change it makes to a tested pair's log threshold, against the model without
+    it (the nominal model for a single effect, the other effect alone for a pair, each by
+    its own emulator), in units of that pair's material_threshold: 1 or more is a cause.
+    Points: one array per effect, as model_grid's (a restraint by its index in
+    RESTRAINTS)."""
+    in_pair = len(effects) == 2
+    out = np.zeros((np.asarray(points[0]).size, len(effects)))
+    for p in obs.pairs:
+        sb, spec, f = bank.specimens[p.specimen_id], obs.specimens[p.specimen_id], p.frequency_hz
+        full = _predict(sb, spec, effects, f, points, in_pair)[0]
+        least = material_threshold(bank, obs, p)
+        for i in range(len(effects)):
+            if in_pair:
+                other = 1 - i
+                without = _predict(sb, spec, (effects[other],), f, [points[other]], False)[0]
+            elif effects[i] == "base_restraint":
+                without = np.full(full.shape, _node(sb, "nominal", sb.index(f))[0])
+            else:  # the same emulator at the nominal value (its nodes hold the nominal one)
+                without = _predict(sb, spec, effects, f, [np.array([nominal_value(effects[i], spec)])], False)[0]
+            out[:, i] = np.maximum(out[:, i], np.abs(full - without) / least)
+    return out
+
+
+def _material_response(model_id: str, bank: Bank, obs: Observations, points: list[np.ndarray]) -> np.ndarray:
+    """The grid points at which every simulated effect of the model moves a tested
+    threshold by at least MATERIAL_EFFECT (effect_sizes), kept in bank.grids per model
+    and campaign design."""
+    key = ("material", model_id, obs.pairs[0].specimen_id, obs.build_tolerance,
+           tuple((p.specimen_id, round(p.frequency_hz, 9)) for p in obs.pairs))
+    if key not in bank.grids:
+        effects = tuple(e for e in members(model_id) if e != "table_motion")
+        bank.grids[key] = np.all(effect_sizes(bank, obs, effects, points) >= 1.0, axis=1)
+    return bank.grids[key]

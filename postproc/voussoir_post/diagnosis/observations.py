@@ -53,6 +53,9 @@ class Observations:
     apart: list[PairObservation] = field(default_factory=list)  #: specimens with setup_certain = 0
     #: The table transducer's calibration (relative standard deviation; table.csv).
     gain_bias_sd: float = 0.01
+    #: How far the specimens as built may lie from their stated ring thickness (relative
+    #: standard deviation; DiagnosisSettings.build_tolerance, models.tolerance_spread).
+    build_tolerance: float = 0.015
 
     def of(self, specimen_id: str) -> list[PairObservation]:
         return [p for p in self.pairs if p.specimen_id == specimen_id]

@@ -118,6 +118,7 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     out_dir.mkdir(parents=True, exist_ok=True)
     campaign = read_campaign(campaign_dir)
     obs, table = from_campaign(campaign)
+    obs.build_tolerance = settings.build_tolerance
     if not obs.pairs and not obs.apart:
         raise InputError(f"{campaign.path}: no (specimen, frequency) pair has a collapse: no threshold to compare")
     if not obs.pairs:

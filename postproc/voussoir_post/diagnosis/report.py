@@ -11,8 +11,8 @@ import numpy as np
 from ..plots.drawing import provenance
 from .decision import NAME_AT, Decision
 from .figures import probabilities_figure, table_figure, thresholds_figure
-from .likelihood import GAIN_SCATTER_DEFAULT, OUTLIER_FACTOR, OUTLIER_PROB, TAU_CAMPAIGN, TAU_SPECIMEN
-from .models import CANDIDATES, members, model_prior
+from .likelihood import GAIN_SCATTER_DEFAULT, OUTLIER_FACTOR, OUTLIER_PROB, TAU_CAMPAIGN, TAU_PAIR, TAU_SPECIMEN
+from .models import CANDIDATES, MATERIAL, MATERIAL_EFFECT, members, model_prior
 from .posterior import ADEQUATE_P, SENSITIVITY_FACTORS, Posterior
 
 __all__ = ["write_report", "notes", "METHOD_CHECK", "prior_text", "FLAG_TEXT"]
@@ -55,7 +55,11 @@ def prior_text(settings, friction: float | None = None) -> str:
             f"{settings.max_friction:g}; {f_pair} in a pair), thickness factor {min(min(t), 1.0):g} to "
             f"{max(max(t), 1.0):g} ({min(min(tp), 1.0):g} to {max(max(tp), 1.0):g} in a pair); restraint left, "
             "right or both alike; table gain 0.7 to 1.4 for the campaign without records, each pair's gain as "
-            "its records measure it with them.")
+            "its records measure it with them. Only material points: a parameter at least "
+            f"{1e3 * MATERIAL['contact_edges']:g} mm of inset, {MATERIAL['friction']:g} of friction or "
+            f"{MATERIAL['geometry']:g} of thickness factor from nominal, whose effect moves at least one tested "
+            f"threshold by {_pct(MATERIAL_EFFECT)} and by twice the build tolerance's spread at that pair "
+            "(smaller effects are the nominal model: these tests could not tell them from it).")
 
 
 def _pct(x) -> str:
@@ -215,7 +219,11 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
              "threshold is emulated (a Gaussian process through the bank's nodes, whose nugget is the "
              "simulator's own spread), and the emulator's variance goes with it. The spreads: the simulator's "
              f"own ({_pct(float(np.min(sc.sigma_sim)))} to {_pct(float(np.max(sc.sigma_sim)))} by pair: the "
-             "replicas of the bank's models at dt x 0.97 and x 1.03 and other scan steps), the "
+             "replicas of the bank's models at dt x 0.97 and x 1.03 and other scan steps), what the "
+             f"specimens' build tolerance (ring thickness {_pct(obs.build_tolerance)}) moves each threshold by ("
+             + (f"{_pct(float(np.min(sc.sigma_tol)))} to {_pct(float(np.max(sc.sigma_tol)))} by pair"
+                if sc.sigma_tol is not None and sc.sigma_tol.size else "none known")
+             + f"), a discrepancy of each pair (integrated over {', '.join(_pct(t) for t in TAU_PAIR)}), the "
              f"test-to-test table gain scatter ({_pct(sc.sigma_gain)}"
              + {"records": ", measured by the records",
                 "peak_accel": ", from the measured peak accelerations, at least 3 % (a noisy peak overstates)",

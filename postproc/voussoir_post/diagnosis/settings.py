@@ -39,4 +39,8 @@ class DiagnosisSettings:
     #: Where the simulation bank is cached (None: a folder `voussoir-bank` beside the output).
     bank_dir: Path | None = None
     figure_format: str = "png"  #: of report.md's figures: png, pdf or svg
+    #: How far a specimen as built may lie from its stated ring thickness (relative standard
+    #: deviation): 1.5 %, a mason's or joiner's tolerance on a ring of 25-40 mm; less for
+    #: specimens measured after building, 0 for specimens made exactly (another code's).
+    build_tolerance: float = 0.015
     log: object = print
