@@ -42,7 +42,7 @@ def test_the_rate_of_collapse_is_the_closed_form_of_a_power_law_hazard(tmp_path,
 
 def test_a_hazard_file_must_decrease_and_name_its_columns(tmp_path):
     (tmp_path / "a.csv").write_text("pga_g,annual_rate\n0.1,0.01\n0.2,0.02\n")
-    with pytest.raises(InputError, match="decrease"):
+    with pytest.raises(InputError, match="rises with the intensity"):
         read_hazard(tmp_path / "a.csv")
     (tmp_path / "b.csv").write_text("pga,rate\n0.1,0.01\n0.2,0.001\n")
     with pytest.raises(InputError, match="missing column 'pga_g'"):

@@ -23,65 +23,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 
 from ..errors import InputError
+from .hazard import HazardCurve, HazardSet, read_hazard, read_hazard_set
 
-__all__ = ["HazardCurve", "read_hazard", "RiskResult", "collapse_risk", "power_law_rate"]
-
-
-@dataclass(frozen=True)
-class HazardCurve:
-    """A site's hazard: PGA [g] and the mean annual frequency of its exceedance [1/yr]."""
-
-    pga_g: np.ndarray
-    annual_rate: np.ndarray
-    source: str = ""
-
-    def rate(self, pga_g) -> np.ndarray:
-        """lambda(im), log-log interpolated, the end intervals' power laws beyond the ends."""
-        x, y = np.log(self.pga_g), np.log(self.annual_rate)
-        q = np.log(np.asarray(pga_g, float))
-        k = np.clip(np.searchsorted(x, q) - 1, 0, x.size - 2)
-        slope = (y[k + 1] - y[k]) / (x[k + 1] - x[k])
-        return np.exp(y[k] + slope * (q - x[k]))
-
-
-def read_hazard(path: str | Path) -> HazardCurve:
-    """A hazard curve as CSV: columns `pga_g` and `annual_rate` (mean annual frequency of
-    exceedance, 1/yr), one header row, `#` comments; at least two rows, PGA increasing and
-    positive, rates positive and decreasing."""
-    path = Path(path)
-    if not path.is_file():
-        raise InputError(f"{path}: no such hazard file")
-    lines = [(n, line.strip()) for n, line in enumerate(path.read_text().splitlines(), 1)
-             if line.strip() and not line.lstrip().startswith("#")]
-    if not lines:
-        raise InputError(f"{path}: empty hazard file")
-    header = [c.strip() for c in lines[0][1].split(",")]
-    for name in ("pga_g", "annual_rate"):
-        if name not in header:
-            raise InputError(f"{path}:{lines[0][0]}: missing column '{name}' (header has: {', '.join(header)})")
-    ia, ir = header.index("pga_g"), header.index("annual_rate")
-    pga, rate = [], []
-    for n, line in lines[1:]:
-        cells = [c.strip() for c in line.split(",")]
-        try:
-            a, r = float(cells[ia]), float(cells[ir])
-        except (ValueError, IndexError):
-            raise InputError(f"{path}:{n}: pga_g and annual_rate must be numbers: '{line}'") from None
-        if not (a > 0 and r > 0 and math.isfinite(a) and math.isfinite(r)):
-            raise InputError(f"{path}:{n}: pga_g and annual_rate must be positive: '{line}'")
-        pga.append(a)
-        rate.append(r)
-    if len(pga) < 2:
-        raise InputError(f"{path}: a hazard curve needs at least two rows")
-    pga_a, rate_a = np.array(pga), np.array(rate)
-    if np.any(np.diff(pga_a) <= 0) or np.any(np.diff(rate_a) >= 0):
-        raise InputError(f"{path}: pga_g must increase and annual_rate decrease from row to row")
-    return HazardCurve(pga_a, rate_a, str(path))
+__all__ = ["HazardCurve", "HazardSet", "read_hazard", "read_hazard_set", "RiskResult", "collapse_risk",
+           "power_law_rate"]
 
 
 @dataclass
@@ -121,3 +70,4 @@ def collapse_risk(hazard: HazardCurve, median_g: float, beta: float, years: floa
 def power_law_rate(k0: float, k: float, median_g: float, beta: float) -> float:
     """The closed form lambda_c = k0 m^-k exp(k^2 beta^2 / 2) for lambda(im) = k0 im^-k."""
     return k0 * median_g ** (-k) * math.exp(0.5 * (k * beta) ** 2)
+
