@@ -98,6 +98,12 @@ def test_beta_split_of_exact_rows_by_hand(tmp_path, capsys):
     low_g, high_g = out["median_pga_g_band"]
     assert low_g < out["median_pga_g"] < high_g and out["band_level"] == 0.9
     assert out["median_pga_g_conf"] == out["median_pga_g_band"][0] and out["conf_level"] == 0.95
+    # Each resample's fit is listed (what voussoir-post risk carries into its band): the
+    # band's ends are their 5th and 95th percentiles (ln median, as the band takes them).
+    medians, betas = np.array(out["bootstrap_median_pga_g"]), np.array(out["bootstrap_beta_pga"])
+    assert medians.size == betas.size == out["n_bootstrap"]
+    np.testing.assert_allclose(np.exp(np.percentile(np.log(medians), [5, 95])), out["median_pga_g_band"], rtol=1e-12)
+    np.testing.assert_allclose(np.percentile(betas, [5, 95]), out["beta_pga_band"], rtol=1e-12)
     assert out["median_pgv_m_s_conf"] == out["median_pgv_m_s_band"][0]
     assert main(["fragility", str(path), "--bootstrap", "50"]) == 0
     text = capsys.readouterr().out
