@@ -364,16 +364,18 @@ def cmd_fragility(args) -> int:
 
         by_measure = compare_measures(ida, measures, args.sa_period, tuple(args.avgsa_periods or (0.2, 3.0)),
                                       n_bootstrap=args.bootstrap, seed=args.seed)
-    from ..earthquake.fit_report import bootstrap_keys
+    from ..earthquake.fit_report import bootstrap_keys, failure_reading
 
     pga = data.data.pga if hasattr(data, "data") else data.pga
+    failures = failure_reading(ida, pga.fit)
     if args.json:
-        print(json.dumps({**data.summary(), **bootstrap_keys(pga.band),
+        print(json.dumps({**data.summary(), **failures.keys(), **bootstrap_keys(pga.band),
                           **(by_measure.summary() if by_measure else {})}, indent=1))
         return DONE
     print(format_table(data.table))
     for line in data.report_lines():
         print(line)
+    print(failures.words())
     print(f"wrote {data.png_path}")
     print(f"wrote {curve_csv}")
     print(f"wrote {points_csv}")
