@@ -37,8 +37,8 @@ def usgs_json(path, curves, status="success"):
         display = "Peak Ground Acceleration" if imt == "PGA" else f"{imt} Second Spectral Acceleration"
         response.append({
             "metadata": {
-                "edition": {"id": 1, "value": "E2014", "version": "v4.1.1", "display": "Dynamic: Conterminous U.S. 2014",
-                            "displayorder": 0},
+                "edition": {"id": 1, "value": "E2014", "version": "v4.1.1",
+                            "display": "Dynamic: Conterminous U.S. 2014", "displayorder": 0},
                 "region": {"id": 0, "value": "WUS", "display": "Western US", "displayorder": 0},
                 "latitude": 34.05, "longitude": -118.25,
                 "imt": _imt(imt, display, k), "vs30": {"id": 4, "value": "760", "display": "760 m/s (B/C boundary)",
@@ -47,8 +47,8 @@ def usgs_json(path, curves, status="success"):
             "data": [{"component": "Total", "yvalues": list(y)},
                      {"component": "Fault", "yvalues": [0.6 * v for v in y]},
                      {"component": "Grid", "yvalues": [0.4 * v for v in y]}]})
-    path.write_text(json.dumps({"status": status, "date": "2026-11-29T08:00:00-07:00",
-                                "url": "https://earthquake.usgs.gov/nshmp-haz-ws/hazard/E2014/WUS/-118.25/34.05/any/760",
+    url = "https://earthquake.usgs.gov/nshmp-haz-ws/hazard/E2014/WUS/-118.25/34.05/any/760"
+    path.write_text(json.dumps({"status": status, "date": "2026-11-29T08:00:00-07:00", "url": url,
                                 "server": {"threads": 1}, "response": response}, indent=2))
     return path
 
@@ -58,8 +58,8 @@ def openquake_csv(path, rates_by_site, years=50.0, kind="mean", imt="PGA", level
     if old_comment:
         head = f"# source_model_tree_path=('b1',), gsim_tree_path=('b1',), investigation_time={years},imt=\"{imt}\"\n"
     else:
-        head = (f"#,,,,,\"generated_by='OpenQuake engine 3.18.0', start_date='2026-11-29T08:00:00', checksum=2107362341, "
-                f"kind='{kind}', investigation_time={years}, imt='{imt}'\"\n")
+        head = (f"#,,,,,\"generated_by='OpenQuake engine 3.18.0', start_date='2026-11-29T08:00:00', "
+                f"checksum=2107362341, kind='{kind}', investigation_time={years}, imt='{imt}'\"\n")
     rows = ["lon,lat,depth," + ",".join(f"poe-{x:.7f}" for x in levels)]
     for s, rates in enumerate(rates_by_site):
         poe = [-math.expm1(-r * years) for r in rates]

@@ -62,7 +62,8 @@ def risk_summary(args, hazard, median, beta, source, band) -> dict:
                    {f"{q:g}": v for q, v in d["margin_quantiles"].items()}}
             for kind, d in band.fragility.items()}
     return {
-        "hazard": hazard.mean.source, "hazard_fractile_files": {f"{q:g}": c.source for q, c in hazard.fractiles.items()},
+        "hazard": hazard.mean.source,
+        "hazard_fractile_files": {f"{q:g}": c.source for q, c in hazard.fractiles.items()},
         "hazard_notes": list(hazard.mean.notes), "measure": hazard.measure,
         "fragility": source, "median_g": median, "median_pga_g": median if hazard.measure == "PGA" else None,
         "beta_fit": beta, "beta_pga": beta if hazard.measure == "PGA" else None,
@@ -104,7 +105,8 @@ def report_lines(args, hazard, median, beta, source, band) -> list[str]:
                                             if band.model_form.rated else ""))
     if band.model_form.rated:
         lines.append(f"  source: {P695_SOURCE}")
-    lines.append(f"mean annual frequency of collapse: {r.annual_rate:.4g} /yr (return period {1 / r.annual_rate:.4g} yr)"
+    lines.append(f"mean annual frequency of collapse: {r.annual_rate:.4g} /yr (return period "
+                 f"{1 / r.annual_rate:.4g} yr)"
                  + (f"; {band.point_without_model_form.annual_rate:.4g} /yr without the model-form part"
                     if band.point_without_model_form is not None else ""))
     lines.append(f"probability of collapse in 50 years: {r.p_50yr:.4g}"
@@ -120,7 +122,8 @@ def report_lines(args, hazard, median, beta, source, band) -> list[str]:
         few = " (few draws: the quantiles interpolate between them)" if d["n"] < 10 else ""
         lines.append(f"{kind} ({d['n']} fragilities{few}): annual rate {_fmt_band(d['quantiles'])} /yr; P(50 yr) "
                      + _fmt_band({q: RiskBand.p_in(v, 50) for q, v in d["quantiles"].items()})
-                     + (f"; mixture (mean of the samples' curves) {d['mean']:.3g} /yr" if kind == "model samples" else "")
+                     + (f"; mixture (mean of the samples' curves) {d['mean']:.3g} /yr" if kind == "model samples"
+                        else "")
                      + ("" if d["margin_quantiles"] is None else
                         f"; margin ratio {_fmt_band(d['margin_quantiles'])}"))
     if band.combined:
@@ -195,7 +198,8 @@ def add_risk_parser(sub, figure_format) -> None:
                    help="the fragility draws combined with the hazard fractiles into one band (default: the "
                         "bootstrap when given, else the model samples)")
     p.add_argument("--years", type=float, default=50.0, help="the period of the probability of collapse (default 50)")
-    p.add_argument("--mce-g", type=float, help="the maximum considered earthquake's intensity [g], for the margin ratio")
+    p.add_argument("--mce-g", type=float,
+                   help="the maximum considered earthquake's intensity [g], for the margin ratio")
     p.add_argument("--json", action="store_true", help="print the numbers as JSON")
     p.add_argument("--out", help="output figure file (.png, .pdf or .svg) or folder (default: beside the hazard file)")
     figure_format(p)

@@ -54,7 +54,8 @@ class FailureReading:
                     f"reading that counts failures as collapses could not be made (read the HDF5 file)")
         return (f"failed searches: {self.n_failed} ({self.n_after_collapse} had collapsed before failing: in (last "
                 f"stand, collapse seen]); counting {self.n_counted} of them as collapses at their failed run: PGA "
-                f"median {f.median / G_M_S2:.4g} g ({100 * (f.median / self.fit.median - 1):+.2g} %), beta {f.beta:.3f} "
+                f"median {f.median / G_M_S2:.4g} g ({100 * (f.median / self.fit.median - 1):+.2g} %), beta "
+                f"{f.beta:.3f} "
                 f"({f.beta - self.fit.beta:+.3f}): how much the failures matter")
 
 

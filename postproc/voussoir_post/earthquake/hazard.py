@@ -93,18 +93,6 @@ class HazardCurve:
         slope = (y[k + 1] - y[k]) / (x[k + 1] - x[k])
         return np.exp(y[k] + slope * (q - x[k]))
 
-    def intensity_at_rate(self, rate: float) -> float:
-        """The intensity [g] exceeded at the annual rate `rate` (the inverse of :meth:`rate`,
-        log-log, the end power laws beyond the ends)."""
-        x, y = np.log(self.pga_g), np.log(self.annual_rate)
-        q = math.log(rate)
-        order = np.argsort(-y, kind="stable")  # y decreasing with x; equal y (flat) keep their order
-        ys, xs = -y[order], x[order]
-        k = int(np.clip(np.searchsorted(ys, -q) - 1, 0, xs.size - 2))
-        if ys[k + 1] == ys[k]:
-            return float(math.exp(xs[k]))
-        return float(math.exp(xs[k] + (xs[k + 1] - xs[k]) * (-q - ys[k]) / (ys[k + 1] - ys[k])))
-
 
 @dataclass
 class HazardSet:

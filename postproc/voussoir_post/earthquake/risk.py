@@ -276,9 +276,11 @@ def risk_band(hazard: HazardSet, median_g: float, beta: float, draws=(), form: M
                 x = brentq(f, centre + shifts.min() - 12 * spread, centre + shifts.max() + 12 * spread, xtol=1e-12)
                 band.combined[level] = math.exp(x)
             band.combined_with = chosen
+            where = ("median hazard curve" if 0.5 in band.hazard_fractiles
+                     else f"middle of the {q:g}/{upper:g} fractiles")
             band.method.append(
                 f"combined band: hazard and fragility independent; ln lambda_c = a + d_j + beta_H e, a the ln rate on "
-                f"the {'median hazard curve' if 0.5 in band.hazard_fractiles else f'middle of the {q:g}/{upper:g} fractiles'}"
+                f"the {where}"
                 f", beta_H = {band.beta_hazard:.3f} from the {q:g} and {upper:g} fractiles (lognormal), d_j the "
                 f"{chosen} draws' ln rates less the fit's on the mean hazard (drawn uniformly), e standard normal")
     return band
