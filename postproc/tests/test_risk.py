@@ -186,3 +186,16 @@ def test_the_command_with_openquake_files_bootstrap_and_ratings(tmp_path, capsys
     assert main(args) == 0
     text = capsys.readouterr().out
     assert "combined (hazard fractiles x bootstrap)" in text and "model-form: design requirements good (0.20)" in text
+
+
+def test_the_command_refuses_a_pga_fit_on_another_measure_and_a_bad_rating(tmp_path, capsys):
+    """--fragility-json is a PGA fit: with --measure SA(1.0) it is refused before anything is
+    read or drawn; a rating outside P695's four is refused by the parser."""
+    path = _power_law_file(tmp_path / "site.csv")
+    frag = tmp_path / "frag.json"
+    frag.write_text(json.dumps({"median_pga_g": 0.3, "beta_pga": 0.283}))
+    assert main(["risk", str(path), "--fragility-json", str(frag), "--measure", "SA(1.0)"]) == 2
+    assert "gives the PGA fit" in capsys.readouterr().err
+    with pytest.raises(SystemExit):
+        main(["risk", str(path), "--median-g", "0.3", "--beta", "0.3", "--rating-mdl", "excellent"])
+    assert not list(tmp_path.glob("*.png"))
