@@ -25,6 +25,7 @@ from ..errors import DONE, InputError
 from ..tables import ReportTable, format_table, write_csv
 from .dtcheck import add_dtcheck_parser
 from .risk import add_risk_parser
+from .samples import add_samples_parser
 from .entry import run_command
 
 __all__ = ["main", "build_parser", "output_path", "figure_path", "FIGURE_FORMATS"]
@@ -602,6 +603,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     add_dtcheck_parser(sub)
     add_risk_parser(sub, figure_format)
+    add_samples_parser(sub)
 
     p = sub.add_parser("records", help="the suite of real ground-motion records and where they are installed")
     p.add_argument("keys", nargs="*", metavar="KEY", help="only these records (e.g. ELC180 CLS000)")
