@@ -1,0 +1,173 @@
+"""The calibrated fragility as a mixture of stratified model samples (issue 36, item 2),
+each part against an answer derived apart from the code:
+
+- the mixture's median against a root of the closed-form mixture of lognormal CDFs
+  (scipy.stats.lognorm, brentq here), its percentile curves against the order statistics
+  of the samples' curves, each model's curve against its own lognormal;
+- the two-stage bootstrap: drawing the samples as well as the events widens the band of a
+  mixture whose samples disagree, and its spread of the ln median is close to the events' part
+  and the samples' own bootstrap (computed here from the fits) added in quadrature;
+- the calibrated goodness-of-fit p-value: roughly uniform over data sets drawn from the
+  null (one lognormal, clustered by event and record, bracketed as an IDA's rows; the KS
+  table's p-value on the same sets is not), and small for a mixture of two well-separated
+  lognormals.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+from scipy import optimize, stats
+
+from voussoir_post.earthquake.mixture import (calibrated_fit_check, cluster_correlations, fit_samples,
+                                              mixture_band, mixture_quantile, model_curves, percentile_curves)
+
+
+
+# ------------------------------------------------------------------ the mixture
+
+def _exact_rows(median, beta, k=12):
+    """k exact intensities whose maximum-likelihood lognormal is (median, beta) exactly."""
+    u = stats.norm.ppf((np.arange(k) + 0.5) / k)
+    u = (u - u.mean()) / u.std()
+    return np.exp(math.log(median) + beta * u)
+
+
+def _rows(samples):
+    low, sets = [], []
+    for s, (m, b) in enumerate(samples):
+        x = _exact_rows(m, b)
+        low.append(x)
+        sets.append(np.full(x.size, s))
+    low = np.concatenate(low)
+    return low, low.copy(), np.concatenate(sets)
+
+
+def test_the_mixtures_median_is_the_root_of_the_closed_form_mixture():
+    low, high, sets = _rows([(0.20, 0.30), (0.40, 0.20)])
+    fits = fit_samples(low, high, sets, weights={0: 0.3, 1: 0.7}, models={0: "a", 1: "b"})
+    assert fits.medians == pytest.approx([0.20, 0.40], rel=1e-10) and fits.betas == pytest.approx([0.30, 0.20])
+
+    def cdf(x):  # the mixture of the two lognormals, by scipy's lognorm
+        return 0.3 * stats.lognorm.cdf(x, 0.30, scale=0.20) + 0.7 * stats.lognorm.cdf(x, 0.20, scale=0.40)
+
+    median = optimize.brentq(lambda x: cdf(x) - 0.5, 0.01, 5.0, xtol=1e-14)
+    assert fits.median() == pytest.approx(median, rel=1e-9)
+    assert mixture_quantile(0.16, fits.medians, fits.betas, fits.weights) == pytest.approx(
+        optimize.brentq(lambda x: cdf(x) - 0.16, 0.01, 5.0, xtol=1e-14), rel=1e-9)
+    im = np.linspace(0.05, 1.0, 40)
+    assert fits.cdf(im) == pytest.approx(cdf(im), abs=1e-12)
+    curves = model_curves(im, fits)
+    assert curves["a"] == pytest.approx(stats.lognorm.cdf(im, 0.30, scale=0.20), abs=1e-12)
+    assert curves["b"] == pytest.approx(stats.lognorm.cdf(im, 0.20, scale=0.40), abs=1e-12)
+
+
+def test_the_percentile_curves_are_the_weighted_order_statistics():
+    samples = [(0.2, 0.3), (0.3, 0.2), (0.45, 0.25)]
+    low, high, sets = _rows(samples)
+    im = np.linspace(0.05, 1.0, 30)
+    own = np.array([stats.lognorm.cdf(im, b, scale=m) for m, b in samples])
+    # equal weights (1/3 each): the 16 % is the smallest curve, the 84 % the largest
+    curves = percentile_curves(im, fit_samples(low, high, sets))
+    assert curves[0.16] == pytest.approx(own.min(axis=0), abs=1e-12)
+    assert curves[0.84] == pytest.approx(own.max(axis=0), abs=1e-12)
+    # weights 0.1, 0.2, 0.7 (cumulated from the smallest value): the 16 % is the middle value
+    # wherever the 0.1-sample's curve is the smallest, which it is below the crossing points
+    fits = fit_samples(low, high, sets, weights={0: 0.2, 1: 0.1, 2: 0.7})
+    got = percentile_curves(im, fits)[0.16]
+    order = np.argsort(own, axis=0)
+    w = np.array([0.2, 0.1, 0.7])
+    want = [own[order[0, k], k] if w[order[0, k]] >= 0.16 else own[order[1, k], k] for k in range(im.size)]
+    assert got == pytest.approx(want, abs=1e-12)
+
+
+def _ida_like(rng, medians, betas, n_events=7, per_event=2, ratio=1.05, rho_e=0.0, rho_r=0.0, models=None):
+    """Rows of a synthetic IDA: every sample plays every record; sample s's ln IM_c = ln m_s +
+    beta_s (record effect + own noise), bracketed (x / ratio^u', x ratio^u] as a search is."""
+    n_records = n_events * per_event
+    events = np.repeat(np.arange(n_events), per_event)
+    a_event = rng.standard_normal(n_events)[events]
+    a_record = rng.standard_normal(n_records)
+    low, high, sets, rec, ev = [], [], [], [], []
+    for s, (m, b) in enumerate(zip(medians, betas)):
+        z = math.sqrt(rho_e) * a_event + math.sqrt(rho_r - rho_e) * a_record + math.sqrt(1 - rho_r) * \
+            rng.standard_normal(n_records)
+        x = np.exp(math.log(m) + b * z)
+        top = x * ratio ** rng.uniform(0, 1, n_records)
+        low.append(top / ratio)
+        high.append(top)
+        sets.append(np.full(n_records, s))
+        rec.append([f"r{k}" for k in range(n_records)])
+        ev.append([f"e{e}" for e in events])
+    return (np.concatenate(low), np.concatenate(high), np.concatenate(sets), sum(rec, []), sum(ev, []))
+
+
+def test_the_two_stage_band_carries_the_samples_spread():
+    rng = np.random.default_rng(7)
+    # 8 samples in one stratum whose medians spread by beta_m = 0.25 in ln, records adding 0.15
+    ln_m = math.log(0.3) + 0.25 * stats.norm.ppf((np.arange(8) + 0.5) / 8)
+    low, high, sets, rec, ev = _ida_like(rng, np.exp(ln_m), np.full(8, 0.15), rho_e=0.3, rho_r=0.6)
+    fits = fit_samples(low, high, sets)
+    im = np.linspace(0.05, 1.0, 20)
+    both = mixture_band(low, high, sets, fits, im, rec, ev, "event", n_resamples=200, seed=3)
+    events_only = mixture_band(low, high, sets, fits, im, rec, ev, "event", n_resamples=200, seed=3,
+                               resample_samples=False)
+    assert both.ln_median_sd > 1.5 * events_only.ln_median_sd
+    # the samples' own part: the bootstrap standard error of the mixture's ln median over the 8
+    # samples alone (records fixed), computed here from the fits
+    rng2 = np.random.default_rng(11)
+    alone = [math.log(mixture_quantile(0.5, fits.medians[k], fits.betas[k], np.ones(8)))
+             for k in (rng2.integers(0, 8, 8) for _ in range(400))]
+    expected = math.hypot(float(np.std(alone, ddof=1)), events_only.ln_median_sd)
+    assert both.ln_median_sd == pytest.approx(expected, rel=0.25)
+
+
+# ------------------------------------------------------------------ the calibrated goodness of fit
+
+def test_the_correlations_of_a_clustered_sample_are_found():
+    rng = np.random.default_rng(5)
+    n_events, per_event, n_samples = 40, 3, 6
+    events = np.repeat(np.arange(n_events), per_event)
+    z = (math.sqrt(0.2) * rng.standard_normal(n_events)[events][None, :]
+         + math.sqrt(0.3) * rng.standard_normal(n_events * per_event)[None, :]
+         + math.sqrt(0.25) * rng.standard_normal(n_samples)[:, None]
+         + math.sqrt(0.25) * rng.standard_normal((n_samples, n_events * per_event)))
+    records = np.tile(np.arange(n_events * per_event), n_samples)
+    rho_r, rho_e, rho_s = cluster_correlations(z.reshape(-1), records, np.tile(events, n_samples),
+                                               np.repeat(np.arange(n_samples), n_events * per_event))
+    # planted shares of the variance: record (event included) 0.5, event 0.2, sample 0.25
+    assert rho_r == pytest.approx(0.5, abs=0.1) and rho_e == pytest.approx(0.2, abs=0.1)
+    assert rho_s == pytest.approx(0.25, abs=0.15)
+
+
+def test_the_calibrated_p_value_is_uniform_under_the_null():
+    p_values, p_table = [], []
+    for k in range(40):
+        rng = np.random.default_rng(100 + k)
+        # the null: every row a draw of one lognormal (4 samples of one median), clustered by event and record
+        low, high, sets, rec, ev = _ida_like(rng, np.full(4, 0.3), np.full(4, 0.2), rho_e=0.2, rho_r=0.4)
+        check = calibrated_fit_check(low, high, clusters=rec, events=ev, samples=sets, n_simulations=49,
+                                     seed=k)
+        p_values.append(check.p_value)
+        p_table.append(check.p_table)
+    p_values = np.array(p_values)
+    assert stats.kstest(p_values, "uniform").pvalue > 0.05
+    assert 0.0 <= np.mean(p_values < 0.1) <= 0.25 and 0.35 <= p_values.mean() <= 0.65
+    # the KS table's p-value on the same data sets is not uniform (fitted parameters: too large)
+    assert stats.kstest(p_table, "uniform").pvalue < 0.01 and np.mean(p_table) > 0.65
+
+
+def test_the_calibrated_p_value_is_small_for_two_separated_lognormals():
+    rng = np.random.default_rng(2)
+    # ten samples of each of two models, medians 0.2 g and 0.45 g, each sample's rows within 0.08
+    medians = np.r_[np.full(10, 0.2), np.full(10, 0.45)] * np.exp(0.03 * rng.standard_normal(20))
+    low, high, sets, rec, ev = _ida_like(rng, medians, np.full(20, 0.08), rho_e=0.1, rho_r=0.3)
+    check = calibrated_fit_check(low, high, clusters=rec, events=ev, samples=sets, n_simulations=199, seed=1)
+    assert check.p_value < 0.05 and not check.holds
+    # the same rows without their samples: rows clustered by record only
+    flat = calibrated_fit_check(low, high, clusters=rec, events=ev, n_simulations=199, seed=1)
+    assert flat.p_value <= 0.01
+
