@@ -10,7 +10,11 @@ each part against an answer derived apart from the code:
 - the calibrated goodness-of-fit p-value: roughly uniform over data sets drawn from the
   null (one lognormal, clustered by event and record, bracketed as an IDA's rows; the KS
   table's p-value on the same sets is not), and small for a mixture of two well-separated
-  lognormals.
+  lognormals;
+- the commands: the fragility's JSON gives the weights of a stratified file written by hand
+  and the mixture's median (a root found here), and the risk of the mixture on a power-law
+  hazard is the weighted sum of the samples' closed forms (Cornell et al. 2002), for the
+  point and for each two-stage bootstrap resample.
 """
 
 from __future__ import annotations
@@ -171,3 +175,69 @@ def test_the_calibrated_p_value_is_small_for_two_separated_lognormals():
     flat = calibrated_fit_check(low, high, clusters=rec, events=ev, n_simulations=199, seed=1)
     assert flat.p_value <= 0.01
 
+
+# ------------------------------------------------------------------ the commands
+
+def _ida_csv(path, rng):
+    """An IDA CSV of 6 model samples of two models (a: medians 0.2 g, b: 0.45 g) x 10 records of 5 events."""
+    g = 9.81
+    rows = ["record,param_set,friction,scale_stood,scale_threshold,pga_threshold_m_s2,pgv_threshold_m_s,censored,"
+            "event,pga_m_s2"]
+    record_effect = 0.6 * rng.standard_normal(10)
+    for s, median in enumerate([0.2, 0.21, 0.19, 0.45, 0.44, 0.47]):
+        for r in range(10):
+            pga = median * g * math.exp(0.08 * (record_effect[r] + 0.8 * rng.standard_normal()))
+            unit = 2.0 + 0.3 * r  # the record's own PGA [m/s2]
+            high = pga * 1.05 ** rng.uniform()
+            rows.append(f"rec{r},{s},{0.3 + 0.01 * s},{high / 1.05 / unit!r},{high / unit!r},{high!r},{0.1 * high!r},0,"
+                        f"event{r // 2},{unit!r}")
+    path.write_text("\n".join(rows) + "\n")
+
+
+def _strata_csv(path):
+    """A stratified samples file written by hand: a share 0.4 over 3 samples, b 0.6 over 3."""
+    lines = ["# format: voussoir posterior samples 1",
+             "# stratum: model = a, probability = 0.3, share = 0.4, samples = 3, weight = 0.133333333",
+             "# stratum: model = b, probability = 0.45, share = 0.6, samples = 3, weight = 0.2",
+             "sample,model,friction"] + [f"{s},{'a' if s < 3 else 'b'},{0.3 + 0.01 * s!r}" for s in range(6)]
+    path.write_text("\n".join(lines) + "\n")
+
+
+def test_fragility_and_risk_commands_use_the_mixture_when_the_pooled_fit_fails(tmp_path, capsys):
+    from voussoir_post.cli.post import main
+
+    _ida_csv(tmp_path / "ida.csv", np.random.default_rng(4))
+    _strata_csv(tmp_path / "strata.csv")
+    assert main(["fragility", str(tmp_path / "ida.csv"), "--strata", str(tmp_path / "strata.csv"), "--json",
+                 "--bootstrap", "60", "--out", str(tmp_path)]) == 0
+    out = json.loads(capsys.readouterr().out)
+    mix = out["mixture"]
+    assert mix["sample_weight"] == pytest.approx([0.4 / 3] * 3 + [0.2] * 3, rel=1e-6)
+    assert mix["sample_model"] == ["a"] * 3 + ["b"] * 3
+    assert not mix["pooled_holds"] and mix["to_use"] == "mixture" and mix["pooled_gof_p_calibrated"] < 0.05
+    m, b, w = (np.array(mix[k]) for k in ("sample_median_pga_g", "sample_beta_pga", "sample_weight"))
+    root = optimize.brentq(lambda x: float(np.sum(w * stats.norm.cdf(np.log(x / m) / b))) - 0.5, 0.05, 2.0,
+                           xtol=1e-12)
+    assert mix["median_pga_g"] == pytest.approx(root, rel=1e-8)
+    assert mix["model_median_pga_g"]["a"] < 0.25 < 0.4 < mix["model_median_pga_g"]["b"]
+    assert len(mix["bootstrap_draws"]) + mix["n_bootstrap_unfitted"] == 60
+    assert (tmp_path / "ida_fragility_mixture.png").exists() and (tmp_path / "ida_fragility_mixture.csv").exists()
+    frag = tmp_path / "frag.json"
+    frag.write_text(json.dumps(out))
+    # the risk on a power-law hazard: the mixture's rate is the weighted sum of the samples' closed forms
+    k0, k = 1e-4, 2.5
+    xs = np.geomspace(0.01, 5.0, 40)
+    (tmp_path / "site.csv").write_text("pga_g,annual_rate\n" + "\n".join(f"{x:.17g},{k0 * x ** -k:.17g}" for x in xs)
+                                         + "\n")
+    assert main(["risk", str(tmp_path / "site.csv"), "--fragility-json", str(frag), "--mce-g", "0.5", "--json",
+                 "--out", str(tmp_path / "risk.png")]) == 0
+    risk = json.loads(capsys.readouterr().out)
+    closed = lambda mm, bb: k0 * mm ** -k * np.exp(0.5 * (k * bb) ** 2)
+    assert risk["annual_rate_of_collapse"] == pytest.approx(float(np.sum(w * closed(m, b))), rel=1e-2)
+    assert risk["collapse_margin_ratio"] == pytest.approx(root / 0.5, rel=1e-6)
+    draws = mix["bootstrap_draws"]
+    each = [float(np.sum(np.array(d["weight"]) * closed(np.array(d["median_pga_g"]), np.array(d["beta_pga"]))))
+            for d in draws]
+    assert risk["fragility_bands"]["mixture bootstrap"]["mean_annual_rate"] == pytest.approx(np.mean(each), rel=1e-2)
+    assert risk["fragility_bands"]["model samples"]["mean_annual_rate"] == pytest.approx(
+        risk["annual_rate_of_collapse"], rel=1e-2)

@@ -33,15 +33,46 @@ def _fragility(args):
             raise InputError(f"{args.fragility_json}: not the JSON of voussoir-post fragility --json "
                              f"(median_pga_g, beta_pga): {e}") from None
         draws = []
+        mixture = data.get("mixture")
         for kind, m_key, b_key in (("bootstrap", "bootstrap_median_pga_g", "bootstrap_beta_pga"),
                                    ("model samples", "median_pga_g_by_sample", "beta_pga_by_sample")):
+            if kind == "model samples" and mixture:
+                continue  # the mixture's samples, with their weights, below
             medians, betas = data.get(m_key), data.get(b_key)
             if medians and betas and len(medians) > 1:
                 draws.append(FragilityDraws(kind, medians, betas))
-        return median, beta, args.fragility_json, draws
+        point_mixture = None
+        if mixture:
+            try:
+                samples = FragilityDraws("model samples", mixture["sample_median_pga_g"], mixture["sample_beta_pga"],
+                                         weights=mixture["sample_weight"])
+                resamples = mixture.get("bootstrap_draws") or []
+                if resamples:
+                    draws.append(FragilityDraws(
+                        "mixture bootstrap", [m for r in resamples for m in r["median_pga_g"]],
+                        [b for r in resamples for b in r["beta_pga"]],
+                        weights=[w for r in resamples for w in r["weight"]],
+                        groups=[k for k, r in enumerate(resamples) for _ in r["weight"]]))
+                draws.append(samples)
+                if not mixture["pooled_holds"]:
+                    point_mixture = samples
+                    median = float(mixture["median_pga_g"])
+                    # the pooled fit's own bootstrap is of the rejected fit: the mixture's replaces it
+                    draws = [d for d in draws if d.kind != "bootstrap"]
+            except (KeyError, TypeError, ValueError) as e:
+                raise InputError(f"{args.fragility_json}: its 'mixture' is not that of voussoir-post fragility --json: "
+                                 f"{e}") from None
+        source = args.fragility_json
+        if point_mixture is not None:
+            source += (f"; the mixture of its {point_mixture.medians_g.size} model samples (the pooled lognormal's "
+                       f"goodness of fit failed: p {mixture['pooled_gof_p_calibrated']:.2g}, calibrated)")
+        elif mixture:
+            source += (f"; the pooled lognormal (its goodness of fit holds: p "
+                       f"{mixture['pooled_gof_p_calibrated']:.2g}, calibrated)")
+        return median, beta, source, draws, point_mixture
     if args.median_g is None or args.beta is None:
         raise InputError("the fragility: give --median-g and --beta, or --fragility-json FILE")
-    return args.median_g, args.beta, "given", []
+    return args.median_g, args.beta, "given", [], None
 
 
 def _fmt_band(quantiles: dict, fmt: str = ".3g") -> str:
@@ -96,7 +127,9 @@ def report_lines(args, hazard, median, beta, source, band) -> list[str]:
 
     r, m = band.point, measure_words(hazard.measure)
     c = hazard.mean
-    lines = [f"fragility: {m} median {median:.4g} g, beta {beta:.3g} ({source})",
+    mixed = "the mixture of its" in source
+    lines = [f"fragility: {m} median {median:.4g} g, " + ("a mixture of lognormals" if mixed else f"beta {beta:.3g}")
+             + f" ({source})",
              f"hazard: {c.source}, {m} {c.pga_g[0]:.3g} to {c.pga_g[-1]:.3g} g, annual rates {c.annual_rate[0]:.3g} to "
              f"{c.annual_rate[-1]:.3g} /yr (log-log interpolated)"
              + (f"; fractiles {', '.join(f'{q:g}' for q in hazard.fractiles)}" if hazard.fractiles else "")]
@@ -122,8 +155,8 @@ def report_lines(args, hazard, median, beta, source, band) -> list[str]:
         few = " (few draws: the quantiles interpolate between them)" if d["n"] < 10 else ""
         lines.append(f"{kind} ({d['n']} fragilities{few}): annual rate {_fmt_band(d['quantiles'])} /yr; P(50 yr) "
                      + _fmt_band({q: RiskBand.p_in(v, 50) for q, v in d["quantiles"].items()})
-                     + (f"; mixture (mean of the samples' curves) {d['mean']:.3g} /yr" if kind == "model samples"
-                        else "")
+                     + (f"; mixture (weighted mean of the samples' curves) {d['mean']:.3g} /yr"
+                        if kind == "model samples" else "")
                      + ("" if d["margin_quantiles"] is None else
                         f"; margin ratio {_fmt_band(d['margin_quantiles'])}"))
     if band.combined:
@@ -139,7 +172,7 @@ def cmd_risk(args) -> int:
     from ..earthquake.hazard import normalise_measure, read_hazard_set
     from ..earthquake.risk import model_form, risk_band
 
-    median, beta, source, draws = _fragility(args)
+    median, beta, source, draws, point_mixture = _fragility(args)
     measure = normalise_measure(getattr(args, "measure", None) or "PGA")
     if args.fragility_json and measure != "PGA":
         raise InputError(f"--fragility-json gives the PGA fit; for {measure} give --median-g and --beta")
@@ -150,8 +183,8 @@ def cmd_risk(args) -> int:
     if args.years <= 0:
         raise InputError(f"--years must be > 0 (got {args.years})")
     band = risk_band(hazard, median, beta, draws, form, years=args.years, mce_g=args.mce_g,
-                     combine={"samples": "model samples"}.get(getattr(args, "combine", None),
-                                                              getattr(args, "combine", None)))
+                     combine={"samples": "model samples", "mixture": "mixture bootstrap"}.get(
+                         getattr(args, "combine", None), getattr(args, "combine", None)), mixture=point_mixture)
     summary = risk_summary(args, hazard, median, beta, source, band)
     if args.json:
         print(json.dumps(summary, indent=1))
@@ -160,7 +193,7 @@ def cmd_risk(args) -> int:
     from ..plots.risk_plot import plot_risk  # matplotlib when the command runs
     from .post import figure_path
     path = figure_path(files[0], "risk", args)
-    plot_risk(path, hazard, median, band.beta_total, band.point, band=band)
+    plot_risk(path, hazard, median, band.beta_total, band.point, band=band, mixture=point_mixture)
     if not args.json:
         print(f"wrote {path}")
     return DONE
@@ -194,9 +227,10 @@ def add_risk_parser(sub, figure_format) -> None:
         p.add_argument(flag, choices=RATINGS, type=str.lower,
                        help=f"FEMA P695 quality rating of the {what}: superior 0.10, good 0.20, fair 0.35, poor 0.50, "
                             f"added to beta by the square root of the sum of squares (not rated: 0)")
-    p.add_argument("--combine", choices=("bootstrap", "samples"),
+    p.add_argument("--combine", choices=("bootstrap", "samples", "mixture"),
                    help="the fragility draws combined with the hazard fractiles into one band (default: the "
-                        "bootstrap when given, else the model samples)")
+                        "mixture's two-stage bootstrap when the JSON has a mixture, else the bootstrap when given, "
+                        "else the model samples)")
     p.add_argument("--years", type=float, default=50.0, help="the period of the probability of collapse (default 50)")
     p.add_argument("--mce-g", type=float,
                    help="the maximum considered earthquake's intensity [g], for the margin ratio")

@@ -20,8 +20,8 @@ def _band_words(band) -> str:
     if band.combined:
         lo, hi = band.combined.get(0.16), band.combined.get(0.84)
         return f"; 16-84 %: {lo:.2g} to {hi:.2g} /yr (hazard fractiles x {band.combined_with})"
-    for kind, d in band.fragility.items():
-        q = d["quantiles"]
+    for kind in sorted(band.fragility, key=lambda k: k != "mixture bootstrap"):
+        q = band.fragility[kind]["quantiles"]
         return f"; 16-84 %: {q[0.16]:.2g} to {q[0.84]:.2g} /yr ({kind} only)"
     if band.hazard_fractiles:
         qs = sorted(band.hazard_fractiles)
@@ -30,9 +30,11 @@ def _band_words(band) -> str:
     return ""
 
 
-def plot_risk(path: str, hazard, median_g: float, beta: float, result, band=None) -> str:
+def plot_risk(path: str, hazard, median_g: float, beta: float, result, band=None, mixture=None) -> str:
     """`hazard`: a HazardSet (or one HazardCurve); `beta`: the dispersion the rate was
-    computed with (the model-form part included); `band`: the RiskBand, if made."""
+    computed with (the model-form part included); `band`: the RiskBand, if made; `mixture`:
+    the model samples' lognormals (FragilityDraws) when the rate is the mixture's (`median_g`
+    then the mixture's median, `beta` the pooled one, for the axes' ranges)."""
     from ..earthquake.fragility import fragility
     from ..earthquake.hazard import measure_words
 
@@ -62,8 +64,18 @@ def plot_risk(path: str, hazard, median_g: float, beta: float, result, band=None
     twin = left.twinx()
     raised = (f" (fitted {band.beta_fit:.3g}, model-form {band.model_form.beta:.3g}, SRSS)"
               if band is not None and band.model_form.rated else "")
-    twin.plot(grid, fragility(grid, median_g, beta), color=COLORS[1], lw=1.5,
-              label=f"fragility: lognormal, median {median_g:.3g} g, beta {beta:.3g}{raised}")
+    if mixture is None:
+        twin.plot(grid, fragility(grid, median_g, beta), color=COLORS[1], lw=1.5,
+                  label=f"fragility: lognormal, median {median_g:.3g} g, beta {beta:.3g}{raised}")
+    else:
+        from ..earthquake.mixture import mixture_cdf
+        form = band.model_form if band is not None else None
+        betas = mixture.betas if form is None else np.array([form.total(b) for b in mixture.betas])
+        twin.plot(grid, mixture_cdf(grid, mixture.medians_g, betas, mixture.draw_weights()), color=COLORS[1], lw=1.5,
+                  label=f"fragility: the mixture of {mixture.medians_g.size} model samples' lognormals (the pooled "
+                        f"lognormal rejected), median {median_g:.3g} g"
+                        + (f", each beta raised by the model-form {form.beta:.3g} (SRSS)" if form and form.rated
+                           else ""))
     twin.set_ylim(0, 1.02)
     twin.set_ylabel("probability of collapse")
     left.set_title("The site's hazard and the arch's fragility", fontsize=10)
@@ -74,7 +86,8 @@ def plot_risk(path: str, hazard, median_g: float, beta: float, result, band=None
     share = result.density * result.pga_g / result.annual_rate
     right.plot(result.pga_g, share, color=COLORS[2], lw=1.5,
                label=f"share of the collapse rate per unit of ln {measure}\n(fragility density x hazard rate)")
-    right.axvline(median_g, color=COLORS[1], ls="--", lw=1, label=f"fragility median {median_g:.3g} g")
+    right.axvline(median_g, color=COLORS[1], ls="--", lw=1, label=f"fragility median {median_g:.3g} g"
+                  + (" (the mixture's)" if mixture is not None else ""))
     mode = float(result.pga_g[int(np.argmax(share))])
     right.axvline(mode, color=COLORS[2], ls=":", lw=1, label=f"where collapses come from most: {mode:.3g} g")
     right.set_xscale("log")
