@@ -8,9 +8,9 @@ each part against an answer derived apart from the code:
   mixture whose samples disagree, and its spread of the ln median is close to the events' part
   and the samples' own bootstrap (computed here from the fits) added in quadrature;
 - the calibrated goodness-of-fit p-value: roughly uniform over data sets drawn from the
-  null (one lognormal, clustered by event and record, bracketed as an IDA's rows; the KS
-  table's p-value on the same sets is not), and small for a mixture of two well-separated
-  lognormals;
+  null (samples of lognormal medians, rows clustered by event and record, bracketed as an
+  IDA's rows; the KS table's p-value on the same sets is not), and small for two models of
+  well-separated lognormals, and for thirty samples of lognormal medians not;
 - the commands: the fragility's JSON gives the weights of a stratified file written by hand
   and the mixture's median (a root found here), and the risk of the mixture on a power-law
   hazard is the weighted sum of the samples' closed forms (Cornell et al. 2002), for the
@@ -151,8 +151,10 @@ def test_the_calibrated_p_value_is_uniform_under_the_null():
     p_values, p_table = [], []
     for k in range(40):
         rng = np.random.default_rng(100 + k)
-        # the null: every row a draw of one lognormal (4 samples of one median), clustered by event and record
-        low, high, sets, rec, ev = _ida_like(rng, np.full(4, 0.3), np.full(4, 0.2), rho_e=0.2, rho_r=0.4)
+        # the null: 4 samples whose ln medians are normal about ln 0.3 (a pooled lognormal holds),
+        # 7 events x 2 records, every sample on every record
+        medians = np.exp(math.log(0.3) + 0.12 * rng.standard_normal(4))
+        low, high, sets, rec, ev = _ida_like(rng, medians, np.full(4, 0.2), rho_e=0.2, rho_r=0.4)
         check = calibrated_fit_check(low, high, clusters=rec, events=ev, samples=sets, n_simulations=49,
                                      seed=k)
         p_values.append(check.p_value)
@@ -174,17 +176,23 @@ def test_the_calibrated_p_value_is_small_for_two_separated_lognormals():
     # the same rows without their samples: rows clustered by record only
     flat = calibrated_fit_check(low, high, clusters=rec, events=ev, n_simulations=199, seed=1)
     assert flat.p_value <= 0.01
+    # thirty samples whose ln medians are normal (spread 0.2): the pooled lognormal holds
+    rng = np.random.default_rng(10)
+    medians = np.exp(math.log(0.3) + 0.2 * rng.standard_normal(30))
+    low, high, sets, rec, ev = _ida_like(rng, medians, np.full(30, 0.15), n_events=14, rho_e=0.2, rho_r=0.5)
+    check = calibrated_fit_check(low, high, clusters=rec, events=ev, samples=sets, n_simulations=99, seed=1)
+    assert check.holds
 
 
 # ------------------------------------------------------------------ the commands
 
 def _ida_csv(path, rng):
-    """An IDA CSV of 6 model samples of two models (a: medians 0.2 g, b: 0.45 g) x 10 records of 5 events."""
+    """An IDA CSV of 8 model samples of two models (a: medians 0.2 g, b: 0.45 g) x 10 records of 5 events."""
     g = 9.81
     rows = ["record,param_set,friction,scale_stood,scale_threshold,pga_threshold_m_s2,pgv_threshold_m_s,censored,"
             "event,pga_m_s2"]
     record_effect = 0.6 * rng.standard_normal(10)
-    for s, median in enumerate([0.2, 0.21, 0.19, 0.45, 0.44, 0.47]):
+    for s, median in enumerate([0.2, 0.21, 0.19, 0.205, 0.45, 0.44, 0.47, 0.46]):
         for r in range(10):
             pga = median * g * math.exp(0.08 * (record_effect[r] + 0.8 * rng.standard_normal()))
             unit = 2.0 + 0.3 * r  # the record's own PGA [m/s2]
@@ -195,11 +203,11 @@ def _ida_csv(path, rng):
 
 
 def _strata_csv(path):
-    """A stratified samples file written by hand: a share 0.4 over 3 samples, b 0.6 over 3."""
+    """A stratified samples file written by hand: a share 0.4 over 4 samples, b 0.6 over 4."""
     lines = ["# format: voussoir posterior samples 1",
-             "# stratum: model = a, probability = 0.3, share = 0.4, samples = 3, weight = 0.133333333",
-             "# stratum: model = b, probability = 0.45, share = 0.6, samples = 3, weight = 0.2",
-             "sample,model,friction"] + [f"{s},{'a' if s < 3 else 'b'},{0.3 + 0.01 * s!r}" for s in range(6)]
+             "# stratum: model = a, probability = 0.3, share = 0.4, samples = 4, weight = 0.1",
+             "# stratum: model = b, probability = 0.45, share = 0.6, samples = 4, weight = 0.15",
+             "sample,model,friction"] + [f"{s},{'a' if s < 4 else 'b'},{0.3 + 0.01 * s!r}" for s in range(8)]
     path.write_text("\n".join(lines) + "\n")
 
 
@@ -212,8 +220,8 @@ def test_fragility_and_risk_commands_use_the_mixture_when_the_pooled_fit_fails(t
                  "--bootstrap", "60", "--out", str(tmp_path)]) == 0
     out = json.loads(capsys.readouterr().out)
     mix = out["mixture"]
-    assert mix["sample_weight"] == pytest.approx([0.4 / 3] * 3 + [0.2] * 3, rel=1e-6)
-    assert mix["sample_model"] == ["a"] * 3 + ["b"] * 3
+    assert mix["sample_weight"] == pytest.approx([0.1] * 4 + [0.15] * 4, rel=1e-6)
+    assert mix["sample_model"] == ["a"] * 4 + ["b"] * 4
     assert not mix["pooled_holds"] and mix["to_use"] == "mixture" and mix["pooled_gof_p_calibrated"] < 0.05
     m, b, w = (np.array(mix[k]) for k in ("sample_median_pga_g", "sample_beta_pga", "sample_weight"))
     root = optimize.brentq(lambda x: float(np.sum(w * stats.norm.cdf(np.log(x / m) / b))) - 0.5, 0.05, 2.0,

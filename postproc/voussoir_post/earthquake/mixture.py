@@ -26,19 +26,19 @@ The pooled lognormal (one fit on every row) is the mixture's stand-in only where
 of fit holds. Its Kolmogorov-Smirnov p-value taken from the KS table is wrong twice over: the
 parameters were fitted to the same rows (too large a p), and rows sharing a record or an event
 are not independent (too small). :func:`calibrated_fit_check` calibrates it by a parametric
-bootstrap that keeps the clustering of the events: rows simulated from the fitted lognormal
-with a random effect per event and per record (ln IM_c = mu + beta (sqrt(rho_e) a_event +
-sqrt(rho_r - rho_e) b_record + sqrt(1 - rho_r) e_row), the correlations rho_r of two rows of
-one record and rho_e of two records of one event estimated from the rows' standardised
-residuals, each sample's mean taken out first: records and samples are crossed), bracketed and
-censored as the IDA's rows were, refitted, and the statistic recomputed; the p-value is the
-share of simulated statistics at least the observed one ((1 + count) / (1 + n)). The model
-samples are not a random effect of the null: a pooled lognormal claims that every row is a
-draw of one lognormal, whichever sample it came from. Rows of one sample do share its
-capacity, which makes the statistic vary more than the simulation lets it, so the test errs
-towards rejecting the pooled fit, towards the mixture, which holds either way. (With a normal
-sample effect in the null, a few samples from two rival models would pass for normal draws and
-the test could not see them apart; rho_s is estimated and reported, not simulated.)
+bootstrap that keeps the clustering of the rows: rows simulated from the fitted lognormal with
+a random effect per event, per record and per model sample (ln IM_c = mu + beta (sqrt(rho_e)
+a_event + sqrt(rho_r - rho_e) b_record + sqrt(rho_s) c_sample + sqrt(1 - rho_r - rho_s) e_row),
+the correlations rho_r of two rows of one record, rho_e of two records of one event and rho_s
+of two rows of one sample estimated from the rows' standardised residuals, records and samples
+crossed), bracketed and censored as the IDA's rows were, refitted, and the statistic
+recomputed; the p-value is the share of simulated statistics at least the observed one
+((1 + count) / (1 + n)). Under that null the samples' spread is itself lognormal, which is
+what a pooled lognormal assumes: the test asks whether the samples' medians (and the
+records) look like draws of a normal in ln IM. A posterior split between rival models of
+distinct capacities fails it once each model has a few samples; with very few samples in
+all, draws of a normal can look like anything, and the test cannot tell (the mixture is made
+either way).
 """
 
 from __future__ import annotations
@@ -250,7 +250,8 @@ class CalibratedCheck:
     rho_record: float  #: correlation of two rows of one record, used in the simulation
     rho_event: float  #: of two rows of different records of one event
     seed: int
-    rho_sample: float = 0.0  #: of two rows of one model sample in different records: estimated, not simulated
+    rho_sample: float = 0.0  #: of two rows of one model sample in different records (simulated with
+    #: ``sample_effect``)
 
     @property
     def holds(self) -> bool:
@@ -316,14 +317,17 @@ def _representative(low: np.ndarray, high: np.ndarray) -> np.ndarray:
 
 
 def calibrated_fit_check(low, high, fit: FragilityFit | None = None, clusters=None, events=None, censor_at=None,
-                         n_simulations: int = 200, seed: int = 20261124, samples=None) -> CalibratedCheck:
+                         n_simulations: int = 200, seed: int = 20261124, samples=None,
+                         sample_effect: bool = True) -> CalibratedCheck:
     """The pooled lognormal's KS statistic (:func:`.fragility.goodness_of_fit`, seed
     ``seed``) and its p-value by a parametric bootstrap that keeps the rows' clustering
     (module docstring). Each simulated row is bracketed as its row was: censored at
     ``censor_at`` (per row, the intensity at scale_max or the failed search's last stand;
     default: a censored row's lower end, inf for the others) when it lies above, else in a
     bracket of the row's own width ratio high/low (the median ratio for rows without one;
-    an exact row stays exact) at a uniform offset. Rows with a NaN ``low`` are left out."""
+    an exact row stays exact) at a uniform offset. ``samples`` (each row's model sample): its
+    mean is taken out of the record correlations, and with ``sample_effect`` the samples are a
+    random effect of the simulation. Rows with a NaN ``low`` are left out."""
     low, high = np.asarray(low, float), np.asarray(high, float)
     used = np.isfinite(low)
     low, high = low[used], high[used]
@@ -349,10 +353,14 @@ def calibrated_fit_check(low, high, fit: FragilityFit | None = None, clusters=No
     n = low.size
     c_code = np.unique(clusters if clusters is not None else np.arange(n), return_inverse=True)[1]
     e_code = np.unique(events, return_inverse=True)[1] if events is not None else None
+    s_code = np.unique(samples, return_inverse=True)[1] if samples is not None and sample_effect else None
+    rho_s_sim = rho_s if s_code is not None else 0.0
     rng = np.random.default_rng(seed + 1)
     stats_sim = []
     for j in range(n_simulations):
-        zz = math.sqrt(1.0 - rho_r) * rng.standard_normal(n)
+        zz = math.sqrt(max(1.0 - rho_r - rho_s_sim, 0.0)) * rng.standard_normal(n)
+        if s_code is not None:
+            zz += math.sqrt(rho_s_sim) * rng.standard_normal(s_code.max() + 1)[s_code]
         zz += math.sqrt(rho_r - rho_e) * rng.standard_normal(c_code.max() + 1)[c_code]
         if e_code is not None:
             zz += math.sqrt(rho_e) * rng.standard_normal(e_code.max() + 1)[e_code]

@@ -89,7 +89,7 @@ class MixtureData:
             "pooled_median_pga_g": mx.pooled.median / G_M_S2, "pooled_beta_pga": mx.pooled.beta,
             "pooled_gof_statistic": c.statistic, "pooled_gof_p_table": c.p_table, "pooled_gof_p_calibrated": c.p_value,
             "pooled_gof_n_simulations": c.n_simulations, "pooled_gof_rho_record": c.rho_record,
-            "pooled_gof_rho_event": c.rho_event, "pooled_gof_rho_sample_not_simulated": c.rho_sample,
+            "pooled_gof_rho_event": c.rho_event, "pooled_gof_rho_sample": c.rho_sample,
             "pooled_holds": c.holds, "gof_level": GOF_LEVEL,
             "to_use": "pooled lognormal" if c.holds else "mixture",
             "bootstrap_draws": [{"median_pga_g": (m / G_M_S2).tolist(), "beta_pga": b.tolist(), "weight": w.tolist()}
@@ -117,9 +117,9 @@ class MixtureData:
                    f"rejected (p < {GOF_LEVEL:g}): use the mixture, not the pooled lognormal")
         lines.append(f"pooled lognormal (median {mx.pooled.median / G_M_S2:.4g} g, beta {mx.pooled.beta:.3f}): "
                      f"goodness of fit KS D = {c.statistic:.3f}, p {c.p_value:.3g} calibrated by {c.n_simulations} "
-                     f"simulations of the fitted lognormal clustered by event and record as the rows (correlations: "
-                     f"record {c.rho_record:.2f}, event {c.rho_event:.2f}; the samples' {c.rho_sample:.2f} not "
-                     f"simulated), against {c.p_table:.3g} "
+                     f"simulations of the fitted lognormal clustered by event, record and sample as the rows "
+                     f"(correlations: record {c.rho_record:.2f}, event {c.rho_event:.2f}, sample "
+                     f"{c.rho_sample:.2f}), against {c.p_table:.3g} "
                      f"from the KS table; {verdict}")
         return lines
 
