@@ -19,7 +19,8 @@ from scipy import optimize, stats
 
 from voussoir_post.cli.post import main
 from voussoir_post.earthquake.fragility import fit_intervals
-from voussoir_post.earthquake.ida import FIT_BRACKET, FIT_CENSORED, FIT_FAILED, FIT_LEFT_OUT, read_ida
+from voussoir_post.earthquake.ida import (FIT_BRACKET, FIT_CENSORED, FIT_FAILED, FIT_FAILED_COLLAPSED, FIT_LEFT_OUT,
+                                          read_ida)
 from voussoir_post.readers.results import ResultsError
 
 G = 9.81
@@ -98,6 +99,12 @@ def test_beta_split_of_exact_rows_by_hand(tmp_path, capsys):
     low_g, high_g = out["median_pga_g_band"]
     assert low_g < out["median_pga_g"] < high_g and out["band_level"] == 0.9
     assert out["median_pga_g_conf"] == out["median_pga_g_band"][0] and out["conf_level"] == 0.95
+    # Each resample's fit is listed (what voussoir-post risk carries into its band): the
+    # band's ends are their 5th and 95th percentiles (ln median, as the band takes them).
+    medians, betas = np.array(out["bootstrap_median_pga_g"]), np.array(out["bootstrap_beta_pga"])
+    assert medians.size == betas.size == out["n_bootstrap"]
+    np.testing.assert_allclose(np.exp(np.percentile(np.log(medians), [5, 95])), out["median_pga_g_band"], rtol=1e-12)
+    np.testing.assert_allclose(np.percentile(betas, [5, 95]), out["beta_pga_band"], rtol=1e-12)
     assert out["median_pgv_m_s_conf"] == out["median_pgv_m_s_band"][0]
     assert main(["fragility", str(path), "--bootstrap", "50"]) == 0
     text = capsys.readouterr().out
@@ -280,12 +287,13 @@ def test_hdf5_ida_with_censored_rows(tmp_path, capsys):
     assert "PGA: median" in text and f"{int(censored.sum())} censored" in text
 
 
-def test_hdf5_failed_search_censored_at_its_last_stand_from_the_runs(tmp_path, capsys):
+def test_hdf5_failed_search_after_a_collapse_is_bracketed_by_the_runs(tmp_path, capsys):
     """The sweep writes NaN in the /results row of a failed search; its runs in /runs say
     how far it got: stands at 0.9 and 1.0, a collapse at 1.1, a stand at 1.2 (above the
-    collapse: not a lower bound of the first collapse), then the failed run. Its last
-    stand is 1.0, and its PGA at collapse exceeds 1.0 x the record's PGA
-    (/sweep/record_pga_m_s2)."""
+    collapse: not a lower bound of the first collapse), then the failed run at 1.05. Its
+    last stand is 1.0 and it collapsed at 1.1: its collapse lies in (1.0, 1.1] x the record's
+    PGA (/sweep/record_pga_m_s2), not merely above 1.0 (issue 36); counted as a collapse at
+    its failed run, in (1.0, 1.05]."""
     scales = np.exp(np.random.default_rng(15).normal(0.0, 0.3, (4, 3))) * 3.9 / PGA
     path = h5_fixture(tmp_path / "ida.h5", scales, np.zeros(scales.shape, bool), 10.0)
     job = 4  # model 1, record 1
@@ -302,12 +310,70 @@ def test_hdf5_failed_search_censored_at_its_last_stand_from_the_runs(tmp_path, c
         h5["runs/collapsed"] = [1, 0, 0, 1, 0, 0, 1]
         h5["runs/failed"] = [0, 0, 0, 0, 0, 1, 0]
     ida = read_ida(path)
-    assert ida.n_failed == 1 and ida.fit_as[job] == FIT_FAILED and ida.scale_stood[job] == 1.0
+    assert ida.n_failed == 1 and ida.fit_as[job] == FIT_FAILED_COLLAPSED and ida.scale_stood[job] == 1.0
     low, high = ida.intensity_brackets("pgv")
-    assert low[job] == pytest.approx(1.0 * PGV[1], rel=1e-12) and high[job] == math.inf
+    assert low[job] == pytest.approx(1.0 * PGV[1], rel=1e-12) and high[job] == pytest.approx(1.1 * PGV[1], rel=1e-12)
+    low, high = ida.scale_brackets(failures_as_collapses=True)
+    assert (low[job], high[job]) == (1.0, 1.05)
     assert main(["fragility", str(path), "--json", "--bootstrap", "30"]) == 0
     out = json.loads(capsys.readouterr().out)
-    assert out["n_rows"] == 12 and out["n_failed_censored"] == 1 and out["n_interval"] == 11
+    assert out["n_rows"] == 12 and out["n_failed_censored"] == 0 and out["n_failed_after_collapse"] == 1
+    assert out["n_interval"] == 12 and out["failures_as_collapses"]["n_counted"] == 1
+
+
+def test_failures_read_two_ways_on_a_set_whose_intervals_are_known(tmp_path, capsys):
+    """Six searches on one model: three plain brackets, a failed search that had collapsed
+    (stands to 1.0, collapse at 1.3, failed at 1.15), one that failed without a collapse
+    (stands to 0.8, failed at 0.9) and one that failed before any stand (failed at 0.5).
+    The right reading: (1.0, 1.3], (0.8, inf) and left out; every failure a collapse:
+    (1.0, 1.15], (0.8, 0.9] and (0, 0.5]. Both fits are the interval fits of those brackets,
+    written here by hand."""
+    records = RECORDS + ["rec/A.AT2", "rec/B.AT2", "rec/C.AT2"]
+    unit_pga = np.array([2.0, 3.0, 4.0, 2.5, 3.5, 5.0])
+    stood = np.array([1.2, 0.7, 0.45, 1.0, 0.8, np.nan])
+    threshold = np.array([1.3, 0.75, 0.5, np.nan, np.nan, np.nan])
+    failed = np.array([0, 0, 0, 1, 1, 1])
+    path = tmp_path / "ida.h5"
+    with h5py.File(path, "w") as h5:
+        h5.attrs["producer"], h5.attrs["mode"] = "voussoir-sweep", "ida"
+        h5.attrs["record_files"] = "\n".join(records)
+        h5["sweep/record_pga_m_s2"] = unit_pga
+        h5["sweep/record_pgv_m_s"] = unit_pga / 9.0
+        h5["results/job"] = np.arange(6)
+        h5["results/param_set"] = np.zeros(6, int)
+        h5["results/record"] = np.arange(6)
+        h5["results/scale_stood"] = stood
+        h5["results/scale_threshold"] = threshold
+        h5["results/pga_threshold_m_s2"] = threshold * unit_pga
+        h5["results/pgv_threshold_m_s"] = threshold * unit_pga / 9.0
+        h5["results/censored"] = np.zeros(6, int)
+        h5["results/failed"] = failed
+        h5["runs/job"] = [0, 0, 1, 1, 2, 2, 3, 3, 3, 4, 4, 5]
+        h5["runs/scale"] = [1.2, 1.3, 0.7, 0.75, 0.45, 0.5, 1.0, 1.3, 1.15, 0.8, 0.9, 0.5]
+        h5["runs/collapsed"] = [0, 1, 0, 1, 0, 1, 0, 1, 0, 0, 0, 0]
+        h5["runs/failed"] = [0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 1, 1]
+    ida = read_ida(path)
+    assert ida.fit_as[3:] == [FIT_FAILED_COLLAPSED, FIT_FAILED, FIT_LEFT_OUT]
+    right_low = np.array([1.2, 0.7, 0.45, 1.0, 0.8]) * unit_pga[:5]
+    right_high = np.array([1.3, 0.75, 0.5, 1.3, math.inf]) * unit_pga[:5]
+    all_low = np.array([1.2, 0.7, 0.45, 1.0, 0.8, 0.0]) * unit_pga
+    all_high = np.array([1.3, 0.75, 0.5, 1.15, 0.9, 0.5]) * unit_pga
+    for flag, (lo, hi) in ((False, (right_low, right_high)), (True, (all_low, all_high))):
+        low, high = ida.intensity_brackets("pga", failures_as_collapses=flag)
+        used = np.isfinite(low)
+        np.testing.assert_allclose(low[used], lo, rtol=1e-12)
+        np.testing.assert_allclose(high[used], hi, rtol=1e-12)
+    right, every = fit_intervals(right_low, right_high), fit_intervals(all_low, all_high)
+    assert main(["fragility", str(path), "--json", "--bootstrap", "20"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["median_pga_g"] == pytest.approx(right.median / G, rel=1e-9)
+    second = out["failures_as_collapses"]
+    assert second["n_counted"] == 3 and out["n_failed"] == 3
+    assert second["median_pga_g"] == pytest.approx(every.median / G, rel=1e-9)
+    assert second["beta_pga"] == pytest.approx(every.beta, rel=1e-9)
+    assert second["median_ratio"] == pytest.approx(every.median / right.median, rel=1e-9)
+    assert main(["fragility", str(path), "--bootstrap", "20"]) == 0
+    assert "failed searches: 3 (1 had collapsed before failing" in capsys.readouterr().out
 
 
 @pytest.mark.parametrize("edit, words", [

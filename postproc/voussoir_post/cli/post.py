@@ -25,6 +25,7 @@ from ..errors import DONE, InputError
 from ..tables import ReportTable, format_table, write_csv
 from .dtcheck import add_dtcheck_parser
 from .risk import add_risk_parser
+from .samples import add_samples_parser
 from .entry import run_command
 
 __all__ = ["main", "build_parser", "output_path", "figure_path", "FIGURE_FORMATS"]
@@ -364,16 +365,46 @@ def cmd_fragility(args) -> int:
 
         by_measure = compare_measures(ida, measures, args.sa_period, tuple(args.avgsa_periods or (0.2, 3.0)),
                                       n_bootstrap=args.bootstrap, seed=args.seed)
+    from ..earthquake.fit_report import bootstrap_keys, failure_reading
+
+    pga = data.data.pga if hasattr(data, "data") else data.pga
+    failures = failure_reading(ida, pga.fit)
+    mixture, mixture_note = None, "one model sample: no mixture"
+    if ida.n_sets > 1 and args.axis == "pga":
+        from ..errors import FitError
+        from ..plots.fragility_mixture import plot_mixture
+
+        try:
+            mixture = plot_mixture(ida, stem + "_mixture" + os.path.splitext(data.png_path)[1],
+                                   n_bootstrap=args.bootstrap, seed=args.seed,
+                                   strata_path=getattr(args, "strata", None))
+            mixture_csv = write_csv(mixture.table, stem + "_mixture.csv")
+        except FitError as exc:  # a sample whose rows cannot be fitted alone: the pooled fit only
+            mixture_note = f"the mixture of the model samples could not be made: {exc}"
+    elif getattr(args, "strata", None):
+        raise InputError("--strata weighs the model samples of the mixture: it needs an IDA of two samples or more "
+                         "and --axis pga")
     if args.json:
-        print(json.dumps({**data.summary(), **(by_measure.summary() if by_measure else {})}, indent=1))
+        print(json.dumps({**data.summary(), **failures.keys(), **bootstrap_keys(pga.band),
+                          **(mixture.summary() if mixture else {"mixture": None, "mixture_note": mixture_note}),
+                          **(by_measure.summary() if by_measure else {})}, indent=1))
         return DONE
     print(format_table(data.table))
     for line in data.report_lines():
         print(line)
+    print(failures.words())
+    if mixture:
+        for line in mixture.report_lines():
+            print(line)
+    elif ida.n_sets > 1 and args.axis == "pga":
+        print(mixture_note)
     print(f"wrote {data.png_path}")
     print(f"wrote {curve_csv}")
     print(f"wrote {points_csv}")
     print(f"wrote {records_png} (the records: event, M, R, PGA, scale and PGA at the collapse)")
+    if mixture:
+        print(f"wrote {mixture.png_path} (the mixture of the model samples, each model, the pooled lognormal)")
+        print(f"wrote {mixture_csv}")
     if by_measure:
         print()
         print(format_table(by_measure.table()))
@@ -584,6 +615,11 @@ def build_parser() -> argparse.ArgumentParser:
                         "sample (the static capacity is then 1; with --compare both files on that one axis; "
                         "written as <stem>_fragility_pga_lambda_g.png; --json adds median_pga_lambda_g, "
                         "beta_pga_lambda_g, median_pga_lambda_g_band); the file must give static_capacity_m_s2")
+    p.add_argument("--strata", metavar="SAMPLES.csv",
+                   help="IDA of several model samples: the stratified samples file it played (voussoir-post "
+                        "samples), whose models and weights make the mixture (default: the IDA's "
+                        "model_samples_file beside its file when stratified, else equal weights); the mixture is "
+                        "drawn as <stem>_fragility_mixture.png, its curves in <stem>_fragility_mixture.csv")
     p.add_argument("--limit-state", choices=["collapse", "hinge-onset", "residual-drift"], default="collapse",
                    help="MSA only: the limit state fitted: collapse (default); hinge-onset, a joint opened by more "
                         "than --opening-mm; residual-drift, a residual crown drift above --drift-mm (a collapse "
@@ -596,6 +632,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     add_dtcheck_parser(sub)
     add_risk_parser(sub, figure_format)
+    add_samples_parser(sub)
 
     p = sub.add_parser("records", help="the suite of real ground-motion records and where they are installed")
     p.add_argument("keys", nargs="*", metavar="KEY", help="only these records (e.g. ELC180 CLS000)")

@@ -85,6 +85,9 @@ class FragilityBand:
     ln_median_sd: float = math.nan  #: standard deviation of ln median over the resamples (divisor n - 1)
     beta_sd: float = math.nan  #: standard deviation of beta over the resamples (divisor n - 1)
     n_unfitted: int = 0  #: resamples left out because they could not be fitted
+    #: the fitted median and beta of each resample (for what the band feeds: voussoir-post risk)
+    medians: np.ndarray | None = None
+    betas: np.ndarray | None = None
 
 
 @dataclass
@@ -431,7 +434,8 @@ def refitted_band(fit_rows, n_rows: int, im_grid, clusters=None, events=None, cl
                          float(b_low), float(b_high), len(curves),
                          cluster_by="row" if rows else (cluster_by or "cluster"), n_clusters=n_clusters,
                          ln_median_sd=float(np.std(ln_medians, ddof=1)), beta_sd=float(np.std(betas, ddof=1)),
-                         n_unfitted=n_resamples - len(curves))
+                         n_unfitted=n_resamples - len(curves), medians=np.exp(np.array(ln_medians)),
+                         betas=np.array(betas))
 
 
 def clustered_resamples(statistic, n_rows: int, clusters=None, events=None, n_resamples: int = 400,

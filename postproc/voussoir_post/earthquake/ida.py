@@ -17,7 +17,13 @@ and for record files; absent from files of versions before them).
 
 :meth:`IdaResult.intensity_brackets` turns the rows into what the fragility fit takes:
 each row's collapse intensity between the intensity at ``scale_stood`` and that at
-``scale_threshold`` (the intensities scale linearly with the record's scale).
+``scale_threshold`` (the intensities scale linearly with the record's scale). A failed
+search that had collapsed before it failed (the HDF5 file's ``/runs`` tell) gives (last
+stand, smallest collapse seen]: its collapse at or below that scale is certain
+(:data:`FIT_FAILED_COLLAPSED`); the CSV does not tell, and its failed rows stay censored at
+their last stand. ``failures_as_collapses=True`` gives a second reading, every failed search
+a collapse at the run that failed (or at its collapse seen, if lower): how much the
+failures matter is the distance between the two fits.
 
 Both files are accepted; an error names the file and, for the CSV, the line and column
 (the CSV is read by :func:`voussoir_post.readers.csv_table.read_csv_table`).
@@ -37,7 +43,7 @@ from ..namelist import parse_namelist
 from ..readers.csv_table import read_csv_table
 
 __all__ = ["IdaResult", "IDA_COLUMNS", "RECORD_COLUMNS", "read_ida", "FIT_BRACKET", "FIT_CENSORED", "FIT_FAILED",
-           "FIT_LEFT_OUT"]
+           "FIT_FAILED_COLLAPSED", "FIT_LEFT_OUT"]
 
 #: The columns every IDA CSV has (others, e.g. the sampled parameters, are kept apart).
 IDA_COLUMNS = ("record", "param_set", "scale_stood", "scale_threshold", "pga_threshold_m_s2",
@@ -62,6 +68,8 @@ FIT_BRACKET = "bracket"  #: IM_c in (IM at scale_stood, IM at scale_threshold]
 FIT_CENSORED = "censored at scale_max"  #: IM_c > IM at scale_max
 FIT_FAILED = "failed: censored at last stand"  #: IM_c > IM at the last scale that stood
 FIT_LEFT_OUT = "failed: no stand known"  #: nothing known: left out
+#: IM_c in (IM at the last stand (0 if none), IM at the smallest scale that had collapsed before the failure]
+FIT_FAILED_COLLAPSED = "failed after a collapse: in (last stand, collapse seen]"
 
 
 @dataclass
@@ -97,10 +105,18 @@ class IdaResult:
     vs30_m_s: np.ndarray | None = None  #: the site's Vs30 of each row's record (NaN: unknown), when the file has it
     pulse: np.ndarray | None = None  #: float: 1 a pulse, 0 none, NaN not classified; when the file has it
     pulse_period_s: np.ndarray | None = None  #: Tp of the record's pulse (NaN: none or unknown), when the file has it
+    #: of a failed row: the smallest scale whose run had collapsed before the failure (NaN: none, or
+    #: not known: a CSV); all NaN when the file cannot tell
+    scale_collapse_seen: np.ndarray | None = None
+    #: of a failed row: the scale of the run that failed (NaN: not known); all NaN when the file cannot tell
+    scale_failed_run: np.ndarray | None = None
 
     def __post_init__(self):
         if self.failed is None:
             self.failed = np.zeros(len(self.record), bool)
+        for name in ("scale_collapse_seen", "scale_failed_run"):
+            if getattr(self, name) is None:
+                setattr(self, name, np.full(len(self.record), np.nan))
         for name, column in (("unit_pga_m_s2", self.pga_m_s2), ("unit_pgv_m_s", self.pgv_m_s)):
             if getattr(self, name) is None:
                 setattr(self, name, _unit_intensity(self.record, column, self.scale_threshold, self.failed))
@@ -116,26 +132,58 @@ class IdaResult:
 
     @property
     def fit_as(self) -> list[str]:
-        """How each row enters the fit: FIT_BRACKET, FIT_CENSORED, FIT_FAILED or FIT_LEFT_OUT."""
-        known = np.isfinite(self.scale_stood) & np.isfinite(self.unit_pga_m_s2) & np.isfinite(self.unit_pgv_m_s)
-        return [FIT_LEFT_OUT if f and not k else FIT_FAILED if f else FIT_CENSORED if c else FIT_BRACKET
-                for f, k, c in zip(self.failed.tolist(), known.tolist(), self.censored.tolist())]
+        """How each row enters the fit: FIT_BRACKET, FIT_CENSORED, FIT_FAILED, FIT_FAILED_COLLAPSED
+        or FIT_LEFT_OUT."""
+        return self._fit_as(False)
 
-    def intensity_brackets(self, measure: str) -> tuple[np.ndarray, np.ndarray]:
+    def _fit_as(self, failures_as_collapses: bool) -> list[str]:
+        units = np.isfinite(self.unit_pga_m_s2) & np.isfinite(self.unit_pgv_m_s)
+        known = np.isfinite(self.scale_stood) & units
+        top = self._failure_top(failures_as_collapses)
+        with np.errstate(invalid="ignore"):  # a collapse seen above the last stand bounds it (NaN: none)
+            seen = np.isfinite(top) & units & ~(top <= self.scale_stood)
+        return [FIT_FAILED_COLLAPSED if f and s else FIT_LEFT_OUT if f and not k else FIT_FAILED if f else
+                FIT_CENSORED if c else FIT_BRACKET
+                for f, k, s, c in zip(self.failed.tolist(), known.tolist(), seen.tolist(), self.censored.tolist())]
+
+    def _failure_top(self, failures_as_collapses: bool) -> np.ndarray:
+        """Per row, the scale at or below which a failed search's collapse lies (NaN: none known):
+        its collapse seen; with `failures_as_collapses`, the lower of that and the failed run."""
+        if not failures_as_collapses:
+            return self.scale_collapse_seen
+        return np.fmin(self.scale_collapse_seen, self.scale_failed_run)
+
+    @property
+    def n_failed_collapsed(self) -> int:
+        """Failed searches that had collapsed before they failed (their collapse is bounded above)."""
+        return sum(1 for k in self.fit_as if k == FIT_FAILED_COLLAPSED)
+
+    def n_failures_as_collapses(self) -> int:
+        """Failed rows the second reading counts as collapses (the failed run's scale, or a
+        collapse seen, known)."""
+        return sum(1 for k in self._fit_as(True) if k == FIT_FAILED_COLLAPSED)
+
+    def intensity_brackets(self, measure: str, failures_as_collapses: bool = False) -> tuple[np.ndarray, np.ndarray]:
         """(low, high) per row: the collapse intensity ``measure`` ('pga' in m/s2 or 'pgv'
         in m/s) lies in (low, high]. A bracket: low the intensity at scale_stood
         (intensity at scale_threshold x scale_stood / scale_threshold), high that at
         scale_threshold; censored at scale_max: low the intensity there, high = inf; a
-        failed search: low the intensity at its last stand, high = inf; NaN for a row
-        left out."""
+        failed search: low the intensity at its last stand, high = inf, or, when it had
+        collapsed before failing, high the intensity at its smallest collapse (low 0 without
+        a stand); NaN for a row left out. ``failures_as_collapses``: every failed search whose
+        failed run's scale is known collapses at or below it (the second reading)."""
         if measure not in ("pga", "pgv"):
             raise ValueError(f"measure '{measure}': 'pga' or 'pgv'")
         at_threshold = self.pga_m_s2 if measure == "pga" else self.pgv_m_s
         unit = self.unit_pga_m_s2 if measure == "pga" else self.unit_pgv_m_s
         low = np.full(self.n_rows, np.nan)
         high = np.full(self.n_rows, np.nan)
-        for k, how in enumerate(self.fit_as):
-            if how == FIT_BRACKET:
+        top = self._failure_top(failures_as_collapses)
+        for k, how in enumerate(self._fit_as(failures_as_collapses)):
+            if how == FIT_FAILED_COLLAPSED:
+                stood = self.scale_stood[k] if np.isfinite(self.scale_stood[k]) else 0.0
+                low[k], high[k] = unit[k] * stood, unit[k] * top[k]
+            elif how == FIT_BRACKET:
                 high[k] = at_threshold[k]
                 low[k] = at_threshold[k] * (self.scale_stood[k] / self.scale_threshold[k])
                 if self.scale_stood[k] == self.scale_threshold[k]:
@@ -146,16 +194,21 @@ class IdaResult:
                 low[k], high[k] = unit[k] * self.scale_stood[k], np.inf
         return low, high
 
-    def scale_brackets(self) -> tuple[np.ndarray, np.ndarray]:
+    def scale_brackets(self, failures_as_collapses: bool = False) -> tuple[np.ndarray, np.ndarray]:
         """(low, high) per row: the record scale at the collapse lies in (low, high], as
         :meth:`intensity_brackets` has it for an intensity (scale_stood and
         scale_threshold; scale_max and inf where censored; the last stand and inf where a
-        search failed; NaN for a row left out). Any measure of the record at scale 1
+        search failed, the last stand (or 0) and the collapse seen where it had collapsed
+        before; NaN for a row left out). Any measure of the record at scale 1
         times these (to the measure's power) is that measure's bracket."""
         low = np.full(self.n_rows, np.nan)
         high = np.full(self.n_rows, np.nan)
-        for k, how in enumerate(self.fit_as):
-            if how == FIT_BRACKET:
+        top = self._failure_top(failures_as_collapses)
+        for k, how in enumerate(self._fit_as(failures_as_collapses)):
+            if how == FIT_FAILED_COLLAPSED:
+                low[k] = self.scale_stood[k] if np.isfinite(self.scale_stood[k]) else 0.0
+                high[k] = top[k]
+            elif how == FIT_BRACKET:
                 low[k], high[k] = self.scale_stood[k], self.scale_threshold[k]
             elif how == FIT_CENSORED:
                 low[k], high[k] = self.scale_threshold[k], np.inf
@@ -342,10 +395,13 @@ def _read_h5(path: str) -> IdaResult:
         n = columns["param_set"].shape[0]
         failed = columns["failed"].astype(bool) if "failed" in columns else np.zeros(n, bool)
         stood = columns["scale_stood"].astype(float)
+        seen, failed_run = np.full(n, np.nan), np.full(n, np.nan)
         if failed.any() and "results/job" in h5:
             jobs = np.asarray(h5["results/job"][()]).reshape(-1).astype(int)
             for k in np.flatnonzero(failed & np.isnan(stood)):  # older versions wrote NaN there
                 stood[k] = _last_stand(h5, jobs[k])
+            for k in np.flatnonzero(failed):
+                seen[k], failed_run[k] = _failed_search_scales(h5, jobs[k])
         units = {}
         for name in ("record_pga_m_s2", "record_pgv_m_s", "record_magnitude", "record_distance_km"):
             if f"sweep/{name}" in h5:
@@ -363,7 +419,8 @@ def _read_h5(path: str) -> IdaResult:
         censored=columns["censored"].astype(bool),
         non_monotonic=columns["non_monotonic"].astype(bool) if "non_monotonic" in columns else None,
         n_runs=columns["n_runs"].astype(int) if "n_runs" in columns else None,
-        parameters=rows.parameters, config=rows.config, code_version=rows.code_version)
+        parameters=rows.parameters, config=rows.config, code_version=rows.code_version,
+        scale_collapse_seen=seen, scale_failed_run=failed_run)
 
 
 def _events(events: list[str] | None, records: list[str]) -> list[str] | None:
@@ -388,6 +445,21 @@ def _last_stand(h5: h5py.File, job: int) -> float:
     below = scale < np.min(scale[ok & collapsed], initial=np.inf)
     stands = scale[ok & ~collapsed & below]
     return float(stands.max()) if stands.size else float("nan")
+
+
+def _failed_search_scales(h5: h5py.File, job: int) -> tuple[float, float]:
+    """(the smallest scale whose run collapsed, the smallest scale whose run failed) among
+    the runs of search ``job``; NaN where there is none or the file has no /runs."""
+    if not all(f"runs/{c}" in h5 for c in ("job", "scale", "collapsed")):
+        return float("nan"), float("nan")
+    mine = np.asarray(h5["runs/job"][()]).reshape(-1).astype(int) == job
+    scale = np.asarray(h5["runs/scale"][()], dtype=float).reshape(-1)[mine]
+    collapsed = np.asarray(h5["runs/collapsed"][()]).reshape(-1)[mine] != 0
+    bad = (np.asarray(h5["runs/failed"][()]).reshape(-1)[mine] != 0 if "runs/failed" in h5
+           else np.zeros(scale.size, bool))
+    seen = scale[collapsed & ~bad]
+    return (float(seen.min()) if seen.size else float("nan"),
+            float(scale[bad].min()) if bad.any() else float("nan"))
 
 
 def _unit_intensity(record: list[str], at_threshold: np.ndarray, scale_threshold: np.ndarray,
