@@ -413,3 +413,42 @@ def test_the_reports_figures_are_written_in_the_format_asked(tmp_path):
     assert probabilities_figure(tmp_path, probs, "note") == "probabilities.png"
     assert (tmp_path / "probabilities.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
+
+
+# ------------------------------------------------------------------ the build tolerance and what counts as a cause
+
+
+def _power_law_bank(exponent: float, factors=(0.76, 0.82, 0.88, 0.94, 0.97, 0.985, 1.015, 1.03, 1.06, 1.12)):
+    """A bank of one specimen at one frequency whose threshold is t0 f^exponent in the
+    ring's thickness factor f (a smooth response, no replicas)."""
+    from voussoir_post.diagnosis.bank import SpecimenBank
+    t0 = 0.06
+    sb = SpecimenBank("A156", [1.25], (1, 1, 1), [0.01], 1.0, 1e-4, 1e-3)
+    sb.thresholds["nominal"] = [t0]
+    for f in factors:
+        sb.thresholds[f"geometry={f}"] = [t0 * f ** exponent]
+    return sb
+
+
+def test_the_tolerance_spread_and_the_material_threshold_follow_a_smooth_response():
+    """On a threshold t0 f^b, a thickness factor 1 + e with e ~ N(0, s^2) moves log t by
+    b log(1 + e): its root mean square (by quadrature of the normal law, apart from the
+    code's Gauss-Hermite rule) is the tolerance spread; the material threshold is the
+    larger of 5 % and twice it; and a ring of factor 0.9 moves log t by |b log 0.9|."""
+    from scipy.integrate import quad
+    from voussoir_post.diagnosis.bank import Bank
+    from voussoir_post.diagnosis.models import effect_sizes, material_threshold, tolerance_spread
+    from voussoir_post.readers.campaign import Specimen
+    spec = Specimen("A156", 156.0, 13, 0.508, 0.071, 0.145, 700.0, 0.5)
+    for b, s in ((1.5, 0.015), (4.0, 0.015), (4.0, 0.03)):
+        sb = _power_law_bank(b)
+        expect = math.sqrt(quad(lambda z: (b * math.log1p(s * z)) ** 2 * norm.pdf(z), -8, 8)[0])
+        got = tolerance_spread(sb, spec, 1.25, s)
+        assert got == pytest.approx(expect, rel=0.03), (b, s, got, expect)
+        assert tolerance_spread(sb, spec, 1.25, 0.0) == 0.0
+        obs = Observations("t", {"A156": spec}, [PairObservation("A156", 1.25, 0.05, 0.06)], {}, build_tolerance=s)
+        bank = Bank({"A156": sb}, "synthetic")
+        least = material_threshold(bank, obs, obs.pairs[0])
+        assert least == pytest.approx(max(0.05, 2.0 * expect), rel=0.03)
+        size = effect_sizes(bank, obs, ("geometry",), [np.array([0.9])])[0, 0]
+        assert size == pytest.approx(abs(b * math.log(0.9)) / least, rel=0.03)
