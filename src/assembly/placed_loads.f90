@@ -13,7 +13,7 @@ module voussoir_placed_loads
   use voussoir_load_config, only: load_config_t
   implicit none
   private
-  public :: placed_loads_t, place_loads, block_at, top_surface, moves_on_top, first_live_x
+  public :: placed_loads_t, place_loads, block_at, top_surface, moves_on_top, vehicle_x
   public :: boundary_tol_m, dead_load_strips
 
   real(dp), parameter :: boundary_tol_m = 1.0e-9_dp   !! a point this close outside a block is on it
@@ -38,18 +38,26 @@ contains
     moves_on_top = d%n_axles > 0 .or. d%path_points >= 2
   end function moves_on_top
 
-  !> The x of the first live point load [m] (the reference point a path moves).
-  pure real(dp) function first_live_x(d)
+  !> The vehicle's position [m]: the x of the resultant of its live loads (each live point
+  !> load at its x and, in an axle group, at each of its offsets; weighted by magnitude),
+  !> the point a path moves. For one live load, its own x.
+  pure real(dp) function vehicle_x(d)
     type(load_config_t), intent(in) :: d
-    integer :: j
-    first_live_x = 0.0_dp
+    real(dp) :: moment_nm, total_n
+    integer :: j, a
+    moment_nm = 0.0_dp
+    total_n = 0.0_dp
     do j = 1, d%n_point_loads
-      if (d%point_load_live(j)) then
-        first_live_x = d%point_load_x_m(j)
-        return
-      end if
+      if (.not. d%point_load_live(j)) cycle
+      do a = 0, d%n_axles
+        total_n = total_n + d%point_load_n(j)
+        moment_nm = moment_nm + d%point_load_n(j)*d%point_load_x_m(j)
+        if (a > 0) moment_nm = moment_nm + d%point_load_n(j)*d%axle_spacing_m(a)
+      end do
     end do
-  end function first_live_x
+    vehicle_x = 0.0_dp
+    if (total_n > 0.0_dp) vehicle_x = moment_nm/total_n
+  end function vehicle_x
 
   !> The loads of `d` on `asm`, the live ones shifted by `shift_x_m` along x (a position on
   !> the path; 0 otherwise). A refusal starts with '&load' (the caller names the file).

@@ -29,7 +29,7 @@ contains
       lp%crushing_converged))//trim(merge(', an interface crushed through', '                              ', &
       lp%crushed_through))//')'
     if (lp%has_path) then
-      write (u, '(a)') '  load factor along the path (x of the first live load [m], associative lambda):'
+      write (u, '(a)') '  load factor along the path (x of the vehicle: the resultant of its live loads [m], associative lambda):'
       do i = 1, size(lp%curve_x_m)
         if (lp%curve_load_factor(i) < 0.0_dp) then
           write (u, '(a)') '    '//fmt_significant(lp%curve_x_m(i), 6)//'  none (no mechanism opens)'

@@ -9,7 +9,7 @@ module voussoir_limit_lp_study
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa, fmt_significant
   use voussoir_load_config, only: load_config_t
-  use voussoir_placed_loads, only: placed_loads_t, place_loads, moves_on_top, first_live_x
+  use voussoir_placed_loads, only: placed_loads_t, place_loads, moves_on_top, vehicle_x
   use voussoir_assembly, only: assembly_t
   use voussoir_hinge_side, only: side_intrados, side_extrados
   use voussoir_block_interfaces, only: interface_set_t, find_interfaces
@@ -55,7 +55,7 @@ module voussoir_limit_lp_study
     logical :: live_is_acceleration = .true.  !! the live load is lambda g towards +x (else point loads)
     type(placed_loads_t) :: placed            !! the loads of &load (at the critical position on a path)
     logical :: has_path = .false.             !! the live loads moved along &load's path
-    real(dp) :: critical_x_m = 0.0_dp         !! the position of least load factor (of the first live load) [m]
+    real(dp) :: critical_x_m = 0.0_dp         !! the position of least load factor (the vehicle's: its live loads' resultant) [m]
     real(dp) :: critical_load_factor = 0.0_dp !! the associative load factor there
     real(dp), allocatable :: curve_x_m(:)     !! the positions on the path [m]
     real(dp), allocatable :: curve_load_factor(:) !! the associative load factor at each (-1: unbounded)
@@ -210,8 +210,8 @@ contains
     path_position_m = ((load%path_points - i)*load%path_x0_m + (i - 1)*load%path_x1_m)/(load%path_points - 1)
   end function path_position_m
 
-  !> The associative load factor with the first live load at each position of the path
-  !> (the others at their offsets from it, on the top surface); the least one (the first
+  !> The associative load factor with the vehicle (the resultant of the live loads) at each
+  !> position of the path (every live load keeping its offset from it, on the top surface); the least one (the first
   !> of equal ones, to 1e-9) is the critical position, `shift_m` the shift of the live loads that puts them there. A
   !> position where no mechanism opens (the loads on a support) has no load factor.
   subroutine critical_position(asm, density_kg_m3, width_m, load, study, mu, shift_m, status)
@@ -235,7 +235,7 @@ contains
     best = 0
     do i = 1, load%path_points
       study%curve_x_m(i) = path_position_m(load, i)
-      call place_loads(load, asm, study%curve_x_m(i) - first_live_x(load), placed, status)
+      call place_loads(load, asm, study%curve_x_m(i) - vehicle_x(load), placed, status)
       if (.not. status%ok) return
       call block_loads(asm, density_kg_m3, width_m, g_m_s2, loads)
       call add_placed_loads(placed, loads)
@@ -264,7 +264,7 @@ contains
                    .true., dim=1)
     study%critical_x_m = study%curve_x_m(best)
     study%critical_load_factor = study%curve_load_factor(best)
-    shift_m = study%critical_x_m - first_live_x(load)
+    shift_m = study%critical_x_m - vehicle_x(load)
   end subroutine critical_position
 
   !> 'live point loads of &load: 1 of 1e4 N (x 3 axles) ...; dead: ...'

@@ -27,7 +27,6 @@ contains
     type(limit_result_t), intent(in) :: res
     type(thickness_result_t), intent(in) :: tmin
     type(lp_study_t), intent(in) :: lp
-    character(len=*), parameter :: rule = '  ------------------------------------------------------------------'
     if (lp%assembly /= 'arch') then
       write (u, '(a)') 'voussoir-limit: '//path
       if (lp%assembly == 'restrained arch') then
@@ -49,7 +48,31 @@ contains
         ' deg, r_ext '//fmt_significant(a%r_ext_m)//' m, thickness '//fmt_significant(a%thickness_m)//' m (t/R_ext '// &
         fmt_significant(a%thickness_m/a%r_ext_m)//')'
       write (u, '(a)') '      pivot inset '//fmt_significant(1.0e3_dp*opts%inset_m)//' mm, friction '//fmt_significant(a%friction)
-      write (u, '(/,a)') 'Horizontal collapse (rigid blocks, no tension, no sliding; load = lambda x weight)'
+      ! A load case comes first: the acceleration case of the weights alone is another
+      ! question, printed after it and named as such.
+      if (.not. lp%live_is_acceleration) call write_lp_table(u, lp, a%friction)
+      call write_four_hinge(u, cfg, res, tmin, .not. lp%live_is_acceleration)
+      if (lp%live_is_acceleration) call write_lp_table(u, lp, a%friction)
+    end associate
+  end subroutine write_table
+
+  !> The four-hinge analysis of the arch under horizontal acceleration (its weights alone)
+  !> and its minimum thickness; `after_load_case`: printed after the load case of &load,
+  !> whose live loads it does not take.
+  subroutine write_four_hinge(u, cfg, res, tmin, after_load_case)
+    integer, intent(in) :: u
+    type(config_t), intent(in) :: cfg
+    type(limit_result_t), intent(in) :: res
+    type(thickness_result_t), intent(in) :: tmin
+    logical, intent(in) :: after_load_case
+    character(len=*), parameter :: rule = '  ------------------------------------------------------------------'
+    associate (a => cfg%arch)
+      if (after_load_case) then
+        write (u, '(/,a)') 'Not the load case above: the arch under horizontal acceleration, its weights alone '// &
+          '(four-hinge analysis; rigid blocks, no tension, no sliding; load = lambda x weight, no &load)'
+      else
+        write (u, '(/,a)') 'Horizontal collapse (rigid blocks, no tension, no sliding; load = lambda x weight)'
+      end if
       write (u, '(a)') '  direction  lambda     lambda g [m/s2]  mechanism (hinges from the left)'
       write (u, '(a)') rule
       call direction_row(u, '+x', res%lambda_pos, res%hinges_pos(1:res%n_hinges_pos), &
@@ -70,8 +93,8 @@ contains
         end if
         write (u, '(a)') '  friction check: '//friction_text(res, a%n_voussoirs, a%friction, &
                                                              any(a%joint_friction >= 0.0_dp))
-        if (has_loads(cfg)) write (u, '(a)') '  (the four-hinge analysis takes the weights alone: the loads of '// &
-          '&load enter the linear programme below)'
+        if (has_loads(cfg) .and. .not. after_load_case) write (u, '(a)') '  (the four-hinge analysis takes the '// &
+          'weights alone: the dead loads of &load enter the linear programme below)'
       end if
       if (tmin%computed) then
         write (u, '(/,a)') 'Minimum thickness (same embrace, voussoirs, r_ext and inset; own weight only)'
@@ -79,9 +102,8 @@ contains
           '   t_min '//fmt_significant(1.0e3_dp*tmin%ratio_ext*a%r_ext_m)//' mm'
         write (u, '(a)') '  hinges: '//hinge_text(tmin%hinges, tmin%sides)
       end if
-      call write_lp_table(u, lp, a%friction)
     end associate
-  end subroutine write_table
+  end subroutine write_four_hinge
 
   !> One line of the capacity table.
   subroutine direction_row(u, name, lambda, hinges, sides)

@@ -6,7 +6,7 @@ module voussoir_limit_study
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
   use voussoir_config, only: config_t, springings_none, has_loads
-  use voussoir_placed_loads, only: placed_loads_t, place_loads, first_live_x
+  use voussoir_placed_loads, only: placed_loads_t, place_loads, vehicle_x
   use voussoir_limit_lp_study, only: path_position_m
   use voussoir_namelist_group, only: nml_group_t
   use voussoir_input_range, only: need, need_range
@@ -187,7 +187,7 @@ contains
     if (cfg%load%path_points < 2) call place_loads(cfg%load, asm, 0.0_dp, placed, status)
     do i = 1, cfg%load%path_points
       if (.not. status%ok) return
-      call place_loads(cfg%load, asm, path_position_m(cfg%load, i) - first_live_x(cfg%load), placed, status)
+      call place_loads(cfg%load, asm, path_position_m(cfg%load, i) - vehicle_x(cfg%load), placed, status)
     end do
   end subroutine check_loads_placed
 

@@ -449,6 +449,12 @@ elif case == "arch_point_load":
     check(close(d["load_factor"], expected, rtol=1e-6),
           f"critical load factor {d['load_factor']} = least four-hinge mechanism {expected}")
     check_loaded_equilibrium(d, "critical position", w, d["load_factor"])
+    # The table: the load case first; the weights-alone acceleration case after it, named
+    # as another question (it printed first, as if it were the bridge's answer).
+    rc, table, _ = run("arch_point_load_path.nml")
+    lp_at, other_at = table.find("Limit analysis by linear programming"), table.find("Not the load case above")
+    check(rc == 0 and 0 < lp_at < other_at and "Horizontal collapse" not in table,
+          "table: the load case first, then the acceleration case of the weights alone, named as not the load case")
     # An axle group: 500 N at x = -0.6 m and again 0.4 m to its right, both on the extrados.
     with open("arch_axles.nml", "w") as f:
         f.write(arch + "&load point_load_n(1) = 500, point_load_x_m(1) = -0.6, axle_spacing_m(1) = 0.4 /\n")
@@ -461,6 +467,18 @@ elif case == "arch_point_load":
     check(close(d["load_factor"], expected, rtol=1e-6),
           f"axle group: load factor {d['load_factor']} = least four-hinge mechanism {expected}")
     check_loaded_equilibrium(d, "axle group", w, d["load_factor"])
+    # The axle group on a path: the path's x is the vehicle's (the resultant of its axles,
+    # here 300 N and 100 N 0.4 m apart: 0.1 m from the first), not the first axle's.
+    with open("arch_axles_path.nml", "w") as f:
+        f.write(arch + "&load point_load_n(1) = 300, point_load_n(2) = 100, point_load_x_m(2) = 0.4,\n"
+                "  path_x0_m = -0.6, path_x1_m = 0.6, path_points = 5 /\n")
+    d = load("arch_axles_path.nml")
+    pl = d["point_loads"]
+    xs = [c["x_m"] for c in d["load_factor_curve"]]
+    resultant = sum(p["xy_m"][0] * -p["force_n"][1] for p in pl) / sum(-p["force_n"][1] for p in pl)
+    check(close(xs[0], -0.6, atol=1e-12) and close(d["critical_position"]["x_m"], resultant, atol=1e-12) and
+          close(pl[1]["xy_m"][0] - pl[0]["xy_m"][0], 0.4, atol=1e-12),
+          f"path x = the vehicle's resultant ({d['critical_position']['x_m']} = {resultant}), axles 0.4 m apart: {pl}")
 elif case == "restrained":
     # The seed 156-degree arch (friction 10: no sliding) with restraint brackets. A bracket
     # stands against the lower half of the springing voussoir's extrados chord, which
