@@ -192,9 +192,9 @@ contains
     character(len=:), allocatable :: text
     if (lp%assembly /= 'arch') then
       if (lp%assembly == 'restrained arch') then
-        call write_json_any(u, path, cfg, lp, arch_json(cfg, opts, arch))
+        call write_json_any(u, path, cfg, lp, arch_json(cfg, opts, arch), blocks_json(arch))
       else
-        call write_json_any(u, path, cfg, lp, 'null')
+        call write_json_any(u, path, cfg, lp, 'null', blocks_json(arch))
       end if
       return
     end if
@@ -205,6 +205,7 @@ contains
         '  "code_version": '//json_string(code_version)//','//nl// &
         '  "input_file": '//json_string(path)//','//nl// &
         '  "g_m_s2": '//fmt_json_real(g_m_s2)//','//nl//lp_json(lp)// &
+        '  "blocks": '//blocks_json(arch)//','//nl// &
         '  "lambda_pos": '//finite_or_null(res%lambda_pos)//','//nl// &
         '  "lambda_neg": '//finite_or_null(res%lambda_neg)//','//nl// &
         '  "hinges_pos": '//hinge_json(res%hinges_pos(1:res%n_hinges_pos), res%sides_pos(1:res%n_hinges_pos))// &
@@ -269,21 +270,43 @@ contains
     end associate
   end function arch_json
 
+  !> The "blocks" list: every block of the assembly as analysed, in body order (the
+  !> numbers of "blocks" in contact_forces and point_loads, from 1), with its vertices
+  !> (counter-clockwise) [m] and whether it is driven (a fixed support).
+  function blocks_json(asm) result(text)
+    type(assembly_t), intent(in) :: asm
+    character(len=:), allocatable :: text
+    integer :: b, k
+    text = '['
+    do b = 1, asm%n_bodies
+      if (b > 1) text = text//', '
+      text = text//'{"driven": '//json_bool(asm%driven(b))//', "vertices_xy_m": ['
+      do k = 1, size(asm%polygon(b)%xy, 2)
+        if (k > 1) text = text//', '
+        text = text//'['//fmt_json_real(asm%polygon(b)%xy(1, k))//', '//fmt_json_real(asm%polygon(b)%xy(2, k))//']'
+      end do
+      text = text//']}'
+    end do
+    text = text//']'
+  end function blocks_json
+
   !> The JSON of a wall, a polygon file or a restrained arch: every key of the arch's,
   !> null or empty where the four-hinge analysis of an arch does not apply (the "arch"
   !> object given for a restrained arch), and the LP's.
-  subroutine write_json_any(u, path, cfg, lp, arch_text)
+  subroutine write_json_any(u, path, cfg, lp, arch_text, blocks_text)
     integer, intent(in) :: u
     character(len=*), intent(in) :: path
     type(config_t), intent(in) :: cfg
     type(lp_study_t), intent(in) :: lp
     character(len=*), intent(in) :: arch_text   !! the "arch" object of a restrained arch, else null
+    character(len=*), intent(in) :: blocks_text !! the "blocks" list
     character(len=1), parameter :: nl = achar(10)
     write (u, '(a)') '{'//nl// &
       '  "producer": "voussoir-limit",'//nl// &
       '  "code_version": '//json_string(code_version)//','//nl// &
       '  "input_file": '//json_string(path)//','//nl// &
       '  "g_m_s2": '//fmt_json_real(g_m_s2)//','//nl//lp_json(lp)// &
+      '  "blocks": '//blocks_text//','//nl// &
       '  "lambda_pos": null,'//nl//'  "lambda_neg": null,'//nl// &
       '  "hinges_pos": [],'//nl//'  "hinges_neg": [],'//nl// &
       '  "bounds_meet_pos": false,'//nl//'  "bounds_meet_neg": false,'//nl// &
