@@ -29,6 +29,11 @@ module voussoir_assembly
     logical, allocatable :: driven(:)       !! velocity imposed by the table
     integer, allocatable :: role(:)
     integer, allocatable :: course(:)       !! a wall's course of each body, 0 the foundation (else unallocated)
+    !> Each body's own density [kg/m3] where allocated (the parts of a bridge), else the run's.
+    real(dp), allocatable :: density_kg_m3(:)
+    !> Each body's Coulomb coefficient where allocated (the parts of a bridge), else the
+    !> run's; a contact between two bodies takes the lesser of theirs.
+    real(dp), allocatable :: friction(:)
     ! Arch description (n_voussoirs = 0 for a generic assembly).
     integer :: n_voussoirs = 0
     real(dp) :: thickness_m = 0.0_dp
@@ -58,6 +63,8 @@ contains
     mirror%driven = asm%driven
     if (allocated(asm%role)) mirror%role = asm%role
     if (allocated(asm%course)) mirror%course = asm%course
+    if (allocated(asm%density_kg_m3)) mirror%density_kg_m3 = asm%density_kg_m3
+    if (allocated(asm%friction)) mirror%friction = asm%friction
   end function mirrored_blocks
 
   !> Angle [deg] from +x of the radial line of joint j (0..n) of an arch.

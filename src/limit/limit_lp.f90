@@ -55,12 +55,14 @@ module voussoir_limit_lp
 
 contains
 
-  !> Weights (density x area x width x g) and the live load of a horizontal acceleration
-  !> lambda g towards +x: lambda times the weight, horizontally.
+  !> Weights (density x area x width x g; each block's own density where the assembly gives
+  !> it) and the live load of a horizontal acceleration lambda g towards +x: lambda times
+  !> the weight, horizontally.
   pure subroutine block_loads(asm, density_kg_m3, width_m, g_m_s2, loads)
     type(assembly_t), intent(in) :: asm
     real(dp), intent(in) :: density_kg_m3, width_m, g_m_s2
     type(block_loads_t), intent(out) :: loads
+    real(dp) :: rho
     integer :: b
     allocate (loads%weight_n(asm%n_bodies), loads%live_n(2, asm%n_bodies), loads%centroid(2, asm%n_bodies), &
               loads%dead_n(2, asm%n_bodies), loads%dead_moment_nm(asm%n_bodies), loads%live_moment_nm(asm%n_bodies))
@@ -68,7 +70,9 @@ contains
     loads%dead_moment_nm = 0.0_dp
     loads%live_moment_nm = 0.0_dp
     do b = 1, asm%n_bodies
-      loads%weight_n(b) = density_kg_m3*polygon_area(asm%polygon(b)%xy)*width_m*g_m_s2
+      rho = density_kg_m3
+      if (allocated(asm%density_kg_m3)) rho = asm%density_kg_m3(b)   ! a bridge's parts
+      loads%weight_n(b) = rho*polygon_area(asm%polygon(b)%xy)*width_m*g_m_s2
       loads%centroid(:, b) = polygon_centroid(asm%polygon(b)%xy)
       loads%live_n(:, b) = [loads%weight_n(b), 0.0_dp]
     end do

@@ -109,6 +109,11 @@ contains
     call name_arch_joints(asm, study)
     allocate (mu(study%faces%n))
     mu = friction
+    if (allocated(asm%friction)) then   ! a bridge's parts: the lesser of the two blocks'
+      do b = 1, study%faces%n
+        mu(b) = minval(asm%friction(study%faces%body(:, b)))
+      end do
+    end if
     if (present(joint_friction)) then
       call joint_coefficients(asm, study, joint_friction, mu, status)
       if (.not. status%ok) return

@@ -37,8 +37,15 @@ contains
         write (u, '(a)') lp%assembly//': the four-hinge analysis and the minimum thickness of an arch do not '// &
           'apply; the limit analysis by linear programming does (driven blocks: the fixed supports)'
       end if
-      write (u, '(a)') '      interface inset '//fmt_significant(1.0e3_dp*opts%inset_m)//' mm, friction '// &
-        fmt_significant(cfg%arch%friction)
+      if (lp%assembly == 'bridge') then
+        write (u, '(a)') '      interface inset '//fmt_significant(1.0e3_dp*opts%inset_m)//' mm, friction: ring '// &
+          fmt_significant(cfg%bridge%ring_friction)//', piers '//fmt_significant(cfg%bridge%pier_friction)// &
+          ', skewbacks '//fmt_significant(cfg%bridge%abutment_friction)//' (an interface takes the lesser of its '// &
+          "two blocks'; the LP's heading below gives the ring's)"
+      else
+        write (u, '(a)') '      interface inset '//fmt_significant(1.0e3_dp*opts%inset_m)//' mm, friction '// &
+          fmt_significant(cfg%arch%friction)
+      end if
       call write_lp_table(u, lp, cfg%arch%friction)
       return
     end if

@@ -96,7 +96,7 @@ contains
 
     f = trim(cfg%source_file)
     ! A restrained arch: the brackets are driven blocks the LP takes like any other.
-    if (cfg%wall%courses > 0 .or. len_trim(cfg%arch%polygon_file) > 0 .or. &
+    if (cfg%wall%courses > 0 .or. len_trim(cfg%arch%polygon_file) > 0 .or. cfg%bridge%n_spans > 0 .or. &
         cfg%arch%restrained_springings /= springings_none) then
       call analyse_any_assembly(cfg, opts, arch, lp, status)
       if (.not. status%ok) status%message = f//': '//trim(status%message)
@@ -168,7 +168,9 @@ contains
       end if
       if (.not. status%ok) status%message = 'limit analysis by linear programming: '//trim(status%message)
     end associate
-    if (cfg%wall%courses > 0) then
+    if (cfg%bridge%n_spans > 0) then
+      lp%assembly = 'bridge'
+    else if (cfg%wall%courses > 0) then
       lp%assembly = 'wall'
     else if (len_trim(cfg%arch%polygon_file) > 0) then
       lp%assembly = 'polygon file'

@@ -102,6 +102,8 @@ def _frame(limit: LimitResult) -> tuple[np.ndarray, str, str]:
     if limit.has_arch:
         y0 = float(min(limit.joint_intrados_xy_m[0, 1], limit.joint_intrados_xy_m[-1, 1]))
         return np.array([0.0, y0]), "x [m] from midspan", "y [m] above the springings"
+    if limit.assembly == "bridge":   # its own frame (docs/bridges.md)
+        return np.zeros(2), "x [m] from the left springing of span 1", "y [m] above the springings"
     return np.zeros(2), "x [m]", "y [m]"
 
 
@@ -197,7 +199,7 @@ def plot_lp_mechanism(limit: LimitResult, out_png: str | os.PathLike):
             rows.append((panel.direction, panel.load_factor, f"{m.blocks[0]}-{m.blocks[1]}",
                          "" if m.joint is None else m.joint, m.mode, m.hinge_side or "", float(xy[0]), float(xy[1])))
     table = ReportTable(["direction", "load_factor", "blocks", "joint", "mode", "side", "x_m",
-                         "y_above_springings_m" if limit.has_arch else "y_m"], rows,
+                         "y_above_springings_m" if limit.has_arch or limit.assembly == "bridge" else "y_m"], rows,
                         title=f"LP mechanism of {limit.path}")
     return MechanismData(blocks, panels, png, table, float(shift[1]), scale, key_n)
 
