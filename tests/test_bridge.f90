@@ -10,6 +10,8 @@ program test_bridge
   use voussoir_assembly, only: assembly_t, role_voussoir, role_foundation
   use voussoir_bridge_config, only: bridge_config_t
   use voussoir_bridge, only: build_bridge, bridge_ring_joints
+  use voussoir_bodies, only: bodies_t, bodies_init
+  use voussoir_contact_law, only: contact_law_t, contact_law_init, pair_friction_of
   use voussoir_assert, only: assert_true, assert_close, assert_summary
   implicit none
 
@@ -199,7 +201,30 @@ contains
     call assert_true(all(a%friction(1:24) == 0.7_dp) .and. a%friction(25) == 0.5_dp .and. &
                      a%density_kg_m3(25) == 2400.0_dp .and. all(a%density_kg_m3(1:24) == 2000.0_dp), &
                      'bridge: each part its friction and density')
+    call test_parts_in_the_kernel(a)
   end subroutine test_two_spans_on_a_pier
+
+  !> The dynamics takes each part's density (the pier's mass 2400 kg/m3 x area x width, a
+  !> voussoir's 2000) and friction (ring 0.7 and pier 0.5: their joint the lesser, 0.5; the
+  !> ring's own joints 0.7; the pier on the ground 0.5), whatever the run's own values.
+  subroutine test_parts_in_the_kernel(a)
+    type(assembly_t), intent(in) :: a
+    type(bodies_t) :: bodies
+    type(contact_law_t) :: law
+    type(status_t) :: status
+    real(dp) :: no_joint(0:0)
+    no_joint = -1.0_dp
+    call bodies_init(a, 1.0_dp, 2.0_dp, bodies, status)
+    call assert_true(status%ok, 'bridge: bodies of the kernel')
+    call assert_close(bodies%mass_kg(25), 2400.0_dp*2.0_dp*polygon_area(a%polygon(25)%xy), 'bridge: pier mass', &
+                      rtol=1.0e-14_dp)
+    call assert_close(bodies%mass_kg(3), 2000.0_dp*2.0_dp*polygon_area(a%polygon(3)%xy), 'bridge: voussoir mass', &
+                      rtol=1.0e-14_dp)
+    call contact_law_init(0.9_dp, 0.0_dp, no_joint, a, law, status)
+    call assert_true(status%ok .and. pair_friction_of(law, 12, 25) == 0.5_dp .and. &
+                     pair_friction_of(law, 3, 4) == 0.7_dp .and. pair_friction_of(law, 25, 28) == 0.5_dp, &
+                     'bridge: contact friction the lesser of the two parts')
+  end subroutine test_parts_in_the_kernel
 
   logical function has_vertex(xy, p)
     real(dp), intent(in) :: xy(:, :), p(2)

@@ -686,6 +686,78 @@ elif case == "bad_inputs":
     check(rc == 2 and "usage" in err, "no argument: usage, exit code 2")
     rc, out, err = run("a.nml", "b.nml")
     check(rc == 2 and "usage" in err, "two files: usage, exit code 2")
+elif case == "bridge":
+    # (1) The arch of input/limit_arch_point_load.nml (semicircle, R_ext 1 m, t 0.15 m, 16
+    # voussoirs, 2000 kg/m3, 1 m wide, friction 0.6) built by &bridge (span 2 (R_ext - t)):
+    # the same blocks, so the same load factors to 1e-10, along the whole path of its 1 kN
+    # (x shifted by the bridge's origin, the left springing: 0.85 m) and under horizontal
+    # acceleration. (2) input/bridge_two_spans.nml: every block in equilibrium under its
+    # weight (each part's density), lambda x the live load and the JSON's contact forces;
+    # no tension; each interface within the lesser friction of its two blocks; the bounds meet.
+    arch_nml = os.path.join(os.path.dirname(nml), "limit_arch_point_load.nml")
+    bridge = ("&bridge shape = 'semicircular', span_m(1) = 1.7, ring_thickness_m = 0.15, n_voussoirs = 16,\n"
+              "  width_m = 1.0, ring_density_kg_m3 = 2000, ring_friction = 0.6, abutment_friction = 0.6,\n"
+              "  abutment_width_m = 0.5, pier_height_m = 0.5 /\n")
+    with open("bridge_semicircle.nml", "w") as f:
+        f.write(bridge + "&load point_load_n(1) = 1000, path_x0_m = 0.05, path_x1_m = 1.65, path_points = 17 /\n")
+    with open("bridge_semicircle_accel.nml", "w") as f:
+        f.write(bridge)
+    with open("arch_accel.nml", "w") as f:
+        f.write("&arch embrace_deg = 180, n_voussoirs = 16, r_ext_m = 1.0, thickness_m = 0.15, width_m = 1.0,\n"
+                "  density_kg_m3 = 2000, friction = 0.6 /\n&limit minimum_thickness = .false. /\n")
+    a, b = load(arch_nml), load("bridge_semicircle.nml")
+    check(b["assembly"] == "bridge" and b["arch"] is None and len(b["blocks"]) == 18, "the bridge: 16 + 2 blocks")
+    ca, cb = [c["load_factor"] for c in a["load_factor_curve"]], [c["load_factor"] for c in b["load_factor_curve"]]
+    check(len(ca) == len(cb) == 17 and all(close(y, x, rtol=1e-10) for x, y in zip(ca, cb)),
+          f"the bridge's curve = the arch builder's to 1e-10 (largest difference "
+          f"{max(abs(y / x - 1) for x, y in zip(ca, cb)):.1e})")
+    check(close(b["critical_position"]["x_m"], a["critical_position"]["x_m"] + 0.85, atol=1e-12) and
+          close(b["load_factor"], a["load_factor"], rtol=1e-10),
+          f"critical position {b['critical_position']} = the arch's {a['critical_position']} shifted by 0.85 m")
+    a, b = load("arch_accel.nml"), load("bridge_semicircle_accel.nml")
+    check(close(b["load_factor"], a["load_factor"], rtol=1e-10) and close(b["load_factor_neg"], a["load_factor_neg"],
+                                                                           rtol=1e-10),
+          f"under horizontal acceleration: {b['load_factor']} = the arch builder's {a['load_factor']} (1e-10)")
+    # (2) The two-span bridge.
+    d = load(os.path.join(os.path.dirname(nml), "bridge_two_spans.nml"))
+    lam = d["load_factor"]
+    check(d["assembly"] == "bridge" and len(d["blocks"]) == 2 * 20 + 1 + 2 + 1 and lam > 0,
+          f"two spans: 40 voussoirs, a pier, two abutments, the ground; lambda {lam}")
+    check(close(d["load_factor_upper"], lam, rtol=1e-6), f"upper bound {d['load_factor_upper']} = lower {lam}")
+    density = [2200.0] * 40 + [2300.0]
+    worst = 0.0
+    for i, blk in enumerate(d["blocks"], start=1):
+        if blk["driven"]:
+            continue
+        poly = blk["vertices_xy_m"]
+        area = 0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1]))
+        cx, cy = centroid(poly)
+        weight = density[i - 1] * 1.0 * 9.81 * area
+        fx, fy, m = contact_resultant(d, i, cx, cy)
+        fy -= weight
+        for pl in d["point_loads"]:
+            if pl["block"] == i:
+                gx, gy = lam * pl["force_n"][0], lam * pl["force_n"][1]
+                fx, fy, m = fx + gx, fy + gy, m + (pl["xy_m"][0] - cx) * gy - (pl["xy_m"][1] - cy) * gx
+        worst = max(worst, abs(fx) / weight, abs(fy) / weight, abs(m) / (weight * 10.0))
+    check(worst < 1e-7, f"two spans: every free block in equilibrium (weight by its part's density) ({worst:.1e})")
+    check(all(min(f["normal_n"]) >= -1e-9 * 1e5 and abs(f["shear_n"]) <= 0.6 * sum(f["normal_n"]) + 1e-6
+              for f in d["contact_forces"]), "two spans: no tension, every interface within friction 0.6")
+    rc, out, _ = run(os.path.join(os.path.dirname(nml), "bridge_two_spans.nml"))
+    check(rc == 0 and "friction: ring 0.6, piers 0.6, skewbacks 0.6" in out and "critical position" in out,
+          "two spans: the table gives each part's friction and the critical position")
+    # Each part its own friction: skewbacks at 0.05 hold the ring's springings to that (the
+    # lesser of ring 0.6 and skewback 0.05), and the bridge is weaker for it.
+    with open(os.path.join(os.path.dirname(nml), "bridge_two_spans.nml")) as f:
+        text = f.read().replace("abutment_friction = 0.6", "abutment_friction = 0.05")
+    with open("bridge_slippery_skewbacks.nml", "w") as f:
+        f.write(text)
+    e = load("bridge_slippery_skewbacks.nml")
+    skew = [k for k, blk in enumerate(e["blocks"], start=1) if blk["driven"]][:2]
+    at_skew = [f for f in e["contact_forces"] if set(f["blocks"]) & set(skew)]
+    check(len(at_skew) == 2 and all(abs(f["shear_n"]) <= 0.05 * sum(f["normal_n"]) * (1 + 1e-9) + 1e-6
+                                    for f in at_skew) and e["load_factor"] < lam * (1 - 1e-3),
+          f"skewback friction 0.05: |S| <= 0.05 N at both springings, load factor {e['load_factor']} < {lam}")
 else:
     check(False, f"unknown case {case}")
 

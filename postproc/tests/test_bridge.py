@@ -1,0 +1,56 @@
+"""&bridge (issue 37) through the executables: voussoir-run takes the bridge (each part's
+mass, the effective &bridge recorded in the result file) and the mechanism figure of the
+two-span bridge of input/ is the load case's."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from conftest import REPO_ROOT, run_executable
+from figure_text import text_clashes
+from voussoir_post.cli import post
+from voussoir_post.plots.mechanism import plot_mechanism
+from voussoir_post.readers.results import read_limit_json, read_run
+
+BRIDGE = """\
+&bridge shape = 'segmental', span_m = 10.0, 10.0, rise_m = 2.5, 2.5, ring_thickness_m = 0.45,
+  n_voussoirs = 12, pier_width_m = 1.5, pier_height_m = 3.0, abutment_width_m = 2.0,
+  ring_density_kg_m3 = 2200, pier_density_kg_m3 = 2400 /
+&motion waveform = 'afd', amplitude_m = 0.0, frequency_hz = 1.0, n_full = 0, rest_s = 0.0 /
+&output file = 'bridge.h5' /
+"""
+
+
+def test_a_bridge_stands_in_voussoir_run(voussoir_run_exe, tmp_path):
+    """At rest a two-span bridge stands (its blocks move by round-off only), and the
+    result file records the &bridge group as run, so the figures can say what was run."""
+    nml = tmp_path / "bridge.nml"
+    nml.write_text(BRIDGE)
+    out = run_executable([voussoir_run_exe, nml], tmp_path).stdout
+    assert out.startswith("stood;")
+    run = read_run(tmp_path / "bridge.h5")
+    bridge = run.config["bridge"]
+    assert bridge["shape"] == "segmental" and float(bridge["pier_density_kg_m3"]) == 2400.0
+    assert float(bridge["span_m(2)"]) == 10.0
+
+
+def test_mechanism_of_the_two_span_bridge(voussoir_limit_exe, tmp_path, drawn_figures):
+    """input/bridge_two_spans.nml: one panel (a load case), titled by the live load with the
+    vehicle's critical x, in the bridge's frame (x from the left springing), four hinges,
+    the live load drawn at the critical position; no text overlapping or cut."""
+    path = tmp_path / "bridge_two_spans.json"
+    path.write_text(run_executable([voussoir_limit_exe, REPO_ROOT / "input" / "bridge_two_spans.nml", "--json"],
+                                   tmp_path).stdout)
+    assert post.main(["mechanism", str(path), "--out", str(tmp_path / "m.png")]) == 0
+    (fig,) = drawn_figures
+    assert text_clashes(fig) == []
+    assert fig.axes[0].get_xlabel() == "x [m] from the left springing of span 1"
+    limit = read_limit_json(path)
+    data = plot_mechanism(limit, tmp_path / "again.png")
+    (panel,) = data.panels
+    assert len(panel.hinges) == 4 and panel.load_factor == pytest.approx(limit.load_factor, rel=1e-12)
+    (load,) = limit.point_loads
+    assert load.xy_m[0] == pytest.approx(limit.critical_x_m, abs=1e-12)
+    assert any("bridge of 44 blocks (&bridge)" in t.get_text() for t in fig.texts)  # the suptitle
+    assert np.isfinite(data.force_scale_m_per_n)
