@@ -69,3 +69,9 @@ add_test(NAME limit_driver_bridge
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
                  bridge ${CMAKE_SOURCE_DIR}/input/bridge_two_spans.nml
          WORKING_DIRECTORY ${LIMIT_TEST_DIR})
+# The fill of &bridge (issue 37): its weight and the spread of a live load through it,
+# checked from the JSON's blocks (closed-form columns, the spread lines, statics).
+add_test(NAME limit_driver_bridge_fill
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
+                 bridge_fill ${CMAKE_SOURCE_DIR}/input/bridge_fill.nml
+         WORKING_DIRECTORY ${LIMIT_TEST_DIR})

@@ -34,6 +34,13 @@ module voussoir_assembly
     !> Each body's Coulomb coefficient where allocated (the parts of a bridge), else the
     !> run's; a contact between two bodies takes the lesser of theirs.
     real(dp), allocatable :: friction(:)
+    !> A fill over the blocks (a bridge's, &bridge fill_density_kg_m3 > 0): its level
+    !> surface [m], its weight per unit area of the section (density x g x width) [N/m2],
+    !> and the angle from the vertical at which live loads spread through it [deg].
+    logical :: has_fill = .false.
+    real(dp) :: fill_level_m = 0.0_dp
+    real(dp) :: fill_weight_n_m2 = 0.0_dp
+    real(dp) :: dispersion_angle_deg = 0.0_dp
     ! Arch description (n_voussoirs = 0 for a generic assembly).
     integer :: n_voussoirs = 0
     real(dp) :: thickness_m = 0.0_dp
@@ -65,6 +72,10 @@ contains
     if (allocated(asm%course)) mirror%course = asm%course
     if (allocated(asm%density_kg_m3)) mirror%density_kg_m3 = asm%density_kg_m3
     if (allocated(asm%friction)) mirror%friction = asm%friction
+    mirror%has_fill = asm%has_fill
+    mirror%fill_level_m = asm%fill_level_m
+    mirror%fill_weight_n_m2 = asm%fill_weight_n_m2
+    mirror%dispersion_angle_deg = asm%dispersion_angle_deg
   end function mirrored_blocks
 
   !> Angle [deg] from +x of the radial line of joint j (0..n) of an arch.

@@ -11,7 +11,7 @@
 !> joints divide the intrados into n_voussoirs equal arc lengths. Each block carries its
 !> part's density and friction (an interface takes the lesser friction of its two blocks).
 module voussoir_bridge
-  use voussoir_kinds, only: dp
+  use voussoir_kinds, only: dp, g_m_s2
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa
   use voussoir_geometry, only: is_convex_ccw
@@ -79,6 +79,10 @@ contains
     allocate (inner(2, 0:n, ns), outer(2, 0:n, ns))
     asm%n_bodies = nb
     asm%thickness_m = b%ring_thickness_m
+    asm%has_fill = b%fill_density_kg_m3 > 0.0_dp
+    asm%fill_level_m = b%fill_level_m
+    asm%fill_weight_n_m2 = b%fill_density_kg_m3*g_m_s2*b%width_m
+    asm%dispersion_angle_deg = b%dispersion_angle_deg
     body = 0
     do k = 1, ns
       call bridge_ring_joints(b, k, inner(:, :, k), outer(:, :, k))

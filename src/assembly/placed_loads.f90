@@ -14,10 +14,16 @@ module voussoir_placed_loads
   implicit none
   private
   public :: placed_loads_t, place_loads, block_at, top_surface, moves_on_top, vehicle_x
-  public :: boundary_tol_m, dead_load_strips
+  public :: boundary_tol_m, dead_load_strips, dispersion_strips
+  public :: kind_point, kind_dead_strip, kind_fill, kind_dispersed
 
   real(dp), parameter :: boundary_tol_m = 1.0e-9_dp   !! a point this close outside a block is on it
   integer, parameter :: dead_load_strips = 1000       !! strips of the distributed dead load
+  integer, parameter :: dispersion_strips = 200       !! strips of a live load spread through the fill
+  integer, parameter :: kind_point = 1       !! a point load of &load where it stands
+  integer, parameter :: kind_dead_strip = 2  !! a strip of &load's distributed dead load
+  integer, parameter :: kind_fill = 3        !! the weight of the fill above one top face of a block
+  integer, parameter :: kind_dispersed = 4   !! a strip of a live load spread through the fill
 
   !> Forces at points of the blocks: live ones (times the load factor) and dead ones.
   type :: placed_loads_t
@@ -27,6 +33,14 @@ module voussoir_placed_loads
     real(dp), allocatable :: xy(:, :)        !! (2, n) point of application [m]
     real(dp), allocatable :: force_n(:, :)   !! (2, n) force [N] (a live load: at load factor 1)
     logical, allocatable :: live(:)
+    integer, allocatable :: kind(:)          !! kind_point, kind_dead_strip, kind_fill or kind_dispersed
+    !> With a fill: each live load as it stands on the fill's surface (its strips on the
+    !> blocks are the kind_dispersed loads), and the extent of x it spreads over.
+    integer :: n_surface = 0
+    integer, allocatable :: surface_source(:)      !! point load j of &load
+    real(dp), allocatable :: surface_xy(:, :)      !! (2, n_surface) on the fill surface [m]
+    real(dp), allocatable :: surface_force_n(:, :) !! (2, n_surface) at load factor 1 [N]
+    real(dp), allocatable :: surface_spread_x_m(:, :) !! (2, n_surface) from x to x on the blocks [m]
   end type placed_loads_t
 
 contains
@@ -71,10 +85,26 @@ contains
     integer :: j, a, b
     logical :: found
 
-    allocate (placed%block(0), placed%source(0), placed%xy(2, 0), placed%force_n(2, 0), placed%live(0))
+    allocate (placed%block(0), placed%source(0), placed%xy(2, 0), placed%force_n(2, 0), placed%live(0), &
+              placed%kind(0), placed%surface_source(0), placed%surface_xy(2, 0), placed%surface_force_n(2, 0), &
+              placed%surface_spread_x_m(2, 0))
     do j = 1, d%n_point_loads
       dir = direction(d%point_load_dir_deg(j))
-      if (d%point_load_live(j) .and. moves_on_top(d)) then
+      if (d%point_load_live(j) .and. asm%has_fill) then
+        ! On the fill's surface at its x, spread through the fill onto the blocks.
+        if (d%point_load_dir_deg(j) /= -90.0_dp) then
+          call fail(status, '&load point_load_dir_deg('//itoa(j)//') = '//fmt_significant(d%point_load_dir_deg(j), 6)// &
+                    ': with a fill the live loads stand on its surface and spread down through it: give them '// &
+                    'straight down (-90)')
+          return
+        end if
+        do a = 0, d%n_axles
+          x = d%point_load_x_m(j) + shift_x_m
+          if (a > 0) x = x + d%axle_spacing_m(a)
+          call disperse(j, a, x, d%point_load_n(j))
+          if (.not. status%ok) return
+        end do
+      else if (d%point_load_live(j) .and. moves_on_top(d)) then
         do a = 0, d%n_axles
           x = d%point_load_x_m(j) + shift_x_m
           if (a > 0) x = x + d%axle_spacing_m(a)
@@ -85,7 +115,7 @@ contains
                       span_text(asm)//')')
             return
           end if
-          call add(b, j, [x, y], d%point_load_n(j)*dir, .true.)
+          call add(b, j, [x, y], d%point_load_n(j)*dir, .true., kind_point)
         end do
       else
         p = [d%point_load_x_m(j), d%point_load_y_m(j)]
@@ -96,7 +126,7 @@ contains
                     'boundary, within 1e-9 m)')
           return
         end if
-        call add(b, j, p, d%point_load_n(j)*dir, d%point_load_live(j))
+        call add(b, j, p, d%point_load_n(j)*dir, d%point_load_live(j), kind_point)
       end if
     end do
     if (d%dead_load_n_per_m > 0.0_dp) then
@@ -111,14 +141,15 @@ contains
                     fmt_significant(x, 6)//' m (the top surface of the assembly spans '//span_text(asm)//')')
           return
         end if
-        call add(b, 0, [x, y], [0.0_dp, -d%dead_load_n_per_m*dx], .false.)
+        call add(b, 0, [x, y], [0.0_dp, -d%dead_load_n_per_m*dx], .false., kind_dead_strip)
       end do
     end if
+    if (asm%has_fill) call add_fill_weight()
 
   contains
 
-    subroutine add(block, source, xy, force, live)
-      integer, intent(in) :: block, source
+    subroutine add(block, source, xy, force, live, kind)
+      integer, intent(in) :: block, source, kind
       real(dp), intent(in) :: xy(2), force(2)
       logical, intent(in) :: live
       placed%n = placed%n + 1
@@ -127,9 +158,132 @@ contains
       placed%xy = reshape([placed%xy, xy], [2, placed%n])
       placed%force_n = reshape([placed%force_n, force], [2, placed%n])
       placed%live = [placed%live, live]
+      placed%kind = [placed%kind, kind]
     end subroutine add
 
+    !> Live load j (axle a) of `magnitude_n` on the fill surface at `x0`: spread either side
+    !> at the dispersion angle from the vertical down to where those lines meet the top of
+    !> the blocks, uniformly along x in between (dispersion_strips strips on the top
+    !> surface); at angle 0, the whole load on the top surface beneath it.
+    subroutine disperse(j, a, x0, magnitude_n)
+      integer, intent(in) :: j, a
+      real(dp), intent(in) :: x0, magnitude_n
+      real(dp) :: x_lo, x_hi, dx, xs, ys
+      integer :: k, blk
+      logical :: ok
+      call top_surface(asm, x0, ys, blk, ok)
+      if (.not. ok) then
+        call fail(status, '&load live point load '//itoa(j)//trim(axle_words(a))//' at x = '//fmt_significant(x0, 6)// &
+                  ' m stands over no block (the top surface of the assembly spans '//span_text(asm)//')')
+        return
+      end if
+      x_lo = spread_end(asm, x0, -1.0_dp)
+      x_hi = spread_end(asm, x0, 1.0_dp)
+      if (x_lo <= -huge(1.0_dp) .or. x_hi >= huge(1.0_dp)) then
+        call fail(status, '&load live point load '//itoa(j)//trim(axle_words(a))//' at x = '//fmt_significant(x0, 6)// &
+                  ' m spreads through the fill beyond the ends of the bridge ('//span_text(asm)//'): move it in, or '// &
+                  'lower &bridge dispersion_angle_deg')
+        return
+      end if
+      placed%n_surface = placed%n_surface + 1
+      placed%surface_source = [placed%surface_source, j]
+      placed%surface_xy = reshape([placed%surface_xy, x0, asm%fill_level_m], [2, placed%n_surface])
+      placed%surface_force_n = reshape([placed%surface_force_n, 0.0_dp, -magnitude_n], [2, placed%n_surface])
+      placed%surface_spread_x_m = reshape([placed%surface_spread_x_m, x_lo, x_hi], [2, placed%n_surface])
+      if (x_hi - x_lo <= boundary_tol_m) then
+        call add(blk, j, [x0, ys], [0.0_dp, -magnitude_n], .true., kind_dispersed)
+        return
+      end if
+      dx = (x_hi - x_lo)/dispersion_strips
+      do k = 1, dispersion_strips
+        xs = x_lo + (k - 0.5_dp)*dx
+        call top_surface(asm, xs, ys, blk, ok)
+        if (.not. ok) then   ! (the spread ends lie on the blocks, and a bridge's top has no gap)
+          call fail(status, '&load live point load '//itoa(j)//trim(axle_words(a))//' spreads over x = '// &
+                    fmt_significant(xs, 6)//' m, where no block stands')
+          return
+        end if
+        call add(blk, j, [xs, ys], [0.0_dp, -magnitude_n/dispersion_strips], .true., kind_dispersed)
+      end do
+    end subroutine disperse
+
+    !> The fill's weight over every top face of a free block that is the top surface there:
+    !> the trapezoid between the face and the fill's level, its weight at its centroid's x
+    !> on the face (a vertical force: its moment depends on that x alone). Faces of
+    !> driven blocks carry theirs to the supports and are left out.
+    subroutine add_fill_weight()
+      real(dp) :: e(2), p0(2), p1(2), xm, ym, yt, h0, h1, xc, weight
+      integer :: blk, k, nv, top
+      logical :: ok
+      do blk = 1, asm%n_bodies
+        if (asm%driven(blk)) cycle
+        nv = size(asm%polygon(blk)%xy, 2)
+        do k = 1, nv
+          p0 = asm%polygon(blk)%xy(:, k)
+          p1 = asm%polygon(blk)%xy(:, modulo(k, nv) + 1)
+          e = p1 - p0
+          if (e(1) >= -boundary_tol_m) cycle          ! a top face runs right to left (counter-clockwise)
+          xm = 0.5_dp*(p0(1) + p1(1))
+          ym = 0.5_dp*(p0(2) + p1(2))
+          call top_surface(asm, xm, yt, top, ok)
+          if (.not. ok .or. top /= blk .or. abs(yt - ym) > 1.0e-9_dp*max(1.0_dp, abs(ym))) cycle
+          ! From p1 (left) to p0 (right).
+          h0 = asm%fill_level_m - p1(2)
+          h1 = asm%fill_level_m - p0(2)
+          weight = asm%fill_weight_n_m2*(p0(1) - p1(1))*0.5_dp*(h0 + h1)
+          if (weight <= 0.0_dp) cycle
+          xc = p1(1) + (p0(1) - p1(1))*(h0 + 2.0_dp*h1)/(3.0_dp*(h0 + h1))
+          call add(blk, 0, [xc, p1(2) + (xc - p1(1))*(p0(2) - p1(2))/(p0(1) - p1(1))], [0.0_dp, -weight], .false., &
+                   kind_fill)
+        end do
+      end do
+    end subroutine add_fill_weight
+
   end subroutine place_loads
+
+  !> Where the line from (x0, the fill's level) down at the dispersion angle towards
+  !> `side` (-1 left, +1 right) meets the top surface of the blocks [m] (the top surface
+  !> of a bridge runs unbroken from one abutment's end to the other's); -huge or huge when
+  !> the line leaves the assembly above it. Bisection on the line's height over the surface.
+  pure function spread_end(asm, x0, side) result(x)
+    type(assembly_t), intent(in) :: asm
+    real(dp), intent(in) :: x0, side
+    real(dp) :: x, lo, hi, y, slope, lowest, x_end
+    integer :: blk, k
+    logical :: ok
+    real(dp), parameter :: pi = acos(-1.0_dp)
+    x = x0
+    if (asm%dispersion_angle_deg == 0.0_dp) return
+    slope = tan(asm%dispersion_angle_deg*pi/180.0_dp)   ! horizontal run per unit of depth
+    lowest = huge(1.0_dp)
+    x_end = merge(huge(1.0_dp), -huge(1.0_dp), side < 0.0_dp)
+    do k = 1, asm%n_bodies
+      lowest = min(lowest, minval(asm%polygon(k)%xy(2, :)))
+      if (side < 0.0_dp) x_end = min(x_end, minval(asm%polygon(k)%xy(1, :)))
+      if (side > 0.0_dp) x_end = max(x_end, maxval(asm%polygon(k)%xy(1, :)))
+    end do
+    ! Beyond this the line is below every block: it has met the top surface by then.
+    hi = x0 + side*slope*(asm%fill_level_m - lowest)
+    if (side*(hi - x_end) > 0.0_dp) then
+      call top_surface(asm, x_end, y, blk, ok)
+      if (asm%fill_level_m - abs(x_end - x0)/slope > y) then
+        x = merge(-huge(1.0_dp), huge(1.0_dp), side < 0.0_dp)
+        return
+      end if
+      hi = x_end
+    end if
+    lo = x0
+    do k = 1, 100
+      x = 0.5_dp*(lo + hi)
+      call top_surface(asm, x, y, blk, ok)
+      if (asm%fill_level_m - abs(x - x0)/slope > y) then
+        lo = x
+      else
+        hi = x
+      end if
+    end do
+    x = 0.5_dp*(lo + hi)
+  end function spread_end
 
   !> The unit vector at `deg` from +x, exact at multiples of 90 degrees (a load straight
   !> down has no horizontal part of round-off size).

@@ -10,7 +10,8 @@ module voussoir_bridge_config
   use voussoir_text, only: itoa, fmt_real, fmt_significant, lower
   use voussoir_namelist_group, only: nml_group_t
   use voussoir_input_range, only: need
-  use voussoir_bridge_shape, only: intrados_t, intrados_init, springing_reach, shape_names, shape_segmental, &
+  use voussoir_bridge_shape, only: intrados_t, intrados_init, springing_reach, crown_extrados_m, shape_names, &
+    shape_segmental, &
     shape_semicircular, shape_elliptical, shape_three_centred, shape_pointed, shape_parabolic, &
     three_centred_min_rise_ratio
   implicit none
@@ -39,6 +40,12 @@ module voussoir_bridge_config
     real(dp) :: pier_density_kg_m3 = 2000.0_dp
     real(dp) :: pier_friction = 0.6_dp                  !! of a pier on the ground and under its springings
     real(dp) :: abutment_friction = 0.6_dp              !! of a skewback under its springing
+    !> The fill (the engineers' model, voussoir-limit only): a level surface fill_level_m
+    !> above the springings, its weight as vertical dead loads on the blocks beneath, and
+    !> live loads spread through it at dispersion_angle_deg from the vertical either side.
+    real(dp) :: fill_density_kg_m3 = 0.0_dp             !! 0: no fill
+    real(dp) :: fill_level_m = 0.0_dp                   !! the fill's (and the road's) surface above the springings [m]
+    real(dp) :: dispersion_angle_deg = 0.0_dp           !! 0: a live load acts on the extrados straight beneath it
     integer :: n_spans = 0                              !! (derived) the spans given
   end type bridge_config_t
 
@@ -66,6 +73,12 @@ contains
     call g%add('pier_density_kg_m3', b%pier_density_kg_m3, unit='kg/m3', range='0 < pier_density_kg_m3 <= 1e5')
     call g%add('pier_friction', b%pier_friction, range='pier_friction >= 0 (finite)')
     call g%add('abutment_friction', b%abutment_friction, range='abutment_friction >= 0 (finite)')
+    call g%add('fill_density_kg_m3', b%fill_density_kg_m3, unit='kg/m3', &
+               range='0 <= fill_density_kg_m3 <= 1e5 (0: no fill)')
+    call g%add('fill_level_m', b%fill_level_m, unit='m', range='0 <= fill_level_m <= 300 m', &
+               about='real, m, the fill surface above the springings')
+    call g%add('dispersion_angle_deg', b%dispersion_angle_deg, unit='deg', range='0 <= dispersion_angle_deg < 90', &
+               about='real, deg from the vertical, either side of a live load')
   end subroutine bridge_group
 
   !> Read and check the &bridge group of `path` (absent, or no span: no bridge).
@@ -106,7 +119,48 @@ contains
     end do
     if (.not. status%ok) return
     call check_supports(b, path, status)
+    call check_fill(b, path, status)
   end subroutine read_bridge_config
+
+  !> A fill covers every ring (its surface not below any extrados); a dispersion angle
+  !> or a fill level without a fill to spread or stand in is refused.
+  subroutine check_fill(b, path, status)
+    type(bridge_config_t), intent(in) :: b
+    character(len=*), intent(in) :: path
+    type(status_t), intent(inout) :: status
+    real(dp) :: top_m
+    integer :: k, highest
+    if (.not. status%ok) return
+    if (b%fill_density_kg_m3 == 0.0_dp) then
+      call need(b%dispersion_angle_deg == 0.0_dp, path, 'bridge', 'dispersion_angle_deg', b%dispersion_angle_deg, &
+                '0 without a fill (set fill_density_kg_m3 > 0 and fill_level_m for the load to spread through)', &
+                status)
+      call need(b%fill_level_m == 0.0_dp, path, 'bridge', 'fill_level_m', b%fill_level_m, &
+                '0 without a fill (set fill_density_kg_m3 > 0)', status)
+      return
+    end if
+    highest = 1
+    top_m = -huge(1.0_dp)
+    do k = 1, b%n_spans
+      if (crown_top_m(b, k) > top_m) then
+        top_m = crown_top_m(b, k)
+        highest = k
+      end if
+    end do
+    call need(b%fill_level_m >= top_m, path, 'bridge', 'fill_level_m', b%fill_level_m, &
+              'fill_level_m >= '//fmt_significant(top_m, 6)//' m, the extrados of span '//itoa(highest)// &
+              "'s crown (its rise and ring_thickness_m): a fill surface below the extrados would cut the ring", status)
+  end subroutine check_fill
+
+  !> The height of span k's extrados at its crown above the springings [m].
+  pure real(dp) function crown_top_m(b, k)
+    type(bridge_config_t), intent(in) :: b
+    integer, intent(in) :: k
+    type(intrados_t) :: c
+    c = bridge_intrados(b, k)
+    crown_top_m = c%rise_m + b%ring_thickness_m
+    if (b%shape == shape_pointed) crown_top_m = crown_extrados_m(c, b%ring_thickness_m)
+  end function crown_top_m
 
   !> Span k's rise against its shape, its ring against its span, its voussoirs' lengths.
   subroutine check_span(b, k, path, status)

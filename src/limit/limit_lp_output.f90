@@ -6,6 +6,7 @@ module voussoir_limit_lp_output
   use voussoir_hinge_side, only: side_name
   use voussoir_limit_lp, only: lp_result_t, joint_mode_name, joint_closed, joint_hinge
   use voussoir_limit_lp_study, only: lp_study_t, lp_direction_t
+  use voussoir_placed_loads, only: kind_point, kind_fill
   implicit none
   private
 
@@ -122,7 +123,7 @@ contains
     else
       text = text//'  "live_load": null,'//nl
     end if
-    text = text//'  "point_loads": '//point_loads_json(lp)//','//nl//'  "critical_position": '
+    text = text//'  "point_loads": '//point_loads_json(lp)//','//nl//fill_json(lp)//'  "critical_position": '
     if (lp%has_path) then
       text = text//'{"x_m": '//fmt_json_real(lp%critical_x_m)//', "load_factor": '// &
              fmt_json_real(lp%critical_load_factor)//'},'//nl
@@ -239,16 +240,17 @@ contains
     text = text//']'
   end function forces_json
 
-  !> The point loads of &load as placed (the distributed dead load's strips left out):
-  !> the load j, the block, the point, the force [N] (a live one at load factor 1).
+  !> The point loads of &load as placed (the distributed dead load's strips, the fill's
+  !> weight and a live load's strips through the fill left out): the load j, the block,
+  !> the point, the force [N] (a live one at load factor 1).
   function point_loads_json(lp) result(text)
     type(lp_study_t), intent(in) :: lp
     character(len=:), allocatable :: text
     integer :: k
     text = '['
-    if (allocated(lp%placed%source)) then
+    if (allocated(lp%placed%kind)) then
       do k = 1, lp%placed%n
-        if (lp%placed%source(k) == 0) cycle
+        if (lp%placed%kind(k) /= kind_point) cycle
         if (len(text) > 1) text = text//', '
         text = text//'{"load": '//itoa(lp%placed%source(k))//', "block": '//itoa(lp%placed%block(k))// &
                ', "xy_m": '//xy_json(lp%placed%xy(:, k))//', "force_n": '//xy_json(lp%placed%force_n(:, k))// &
@@ -257,6 +259,38 @@ contains
     end if
     text = text//']'
   end function point_loads_json
+
+  !> With a fill: each live load on the fill's surface (load j, point, force [N] at load
+  !> factor 1) and the x it spreads over on the blocks; and the fill's weight on each top
+  !> face of a block (block, point, force [N]).
+  function fill_json(lp) result(text)
+    type(lp_study_t), intent(in) :: lp
+    character(len=:), allocatable :: text
+    character(len=1), parameter :: nl = achar(10)
+    integer :: k
+    logical :: first
+    text = '  "surface_loads": ['
+    if (allocated(lp%placed%surface_source)) then
+      do k = 1, lp%placed%n_surface
+        if (k > 1) text = text//', '
+        text = text//'{"load": '//itoa(lp%placed%surface_source(k))//', "xy_m": '// &
+               xy_json(lp%placed%surface_xy(:, k))//', "force_n": '//xy_json(lp%placed%surface_force_n(:, k))// &
+               ', "spread_x_m": '//xy_json(lp%placed%surface_spread_x_m(:, k))//'}'
+      end do
+    end if
+    text = text//'],'//nl//'  "fill_loads": ['
+    first = .true.
+    if (allocated(lp%placed%kind)) then
+      do k = 1, lp%placed%n
+        if (lp%placed%kind(k) /= kind_fill) cycle
+        if (.not. first) text = text//', '
+        first = .false.
+        text = text//'{"block": '//itoa(lp%placed%block(k))//', "xy_m": '//xy_json(lp%placed%xy(:, k))// &
+               ', "force_n": '//xy_json(lp%placed%force_n(:, k))//'}'
+      end do
+    end if
+    text = text//'],'//nl
+  end function fill_json
 
   !> [{"x_m": .., "load_factor": ..}, ...] along the path (null where no mechanism opens).
   function curve_json(lp) result(text)

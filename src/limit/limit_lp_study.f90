@@ -121,7 +121,8 @@ contains
     shift_m = 0.0_dp
     study%live_load = live_acceleration_words
     allocate (study%placed%block(0), study%placed%source(0), study%placed%xy(2, 0), study%placed%force_n(2, 0), &
-              study%placed%live(0))
+              study%placed%live(0), study%placed%kind(0), study%placed%surface_source(0), &
+              study%placed%surface_xy(2, 0), study%placed%surface_force_n(2, 0), study%placed%surface_spread_x_m(2, 0))
     all_dead = .false.
     if (present(loads_dead)) all_dead = loads_dead
     if (present(load) .and. all_dead) then
@@ -137,6 +138,9 @@ contains
       call place_loads(load, asm, shift_m, study%placed, status)
       if (.not. status%ok) return
       study%live_load = live_load_words(load)
+      if (asm%has_fill) study%live_load = study%live_load//'; and the fill: its weight on the blocks beneath its '// &
+        'surface at y = '//fmt_significant(asm%fill_level_m, 6)//' m, the live loads standing on that surface and '// &
+        'spread through it at '//fmt_significant(asm%dispersion_angle_deg, 6)//' deg from the vertical either side'
       study%live_is_acceleration = .not. any(study%placed%live)
     end if
     call block_loads(asm, density_kg_m3, width_m, g_m_s2, loads)

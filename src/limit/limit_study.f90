@@ -156,6 +156,14 @@ contains
     type(status_t), intent(inout) :: status
     call build_config_assembly(cfg, asm, status)
     if (.not. status%ok) return
+    ! The fill's weight stands on the ring, but under horizontal acceleration its mass would
+    ! have to move with it, which this model of the fill does not carry.
+    if (asm%has_fill .and. .not. any(cfg%load%point_load_live(1:cfg%load%n_point_loads))) then
+      call fail(status, '&bridge fill_density_kg_m3 > 0 needs a live point load in &load: the fill is modelled '// &
+                'as its weight and the spread of live loads through it, not as a mass that a horizontal '// &
+                'acceleration would load (leave the fill out for the acceleration case)')
+      return
+    end if
     if (has_loads(cfg)) call check_loads_placed(cfg, asm, status)
     if (.not. status%ok) return
     associate (a => cfg%arch)

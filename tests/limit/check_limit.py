@@ -2,6 +2,7 @@
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 
@@ -758,6 +759,109 @@ elif case == "bridge":
     check(len(at_skew) == 2 and all(abs(f["shear_n"]) <= 0.05 * sum(f["normal_n"]) * (1 + 1e-9) + 1e-6
                                     for f in at_skew) and e["load_factor"] < lam * (1 - 1e-3),
           f"skewback friction 0.05: |S| <= 0.05 N at both springings, load factor {e['load_factor']} < {lam}")
+elif case == "bridge_fill":
+    # The engineers' fill over input/bridge_fill.nml's span, checked from the JSON's blocks
+    # alone: (1) the fill's weight on each voussoir = density x g x width x the area of the
+    # polygon between its extrados chord and the fill's level (shoelace), at that polygon's
+    # centroid's x; in all, the area between the extrados and the level over the ring;
+    # (2) each live load's spread ends where the lines from its point on the surface at the
+    # dispersion angle meet the extrados; (3) every free block in equilibrium under its
+    # weight, the fill's, lambda x the live load spread uniformly along x between those ends
+    # (onto the block on top at each x, as 200 strips) and the JSON's contact forces;
+    # (4) a fill of vanishing weight and no dispersion gives the bare bridge's load factor.
+    d = load(nml)
+    text = open(nml).read()
+    def number(name):
+        return float(re.search(r"\b" + name + r" *= *([-0-9.eE+]+)", text).group(1))
+    rho_f, level, theta = number("fill_density_kg_m3"), number("fill_level_m"), number("dispersion_angle_deg")
+    rho_r, width = number("ring_density_kg_m3"), number("width_m")
+    blocks = d["blocks"]
+    free = [i for i, b in enumerate(blocks, start=1) if not b["driven"]]
+    def top_edge(poly):
+        """The face of a voussoir that runs right to left on top: its extrados chord."""
+        return poly[2], poly[3]
+    def column(p_right, p_left):
+        poly = [p_left, p_right, (p_right[0], level), (p_left[0], level)]
+        area = -0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1]))
+        return abs(area), centroid(poly)[0]
+    fills = {f["block"]: f for f in d["fill_loads"]}
+    g_w = 9.81 * width
+    worst = 0.0
+    total = 0.0
+    for i in free:
+        area, xc = column(*top_edge(blocks[i - 1]["vertices_xy_m"]))
+        f = fills[i]
+        worst = max(worst, abs(-f["force_n"][1] - rho_f * g_w * area) / (rho_f * g_w * area), abs(f["xy_m"][0] - xc))
+        total += -f["force_n"][1]
+    check(len(fills) == len(free) and worst < 1e-12, f"fill on each voussoir = the column above its extrados chord, "
+                                                     f"at its centroid's x ({worst:.1e})")
+    ext = [tuple(blocks[i - 1]["vertices_xy_m"][3]) for i in free] + [tuple(blocks[free[-1] - 1]["vertices_xy_m"][2])]
+    poly = ext + [(ext[-1][0], level), (ext[0][0], level)]
+    area = abs(0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1])))
+    check(close(total, rho_f * g_w * area, rtol=1e-12), f"fill in all {total:.6g} N = the area over the extrados "
+                                                        f"({area:.6g} m2) x density x g x width")
+    def top(x):
+        best = None
+        for b in blocks:
+            v = b["vertices_xy_m"]
+            for (x0, y0), (x1, y1) in zip(v, v[1:] + v[:1]):
+                if min(x0, x1) - 1e-9 <= x <= max(x0, x1) + 1e-9:
+                    y = max(y0, y1) if abs(x1 - x0) <= 1e-9 else y0 + (min(max((x - x0) / (x1 - x0), 0), 1)) * (y1 - y0)
+                    best = y if best is None else max(best, y)
+        return best
+    def block_on_top(x):
+        best, who = None, None
+        for i, b in enumerate(blocks, start=1):
+            v = b["vertices_xy_m"]
+            for (x0, y0), (x1, y1) in zip(v, v[1:] + v[:1]):
+                if min(x0, x1) - 1e-9 <= x <= max(x0, x1) + 1e-9 and abs(x1 - x0) > 1e-9:
+                    y = y0 + (x - x0) / (x1 - x0) * (y1 - y0)
+                    if best is None or y > best + 1e-9 or (y > best - 1e-9 and blocks[who - 1]["driven"] and
+                                                           not b["driven"]):
+                        best, who = max(y, best or y), i
+        return who
+    slope = math.tan(math.radians(theta))
+    for sl in d["surface_loads"]:
+        x0 = sl["xy_m"][0]
+        lo, hi = sl["spread_x_m"]
+        gaps = [level - abs(x - x0) / slope - top(x) for x in (lo, hi)]
+        check(sl["xy_m"][1] == level and lo < x0 < hi and max(abs(g) for g in gaps) < 1e-9,
+              f"the load at x = {x0:.4g} m spreads from {lo:.4g} to {hi:.4g} m, where the {theta:g}-degree lines "
+              f"meet the extrados ({max(abs(g) for g in gaps):.1e} m)")
+    lam = d["load_factor"]
+    strips = {}
+    for sl in d["surface_loads"]:
+        lo, hi = sl["spread_x_m"]
+        for k in range(200):
+            x = lo + (k + 0.5) * (hi - lo) / 200
+            strips.setdefault(block_on_top(x), []).append((x, top(x), -sl["force_n"][1] / 200))
+    worst = 0.0
+    for i in free:
+        v = blocks[i - 1]["vertices_xy_m"]
+        area = 0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(v, v[1:] + v[:1]))
+        cx, cy = centroid(v)
+        weight = rho_r * g_w * area
+        fx, fy, m = contact_resultant(d, i, cx, cy)
+        f = fills[i]
+        fy += f["force_n"][1] - weight
+        m += (f["xy_m"][0] - cx) * f["force_n"][1]
+        for x, y, p in strips.get(i, []):
+            fy -= lam * p
+            m -= (x - cx) * lam * p
+        worst = max(worst, abs(fx) / weight, abs(fy) / weight, abs(m) / (weight * 10.0))
+    check(worst < 1e-7, f"every voussoir in equilibrium: weight, fill, lambda x the spread load, contact forces "
+                        f"({worst:.1e})")
+    bare = text.replace(f"fill_density_kg_m3 = {rho_f:g}", "fill_density_kg_m3 = 1e-9").replace(
+        f"dispersion_angle_deg = {theta:g}", "dispersion_angle_deg = 0")
+    with open("bridge_fill_vanishing.nml", "w") as f:
+        f.write(bare)
+    with open("bridge_fill_none.nml", "w") as f:
+        f.write(re.sub(r"fill_density_kg_m3 *= *[^,/]*,? *|fill_level_m *= *[^,/]*,? *|dispersion_angle_deg *= *[^,/]*,? *",
+                       "", text))
+    a, b = load("bridge_fill_vanishing.nml"), load("bridge_fill_none.nml")
+    check(close(a["load_factor"], b["load_factor"], rtol=1e-6) and a["load_factor"] < lam,
+          f"a fill of vanishing weight, no spread: the bare bridge's {b['load_factor']:.7g} "
+          f"({a['load_factor']:.7g}); the fill raises it to {lam:.7g}")
 else:
     check(False, f"unknown case {case}")
 
