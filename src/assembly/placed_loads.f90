@@ -101,7 +101,7 @@ contains
         do a = 0, d%n_axles
           x = d%point_load_x_m(j) + shift_x_m
           if (a > 0) x = x + d%axle_spacing_m(a)
-          call disperse(j, a, x, d%point_load_n(j))
+          call disperse_load(asm, placed, j, a, x, d%point_load_n(j), status)
           if (.not. status%ok) return
         end do
       else if (d%point_load_live(j) .and. moves_on_top(d)) then
@@ -115,7 +115,7 @@ contains
                       span_text(asm)//')')
             return
           end if
-          call add(b, j, [x, y], d%point_load_n(j)*dir, .true., kind_point)
+          call add_load(placed, b, j, [x, y], d%point_load_n(j)*dir, .true., kind_point)
         end do
       else
         p = [d%point_load_x_m(j), d%point_load_y_m(j)]
@@ -126,7 +126,7 @@ contains
                     'boundary, within 1e-9 m)')
           return
         end if
-        call add(b, j, p, d%point_load_n(j)*dir, d%point_load_live(j), kind_point)
+        call add_load(placed, b, j, p, d%point_load_n(j)*dir, d%point_load_live(j), kind_point)
       end if
     end do
     if (d%dead_load_n_per_m > 0.0_dp) then
@@ -141,105 +141,110 @@ contains
                     fmt_significant(x, 6)//' m (the top surface of the assembly spans '//span_text(asm)//')')
           return
         end if
-        call add(b, 0, [x, y], [0.0_dp, -d%dead_load_n_per_m*dx], .false., kind_dead_strip)
+        call add_load(placed, b, 0, [x, y], [0.0_dp, -d%dead_load_n_per_m*dx], .false., kind_dead_strip)
       end do
     end if
-    if (asm%has_fill) call add_fill_weight()
-
-  contains
-
-    subroutine add(block, source, xy, force, live, kind)
-      integer, intent(in) :: block, source, kind
-      real(dp), intent(in) :: xy(2), force(2)
-      logical, intent(in) :: live
-      placed%n = placed%n + 1
-      placed%block = [placed%block, block]
-      placed%source = [placed%source, source]
-      placed%xy = reshape([placed%xy, xy], [2, placed%n])
-      placed%force_n = reshape([placed%force_n, force], [2, placed%n])
-      placed%live = [placed%live, live]
-      placed%kind = [placed%kind, kind]
-    end subroutine add
-
-    !> Live load j (axle a) of `magnitude_n` on the fill surface at `x0`: spread either side
-    !> at the dispersion angle from the vertical down to where those lines meet the top of
-    !> the blocks, uniformly along x in between (dispersion_strips strips on the top
-    !> surface); at angle 0, the whole load on the top surface beneath it.
-    subroutine disperse(j, a, x0, magnitude_n)
-      integer, intent(in) :: j, a
-      real(dp), intent(in) :: x0, magnitude_n
-      real(dp) :: x_lo, x_hi, dx, xs, ys
-      integer :: k, blk
-      logical :: ok
-      call top_surface(asm, x0, ys, blk, ok)
-      if (.not. ok) then
-        call fail(status, '&load live point load '//itoa(j)//trim(axle_words(a))//' at x = '//fmt_significant(x0, 6)// &
-                  ' m stands over no block (the top surface of the assembly spans '//span_text(asm)//')')
-        return
-      end if
-      x_lo = spread_end(asm, x0, -1.0_dp)
-      x_hi = spread_end(asm, x0, 1.0_dp)
-      if (x_lo <= -huge(1.0_dp) .or. x_hi >= huge(1.0_dp)) then
-        call fail(status, '&load live point load '//itoa(j)//trim(axle_words(a))//' at x = '//fmt_significant(x0, 6)// &
-                  ' m spreads through the fill beyond the ends of the bridge ('//span_text(asm)//'): move it in, or '// &
-                  'lower &bridge dispersion_angle_deg')
-        return
-      end if
-      placed%n_surface = placed%n_surface + 1
-      placed%surface_source = [placed%surface_source, j]
-      placed%surface_xy = reshape([placed%surface_xy, x0, asm%fill_level_m], [2, placed%n_surface])
-      placed%surface_force_n = reshape([placed%surface_force_n, 0.0_dp, -magnitude_n], [2, placed%n_surface])
-      placed%surface_spread_x_m = reshape([placed%surface_spread_x_m, x_lo, x_hi], [2, placed%n_surface])
-      if (x_hi - x_lo <= boundary_tol_m) then
-        call add(blk, j, [x0, ys], [0.0_dp, -magnitude_n], .true., kind_dispersed)
-        return
-      end if
-      dx = (x_hi - x_lo)/dispersion_strips
-      do k = 1, dispersion_strips
-        xs = x_lo + (k - 0.5_dp)*dx
-        call top_surface(asm, xs, ys, blk, ok)
-        if (.not. ok) then   ! (the spread ends lie on the blocks, and a bridge's top has no gap)
-          call fail(status, '&load live point load '//itoa(j)//trim(axle_words(a))//' spreads over x = '// &
-                    fmt_significant(xs, 6)//' m, where no block stands')
-          return
-        end if
-        call add(blk, j, [xs, ys], [0.0_dp, -magnitude_n/dispersion_strips], .true., kind_dispersed)
-      end do
-    end subroutine disperse
-
-    !> The fill's weight over every top face of a free block that is the top surface there:
-    !> the trapezoid between the face and the fill's level, its weight at its centroid's x
-    !> on the face (a vertical force: its moment depends on that x alone). Faces of
-    !> driven blocks carry theirs to the supports and are left out.
-    subroutine add_fill_weight()
-      real(dp) :: e(2), p0(2), p1(2), xm, ym, yt, h0, h1, xc, weight
-      integer :: blk, k, nv, top
-      logical :: ok
-      do blk = 1, asm%n_bodies
-        if (asm%driven(blk)) cycle
-        nv = size(asm%polygon(blk)%xy, 2)
-        do k = 1, nv
-          p0 = asm%polygon(blk)%xy(:, k)
-          p1 = asm%polygon(blk)%xy(:, modulo(k, nv) + 1)
-          e = p1 - p0
-          if (e(1) >= -boundary_tol_m) cycle          ! a top face runs right to left (counter-clockwise)
-          xm = 0.5_dp*(p0(1) + p1(1))
-          ym = 0.5_dp*(p0(2) + p1(2))
-          call top_surface(asm, xm, yt, top, ok)
-          if (.not. ok .or. top /= blk .or. abs(yt - ym) > 1.0e-9_dp*max(1.0_dp, abs(ym))) cycle
-          ! From p1 (left) to p0 (right).
-          h0 = asm%fill_level_m - p1(2)
-          h1 = asm%fill_level_m - p0(2)
-          weight = asm%fill_weight_n_m2*(p0(1) - p1(1))*0.5_dp*(h0 + h1)
-          if (weight <= 0.0_dp) cycle
-          xc = p1(1) + (p0(1) - p1(1))*(h0 + 2.0_dp*h1)/(3.0_dp*(h0 + h1))
-          call add(blk, 0, [xc, p1(2) + (xc - p1(1))*(p0(2) - p1(2))/(p0(1) - p1(1))], [0.0_dp, -weight], .false., &
-                   kind_fill)
-        end do
-      end do
-    end subroutine add_fill_weight
+    if (asm%has_fill) call add_fill_weight(asm, placed)
 
   end subroutine place_loads
+
+  !> Append one load to `placed`.
+  pure subroutine add_load(placed, block, source, xy, force, live, kind)
+    type(placed_loads_t), intent(inout) :: placed
+    integer, intent(in) :: block, source, kind
+    real(dp), intent(in) :: xy(2), force(2)
+    logical, intent(in) :: live
+    placed%n = placed%n + 1
+    placed%block = [placed%block, block]
+    placed%source = [placed%source, source]
+    placed%xy = reshape([placed%xy, xy], [2, placed%n])
+    placed%force_n = reshape([placed%force_n, force], [2, placed%n])
+    placed%live = [placed%live, live]
+    placed%kind = [placed%kind, kind]
+  end subroutine add_load
+
+  !> Live load j (axle a) of `magnitude_n` on the fill surface of `asm` at `x0`: spread
+  !> either side at the dispersion angle from the vertical down to where those lines meet
+  !> the top of the blocks, uniformly along x in between (dispersion_strips strips on the
+  !> top surface); at angle 0, the whole load on the top surface beneath it.
+  subroutine disperse_load(asm, placed, j, a, x0, magnitude_n, status)
+    type(assembly_t), intent(in) :: asm
+    type(placed_loads_t), intent(inout) :: placed
+    integer, intent(in) :: j, a
+    real(dp), intent(in) :: x0, magnitude_n
+    type(status_t), intent(inout) :: status
+    real(dp) :: x_lo, x_hi, dx, xs, ys
+    integer :: k, blk
+    logical :: ok
+    call top_surface(asm, x0, ys, blk, ok)
+    if (.not. ok) then
+      call fail(status, '&load live point load '//itoa(j)//trim(axle_words(a))//' at x = '//fmt_significant(x0, 6)// &
+                ' m stands over no block (the top surface of the assembly spans '//span_text(asm)//')')
+      return
+    end if
+    x_lo = spread_end(asm, x0, -1.0_dp)
+    x_hi = spread_end(asm, x0, 1.0_dp)
+    if (x_lo <= -huge(1.0_dp) .or. x_hi >= huge(1.0_dp)) then
+      call fail(status, '&load live point load '//itoa(j)//trim(axle_words(a))//' at x = '//fmt_significant(x0, 6)// &
+                ' m spreads through the fill beyond the ends of the bridge ('//span_text(asm)//'): move it in, or '// &
+                'lower &bridge dispersion_angle_deg')
+      return
+    end if
+    placed%n_surface = placed%n_surface + 1
+    placed%surface_source = [placed%surface_source, j]
+    placed%surface_xy = reshape([placed%surface_xy, x0, asm%fill_level_m], [2, placed%n_surface])
+    placed%surface_force_n = reshape([placed%surface_force_n, 0.0_dp, -magnitude_n], [2, placed%n_surface])
+    placed%surface_spread_x_m = reshape([placed%surface_spread_x_m, x_lo, x_hi], [2, placed%n_surface])
+    if (x_hi - x_lo <= boundary_tol_m) then
+      call add_load(placed, blk, j, [x0, ys], [0.0_dp, -magnitude_n], .true., kind_dispersed)
+      return
+    end if
+    dx = (x_hi - x_lo)/dispersion_strips
+    do k = 1, dispersion_strips
+      xs = x_lo + (k - 0.5_dp)*dx
+      call top_surface(asm, xs, ys, blk, ok)
+      if (.not. ok) then   ! (the spread ends lie on the blocks, and a bridge's top has no gap)
+        call fail(status, '&load live point load '//itoa(j)//trim(axle_words(a))//' spreads over x = '// &
+                  fmt_significant(xs, 6)//' m, where no block stands')
+        return
+      end if
+      call add_load(placed, blk, j, [xs, ys], [0.0_dp, -magnitude_n/dispersion_strips], .true., kind_dispersed)
+    end do
+  end subroutine disperse_load
+
+  !> The fill's weight over every top face of a free block of `asm` that is the top
+  !> surface there: the trapezoid between the face and the fill's level, its weight at its
+  !> centroid's x on the face (a vertical force: its moment depends on that x alone). Faces
+  !> of driven blocks carry theirs to the supports and are left out.
+  pure subroutine add_fill_weight(asm, placed)
+    type(assembly_t), intent(in) :: asm
+    type(placed_loads_t), intent(inout) :: placed
+    real(dp) :: e(2), p0(2), p1(2), xm, ym, yt, h0, h1, xc, weight
+    integer :: blk, k, nv, top
+    logical :: ok
+    do blk = 1, asm%n_bodies
+      if (asm%driven(blk)) cycle
+      nv = size(asm%polygon(blk)%xy, 2)
+      do k = 1, nv
+        p0 = asm%polygon(blk)%xy(:, k)
+        p1 = asm%polygon(blk)%xy(:, modulo(k, nv) + 1)
+        e = p1 - p0
+        if (e(1) >= -boundary_tol_m) cycle          ! a top face runs right to left (counter-clockwise)
+        xm = 0.5_dp*(p0(1) + p1(1))
+        ym = 0.5_dp*(p0(2) + p1(2))
+        call top_surface(asm, xm, yt, top, ok)
+        if (.not. ok .or. top /= blk .or. abs(yt - ym) > 1.0e-9_dp*max(1.0_dp, abs(ym))) cycle
+        ! From p1 (left, height h0 under the level) to p0 (right, h1).
+        h0 = asm%fill_level_m - p1(2)
+        h1 = asm%fill_level_m - p0(2)
+        weight = asm%fill_weight_n_m2*(p0(1) - p1(1))*0.5_dp*(h0 + h1)
+        if (weight <= 0.0_dp) cycle
+        xc = p1(1) + (p0(1) - p1(1))*(h0 + 2.0_dp*h1)/(3.0_dp*(h0 + h1))
+        call add_load(placed, blk, 0, [xc, p1(2) + (xc - p1(1))*(p0(2) - p1(2))/(p0(1) - p1(1))], [0.0_dp, -weight], &
+                      .false., kind_fill)
+      end do
+    end do
+  end subroutine add_fill_weight
 
   !> Where the line from (x0, the fill's level) down at the dispersion angle towards
   !> `side` (-1 left, +1 right) meets the top surface of the blocks [m] (the top surface
