@@ -54,3 +54,22 @@ def test_mechanism_of_the_two_span_bridge(voussoir_limit_exe, tmp_path, drawn_fi
     assert load.xy_m[0] == pytest.approx(limit.critical_x_m, abs=1e-12)
     assert any("bridge of 44 blocks (&bridge)" in t.get_text() for t in fig.texts)  # the suptitle
     assert np.isfinite(data.force_scale_m_per_n)
+
+
+def test_mechanism_with_the_fill(voussoir_limit_exe, tmp_path, drawn_figures):
+    """input/bridge_fill.nml: the live load drawn where it stands, on the fill's surface
+    (not on the extrados), the fill's surface and the load's spread in the legend with the
+    fill's weight (the JSON's fill loads summed); no text overlapping or cut."""
+    path = tmp_path / "bridge_fill.json"
+    path.write_text(run_executable([voussoir_limit_exe, REPO_ROOT / "input" / "bridge_fill.nml", "--json"],
+                                   tmp_path).stdout)
+    assert post.main(["mechanism", str(path), "--out", str(tmp_path / "m.png")]) == 0
+    (fig,) = drawn_figures
+    assert text_clashes(fig) == []
+    limit = read_limit_json(path)
+    (surface,) = limit.surface_loads
+    assert surface.xy_m[1] == 3.45 and surface.xy_m[0] == pytest.approx(limit.critical_x_m, abs=1e-12)
+    fill_kn = sum(-f.force_n[1] for f in limit.fill_loads) / 1e3
+    labels = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert any("fill surface, y = 3.45 m" in t and f"{fill_kn:.4g} kN" in t for t in labels)
+    assert any("100 kN at factor 1" in t for t in labels)

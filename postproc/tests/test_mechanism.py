@@ -152,18 +152,21 @@ def test_mechanism_of_a_load_case(voussoir_limit_exe, tmp_path, drawn_figures):
     assert post.main(["mechanism", str(path), "--out", str(tmp_path / "m.png")]) == 0
     (fig,) = drawn_figures
     words = _figure_words(fig)
-    assert "horizontal acceleration" not in words and "live load" in words and "x = -0.2 m" in words
+    # The critical position, refined at the joints: a micrometre left of joint 7's extrados end.
+    x_crit = limit.critical_x_m
+    assert x_crit == pytest.approx(-math.sin(math.radians(11.25)) - 1e-6, abs=1e-12)
+    assert "horizontal acceleration" not in words and "live load" in words and f"x = {x_crit:.3g} m" in words
     assert "slid" not in words and "four-hinge" not in words
     assert text_clashes(fig) == []
     data = plot_mechanism(limit, tmp_path / "again.png")
     (panel,) = data.panels
-    assert panel.load_factor == pytest.approx(1.44688, abs=1e-5)
+    assert panel.load_factor == pytest.approx(1.432999, abs=1e-6)
     assert [(m.joint, m.hinge_side) for m in panel.hinges] == [(3, "intrados"), (7, "extrados"), (12, "intrados"),
                                                                (16, "extrados")]
     assert [j for j, _ in limit.hinges_pos] != [m.joint for m in panel.hinges]  # the weights' case differs
     assert panel.sliding == []
     (load,) = limit.point_loads
-    assert load.xy_m[0] == pytest.approx(-0.2, abs=1e-12) and load.live
+    assert load.xy_m[0] == pytest.approx(x_crit, abs=1e-12) and load.live
     g = limit.g_m_s2
     for b, block in enumerate(limit.blocks, start=1):
         if block.driven:

@@ -30,12 +30,15 @@ contains
       lp%crushing_converged))//trim(merge(', an interface crushed through', '                              ', &
       lp%crushed_through))//')'
     if (lp%has_path) then
-      write (u, '(a)') '  load factor along the path (x of the vehicle: the resultant of its live loads [m], associative lambda):'
+      write (u, '(a)') '  load factor along the path (x of the vehicle: the resultant of its live loads [m], associative lambda;'
+      write (u, '(a)') '  "joint": a live load stands over the end of a joint on the top surface, added to the grid):'
       do i = 1, size(lp%curve_x_m)
         if (lp%curve_load_factor(i) < 0.0_dp) then
-          write (u, '(a)') '    '//fmt_significant(lp%curve_x_m(i), 6)//'  none (no mechanism opens)'
+          write (u, '(a)') '    '//fmt_significant(lp%curve_x_m(i), 6)//'  none (no mechanism opens)'// &
+            trim(merge('  joint', '       ', lp%curve_at_joint(i)))
         else
-          write (u, '(a)') '    '//fmt_significant(lp%curve_x_m(i), 6)//'  '//fmt_significant(lp%curve_load_factor(i), 7)
+          write (u, '(a)') '    '//fmt_significant(lp%curve_x_m(i), 6)//'  '// &
+            fmt_significant(lp%curve_load_factor(i), 7)//trim(merge('  joint', '       ', lp%curve_at_joint(i)))
         end if
       end do
       write (u, '(a)') '  critical position: x = '//fmt_significant(lp%critical_x_m, 6)//' m (the results below)'
@@ -301,7 +304,8 @@ contains
     if (lp%has_path) then
       do i = 1, size(lp%curve_x_m)
         if (i > 1) text = text//', '
-        text = text//'{"x_m": '//fmt_json_real(lp%curve_x_m(i))//', "load_factor": '
+        text = text//'{"x_m": '//fmt_json_real(lp%curve_x_m(i))//', "at_joint": '//json_bool(lp%curve_at_joint(i))// &
+               ', "load_factor": '
         if (lp%curve_load_factor(i) < 0.0_dp) then
           text = text//'null}'
         else

@@ -436,12 +436,23 @@ elif case == "arch_point_load":
         f.write(arch + "&load point_load_n(1) = 1000, path_x0_m = -0.8, path_x1_m = 0.8, path_points = 17 /\n")
     d = load("arch_point_load_path.nml")
     curve = d["load_factor_curve"]
-    check(len(curve) == 17 and all(c["load_factor"] is not None for c in curve), "17 positions with a load factor")
+    grid = [c for c in curve if not c["at_joint"]]
+    check(len(grid) == 17 and all(c["load_factor"] is not None for c in curve), "17 grid positions, all with a load factor")
+    # The refinement: a micrometre either side of every extrados joint end in the path's range.
+    ext_x = [x for x, _ in d["arch"]["joint_extrados_xy_m"] if -0.8 <= x <= 0.8]
+    at_joint = sorted(c["x_m"] for c in curve if c["at_joint"])
+    expected_x = sorted(x + s * 1e-6 for x in ext_x for s in (-1, 1))
+    check(len(at_joint) == len(expected_x) and all(close(a, b, atol=1e-12) for a, b in zip(at_joint, expected_x)),
+          f"refined at the {len(ext_x)} extrados joint ends within the path, 1e-6 m either side ({at_joint})")
     lf = [c["load_factor"] for c in curve]
-    check(all(close(lf[i], lf[-1 - i], rtol=1e-6) for i in range(17)), f"curve symmetric about the crown: {lf}")
+    check(all(close(lf[i], lf[-1 - i], rtol=1e-6) for i in range(len(lf))), f"curve symmetric about the crown: {lf}")
+    check(d["critical_position"]["load_factor"] < min(c["load_factor"] for c in grid) * (1 - 1e-3),
+          f"the refined critical load factor {d['critical_position']['load_factor']} is below the grid's least "
+          f"{min(c['load_factor'] for c in grid)}: a grid alone misses it")
     cp = d["critical_position"]
     first = next(c for c in curve if c["load_factor"] <= min(lf) * (1 + 1e-9))
-    check(first == cp and close(cp["load_factor"], d["load_factor"], rtol=1e-9),
+    check(first["x_m"] == cp["x_m"] and first["load_factor"] == cp["load_factor"] and
+          close(cp["load_factor"], d["load_factor"], rtol=1e-9),
           f"critical position {cp} = the first least of the curve {first} (to 1e-9), and the load_factor reported")
     x, y = d["point_loads"][0]["xy_m"]
     check(close(x, cp["x_m"], atol=1e-12) and close(y, top_of_arch(d["arch"], x), atol=1e-9),
@@ -709,7 +720,9 @@ elif case == "bridge":
     a, b = load(arch_nml), load("bridge_semicircle.nml")
     check(b["assembly"] == "bridge" and b["arch"] is None and len(b["blocks"]) == 18, "the bridge: 16 + 2 blocks")
     ca, cb = [c["load_factor"] for c in a["load_factor_curve"]], [c["load_factor"] for c in b["load_factor_curve"]]
-    check(len(ca) == len(cb) == 17 and all(close(y, x, rtol=1e-10) for x, y in zip(ca, cb)),
+    xa, xb = [c["x_m"] for c in a["load_factor_curve"]], [c["x_m"] for c in b["load_factor_curve"]]
+    check(len(ca) == len(cb) > 17 and all(close(y, x + 0.85, atol=1e-12) for x, y in zip(xa, xb)) and
+          all(close(y, x, rtol=1e-10) for x, y in zip(ca, cb)),
           f"the bridge's curve = the arch builder's to 1e-10 (largest difference "
           f"{max(abs(y / x - 1) for x, y in zip(ca, cb)):.1e})")
     check(close(b["critical_position"]["x_m"], a["critical_position"]["x_m"] + 0.85, atol=1e-12) and

@@ -32,6 +32,7 @@ FORCE_COLOUR = "#444444"   #: as the four-hinge figure's LP forces
 LIVE_COLOUR = "tab:red"    #: the live load, times lambda
 DEAD_COLOUR = "tab:brown"  #: dead point loads
 HINGE_COLOUR = "tab:olive"  #: a hinge between blocks that are not arch joints (no intrados or extrados)
+FILL_COLOUR = "tab:brown"  #: the fill's surface
 
 
 @dataclass
@@ -67,13 +68,29 @@ def _panel(direction: str, lam: float, modes: list[LpInterfaceMode], forces: lis
                    [m for m in modes if m.mode == "sliding"], point, force, forces)
 
 
+def _top_y(blocks: list[np.ndarray], x: float) -> float:
+    """The top surface of the drawn blocks at x: the highest point of any block's boundary."""
+    best = -math.inf
+    for poly in blocks:
+        for (x0, y0), (x1, y1) in zip(poly, np.roll(poly, -1, axis=0)):
+            if min(x0, x1) - 1e-9 <= x <= max(x0, x1) + 1e-9:
+                y = max(y0, y1) if abs(x1 - x0) <= 1e-12 else y0 + (x - x0) / (x1 - x0) * (y1 - y0)
+                best = max(best, float(y))
+    return best
+
+
 def _newtons(value_n: float) -> str:
     return f"{value_n / 1e3:.4g} kN" if abs(value_n) >= 1e3 else f"{value_n:.4g} N"
 
 
+def _live_loads(limit: LimitResult) -> list:
+    """The live loads as given: on the fill's surface where there is a fill, else as placed."""
+    return limit.surface_loads or [p for p in limit.point_loads if p.live]
+
+
 def _live_words(limit: LimitResult) -> str:
     """'1 kN down at x = -0.2 m' for the live point loads (their resultant's x on a path)."""
-    live = [p for p in limit.point_loads if p.live]
+    live = _live_loads(limit)
     if not live:
         return ""
     total = sum(float(np.hypot(*p.force_n)) for p in live)
@@ -92,7 +109,7 @@ def _title(limit: LimitResult, panel: LpPanel) -> str:
     if limit.live_is_acceleration:
         return (f"towards {panel.direction}: collapse load factor λ = {lam:.4g}\n"
                 f"(horizontal acceleration {lam * limit.g_m_s2:.3g} m/s² = {lam:.3g} g)")
-    total = sum(float(np.hypot(*p.force_n)) for p in limit.point_loads if p.live)
+    total = sum(float(np.hypot(*p.force_n)) for p in _live_loads(limit))
     return (f"collapse load factor λ = {lam:.4g} on the live load:\n"
             f"the live loads times λ, {_newtons(lam * total)} in all, bring it down")
 
@@ -131,7 +148,7 @@ def plot_lp_mechanism(limit: LimitResult, out_png: str | os.PathLike):
     largest = max((float(np.max(np.hypot(*p.force_n.T))) for p in panels if p.force_n.size), default=0.0)
     scale = size / 10.0 / largest if largest > 0 else math.nan
     key_n = _key_force(largest)
-    live_total = sum(float(np.hypot(*p.force_n)) for p in limit.point_loads if p.live)
+    live_total = sum(float(np.hypot(*p.force_n)) for p in _live_loads(limit))
     load_len_m = size / 8.0
     has_thrust = limit.has_arch and all(f.joint is not None for f in limit.contact_forces)
     for ax, panel in zip(axes, panels):
@@ -165,8 +182,15 @@ def plot_lp_mechanism(limit: LimitResult, out_png: str | os.PathLike):
                 ax.annotate(f"{m.joint}{(m.hinge_side or ' ')[0]}", (x, y), textcoords="offset points",
                             xytext=tuple(offset), ha="center", va="center", fontsize=9, color=colour,
                             fontweight="bold")
+        if limit.surface_loads:
+            level = float(limit.surface_loads[0].xy_m[1]) - shift[1]
+            ax.plot([lo[0], hi[0]], [level, level], "--", color=FILL_COLOUR, linewidth=1.2, zorder=3)
+            for p, (x_lo, x_hi) in zip(limit.surface_loads, limit.surface_spread_x_m):
+                x0 = float(p.xy_m[0]) - shift[0]
+                ax.plot([x_lo - shift[0], x0, x_hi - shift[0]], [_top_y(blocks, x_lo - shift[0]), level,
+                        _top_y(blocks, x_hi - shift[0])], ":", color=LIVE_COLOUR, linewidth=1.2, zorder=8)
         if panel.direction == "+x":
-            for p in limit.point_loads:
+            for p in _live_loads(limit) if limit.surface_loads else limit.point_loads:
                 u = p.force_n / max(float(np.hypot(*p.force_n)), 1e-300)
                 tip = p.xy_m - shift
                 ax.annotate("", xy=tuple(tip), xytext=tuple(tip - load_len_m * u),
@@ -246,7 +270,16 @@ def _legend_handles(ax, limit, panels, has_thrust, key_n, scale, live_total, loa
                                label="force across each interface in the LP's static field at collapse, on its "
                                      "centre of pressure; to scale: "
                                      f"{_newtons(key_n)} = {key_n * scale * 1e3:.0f} mm")[0])
-    if any(p.live for p in limit.point_loads):
+    if limit.surface_loads:
+        level = float(limit.surface_loads[0].xy_m[1])
+        fill_n = sum(-float(f.force_n[1]) for f in limit.fill_loads)
+        handles.append(ax.plot([], [], "--", color=FILL_COLOUR, linewidth=1.2,
+                               label=f"fill surface, y = {level:.3g} m: the fill's weight ({_newtons(fill_n)} over the "
+                                     "free blocks) a dead load on the blocks beneath")[0])
+        handles.append(ax.plot([], [], ":", color=LIVE_COLOUR, linewidth=1.2,
+                               label="spread of each live load through the fill onto the blocks (uniform along x "
+                                     "between the dotted lines' feet)")[0])
+    if _live_loads(limit):
         lam = panels[0].load_factor
         handles.append(ax.plot([], [], linestyle="none", marker=r"$\downarrow$", markersize=12, color=LIVE_COLOUR,
                                label=f"live load (arrow not to scale, {load_len_m:.2g} m): "

@@ -103,6 +103,12 @@ class LimitResult:
     critical_x_m: float = math.nan  #: the vehicle's critical position on a path (NaN without one)
     load_factor_curve: list[tuple[float, float]] = field(default_factory=list)  #: (x_m, lambda or NaN)
     #: The LP with the horizontal acceleration turned round (towards -x), where it applies.
+    #: With a &bridge fill: each live load on the fill's surface (``point_loads`` then holds
+    #: none of them: they enter as strips) with the x it spreads over, and the fill's weight
+    #: on each top face of a free block.
+    surface_loads: list[PlacedLoad] = field(default_factory=list)
+    surface_spread_x_m: list[tuple[float, float]] = field(default_factory=list)
+    fill_loads: list[PlacedLoad] = field(default_factory=list)
     load_factor_neg: float = math.nan
     contact_forces_neg: list[LpInterfaceForce] = field(default_factory=list)
     mechanism_neg: list[LpInterfaceMode] = field(default_factory=list)
@@ -207,6 +213,11 @@ def read_limit_json(path: str | os.PathLike) -> LimitResult:
         critical_x_m=_json_float(critical.get("x_m")) if isinstance(critical, dict) else math.nan,
         load_factor_curve=[(float(c["x_m"]), _json_float(c.get("load_factor")))
                            for c in data.get("load_factor_curve") or []],
+        surface_loads=[PlacedLoad(int(e["load"]), 0, np.asarray(e["xy_m"], dtype=float), np.asarray(e["force_n"], dtype=float),
+                                  True) for e in data.get("surface_loads") or []],
+        surface_spread_x_m=[(float(e["spread_x_m"][0]), float(e["spread_x_m"][1])) for e in data.get("surface_loads") or []],
+        fill_loads=[PlacedLoad(0, int(e["block"]), np.asarray(e["xy_m"], dtype=float), np.asarray(e["force_n"], dtype=float),
+                               False) for e in data.get("fill_loads") or []],
         load_factor_neg=_json_float(data.get("load_factor_neg")),
         contact_forces_neg=_interface_forces(path, data.get("contact_forces_neg") or []),
         mechanism_neg=_modes(path, "mechanism_neg", data.get("mechanism_neg") or []),
