@@ -139,6 +139,9 @@ contains
       call place_loads(load, asm, shift_m, study%placed, status)
       if (.not. status%ok) return
       study%live_load = live_load_words(load)
+      ! With a fill the live loads stand on its surface, not on the blocks' top.
+      if (asm%has_fill .and. index(study%live_load, ', on the top surface') > 0) &
+        study%live_load = replaced(study%live_load, ', on the top surface', ', on the fill''s surface')
       if (asm%has_fill) study%live_load = study%live_load//'; and the fill: its weight on the blocks beneath its '// &
         'surface at y = '//fmt_significant(asm%fill_level_m, 6)//' m, the live loads standing on that surface and '// &
         'spread through it at '//fmt_significant(asm%dispersion_angle_deg, 6)//' deg from the vertical either side'
@@ -359,6 +362,16 @@ contains
       tag(i + 1) = tk
     end do
   end subroutine sort_curve
+
+  !> `text` with its first `old` replaced by `new`.
+  pure function replaced(text, old, new) result(out)
+    character(len=*), intent(in) :: text, old, new
+    character(len=:), allocatable :: out
+    integer :: k
+    k = index(text, old)
+    out = text
+    if (k > 0) out = text(:k - 1)//new//text(k + len(old):)
+  end function replaced
 
   !> 'live point loads of &load: 1 of 1e4 N (x 3 axles) ...; dead: ...'
   function live_load_words(load) result(text)

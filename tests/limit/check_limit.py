@@ -783,6 +783,8 @@ elif case == "bridge_fill":
     # (onto the block on top at each x, as 200 strips) and the JSON's contact forces;
     # (4) a fill of vanishing weight and no dispersion gives the bare bridge's load factor.
     d = load(nml)
+    check("on the fill's surface" in d["live_load"] and "spread through it at 30 deg" in d["live_load"],
+          f"the live load in words says where it stands and how it spreads: {d['live_load']}")
     text = open(nml).read()
     def number(name):
         return float(re.search(r"\b" + name + r" *= *([-0-9.eE+]+)", text).group(1))
