@@ -203,3 +203,14 @@ def test_input_without_fill_does_not_claim_an_assessment():
     """The bare ring of input/limit_arch_point_load.nml says what it is not."""
     text = (REPO_ROOT / "input" / "limit_arch_point_load.nml").read_text()
     assert "daily work" not in text and "bare semicircular arch ring" in text
+
+
+def test_static_capacity_of_any_assembly(voussoir_limit_exe, tmp_path):
+    """The envelope's static capacity (voussoir-post envelope --limit) from any JSON: the
+    polygon block's LP, b/h g = 0.2 g both ways (it was NaN: the four-hinge keys are null);
+    a load case's factor is not an acceleration and is refused, naming the file."""
+    block = read_limit_json(_limit_json(voussoir_limit_exe, REPO_ROOT / "input" / "rocking_block.nml", tmp_path))
+    assert block.static_capacity_m_s2() == pytest.approx(0.2 * block.g_m_s2, rel=1e-9)
+    case = read_limit_json(_limit_json(voussoir_limit_exe, REPO_ROOT / "input" / "bridge_two_spans.nml", tmp_path))
+    with pytest.raises(ResultsError, match="bridge_two_spans.json.*live point loads of &load, not a horizontal"):
+        case.static_capacity_m_s2()

@@ -118,6 +118,21 @@ class LimitResult:
         """The JSON has an ``arch`` object (joints numbered 0..n)."""
         return self.n_voussoirs > 0
 
+    def static_capacity_m_s2(self) -> float:
+        """The static horizontal capacity [m/s2], the weaker direction: the four-hinge
+        analysis's for an arch, the LP's for any other assembly. ResultsError where the
+        JSON's load factor is of live point loads, not of an acceleration."""
+        if math.isfinite(self.lambda_pos) or math.isfinite(self.lambda_neg):
+            return min(self.lambda_pos, self.lambda_neg) * self.g_m_s2
+        if not self.live_is_acceleration:
+            raise ResultsError(self.path, "its load factor multiplies the live point loads of &load, not a "
+                                          "horizontal acceleration: run voussoir-limit without live point loads "
+                                          "for a static capacity in m/s2")
+        factors = [f for f in (self.load_factor, self.load_factor_neg) if math.isfinite(f)]
+        if not factors:
+            raise ResultsError(self.path, "no load factor (the LP had no answer: see load_factor_note)")
+        return min(factors) * self.g_m_s2
+
     @property
     def live_is_acceleration(self) -> bool:
         """The live load is the horizontal acceleration (no live point loads in &load)."""
