@@ -201,6 +201,9 @@ contains
     call assert_true(all(a%friction(1:24) == 0.7_dp) .and. a%friction(25) == 0.5_dp .and. &
                      a%density_kg_m3(25) == 2400.0_dp .and. all(a%density_kg_m3(1:24) == 2000.0_dp), &
                      'bridge: each part its friction and density')
+    call assert_true(a%block_name(1) == 'span 1 voussoir 1' .and. a%block_name(24) == 'span 2 voussoir 12' .and. &
+                     a%block_name(25) == 'pier 1' .and. a%block_name(26) == 'left abutment' .and. &
+                     a%block_name(27) == 'right abutment' .and. a%block_name(28) == 'ground', 'bridge: block names')
     call test_parts_in_the_kernel(a)
   end subroutine test_two_spans_on_a_pier
 

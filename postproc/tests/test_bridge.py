@@ -50,6 +50,7 @@ def test_mechanism_of_the_two_span_bridge(voussoir_limit_exe, tmp_path, drawn_fi
     data = plot_mechanism(limit, tmp_path / "again.png")
     (panel,) = data.panels
     assert len(panel.hinges) == 4 and panel.load_factor == pytest.approx(limit.load_factor, rel=1e-12)
+    assert "span 1 voussoir 20 / pier 1" in data.table.column("blocks")  # the hinge on the pier, by name
     (load,) = limit.point_loads
     assert load.xy_m[0] == pytest.approx(limit.critical_x_m, abs=1e-12)
     assert any("bridge of 44 blocks (&bridge)" in t.get_text() for t in fig.texts)  # the suptitle

@@ -34,6 +34,9 @@ module voussoir_assembly
     !> Each body's Coulomb coefficient where allocated (the parts of a bridge), else the
     !> run's; a contact between two bodies takes the lesser of theirs.
     real(dp), allocatable :: friction(:)
+    !> Each body's name in the output where allocated (a bridge's: 'span 1 voussoir 3',
+    !> 'pier 1', 'left abutment', 'ground'), else the body's number.
+    character(len=32), allocatable :: block_name(:)
     !> A fill over the blocks (a bridge's, &bridge fill_density_kg_m3 > 0): its level
     !> surface [m], its weight per unit area of the section (density x g x width) [N/m2],
     !> and the angle from the vertical at which live loads spread through it [deg].
@@ -72,6 +75,7 @@ contains
     if (allocated(asm%course)) mirror%course = asm%course
     if (allocated(asm%density_kg_m3)) mirror%density_kg_m3 = asm%density_kg_m3
     if (allocated(asm%friction)) mirror%friction = asm%friction
+    if (allocated(asm%block_name)) mirror%block_name = asm%block_name
     mirror%has_fill = asm%has_fill
     mirror%fill_level_m = asm%fill_level_m
     mirror%fill_weight_n_m2 = asm%fill_weight_n_m2

@@ -75,7 +75,8 @@ contains
     h = b%pier_height_m
     w = b%abutment_width_m
     nb = ns*n + (ns - 1) + 2 + merge(1, 0, ns > 1)
-    allocate (asm%polygon(nb), asm%driven(nb), asm%role(nb), asm%density_kg_m3(nb), asm%friction(nb))
+    allocate (asm%polygon(nb), asm%driven(nb), asm%role(nb), asm%density_kg_m3(nb), asm%friction(nb), &
+              asm%block_name(nb))
     allocate (inner(2, 0:n, ns), outer(2, 0:n, ns))
     asm%n_bodies = nb
     asm%thickness_m = b%ring_thickness_m
@@ -89,27 +90,29 @@ contains
       do j = 1, n
         ! Counter-clockwise: inner left, inner right, outer right, outer left.
         call add(reshape([inner(:, j - 1, k), inner(:, j, k), outer(:, j, k), outer(:, j - 1, k)], [2, 4]), &
-                 .false., role_voussoir, b%ring_density_kg_m3, b%ring_friction)
+                 .false., role_voussoir, b%ring_density_kg_m3, b%ring_friction, 'span '//itoa(k)//' voussoir '//itoa(j))
       end do
     end do
     do k = 1, ns - 1
       call add(pier(inner(:, n, k), outer(:, n, k), inner(:, 0, k + 1), outer(:, 0, k + 1), h), .false., &
-               role_voussoir, b%pier_density_kg_m3, b%pier_friction)
+               role_voussoir, b%pier_density_kg_m3, b%pier_friction, 'pier '//itoa(k))
     end do
     ! The abutments: the springing joint on top, back to abutment_width_m, down to the ground.
-    call add(left_abutment(outer(:, 0, 1), w, h), .true., role_foundation, b%pier_density_kg_m3, b%abutment_friction)
+    call add(left_abutment(outer(:, 0, 1), w, h), .true., role_foundation, b%pier_density_kg_m3, b%abutment_friction, &
+             'left abutment')
     x_end = bridge_span_left_x(b, ns) + b%span_m(ns)
     call add(right_abutment(x_end, outer(:, n, ns), w, h), .true., role_foundation, b%pier_density_kg_m3, &
-             b%abutment_friction)
+             b%abutment_friction, 'right abutment')
     if (ns > 1) call add(box(-w, x_end + w, -h - b%ring_thickness_m, -h), .true., role_foundation, &
-                         b%pier_density_kg_m3, b%pier_friction)
+                         b%pier_density_kg_m3, b%pier_friction, 'ground')
 
   contains
 
-    subroutine add(xy, driven, role, density_kg_m3, friction)
+    subroutine add(xy, driven, role, density_kg_m3, friction, name)
       real(dp), intent(in) :: xy(:, :), density_kg_m3, friction
       logical, intent(in) :: driven
       integer, intent(in) :: role
+      character(len=*), intent(in) :: name
       if (.not. status%ok) return
       body = body + 1
       if (.not. is_convex_ccw(xy)) then
@@ -121,6 +124,7 @@ contains
       asm%role(body) = role
       asm%density_kg_m3(body) = density_kg_m3
       asm%friction(body) = friction
+      asm%block_name(body) = name
     end subroutine add
 
   end subroutine build_bridge

@@ -112,6 +112,8 @@ contains
       text = 'joint '//itoa(lp%joint(k))
     else
       text = 'blocks '//itoa(lp%faces%body(1, k))//'-'//itoa(lp%faces%body(2, k))
+      if (allocated(lp%block_name)) text = text//' ('//trim(lp%block_name(lp%faces%body(1, k)))//' / '// &
+        trim(lp%block_name(lp%faces%body(2, k)))//')'
     end if
   end function joint_name
 

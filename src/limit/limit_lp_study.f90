@@ -60,6 +60,7 @@ module voussoir_limit_lp_study
     real(dp), allocatable :: curve_x_m(:)     !! the positions on the path [m]
     real(dp), allocatable :: curve_load_factor(:) !! the associative load factor at each (-1: unbounded)
     logical, allocatable :: curve_at_joint(:) !! the position puts a live load over a joint's end (not a grid point)
+    character(len=32), allocatable :: block_name(:) !! the assembly's names of its blocks, where it has them
     type(lp_direction_t) :: neg               !! the horizontal acceleration towards -x
     type(crushing_t) :: crush                 !! the compressive strength (rigid: 0)
     integer :: crushing_steps = 0             !! LPs of the crushing iteration (associative, +x)
@@ -108,6 +109,7 @@ contains
       return
     end do
     call name_arch_joints(asm, study)
+    if (allocated(asm%block_name)) study%block_name = asm%block_name
     allocate (mu(study%faces%n))
     mu = friction
     if (allocated(asm%friction)) then   ! a bridge's parts: the lesser of the two blocks'

@@ -279,7 +279,8 @@ contains
 
   !> The "blocks" list: every block of the assembly as analysed, in body order (the
   !> numbers of "blocks" in contact_forces and point_loads, from 1), with its vertices
-  !> (counter-clockwise) [m] and whether it is driven (a fixed support).
+  !> (counter-clockwise) [m], whether it is driven (a fixed support) and, for a bridge,
+  !> its name.
   function blocks_json(asm) result(text)
     type(assembly_t), intent(in) :: asm
     character(len=:), allocatable :: text
@@ -287,7 +288,9 @@ contains
     text = '['
     do b = 1, asm%n_bodies
       if (b > 1) text = text//', '
-      text = text//'{"driven": '//json_bool(asm%driven(b))//', "vertices_xy_m": ['
+      text = text//'{"driven": '//json_bool(asm%driven(b))//', '
+      if (allocated(asm%block_name)) text = text//'"name": '//json_string(trim(asm%block_name(b)))//', '
+      text = text//'"vertices_xy_m": ['
       do k = 1, size(asm%polygon(b)%xy, 2)
         if (k > 1) text = text//', '
         text = text//'['//fmt_json_real(asm%polygon(b)%xy(1, k))//', '//fmt_json_real(asm%polygon(b)%xy(2, k))//']'

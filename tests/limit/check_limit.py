@@ -760,6 +760,12 @@ elif case == "bridge":
     rc, out, _ = run(os.path.join(os.path.dirname(nml), "bridge_two_spans.nml"))
     check(rc == 0 and "friction: ring 0.6, piers 0.6, skewbacks 0.6" in out and "critical position" in out,
           "two spans: the table gives each part's friction and the critical position")
+    names = [b["name"] for b in d["blocks"]]
+    check(names[:2] == ["span 1 voussoir 1", "span 1 voussoir 2"] and names[40:] ==
+          ["pier 1", "left abutment", "right abutment", "ground"], f"two spans: the blocks named ({names[38:]})")
+    hinge_on_pier = [m for m in d["mechanism"] if m["mode"] == "hinge" and 41 in m["blocks"]]
+    check(len(hinge_on_pier) == 1 and "(span 1 voussoir 20 / pier 1) hinge" in out,
+          "two spans: the table names the hinge of span 1 on the pier by its blocks' names")
     # Each part its own friction: skewbacks at 0.05 hold the ring's springings to that (the
     # lesser of ring 0.6 and skewback 0.05), and the bridge is weaker for it.
     with open(os.path.join(os.path.dirname(nml), "bridge_two_spans.nml")) as f:

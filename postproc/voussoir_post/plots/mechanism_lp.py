@@ -220,7 +220,9 @@ def plot_lp_mechanism(limit: LimitResult, out_png: str | os.PathLike):
     for panel in panels:
         for m in panel.hinges + panel.sliding:
             xy = m.hinge_xy_m - shift if m.hinge_xy_m is not None else (math.nan, math.nan)
-            rows.append((panel.direction, panel.load_factor, f"{m.blocks[0]}-{m.blocks[1]}",
+            names = [limit.blocks[b - 1].name for b in m.blocks]
+            between = " / ".join(names) if all(names) else f"{m.blocks[0]}-{m.blocks[1]}"
+            rows.append((panel.direction, panel.load_factor, between,
                          "" if m.joint is None else m.joint, m.mode, m.hinge_side or "", float(xy[0]), float(xy[1])))
     table = ReportTable(["direction", "load_factor", "blocks", "joint", "mode", "side", "x_m",
                          "y_above_springings_m" if limit.has_arch or limit.assembly == "bridge" else "y_m"], rows,

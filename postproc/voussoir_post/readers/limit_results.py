@@ -46,6 +46,7 @@ class AssemblyBlock:
 
     vertices_xy_m: np.ndarray  #: (n, 2) counter-clockwise
     driven: bool  #: a fixed support
+    name: str = ""  #: a bridge's name of the block ('span 1 voussoir 3', 'pier 1'); '' elsewhere
 
 
 @dataclass(frozen=True)
@@ -243,7 +244,8 @@ def _blocks(path: str, entries: list) -> list[AssemblyBlock]:
     out = []
     for k, e in enumerate(entries):
         try:
-            out.append(AssemblyBlock(np.asarray(e["vertices_xy_m"], dtype=float).reshape(-1, 2), bool(e["driven"])))
+            out.append(AssemblyBlock(np.asarray(e["vertices_xy_m"], dtype=float).reshape(-1, 2), bool(e["driven"]),
+                                     str(e.get("name", ""))))
         except (KeyError, TypeError, ValueError) as exc:
             raise ResultsError(path, f"'blocks[{k}]' must have vertices_xy_m (a list of [x, y]) and driven: "
                                      f"{exc}") from exc
