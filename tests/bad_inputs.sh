@@ -454,6 +454,10 @@ driver=voussoir-limit case_ bridge_fill_slanting_load "&load point_load_dir_deg\
 driver=voussoir-limit case_ bridge_spread_beyond_ends "&load live point load 1 at x = 0.5 m spreads through the fill beyond the ends of the bridge" "&bridge $fl, abutment_width_m = 0.5, dispersion_angle_deg = 80 /
 &load point_load_n(1) = 1000, point_load_x_m(1) = 0.5 /"
 
+driver=voussoir-limit case_ bridge_passive_without_phi "&bridge passive_mobilisation = 0.3 is outside the allowed range 0 without fill_friction_deg > 0" "&bridge $fl, passive_mobilisation = 0.3 /"
+driver=voussoir-limit case_ bridge_passive_above_1 "&bridge passive_mobilisation = 1.5 is outside the allowed range 0 <= passive_mobilisation <= 1" "&bridge $fl, fill_friction_deg = 35, passive_mobilisation = 1.5 /"
+driver=voussoir-limit case_ bridge_phi_without_fill "&bridge fill_friction_deg = 35 is outside the allowed range 0 without a fill" "&bridge $br, fill_friction_deg = 35 /"
+
 # An unknown option is named, then the usage; exit 2 (issue 26).
 for d in voussoir-run voussoir-limit voussoir-sweep; do
   out=$("$bin/$d" --foo x.nml 2>&1); rc=$?

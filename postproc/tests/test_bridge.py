@@ -74,3 +74,21 @@ def test_mechanism_with_the_fill(voussoir_limit_exe, tmp_path, drawn_figures):
     labels = [t.get_text() for t in fig.legends[0].get_texts()]
     assert any("fill surface, y = 3.45 m" in t and f"{fill_kn:.4g} kN" in t for t in labels)
     assert any("100 kN at factor 1" in t for t in labels)
+
+
+def test_mechanism_with_the_fill_pressure(voussoir_limit_exe, tmp_path, drawn_figures):
+    """input/bridge_fill.nml with the fill's horizontal pressure (phi 35 deg, a third of the
+    passive mobilised): the pressures drawn with their own key, their total at collapse the
+    JSON's; no text overlapping or cut."""
+    nml = tmp_path / "bridge_pressure.nml"
+    nml.write_text((REPO_ROOT / "input" / "bridge_fill.nml").read_text().replace(
+        "dispersion_angle_deg = 30", "dispersion_angle_deg = 30, fill_friction_deg = 35, passive_mobilisation = 0.33"))
+    path = tmp_path / "bridge_pressure.json"
+    path.write_text(run_executable([voussoir_limit_exe, nml, "--json"], tmp_path).stdout)
+    assert post.main(["mechanism", str(path), "--out", str(tmp_path / "m.png")]) == 0
+    (fig,) = drawn_figures
+    assert text_clashes(fig) == []
+    limit = read_limit_json(path)
+    total_kn = sum(abs(p.force_n[0]) for p in limit.fill_pressures) / 1e3
+    labels = [t.get_text().replace("\n", " ") for t in fig.legends[0].get_texts()]
+    assert any("horizontal pressure" in t and f"{total_kn:.4g} kN in all" in t for t in labels)

@@ -44,6 +44,10 @@ module voussoir_assembly
     real(dp) :: fill_level_m = 0.0_dp
     real(dp) :: fill_weight_n_m2 = 0.0_dp
     real(dp) :: dispersion_angle_deg = 0.0_dp
+    !> Its horizontal pressure on the top faces of free blocks, as a multiple of the vertical
+    !> stress: at least `active_k`, at most `passive_k` (both 0: none).
+    real(dp) :: fill_active_k = 0.0_dp
+    real(dp) :: fill_passive_k = 0.0_dp
     ! Arch description (n_voussoirs = 0 for a generic assembly).
     integer :: n_voussoirs = 0
     real(dp) :: thickness_m = 0.0_dp
@@ -80,6 +84,8 @@ contains
     mirror%fill_level_m = asm%fill_level_m
     mirror%fill_weight_n_m2 = asm%fill_weight_n_m2
     mirror%dispersion_angle_deg = asm%dispersion_angle_deg
+    mirror%fill_active_k = asm%fill_active_k
+    mirror%fill_passive_k = asm%fill_passive_k
   end function mirrored_blocks
 
   !> Angle [deg] from +x of the radial line of joint j (0..n) of an arch.

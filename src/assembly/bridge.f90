@@ -11,7 +11,7 @@
 !> joints divide the intrados into n_voussoirs equal arc lengths. Each block carries its
 !> part's density and friction (an interface takes the lesser friction of its two blocks).
 module voussoir_bridge
-  use voussoir_kinds, only: dp, g_m_s2
+  use voussoir_kinds, only: dp, g_m_s2, pi
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa
   use voussoir_geometry, only: is_convex_ccw
@@ -84,6 +84,11 @@ contains
     asm%fill_level_m = b%fill_level_m
     asm%fill_weight_n_m2 = b%fill_density_kg_m3*g_m_s2*b%width_m
     asm%dispersion_angle_deg = b%dispersion_angle_deg
+    if (b%fill_friction_deg > 0.0_dp) then   ! Rankine's coefficients
+      asm%fill_active_k = tan(0.25_dp*pi - 0.5_dp*b%fill_friction_deg*pi/180.0_dp)**2
+      asm%fill_passive_k = max(asm%fill_active_k, &
+                               b%passive_mobilisation*tan(0.25_dp*pi + 0.5_dp*b%fill_friction_deg*pi/180.0_dp)**2)
+    end if
     body = 0
     do k = 1, ns
       call bridge_ring_joints(b, k, inner(:, :, k), outer(:, :, k))

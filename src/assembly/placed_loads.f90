@@ -41,6 +41,13 @@ module voussoir_placed_loads
     real(dp), allocatable :: surface_xy(:, :)      !! (2, n_surface) on the fill surface [m]
     real(dp), allocatable :: surface_force_n(:, :) !! (2, n_surface) at load factor 1 [N]
     real(dp), allocatable :: surface_spread_x_m(:, :) !! (2, n_surface) from x to x on the blocks [m]
+    !> With a fill's horizontal pressure: one bounded force per top face of a free block,
+    !> horizontal, into the block, between the active and the mobilised passive resultant.
+    integer :: n_pressure = 0
+    integer, allocatable :: pressure_block(:)
+    real(dp), allocatable :: pressure_xy(:, :)      !! (2, n_pressure) where it acts [m]
+    real(dp), allocatable :: pressure_dir(:, :)     !! (2, n_pressure) unit, horizontal, into the block
+    real(dp), allocatable :: pressure_lo_n(:), pressure_hi_n(:)  !! active and mobilised passive [N]
   end type placed_loads_t
 
 contains
@@ -87,7 +94,8 @@ contains
 
     allocate (placed%block(0), placed%source(0), placed%xy(2, 0), placed%force_n(2, 0), placed%live(0), &
               placed%kind(0), placed%surface_source(0), placed%surface_xy(2, 0), placed%surface_force_n(2, 0), &
-              placed%surface_spread_x_m(2, 0))
+              placed%surface_spread_x_m(2, 0), placed%pressure_block(0), placed%pressure_xy(2, 0), &
+              placed%pressure_dir(2, 0), placed%pressure_lo_n(0), placed%pressure_hi_n(0))
     do j = 1, d%n_point_loads
       dir = direction(d%point_load_dir_deg(j))
       if (d%point_load_live(j) .and. asm%has_fill) then
@@ -145,6 +153,7 @@ contains
       end do
     end if
     if (asm%has_fill) call add_fill_weight(asm, placed)
+    if (asm%has_fill .and. asm%fill_passive_k > 0.0_dp) call add_fill_pressure(asm, placed)
 
   end subroutine place_loads
 
@@ -245,6 +254,46 @@ contains
       end do
     end do
   end subroutine add_fill_weight
+
+  !> The fill's horizontal pressure on every top face of a free block that is the top
+  !> surface there: k times the vertical stress (weight per unit area x depth) on the face's
+  !> vertical projection from y_a to y_b, a resultant k w_f ((F - y_a)^2 - (F - y_b)^2)/2 at
+  !> the height of that triangle-trapezoid's centroid, horizontal and into the block; k
+  !> between the active and the mobilised passive coefficient (the LP chooses).
+  pure subroutine add_fill_pressure(asm, placed)
+    type(assembly_t), intent(in) :: asm
+    type(placed_loads_t), intent(inout) :: placed
+    real(dp) :: p0(2), p1(2), ya, yb, yt, resultant, yc, t, f
+    integer :: blk, k, nv, top
+    logical :: ok
+    f = asm%fill_level_m
+    do blk = 1, asm%n_bodies
+      if (asm%driven(blk)) cycle
+      nv = size(asm%polygon(blk)%xy, 2)
+      do k = 1, nv
+        p0 = asm%polygon(blk)%xy(:, k)
+        p1 = asm%polygon(blk)%xy(:, modulo(k, nv) + 1)
+        if (p1(1) - p0(1) >= -boundary_tol_m) cycle      ! a top face runs right to left
+        call top_surface(asm, 0.5_dp*(p0(1) + p1(1)), yt, top, ok)
+        if (.not. ok .or. top /= blk .or. abs(yt - 0.5_dp*(p0(2) + p1(2))) > 1.0e-9_dp*max(1.0_dp, abs(yt))) cycle
+        ya = min(p0(2), p1(2))
+        yb = max(p0(2), p1(2))
+        if (yb - ya <= boundary_tol_m) cycle               ! a level face: no horizontal pressure
+        resultant = asm%fill_weight_n_m2*((f - ya)**2 - (f - yb)**2)/2.0_dp
+        ! The centroid of the pressure (f - y) over [ya, yb].
+        yc = ((f*(yb**2 - ya**2)/2.0_dp) - (yb**3 - ya**3)/3.0_dp)/((f - ya)**2/2.0_dp - (f - yb)**2/2.0_dp)
+        t = (yc - p0(2))/(p1(2) - p0(2))
+        placed%n_pressure = placed%n_pressure + 1
+        placed%pressure_block = [placed%pressure_block, blk]
+        placed%pressure_xy = reshape([placed%pressure_xy, p0 + t*(p1 - p0)], [2, placed%n_pressure])
+        ! Into the block: the face's outward normal (p1 - p0 turned -90 deg) has the x of p1(2) - p0(2).
+        placed%pressure_dir = reshape([placed%pressure_dir, -sign(1.0_dp, p1(2) - p0(2)), 0.0_dp], &
+                                      [2, placed%n_pressure])
+        placed%pressure_lo_n = [placed%pressure_lo_n, asm%fill_active_k*resultant]
+        placed%pressure_hi_n = [placed%pressure_hi_n, asm%fill_passive_k*resultant]
+      end do
+    end do
+  end subroutine add_fill_pressure
 
   !> Where the line from (x0, the fill's level) down at the dispersion angle towards
   !> `side` (-1 left, +1 right) meets the top surface of the blocks [m] (the top surface

@@ -46,6 +46,11 @@ module voussoir_bridge_config
     real(dp) :: fill_density_kg_m3 = 0.0_dp             !! 0: no fill
     real(dp) :: fill_level_m = 0.0_dp                   !! the fill's (and the road's) surface above the springings [m]
     real(dp) :: dispersion_angle_deg = 0.0_dp           !! 0: a live load acts on the extrados straight beneath it
+    !> The fill's horizontal pressure on the ring (Rankine, angle of friction phi): at least
+    !> active, K_a = tan^2(45 - phi/2), up to passive_mobilisation x K_p = tan^2(45 + phi/2)
+    !> where the ring moves into the fill; 0: no horizontal pressure.
+    real(dp) :: fill_friction_deg = 0.0_dp
+    real(dp) :: passive_mobilisation = 0.0_dp           !! the fraction of K_p mobilised (0: active only)
     integer :: n_spans = 0                              !! (derived) the spans given
   end type bridge_config_t
 
@@ -79,6 +84,10 @@ contains
                about='real, m, the fill surface above the springings')
     call g%add('dispersion_angle_deg', b%dispersion_angle_deg, unit='deg', range='0 <= dispersion_angle_deg < 90', &
                about='real, deg from the vertical, either side of a live load')
+    call g%add('fill_friction_deg', b%fill_friction_deg, unit='deg', range='0 <= fill_friction_deg < 90', &
+               about="real, deg, the fill's angle of friction (0: no horizontal pressure)")
+    call g%add('passive_mobilisation', b%passive_mobilisation, range='0 <= passive_mobilisation <= 1', &
+               about='real, the fraction of the passive pressure mobilised (0: active only)')
   end subroutine bridge_group
 
   !> Read and check the &bridge group of `path` (absent, or no span: no bridge).
@@ -131,7 +140,12 @@ contains
     real(dp) :: top_m
     integer :: k, highest
     if (.not. status%ok) return
+    call need(b%passive_mobilisation == 0.0_dp .or. b%fill_friction_deg > 0.0_dp, path, 'bridge', &
+              'passive_mobilisation', b%passive_mobilisation, '0 without fill_friction_deg > 0 (the passive '// &
+              "pressure's coefficient follows from the fill's angle of friction)", status)
     if (b%fill_density_kg_m3 == 0.0_dp) then
+      call need(b%fill_friction_deg == 0.0_dp, path, 'bridge', 'fill_friction_deg', b%fill_friction_deg, &
+                '0 without a fill (set fill_density_kg_m3 > 0)', status)
       call need(b%dispersion_angle_deg == 0.0_dp, path, 'bridge', 'dispersion_angle_deg', b%dispersion_angle_deg, &
                 '0 without a fill (set fill_density_kg_m3 > 0 and fill_level_m for the load to spread through)', &
                 status)

@@ -294,6 +294,21 @@ contains
                ', "force_n": '//xy_json(lp%placed%force_n(:, k))//'}'
       end do
     end if
+    text = text//'],'//nl//'  "fill_pressures": ['
+    if (allocated(lp%placed%pressure_block)) then
+      do k = 1, lp%placed%n_pressure
+        if (k > 1) text = text//', '
+        text = text//'{"block": '//itoa(lp%placed%pressure_block(k))//', "xy_m": '// &
+               xy_json(lp%placed%pressure_xy(:, k))//', "direction": '//xy_json(lp%placed%pressure_dir(:, k))// &
+               ', "active_n": '//fmt_json_real(lp%placed%pressure_lo_n(k))//', "passive_n": '// &
+               fmt_json_real(lp%placed%pressure_hi_n(k))//', "at_collapse_n": '
+        if (lp%solved .and. allocated(lp%assoc%bounded_n)) then
+          text = text//fmt_json_real(lp%assoc%bounded_n(k))//'}'
+        else
+          text = text//'null}'
+        end if
+      end do
+    end if
     text = text//'],'//nl
   end function fill_json
 

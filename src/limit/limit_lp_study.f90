@@ -147,6 +147,9 @@ contains
       if (asm%has_fill) study%live_load = study%live_load//'; and the fill: its weight on the blocks beneath its '// &
         'surface at y = '//fmt_significant(asm%fill_level_m, 6)//' m, the live loads standing on that surface and '// &
         'spread through it at '//fmt_significant(asm%dispersion_angle_deg, 6)//' deg from the vertical either side'
+      if (asm%fill_passive_k > 0.0_dp) study%live_load = study%live_load//'; its horizontal pressure on the '// &
+        'ring between '//fmt_significant(asm%fill_active_k, 4)//' and '//fmt_significant(asm%fill_passive_k, 4)// &
+        ' x the vertical stress (active; passive as mobilised), the LP choosing'
       study%live_is_acceleration = .not. any(study%placed%live)
     end if
     call block_loads(asm, density_kg_m3, width_m, g_m_s2, loads)

@@ -883,6 +883,68 @@ elif case == "bridge_fill":
     check(close(a["load_factor"], b["load_factor"], rtol=1e-6) and a["load_factor"] < lam,
           f"a fill of vanishing weight, no spread: the bare bridge's {b['load_factor']:.7g} "
           f"({a['load_factor']:.7g}); the fill raises it to {lam:.7g}")
+    # The fill's horizontal pressure (Rankine, phi = 35 deg): on each voussoir's extrados,
+    # between K_a and m K_p times the integral of the vertical stress over the face's height,
+    # (F - y_a)^2/2 - (F - y_b)^2/2, at that pressure's centroid, horizontal into the ring;
+    # the LP's value at collapse within those bounds; upper = lower bound (the work equation
+    # with each pressure at its passive bound where the ring moves into the fill, else
+    # active); the load factor grows with the mobilisation; statics with the pressures.
+    factors = {}
+    for m in (0.0, 0.33, 1.0):
+        with open(f"bridge_fill_pressure_{m}.nml", "w") as f:
+            f.write(text.replace("dispersion_angle_deg = 30", f"dispersion_angle_deg = 30, fill_friction_deg = 35, "
+                                                              f"passive_mobilisation = {m}"))
+        e = load(f"bridge_fill_pressure_{m}.nml")
+        factors[m] = e["load_factor"]
+        check(close(e["load_factor_upper"], e["load_factor"], rtol=1e-6),
+              f"pressure, mobilisation {m}: upper bound {e['load_factor_upper']} = lower {e['load_factor']}")
+        ka = math.tan(math.radians(45 - 35 / 2)) ** 2
+        kp = max(ka, m * math.tan(math.radians(45 + 35 / 2)) ** 2)
+        worst = 0.0
+        for p in e["fill_pressures"]:
+            v = blocks[p["block"] - 1]["vertices_xy_m"]
+            (x0, y0), (x1, y1) = v[2], v[3]     # the extrados chord, right to left
+            ya, yb = min(y0, y1), max(y0, y1)
+            s_n = rho_f * g_w * ((level - ya) ** 2 - (level - yb) ** 2) / 2
+            yc = (level * (yb ** 2 - ya ** 2) / 2 - (yb ** 3 - ya ** 3) / 3) / s_n * rho_f * g_w
+            into = 1.0 if y0 > y1 else -1.0      # the left haunch's face looks left: pushed to +x
+            worst = max(worst, abs(p["active_n"] - ka * s_n) / s_n, abs(p["passive_n"] - kp * s_n) / s_n,
+                        abs(p["xy_m"][1] - yc), abs(p["direction"][0] - into))
+            inside = ka * s_n * (1 - 1e-9) - 1e-9 <= p["at_collapse_n"] <= kp * s_n * (1 + 1e-9) + 1e-9
+            worst = max(worst, 0.0 if inside else 1.0)
+        check(len(e["fill_pressures"]) == len(free) and worst < 1e-9,
+              f"pressure, mobilisation {m}: Rankine's bounds on every extrados face, at the pressure's centroid, into "
+              f"the ring, the LP's value between them ({worst:.1e})")
+        if m == 0.33:
+            worst = 0.0
+            press = {p["block"]: p for p in e["fill_pressures"]}
+            strips = {}
+            for sl in e["surface_loads"]:
+                lo, hi = sl["spread_x_m"]
+                for k in range(200):
+                    x = lo + (k + 0.5) * (hi - lo) / 200
+                    strips.setdefault(block_on_top(x), []).append((x, top(x), -sl["force_n"][1] / 200))
+            fills_e = {f["block"]: f for f in e["fill_loads"]}
+            for i in free:
+                v = blocks[i - 1]["vertices_xy_m"]
+                area = 0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(v, v[1:] + v[:1]))
+                cx, cy = centroid(v)
+                weight = rho_r * g_w * area
+                fx, fy, mo = contact_resultant(e, i, cx, cy)
+                f = fills_e[i]
+                fy += f["force_n"][1] - weight
+                mo += (f["xy_m"][0] - cx) * f["force_n"][1]
+                p = press[i]
+                h = p["at_collapse_n"] * p["direction"][0]
+                fx += h
+                mo -= (p["xy_m"][1] - cy) * h
+                for x, y, q in strips.get(i, []):
+                    fy -= e["load_factor"] * q
+                    mo -= (x - cx) * e["load_factor"] * q
+                worst = max(worst, abs(fx) / weight, abs(fy) / weight, abs(mo) / (weight * 10.0))
+            check(worst < 1e-7, f"pressure: every voussoir in equilibrium with the pressures at collapse ({worst:.1e})")
+    check(factors[0.0] < factors[0.33] < factors[1.0],
+          f"the load factor grows with the passive pressure mobilised: {factors}")
 else:
     check(False, f"unknown case {case}")
 

@@ -151,6 +151,9 @@ def plot_lp_mechanism(limit: LimitResult, out_png: str | os.PathLike):
     live_total = sum(float(np.hypot(*p.force_n)) for p in _live_loads(limit))
     load_len_m = size / 8.0
     has_thrust = limit.has_arch and all(f.joint is not None for f in limit.contact_forces)
+    # The fill's pressures on their own scale: the largest a fifteenth of the drawing.
+    largest_p = max((abs(float(p.force_n[0])) for p in limit.fill_pressures if np.isfinite(p.force_n[0])), default=0.0)
+    pressure_scale = size / 15.0 / largest_p if largest_p > 0 else 0.0
     for ax, panel in zip(axes, panels):
         for poly, block in zip(blocks, limit.blocks):
             ax.add_patch(Polygon(poly, closed=True, facecolor="#9e9e9e" if block.driven else "#e8c99b",
@@ -189,6 +192,11 @@ def plot_lp_mechanism(limit: LimitResult, out_png: str | os.PathLike):
                 x0 = float(p.xy_m[0]) - shift[0]
                 ax.plot([x_lo - shift[0], x0, x_hi - shift[0]], [_top_y(blocks, x_lo - shift[0]), level,
                         _top_y(blocks, x_hi - shift[0])], ":", color=LIVE_COLOUR, linewidth=1.2, zorder=8)
+        if pressure_scale > 0 and panel.direction == "+x":
+            at_p = np.array([p.xy_m for p in limit.fill_pressures]) - shift
+            force_p = np.array([p.force_n for p in limit.fill_pressures])
+            ax.quiver(at_p[:, 0], at_p[:, 1], force_p[:, 0], force_p[:, 1], angles="xy", scale_units="xy",
+                      scale=1.0 / pressure_scale, color=FILL_COLOUR, width=0.004, pivot="tip", zorder=6)
         if panel.direction == "+x":
             for p in _live_loads(limit) if limit.surface_loads else limit.point_loads:
                 u = p.force_n / max(float(np.hypot(*p.force_n)), 1e-300)
@@ -207,7 +215,8 @@ def plot_lp_mechanism(limit: LimitResult, out_png: str | os.PathLike):
         ax.set_ylabel(ylabel)
         ax.set_title(_title(limit, panel), fontsize=10)
         ax.grid(True, alpha=0.2)
-    handles = _legend_handles(axes[0], limit, panels, has_thrust, key_n, scale, live_total, load_len_m)
+    handles = _legend_handles(axes[0], limit, panels, has_thrust, key_n, scale, live_total, load_len_m,
+                              pressure_scale)
     for h in handles:
         h.set_label(textwrap.fill(h.get_label(), 125))
     fig.legend(handles=handles, loc="outside lower center", borderaxespad=legend_pad(8), ncols=1, fontsize=8)
@@ -250,7 +259,7 @@ def _suptitle(limit: LimitResult) -> str:
     return f"Collapse mechanism by linear programming (associative friction) under {case}:\n{what}"
 
 
-def _legend_handles(ax, limit, panels, has_thrust, key_n, scale, live_total, load_len_m):
+def _legend_handles(ax, limit, panels, has_thrust, key_n, scale, live_total, load_len_m, pressure_scale=0.0):
     handles = []
     sides = {m.hinge_side for p in panels for m in p.hinges}
     for side in ("intrados", "extrados"):
@@ -281,6 +290,14 @@ def _legend_handles(ax, limit, panels, has_thrust, key_n, scale, live_total, loa
         handles.append(ax.plot([], [], ":", color=LIVE_COLOUR, linewidth=1.2,
                                label="spread of each live load through the fill onto the blocks (uniform along x "
                                      "between the dotted lines' feet)")[0])
+    if pressure_scale > 0:
+        total = sum(abs(float(p.force_n[0])) for p in limit.fill_pressures)
+        largest = max(abs(float(p.force_n[0])) for p in limit.fill_pressures)
+        handles.append(ax.plot([], [], linestyle="none", marker=r"$\rightarrow$", markersize=14, color=FILL_COLOUR,
+                               label="the fill's horizontal pressure on each extrados face at collapse, into the ring "
+                                     f"(between active and mobilised passive, as the LP chose; {_newtons(total)} "
+                                     f"in all); its own scale: the largest, {_newtons(largest)}, "
+                                     f"{largest * pressure_scale * 1e3:.0f} mm")[0])
     if _live_loads(limit):
         lam = panels[0].load_factor
         handles.append(ax.plot([], [], linestyle="none", marker=r"$\downarrow$", markersize=12, color=LIVE_COLOUR,

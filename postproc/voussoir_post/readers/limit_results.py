@@ -110,6 +110,8 @@ class LimitResult:
     surface_loads: list[PlacedLoad] = field(default_factory=list)
     surface_spread_x_m: list[tuple[float, float]] = field(default_factory=list)
     fill_loads: list[PlacedLoad] = field(default_factory=list)
+    #: With its horizontal pressure: each face's force at collapse (horizontal, into the ring).
+    fill_pressures: list[PlacedLoad] = field(default_factory=list)
     load_factor_neg: float = math.nan
     contact_forces_neg: list[LpInterfaceForce] = field(default_factory=list)
     mechanism_neg: list[LpInterfaceMode] = field(default_factory=list)
@@ -234,6 +236,9 @@ def read_limit_json(path: str | os.PathLike) -> LimitResult:
         surface_spread_x_m=[(float(e["spread_x_m"][0]), float(e["spread_x_m"][1])) for e in data.get("surface_loads") or []],
         fill_loads=[PlacedLoad(0, int(e["block"]), np.asarray(e["xy_m"], dtype=float), np.asarray(e["force_n"], dtype=float),
                                False) for e in data.get("fill_loads") or []],
+        fill_pressures=[PlacedLoad(0, int(e["block"]), np.asarray(e["xy_m"], dtype=float),
+                                   _json_float(e.get("at_collapse_n")) * np.asarray(e["direction"], dtype=float), False)
+                        for e in data.get("fill_pressures") or []],
         load_factor_neg=_json_float(data.get("load_factor_neg")),
         contact_forces_neg=_interface_forces(path, data.get("contact_forces_neg") or []),
         mechanism_neg=_modes(path, "mechanism_neg", data.get("mechanism_neg") or []),
