@@ -8,6 +8,7 @@ program voussoir_run
   use voussoir_config, only: config_t, read_config, config_groups
   use voussoir_wall_config, only: wall_group
   use voussoir_load_config, only: load_group
+  use voussoir_bridge_config, only: bridge_group
   use voussoir_namelist_group, only: nml_group_t
   use voussoir_assembly, only: assembly_t
   use voussoir_model, only: model_t
@@ -20,7 +21,7 @@ program voussoir_run
   implicit none
   type(config_t) :: cfg
   type(config_t), target :: defaults          ! what --help lists the tables over
-  type(nml_group_t) :: tables(6)
+  type(nml_group_t) :: tables(7)
   type(assembly_t) :: assembly
   type(model_t) :: model
   type(run_result_t) :: res
@@ -31,14 +32,16 @@ program voussoir_run
   call config_groups(defaults, tables(1:4))
   call wall_group(defaults%wall, tables(5))
   call load_group(defaults%load, tables(6))
+  call bridge_group(defaults%bridge, tables(7))
   call input_argument('voussoir-run', 'voussoir-run FILE.nml', &
     'One simulation of a masonry arch (or a polygon assembly) under base motion: the groups &arch, '// &
-    '&motion, &solver and &output of FILE.nml, and &wall or &load where given (listed below; README.md and '// &
+    '&motion, &solver and &output of FILE.nml, and &wall, &bridge or &load where given (listed below; README.md and '// &
     'docs/ explain them). Writes one HDF5 result file and prints one line whose first word is stood or '// &
     'collapsed. Exit 0 on success, 1 with a one-line message naming the file, the variable and the allowed '// &
     'range.', path, exit_code, groups=tables)
   if (exit_code >= 0) stop exit_code, quiet=.true.
-  call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'wall', 'load'], cfg, status)
+  call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'wall', 'load', 'bridge'], &
+                   cfg, status)
   if (status%ok) call write_warnings('voussoir-run', cfg%warnings)
   if (status%ok .and. .not. catch_stop_signals()) &
     write (error_unit, '(a)') 'voussoir-run: warning: cannot catch Ctrl-C / SIGTERM: an interrupted run writes nothing'

@@ -418,6 +418,46 @@ for d in voussoir-run voussoir-limit; do
   else failed=$((failed+1)); echo "FAIL  $d command line: $rc1 $rc2 $rc3 $h $v"; fi
 done
 
+# &bridge (issue 37): what the values alone refuse, each naming the file, the group, the
+# variable, its value, the allowed range and why; with voussoir-limit and voussoir-run.
+br="shape = 'segmental', span_m(1) = 10, rise_m(1) = 2.5, ring_thickness_m = 0.45, n_voussoirs = 16"
+driver=voussoir-limit case_ bridge_segmental_rise "&bridge rise_m\(1\) = 6 is outside the allowed range 0 < rise_m\(1\) <= span_m/2 = 5 m for a segmental arch" "&bridge shape = 'segmental', span_m(1) = 10, rise_m(1) = 6 /"
+case_ bridge_segmental_rise_run "&bridge rise_m\(1\) = 6 is outside the allowed range 0 < rise_m\(1\) <= span_m/2 = 5 m" "&bridge shape = 'segmental', span_m(1) = 10, rise_m(1) = 6 /
+$o"
+driver=voussoir-limit case_ bridge_ring_too_thick "&bridge ring_thickness_m = 3 is outside the allowed range 0 < ring_thickness_m <= span_m\(1\)/4 = 2.5 m: a ring deeper than a quarter of its span" "&bridge shape = 'segmental', span_m(1) = 10, rise_m(1) = 2.5, ring_thickness_m = 3 /"
+driver=voussoir-limit case_ bridge_skewback "&bridge abutment_width_m = 0.2 is outside the allowed range abutment_width_m > 0.36 m, the horizontal reach of span 1's springing joint .*would not carry the extrados end of its arch" "&bridge $br, abutment_width_m = 0.2 /"
+driver=voussoir-limit case_ bridge_pier_too_narrow "&bridge pier_width_m = 0.5 is outside the allowed range pier_width_m >= 0.72 m: spans 1 and 2 do not meet pier 1 side by side" "&bridge $br, span_m(2) = 10, rise_m(2) = 2.5, pier_width_m = 0.5 /"
+driver=voussoir-limit case_ bridge_semicircle_rise "&bridge rise_m\(1\) = 4 is outside the allowed range rise_m\(1\) = span_m/2 = 5 m for a semicircular arch" "&bridge shape = 'semicircular', span_m(1) = 10, rise_m(1) = 4 /"
+driver=voussoir-limit case_ bridge_pointed_low "&bridge rise_m\(1\) = 4 is outside the allowed range rise_m\(1\) >= span_m/2 = 5 m for a pointed arch" "&bridge shape = 'pointed', span_m(1) = 10, rise_m(1) = 4 /"
+driver=voussoir-limit case_ bridge_pointed_odd "&bridge n_voussoirs = 15 is outside the allowed range an even n_voussoirs for a pointed arch" "&bridge shape = 'pointed', span_m(1) = 10, rise_m(1) = 6, n_voussoirs = 15 /"
+driver=voussoir-limit case_ bridge_three_centred_flat "&bridge rise_m\(1\) = 1 is outside the allowed range 1.33975 m < rise_m\(1\) < span_m/2 = 5 m for a three-centred arch" "&bridge shape = 'three-centred', span_m(1) = 10, rise_m(1) = 1 /"
+driver=voussoir-limit case_ bridge_rise_without_span "&bridge rise_m\(2\) = 2 is outside the allowed range none: there are 1 spans" "&bridge $br, rise_m(2) = 2 /"
+driver=voussoir-limit case_ bridge_no_span "&bridge gives no span: set span_m\(1\) > 0" "&bridge shape = 'segmental' /"
+driver=voussoir-limit case_ bridge_gap_in_spans "&bridge span_m\(2\) is unset but span_m\(3\) = 10 is set" "&bridge $br, span_m(3) = 10 /"
+driver=voussoir-limit case_ bridge_and_arch "&bridge and &arch both describe the assembly" "&arch friction = 0.5 /
+&bridge $br /"
+driver=voussoir-limit case_ bridge_shape_unknown "&bridge shape = 'gothic' is not one of 'segmental', 'semicircular', 'elliptical', 'three-centred', 'pointed', 'parabolic'" "&bridge shape = 'gothic', span_m(1) = 10, rise_m(1) = 2 /"
+driver=voussoir-limit case_ bridge_density "&bridge pier_density_kg_m3 = 0 is outside the allowed range 0 < pier_density_kg_m3 <= 1e5" "&bridge $br, pier_density_kg_m3 = 0 /"
+
+# The fill of &bridge (issue 37): below the extrados, a dispersion angle out of range or
+# without a fill, a fill in voussoir-run, a fill without a live load, a slanting live load.
+fl="$br, fill_density_kg_m3 = 2000, fill_level_m = 3.45"
+driver=voussoir-limit case_ bridge_fill_below_extrados "&bridge fill_level_m = 2.9 is outside the allowed range fill_level_m >= 2.95 m, the extrados of span 1's crown .*a fill surface below the extrados would cut the ring" "&bridge $br, fill_density_kg_m3 = 2000, fill_level_m = 2.9 /
+&load point_load_n(1) = 1000, point_load_x_m(1) = 5 /"
+driver=voussoir-limit case_ bridge_dispersion_90 "&bridge dispersion_angle_deg = 90 is outside the allowed range 0 <= dispersion_angle_deg < 90" "&bridge $fl, dispersion_angle_deg = 90 /"
+driver=voussoir-limit case_ bridge_dispersion_without_fill "&bridge dispersion_angle_deg = 30 is outside the allowed range 0 without a fill" "&bridge $br, dispersion_angle_deg = 30 /"
+case_ bridge_fill_in_run "&bridge fill_density_kg_m3 > 0: voussoir-run does not model the fill" "&bridge $fl /
+$o"
+driver=voussoir-limit case_ bridge_fill_without_live_load "&bridge fill_density_kg_m3 > 0 needs a live point load in &load" "&bridge $fl /"
+driver=voussoir-limit case_ bridge_fill_slanting_load "&load point_load_dir_deg\(1\) = -80: with a fill the live loads stand on its surface" "&bridge $fl /
+&load point_load_n(1) = 1000, point_load_x_m(1) = 5, point_load_dir_deg(1) = -80 /"
+driver=voussoir-limit case_ bridge_spread_beyond_ends "&load live point load 1 at x = 0.5 m spreads through the fill beyond the ends of the bridge" "&bridge $fl, abutment_width_m = 0.5, dispersion_angle_deg = 80 /
+&load point_load_n(1) = 1000, point_load_x_m(1) = 0.5 /"
+
+driver=voussoir-limit case_ bridge_passive_without_phi "&bridge passive_mobilisation = 0.3 is outside the allowed range 0 without fill_friction_deg > 0" "&bridge $fl, passive_mobilisation = 0.3 /"
+driver=voussoir-limit case_ bridge_passive_above_1 "&bridge passive_mobilisation = 1.5 is outside the allowed range 0 <= passive_mobilisation <= 1" "&bridge $fl, fill_friction_deg = 35, passive_mobilisation = 1.5 /"
+driver=voussoir-limit case_ bridge_phi_without_fill "&bridge fill_friction_deg = 35 is outside the allowed range 0 without a fill" "&bridge $br, fill_friction_deg = 35 /"
+
 # An unknown option is named, then the usage; exit 2 (issue 26).
 for d in voussoir-run voussoir-limit voussoir-sweep; do
   out=$("$bin/$d" --foo x.nml 2>&1); rc=$?

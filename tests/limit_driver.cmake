@@ -63,3 +63,15 @@ add_test(NAME limit_driver_arch_point_load
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
                  arch_point_load
          WORKING_DIRECTORY ${LIMIT_TEST_DIR})
+# &bridge (issue 37): a semicircle built by &bridge against the arch builder's on the same
+# geometry (the same load factors to 1e-10), and the two-span bridge of input/ in statics.
+add_test(NAME limit_driver_bridge
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
+                 bridge ${CMAKE_SOURCE_DIR}/input/bridge_two_spans.nml
+         WORKING_DIRECTORY ${LIMIT_TEST_DIR})
+# The fill of &bridge (issue 37): its weight and the spread of a live load through it,
+# checked from the JSON's blocks (closed-form columns, the spread lines, statics).
+add_test(NAME limit_driver_bridge_fill
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
+                 bridge_fill ${CMAKE_SOURCE_DIR}/input/bridge_fill.nml
+         WORKING_DIRECTORY ${LIMIT_TEST_DIR})

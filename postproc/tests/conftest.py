@@ -171,8 +171,8 @@ def drawn_figures(monkeypatch) -> list:
         figures.append(fig)
         return fig
 
-    plots = ("sequence", "envelope", "compare", "history", "mechanism", "fragility_plot", "fragility_compare",
-             "fragility_lambda_g", "record_table", "reactions", "thrust_line", "msa_plot")
+    plots = ("sequence", "envelope", "compare", "history", "mechanism", "mechanism_lp", "fragility_plot",
+             "fragility_compare", "fragility_lambda_g", "record_table", "reactions", "thrust_line", "msa_plot")
     for name in [f"plots.{p}" for p in plots] + ["diagnosis.figures"]:
         module = importlib.import_module(f"voussoir_post.{name}")
         if hasattr(module, "new_figure"):

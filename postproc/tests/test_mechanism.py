@@ -119,3 +119,98 @@ def test_mechanism_axes_from_the_springings_and_capacity_words(limit_json, tmp_p
     text = _capacity_text(data.panels[0])
     assert "collapse load factor λ = 0.376" in text
     assert "horizontal acceleration 3.69 m/s² = 0.376 g" in text
+
+
+# --- A load case and any assembly (issue 37): the LP's own mechanism, forces and loads. ---
+
+from conftest import REPO_ROOT  # noqa: E402
+from figure_text import text_clashes  # noqa: E402
+
+
+def _limit_json(exe, nml, folder):
+    path = folder / (nml.stem + ".json")
+    path.write_text(run_executable([exe, nml, "--json"], folder).stdout)
+    return path
+
+
+def _figure_words(fig) -> str:
+    words = [t.get_text() for t in fig.texts] + [ax.get_title() for ax in fig.axes]
+    for legend in fig.legends:
+        words += [t.get_text() for t in legend.get_texts()]
+    return "\n".join(words)
+
+
+def test_mechanism_of_a_load_case(voussoir_limit_exe, tmp_path, drawn_figures):
+    """input/limit_arch_point_load.nml (1 kN along a path): the figure is the load case's.
+    Its titles name the live load, not a horizontal acceleration; its hinges are the LP's at
+    the critical position (joints 3i 7e 12i 16e, docs/limit_analysis.md), not the weights'
+    acceleration mechanism; its legend claims no sliding (nothing slides) and compares the
+    load factor with nothing; its arrows keep every voussoir in equilibrium under its weight
+    (polygon area x 2000 kg/m3 x 1 m x g) and lambda x the drawn live load (1e-6 of a weight)."""
+    path = _limit_json(voussoir_limit_exe, REPO_ROOT / "input" / "limit_arch_point_load.nml", tmp_path)
+    limit = read_limit_json(path)
+    assert post.main(["mechanism", str(path), "--out", str(tmp_path / "m.png")]) == 0
+    (fig,) = drawn_figures
+    words = _figure_words(fig)
+    # The critical position, refined at the joints: a micrometre left of joint 7's extrados end.
+    x_crit = limit.critical_x_m
+    assert x_crit == pytest.approx(-math.sin(math.radians(11.25)) - 1e-6, abs=1e-12)
+    assert "horizontal acceleration" not in words and "live load" in words and f"x = {x_crit:.3g} m" in words
+    assert "slid" not in words and "four-hinge" not in words
+    assert text_clashes(fig) == []
+    data = plot_mechanism(limit, tmp_path / "again.png")
+    (panel,) = data.panels
+    assert panel.load_factor == pytest.approx(1.432999, abs=1e-6)
+    assert [(m.joint, m.hinge_side) for m in panel.hinges] == [(3, "intrados"), (7, "extrados"), (12, "intrados"),
+                                                               (16, "extrados")]
+    assert [j for j, _ in limit.hinges_pos] != [m.joint for m in panel.hinges]  # the weights' case differs
+    assert panel.sliding == []
+    (load,) = limit.point_loads
+    assert load.xy_m[0] == pytest.approx(x_crit, abs=1e-12) and load.live
+    g = limit.g_m_s2
+    for b, block in enumerate(limit.blocks, start=1):
+        if block.driven:
+            continue
+        xy = block.vertices_xy_m
+        area = 0.5 * abs(np.dot(xy[:, 0], np.roll(xy[:, 1], -1)) - np.dot(xy[:, 1], np.roll(xy[:, 0], -1)))
+        weight = area * 2000.0 * 1.0 * g
+        total = np.array([0.0, -weight])
+        for f, resultant in zip(limit.contact_forces, panel.force_n):
+            total += resultant if f.blocks[1] == b else -resultant if f.blocks[0] == b else 0.0
+        if load.block == b:
+            total += panel.load_factor * load.force_n
+        assert np.allclose(total, 0.0, atol=1e-6 * weight), (b, total)
+
+
+def test_mechanism_of_a_polygon_file(voussoir_limit_exe, tmp_path, drawn_figures):
+    """input/rocking_block.nml (arch null in the JSON): the blocks are drawn, no traceback;
+    the block (0.2 x 1.0 m) tips at b/h = 0.2 about its +x corner (0.1, 0) towards +x and its
+    -x corner towards -x."""
+    path = _limit_json(voussoir_limit_exe, REPO_ROOT / "input" / "rocking_block.nml", tmp_path)
+    assert json.loads(path.read_text())["arch"] is None
+    assert post.main(["mechanism", str(path), "--out", str(tmp_path / "m.png")]) == 0
+    (fig,) = drawn_figures
+    assert text_clashes(fig) == [] and "polygon file" in _figure_words(fig)
+    data = plot_mechanism(read_limit_json(path), tmp_path / "again.png")
+    assert len(data.voussoirs_m) == 2 and [p.direction for p in data.panels] == ["+x", "-x"]
+    for panel, corner in zip(data.panels, ([0.1, 0.0], [-0.1, 0.0])):
+        assert panel.load_factor == pytest.approx(0.2, rel=1e-9)
+        (hinge,) = panel.hinges
+        assert np.allclose(hinge.hinge_xy_m, corner, atol=1e-12)
+
+
+def test_input_without_fill_does_not_claim_an_assessment():
+    """The bare ring of input/limit_arch_point_load.nml says what it is not."""
+    text = (REPO_ROOT / "input" / "limit_arch_point_load.nml").read_text()
+    assert "daily work" not in text and "bare semicircular arch ring" in text
+
+
+def test_static_capacity_of_any_assembly(voussoir_limit_exe, tmp_path):
+    """The envelope's static capacity (voussoir-post envelope --limit) from any JSON: the
+    polygon block's LP, b/h g = 0.2 g both ways (it was NaN: the four-hinge keys are null);
+    a load case's factor is not an acceleration and is refused, naming the file."""
+    block = read_limit_json(_limit_json(voussoir_limit_exe, REPO_ROOT / "input" / "rocking_block.nml", tmp_path))
+    assert block.static_capacity_m_s2() == pytest.approx(0.2 * block.g_m_s2, rel=1e-9)
+    case = read_limit_json(_limit_json(voussoir_limit_exe, REPO_ROOT / "input" / "bridge_two_spans.nml", tmp_path))
+    with pytest.raises(ResultsError, match="bridge_two_spans.json.*live point loads of &load, not a horizontal"):
+        case.static_capacity_m_s2()

@@ -29,6 +29,25 @@ module voussoir_assembly
     logical, allocatable :: driven(:)       !! velocity imposed by the table
     integer, allocatable :: role(:)
     integer, allocatable :: course(:)       !! a wall's course of each body, 0 the foundation (else unallocated)
+    !> Each body's own density [kg/m3] where allocated (the parts of a bridge), else the run's.
+    real(dp), allocatable :: density_kg_m3(:)
+    !> Each body's Coulomb coefficient where allocated (the parts of a bridge), else the
+    !> run's; a contact between two bodies takes the lesser of theirs.
+    real(dp), allocatable :: friction(:)
+    !> Each body's name in the output where allocated (a bridge's: 'span 1 voussoir 3',
+    !> 'pier 1', 'left abutment', 'ground'), else the body's number.
+    character(len=32), allocatable :: block_name(:)
+    !> A fill over the blocks (a bridge's, &bridge fill_density_kg_m3 > 0): its level
+    !> surface [m], its weight per unit area of the section (density x g x width) [N/m2],
+    !> and the angle from the vertical at which live loads spread through it [deg].
+    logical :: has_fill = .false.
+    real(dp) :: fill_level_m = 0.0_dp
+    real(dp) :: fill_weight_n_m2 = 0.0_dp
+    real(dp) :: dispersion_angle_deg = 0.0_dp
+    !> Its horizontal pressure on the top faces of free blocks, as a multiple of the vertical
+    !> stress: at least `active_k`, at most `passive_k` (both 0: none).
+    real(dp) :: fill_active_k = 0.0_dp
+    real(dp) :: fill_passive_k = 0.0_dp
     ! Arch description (n_voussoirs = 0 for a generic assembly).
     integer :: n_voussoirs = 0
     real(dp) :: thickness_m = 0.0_dp
@@ -58,6 +77,15 @@ contains
     mirror%driven = asm%driven
     if (allocated(asm%role)) mirror%role = asm%role
     if (allocated(asm%course)) mirror%course = asm%course
+    if (allocated(asm%density_kg_m3)) mirror%density_kg_m3 = asm%density_kg_m3
+    if (allocated(asm%friction)) mirror%friction = asm%friction
+    if (allocated(asm%block_name)) mirror%block_name = asm%block_name
+    mirror%has_fill = asm%has_fill
+    mirror%fill_level_m = asm%fill_level_m
+    mirror%fill_weight_n_m2 = asm%fill_weight_n_m2
+    mirror%dispersion_angle_deg = asm%dispersion_angle_deg
+    mirror%fill_active_k = asm%fill_active_k
+    mirror%fill_passive_k = asm%fill_passive_k
   end function mirrored_blocks
 
   !> Angle [deg] from +x of the radial line of joint j (0..n) of an arch.

@@ -7,21 +7,25 @@ module voussoir_config_assembly
   use voussoir_assembly, only: assembly_t, build_arch, voussoir_angle_factors
   use voussoir_polygon_file, only: read_polygon_file
   use voussoir_wall, only: build_wall
+  use voussoir_bridge, only: build_bridge
   implicit none
   private
   public :: build_config_assembly
 
 contains
 
-  !> The wall of cfg%wall where it has courses, else the polygon file of &arch where one is
-  !> named (its message then starts with '&arch polygon_file: '), else the arch of &arch.
+  !> The bridge of cfg%bridge where it has spans, the wall of cfg%wall where it has courses,
+  !> else the polygon file of &arch where one is named (its message then starts with
+  !> '&arch polygon_file: '), else the arch of &arch.
   subroutine build_config_assembly(cfg, assembly, status)
     type(config_t), intent(in) :: cfg
     type(assembly_t), intent(out) :: assembly
     type(status_t), intent(inout) :: status
     logical :: restrained(2)
     associate (a => cfg%arch)
-      if (cfg%wall%courses > 0) then
+      if (cfg%bridge%n_spans > 0) then
+        call build_bridge(cfg%bridge, assembly, status)
+      else if (cfg%wall%courses > 0) then
         call build_wall(cfg%wall, assembly)
       else if (len_trim(a%polygon_file) > 0) then
         call read_polygon_file(trim(a%polygon_file), assembly, status)

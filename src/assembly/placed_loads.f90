@@ -13,11 +13,17 @@ module voussoir_placed_loads
   use voussoir_load_config, only: load_config_t
   implicit none
   private
-  public :: placed_loads_t, place_loads, block_at, top_surface, moves_on_top, first_live_x
-  public :: boundary_tol_m, dead_load_strips
+  public :: placed_loads_t, place_loads, block_at, top_surface, moves_on_top, vehicle_x
+  public :: boundary_tol_m, dead_load_strips, dispersion_strips
+  public :: kind_point, kind_dead_strip, kind_fill, kind_dispersed
 
   real(dp), parameter :: boundary_tol_m = 1.0e-9_dp   !! a point this close outside a block is on it
   integer, parameter :: dead_load_strips = 1000       !! strips of the distributed dead load
+  integer, parameter :: dispersion_strips = 200       !! strips of a live load spread through the fill
+  integer, parameter :: kind_point = 1       !! a point load of &load where it stands
+  integer, parameter :: kind_dead_strip = 2  !! a strip of &load's distributed dead load
+  integer, parameter :: kind_fill = 3        !! the weight of the fill above one top face of a block
+  integer, parameter :: kind_dispersed = 4   !! a strip of a live load spread through the fill
 
   !> Forces at points of the blocks: live ones (times the load factor) and dead ones.
   type :: placed_loads_t
@@ -27,6 +33,21 @@ module voussoir_placed_loads
     real(dp), allocatable :: xy(:, :)        !! (2, n) point of application [m]
     real(dp), allocatable :: force_n(:, :)   !! (2, n) force [N] (a live load: at load factor 1)
     logical, allocatable :: live(:)
+    integer, allocatable :: kind(:)          !! kind_point, kind_dead_strip, kind_fill or kind_dispersed
+    !> With a fill: each live load as it stands on the fill's surface (its strips on the
+    !> blocks are the kind_dispersed loads), and the extent of x it spreads over.
+    integer :: n_surface = 0
+    integer, allocatable :: surface_source(:)      !! point load j of &load
+    real(dp), allocatable :: surface_xy(:, :)      !! (2, n_surface) on the fill surface [m]
+    real(dp), allocatable :: surface_force_n(:, :) !! (2, n_surface) at load factor 1 [N]
+    real(dp), allocatable :: surface_spread_x_m(:, :) !! (2, n_surface) from x to x on the blocks [m]
+    !> With a fill's horizontal pressure: one bounded force per top face of a free block,
+    !> horizontal, into the block, between the active and the mobilised passive resultant.
+    integer :: n_pressure = 0
+    integer, allocatable :: pressure_block(:)
+    real(dp), allocatable :: pressure_xy(:, :)      !! (2, n_pressure) where it acts [m]
+    real(dp), allocatable :: pressure_dir(:, :)     !! (2, n_pressure) unit, horizontal, into the block
+    real(dp), allocatable :: pressure_lo_n(:), pressure_hi_n(:)  !! active and mobilised passive [N]
   end type placed_loads_t
 
 contains
@@ -38,18 +59,26 @@ contains
     moves_on_top = d%n_axles > 0 .or. d%path_points >= 2
   end function moves_on_top
 
-  !> The x of the first live point load [m] (the reference point a path moves).
-  pure real(dp) function first_live_x(d)
+  !> The vehicle's position [m]: the x of the resultant of its live loads (each live point
+  !> load at its x and, in an axle group, at each of its offsets; weighted by magnitude),
+  !> the point a path moves. For one live load, its own x.
+  pure real(dp) function vehicle_x(d)
     type(load_config_t), intent(in) :: d
-    integer :: j
-    first_live_x = 0.0_dp
+    real(dp) :: moment_nm, total_n
+    integer :: j, a
+    moment_nm = 0.0_dp
+    total_n = 0.0_dp
     do j = 1, d%n_point_loads
-      if (d%point_load_live(j)) then
-        first_live_x = d%point_load_x_m(j)
-        return
-      end if
+      if (.not. d%point_load_live(j)) cycle
+      do a = 0, d%n_axles
+        total_n = total_n + d%point_load_n(j)
+        moment_nm = moment_nm + d%point_load_n(j)*d%point_load_x_m(j)
+        if (a > 0) moment_nm = moment_nm + d%point_load_n(j)*d%axle_spacing_m(a)
+      end do
     end do
-  end function first_live_x
+    vehicle_x = 0.0_dp
+    if (total_n > 0.0_dp) vehicle_x = moment_nm/total_n
+  end function vehicle_x
 
   !> The loads of `d` on `asm`, the live ones shifted by `shift_x_m` along x (a position on
   !> the path; 0 otherwise). A refusal starts with '&load' (the caller names the file).
@@ -63,10 +92,27 @@ contains
     integer :: j, a, b
     logical :: found
 
-    allocate (placed%block(0), placed%source(0), placed%xy(2, 0), placed%force_n(2, 0), placed%live(0))
+    allocate (placed%block(0), placed%source(0), placed%xy(2, 0), placed%force_n(2, 0), placed%live(0), &
+              placed%kind(0), placed%surface_source(0), placed%surface_xy(2, 0), placed%surface_force_n(2, 0), &
+              placed%surface_spread_x_m(2, 0), placed%pressure_block(0), placed%pressure_xy(2, 0), &
+              placed%pressure_dir(2, 0), placed%pressure_lo_n(0), placed%pressure_hi_n(0))
     do j = 1, d%n_point_loads
       dir = direction(d%point_load_dir_deg(j))
-      if (d%point_load_live(j) .and. moves_on_top(d)) then
+      if (d%point_load_live(j) .and. asm%has_fill) then
+        ! On the fill's surface at its x, spread through the fill onto the blocks.
+        if (d%point_load_dir_deg(j) /= -90.0_dp) then
+          call fail(status, '&load point_load_dir_deg('//itoa(j)//') = '//fmt_significant(d%point_load_dir_deg(j), 6)// &
+                    ': with a fill the live loads stand on its surface and spread down through it: give them '// &
+                    'straight down (-90)')
+          return
+        end if
+        do a = 0, d%n_axles
+          x = d%point_load_x_m(j) + shift_x_m
+          if (a > 0) x = x + d%axle_spacing_m(a)
+          call disperse_load(asm, placed, j, a, x, d%point_load_n(j), status)
+          if (.not. status%ok) return
+        end do
+      else if (d%point_load_live(j) .and. moves_on_top(d)) then
         do a = 0, d%n_axles
           x = d%point_load_x_m(j) + shift_x_m
           if (a > 0) x = x + d%axle_spacing_m(a)
@@ -77,7 +123,7 @@ contains
                       span_text(asm)//')')
             return
           end if
-          call add(b, j, [x, y], d%point_load_n(j)*dir, .true.)
+          call add_load(placed, b, j, [x, y], d%point_load_n(j)*dir, .true., kind_point)
         end do
       else
         p = [d%point_load_x_m(j), d%point_load_y_m(j)]
@@ -88,7 +134,7 @@ contains
                     'boundary, within 1e-9 m)')
           return
         end if
-        call add(b, j, p, d%point_load_n(j)*dir, d%point_load_live(j))
+        call add_load(placed, b, j, p, d%point_load_n(j)*dir, d%point_load_live(j), kind_point)
       end if
     end do
     if (d%dead_load_n_per_m > 0.0_dp) then
@@ -103,25 +149,195 @@ contains
                     fmt_significant(x, 6)//' m (the top surface of the assembly spans '//span_text(asm)//')')
           return
         end if
-        call add(b, 0, [x, y], [0.0_dp, -d%dead_load_n_per_m*dx], .false.)
+        call add_load(placed, b, 0, [x, y], [0.0_dp, -d%dead_load_n_per_m*dx], .false., kind_dead_strip)
       end do
     end if
-
-  contains
-
-    subroutine add(block, source, xy, force, live)
-      integer, intent(in) :: block, source
-      real(dp), intent(in) :: xy(2), force(2)
-      logical, intent(in) :: live
-      placed%n = placed%n + 1
-      placed%block = [placed%block, block]
-      placed%source = [placed%source, source]
-      placed%xy = reshape([placed%xy, xy], [2, placed%n])
-      placed%force_n = reshape([placed%force_n, force], [2, placed%n])
-      placed%live = [placed%live, live]
-    end subroutine add
+    if (asm%has_fill) call add_fill_weight(asm, placed)
+    if (asm%has_fill .and. asm%fill_passive_k > 0.0_dp) call add_fill_pressure(asm, placed)
 
   end subroutine place_loads
+
+  !> Append one load to `placed`.
+  pure subroutine add_load(placed, block, source, xy, force, live, kind)
+    type(placed_loads_t), intent(inout) :: placed
+    integer, intent(in) :: block, source, kind
+    real(dp), intent(in) :: xy(2), force(2)
+    logical, intent(in) :: live
+    placed%n = placed%n + 1
+    placed%block = [placed%block, block]
+    placed%source = [placed%source, source]
+    placed%xy = reshape([placed%xy, xy], [2, placed%n])
+    placed%force_n = reshape([placed%force_n, force], [2, placed%n])
+    placed%live = [placed%live, live]
+    placed%kind = [placed%kind, kind]
+  end subroutine add_load
+
+  !> Live load j (axle a) of `magnitude_n` on the fill surface of `asm` at `x0`: spread
+  !> either side at the dispersion angle from the vertical down to where those lines meet
+  !> the top of the blocks, uniformly along x in between (dispersion_strips strips on the
+  !> top surface); at angle 0, the whole load on the top surface beneath it.
+  subroutine disperse_load(asm, placed, j, a, x0, magnitude_n, status)
+    type(assembly_t), intent(in) :: asm
+    type(placed_loads_t), intent(inout) :: placed
+    integer, intent(in) :: j, a
+    real(dp), intent(in) :: x0, magnitude_n
+    type(status_t), intent(inout) :: status
+    real(dp) :: x_lo, x_hi, dx, xs, ys
+    integer :: k, blk
+    logical :: ok
+    call top_surface(asm, x0, ys, blk, ok)
+    if (.not. ok) then
+      call fail(status, '&load live point load '//itoa(j)//trim(axle_words(a))//' at x = '//fmt_significant(x0, 6)// &
+                ' m stands over no block (the top surface of the assembly spans '//span_text(asm)//')')
+      return
+    end if
+    x_lo = spread_end(asm, x0, -1.0_dp)
+    x_hi = spread_end(asm, x0, 1.0_dp)
+    if (x_lo <= -huge(1.0_dp) .or. x_hi >= huge(1.0_dp)) then
+      call fail(status, '&load live point load '//itoa(j)//trim(axle_words(a))//' at x = '//fmt_significant(x0, 6)// &
+                ' m spreads through the fill beyond the ends of the bridge ('//span_text(asm)//'): move it in, or '// &
+                'lower &bridge dispersion_angle_deg')
+      return
+    end if
+    placed%n_surface = placed%n_surface + 1
+    placed%surface_source = [placed%surface_source, j]
+    placed%surface_xy = reshape([placed%surface_xy, x0, asm%fill_level_m], [2, placed%n_surface])
+    placed%surface_force_n = reshape([placed%surface_force_n, 0.0_dp, -magnitude_n], [2, placed%n_surface])
+    placed%surface_spread_x_m = reshape([placed%surface_spread_x_m, x_lo, x_hi], [2, placed%n_surface])
+    if (x_hi - x_lo <= boundary_tol_m) then
+      call add_load(placed, blk, j, [x0, ys], [0.0_dp, -magnitude_n], .true., kind_dispersed)
+      return
+    end if
+    dx = (x_hi - x_lo)/dispersion_strips
+    do k = 1, dispersion_strips
+      xs = x_lo + (k - 0.5_dp)*dx
+      call top_surface(asm, xs, ys, blk, ok)
+      if (.not. ok) then   ! (the spread ends lie on the blocks, and a bridge's top has no gap)
+        call fail(status, '&load live point load '//itoa(j)//trim(axle_words(a))//' spreads over x = '// &
+                  fmt_significant(xs, 6)//' m, where no block stands')
+        return
+      end if
+      call add_load(placed, blk, j, [xs, ys], [0.0_dp, -magnitude_n/dispersion_strips], .true., kind_dispersed)
+    end do
+  end subroutine disperse_load
+
+  !> The fill's weight over every top face of a free block of `asm` that is the top
+  !> surface there: the trapezoid between the face and the fill's level, its weight at its
+  !> centroid's x on the face (a vertical force: its moment depends on that x alone). Faces
+  !> of driven blocks carry theirs to the supports and are left out.
+  pure subroutine add_fill_weight(asm, placed)
+    type(assembly_t), intent(in) :: asm
+    type(placed_loads_t), intent(inout) :: placed
+    real(dp) :: e(2), p0(2), p1(2), xm, ym, yt, h0, h1, xc, weight
+    integer :: blk, k, nv, top
+    logical :: ok
+    do blk = 1, asm%n_bodies
+      if (asm%driven(blk)) cycle
+      nv = size(asm%polygon(blk)%xy, 2)
+      do k = 1, nv
+        p0 = asm%polygon(blk)%xy(:, k)
+        p1 = asm%polygon(blk)%xy(:, modulo(k, nv) + 1)
+        e = p1 - p0
+        if (e(1) >= -boundary_tol_m) cycle          ! a top face runs right to left (counter-clockwise)
+        xm = 0.5_dp*(p0(1) + p1(1))
+        ym = 0.5_dp*(p0(2) + p1(2))
+        call top_surface(asm, xm, yt, top, ok)
+        if (.not. ok .or. top /= blk .or. abs(yt - ym) > 1.0e-9_dp*max(1.0_dp, abs(ym))) cycle
+        ! From p1 (left, height h0 under the level) to p0 (right, h1).
+        h0 = asm%fill_level_m - p1(2)
+        h1 = asm%fill_level_m - p0(2)
+        weight = asm%fill_weight_n_m2*(p0(1) - p1(1))*0.5_dp*(h0 + h1)
+        if (weight <= 0.0_dp) cycle
+        xc = p1(1) + (p0(1) - p1(1))*(h0 + 2.0_dp*h1)/(3.0_dp*(h0 + h1))
+        call add_load(placed, blk, 0, [xc, p1(2) + (xc - p1(1))*(p0(2) - p1(2))/(p0(1) - p1(1))], [0.0_dp, -weight], &
+                      .false., kind_fill)
+      end do
+    end do
+  end subroutine add_fill_weight
+
+  !> The fill's horizontal pressure on every top face of a free block that is the top
+  !> surface there: k times the vertical stress (weight per unit area x depth) on the face's
+  !> vertical projection from y_a to y_b, a resultant k w_f ((F - y_a)^2 - (F - y_b)^2)/2 at
+  !> the height of that triangle-trapezoid's centroid, horizontal and into the block; k
+  !> between the active and the mobilised passive coefficient (the LP chooses).
+  pure subroutine add_fill_pressure(asm, placed)
+    type(assembly_t), intent(in) :: asm
+    type(placed_loads_t), intent(inout) :: placed
+    real(dp) :: p0(2), p1(2), ya, yb, yt, resultant, yc, t, f
+    integer :: blk, k, nv, top
+    logical :: ok
+    f = asm%fill_level_m
+    do blk = 1, asm%n_bodies
+      if (asm%driven(blk)) cycle
+      nv = size(asm%polygon(blk)%xy, 2)
+      do k = 1, nv
+        p0 = asm%polygon(blk)%xy(:, k)
+        p1 = asm%polygon(blk)%xy(:, modulo(k, nv) + 1)
+        if (p1(1) - p0(1) >= -boundary_tol_m) cycle      ! a top face runs right to left
+        call top_surface(asm, 0.5_dp*(p0(1) + p1(1)), yt, top, ok)
+        if (.not. ok .or. top /= blk .or. abs(yt - 0.5_dp*(p0(2) + p1(2))) > 1.0e-9_dp*max(1.0_dp, abs(yt))) cycle
+        ya = min(p0(2), p1(2))
+        yb = max(p0(2), p1(2))
+        if (yb - ya <= boundary_tol_m) cycle               ! a level face: no horizontal pressure
+        resultant = asm%fill_weight_n_m2*((f - ya)**2 - (f - yb)**2)/2.0_dp
+        ! The centroid of the pressure (f - y) over [ya, yb].
+        yc = ((f*(yb**2 - ya**2)/2.0_dp) - (yb**3 - ya**3)/3.0_dp)/((f - ya)**2/2.0_dp - (f - yb)**2/2.0_dp)
+        t = (yc - p0(2))/(p1(2) - p0(2))
+        placed%n_pressure = placed%n_pressure + 1
+        placed%pressure_block = [placed%pressure_block, blk]
+        placed%pressure_xy = reshape([placed%pressure_xy, p0 + t*(p1 - p0)], [2, placed%n_pressure])
+        ! Into the block: the face's outward normal (p1 - p0 turned -90 deg) has the x of p1(2) - p0(2).
+        placed%pressure_dir = reshape([placed%pressure_dir, -sign(1.0_dp, p1(2) - p0(2)), 0.0_dp], &
+                                      [2, placed%n_pressure])
+        placed%pressure_lo_n = [placed%pressure_lo_n, asm%fill_active_k*resultant]
+        placed%pressure_hi_n = [placed%pressure_hi_n, asm%fill_passive_k*resultant]
+      end do
+    end do
+  end subroutine add_fill_pressure
+
+  !> Where the line from (x0, the fill's level) down at the dispersion angle towards
+  !> `side` (-1 left, +1 right) meets the top surface of the blocks [m] (the top surface
+  !> of a bridge runs unbroken from one abutment's end to the other's); -huge or huge when
+  !> the line leaves the assembly above it. Bisection on the line's height over the surface.
+  pure function spread_end(asm, x0, side) result(x)
+    type(assembly_t), intent(in) :: asm
+    real(dp), intent(in) :: x0, side
+    real(dp) :: x, lo, hi, y, slope, lowest, x_end
+    integer :: blk, k
+    logical :: ok
+    real(dp), parameter :: pi = acos(-1.0_dp)
+    x = x0
+    if (asm%dispersion_angle_deg == 0.0_dp) return
+    slope = tan(asm%dispersion_angle_deg*pi/180.0_dp)   ! horizontal run per unit of depth
+    lowest = huge(1.0_dp)
+    x_end = merge(huge(1.0_dp), -huge(1.0_dp), side < 0.0_dp)
+    do k = 1, asm%n_bodies
+      lowest = min(lowest, minval(asm%polygon(k)%xy(2, :)))
+      if (side < 0.0_dp) x_end = min(x_end, minval(asm%polygon(k)%xy(1, :)))
+      if (side > 0.0_dp) x_end = max(x_end, maxval(asm%polygon(k)%xy(1, :)))
+    end do
+    ! Beyond this the line is below every block: it has met the top surface by then.
+    hi = x0 + side*slope*(asm%fill_level_m - lowest)
+    if (side*(hi - x_end) > 0.0_dp) then
+      call top_surface(asm, x_end, y, blk, ok)
+      if (asm%fill_level_m - abs(x_end - x0)/slope > y) then
+        x = merge(-huge(1.0_dp), huge(1.0_dp), side < 0.0_dp)
+        return
+      end if
+      hi = x_end
+    end if
+    lo = x0
+    do k = 1, 100
+      x = 0.5_dp*(lo + hi)
+      call top_surface(asm, x, y, blk, ok)
+      if (asm%fill_level_m - abs(x - x0)/slope > y) then
+        lo = x
+      else
+        hi = x
+      end if
+    end do
+    x = 0.5_dp*(lo + hi)
+  end function spread_end
 
   !> The unit vector at `deg` from +x, exact at multiples of 90 degrees (a load straight
   !> down has no horizontal part of round-off size).

@@ -15,6 +15,7 @@ module voussoir_config
   use voussoir_input_range, only: in_range
   use voussoir_wall_config, only: wall_config_t, read_wall_config, wall_group
   use voussoir_load_config, only: load_config_t, read_load_config, load_entries
+  use voussoir_bridge_config, only: bridge_config_t, read_bridge_config, bridge_group, bridge_length_m
   implicit none
   private
 
@@ -116,6 +117,7 @@ module voussoir_config
     type(output_config_t) :: output
     type(wall_config_t) :: wall               !! a wall instead of the arch, where courses > 0
     type(load_config_t) :: load               !! point, axle and distributed loads (&load; none: no loads)
+    type(bridge_config_t) :: bridge           !! a bridge instead of the arch, where it has spans (&bridge)
     character(len=path_len) :: source_file = ''
     !> What validate_config found plausible but unusual, one line each, for the drivers to
     !> print (config_plausible.f90); not a setting.
@@ -161,18 +163,35 @@ contains
     type(status_t), intent(inout) :: status
     type(nml_group_t) :: groups(4)
     integer :: k
+    logical :: found, arch_given
 
     cfg%source_file = path
     call check_groups(path, allowed_groups, status)
     if (.not. status%ok) return
     call config_groups(cfg, groups)
+    arch_given = .false.
     do k = 1, size(groups)
-      call groups(k)%read(path, status)
+      call groups(k)%read(path, status, found)
       if (.not. status%ok) return
+      if (k == 1) arch_given = found
     end do
     if (any(allowed_groups == 'wall')) call read_wall_config(path, cfg%wall, status)
     if (any(allowed_groups == 'load')) call read_load_config(path, cfg%load, status)
+    if (any(allowed_groups == 'bridge')) call read_bridge_config(path, cfg%bridge, status)
     if (.not. status%ok) return
+    if (cfg%bridge%n_spans > 0) then
+      if (arch_given) then
+        call fail(status, path//': &bridge and &arch both describe the assembly: give one of them (&bridge has '// &
+                  'its own width_m, the density and friction of each part; &limit inset_m the pivot inset)')
+        return
+      end if
+      ! The ring's material and size where a driver reads the run's (the other parts carry
+      ! their own in the assembly).
+      cfg%arch%width_m = cfg%bridge%width_m
+      cfg%arch%density_kg_m3 = cfg%bridge%ring_density_kg_m3
+      cfg%arch%friction = cfg%bridge%ring_friction
+      cfg%arch%thickness_m = cfg%bridge%ring_thickness_m
+    end if
     if (len_trim(cfg%arch%polygon_file) > 0) &
       cfg%arch%polygon_file = resolve_path(path, cfg%arch%polygon_file)
     if (len_trim(cfg%motion%record_file) > 0) &
@@ -296,18 +315,23 @@ contains
     if (k > 0) full = input_path(:k)//trim(full)
   end function resolve_path
 
-  !> Every setting of `cfg`, defaults included, in group order (the wall's where it has one).
+  !> Every setting of `cfg`, defaults included, in group order (the wall's or the bridge's
+  !> where it has one).
   function config_entries(cfg) result(e)
     type(config_t), intent(in) :: cfg
     type(config_entry_t), allocatable :: e(:)
     type(config_t), target :: c
-    type(nml_group_t) :: groups(4), wall
+    type(nml_group_t) :: groups(4), wall, bridge
     c = cfg
     call config_groups(c, groups)
     e = [groups(1)%entries(), groups(2)%entries(), groups(3)%entries(), groups(4)%entries()]
     if (c%wall%courses > 0) then
       call wall_group(c%wall, wall)
       e = [e, wall%entries()]
+    end if
+    if (c%bridge%n_spans > 0) then
+      call bridge_group(c%bridge, bridge)
+      e = [e, bridge%entries()]
     end if
     if (has_loads(c)) e = [e, load_entries(c%load)]
   end function config_entries

@@ -33,7 +33,7 @@ contains
 
     if (.not. status%ok) return
     associate (a => cfg%arch)
-      if (cfg%wall%courses > 0 .or. len_trim(a%polygon_file) > 0) then
+      if (cfg%wall%courses > 0 .or. len_trim(a%polygon_file) > 0 .or. cfg%bridge%n_spans > 0) then
         call plausible_width(cfg, f)
         return
       end if
@@ -106,7 +106,10 @@ contains
     character(len=:), allocatable, intent(out) :: what
     span_m = 0.0_dp
     what = ''
-    if (cfg%wall%courses > 0) then
+    if (cfg%bridge%n_spans > 0) then
+      span_m = bridge_length_m(cfg%bridge)
+      what = "the bridge's length"
+    else if (cfg%wall%courses > 0) then
       span_m = cfg%wall%blocks_per_course*cfg%wall%block_width_m
       what = "the wall's length"
     else if (len_trim(cfg%arch%polygon_file) == 0) then

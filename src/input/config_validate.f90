@@ -89,7 +89,14 @@ contains
         call fail(status, f//": &wall and &arch polygon_file both describe the assembly: give one of them")
         return
       end if
-      if (cfg%wall%courses > 0) then
+      if (cfg%bridge%n_spans > 0 .and. cfg%wall%courses > 0) then
+        call fail(status, f//": &wall and &bridge both describe the assembly: give one of them")
+        return
+      end if
+      if (cfg%bridge%n_spans > 0) then
+        ! &bridge was checked when read; its ring stands in the &arch values drivers read.
+        call check_plausible_arch(cfg, f, status)
+      else if (cfg%wall%courses > 0) then
         call check_plausible_arch(cfg, f, status)   ! the wall's own group was checked when read
       else if (len_trim(a%polygon_file) == 0) then
         call g%check(f, status, when=arch_builder)

@@ -12,7 +12,7 @@ module voussoir_limit_lp
   use voussoir_geometry, only: polygon_area, polygon_centroid, cross2
   use voussoir_block_interfaces, only: interface_set_t
   use voussoir_placed_loads, only: placed_loads_t
-  use voussoir_glpk, only: lp_solve, lp_free, lp_lower, lp_upper, lp_fixed, &
+  use voussoir_glpk, only: lp_solve, lp_free, lp_lower, lp_upper, lp_double, lp_fixed, &
                            lp_optimal, lp_infeasible, lp_unbounded
   implicit none
   private
@@ -37,6 +37,11 @@ module voussoir_limit_lp
     real(dp), allocatable :: live_n(:, :)      !! (2, n_bodies) live load per unit lambda [N]
     real(dp), allocatable :: live_moment_nm(:) !! its moment about the centroid per unit lambda [N m]
     real(dp), allocatable :: centroid(:, :)    !! (2, n_bodies) [m]
+    !> Bounded forces (a fill's pressure): on block body(k) at xy(:, k) along dir(:, k),
+    !> between lo_n(k) and hi_n(k) [N]; the LP chooses each.
+    integer :: n_bounded = 0
+    integer, allocatable :: bounded_body(:)
+    real(dp), allocatable :: bounded_xy(:, :), bounded_dir(:, :), bounded_lo_n(:), bounded_hi_n(:)
   end type block_loads_t
 
   !> The solution of one linear programme.
@@ -50,17 +55,20 @@ module voussoir_limit_lp
     real(dp), allocatable :: velocity(:, :) !! (3, n_bodies) u_x, u_y at the centroid, omega; live power 1
     integer, allocatable :: mode(:)         !! joint_closed / _hinge / _sliding / _open per interface
     integer, allocatable :: pivot_end(:)    !! the end a hinge turns about (1 or 2), else 0
+    real(dp), allocatable :: bounded_n(:)   !! each bounded force's value at collapse [N]
     integer :: unbounded_body = 0           !! a block of the interface along which lambda grows, if known
   end type lp_result_t
 
 contains
 
-  !> Weights (density x area x width x g) and the live load of a horizontal acceleration
-  !> lambda g towards +x: lambda times the weight, horizontally.
+  !> Weights (density x area x width x g; each block's own density where the assembly gives
+  !> it) and the live load of a horizontal acceleration lambda g towards +x: lambda times
+  !> the weight, horizontally.
   pure subroutine block_loads(asm, density_kg_m3, width_m, g_m_s2, loads)
     type(assembly_t), intent(in) :: asm
     real(dp), intent(in) :: density_kg_m3, width_m, g_m_s2
     type(block_loads_t), intent(out) :: loads
+    real(dp) :: rho
     integer :: b
     allocate (loads%weight_n(asm%n_bodies), loads%live_n(2, asm%n_bodies), loads%centroid(2, asm%n_bodies), &
               loads%dead_n(2, asm%n_bodies), loads%dead_moment_nm(asm%n_bodies), loads%live_moment_nm(asm%n_bodies))
@@ -68,7 +76,9 @@ contains
     loads%dead_moment_nm = 0.0_dp
     loads%live_moment_nm = 0.0_dp
     do b = 1, asm%n_bodies
-      loads%weight_n(b) = density_kg_m3*polygon_area(asm%polygon(b)%xy)*width_m*g_m_s2
+      rho = density_kg_m3
+      if (allocated(asm%density_kg_m3)) rho = asm%density_kg_m3(b)   ! a bridge's parts
+      loads%weight_n(b) = rho*polygon_area(asm%polygon(b)%xy)*width_m*g_m_s2
       loads%centroid(:, b) = polygon_centroid(asm%polygon(b)%xy)
       loads%live_n(:, b) = [loads%weight_n(b), 0.0_dp]
     end do
@@ -82,6 +92,14 @@ contains
     type(block_loads_t), intent(inout) :: loads
     real(dp) :: moment
     integer :: k, b
+    if (allocated(placed%pressure_block)) then   ! a fill's pressure: bounded forces
+      loads%n_bounded = placed%n_pressure
+      loads%bounded_body = placed%pressure_block
+      loads%bounded_xy = placed%pressure_xy
+      loads%bounded_dir = placed%pressure_dir
+      loads%bounded_lo_n = placed%pressure_lo_n
+      loads%bounded_hi_n = placed%pressure_hi_n
+    end if
     if (any(placed%live)) then
       loads%live_n = 0.0_dp
       loads%live_moment_nm = 0.0_dp
@@ -127,10 +145,11 @@ contains
       n_rows = n_rows + 3
     end do
     n_rows = n_rows + 2*nf
-    n_cols = 3*nf + 1          ! N1, N2, S per interface, then lambda
+    n_cols = 3*nf + 1 + loads%n_bounded   ! N1, N2, S per interface, lambda, then the bounded forces
     scale_n = max(maxval(loads%weight_n, mask=.not. asm%driven), maxval(norm2(loads%live_n, dim=1)), tiny(1.0_dp))
     allocate (row_kind(n_rows), row_lo(n_rows), row_hi(n_rows), col_kind(n_cols), col_lo(n_cols), &
-              col_hi(n_cols), obj(n_cols), ia(24*nf + 3*asm%n_bodies), ja(24*nf + 3*asm%n_bodies), ar(24*nf + 3*asm%n_bodies))
+              col_hi(n_cols), obj(n_cols), ia(24*nf + 3*asm%n_bodies + 3*loads%n_bounded), &
+              ja(24*nf + 3*asm%n_bodies + 3*loads%n_bounded), ar(24*nf + 3*asm%n_bodies + 3*loads%n_bounded))
     row_kind = lp_fixed
     row_lo = 0.0_dp
     do b = 1, asm%n_bodies
@@ -139,11 +158,11 @@ contains
                                                             -loads%dead_moment_nm(b)]/scale_n
     end do
     row_hi = row_lo
-    col_kind = [([lp_lower, lp_lower, lp_free], k=1, nf), lp_lower]
+    col_kind = [([lp_lower, lp_lower, lp_free], k=1, nf), lp_lower, (lp_double, k=1, loads%n_bounded)]
     col_lo = 0.0_dp
     col_hi = 0.0_dp
     obj = 0.0_dp
-    obj(n_cols) = 1.0_dp
+    obj(3*nf + 1) = 1.0_dp
     ne = 0
     do k = 1, nf
       call interface_columns(faces, k, loads%centroid, row_of, ia, ja, ar, ne)
@@ -153,11 +172,12 @@ contains
       call put(n_rows - 2*nf + 2*k - 1, [3*k - 2, 3*k - 1, 3*k], [-friction(k), -friction(k), 1.0_dp])
       call put(n_rows - 2*nf + 2*k, [3*k - 2, 3*k - 1, 3*k], [-friction(k), -friction(k), -1.0_dp])
     end do
+    call bounded_columns(loads, 3*nf + 1, scale_n, row_of, col_kind, col_lo, col_hi, ia, ja, ar, ne)
     do b = 1, asm%n_bodies     ! the live load, lambda times live_n and its moment
       if (row_of(b) == 0) cycle
-      call put(row_of(b), [n_cols], [loads%live_n(1, b)/scale_n])
-      call put(row_of(b) + 1, [n_cols], [loads%live_n(2, b)/scale_n])
-      if (loads%live_moment_nm(b) /= 0.0_dp) call put(row_of(b) + 2, [n_cols], [loads%live_moment_nm(b)/scale_n])
+      call put(row_of(b), [3*nf + 1], [loads%live_n(1, b)/scale_n])
+      call put(row_of(b) + 1, [3*nf + 1], [loads%live_n(2, b)/scale_n])
+      if (loads%live_moment_nm(b) /= 0.0_dp) call put(row_of(b) + 2, [3*nf + 1], [loads%live_moment_nm(b)/scale_n])
     end do
 
     ! Moment arms of round-off size (1e-17 where a force passes through a centroid) ruin
@@ -172,6 +192,7 @@ contains
       res%end_xy = faces%end_xy
       res%normal_n = scale_n*reshape([(x(3*k - 2:3*k - 1), k=1, nf)], [2, nf])
       res%shear_n = scale_n*[(x(3*k), k=1, nf)]
+      res%bounded_n = scale_n*x(3*nf + 2:n_cols)
       call velocities_from_duals(asm, loads, row_of, dual, res%velocity)
       call classify_joints(faces, loads%centroid, res%velocity, res%mode, res%pivot_end)
       res%load_factor_upper = work_load_factor(faces, loads, res%velocity, cohesion_n)
@@ -179,7 +200,7 @@ contains
       call fail(status, 'the dead load alone brings the assembly down: no equilibrium without tension '// &
                 'and within friction carries the weights (the linear programme is infeasible)')
     case (lp_unbounded)
-      call refuse_unbounded(asm, faces, loads, ray, n_cols, res, status)
+      call refuse_unbounded(asm, faces, loads, ray, 3*nf + 1, res, status)
     case default
       call fail(status, 'GLPK failed to solve the linear programme of the limit analysis')
     end select
@@ -199,6 +220,30 @@ contains
     end subroutine put
 
   end subroutine lp_capacity
+
+  !> The columns of the bounded forces, after column `first - 1`: their bounds (scaled by
+  !> `scale_n`; fixed where they meet) and their force and moment on their blocks' rows.
+  pure subroutine bounded_columns(loads, first, scale_n, row_of, col_kind, col_lo, col_hi, ia, ja, ar, ne)
+    type(block_loads_t), intent(in) :: loads
+    integer, intent(in) :: first, row_of(:)
+    real(dp), intent(in) :: scale_n
+    integer, intent(inout) :: col_kind(:), ia(:), ja(:), ne
+    real(dp), intent(inout) :: col_lo(:), col_hi(:), ar(:)
+    integer :: k, b, c
+    do k = 1, loads%n_bounded
+      c = first + k
+      col_lo(c) = loads%bounded_lo_n(k)/scale_n
+      col_hi(c) = loads%bounded_hi_n(k)/scale_n
+      if (col_hi(c) <= col_lo(c)) col_kind(c) = lp_fixed
+      b = loads%bounded_body(k)
+      if (row_of(b) == 0) cycle
+      ia(ne + 1:ne + 3) = row_of(b) + [0, 1, 2]
+      ja(ne + 1:ne + 3) = c
+      ar(ne + 1:ne + 3) = [loads%bounded_dir(:, k), cross2(loads%bounded_xy(:, k) - loads%centroid(:, b), &
+                                                           loads%bounded_dir(:, k))]
+      ne = ne + 3
+    end do
+  end subroutine bounded_columns
 
   !> The non-associative capacity (Gilbert, Casapulla and Ahmed 2006): Coulomb friction
   !> without dilatancy. Each step replaces the friction of every interface by a fixed
@@ -393,13 +438,13 @@ contains
 
   !> The upper bound: lambda of the mechanism by the work equation, the live load's
   !> power being 1: lambda = dissipation - power of the dead load (weights and dead
-  !> point loads). Coulomb with dilatancy dissipates nothing; a fixed shear limit c
-  !> dissipates c |slip|.
+  !> point loads) - power of the bounded forces. Coulomb with dilatancy dissipates nothing;
+  !> a fixed shear limit c dissipates c |slip|.
   pure real(dp) function work_load_factor(faces, loads, velocity, cohesion_n) result(lambda)
     type(interface_set_t), intent(in) :: faces
     type(block_loads_t), intent(in) :: loads
     real(dp), intent(in) :: velocity(:, :), cohesion_n(:)
-    real(dp) :: opening(2), slip, dissipation
+    real(dp) :: opening(2), slip, dissipation, rate
     integer :: k
     dissipation = 0.0_dp
     do k = 1, faces%n
@@ -408,6 +453,13 @@ contains
     end do
     lambda = dissipation - sum(loads%dead_n(1, :)*velocity(1, :) + (loads%dead_n(2, :) - loads%weight_n)*velocity(2, :) &
                                + loads%dead_moment_nm*velocity(3, :))
+    ! A bounded force resists with its upper bound where its point moves against it (the ring
+    ! into the fill: passive) and pushes with its lower bound where it moves with it (active).
+    do k = 1, loads%n_bounded
+      rate = dot_product(loads%bounded_dir(:, k), point_velocity(velocity(:, loads%bounded_body(k)), &
+                         loads%centroid(:, loads%bounded_body(k)), loads%bounded_xy(:, k)))
+      lambda = lambda - merge(loads%bounded_hi_n(k), loads%bounded_lo_n(k), rate < 0.0_dp)*rate
+    end do
   end function work_load_factor
 
   !> 'closed', 'hinge', 'sliding' or 'open'.

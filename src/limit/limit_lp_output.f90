@@ -6,6 +6,7 @@ module voussoir_limit_lp_output
   use voussoir_hinge_side, only: side_name
   use voussoir_limit_lp, only: lp_result_t, joint_mode_name, joint_closed, joint_hinge
   use voussoir_limit_lp_study, only: lp_study_t, lp_direction_t
+  use voussoir_placed_loads, only: kind_point, kind_fill
   implicit none
   private
 
@@ -29,12 +30,15 @@ contains
       lp%crushing_converged))//trim(merge(', an interface crushed through', '                              ', &
       lp%crushed_through))//')'
     if (lp%has_path) then
-      write (u, '(a)') '  load factor along the path (x of the first live load [m], associative lambda):'
+      write (u, '(a)') '  load factor along the path (x of the vehicle: the resultant of its live loads [m], associative lambda;'
+      write (u, '(a)') '  "joint": a live load stands over the end of a joint on the top surface, added to the grid):'
       do i = 1, size(lp%curve_x_m)
         if (lp%curve_load_factor(i) < 0.0_dp) then
-          write (u, '(a)') '    '//fmt_significant(lp%curve_x_m(i), 6)//'  none (no mechanism opens)'
+          write (u, '(a)') '    '//fmt_significant(lp%curve_x_m(i), 6)//'  none (no mechanism opens)'// &
+            trim(merge('  joint', '       ', lp%curve_at_joint(i)))
         else
-          write (u, '(a)') '    '//fmt_significant(lp%curve_x_m(i), 6)//'  '//fmt_significant(lp%curve_load_factor(i), 7)
+          write (u, '(a)') '    '//fmt_significant(lp%curve_x_m(i), 6)//'  '// &
+            fmt_significant(lp%curve_load_factor(i), 7)//trim(merge('  joint', '       ', lp%curve_at_joint(i)))
         end if
       end do
       write (u, '(a)') '  critical position: x = '//fmt_significant(lp%critical_x_m, 6)//' m (the results below)'
@@ -108,6 +112,8 @@ contains
       text = 'joint '//itoa(lp%joint(k))
     else
       text = 'blocks '//itoa(lp%faces%body(1, k))//'-'//itoa(lp%faces%body(2, k))
+      if (allocated(lp%block_name)) text = text//' ('//trim(lp%block_name(lp%faces%body(1, k)))//' / '// &
+        trim(lp%block_name(lp%faces%body(2, k)))//')'
     end if
   end function joint_name
 
@@ -122,7 +128,7 @@ contains
     else
       text = text//'  "live_load": null,'//nl
     end if
-    text = text//'  "point_loads": '//point_loads_json(lp)//','//nl//'  "critical_position": '
+    text = text//'  "point_loads": '//point_loads_json(lp)//','//nl//fill_json(lp)//'  "critical_position": '
     if (lp%has_path) then
       text = text//'{"x_m": '//fmt_json_real(lp%critical_x_m)//', "load_factor": '// &
              fmt_json_real(lp%critical_load_factor)//'},'//nl
@@ -239,16 +245,17 @@ contains
     text = text//']'
   end function forces_json
 
-  !> The point loads of &load as placed (the distributed dead load's strips left out):
-  !> the load j, the block, the point, the force [N] (a live one at load factor 1).
+  !> The point loads of &load as placed (the distributed dead load's strips, the fill's
+  !> weight and a live load's strips through the fill left out): the load j, the block,
+  !> the point, the force [N] (a live one at load factor 1).
   function point_loads_json(lp) result(text)
     type(lp_study_t), intent(in) :: lp
     character(len=:), allocatable :: text
     integer :: k
     text = '['
-    if (allocated(lp%placed%source)) then
+    if (allocated(lp%placed%kind)) then
       do k = 1, lp%placed%n
-        if (lp%placed%source(k) == 0) cycle
+        if (lp%placed%kind(k) /= kind_point) cycle
         if (len(text) > 1) text = text//', '
         text = text//'{"load": '//itoa(lp%placed%source(k))//', "block": '//itoa(lp%placed%block(k))// &
                ', "xy_m": '//xy_json(lp%placed%xy(:, k))//', "force_n": '//xy_json(lp%placed%force_n(:, k))// &
@@ -257,6 +264,53 @@ contains
     end if
     text = text//']'
   end function point_loads_json
+
+  !> With a fill: each live load on the fill's surface (load j, point, force [N] at load
+  !> factor 1) and the x it spreads over on the blocks; and the fill's weight on each top
+  !> face of a block (block, point, force [N]).
+  function fill_json(lp) result(text)
+    type(lp_study_t), intent(in) :: lp
+    character(len=:), allocatable :: text
+    character(len=1), parameter :: nl = achar(10)
+    integer :: k
+    logical :: first
+    text = '  "surface_loads": ['
+    if (allocated(lp%placed%surface_source)) then
+      do k = 1, lp%placed%n_surface
+        if (k > 1) text = text//', '
+        text = text//'{"load": '//itoa(lp%placed%surface_source(k))//', "xy_m": '// &
+               xy_json(lp%placed%surface_xy(:, k))//', "force_n": '//xy_json(lp%placed%surface_force_n(:, k))// &
+               ', "spread_x_m": '//xy_json(lp%placed%surface_spread_x_m(:, k))//'}'
+      end do
+    end if
+    text = text//'],'//nl//'  "fill_loads": ['
+    first = .true.
+    if (allocated(lp%placed%kind)) then
+      do k = 1, lp%placed%n
+        if (lp%placed%kind(k) /= kind_fill) cycle
+        if (.not. first) text = text//', '
+        first = .false.
+        text = text//'{"block": '//itoa(lp%placed%block(k))//', "xy_m": '//xy_json(lp%placed%xy(:, k))// &
+               ', "force_n": '//xy_json(lp%placed%force_n(:, k))//'}'
+      end do
+    end if
+    text = text//'],'//nl//'  "fill_pressures": ['
+    if (allocated(lp%placed%pressure_block)) then
+      do k = 1, lp%placed%n_pressure
+        if (k > 1) text = text//', '
+        text = text//'{"block": '//itoa(lp%placed%pressure_block(k))//', "xy_m": '// &
+               xy_json(lp%placed%pressure_xy(:, k))//', "direction": '//xy_json(lp%placed%pressure_dir(:, k))// &
+               ', "active_n": '//fmt_json_real(lp%placed%pressure_lo_n(k))//', "passive_n": '// &
+               fmt_json_real(lp%placed%pressure_hi_n(k))//', "at_collapse_n": '
+        if (lp%solved .and. allocated(lp%assoc%bounded_n)) then
+          text = text//fmt_json_real(lp%assoc%bounded_n(k))//'}'
+        else
+          text = text//'null}'
+        end if
+      end do
+    end if
+    text = text//'],'//nl
+  end function fill_json
 
   !> [{"x_m": .., "load_factor": ..}, ...] along the path (null where no mechanism opens).
   function curve_json(lp) result(text)
@@ -267,7 +321,8 @@ contains
     if (lp%has_path) then
       do i = 1, size(lp%curve_x_m)
         if (i > 1) text = text//', '
-        text = text//'{"x_m": '//fmt_json_real(lp%curve_x_m(i))//', "load_factor": '
+        text = text//'{"x_m": '//fmt_json_real(lp%curve_x_m(i))//', "at_joint": '//json_bool(lp%curve_at_joint(i))// &
+               ', "load_factor": '
         if (lp%curve_load_factor(i) < 0.0_dp) then
           text = text//'null}'
         else

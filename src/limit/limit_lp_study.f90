@@ -9,7 +9,7 @@ module voussoir_limit_lp_study
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa, fmt_significant
   use voussoir_load_config, only: load_config_t
-  use voussoir_placed_loads, only: placed_loads_t, place_loads, moves_on_top, first_live_x
+  use voussoir_placed_loads, only: placed_loads_t, place_loads, moves_on_top, vehicle_x, top_surface
   use voussoir_assembly, only: assembly_t
   use voussoir_hinge_side, only: side_intrados, side_extrados
   use voussoir_block_interfaces, only: interface_set_t, find_interfaces
@@ -55,10 +55,12 @@ module voussoir_limit_lp_study
     logical :: live_is_acceleration = .true.  !! the live load is lambda g towards +x (else point loads)
     type(placed_loads_t) :: placed            !! the loads of &load (at the critical position on a path)
     logical :: has_path = .false.             !! the live loads moved along &load's path
-    real(dp) :: critical_x_m = 0.0_dp         !! the position of least load factor (of the first live load) [m]
+    real(dp) :: critical_x_m = 0.0_dp         !! the position of least load factor (the vehicle's: its live loads' resultant) [m]
     real(dp) :: critical_load_factor = 0.0_dp !! the associative load factor there
     real(dp), allocatable :: curve_x_m(:)     !! the positions on the path [m]
     real(dp), allocatable :: curve_load_factor(:) !! the associative load factor at each (-1: unbounded)
+    logical, allocatable :: curve_at_joint(:) !! the position puts a live load over a joint's end (not a grid point)
+    character(len=32), allocatable :: block_name(:) !! the assembly's names of its blocks, where it has them
     type(lp_direction_t) :: neg               !! the horizontal acceleration towards -x
     type(crushing_t) :: crush                 !! the compressive strength (rigid: 0)
     integer :: crushing_steps = 0             !! LPs of the crushing iteration (associative, +x)
@@ -107,8 +109,14 @@ contains
       return
     end do
     call name_arch_joints(asm, study)
+    if (allocated(asm%block_name)) study%block_name = asm%block_name
     allocate (mu(study%faces%n))
     mu = friction
+    if (allocated(asm%friction)) then   ! a bridge's parts: the lesser of the two blocks'
+      do b = 1, study%faces%n
+        mu(b) = minval(asm%friction(study%faces%body(:, b)))
+      end do
+    end if
     if (present(joint_friction)) then
       call joint_coefficients(asm, study, joint_friction, mu, status)
       if (.not. status%ok) return
@@ -116,7 +124,8 @@ contains
     shift_m = 0.0_dp
     study%live_load = live_acceleration_words
     allocate (study%placed%block(0), study%placed%source(0), study%placed%xy(2, 0), study%placed%force_n(2, 0), &
-              study%placed%live(0))
+              study%placed%live(0), study%placed%kind(0), study%placed%surface_source(0), &
+              study%placed%surface_xy(2, 0), study%placed%surface_force_n(2, 0), study%placed%surface_spread_x_m(2, 0))
     all_dead = .false.
     if (present(loads_dead)) all_dead = loads_dead
     if (present(load) .and. all_dead) then
@@ -132,6 +141,15 @@ contains
       call place_loads(load, asm, shift_m, study%placed, status)
       if (.not. status%ok) return
       study%live_load = live_load_words(load)
+      ! With a fill the live loads stand on its surface, not on the blocks' top.
+      if (asm%has_fill .and. index(study%live_load, ', on the top surface') > 0) &
+        study%live_load = replaced(study%live_load, ', on the top surface', ', on the fill''s surface')
+      if (asm%has_fill) study%live_load = study%live_load//'; and the fill: its weight on the blocks beneath its '// &
+        'surface at y = '//fmt_significant(asm%fill_level_m, 6)//' m, the live loads standing on that surface and '// &
+        'spread through it at '//fmt_significant(asm%dispersion_angle_deg, 6)//' deg from the vertical either side'
+      if (asm%fill_passive_k > 0.0_dp) study%live_load = study%live_load//'; its horizontal pressure on the '// &
+        'ring between '//fmt_significant(asm%fill_active_k, 4)//' and '//fmt_significant(asm%fill_passive_k, 4)// &
+        ' x the vertical stress (active; passive as mobilised), the LP choosing'
       study%live_is_acceleration = .not. any(study%placed%live)
     end if
     call block_loads(asm, density_kg_m3, width_m, g_m_s2, loads)
@@ -210,10 +228,14 @@ contains
     path_position_m = ((load%path_points - i)*load%path_x0_m + (i - 1)*load%path_x1_m)/(load%path_points - 1)
   end function path_position_m
 
-  !> The associative load factor with the first live load at each position of the path
-  !> (the others at their offsets from it, on the top surface); the least one (the first
-  !> of equal ones, to 1e-9) is the critical position, `shift_m` the shift of the live loads that puts them there. A
-  !> position where no mechanism opens (the loads on a support) has no load factor.
+  !> The associative load factor with the vehicle (the resultant of the live loads) at each
+  !> position of the path (every live load keeping its offset from it, on the top surface),
+  !> and at every position in the path's range where a live load (any axle) stands exactly
+  !> over a joint's end on the top surface: the load factor jumps there (a load on a joint's
+  !> corner against one on a block), so a grid alone can miss the least. The least one (the
+  !> first of equal ones, to 1e-9) is the critical position, `shift_m` the shift of the live
+  !> loads that puts them there. A position where no mechanism opens (the loads on a
+  !> support) has no load factor.
   subroutine critical_position(asm, density_kg_m3, width_m, load, study, mu, shift_m, status)
     type(assembly_t), intent(in) :: asm
     real(dp), intent(in) :: density_kg_m3, width_m
@@ -222,35 +244,27 @@ contains
     real(dp), intent(in) :: mu(:)
     real(dp), intent(out) :: shift_m
     type(status_t), intent(inout) :: status
-    type(placed_loads_t) :: placed
-    type(block_loads_t) :: loads
-    type(lp_result_t) :: res
-    type(status_t) :: lp_status
-    integer :: i, best, steps
+    real(dp), allocatable :: joints_x(:)
     real(dp) :: lowest
-    logical :: converged, crushed
+    integer :: i, best
 
     study%has_path = .true.
-    allocate (study%curve_x_m(load%path_points), study%curve_load_factor(load%path_points))
+    call joint_positions(asm, study%faces, load, joints_x)
+    study%curve_x_m = [(path_position_m(load, i), i=1, load%path_points)]
+    study%curve_at_joint = [(.false., i=1, load%path_points)]
+    do i = 1, size(joints_x)
+      if (any(abs(study%curve_x_m - joints_x(i)) <= 1.0e-9_dp)) cycle
+      study%curve_x_m = [study%curve_x_m, joints_x(i)]
+      study%curve_at_joint = [study%curve_at_joint, .true.]
+    end do
+    call sort_curve(study%curve_x_m, study%curve_at_joint)
+    allocate (study%curve_load_factor(size(study%curve_x_m)))
     best = 0
-    do i = 1, load%path_points
-      study%curve_x_m(i) = path_position_m(load, i)
-      call place_loads(load, asm, study%curve_x_m(i) - first_live_x(load), placed, status)
+    do i = 1, size(study%curve_x_m)
+      call load_factor_at(asm, density_kg_m3, width_m, load, study, mu, study%curve_x_m(i), &
+                          study%curve_load_factor(i), status)
       if (.not. status%ok) return
-      call block_loads(asm, density_kg_m3, width_m, g_m_s2, loads)
-      call add_placed_loads(placed, loads)
-      lp_status = status_t()
-      call crushing_capacity(asm, study%faces, loads, mu, study%crush, res, steps, converged, crushed, lp_status)
-      study%curve_load_factor(i) = -1.0_dp
-      if (lp_status%ok) then
-        study%curve_load_factor(i) = res%load_factor
-        best = i
-      else if (res%outcome /= lp_outcome_unbounded) then
-        status = lp_status
-        status%message = trim(status%message)//' (live loads at path position x = '// &
-                         fmt_significant(study%curve_x_m(i), 6)//' m)'
-        return
-      end if
+      if (study%curve_load_factor(i) >= 0.0_dp) best = i
     end do
     if (best == 0) then
       call fail(status, 'no position of &load path_x0_m .. path_x1_m has a load factor: the live loads open no '// &
@@ -264,8 +278,105 @@ contains
                    .true., dim=1)
     study%critical_x_m = study%curve_x_m(best)
     study%critical_load_factor = study%curve_load_factor(best)
-    shift_m = study%critical_x_m - first_live_x(load)
+    shift_m = study%critical_x_m - vehicle_x(load)
   end subroutine critical_position
+
+  !> The associative load factor with the vehicle at `x_m` (-1 where no mechanism opens).
+  subroutine load_factor_at(asm, density_kg_m3, width_m, load, study, mu, x_m, load_factor, status)
+    type(assembly_t), intent(in) :: asm
+    real(dp), intent(in) :: density_kg_m3, width_m, mu(:), x_m
+    type(load_config_t), intent(in) :: load
+    type(lp_study_t), intent(in) :: study
+    real(dp), intent(out) :: load_factor
+    type(status_t), intent(inout) :: status
+    type(placed_loads_t) :: placed
+    type(block_loads_t) :: loads
+    type(lp_result_t) :: res
+    type(status_t) :: lp_status
+    integer :: steps
+    logical :: converged, crushed
+    load_factor = -1.0_dp
+    call place_loads(load, asm, x_m - vehicle_x(load), placed, status)
+    if (.not. status%ok) return
+    call block_loads(asm, density_kg_m3, width_m, g_m_s2, loads)
+    call add_placed_loads(placed, loads)
+    lp_status = status_t()
+    call crushing_capacity(asm, study%faces, loads, mu, study%crush, res, steps, converged, crushed, lp_status)
+    if (lp_status%ok) then
+      load_factor = res%load_factor
+    else if (res%outcome /= lp_outcome_unbounded) then
+      status = lp_status
+      status%message = trim(status%message)//' (live loads at path position x = '//fmt_significant(x_m, 6)//' m)'
+    end if
+  end subroutine load_factor_at
+
+  !> The vehicle's positions in the path's range [m] at which one of its live loads (any
+  !> axle) stands over the end of an interface on the top surface of `asm` (on a ring, the
+  !> extrados ends of its joints), a micrometre to either side of it.
+  pure subroutine joint_positions(asm, faces, load, x)
+    type(assembly_t), intent(in) :: asm
+    type(interface_set_t), intent(in) :: faces
+    type(load_config_t), intent(in) :: load
+    real(dp), allocatable, intent(out) :: x(:)
+    real(dp), parameter :: joint_side_m = 1.0e-6_dp
+    real(dp) :: p(2), y, offset, xv
+    integer :: k, e, j, a, blk, side
+    logical :: ok
+    allocate (x(0))
+    do k = 1, faces%n
+      do e = 1, 2
+        p = faces%end_xy(:, e, k)
+        call top_surface(asm, p(1), y, blk, ok)
+        if (.not. ok .or. abs(y - p(2)) > 1.0e-9_dp*max(1.0_dp, abs(p(2)))) cycle
+        do j = 1, load%n_point_loads
+          if (.not. load%point_load_live(j)) cycle
+          do a = 0, load%n_axles
+            offset = load%point_load_x_m(j) - vehicle_x(load)
+            if (a > 0) offset = offset + load%axle_spacing_m(a)
+            ! A micrometre either side: the load on each of the two blocks that meet there.
+            do side = -1, 1, 2
+              xv = p(1) - offset + side*joint_side_m
+              if (xv < load%path_x0_m .or. xv > load%path_x1_m) cycle
+              if (any(abs(x - xv) <= 1.0e-9_dp)) cycle
+              x = [x, xv]
+            end do
+          end do
+        end do
+      end do
+    end do
+  end subroutine joint_positions
+
+  !> Sort the positions `x` ascending, `tag` with them (insertion sort: tens of entries).
+  pure subroutine sort_curve(x, tag)
+    real(dp), intent(inout) :: x(:)
+    logical, intent(inout) :: tag(:)
+    real(dp) :: xk
+    logical :: tk
+    integer :: i, k
+    do k = 2, size(x)
+      xk = x(k)
+      tk = tag(k)
+      i = k - 1
+      do while (i >= 1)
+        if (x(i) <= xk) exit
+        x(i + 1) = x(i)
+        tag(i + 1) = tag(i)
+        i = i - 1
+      end do
+      x(i + 1) = xk
+      tag(i + 1) = tk
+    end do
+  end subroutine sort_curve
+
+  !> `text` with its first `old` replaced by `new`.
+  pure function replaced(text, old, new) result(out)
+    character(len=*), intent(in) :: text, old, new
+    character(len=:), allocatable :: out
+    integer :: k
+    k = index(text, old)
+    out = text
+    if (k > 0) out = text(:k - 1)//new//text(k + len(old):)
+  end function replaced
 
   !> 'live point loads of &load: 1 of 1e4 N (x 3 axles) ...; dead: ...'
   function live_load_words(load) result(text)

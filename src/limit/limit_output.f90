@@ -27,7 +27,6 @@ contains
     type(limit_result_t), intent(in) :: res
     type(thickness_result_t), intent(in) :: tmin
     type(lp_study_t), intent(in) :: lp
-    character(len=*), parameter :: rule = '  ------------------------------------------------------------------'
     if (lp%assembly /= 'arch') then
       write (u, '(a)') 'voussoir-limit: '//path
       if (lp%assembly == 'restrained arch') then
@@ -38,8 +37,15 @@ contains
         write (u, '(a)') lp%assembly//': the four-hinge analysis and the minimum thickness of an arch do not '// &
           'apply; the limit analysis by linear programming does (driven blocks: the fixed supports)'
       end if
-      write (u, '(a)') '      interface inset '//fmt_significant(1.0e3_dp*opts%inset_m)//' mm, friction '// &
-        fmt_significant(cfg%arch%friction)
+      if (lp%assembly == 'bridge') then
+        write (u, '(a)') '      interface inset '//fmt_significant(1.0e3_dp*opts%inset_m)//' mm, friction: ring '// &
+          fmt_significant(cfg%bridge%ring_friction)//', piers '//fmt_significant(cfg%bridge%pier_friction)// &
+          ', skewbacks '//fmt_significant(cfg%bridge%abutment_friction)//' (an interface takes the lesser of its '// &
+          "two blocks'; the LP's heading below gives the ring's)"
+      else
+        write (u, '(a)') '      interface inset '//fmt_significant(1.0e3_dp*opts%inset_m)//' mm, friction '// &
+          fmt_significant(cfg%arch%friction)
+      end if
       call write_lp_table(u, lp, cfg%arch%friction)
       return
     end if
@@ -49,7 +55,31 @@ contains
         ' deg, r_ext '//fmt_significant(a%r_ext_m)//' m, thickness '//fmt_significant(a%thickness_m)//' m (t/R_ext '// &
         fmt_significant(a%thickness_m/a%r_ext_m)//')'
       write (u, '(a)') '      pivot inset '//fmt_significant(1.0e3_dp*opts%inset_m)//' mm, friction '//fmt_significant(a%friction)
-      write (u, '(/,a)') 'Horizontal collapse (rigid blocks, no tension, no sliding; load = lambda x weight)'
+      ! A load case comes first: the acceleration case of the weights alone is another
+      ! question, printed after it and named as such.
+      if (.not. lp%live_is_acceleration) call write_lp_table(u, lp, a%friction)
+      call write_four_hinge(u, cfg, res, tmin, .not. lp%live_is_acceleration)
+      if (lp%live_is_acceleration) call write_lp_table(u, lp, a%friction)
+    end associate
+  end subroutine write_table
+
+  !> The four-hinge analysis of the arch under horizontal acceleration (its weights alone)
+  !> and its minimum thickness; `after_load_case`: printed after the load case of &load,
+  !> whose live loads it does not take.
+  subroutine write_four_hinge(u, cfg, res, tmin, after_load_case)
+    integer, intent(in) :: u
+    type(config_t), intent(in) :: cfg
+    type(limit_result_t), intent(in) :: res
+    type(thickness_result_t), intent(in) :: tmin
+    logical, intent(in) :: after_load_case
+    character(len=*), parameter :: rule = '  ------------------------------------------------------------------'
+    associate (a => cfg%arch)
+      if (after_load_case) then
+        write (u, '(/,a)') 'Not the load case above: the arch under horizontal acceleration, its weights alone '// &
+          '(four-hinge analysis; rigid blocks, no tension, no sliding; load = lambda x weight, no &load)'
+      else
+        write (u, '(/,a)') 'Horizontal collapse (rigid blocks, no tension, no sliding; load = lambda x weight)'
+      end if
       write (u, '(a)') '  direction  lambda     lambda g [m/s2]  mechanism (hinges from the left)'
       write (u, '(a)') rule
       call direction_row(u, '+x', res%lambda_pos, res%hinges_pos(1:res%n_hinges_pos), &
@@ -70,8 +100,8 @@ contains
         end if
         write (u, '(a)') '  friction check: '//friction_text(res, a%n_voussoirs, a%friction, &
                                                              any(a%joint_friction >= 0.0_dp))
-        if (has_loads(cfg)) write (u, '(a)') '  (the four-hinge analysis takes the weights alone: the loads of '// &
-          '&load enter the linear programme below)'
+        if (has_loads(cfg) .and. .not. after_load_case) write (u, '(a)') '  (the four-hinge analysis takes the '// &
+          'weights alone: the dead loads of &load enter the linear programme below)'
       end if
       if (tmin%computed) then
         write (u, '(/,a)') 'Minimum thickness (same embrace, voussoirs, r_ext and inset; own weight only)'
@@ -79,9 +109,8 @@ contains
           '   t_min '//fmt_significant(1.0e3_dp*tmin%ratio_ext*a%r_ext_m)//' mm'
         write (u, '(a)') '  hinges: '//hinge_text(tmin%hinges, tmin%sides)
       end if
-      call write_lp_table(u, lp, a%friction)
     end associate
-  end subroutine write_table
+  end subroutine write_four_hinge
 
   !> One line of the capacity table.
   subroutine direction_row(u, name, lambda, hinges, sides)
@@ -170,9 +199,9 @@ contains
     character(len=:), allocatable :: text
     if (lp%assembly /= 'arch') then
       if (lp%assembly == 'restrained arch') then
-        call write_json_any(u, path, cfg, lp, arch_json(cfg, opts, arch))
+        call write_json_any(u, path, cfg, lp, arch_json(cfg, opts, arch), blocks_json(arch))
       else
-        call write_json_any(u, path, cfg, lp, 'null')
+        call write_json_any(u, path, cfg, lp, 'null', blocks_json(arch))
       end if
       return
     end if
@@ -183,6 +212,7 @@ contains
         '  "code_version": '//json_string(code_version)//','//nl// &
         '  "input_file": '//json_string(path)//','//nl// &
         '  "g_m_s2": '//fmt_json_real(g_m_s2)//','//nl//lp_json(lp)// &
+        '  "blocks": '//blocks_json(arch)//','//nl// &
         '  "lambda_pos": '//finite_or_null(res%lambda_pos)//','//nl// &
         '  "lambda_neg": '//finite_or_null(res%lambda_neg)//','//nl// &
         '  "hinges_pos": '//hinge_json(res%hinges_pos(1:res%n_hinges_pos), res%sides_pos(1:res%n_hinges_pos))// &
@@ -247,21 +277,46 @@ contains
     end associate
   end function arch_json
 
+  !> The "blocks" list: every block of the assembly as analysed, in body order (the
+  !> numbers of "blocks" in contact_forces and point_loads, from 1), with its vertices
+  !> (counter-clockwise) [m], whether it is driven (a fixed support) and, for a bridge,
+  !> its name.
+  function blocks_json(asm) result(text)
+    type(assembly_t), intent(in) :: asm
+    character(len=:), allocatable :: text
+    integer :: b, k
+    text = '['
+    do b = 1, asm%n_bodies
+      if (b > 1) text = text//', '
+      text = text//'{"driven": '//json_bool(asm%driven(b))//', '
+      if (allocated(asm%block_name)) text = text//'"name": '//json_string(trim(asm%block_name(b)))//', '
+      text = text//'"vertices_xy_m": ['
+      do k = 1, size(asm%polygon(b)%xy, 2)
+        if (k > 1) text = text//', '
+        text = text//'['//fmt_json_real(asm%polygon(b)%xy(1, k))//', '//fmt_json_real(asm%polygon(b)%xy(2, k))//']'
+      end do
+      text = text//']}'
+    end do
+    text = text//']'
+  end function blocks_json
+
   !> The JSON of a wall, a polygon file or a restrained arch: every key of the arch's,
   !> null or empty where the four-hinge analysis of an arch does not apply (the "arch"
   !> object given for a restrained arch), and the LP's.
-  subroutine write_json_any(u, path, cfg, lp, arch_text)
+  subroutine write_json_any(u, path, cfg, lp, arch_text, blocks_text)
     integer, intent(in) :: u
     character(len=*), intent(in) :: path
     type(config_t), intent(in) :: cfg
     type(lp_study_t), intent(in) :: lp
     character(len=*), intent(in) :: arch_text   !! the "arch" object of a restrained arch, else null
+    character(len=*), intent(in) :: blocks_text !! the "blocks" list
     character(len=1), parameter :: nl = achar(10)
     write (u, '(a)') '{'//nl// &
       '  "producer": "voussoir-limit",'//nl// &
       '  "code_version": '//json_string(code_version)//','//nl// &
       '  "input_file": '//json_string(path)//','//nl// &
       '  "g_m_s2": '//fmt_json_real(g_m_s2)//','//nl//lp_json(lp)// &
+      '  "blocks": '//blocks_text//','//nl// &
       '  "lambda_pos": null,'//nl//'  "lambda_neg": null,'//nl// &
       '  "hinges_pos": [],'//nl//'  "hinges_neg": [],'//nl// &
       '  "bounds_meet_pos": false,'//nl//'  "bounds_meet_neg": false,'//nl// &

@@ -6,7 +6,7 @@ module voussoir_limit_study
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
   use voussoir_config, only: config_t, springings_none, has_loads
-  use voussoir_placed_loads, only: placed_loads_t, place_loads, first_live_x
+  use voussoir_placed_loads, only: placed_loads_t, place_loads, vehicle_x
   use voussoir_limit_lp_study, only: path_position_m
   use voussoir_namelist_group, only: nml_group_t
   use voussoir_input_range, only: need, need_range
@@ -96,7 +96,7 @@ contains
 
     f = trim(cfg%source_file)
     ! A restrained arch: the brackets are driven blocks the LP takes like any other.
-    if (cfg%wall%courses > 0 .or. len_trim(cfg%arch%polygon_file) > 0 .or. &
+    if (cfg%wall%courses > 0 .or. len_trim(cfg%arch%polygon_file) > 0 .or. cfg%bridge%n_spans > 0 .or. &
         cfg%arch%restrained_springings /= springings_none) then
       call analyse_any_assembly(cfg, opts, arch, lp, status)
       if (.not. status%ok) status%message = f//': '//trim(status%message)
@@ -156,6 +156,14 @@ contains
     type(status_t), intent(inout) :: status
     call build_config_assembly(cfg, asm, status)
     if (.not. status%ok) return
+    ! The fill's weight stands on the ring, but under horizontal acceleration its mass would
+    ! have to move with it, which this model of the fill does not carry.
+    if (asm%has_fill .and. .not. any(cfg%load%point_load_live(1:cfg%load%n_point_loads))) then
+      call fail(status, '&bridge fill_density_kg_m3 > 0 needs a live point load in &load: the fill is modelled '// &
+                'as its weight and the spread of live loads through it, not as a mass that a horizontal '// &
+                'acceleration would load (leave the fill out for the acceleration case)')
+      return
+    end if
     if (has_loads(cfg)) call check_loads_placed(cfg, asm, status)
     if (.not. status%ok) return
     associate (a => cfg%arch)
@@ -168,7 +176,9 @@ contains
       end if
       if (.not. status%ok) status%message = 'limit analysis by linear programming: '//trim(status%message)
     end associate
-    if (cfg%wall%courses > 0) then
+    if (cfg%bridge%n_spans > 0) then
+      lp%assembly = 'bridge'
+    else if (cfg%wall%courses > 0) then
       lp%assembly = 'wall'
     else if (len_trim(cfg%arch%polygon_file) > 0) then
       lp%assembly = 'polygon file'
@@ -187,7 +197,7 @@ contains
     if (cfg%load%path_points < 2) call place_loads(cfg%load, asm, 0.0_dp, placed, status)
     do i = 1, cfg%load%path_points
       if (.not. status%ok) return
-      call place_loads(cfg%load, asm, path_position_m(cfg%load, i) - first_live_x(cfg%load), placed, status)
+      call place_loads(cfg%load, asm, path_position_m(cfg%load, i) - vehicle_x(cfg%load), placed, status)
     end do
   end subroutine check_loads_placed
 

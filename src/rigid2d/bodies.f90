@@ -46,7 +46,7 @@ contains
     type(bodies_t), intent(out) :: bodies
     type(status_t), intent(inout) :: status
     integer :: i, nv, n, k
-    real(dp) :: area, c(2), e(2)
+    real(dp) :: area, c(2), e(2), rho
 
     n = assembly%n_bodies
     bodies%n = n
@@ -85,8 +85,10 @@ contains
           bodies%face_normal_local(:, k, i) = [e(2), -e(1)]/norm2(e)
         end do
         bodies%q(:, i) = [c(1), c(2), 0.0_dp]
-        bodies%mass_kg(i) = density_kg_m3*width_m*area
-        bodies%inertia_kg_m2(i) = density_kg_m3*width_m*polygon_polar_moment(xy)
+        rho = density_kg_m3
+        if (allocated(assembly%density_kg_m3)) rho = assembly%density_kg_m3(i)   ! a bridge's parts
+        bodies%mass_kg(i) = rho*width_m*area
+        bodies%inertia_kg_m2(i) = rho*width_m*polygon_polar_moment(xy)
       end associate
     end do
     bodies%q_ref = bodies%q

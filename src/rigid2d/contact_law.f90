@@ -24,6 +24,9 @@ module voussoir_contact_law
     real(dp) :: friction = 0.5_dp                   !! default Coulomb coefficient
     real(dp) :: inset_m = 0.0_dp                    !! contact points set in from face ends [m]
     type(pair_friction_t), allocatable :: pairs(:)  !! overrides, e.g. per joint
+    !> Each body's own coefficient, where the assembly gives them (a bridge's parts): a
+    !> contact takes the lesser of its two bodies'.
+    real(dp), allocatable :: body_friction(:)
   end type contact_law_t
 
 contains
@@ -39,6 +42,7 @@ contains
     integer :: j, n_set
     law%friction = friction
     law%inset_m = inset_m
+    if (allocated(assembly%friction)) law%body_friction = assembly%friction
     n_set = count(joint_friction >= 0.0_dp)
     allocate (law%pairs(n_set))
     if (n_set == 0) return
@@ -60,12 +64,14 @@ contains
     end do
   end subroutine contact_law_init
 
-  !> The friction coefficient between bodies `a` and `b`.
+  !> The friction coefficient between bodies `a` and `b`: a joint's own where set, else the
+  !> lesser of the two bodies' own where the assembly gives them, else the law's.
   pure real(dp) function pair_friction_of(law, a, b) result(mu)
     type(contact_law_t), intent(in) :: law
     integer, intent(in) :: a, b
     integer :: m
     mu = law%friction
+    if (allocated(law%body_friction)) mu = min(law%body_friction(a), law%body_friction(b))
     do m = 1, size(law%pairs)
       if ((law%pairs(m)%body_a == a .and. law%pairs(m)%body_b == b) .or. &
           (law%pairs(m)%body_a == b .and. law%pairs(m)%body_b == a)) mu = law%pairs(m)%friction

@@ -47,6 +47,9 @@ contains
     duration_s = 0.0_dp
     associate (a => cfg%arch, m => cfg%motion, s => cfg%solver)
       call build_config_assembly(cfg, assembly, status)
+      if (status%ok .and. assembly%has_fill) call fail(status, '&bridge fill_density_kg_m3 > 0: voussoir-run '// &
+        'does not model the fill (its mass, its pressure on the ring); voussoir-limit takes its weight and the '// &
+        'spread of live loads through it. Leave the fill out of a dynamic run')
       if (.not. status%ok) then
         status%message = trim(cfg%source_file)//': '//trim(status%message)
         return

@@ -2,6 +2,7 @@
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 
@@ -435,12 +436,23 @@ elif case == "arch_point_load":
         f.write(arch + "&load point_load_n(1) = 1000, path_x0_m = -0.8, path_x1_m = 0.8, path_points = 17 /\n")
     d = load("arch_point_load_path.nml")
     curve = d["load_factor_curve"]
-    check(len(curve) == 17 and all(c["load_factor"] is not None for c in curve), "17 positions with a load factor")
+    grid = [c for c in curve if not c["at_joint"]]
+    check(len(grid) == 17 and all(c["load_factor"] is not None for c in curve), "17 grid positions, all with a load factor")
+    # The refinement: a micrometre either side of every extrados joint end in the path's range.
+    ext_x = [x for x, _ in d["arch"]["joint_extrados_xy_m"] if -0.8 <= x <= 0.8]
+    at_joint = sorted(c["x_m"] for c in curve if c["at_joint"])
+    expected_x = sorted(x + s * 1e-6 for x in ext_x for s in (-1, 1))
+    check(len(at_joint) == len(expected_x) and all(close(a, b, atol=1e-12) for a, b in zip(at_joint, expected_x)),
+          f"refined at the {len(ext_x)} extrados joint ends within the path, 1e-6 m either side ({at_joint})")
     lf = [c["load_factor"] for c in curve]
-    check(all(close(lf[i], lf[-1 - i], rtol=1e-6) for i in range(17)), f"curve symmetric about the crown: {lf}")
+    check(all(close(lf[i], lf[-1 - i], rtol=1e-6) for i in range(len(lf))), f"curve symmetric about the crown: {lf}")
+    check(d["critical_position"]["load_factor"] < min(c["load_factor"] for c in grid) * (1 - 1e-3),
+          f"the refined critical load factor {d['critical_position']['load_factor']} is below the grid's least "
+          f"{min(c['load_factor'] for c in grid)}: a grid alone misses it")
     cp = d["critical_position"]
     first = next(c for c in curve if c["load_factor"] <= min(lf) * (1 + 1e-9))
-    check(first == cp and close(cp["load_factor"], d["load_factor"], rtol=1e-9),
+    check(first["x_m"] == cp["x_m"] and first["load_factor"] == cp["load_factor"] and
+          close(cp["load_factor"], d["load_factor"], rtol=1e-9),
           f"critical position {cp} = the first least of the curve {first} (to 1e-9), and the load_factor reported")
     x, y = d["point_loads"][0]["xy_m"]
     check(close(x, cp["x_m"], atol=1e-12) and close(y, top_of_arch(d["arch"], x), atol=1e-9),
@@ -449,6 +461,12 @@ elif case == "arch_point_load":
     check(close(d["load_factor"], expected, rtol=1e-6),
           f"critical load factor {d['load_factor']} = least four-hinge mechanism {expected}")
     check_loaded_equilibrium(d, "critical position", w, d["load_factor"])
+    # The table: the load case first; the weights-alone acceleration case after it, named
+    # as another question (it printed first, as if it were the bridge's answer).
+    rc, table, _ = run("arch_point_load_path.nml")
+    lp_at, other_at = table.find("Limit analysis by linear programming"), table.find("Not the load case above")
+    check(rc == 0 and 0 < lp_at < other_at and "Horizontal collapse" not in table,
+          "table: the load case first, then the acceleration case of the weights alone, named as not the load case")
     # An axle group: 500 N at x = -0.6 m and again 0.4 m to its right, both on the extrados.
     with open("arch_axles.nml", "w") as f:
         f.write(arch + "&load point_load_n(1) = 500, point_load_x_m(1) = -0.6, axle_spacing_m(1) = 0.4 /\n")
@@ -461,6 +479,18 @@ elif case == "arch_point_load":
     check(close(d["load_factor"], expected, rtol=1e-6),
           f"axle group: load factor {d['load_factor']} = least four-hinge mechanism {expected}")
     check_loaded_equilibrium(d, "axle group", w, d["load_factor"])
+    # The axle group on a path: the path's x is the vehicle's (the resultant of its axles,
+    # here 300 N and 100 N 0.4 m apart: 0.1 m from the first), not the first axle's.
+    with open("arch_axles_path.nml", "w") as f:
+        f.write(arch + "&load point_load_n(1) = 300, point_load_n(2) = 100, point_load_x_m(2) = 0.4,\n"
+                "  path_x0_m = -0.6, path_x1_m = 0.6, path_points = 5 /\n")
+    d = load("arch_axles_path.nml")
+    pl = d["point_loads"]
+    xs = [c["x_m"] for c in d["load_factor_curve"]]
+    resultant = sum(p["xy_m"][0] * -p["force_n"][1] for p in pl) / sum(-p["force_n"][1] for p in pl)
+    check(close(xs[0], -0.6, atol=1e-12) and close(d["critical_position"]["x_m"], resultant, atol=1e-12) and
+          close(pl[1]["xy_m"][0] - pl[0]["xy_m"][0], 0.4, atol=1e-12),
+          f"path x = the vehicle's resultant ({d['critical_position']['x_m']} = {resultant}), axles 0.4 m apart: {pl}")
 elif case == "restrained":
     # The seed 156-degree arch (friction 10: no sliding) with restraint brackets. A bracket
     # stands against the lower half of the springing voussoir's extrados chord, which
@@ -668,6 +698,253 @@ elif case == "bad_inputs":
     check(rc == 2 and "usage" in err, "no argument: usage, exit code 2")
     rc, out, err = run("a.nml", "b.nml")
     check(rc == 2 and "usage" in err, "two files: usage, exit code 2")
+elif case == "bridge":
+    # (1) The arch of input/limit_arch_point_load.nml (semicircle, R_ext 1 m, t 0.15 m, 16
+    # voussoirs, 2000 kg/m3, 1 m wide, friction 0.6) built by &bridge (span 2 (R_ext - t)):
+    # the same blocks, so the same load factors to 1e-10, along the whole path of its 1 kN
+    # (x shifted by the bridge's origin, the left springing: 0.85 m) and under horizontal
+    # acceleration. (2) input/bridge_two_spans.nml: every block in equilibrium under its
+    # weight (each part's density), lambda x the live load and the JSON's contact forces;
+    # no tension; each interface within the lesser friction of its two blocks; the bounds meet.
+    arch_nml = os.path.join(os.path.dirname(nml), "limit_arch_point_load.nml")
+    bridge = ("&bridge shape = 'semicircular', span_m(1) = 1.7, ring_thickness_m = 0.15, n_voussoirs = 16,\n"
+              "  width_m = 1.0, ring_density_kg_m3 = 2000, ring_friction = 0.6, abutment_friction = 0.6,\n"
+              "  abutment_width_m = 0.5, pier_height_m = 0.5 /\n")
+    with open("bridge_semicircle.nml", "w") as f:
+        f.write(bridge + "&load point_load_n(1) = 1000, path_x0_m = 0.05, path_x1_m = 1.65, path_points = 17 /\n")
+    with open("bridge_semicircle_accel.nml", "w") as f:
+        f.write(bridge)
+    with open("arch_accel.nml", "w") as f:
+        f.write("&arch embrace_deg = 180, n_voussoirs = 16, r_ext_m = 1.0, thickness_m = 0.15, width_m = 1.0,\n"
+                "  density_kg_m3 = 2000, friction = 0.6 /\n&limit minimum_thickness = .false. /\n")
+    a, b = load(arch_nml), load("bridge_semicircle.nml")
+    check(b["assembly"] == "bridge" and b["arch"] is None and len(b["blocks"]) == 18, "the bridge: 16 + 2 blocks")
+    ca, cb = [c["load_factor"] for c in a["load_factor_curve"]], [c["load_factor"] for c in b["load_factor_curve"]]
+    xa, xb = [c["x_m"] for c in a["load_factor_curve"]], [c["x_m"] for c in b["load_factor_curve"]]
+    check(len(ca) == len(cb) > 17 and all(close(y, x + 0.85, atol=1e-12) for x, y in zip(xa, xb)) and
+          all(close(y, x, rtol=1e-10) for x, y in zip(ca, cb)),
+          f"the bridge's curve = the arch builder's to 1e-10 (largest difference "
+          f"{max(abs(y / x - 1) for x, y in zip(ca, cb)):.1e})")
+    check(close(b["critical_position"]["x_m"], a["critical_position"]["x_m"] + 0.85, atol=1e-12) and
+          close(b["load_factor"], a["load_factor"], rtol=1e-10),
+          f"critical position {b['critical_position']} = the arch's {a['critical_position']} shifted by 0.85 m")
+    a, b = load("arch_accel.nml"), load("bridge_semicircle_accel.nml")
+    check(close(b["load_factor"], a["load_factor"], rtol=1e-10) and close(b["load_factor_neg"], a["load_factor_neg"],
+                                                                           rtol=1e-10),
+          f"under horizontal acceleration: {b['load_factor']} = the arch builder's {a['load_factor']} (1e-10)")
+    # (2) The two-span bridge.
+    d = load(os.path.join(os.path.dirname(nml), "bridge_two_spans.nml"))
+    lam = d["load_factor"]
+    check(d["assembly"] == "bridge" and len(d["blocks"]) == 2 * 20 + 1 + 2 + 1 and lam > 0,
+          f"two spans: 40 voussoirs, a pier, two abutments, the ground; lambda {lam}")
+    check(close(d["load_factor_upper"], lam, rtol=1e-6), f"upper bound {d['load_factor_upper']} = lower {lam}")
+    density = [2200.0] * 40 + [2300.0]
+    worst = 0.0
+    for i, blk in enumerate(d["blocks"], start=1):
+        if blk["driven"]:
+            continue
+        poly = blk["vertices_xy_m"]
+        area = 0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1]))
+        cx, cy = centroid(poly)
+        weight = density[i - 1] * 1.0 * 9.81 * area
+        fx, fy, m = contact_resultant(d, i, cx, cy)
+        fy -= weight
+        for pl in d["point_loads"]:
+            if pl["block"] == i:
+                gx, gy = lam * pl["force_n"][0], lam * pl["force_n"][1]
+                fx, fy, m = fx + gx, fy + gy, m + (pl["xy_m"][0] - cx) * gy - (pl["xy_m"][1] - cy) * gx
+        worst = max(worst, abs(fx) / weight, abs(fy) / weight, abs(m) / (weight * 10.0))
+    check(worst < 1e-7, f"two spans: every free block in equilibrium (weight by its part's density) ({worst:.1e})")
+    check(all(min(f["normal_n"]) >= -1e-9 * 1e5 and abs(f["shear_n"]) <= 0.6 * sum(f["normal_n"]) + 1e-6
+              for f in d["contact_forces"]), "two spans: no tension, every interface within friction 0.6")
+    rc, out, _ = run(os.path.join(os.path.dirname(nml), "bridge_two_spans.nml"))
+    check(rc == 0 and "friction: ring 0.6, piers 0.6, skewbacks 0.6" in out and "critical position" in out,
+          "two spans: the table gives each part's friction and the critical position")
+    names = [b["name"] for b in d["blocks"]]
+    check(names[:2] == ["span 1 voussoir 1", "span 1 voussoir 2"] and names[40:] ==
+          ["pier 1", "left abutment", "right abutment", "ground"], f"two spans: the blocks named ({names[38:]})")
+    hinge_on_pier = [m for m in d["mechanism"] if m["mode"] == "hinge" and 41 in m["blocks"]]
+    check(len(hinge_on_pier) == 1 and "(span 1 voussoir 20 / pier 1) hinge" in out,
+          "two spans: the table names the hinge of span 1 on the pier by its blocks' names")
+    # Each part its own friction: skewbacks at 0.05 hold the ring's springings to that (the
+    # lesser of ring 0.6 and skewback 0.05), and the bridge is weaker for it.
+    with open(os.path.join(os.path.dirname(nml), "bridge_two_spans.nml")) as f:
+        text = f.read().replace("abutment_friction = 0.6", "abutment_friction = 0.05")
+    with open("bridge_slippery_skewbacks.nml", "w") as f:
+        f.write(text)
+    e = load("bridge_slippery_skewbacks.nml")
+    skew = [k for k, blk in enumerate(e["blocks"], start=1) if blk["driven"]][:2]
+    at_skew = [f for f in e["contact_forces"] if set(f["blocks"]) & set(skew)]
+    check(len(at_skew) == 2 and all(abs(f["shear_n"]) <= 0.05 * sum(f["normal_n"]) * (1 + 1e-9) + 1e-6
+                                    for f in at_skew) and e["load_factor"] < lam * (1 - 1e-3),
+          f"skewback friction 0.05: |S| <= 0.05 N at both springings, load factor {e['load_factor']} < {lam}")
+elif case == "bridge_fill":
+    # The engineers' fill over input/bridge_fill.nml's span, checked from the JSON's blocks
+    # alone: (1) the fill's weight on each voussoir = density x g x width x the area of the
+    # polygon between its extrados chord and the fill's level (shoelace), at that polygon's
+    # centroid's x; in all, the area between the extrados and the level over the ring;
+    # (2) each live load's spread ends where the lines from its point on the surface at the
+    # dispersion angle meet the extrados; (3) every free block in equilibrium under its
+    # weight, the fill's, lambda x the live load spread uniformly along x between those ends
+    # (onto the block on top at each x, as 200 strips) and the JSON's contact forces;
+    # (4) a fill of vanishing weight and no dispersion gives the bare bridge's load factor.
+    d = load(nml)
+    check("on the fill's surface" in d["live_load"] and "spread through it at 30 deg" in d["live_load"],
+          f"the live load in words says where it stands and how it spreads: {d['live_load']}")
+    text = open(nml).read()
+    def number(name):
+        return float(re.search(r"\b" + name + r" *= *([-0-9.eE+]+)", text).group(1))
+    rho_f, level, theta = number("fill_density_kg_m3"), number("fill_level_m"), number("dispersion_angle_deg")
+    rho_r, width = number("ring_density_kg_m3"), number("width_m")
+    blocks = d["blocks"]
+    free = [i for i, b in enumerate(blocks, start=1) if not b["driven"]]
+    def top_edge(poly):
+        """The face of a voussoir that runs right to left on top: its extrados chord."""
+        return poly[2], poly[3]
+    def column(p_right, p_left):
+        poly = [p_left, p_right, (p_right[0], level), (p_left[0], level)]
+        area = -0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1]))
+        return abs(area), centroid(poly)[0]
+    fills = {f["block"]: f for f in d["fill_loads"]}
+    g_w = 9.81 * width
+    worst = 0.0
+    total = 0.0
+    for i in free:
+        area, xc = column(*top_edge(blocks[i - 1]["vertices_xy_m"]))
+        f = fills[i]
+        worst = max(worst, abs(-f["force_n"][1] - rho_f * g_w * area) / (rho_f * g_w * area), abs(f["xy_m"][0] - xc))
+        total += -f["force_n"][1]
+    check(len(fills) == len(free) and worst < 1e-12, f"fill on each voussoir = the column above its extrados chord, "
+                                                     f"at its centroid's x ({worst:.1e})")
+    ext = [tuple(blocks[i - 1]["vertices_xy_m"][3]) for i in free] + [tuple(blocks[free[-1] - 1]["vertices_xy_m"][2])]
+    poly = ext + [(ext[-1][0], level), (ext[0][0], level)]
+    area = abs(0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1])))
+    check(close(total, rho_f * g_w * area, rtol=1e-12), f"fill in all {total:.6g} N = the area over the extrados "
+                                                        f"({area:.6g} m2) x density x g x width")
+    def top(x):
+        best = None
+        for b in blocks:
+            v = b["vertices_xy_m"]
+            for (x0, y0), (x1, y1) in zip(v, v[1:] + v[:1]):
+                if min(x0, x1) - 1e-9 <= x <= max(x0, x1) + 1e-9:
+                    y = max(y0, y1) if abs(x1 - x0) <= 1e-9 else y0 + (min(max((x - x0) / (x1 - x0), 0), 1)) * (y1 - y0)
+                    best = y if best is None else max(best, y)
+        return best
+    def block_on_top(x):
+        best, who = None, None
+        for i, b in enumerate(blocks, start=1):
+            v = b["vertices_xy_m"]
+            for (x0, y0), (x1, y1) in zip(v, v[1:] + v[:1]):
+                if min(x0, x1) - 1e-9 <= x <= max(x0, x1) + 1e-9 and abs(x1 - x0) > 1e-9:
+                    y = y0 + (x - x0) / (x1 - x0) * (y1 - y0)
+                    if best is None or y > best + 1e-9 or (y > best - 1e-9 and blocks[who - 1]["driven"] and
+                                                           not b["driven"]):
+                        best, who = max(y, best or y), i
+        return who
+    slope = math.tan(math.radians(theta))
+    for sl in d["surface_loads"]:
+        x0 = sl["xy_m"][0]
+        lo, hi = sl["spread_x_m"]
+        gaps = [level - abs(x - x0) / slope - top(x) for x in (lo, hi)]
+        check(sl["xy_m"][1] == level and lo < x0 < hi and max(abs(g) for g in gaps) < 1e-9,
+              f"the load at x = {x0:.4g} m spreads from {lo:.4g} to {hi:.4g} m, where the {theta:g}-degree lines "
+              f"meet the extrados ({max(abs(g) for g in gaps):.1e} m)")
+    lam = d["load_factor"]
+    strips = {}
+    for sl in d["surface_loads"]:
+        lo, hi = sl["spread_x_m"]
+        for k in range(200):
+            x = lo + (k + 0.5) * (hi - lo) / 200
+            strips.setdefault(block_on_top(x), []).append((x, top(x), -sl["force_n"][1] / 200))
+    worst = 0.0
+    for i in free:
+        v = blocks[i - 1]["vertices_xy_m"]
+        area = 0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(v, v[1:] + v[:1]))
+        cx, cy = centroid(v)
+        weight = rho_r * g_w * area
+        fx, fy, m = contact_resultant(d, i, cx, cy)
+        f = fills[i]
+        fy += f["force_n"][1] - weight
+        m += (f["xy_m"][0] - cx) * f["force_n"][1]
+        for x, y, p in strips.get(i, []):
+            fy -= lam * p
+            m -= (x - cx) * lam * p
+        worst = max(worst, abs(fx) / weight, abs(fy) / weight, abs(m) / (weight * 10.0))
+    check(worst < 1e-7, f"every voussoir in equilibrium: weight, fill, lambda x the spread load, contact forces "
+                        f"({worst:.1e})")
+    bare = text.replace(f"fill_density_kg_m3 = {rho_f:g}", "fill_density_kg_m3 = 1e-9").replace(
+        f"dispersion_angle_deg = {theta:g}", "dispersion_angle_deg = 0")
+    with open("bridge_fill_vanishing.nml", "w") as f:
+        f.write(bare)
+    with open("bridge_fill_none.nml", "w") as f:
+        f.write(re.sub(r"fill_density_kg_m3 *= *[^,/]*,? *|fill_level_m *= *[^,/]*,? *|dispersion_angle_deg *= *[^,/]*,? *",
+                       "", text))
+    a, b = load("bridge_fill_vanishing.nml"), load("bridge_fill_none.nml")
+    check(close(a["load_factor"], b["load_factor"], rtol=1e-6) and a["load_factor"] < lam,
+          f"a fill of vanishing weight, no spread: the bare bridge's {b['load_factor']:.7g} "
+          f"({a['load_factor']:.7g}); the fill raises it to {lam:.7g}")
+    # The fill's horizontal pressure (Rankine, phi = 35 deg): on each voussoir's extrados,
+    # between K_a and m K_p times the integral of the vertical stress over the face's height,
+    # (F - y_a)^2/2 - (F - y_b)^2/2, at that pressure's centroid, horizontal into the ring;
+    # the LP's value at collapse within those bounds; upper = lower bound (the work equation
+    # with each pressure at its passive bound where the ring moves into the fill, else
+    # active); the load factor grows with the mobilisation; statics with the pressures.
+    factors = {}
+    for m in (0.0, 0.33, 1.0):
+        with open(f"bridge_fill_pressure_{m}.nml", "w") as f:
+            f.write(text.replace("dispersion_angle_deg = 30", f"dispersion_angle_deg = 30, fill_friction_deg = 35, "
+                                                              f"passive_mobilisation = {m}"))
+        e = load(f"bridge_fill_pressure_{m}.nml")
+        factors[m] = e["load_factor"]
+        check(close(e["load_factor_upper"], e["load_factor"], rtol=1e-6),
+              f"pressure, mobilisation {m}: upper bound {e['load_factor_upper']} = lower {e['load_factor']}")
+        ka = math.tan(math.radians(45 - 35 / 2)) ** 2
+        kp = max(ka, m * math.tan(math.radians(45 + 35 / 2)) ** 2)
+        worst = 0.0
+        for p in e["fill_pressures"]:
+            v = blocks[p["block"] - 1]["vertices_xy_m"]
+            (x0, y0), (x1, y1) = v[2], v[3]     # the extrados chord, right to left
+            ya, yb = min(y0, y1), max(y0, y1)
+            s_n = rho_f * g_w * ((level - ya) ** 2 - (level - yb) ** 2) / 2
+            yc = (level * (yb ** 2 - ya ** 2) / 2 - (yb ** 3 - ya ** 3) / 3) / s_n * rho_f * g_w
+            into = 1.0 if y0 > y1 else -1.0      # the left haunch's face looks left: pushed to +x
+            worst = max(worst, abs(p["active_n"] - ka * s_n) / s_n, abs(p["passive_n"] - kp * s_n) / s_n,
+                        abs(p["xy_m"][1] - yc), abs(p["direction"][0] - into))
+            inside = ka * s_n * (1 - 1e-9) - 1e-9 <= p["at_collapse_n"] <= kp * s_n * (1 + 1e-9) + 1e-9
+            worst = max(worst, 0.0 if inside else 1.0)
+        check(len(e["fill_pressures"]) == len(free) and worst < 1e-9,
+              f"pressure, mobilisation {m}: Rankine's bounds on every extrados face, at the pressure's centroid, into "
+              f"the ring, the LP's value between them ({worst:.1e})")
+        if m == 0.33:
+            worst = 0.0
+            press = {p["block"]: p for p in e["fill_pressures"]}
+            strips = {}
+            for sl in e["surface_loads"]:
+                lo, hi = sl["spread_x_m"]
+                for k in range(200):
+                    x = lo + (k + 0.5) * (hi - lo) / 200
+                    strips.setdefault(block_on_top(x), []).append((x, top(x), -sl["force_n"][1] / 200))
+            fills_e = {f["block"]: f for f in e["fill_loads"]}
+            for i in free:
+                v = blocks[i - 1]["vertices_xy_m"]
+                area = 0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(v, v[1:] + v[:1]))
+                cx, cy = centroid(v)
+                weight = rho_r * g_w * area
+                fx, fy, mo = contact_resultant(e, i, cx, cy)
+                f = fills_e[i]
+                fy += f["force_n"][1] - weight
+                mo += (f["xy_m"][0] - cx) * f["force_n"][1]
+                p = press[i]
+                h = p["at_collapse_n"] * p["direction"][0]
+                fx += h
+                mo -= (p["xy_m"][1] - cy) * h
+                for x, y, q in strips.get(i, []):
+                    fy -= e["load_factor"] * q
+                    mo -= (x - cx) * e["load_factor"] * q
+                worst = max(worst, abs(fx) / weight, abs(fy) / weight, abs(mo) / (weight * 10.0))
+            check(worst < 1e-7, f"pressure: every voussoir in equilibrium with the pressures at collapse ({worst:.1e})")
+    check(factors[0.0] < factors[0.33] < factors[1.0],
+          f"the load factor grows with the passive pressure mobilised: {factors}")
 else:
     check(False, f"unknown case {case}")
 

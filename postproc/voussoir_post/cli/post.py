@@ -113,7 +113,7 @@ def cmd_envelope(args) -> int:
     capacity, source = None, ""
     if args.limit:
         limit = read_limit_json(args.limit)
-        capacity = min(limit.lambda_pos, limit.lambda_neg) * limit.g_m_s2
+        capacity = limit.static_capacity_m_s2()
         source = os.path.basename(args.limit)
     png = figure_path(args.sweep, "envelope", args)
     data = plot_envelope(sweep, png, campaign, args.specimen, capacity_m_s2=capacity, capacity_source=source)

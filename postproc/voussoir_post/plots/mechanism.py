@@ -112,7 +112,14 @@ def thrust_points(limit: LimitResult, fraction: np.ndarray | None) -> np.ndarray
 
 def plot_mechanism(limit: LimitResult, out_png: str | os.PathLike) -> MechanismData:
     """Two panels (towards +x and -x): the arch's voussoirs with the hinges of the
-    mechanism marked at the joint end they pivot on and labelled ``<joint><i|e>``."""
+    mechanism marked at the joint end they pivot on and labelled ``<joint><i|e>``.
+    A load case of ``&load`` (live point loads) and any assembly other than the arch
+    builder's (a wall, a polygon file, a restrained arch, a bridge) are drawn from the
+    LP's own mechanism and forces instead (:mod:`.mechanism_lp`): the four-hinge analysis
+    is of the arch's weights under horizontal acceleration alone."""
+    if limit.assembly != "arch" or not limit.has_arch or not limit.live_is_acceleration:
+        from .mechanism_lp import plot_lp_mechanism
+        return plot_lp_mechanism(limit, out_png)
     intr, extr = limit.joint_intrados_xy_m, limit.joint_extrados_xy_m
     voussoirs = voussoir_polygons(intr, extr)
     foundations = foundation_polygons(intr, extr, limit.thickness_m)
@@ -192,7 +199,8 @@ def plot_mechanism(limit: LimitResult, out_png: str | os.PathLike) -> MechanismD
                                           "and stays in the ring")[0])
     if lp is not None:
         lp_note = ""
-        if not math.isclose(limit.load_factor, limit.lambda_pos, rel_tol=1e-6):
+        # Only where the LP is below the four-hinge analysis of the same load (sliding).
+        if limit.load_factor < limit.lambda_pos * (1.0 - 1e-6):
             lp_note = f": with sliding, below the four-hinge {limit.lambda_pos:.3f}"
         handles.append(axes[0].plot([], [], linestyle="none", marker=r"$\rightarrow$", markersize=14,
                                     color=FORCE_COLOUR,

@@ -12,7 +12,7 @@ import numpy as np
 from ..units import G_M_S2
 from .results_common import SIDE_NAMES, ResultsError
 
-__all__ = ["LimitResult", "LpInterfaceForce", "read_limit_json"]
+__all__ = ["LimitResult", "LpInterfaceForce", "LpInterfaceMode", "AssemblyBlock", "PlacedLoad", "read_limit_json"]
 
 
 @dataclass(frozen=True)
@@ -28,6 +28,36 @@ class LpInterfaceForce:
     normal_n: np.ndarray  #: (2,) N1, N2 >= 0
     shear_n: float  #: S
 
+
+@dataclass(frozen=True)
+class LpInterfaceMode:
+    """One interface of the LP's mechanism (the JSON's ``mechanism``)."""
+
+    blocks: tuple[int, int]  #: a, b (1-based, entries of ``blocks``)
+    joint: int | None  #: the arch joint 0..n, None elsewhere
+    mode: str  #: 'closed', 'hinge', 'sliding' or 'open'
+    hinge_side: str | None  #: 'intrados' or 'extrados' for an arch joint's hinge, else None
+    hinge_xy_m: np.ndarray | None  #: (2,) the point a hinge turns about, else None
+
+
+@dataclass(frozen=True)
+class AssemblyBlock:
+    """One block of the assembly as analysed (the JSON's ``blocks``)."""
+
+    vertices_xy_m: np.ndarray  #: (n, 2) counter-clockwise
+    driven: bool  #: a fixed support
+    name: str = ""  #: a bridge's name of the block ('span 1 voussoir 3', 'pier 1'); '' elsewhere
+
+
+@dataclass(frozen=True)
+class PlacedLoad:
+    """One point load of ``&load`` as placed (the JSON's ``point_loads``)."""
+
+    load: int  #: its index j in &load
+    block: int  #: the block that carries it (1-based)
+    xy_m: np.ndarray  #: (2,)
+    force_n: np.ndarray  #: (2,) a live load at load factor 1
+    live: bool
 
 
 @dataclass
@@ -63,6 +93,53 @@ class LimitResult:
     #: and its static field at collapse, one entry per interface (empty when there is none).
     load_factor: float = math.nan
     contact_forces: list[LpInterfaceForce] = field(default_factory=list)
+    #: What was analysed: 'arch', 'restrained arch', 'wall', 'polygon file' or 'bridge'.
+    assembly: str = "arch"
+    #: The live load in words (the JSON's ``live_load``); '' when the JSON has none.
+    live_load: str = ""
+    blocks: list[AssemblyBlock] = field(default_factory=list)  #: empty in JSON files older than the key
+    point_loads: list[PlacedLoad] = field(default_factory=list)
+    mechanism: list[LpInterfaceMode] = field(default_factory=list)  #: the LP's, associative, live load as given
+    load_factor_nonassociative: float = math.nan
+    critical_x_m: float = math.nan  #: the vehicle's critical position on a path (NaN without one)
+    load_factor_curve: list[tuple[float, float]] = field(default_factory=list)  #: (x_m, lambda or NaN)
+    #: The LP with the horizontal acceleration turned round (towards -x), where it applies.
+    #: With a &bridge fill: each live load on the fill's surface (``point_loads`` then holds
+    #: none of them: they enter as strips) with the x it spreads over, and the fill's weight
+    #: on each top face of a free block.
+    surface_loads: list[PlacedLoad] = field(default_factory=list)
+    surface_spread_x_m: list[tuple[float, float]] = field(default_factory=list)
+    fill_loads: list[PlacedLoad] = field(default_factory=list)
+    #: With its horizontal pressure: each face's force at collapse (horizontal, into the ring).
+    fill_pressures: list[PlacedLoad] = field(default_factory=list)
+    load_factor_neg: float = math.nan
+    contact_forces_neg: list[LpInterfaceForce] = field(default_factory=list)
+    mechanism_neg: list[LpInterfaceMode] = field(default_factory=list)
+
+    @property
+    def has_arch(self) -> bool:
+        """The JSON has an ``arch`` object (joints numbered 0..n)."""
+        return self.n_voussoirs > 0
+
+    def static_capacity_m_s2(self) -> float:
+        """The static horizontal capacity [m/s2], the weaker direction: the four-hinge
+        analysis's for an arch, the LP's for any other assembly. ResultsError where the
+        JSON's load factor is of live point loads, not of an acceleration."""
+        if math.isfinite(self.lambda_pos) or math.isfinite(self.lambda_neg):
+            return min(self.lambda_pos, self.lambda_neg) * self.g_m_s2
+        if not self.live_is_acceleration:
+            raise ResultsError(self.path, "its load factor multiplies the live point loads of &load, not a "
+                                          "horizontal acceleration: run voussoir-limit without live point loads "
+                                          "for a static capacity in m/s2")
+        factors = [f for f in (self.load_factor, self.load_factor_neg) if math.isfinite(f)]
+        if not factors:
+            raise ResultsError(self.path, "no load factor (the LP had no answer: see load_factor_note)")
+        return min(factors) * self.g_m_s2
+
+    @property
+    def live_is_acceleration(self) -> bool:
+        """The live load is the horizontal acceleration (no live point loads in &load)."""
+        return not self.live_load or self.live_load.startswith("horizontal acceleration")
 
 
 def _json_float(value) -> float:
@@ -104,13 +181,21 @@ def read_limit_json(path: str | os.PathLike) -> LimitResult:
             out.append((joint, side))
         return out
 
+    # A wall, a polygon file or a bridge has no "arch" object (null): no numbered joints.
     arch = need(data, "arch")
-    n = int(need(arch, "n_voussoirs", "arch."))
-    intr = np.asarray(need(arch, "joint_intrados_xy_m", "arch."), dtype=float)
-    extr = np.asarray(need(arch, "joint_extrados_xy_m", "arch."), dtype=float)
+    if arch is None:
+        arch = {"n_voussoirs": 0, "embrace_deg": math.nan, "r_ext_m": math.nan, "thickness_m": math.nan,
+                "joint_intrados_xy_m": np.zeros((0, 2)), "joint_extrados_xy_m": np.zeros((0, 2))}
+        n = -1
+    else:
+        n = int(need(arch, "n_voussoirs", "arch."))
+    intr = np.asarray(need(arch, "joint_intrados_xy_m", "arch."), dtype=float).reshape(-1, 2)
+    extr = np.asarray(need(arch, "joint_extrados_xy_m", "arch."), dtype=float).reshape(-1, 2)
     for name, arr in (("joint_intrados_xy_m", intr), ("joint_extrados_xy_m", extr)):
         if arr.shape != (n + 1, 2):
             raise ResultsError(path, f"'arch.{name}' has shape {arr.shape}, expected ({n + 1}, 2)")
+    n = max(n, 0)
+    critical = data.get("critical_position")
     return LimitResult(
         path=path,
         lambda_pos=_json_float(need(data, "lambda_pos")),
@@ -137,7 +222,65 @@ def read_limit_json(path: str | os.PathLike) -> LimitResult:
         input_file=str(data.get("input_file", "")),
         load_factor=_json_float(data.get("load_factor")),
         contact_forces=_interface_forces(path, data.get("contact_forces") or []),
+        assembly=str(data.get("assembly", "arch")),
+        live_load=str(data.get("live_load") or ""),
+        blocks=_blocks(path, data.get("blocks") or []),
+        point_loads=_point_loads(path, data.get("point_loads") or []),
+        mechanism=_modes(path, "mechanism", data.get("mechanism") or []),
+        load_factor_nonassociative=_json_float(data.get("load_factor_nonassociative")),
+        critical_x_m=_json_float(critical.get("x_m")) if isinstance(critical, dict) else math.nan,
+        load_factor_curve=[(float(c["x_m"]), _json_float(c.get("load_factor")))
+                           for c in data.get("load_factor_curve") or []],
+        surface_loads=[PlacedLoad(int(e["load"]), 0, np.asarray(e["xy_m"], dtype=float), np.asarray(e["force_n"], dtype=float),
+                                  True) for e in data.get("surface_loads") or []],
+        surface_spread_x_m=[(float(e["spread_x_m"][0]), float(e["spread_x_m"][1])) for e in data.get("surface_loads") or []],
+        fill_loads=[PlacedLoad(0, int(e["block"]), np.asarray(e["xy_m"], dtype=float), np.asarray(e["force_n"], dtype=float),
+                               False) for e in data.get("fill_loads") or []],
+        fill_pressures=[PlacedLoad(0, int(e["block"]), np.asarray(e["xy_m"], dtype=float),
+                                   _json_float(e.get("at_collapse_n")) * np.asarray(e["direction"], dtype=float), False)
+                        for e in data.get("fill_pressures") or []],
+        load_factor_neg=_json_float(data.get("load_factor_neg")),
+        contact_forces_neg=_interface_forces(path, data.get("contact_forces_neg") or []),
+        mechanism_neg=_modes(path, "mechanism_neg", data.get("mechanism_neg") or []),
     )
+
+
+def _blocks(path: str, entries: list) -> list[AssemblyBlock]:
+    out = []
+    for k, e in enumerate(entries):
+        try:
+            out.append(AssemblyBlock(np.asarray(e["vertices_xy_m"], dtype=float).reshape(-1, 2), bool(e["driven"]),
+                                     str(e.get("name", ""))))
+        except (KeyError, TypeError, ValueError) as exc:
+            raise ResultsError(path, f"'blocks[{k}]' must have vertices_xy_m (a list of [x, y]) and driven: "
+                                     f"{exc}") from exc
+    return out
+
+
+def _point_loads(path: str, entries: list) -> list[PlacedLoad]:
+    out = []
+    for k, e in enumerate(entries):
+        try:
+            out.append(PlacedLoad(int(e["load"]), int(e["block"]), np.asarray(e["xy_m"], dtype=float).reshape(2),
+                                  np.asarray(e["force_n"], dtype=float).reshape(2), bool(e["live"])))
+        except (KeyError, TypeError, ValueError) as exc:
+            raise ResultsError(path, f"'point_loads[{k}]' must have load, block, xy_m, force_n and live: "
+                                     f"{exc}") from exc
+    return out
+
+
+def _modes(path: str, key: str, entries: list) -> list[LpInterfaceMode]:
+    out = []
+    for k, e in enumerate(entries):
+        try:
+            xy = e.get("hinge_xy_m")
+            out.append(LpInterfaceMode((int(e["blocks"][0]), int(e["blocks"][1])),
+                                       None if e.get("joint") is None else int(e["joint"]), str(e["mode"]),
+                                       e.get("hinge_side"),
+                                       None if xy is None else np.asarray(xy, dtype=float).reshape(2)))
+        except (KeyError, TypeError, ValueError, IndexError) as exc:
+            raise ResultsError(path, f"'{key}[{k}]' must have blocks, joint, mode and hinge_xy_m: {exc}") from exc
+    return out
 
 
 def _interface_forces(path: str, entries: list) -> list[LpInterfaceForce]:

@@ -1,0 +1,94 @@
+"""&bridge (issue 37) through the executables: voussoir-run takes the bridge (each part's
+mass, the effective &bridge recorded in the result file) and the mechanism figure of the
+two-span bridge of input/ is the load case's."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from conftest import REPO_ROOT, run_executable
+from figure_text import text_clashes
+from voussoir_post.cli import post
+from voussoir_post.plots.mechanism import plot_mechanism
+from voussoir_post.readers.results import read_limit_json, read_run
+
+BRIDGE = """\
+&bridge shape = 'segmental', span_m = 10.0, 10.0, rise_m = 2.5, 2.5, ring_thickness_m = 0.45,
+  n_voussoirs = 12, pier_width_m = 1.5, pier_height_m = 3.0, abutment_width_m = 2.0,
+  ring_density_kg_m3 = 2200, pier_density_kg_m3 = 2400 /
+&motion waveform = 'afd', amplitude_m = 0.0, frequency_hz = 1.0, n_full = 0, rest_s = 0.0 /
+&output file = 'bridge.h5' /
+"""
+
+
+def test_a_bridge_stands_in_voussoir_run(voussoir_run_exe, tmp_path):
+    """At rest a two-span bridge stands (its blocks move by round-off only), and the
+    result file records the &bridge group as run, so the figures can say what was run."""
+    nml = tmp_path / "bridge.nml"
+    nml.write_text(BRIDGE)
+    out = run_executable([voussoir_run_exe, nml], tmp_path).stdout
+    assert out.startswith("stood;")
+    run = read_run(tmp_path / "bridge.h5")
+    bridge = run.config["bridge"]
+    assert bridge["shape"] == "segmental" and float(bridge["pier_density_kg_m3"]) == 2400.0
+    assert float(bridge["span_m(2)"]) == 10.0
+
+
+def test_mechanism_of_the_two_span_bridge(voussoir_limit_exe, tmp_path, drawn_figures):
+    """input/bridge_two_spans.nml: one panel (a load case), titled by the live load with the
+    vehicle's critical x, in the bridge's frame (x from the left springing), four hinges,
+    the live load drawn at the critical position; no text overlapping or cut."""
+    path = tmp_path / "bridge_two_spans.json"
+    path.write_text(run_executable([voussoir_limit_exe, REPO_ROOT / "input" / "bridge_two_spans.nml", "--json"],
+                                   tmp_path).stdout)
+    assert post.main(["mechanism", str(path), "--out", str(tmp_path / "m.png")]) == 0
+    (fig,) = drawn_figures
+    assert text_clashes(fig) == []
+    assert fig.axes[0].get_xlabel() == "x [m] from the left springing of span 1"
+    limit = read_limit_json(path)
+    data = plot_mechanism(limit, tmp_path / "again.png")
+    (panel,) = data.panels
+    assert len(panel.hinges) == 4 and panel.load_factor == pytest.approx(limit.load_factor, rel=1e-12)
+    assert "span 1 voussoir 20 / pier 1" in data.table.column("blocks")  # the hinge on the pier, by name
+    (load,) = limit.point_loads
+    assert load.xy_m[0] == pytest.approx(limit.critical_x_m, abs=1e-12)
+    assert any("bridge of 44 blocks (&bridge)" in t.get_text() for t in fig.texts)  # the suptitle
+    assert np.isfinite(data.force_scale_m_per_n)
+
+
+def test_mechanism_with_the_fill(voussoir_limit_exe, tmp_path, drawn_figures):
+    """input/bridge_fill.nml: the live load drawn where it stands, on the fill's surface
+    (not on the extrados), the fill's surface and the load's spread in the legend with the
+    fill's weight (the JSON's fill loads summed); no text overlapping or cut."""
+    path = tmp_path / "bridge_fill.json"
+    path.write_text(run_executable([voussoir_limit_exe, REPO_ROOT / "input" / "bridge_fill.nml", "--json"],
+                                   tmp_path).stdout)
+    assert post.main(["mechanism", str(path), "--out", str(tmp_path / "m.png")]) == 0
+    (fig,) = drawn_figures
+    assert text_clashes(fig) == []
+    limit = read_limit_json(path)
+    (surface,) = limit.surface_loads
+    assert surface.xy_m[1] == 3.45 and surface.xy_m[0] == pytest.approx(limit.critical_x_m, abs=1e-12)
+    fill_kn = sum(-f.force_n[1] for f in limit.fill_loads) / 1e3
+    labels = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert any("fill surface, y = 3.45 m" in t and f"{fill_kn:.4g} kN" in t for t in labels)
+    assert any("100 kN at factor 1" in t for t in labels)
+
+
+def test_mechanism_with_the_fill_pressure(voussoir_limit_exe, tmp_path, drawn_figures):
+    """input/bridge_fill.nml with the fill's horizontal pressure (phi 35 deg, a third of the
+    passive mobilised): the pressures drawn with their own key, their total at collapse the
+    JSON's; no text overlapping or cut."""
+    nml = tmp_path / "bridge_pressure.nml"
+    nml.write_text((REPO_ROOT / "input" / "bridge_fill.nml").read_text().replace(
+        "dispersion_angle_deg = 30", "dispersion_angle_deg = 30, fill_friction_deg = 35, passive_mobilisation = 0.33"))
+    path = tmp_path / "bridge_pressure.json"
+    path.write_text(run_executable([voussoir_limit_exe, nml, "--json"], tmp_path).stdout)
+    assert post.main(["mechanism", str(path), "--out", str(tmp_path / "m.png")]) == 0
+    (fig,) = drawn_figures
+    assert text_clashes(fig) == []
+    limit = read_limit_json(path)
+    total_kn = sum(abs(p.force_n[0]) for p in limit.fill_pressures) / 1e3
+    labels = [t.get_text().replace("\n", " ") for t in fig.legends[0].get_texts()]
+    assert any("horizontal pressure" in t and f"{total_kn:.4g} kN in all" in t for t in labels)

@@ -1,0 +1,175 @@
+!> Masonry arch bridges: the assembly that a &bridge group (voussoir_bridge_config)
+!> describes, the same blocks the kernel and the limit analysis take from the arch builder
+!> or a polygon file. docs/bridges.md.
+!>
+!> Frame: x = 0 at the left intrados springing of span 1, y = 0 at the springings, the
+!> spans one after another with a pier between each two. Bodies, in order: the voussoirs
+!> of span 1 from the left, then of span 2, ...; the piers (free blocks) from the left;
+!> the left and the right abutment (driven); with piers, the ground under them (driven).
+!> Each voussoir is the quadrilateral of its two joints (chord faces), a joint running
+!> from the intrados along its normal to a ring_thickness_m deep extrados point; the
+!> joints divide the intrados into n_voussoirs equal arc lengths. Each block carries its
+!> part's density and friction (an interface takes the lesser friction of its two blocks).
+module voussoir_bridge
+  use voussoir_kinds, only: dp, g_m_s2, pi
+  use voussoir_status, only: status_t, fail
+  use voussoir_text, only: itoa
+  use voussoir_geometry, only: is_convex_ccw
+  use voussoir_assembly, only: assembly_t, polygon_t, role_voussoir, role_foundation
+  use voussoir_bridge_shape, only: intrados_t, intrados_at, crown_extrados_m, shape_pointed
+  use voussoir_bridge_config, only: bridge_config_t, bridge_intrados
+  use voussoir_wall, only: box
+  implicit none
+  private
+  public :: build_bridge, bridge_span_left_x, bridge_ring_joints
+
+contains
+
+  !> The x of span k's left intrados springing [m].
+  pure real(dp) function bridge_span_left_x(b, k)
+    type(bridge_config_t), intent(in) :: b
+    integer, intent(in) :: k
+    bridge_span_left_x = sum(b%span_m(1:k - 1)) + (k - 1)*b%pier_width_m
+  end function bridge_span_left_x
+
+  !> The joints 0..n of span k's ring: their intrados and extrados ends [m], in the bridge's
+  !> frame. The springings stand exactly at y = 0; the apex joint of a pointed arch is
+  !> vertical, up to where the two extrados arcs meet.
+  pure subroutine bridge_ring_joints(b, k, inner, outer)
+    type(bridge_config_t), intent(in) :: b
+    integer, intent(in) :: k
+    real(dp), intent(out) :: inner(2, 0:b%n_voussoirs), outer(2, 0:b%n_voussoirs)
+    type(intrados_t) :: c
+    real(dp) :: x0, p(2), nrm(2), t
+    integer :: j, n
+    c = bridge_intrados(b, k)
+    n = b%n_voussoirs
+    t = b%ring_thickness_m
+    x0 = bridge_span_left_x(b, k)
+    do j = 0, n
+      ! s at j = n exactly the whole length (no round-off past the springing)
+      call intrados_at(c, merge(c%length_m, c%length_m*j/n, j == n), p, nrm)
+      if (j == 0) p = [0.0_dp, 0.0_dp]
+      if (j == n) p = [b%span_m(k), 0.0_dp]
+      inner(:, j) = [x0 + p(1), p(2)]
+      outer(:, j) = inner(:, j) + t*nrm
+      if (c%shape == shape_pointed .and. 2*j == n) outer(:, j) = [x0 + 0.5_dp*b%span_m(k), crown_extrados_m(c, t)]
+      ! A springing joint normal to a vertical intrados is level (cos(pi/2) is not 0 in floating point).
+      if ((j == 0 .or. j == n) .and. abs(outer(2, j)) <= 1.0e-12_dp*t) outer(2, j) = 0.0_dp
+    end do
+  end subroutine bridge_ring_joints
+
+  !> The blocks of the bridge `b` (validated by read_bridge_config); a block that comes
+  !> out not convex fails `status` (a fault of the program: the checks of the group
+  !> exclude it).
+  subroutine build_bridge(b, asm, status)
+    type(bridge_config_t), intent(in) :: b
+    type(assembly_t), intent(out) :: asm
+    type(status_t), intent(inout) :: status
+    real(dp), allocatable :: inner(:, :, :), outer(:, :, :)
+    real(dp) :: h, x_end, w
+    integer :: n, ns, nb, k, j, body
+
+    n = b%n_voussoirs
+    ns = b%n_spans
+    h = b%pier_height_m
+    w = b%abutment_width_m
+    nb = ns*n + (ns - 1) + 2 + merge(1, 0, ns > 1)
+    allocate (asm%polygon(nb), asm%driven(nb), asm%role(nb), asm%density_kg_m3(nb), asm%friction(nb), &
+              asm%block_name(nb))
+    allocate (inner(2, 0:n, ns), outer(2, 0:n, ns))
+    asm%n_bodies = nb
+    asm%thickness_m = b%ring_thickness_m
+    asm%has_fill = b%fill_density_kg_m3 > 0.0_dp
+    asm%fill_level_m = b%fill_level_m
+    asm%fill_weight_n_m2 = b%fill_density_kg_m3*g_m_s2*b%width_m
+    asm%dispersion_angle_deg = b%dispersion_angle_deg
+    if (b%fill_friction_deg > 0.0_dp) then   ! Rankine's coefficients
+      asm%fill_active_k = tan(0.25_dp*pi - 0.5_dp*b%fill_friction_deg*pi/180.0_dp)**2
+      asm%fill_passive_k = max(asm%fill_active_k, &
+                               b%passive_mobilisation*tan(0.25_dp*pi + 0.5_dp*b%fill_friction_deg*pi/180.0_dp)**2)
+    end if
+    body = 0
+    do k = 1, ns
+      call bridge_ring_joints(b, k, inner(:, :, k), outer(:, :, k))
+      do j = 1, n
+        ! Counter-clockwise: inner left, inner right, outer right, outer left.
+        call add(reshape([inner(:, j - 1, k), inner(:, j, k), outer(:, j, k), outer(:, j - 1, k)], [2, 4]), &
+                 .false., role_voussoir, b%ring_density_kg_m3, b%ring_friction, 'span '//itoa(k)//' voussoir '//itoa(j))
+      end do
+    end do
+    do k = 1, ns - 1
+      call add(pier(inner(:, n, k), outer(:, n, k), inner(:, 0, k + 1), outer(:, 0, k + 1), h), .false., &
+               role_voussoir, b%pier_density_kg_m3, b%pier_friction, 'pier '//itoa(k))
+    end do
+    ! The abutments: the springing joint on top, back to abutment_width_m, down to the ground.
+    call add(left_abutment(outer(:, 0, 1), w, h), .true., role_foundation, b%pier_density_kg_m3, b%abutment_friction, &
+             'left abutment')
+    x_end = bridge_span_left_x(b, ns) + b%span_m(ns)
+    call add(right_abutment(x_end, outer(:, n, ns), w, h), .true., role_foundation, b%pier_density_kg_m3, &
+             b%abutment_friction, 'right abutment')
+    if (ns > 1) call add(box(-w, x_end + w, -h - b%ring_thickness_m, -h), .true., role_foundation, &
+                         b%pier_density_kg_m3, b%pier_friction, 'ground')
+
+  contains
+
+    subroutine add(xy, driven, role, density_kg_m3, friction, name)
+      real(dp), intent(in) :: xy(:, :), density_kg_m3, friction
+      logical, intent(in) :: driven
+      integer, intent(in) :: role
+      character(len=*), intent(in) :: name
+      if (.not. status%ok) return
+      body = body + 1
+      if (.not. is_convex_ccw(xy)) then
+        call fail(status, '&bridge: block '//itoa(body)//' of the bridge is not convex (a fault of the program)')
+        return
+      end if
+      asm%polygon(body) = polygon_t(xy)
+      asm%driven(body) = driven
+      asm%role(body) = role
+      asm%density_kg_m3(body) = density_kg_m3
+      asm%friction(body) = friction
+      asm%block_name(body) = name
+    end subroutine add
+
+  end subroutine build_bridge
+
+  !> A pier between a span's right springing joint (`in1` to `out1`) and the next span's
+  !> left one (`in2` to `out2`), down to the ground `height_m` below the springings. A
+  !> horizontal springing joint lies along the pier's flat top; inclined ones are its
+  !> sloping faces, a flat between them where they do not meet.
+  pure function pier(in1, out1, in2, out2, height_m) result(xy)
+    real(dp), intent(in) :: in1(2), out1(2), in2(2), out2(2), height_m
+    real(dp), allocatable :: xy(:, :)
+    xy = reshape([in1(1), -height_m, in2(1), -height_m, in2(1), 0.0_dp], [2, 3])
+    if (out2(2) > 0.0_dp) xy = reshape([xy, out2], [2, size(xy, 2) + 1])
+    if (out1(2) > 0.0_dp .and. norm2(out1 - out2) > 1.0e-9_dp*height_m) xy = reshape([xy, out1], [2, size(xy, 2) + 1])
+    xy = reshape([xy, in1(1), 0.0_dp], [2, size(xy, 2) + 1])
+  end function pier
+
+  !> The left abutment: its top the springing joint (from (0, 0) to `out`) and a level back
+  !> to x = -width_m, its foot `height_m` below the springings.
+  pure function left_abutment(out, width_m, height_m) result(xy)
+    real(dp), intent(in) :: out(2), width_m, height_m
+    real(dp), allocatable :: xy(:, :)
+    if (out(2) > 0.0_dp) then
+      xy = reshape([-width_m, -height_m, 0.0_dp, -height_m, 0.0_dp, 0.0_dp, out(1), out(2), -width_m, out(2)], [2, 5])
+    else
+      xy = box(-width_m, 0.0_dp, -height_m, 0.0_dp)
+    end if
+  end function left_abutment
+
+  !> The right abutment, the mirror of the left one about the last span's right springing
+  !> at x = `x_end`.
+  pure function right_abutment(x_end, out, width_m, height_m) result(xy)
+    real(dp), intent(in) :: x_end, out(2), width_m, height_m
+    real(dp), allocatable :: xy(:, :)
+    if (out(2) > 0.0_dp) then
+      xy = reshape([x_end, -height_m, x_end + width_m, -height_m, x_end + width_m, out(2), out(1), out(2), &
+                    x_end, 0.0_dp], [2, 5])
+    else
+      xy = box(x_end, x_end + width_m, -height_m, 0.0_dp)
+    end if
+  end function right_abutment
+
+end module voussoir_bridge

@@ -1,0 +1,276 @@
+!> The &bridge group: a masonry arch bridge described as an engineer gives it (spans and
+!> rises, the intrados shape, the ring, piers and abutments, and the material of each
+!> part) instead of the &arch builder or a polygon file. Input only: the blocks are built
+!> by voussoir_bridge (src/assembly/bridge.f90). Every refusal that follows from the values
+!> alone is made here, when the file is read: it names the file, the group, the variable,
+!> the value, the allowed range and why. docs/bridges.md.
+module voussoir_bridge_config
+  use voussoir_kinds, only: dp, pi
+  use voussoir_status, only: status_t, fail
+  use voussoir_text, only: itoa, fmt_real, fmt_significant, lower
+  use voussoir_namelist_group, only: nml_group_t
+  use voussoir_input_range, only: need
+  use voussoir_bridge_shape, only: intrados_t, intrados_init, springing_reach, crown_extrados_m, shape_names, &
+    shape_segmental, &
+    shape_semicircular, shape_elliptical, shape_three_centred, shape_pointed, shape_parabolic, &
+    three_centred_min_rise_ratio
+  implicit none
+  private
+  public :: bridge_config_t, bridge_group, read_bridge_config, bridge_intrados, max_spans, bridge_length_m
+
+  integer, parameter :: max_spans = 8
+  integer, parameter :: max_bridge_voussoirs = 200     !! per span, as voussoir-limit's arch
+  !> A ring deeper than this fraction of its span is more a wall pierced by an opening than
+  !> an arch (and its springing joints reach over its piers).
+  real(dp), parameter :: max_ring_over_span = 0.25_dp
+
+  !> &bridge (no span given: no bridge).
+  type :: bridge_config_t
+    character(len=16) :: shape = shape_segmental        !! the intrados of every span, one of shape_names
+    real(dp) :: span_m(max_spans) = 0.0_dp              !! clear span k between its intrados springings [m]; 0: no span
+    real(dp) :: rise_m(max_spans) = 0.0_dp              !! rise of span k's intrados above its springings [m]
+    real(dp) :: ring_thickness_m = 0.45_dp              !! ring depth, normal to the intrados [m]
+    integer :: n_voussoirs = 16                         !! voussoirs of each span, equal lengths along the intrados
+    real(dp) :: pier_width_m = 1.0_dp                   !! between the intrados springings of the spans it carries [m]
+    real(dp) :: pier_height_m = 2.0_dp                  !! the springings above the ground [m]
+    real(dp) :: abutment_width_m = 1.0_dp               !! from an outer intrados springing back to the abutment's end [m]
+    real(dp) :: width_m = 1.0_dp                        !! barrel width, out of plane [m]
+    real(dp) :: ring_density_kg_m3 = 2000.0_dp
+    real(dp) :: ring_friction = 0.6_dp                  !! Coulomb coefficient of the ring's joints
+    real(dp) :: pier_density_kg_m3 = 2000.0_dp
+    real(dp) :: pier_friction = 0.6_dp                  !! of a pier on the ground and under its springings
+    real(dp) :: abutment_friction = 0.6_dp              !! of a skewback under its springing
+    !> The fill (the engineers' model, voussoir-limit only): a level surface fill_level_m
+    !> above the springings, its weight as vertical dead loads on the blocks beneath, and
+    !> live loads spread through it at dispersion_angle_deg from the vertical either side.
+    real(dp) :: fill_density_kg_m3 = 0.0_dp             !! 0: no fill
+    real(dp) :: fill_level_m = 0.0_dp                   !! the fill's (and the road's) surface above the springings [m]
+    real(dp) :: dispersion_angle_deg = 0.0_dp           !! 0: a live load acts on the extrados straight beneath it
+    !> The fill's horizontal pressure on the ring (Rankine, angle of friction phi): at least
+    !> active, K_a = tan^2(45 - phi/2), up to passive_mobilisation x K_p = tan^2(45 + phi/2)
+    !> where the ring moves into the fill; 0: no horizontal pressure.
+    real(dp) :: fill_friction_deg = 0.0_dp
+    real(dp) :: passive_mobilisation = 0.0_dp           !! the fraction of K_p mobilised (0: active only)
+    integer :: n_spans = 0                              !! (derived) the spans given
+  end type bridge_config_t
+
+contains
+
+  !> The &bridge table over `b`.
+  subroutine bridge_group(b, g)
+    type(bridge_config_t), intent(inout), target :: b
+    type(nml_group_t), intent(out) :: g
+    g%name = 'bridge'
+    call g%add('shape', b%shape, choices=shape_names)
+    call g%add('span_m', b%span_m, unset=0.0_dp, unit='m', range='0 < span_m <= 200 m', &
+               about='real, m, the clear span k between its intrados springings')
+    call g%add('rise_m', b%rise_m, unset=0.0_dp, unit='m', range='0 < rise_m <= 200 m', &
+               about='real, m, the rise of span k (semicircular: may be left out)')
+    call g%add('ring_thickness_m', b%ring_thickness_m, unit='m', range='0 < ring_thickness_m <= 10 m')
+    call g%add('n_voussoirs', b%n_voussoirs, range='3 <= n_voussoirs <= '//itoa(max_bridge_voussoirs), &
+               about='integer, per span')
+    call g%add('pier_width_m', b%pier_width_m, unit='m', range='0 < pier_width_m <= 100 m')
+    call g%add('pier_height_m', b%pier_height_m, unit='m', range='0 < pier_height_m <= 100 m')
+    call g%add('abutment_width_m', b%abutment_width_m, unit='m', range='0 < abutment_width_m <= 100 m')
+    call g%add('width_m', b%width_m, unit='m', range='0 < width_m <= 1000 m')
+    call g%add('ring_density_kg_m3', b%ring_density_kg_m3, unit='kg/m3', range='0 < ring_density_kg_m3 <= 1e5')
+    call g%add('ring_friction', b%ring_friction, range='ring_friction >= 0 (finite)')
+    call g%add('pier_density_kg_m3', b%pier_density_kg_m3, unit='kg/m3', range='0 < pier_density_kg_m3 <= 1e5')
+    call g%add('pier_friction', b%pier_friction, range='pier_friction >= 0 (finite)')
+    call g%add('abutment_friction', b%abutment_friction, range='abutment_friction >= 0 (finite)')
+    call g%add('fill_density_kg_m3', b%fill_density_kg_m3, unit='kg/m3', &
+               range='0 <= fill_density_kg_m3 <= 1e5 (0: no fill)')
+    call g%add('fill_level_m', b%fill_level_m, unit='m', range='0 <= fill_level_m <= 300 m', &
+               about='real, m, the fill surface above the springings')
+    call g%add('dispersion_angle_deg', b%dispersion_angle_deg, unit='deg', range='0 <= dispersion_angle_deg < 90', &
+               about='real, deg from the vertical, either side of a live load')
+    call g%add('fill_friction_deg', b%fill_friction_deg, unit='deg', range='0 <= fill_friction_deg < 90', &
+               about="real, deg, the fill's angle of friction (0: no horizontal pressure)")
+    call g%add('passive_mobilisation', b%passive_mobilisation, range='0 <= passive_mobilisation <= 1', &
+               about='real, the fraction of the passive pressure mobilised (0: active only)')
+  end subroutine bridge_group
+
+  !> Read and check the &bridge group of `path` (absent, or no span: no bridge).
+  subroutine read_bridge_config(path, b, status)
+    character(len=*), intent(in) :: path
+    type(bridge_config_t), intent(out), target :: b
+    type(status_t), intent(inout) :: status
+    type(nml_group_t) :: g
+    logical :: found
+    integer :: k
+
+    if (.not. status%ok) return
+    call bridge_group(b, g)
+    call g%read(path, status, found)
+    if (.not. status%ok .or. .not. found) return
+    b%n_spans = g%length('span_m', path, status)
+    if (.not. status%ok) return
+    if (b%n_spans == 0) then
+      call fail(status, path//': &bridge gives no span: set span_m(1) > 0 [m] (and span_m(2), ... for more spans '// &
+                'on piers)')
+      return
+    end if
+    do k = 1, max_spans
+      if (b%rise_m(k) /= b%rise_m(k) .or. b%span_m(k) /= b%span_m(k)) then
+        call fail(status, path//': &bridge span_m('//itoa(k)//') or rise_m('//itoa(k)//') is not a finite number')
+        return
+      end if
+    end do
+    call g%check(path, status)
+    if (.not. status%ok) return
+    b%shape = lower(b%shape)
+    do k = b%n_spans + 1, max_spans
+      call need(b%rise_m(k) == 0.0_dp, path, 'bridge', 'rise_m('//itoa(k)//')', b%rise_m(k), &
+                'none: there are '//itoa(b%n_spans)//' spans (span_m(1..'//itoa(b%n_spans)//'))', status)
+    end do
+    do k = 1, b%n_spans
+      call check_span(b, k, path, status)
+    end do
+    if (.not. status%ok) return
+    call check_supports(b, path, status)
+    call check_fill(b, path, status)
+  end subroutine read_bridge_config
+
+  !> A fill covers every ring (its surface not below any extrados); a dispersion angle
+  !> or a fill level without a fill to spread or stand in is refused.
+  subroutine check_fill(b, path, status)
+    type(bridge_config_t), intent(in) :: b
+    character(len=*), intent(in) :: path
+    type(status_t), intent(inout) :: status
+    real(dp) :: top_m
+    integer :: k, highest
+    if (.not. status%ok) return
+    call need(b%passive_mobilisation == 0.0_dp .or. b%fill_friction_deg > 0.0_dp, path, 'bridge', &
+              'passive_mobilisation', b%passive_mobilisation, '0 without fill_friction_deg > 0 (the passive '// &
+              "pressure's coefficient follows from the fill's angle of friction)", status)
+    if (b%fill_density_kg_m3 == 0.0_dp) then
+      call need(b%fill_friction_deg == 0.0_dp, path, 'bridge', 'fill_friction_deg', b%fill_friction_deg, &
+                '0 without a fill (set fill_density_kg_m3 > 0)', status)
+      call need(b%dispersion_angle_deg == 0.0_dp, path, 'bridge', 'dispersion_angle_deg', b%dispersion_angle_deg, &
+                '0 without a fill (set fill_density_kg_m3 > 0 and fill_level_m for the load to spread through)', &
+                status)
+      call need(b%fill_level_m == 0.0_dp, path, 'bridge', 'fill_level_m', b%fill_level_m, &
+                '0 without a fill (set fill_density_kg_m3 > 0)', status)
+      return
+    end if
+    highest = 1
+    top_m = -huge(1.0_dp)
+    do k = 1, b%n_spans
+      if (crown_top_m(b, k) > top_m) then
+        top_m = crown_top_m(b, k)
+        highest = k
+      end if
+    end do
+    call need(b%fill_level_m >= top_m, path, 'bridge', 'fill_level_m', b%fill_level_m, &
+              'fill_level_m >= '//fmt_significant(top_m, 6)//' m, the extrados of span '//itoa(highest)// &
+              "'s crown (its rise and ring_thickness_m): a fill surface below the extrados would cut the ring", status)
+  end subroutine check_fill
+
+  !> The height of span k's extrados at its crown above the springings [m].
+  pure real(dp) function crown_top_m(b, k)
+    type(bridge_config_t), intent(in) :: b
+    integer, intent(in) :: k
+    type(intrados_t) :: c
+    c = bridge_intrados(b, k)
+    crown_top_m = c%rise_m + b%ring_thickness_m
+    if (b%shape == shape_pointed) crown_top_m = crown_extrados_m(c, b%ring_thickness_m)
+  end function crown_top_m
+
+  !> Span k's rise against its shape, its ring against its span, its voussoirs' lengths.
+  subroutine check_span(b, k, path, status)
+    type(bridge_config_t), intent(inout) :: b
+    integer, intent(in) :: k
+    character(len=*), intent(in) :: path
+    type(status_t), intent(inout) :: status
+    character(len=:), allocatable :: rise, half
+    real(dp) :: span
+
+    if (.not. status%ok) return
+    span = b%span_m(k)
+    rise = 'rise_m('//itoa(k)//')'
+    half = fmt_significant(0.5_dp*span, 6)
+    select case (b%shape)
+    case (shape_semicircular)
+      ! The rise of a semicircle is its radius: left out, or given equal to it.
+      if (b%rise_m(k) == 0.0_dp) b%rise_m(k) = 0.5_dp*span
+      call need(abs(b%rise_m(k) - 0.5_dp*span) <= 1.0e-9_dp*span, path, 'bridge', rise, b%rise_m(k), &
+                rise//' = span_m/2 = '//half//' m for a semicircular arch (or leave it out); another rise is '// &
+                "'segmental' (below half the span), 'elliptical' or 'pointed' (above)", status)
+    case (shape_segmental)
+      call need_rise(b%rise_m(k) > 0.0_dp .and. b%rise_m(k) <= 0.5_dp*span, '0 < '//rise//' <= span_m/2 = '// &
+                     half//" m for a segmental arch (a circular arc no more than a semicircle; above half the span "// &
+                     "choose 'pointed' or 'elliptical')")
+    case (shape_pointed)
+      call need_rise(b%rise_m(k) >= 0.5_dp*span, rise//' >= span_m/2 = '//half//' m for a pointed arch (two arcs '// &
+                     "centred on the springing line meet above a semicircle; below choose 'segmental')")
+      call need(modulo(b%n_voussoirs, 2) == 0, path, 'bridge', 'n_voussoirs', b%n_voussoirs, &
+                'an even n_voussoirs for a pointed arch: its two arcs meet at the apex at an angle, where a '// &
+                'joint must stand (a keystone across it would not be convex)', status)
+    case (shape_three_centred)
+      call need_rise(b%rise_m(k) > three_centred_min_rise_ratio*span .and. b%rise_m(k) < 0.5_dp*span, &
+                     fmt_significant(three_centred_min_rise_ratio*span, 6)//' m < '//rise//' < span_m/2 = '//half// &
+                     ' m for a three-centred arch of 60-degree haunches (lower, its haunch radius would vanish; '// &
+                     "at half the span it is a semicircle)")
+    case (shape_elliptical, shape_parabolic)
+      call need_rise(b%rise_m(k) > 0.0_dp, '0 < '//rise//' <= 200 m (give the rise of span '//itoa(k)//')')
+    end select
+    if (.not. status%ok) return
+    call need(b%ring_thickness_m <= max_ring_over_span*span, path, 'bridge', 'ring_thickness_m', b%ring_thickness_m, &
+              '0 < ring_thickness_m <= span_m('//itoa(k)//')/4 = '//fmt_significant(max_ring_over_span*span, 6)// &
+              ' m: a ring deeper than a quarter of its span is a wall pierced by an opening, not an arch ring', status)
+    ! No slivers follow: with the ring at most a quarter of the span and at most 200
+    ! voussoirs, each is at least ring_thickness_m/50 long (the &arch builder's rule asks
+    ! for a hundredth).
+
+  contains
+
+    subroutine need_rise(good, allowed)
+      logical, intent(in) :: good
+      character(len=*), intent(in) :: allowed
+      call need(good, path, 'bridge', rise, b%rise_m(k), allowed, status)
+    end subroutine need_rise
+
+  end subroutine check_span
+
+  !> The skewbacks carry their arches: each abutment reaches back beyond its springing
+  !> joint's extrados end; the spans meet their piers side by side: a pier is wide enough
+  !> for the springing joints of both spans it carries.
+  subroutine check_supports(b, path, status)
+    type(bridge_config_t), intent(in) :: b
+    character(len=*), intent(in) :: path
+    type(status_t), intent(inout) :: status
+    real(dp) :: back(max_spans), up
+    integer :: k
+    do k = 1, b%n_spans
+      call springing_reach(bridge_intrados(b, k), b%ring_thickness_m, back(k), up)
+    end do
+    do k = 1, b%n_spans, max(1, b%n_spans - 1)   ! the first span's left end and the last span's right end
+      call need(b%abutment_width_m > back(k), path, 'bridge', 'abutment_width_m', b%abutment_width_m, &
+                'abutment_width_m > '//fmt_significant(back(k), 6)//' m, the horizontal reach of span '//itoa(k)// &
+                "'s springing joint (ring_thickness_m across the intrados there): a narrower skewback would not "// &
+                'carry the extrados end of its arch', status)
+    end do
+    do k = 1, b%n_spans - 1
+      call need(b%pier_width_m >= back(k) + back(k + 1), path, 'bridge', 'pier_width_m', b%pier_width_m, &
+                'pier_width_m >= '//fmt_significant(back(k) + back(k + 1), 6)//' m: spans '//itoa(k)//' and '// &
+                itoa(k + 1)//' do not meet pier '//itoa(k)//' side by side (their springing joints reach '// &
+                fmt_significant(back(k), 6)//' and '//fmt_significant(back(k + 1), 6)//' m over it, and would '// &
+                'overlap)', status)
+    end do
+  end subroutine check_supports
+
+  !> The intrados of span k.
+  pure function bridge_intrados(b, k) result(c)
+    type(bridge_config_t), intent(in) :: b
+    integer, intent(in) :: k
+    type(intrados_t) :: c
+    c = intrados_init(b%shape, b%span_m(k), b%rise_m(k))
+  end function bridge_intrados
+
+  !> From the back of the left abutment to the back of the right one [m].
+  pure real(dp) function bridge_length_m(b)
+    type(bridge_config_t), intent(in) :: b
+    bridge_length_m = sum(b%span_m(1:b%n_spans)) + (b%n_spans - 1)*b%pier_width_m + 2.0_dp*b%abutment_width_m
+  end function bridge_length_m
+
+end module voussoir_bridge_config
