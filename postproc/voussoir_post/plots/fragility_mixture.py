@@ -109,8 +109,9 @@ class MixtureData:
         lines = [f"mixture of the {f.samples.size} model samples ({self.note}): PGA median {mx.median / G_M_S2:.4g} g, "
                  f"{pct} % band [{mx.band.median_low / G_M_S2:.4g}, {mx.band.median_high / G_M_S2:.4g}] g "
                  f"(two-stage bootstrap, {mx.band.n_resamples} resamples of the {mx.band.n_clusters} "
-                 f"{mx.band.cluster_by}s with their records, and of the samples within their models; sd of ln median "
-                 f"{mx.band.ln_median_sd:.3f})"]
+                 f"{mx.band.cluster_by}s with their records, and of the samples within their models"
+                 + (f", {mx.band.n_unfitted} more could not be fitted" if mx.band.n_unfitted else "")
+                 + f"; sd of ln median {mx.band.ln_median_sd:.3f})"]
         if single:
             lines.append(f"  {len(single)} of the {len(set(f.models))} models have one sample ({', '.join(single)}): "
                          f"resampling it changes nothing, so the band carries none of their own samples' error (a "
