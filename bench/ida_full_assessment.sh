@@ -76,9 +76,11 @@ mpirun --oversubscribe -np 2 "$exe" "$name.nml" 2>&1 | grep -E 'done|warning' | 
 ida_s=$(elapsed "$t")
 echo "   IDA wall time: $ida_s s"
 if (( run_samples < n_samples )); then
-  echo "   extrapolated to $n_samples samples: $(echo "$ida_s * $n_samples / $run_samples / 60" | bc -l | xargs printf '%.0f') min" \
-       "(the wall time x $n_samples / $run_samples; samples differ in cost: a weaker model collapses in fewer, shorter runs)"
-  echo "[bench] measured $run_samples of $n_samples samples only: no fragility or risk (the mixture needs every stratum); total $(elapsed "$t0") s"
+  minutes=$(echo "$ida_s * $n_samples / $run_samples / 60" | bc -l | xargs printf '%.0f')
+  echo "   extrapolated to $n_samples samples: $minutes min (the wall time x $n_samples / $run_samples;" \
+       "samples differ in cost: a weaker model collapses in fewer, shorter runs)"
+  echo "[bench] measured $run_samples of $n_samples samples only: no fragility or risk (the mixture needs every" \
+       "stratum); total $(elapsed "$t0") s"
   exit 0
 fi
 
