@@ -109,3 +109,29 @@ def test_bridge_report_refuses_a_pair_that_is_not_one_bridge(pair, tmp_path, cap
     assert post.main(["bridge-report", str(paths["with"]), "--without-passive", str(tmp_path / "other.json"),
                       "--out", str(tmp_path / "r2")]) == 2
     assert "&bridge differs in ring_thickness_m" in capsys.readouterr().err
+
+
+def test_bridge_report_of_two_spans_without_fill(voussoir_limit_exe, tmp_path, drawn_figures):
+    """input/bridge_two_spans.nml alone: two spans on a pier, no fill; the positions over the
+    pier where the LP finds no collapse (null in the JSON) are said so, not drawn as numbers;
+    the critical position is still the least of the finite points."""
+    path = tmp_path / "two.json"
+    path.write_text(run_executable([voussoir_limit_exe, REPO_ROOT / "input" / "bridge_two_spans.nml", "--json"],
+                                   tmp_path).stdout)
+    raw = json.loads(path.read_text())
+    assert post.main(["bridge-report", str(path), "--out", str(tmp_path / "r")]) == 0
+    report = (tmp_path / "r" / "report.md").read_text()
+    (row,) = _table(report, "Load factor")
+    assert float(row[1]) == pytest.approx(raw["load_factor"], abs=5.1e-5)
+    spans = _table(report, "Geometry")
+    assert [s[5] for s in spans] == ["0", "11.5"]            # span 2 springs from beyond the 1.5 m pier
+    assert "Piers: 1, 1.5 m wide" in report and "No fill." in report
+    curve = raw["load_factor_curve"]
+    finite = [c["load_factor"] for c in curve if c["load_factor"] is not None]
+    assert len(finite) < len(curve)                           # over the pier: no collapse
+    assert raw["critical_position"]["load_factor"] <= min(finite) * (1 + 1e-9)
+    rows = _table(report, "Load factor against the vehicle's position")
+    assert sum(r[2] == "none (the LP found no collapse)" for r in rows) == len(curve) - len(finite)
+    assert (tmp_path / "r" / "load_position.png").read_bytes()[:8] == PNG_MAGIC
+    assert text_clashes(drawn_figures[-1]) == []
+    assert not (tmp_path / "r" / "mechanism_without_passive.png").exists()

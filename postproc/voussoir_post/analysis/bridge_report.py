@@ -323,7 +323,8 @@ def report_markdown(main: BridgeSummary, without: BridgeSummary | None, figures:
                 "critical position. The critical position is the least of all the points.", "",
                 "| case | x [m] | λ | refined at a joint | critical |", "|---|---|---|---|---|"]
         for case, xi, li, joint, critical in curve_rows:
-            out.append(f"| {case} | {xi:.6f} | {li:.6f} | {'yes' if joint else ''} | "
+            lam_text = f"{li:.6f}" if math.isfinite(li) else "none (the LP found no collapse)"
+            out.append(f"| {case} | {xi:.6f} | {lam_text} | {'yes' if joint else ''} | "
                        f"{'**critical**' if critical else ''} |")
     else:
         out.append(f"No path in `&load`: the load stands at one position, x = {_num(x, 4)} m.")

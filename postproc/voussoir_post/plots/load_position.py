@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from matplotlib.lines import Line2D
+from matplotlib.ticker import FuncFormatter
 
 from ..tables import ReportTable
 from .drawing import COLORS, legend_pad, new_figure, save_figure, wrap_text
@@ -56,13 +57,17 @@ def plot_load_position(cases: list[CurveCase], live_total_n: float, out_png: str
         ax.plot(x, lam, "-", color=colour, linewidth=1.2, zorder=3)
         ax.plot(x[~joint], lam[~joint], "o", color=colour, markersize=5, zorder=4)
         ax.plot(x[joint], lam[joint], "^", color=colour, markerfacecolor="white", markersize=6, zorder=4)
+        none = ~np.isfinite(lam)
+        if none.any():   # the LP found no collapse there (e.g. a load standing on a pier)
+            ax.plot(x[none], np.full(none.sum(), 0.015), "x", color=colour, markersize=6, zorder=4,
+                    transform=ax.get_xaxis_transform(), clip_on=False)
         ax.plot([case.critical_x_m], [case.critical_load_factor], "*", color="tab:red", markersize=15,
                 markeredgecolor="black", zorder=6)
         # The labels stacked in the band kept free below the curves, each joined to its star.
         ax.annotate(f"critical: x = {case.critical_x_m:.3f} m, λ = {case.critical_load_factor:.4g} "
                     f"({case.critical_load_factor * live_total_n / 1e3:.4g} kN)",
                     (case.critical_x_m, case.critical_load_factor), textcoords="axes fraction",
-                    xytext=(0.5, 0.04 + 0.07 * (len(cases) - 1 - k)), fontsize=8, color=colour, ha="center",
+                    xytext=(0.5, 0.06 + 0.07 * (len(cases) - 1 - k)), fontsize=8, color=colour, ha="center",
                     va="bottom", bbox=dict(boxstyle="round,pad=0.2", facecolor="white", edgecolor=colour,
                                            alpha=0.9),
                     arrowprops=dict(arrowstyle="-", color=colour, linewidth=0.6), zorder=7)
@@ -77,17 +82,24 @@ def plot_load_position(cases: list[CurveCase], live_total_n: float, out_png: str
                        label="refined: a live load a micrometre to either side of a joint's extrados end"),
                 Line2D([], [], linestyle="none", marker="*", color="tab:red", markeredgecolor="black",
                        markersize=12, label="critical position (the least load factor)")]
+    if any((~np.isfinite(c.load_factor)).any() for c in cases):
+        handles.append(Line2D([], [], linestyle="none", marker="x", color=grey, markersize=6,
+                              label="no load factor there (the LP found no collapse)"))
     finite = np.concatenate([c.load_factor[np.isfinite(c.load_factor)] for c in cases])
     if finite.size:
         lo, hi = float(finite.min()), float(finite.max())
         pad = 0.08 * (hi - lo if hi > lo else max(abs(hi), 1.0))
-        ax.set_ylim(lo - (2.0 + 1.0 * len(cases)) * pad, hi + pad)
+        ax.set_ylim(lo - (2.5 + 1.0 * len(cases)) * pad, hi + pad)
+    # The band below the curves holds the labels: no negative load factor or load is read there.
+    blank_negative = FuncFormatter(lambda v, _pos: "" if v < -1e-9 else f"{v:g}")
+    ax.yaxis.set_major_formatter(blank_negative)
     ax.set_xlabel("vehicle position x [m] from the left springing of span 1 (the resultant of its live loads)")
     ax.set_ylabel("collapse load factor λ on the live load")
     if math.isfinite(live_total_n) and live_total_n > 0:
         right = ax.secondary_yaxis("right", functions=(lambda a: a * live_total_n / 1e3,
                                                        lambda kn: kn * 1e3 / live_total_n))
         right.set_ylabel(f"collapse live load λ × {live_total_n / 1e3:.4g} kN [kN]")
+        right.yaxis.set_major_formatter(blank_negative)
     ax.grid(True, alpha=0.3)
     ax.set_title("\n".join(wrap_text(line, 8.6, 10) for line in title.split("\n")), fontsize=10)
     fig.legend(handles=handles, loc="outside lower center", borderaxespad=legend_pad(8), ncols=2, fontsize=8)
