@@ -172,7 +172,8 @@ def drawn_figures(monkeypatch) -> list:
         return fig
 
     plots = ("sequence", "envelope", "compare", "history", "mechanism", "mechanism_lp", "fragility_plot",
-             "fragility_compare", "fragility_lambda_g", "record_table", "reactions", "thrust_line", "msa_plot")
+             "fragility_compare", "fragility_lambda_g", "record_table", "reactions", "thrust_line", "msa_plot",
+             "load_position")
     for name in [f"plots.{p}" for p in plots] + ["diagnosis.figures"]:
         module = importlib.import_module(f"voussoir_post.{name}")
         if hasattr(module, "new_figure"):

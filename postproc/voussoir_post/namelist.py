@@ -90,11 +90,24 @@ def parse_namelist(text: str) -> dict[str, dict[str, object]]:
         end = _namelist_end(body)
         body = body[:end]
         variables: dict[str, object] = {}
-        # Assignments: name = values up to the next 'name ='.
-        assigns = list(re.finditer(r"(?:^|[\s,])([A-Za-z]\w*(?:%\w+)*)\s*=", body))
+        # Assignments: name = values up to the next 'name ='; name(i) = value sets the
+        # i-th element (from 1) of the list `name` (the form voussoir's config_nml gives
+        # &bridge span_m(1) and &load point_load_n(1)).
+        assigns = list(re.finditer(r"(?:^|[\s,])([A-Za-z]\w*(?:%\w+)*)\s*(?:\(\s*(\d+)\s*\))?\s*=", body))
         for k, am in enumerate(assigns):
             stop = assigns[k + 1].start() if k + 1 < len(assigns) else len(body)
-            variables[am.group(1).lower()] = _nml_value(body[am.end():stop])
+            value = _nml_value(body[am.end():stop])
+            var = am.group(1).lower()
+            if am.group(2) is None:
+                variables[var] = value
+                continue
+            items = variables.get(var)
+            items = list(items) if isinstance(items, list) else ([] if items is None else [items])
+            start = int(am.group(2)) - 1
+            values = value if isinstance(value, list) else [value]
+            items.extend([None] * max(0, start + len(values) - len(items)))
+            items[start:start + len(values)] = values
+            variables[var] = items
         groups[name] = variables
     return groups
 

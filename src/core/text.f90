@@ -209,6 +209,10 @@ contains
     integer :: k
     text = '"'
     do k = 1, len(s)
+      if (s(k:k) == achar(10)) then   ! a line break: JSON allows none raw in a string
+        text = text//'\n'
+        cycle
+      end if
       if (s(k:k) == '"' .or. s(k:k) == '\') text = text//'\'
       text = text//s(k:k)
     end do

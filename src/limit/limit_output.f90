@@ -2,7 +2,7 @@
 !> (docs/results_format.md, "voussoir-limit --json").
 module voussoir_limit_output
   use voussoir_kinds, only: dp, g_m_s2
-  use voussoir_config, only: config_t, has_loads
+  use voussoir_config, only: config_t, has_loads, config_entries, config_to_nml
   use voussoir_text, only: itoa, int_list, fmt_json_real, json_string, json_bool, fmt_significant
   use voussoir_assembly, only: assembly_t
   use voussoir_limit_analysis, only: limit_result_t
@@ -211,6 +211,7 @@ contains
         '  "producer": "voussoir-limit",'//nl// &
         '  "code_version": '//json_string(code_version)//','//nl// &
         '  "input_file": '//json_string(path)//','//nl// &
+        '  "config_nml": '//json_string(config_to_nml(config_entries(cfg)))//','//nl// &
         '  "g_m_s2": '//fmt_json_real(g_m_s2)//','//nl//lp_json(lp)// &
         '  "blocks": '//blocks_json(arch)//','//nl// &
         '  "lambda_pos": '//finite_or_null(res%lambda_pos)//','//nl// &
@@ -315,6 +316,7 @@ contains
       '  "producer": "voussoir-limit",'//nl// &
       '  "code_version": '//json_string(code_version)//','//nl// &
       '  "input_file": '//json_string(path)//','//nl// &
+      '  "config_nml": '//json_string(config_to_nml(config_entries(cfg)))//','//nl// &
       '  "g_m_s2": '//fmt_json_real(g_m_s2)//','//nl//lp_json(lp)// &
       '  "blocks": '//blocks_text//','//nl// &
       '  "lambda_pos": null,'//nl//'  "lambda_neg": null,'//nl// &

@@ -23,6 +23,7 @@ import sys
 from ..earthquake.record_sets import SET_NAMES
 from ..errors import DONE, InputError
 from ..tables import ReportTable, format_table, write_csv
+from .bridge_report import add_bridge_report_parser
 from .dtcheck import add_dtcheck_parser
 from .risk import add_risk_parser
 from .samples import add_samples_parser
@@ -661,6 +662,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("limit", metavar="LIMIT.json")
     common(p)
     p.set_defaults(func=cmd_mechanism)
+
+    add_bridge_report_parser(sub)
     return parser
 
 

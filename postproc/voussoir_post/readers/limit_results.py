@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..namelist import parse_namelist
 from ..units import G_M_S2
 from .results_common import SIDE_NAMES, ResultsError
 
@@ -103,6 +104,10 @@ class LimitResult:
     load_factor_nonassociative: float = math.nan
     critical_x_m: float = math.nan  #: the vehicle's critical position on a path (NaN without one)
     load_factor_curve: list[tuple[float, float]] = field(default_factory=list)  #: (x_m, lambda or NaN)
+    #: Per point of the curve: a live load stands over a joint's end there (refined), not a grid point.
+    curve_at_joint: list[bool] = field(default_factory=list)
+    #: Every setting as analysed, as namelist text (the JSON's ``config_nml``; '' in older files).
+    config_nml: str = ""
     #: The LP with the horizontal acceleration turned round (towards -x), where it applies.
     #: With a &bridge fill: each live load on the fill's surface (``point_loads`` then holds
     #: none of them: they enter as strips) with the x it spreads over, and the fill's weight
@@ -112,9 +117,16 @@ class LimitResult:
     fill_loads: list[PlacedLoad] = field(default_factory=list)
     #: With its horizontal pressure: each face's force at collapse (horizontal, into the ring).
     fill_pressures: list[PlacedLoad] = field(default_factory=list)
+    #: Each face's bounds of that pressure (Rankine's active, the mobilised passive) [N].
+    fill_pressure_bounds_n: list[tuple[float, float]] = field(default_factory=list)
     load_factor_neg: float = math.nan
     contact_forces_neg: list[LpInterfaceForce] = field(default_factory=list)
     mechanism_neg: list[LpInterfaceMode] = field(default_factory=list)
+
+    @property
+    def config(self) -> dict[str, dict[str, object]]:
+        """``config_nml`` as ``{group: {variable: value}}`` (empty in older files)."""
+        return parse_namelist(self.config_nml)
 
     @property
     def has_arch(self) -> bool:
@@ -231,6 +243,8 @@ def read_limit_json(path: str | os.PathLike) -> LimitResult:
         critical_x_m=_json_float(critical.get("x_m")) if isinstance(critical, dict) else math.nan,
         load_factor_curve=[(float(c["x_m"]), _json_float(c.get("load_factor")))
                            for c in data.get("load_factor_curve") or []],
+        curve_at_joint=[bool(c.get("at_joint", False)) for c in data.get("load_factor_curve") or []],
+        config_nml=str(data.get("config_nml") or ""),
         surface_loads=[PlacedLoad(int(e["load"]), 0, np.asarray(e["xy_m"], dtype=float), np.asarray(e["force_n"], dtype=float),
                                   True) for e in data.get("surface_loads") or []],
         surface_spread_x_m=[(float(e["spread_x_m"][0]), float(e["spread_x_m"][1])) for e in data.get("surface_loads") or []],
@@ -239,6 +253,8 @@ def read_limit_json(path: str | os.PathLike) -> LimitResult:
         fill_pressures=[PlacedLoad(0, int(e["block"]), np.asarray(e["xy_m"], dtype=float),
                                    _json_float(e.get("at_collapse_n")) * np.asarray(e["direction"], dtype=float), False)
                         for e in data.get("fill_pressures") or []],
+        fill_pressure_bounds_n=[(_json_float(e.get("active_n")), _json_float(e.get("passive_n")))
+                                for e in data.get("fill_pressures") or []],
         load_factor_neg=_json_float(data.get("load_factor_neg")),
         contact_forces_neg=_interface_forces(path, data.get("contact_forces_neg") or []),
         mechanism_neg=_modes(path, "mechanism_neg", data.get("mechanism_neg") or []),
