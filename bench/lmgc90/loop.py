@@ -168,7 +168,7 @@ class Laboratory:
              ) -> list[dict]:
         """Up from `start` by `by` to the first collapse, within the table's limits; when the
         first test falls, down by `by` until one stands."""
-        snap = lambda a: round(a / SNAP_M) * SNAP_M
+        snap = lambda a: round(round(a / SNAP_M) * SNAP_M, 7)
         by = max(SNAP_M, snap(by))
         rows, amp = [], max(SNAP_M, snap(start))
         while len(rows) < max_tests and within_limits(amp, f, table):
@@ -321,7 +321,8 @@ def run_truth(truth: dict, design: str, args, settings: DiagnosisSettings, out_r
                 a_from = rng.uniform(*FAULTS.start_fraction) * onset
                 a_by = rng.uniform(*FAULTS.step_mm) * 1e-3
                 chosen = {"specimen_id": sid, "frequency_hz": f, "kind": "afd_ramp",
-                          "amplitudes_m": [round(a_from / SNAP_M) * SNAP_M, None, max(SNAP_M, round(a_by / SNAP_M) * SNAP_M)]}
+                          "amplitudes_m": [round(round(a_from / SNAP_M) * SNAP_M, 7), None,
+                                           round(max(SNAP_M, round(a_by / SNAP_M) * SNAP_M), 7)]}
             runs0, secs0 = lab.runs, lab.seconds
             log(f"{slug} [{design}] test {k}: {sid} at {f:g} Hz, ramp {chosen['amplitudes_m']} in LMGC90")
             new = lab.ramp(sid, f, a_from, a_by, table, rng, k)
@@ -402,9 +403,13 @@ def summary(out_root: Path) -> dict:
         out[d] = {"truths": len(done), "named": len(named), "right": right, "wrong": len(named) - right,
                   "mean_tests": float(np.mean([s["tests_used"] for s in done])),
                   "mean_p_truth_final": float(np.mean([s["p_truth_final"] for s in done]))}
+        out[d]["named_after_tests"] = {k: sum(s["named_at_step"] == k for s in named) for k in range(MAX_TESTS + 1)}
+        out[d]["stopped"] = {r: sum(s["stopped"] == r for s in done) for r in sorted({s["stopped"] for s in done})}
         print(f"{d}: named at {NAMED_AT} within {MAX_TESTS} tests in {len(named)} of {len(done)} truths "
-              f"({right} right, {len(named) - right} wrong); mean tests {out[d]['mean_tests']:.2f}; "
-              f"mean final P(truth) {out[d]['mean_p_truth_final']:.3f}")
+              f"({right} right, {len(named) - right} wrong; after 0/1/2/3 tests: "
+              + "/".join(str(v) for v in out[d]["named_after_tests"].values())
+              + f"); mean tests {out[d]['mean_tests']:.2f}; mean final P(truth) {out[d]['mean_p_truth_final']:.3f}; "
+              f"stopped: {out[d]['stopped']}")
     paired = [t for t in truths if all((t, d) in res for d in DESIGNS)]
     if paired:
         gain = {d: [res[(t, d)]["p_truth_final"] - res[(t, d)]["p_truth_initial"] for t in paired] for d in DESIGNS}
