@@ -423,6 +423,33 @@ def summary(out_root: Path) -> dict:
         print(f"advised vs naive, gain in P(truth) over {len(paired)} truths (ties within 0.001): {wins} wins, "
               f"{ties} ties, {losses} losses; sign test p = {p:.3g}; mean gain {np.mean(gain['advised']):+.3f} "
               f"(advised) vs {np.mean(gain['naive']):+.3f} (naive)")
+    # The advice's expected gain against what its test gave: the entropy of the rivals
+    # (renormalised) before the test less after it, in bits.
+    expected, realised = [], []
+    for (t, d), s in res.items():
+        if d != "advised":
+            continue
+        for k in range(1, len(s["steps"])):
+            nt = s["steps"][k - 1]["next_test"]
+            before = out_root / "runs" / t / ("step0" if k == 1 else f"advised/step{k - 1}") / "diagnosis.json"
+            after = out_root / "runs" / t / f"advised/step{k}" / "diagnosis.json"
+            if not (nt and before.exists() and after.exists()):
+                continue
+            rivals = list(nt["predictions"])
+
+            def h(path):
+                q = np.array([json.loads(path.read_text())["probabilities"][m] for m in rivals])
+                q = q[q > 0] / q.sum()
+                return float(-(q * np.log2(q)).sum())
+            expected.append(nt["expected_gain_bits"])
+            realised.append(h(before) - h(after))
+    if expected:
+        out["information"] = {"tests": len(expected), "expected_bits": float(np.mean(expected)),
+                              "realised_bits": float(np.mean(realised)),
+                              "realised_per_test": [round(x, 3) for x in realised],
+                              "expected_per_test": [round(x, 3) for x in expected]}
+        print(f"advised tests: expected gain {np.mean(expected):.2f} bits a test, realised (entropy of the rivals "
+              f"before less after) {np.mean(realised):.2f} bits ({len(expected)} tests)")
     steps = [st for s in res.values() for st in s["steps"][1:]]
     if steps:
         fresh = [st for st in steps if st["bank_new_searches"] > 0]
