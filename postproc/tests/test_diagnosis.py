@@ -230,6 +230,30 @@ def test_expected_gain_is_the_mutual_information_of_the_ramps_bin():
     assert 0.05 < mid < 0.9
 
 
+def test_a_repeat_is_scored_within_the_bracket_the_pair_already_has():
+    """A repeat's rows join the pair's bracket: its outcome is a bin of that bracket, each
+    rival's law truncated to it. A bracket narrower than the ramp's bin: nothing left to
+    learn; a one-sided bracket above both rivals: the full bit; two bins: the mutual
+    information of the truncated laws, computed apart."""
+    means, sds = [math.log(0.03), math.log(0.0309)], [0.02, 0.02]
+    assert expected_gain_bits([0.5, 0.5], means, sds) > 0.05  # as if untested
+    assert expected_gain_bits([0.5, 0.5], means, sds, within=(math.log(0.0300), math.log(0.0306))) < 1e-12
+    far = expected_gain_bits([0.5, 0.5], [math.log(0.03), math.log(0.06)], [0.01, 0.01],
+                             within=(-math.inf, math.log(0.08)))
+    assert abs(far - 1.0) < 1e-6
+    lo, hi, step = math.log(0.0295), math.log(0.0295) + 2 * math.log1p(0.025), 0.025
+    edges = [lo, lo + math.log1p(step), hi]
+    rows = []
+    for m, s_ in zip(means, sds):
+        c = norm.cdf(edges, m, s_)
+        rows.append(np.diff(c) / (c[-1] - c[0]))
+    rows = np.array(rows)
+    mix = rows.mean(axis=0)
+    h = lambda q: -float(np.sum(q * np.log2(q)))
+    assert abs(expected_gain_bits([0.5, 0.5], means, sds, step, within=(lo, hi))
+               - (h(mix) - 0.5 * (h(rows[0]) + h(rows[1])))) < 1e-9
+
+
 def test_an_advised_ramp_stays_within_the_tables_limits():
     table = TableLimits(stroke_m=0.1, max_velocity_m_s=0.5, max_accel_m_s2=10.0)
     assert within_limits(0.05, 1.0, table)  # 0.31 m/s, 2.0 m/s2

@@ -15,8 +15,12 @@ simulated: stated in the report). A rival's table gain divides its threshold.
 The score is the expected information gain of the test about the cause, in bits: the
 mutual information I(M; Y) = H(Y) - sum_m p_m H(Y | m) between the rival M (weights
 their posterior probabilities, renormalised) and the ramp's bin Y. A repeat of a tested
-pair is scored the same way: a ramp that brackets the threshold into a bin it already
-lies in tells little, and its gain says so.
+pair is scored by the likelihood's own terms: its rows join the pair's, whose bracket
+(largest stand below, smallest collapse) the threshold is already known to lie in, so
+its outcome is the bin of that bracket the new ramp puts it in, each rival's predictive
+conditioned on the bracket (truncated to it), and the ramp spans the bracket only. A
+repeat of a narrow bracket tells little, and its gain says so; a repeat of a one-sided
+bracket (collapse rows only) can tell much.
 
 Every candidate is within the table's limits (table.csv, or its defaults): the ramp's
 largest amplitude A (the largest rival prediction plus two predictive spreads) must have
@@ -49,17 +53,30 @@ ALTERNATIVES = 3
 
 
 def expected_gain_bits(probabilities: list[float], means: list[float], sds: list[float],
-                       step: float = RAMP_STEP) -> float:
+                       step: float = RAMP_STEP, within: tuple[float, float] | None = None) -> float:
     """I(M; Y) in bits for rivals of probabilities p_m predicting log threshold
-    N(mean_m, sd_m^2), Y the bin of width log(1 + step) the threshold falls in."""
+    N(mean_m, sd_m^2), Y the bin of width log(1 + step) the threshold falls in. `within`
+    (log low, log high): the threshold is already known to lie there (a tested pair's
+    bracket; -inf for no stand below): each rival's law is truncated to it, and the bins
+    cover it only."""
     p = np.asarray(probabilities, float)
     p = p / p.sum()
     mu, sd = np.asarray(means, float), np.asarray(sds, float)
     width = math.log1p(step)
     lo = float(np.min(mu - 6 * sd))
-    edges = lo + width * np.arange(int(math.ceil((float(np.max(mu + 6 * sd)) - lo) / width)) + 2)
+    if within is None:
+        edges = lo + width * np.arange(int(math.ceil((float(np.max(mu + 6 * sd)) - lo) / width)) + 2)
+    else:
+        lo = max(lo, within[0])
+        hi = within[1]
+        if not hi > lo:
+            return 0.0
+        edges = np.append(lo + width * np.arange(max(1, int(math.ceil((hi - lo) / width - 1e-9)))), hi)
     cdf = ndtr((edges[None, :] - mu[:, None]) / sd[:, None])
     py_m = np.clip(np.diff(cdf, axis=1), 0.0, None)  # (rival, bin)
+    if within is not None:
+        mass = py_m.sum(axis=1, keepdims=True)
+        py_m = np.where(mass > 1e-300, py_m / np.maximum(mass, 1e-300), 1.0 / py_m.shape[1])
     py = p @ py_m
 
     def entropy(q):
@@ -90,12 +107,21 @@ def _new_frequencies(obs: Observations, sid: str, settings: DiagnosisSettings) -
 
 
 def _candidate(sid: str, f: float, new: bool, rivals: list[str], probs: list[float], means: list[float],
-               sds: list[float], table) -> dict | None:
+               sds: list[float], table, bracket: tuple[float, float] | None = None) -> dict | None:
+    """One candidate test; `bracket` (low, high) [m] of a tested pair: the repeat's ramp
+    spans it (from its stand, or from the ramp's start without one, to its collapse)."""
     amps = ramp(means, sds)
+    within = None
+    if bracket is not None:
+        low, high = bracket
+        within = (math.log(low) if low > 0 else -math.inf, math.log(high))
+        snap = lambda x: max(5e-4, round(x / 5e-4) * 5e-4)
+        start = low if low > 0 else min(amps[0], 0.9 * high)
+        amps = [snap(start), snap(high), max(5e-4, snap(RAMP_STEP * start))]
     if not within_limits(amps[1], f, table):
         return None
     return {"specimen_id": sid, "frequency_hz": f, "new": new, "kind": "afd_ramp", "amplitudes_m": amps,
-            "expected_gain_bits": expected_gain_bits(probs, means, sds),
+            "expected_gain_bits": expected_gain_bits(probs, means, sds, within=within),
             "predicted_m": {m: math.exp(v) for m, v in zip(rivals, means)},
             "spread": {m: s for m, s in zip(rivals, sds)}}
 
@@ -123,7 +149,7 @@ def next_test(post: Posterior, obs: Observations, rivals: list[str], runs: dict,
     typical_sd = {m: float(np.sqrt(np.mean(stats[m][1] ** 2))) for m in rivals}
     for j, p in enumerate(post.pairs):
         c = _candidate(p.specimen_id, p.frequency_hz, False, rivals, probs, [stats[m][0][j] for m in rivals],
-                       [stats[m][1][j] for m in rivals], table)
+                       [stats[m][1][j] for m in rivals], table, (p.low_m, p.high_m))
         if c:
             candidates.append(c)
     gain = float(np.mean(sc.gain_mean)) if obs.gain_source != "none" else 1.0
