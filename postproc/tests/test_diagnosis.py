@@ -476,3 +476,15 @@ def test_the_tolerance_spread_and_the_material_threshold_follow_a_smooth_respons
         assert least == pytest.approx(max(0.05, 2.0 * expect), rel=0.03)
         size = effect_sizes(bank, obs, ("geometry",), [np.array([0.9])])[0, 0]
         assert size == pytest.approx(abs(b * math.log(0.9)) / least, rel=0.03)
+
+
+def test_an_advised_ramp_is_written_in_whole_half_millimetres():
+    """The amplitudes a laboratory is told to command are multiples of 0.5 mm, printed
+    without float noise (0.051, not 0.051000000000000004), whatever the rivals' spread."""
+    from voussoir_post.diagnosis.next_test import ramp
+    rng = np.random.default_rng(3)
+    for _ in range(200):
+        amps = ramp(list(np.log(rng.uniform(0.01, 0.2, 3))), list(rng.uniform(0.01, 0.2, 3)))
+        for a in amps:
+            assert a >= 5e-4 and repr(a) == repr(round(a, 4)), amps
+            assert abs(a / 5e-4 - round(a / 5e-4)) < 1e-9, amps

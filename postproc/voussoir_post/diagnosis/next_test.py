@@ -97,8 +97,13 @@ def ramp(means: list[float], sds: list[float]) -> list[float]:
     smallest, in 0.5 mm."""
     lo = min(math.exp(m - 2 * s) for m, s in zip(means, sds))
     hi = max(math.exp(m + 2 * s) for m, s in zip(means, sds))
-    snap = lambda x: max(5e-4, round(x / 5e-4) * 5e-4)
-    return [snap(lo), snap(hi), snap(RAMP_STEP * lo)]
+    return [_snap(lo), _snap(hi), _snap(RAMP_STEP * lo)]
+
+
+def _snap(x: float) -> float:
+    """An amplitude [m] a laboratory commands: a multiple of 0.5 mm, at least 0.5 mm,
+    written without float noise (0.051, not 0.051000000000000004)."""
+    return round(max(5e-4, round(x / 5e-4) * 5e-4), 6)
 
 
 def _new_frequencies(obs: Observations, sid: str, settings: DiagnosisSettings) -> list[float]:
@@ -115,9 +120,8 @@ def _candidate(sid: str, f: float, new: bool, rivals: list[str], probs: list[flo
     if bracket is not None:
         low, high = bracket
         within = (math.log(low) if low > 0 else -math.inf, math.log(high))
-        snap = lambda x: max(5e-4, round(x / 5e-4) * 5e-4)
         start = low if low > 0 else min(amps[0], 0.9 * high)
-        amps = [snap(start), snap(high), max(5e-4, snap(RAMP_STEP * start))]
+        amps = [_snap(start), _snap(high), _snap(RAMP_STEP * start)]
     if not within_limits(amps[1], f, table):
         return None
     return {"specimen_id": sid, "frequency_hz": f, "new": new, "kind": "afd_ramp", "amplitudes_m": amps,
