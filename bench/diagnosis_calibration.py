@@ -39,7 +39,6 @@ sys.path[:0] = [str(ROOT / "postproc"), str(ROOT / "postproc" / "tests")]
 
 from voussoir_post.diagnosis.bank import load_banks  # noqa: E402
 from voussoir_post.diagnosis.figures import reliability_figure  # noqa: E402
-from voussoir_post.diagnosis.decision import credible_set  # noqa: E402
 from voussoir_post.diagnosis.models import MODEL_IDS, model_prior, nominal_log  # noqa: E402
 from voussoir_post.diagnosis.rates import covers  # noqa: E402
 from voussoir_post.plots.drawing import provenance  # noqa: E402
@@ -132,8 +131,7 @@ def main() -> int:
             o["kind"], o["effect_size"] = kind(o["truth"]), size
             o["generator_label"] = generator
             o["right_by_generator"] = o["named"] and covers(o["top"], generator)
-            o["in_set_by_generator"] = any(covers(m, generator) for m in
-                                           ([o["top"]] if o["named"] else credible_set(o["probabilities"])))
+            o["in_set_by_generator"] = any(covers(m, generator) for m in o["set"])
         outs += got
         print(f"[{time.time() - t0:5.0f} s] {t['slug']:44s} effect {100 * size:5.1f} %  in set "
               f"{sum(o['in_set'] for o in got):2d}/{len(got)}  named right {sum(o['right_named'] for o in got):2d}  "

@@ -22,12 +22,12 @@ node is the mean of the nominal search and its replicas, and between nodes the
 emulator's variance goes with the prediction (likelihood.py). The leave-one-node-out
 residuals measure the emulator's lack of fit; they are reported, not taken for noise.
 A search that found no collapse below its ceiling counts as twice the ceiling.
+A table gain g divides any model's threshold exactly (rigid blocks): nothing to simulate.
 
 Only material points enter a prior: a parameter at least MATERIAL from nominal whose
 effect moves at least one of the campaign's tested thresholds by its material threshold
 (MATERIAL_EFFECT, and twice what a specimen's build tolerance moves that pair by:
 effect_sizes, material_threshold). Smaller effects are the nominal model.
-A table gain g divides any model's threshold exactly (rigid blocks): nothing to simulate.
 """
 
 from __future__ import annotations
@@ -43,7 +43,8 @@ from .effects import RESTRAINTS, nominal_value
 from .observations import Observations
 
 __all__ = ["EFFECT_IDS", "MODEL_IDS", "CANDIDATES", "ModelGrid", "model_grid", "model_prior", "members", "nominal_log",
-           "sim_spread", "tolerance_spread", "BUILD_TOLERANCE", "SIM_FLOOR", "MATERIAL", "MATERIAL_EFFECT", "material", "effect_sizes", "material_threshold", "pair_tolerance"]
+           "sim_spread", "tolerance_spread", "BUILD_TOLERANCE", "SIM_FLOOR", "MATERIAL", "MATERIAL_EFFECT", "material",
+           "effect_sizes", "material_threshold", "pair_tolerance"]
 
 EFFECT_IDS = ("base_restraint", "contact_edges", "friction", "geometry", "table_motion")
 MODEL_IDS = ("none",) + EFFECT_IDS + tuple(f"{a}+{b}" for i, a in enumerate(EFFECT_IDS) for b in EFFECT_IDS[i + 1:])
@@ -140,12 +141,11 @@ def tolerance_spread(bank: SpecimenBank, spec, f: float, tolerance: float = BUIL
     tolerance^2) (Gauss-Hermite, 9 points), of the geometry emulator's change from
     its value at 1 (its mean: the emulator's variance goes with each model's own
     prediction). 0 where the bank has no geometry nodes."""
+    if tolerance <= 0.0:
+        return 0.0
+    nodes, weights = np.polynomial.hermite_e.hermegauss(9)
     try:
-        nodes, weights = np.polynomial.hermite_e.hermegauss(9)
-        if tolerance <= 0.0:
-            return 0.0
-        factors = 1.0 + tolerance * nodes
-        mean, _, _ = _predict(bank, spec, ("geometry",), f, [np.append(factors, 1.0)], False)
+        mean, _, _ = _predict(bank, spec, ("geometry",), f, [np.append(1.0 + tolerance * nodes, 1.0)], False)
     except (ValueError, IndexError, np.linalg.LinAlgError):
         return 0.0
     change = mean[:-1] - mean[-1]
@@ -344,8 +344,8 @@ def effect_sizes(bank: Bank, obs: Observations, effects: tuple[str, ...], points
 
 def _material_response(model_id: str, bank: Bank, obs: Observations, points: list[np.ndarray]) -> np.ndarray:
     """The grid points at which every simulated effect of the model moves a tested
-    threshold by at least MATERIAL_EFFECT (effect_sizes), kept in bank.grids per model
-    and campaign design."""
+    threshold by at least its material_threshold (effect_sizes), kept in bank.grids per
+    model, campaign design and build tolerance."""
     key = ("material", model_id, obs.pairs[0].specimen_id, obs.build_tolerance,
            tuple((p.specimen_id, round(p.frequency_hz, 9)) for p in obs.pairs))
     if key not in bank.grids:

@@ -64,7 +64,8 @@ def outcome(bank: Bank, obs, truth: str, truth_values: dict | None = None) -> di
             "p_truth": sum(p for m, p in post.probabilities.items() if covers(m, truth)),
             "prior_truth": truth_prior(truth),
             "top_right": right, "adequate": d.adequate, "p_value": d.p_value, "named": named,
-            "in_set": any(covers(m, truth) for m in chosen), "set_size": len(chosen), "right_named": named and right,
+            "in_set": any(covers(m, truth) for m in chosen), "set": list(chosen), "set_size": len(chosen),
+            "right_named": named and right,
             "wrong_named": named and not right, "probabilities": post.probabilities,
             "flags": flags(post, d, d.shown), "cdf": parameter_cdf(post, truth, truth_values or {})}
 

@@ -223,7 +223,7 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
              "replicas of the bank's models at dt x 0.97 and x 1.03 and other scan steps), what the "
              f"specimens' build tolerance (ring thickness {_pct(obs.build_tolerance)}) moves each threshold by ("
              + (f"{_pct(float(np.min(sc.sigma_tol)))} to {_pct(float(np.max(sc.sigma_tol)))} by pair"
-                if sc.sigma_tol is not None and sc.sigma_tol.size else "none known")
+                if sc.sigma_tol.size else "none known")
              + f"), a discrepancy of each pair (integrated over {', '.join(_pct(t) for t in TAU_PAIR)}), the "
              f"test-to-test table gain scatter ({_pct(sc.sigma_gain)}"
              + {"records": ", measured by the records",
