@@ -440,14 +440,12 @@ driver=voussoir-limit case_ bridge_shape_unknown "&bridge shape = 'gothic' is no
 driver=voussoir-limit case_ bridge_density "&bridge pier_density_kg_m3 = 0 is outside the allowed range 0 < pier_density_kg_m3 <= 1e5" "&bridge $br, pier_density_kg_m3 = 0 /"
 
 # The fill of &bridge (issue 37): below the extrados, a dispersion angle out of range or
-# without a fill, a fill in voussoir-run, a fill without a live load, a slanting live load.
+# without a fill, a fill without a live load, a slanting live load.
 fl="$br, fill_density_kg_m3 = 2000, fill_level_m = 3.45"
 driver=voussoir-limit case_ bridge_fill_below_extrados "&bridge fill_level_m = 2.9 is outside the allowed range fill_level_m >= 2.95 m, the extrados of span 1's crown .*a fill surface below the extrados would cut the ring" "&bridge $br, fill_density_kg_m3 = 2000, fill_level_m = 2.9 /
 &load point_load_n(1) = 1000, point_load_x_m(1) = 5 /"
 driver=voussoir-limit case_ bridge_dispersion_90 "&bridge dispersion_angle_deg = 90 is outside the allowed range 0 <= dispersion_angle_deg < 90" "&bridge $fl, dispersion_angle_deg = 90 /"
 driver=voussoir-limit case_ bridge_dispersion_without_fill "&bridge dispersion_angle_deg = 30 is outside the allowed range 0 without a fill" "&bridge $br, dispersion_angle_deg = 30 /"
-case_ bridge_fill_in_run "&bridge fill_density_kg_m3 > 0: voussoir-run does not model the fill" "&bridge $fl /
-$o"
 driver=voussoir-limit case_ bridge_fill_without_live_load "&bridge fill_density_kg_m3 > 0 needs a live point load in &load" "&bridge $fl /"
 driver=voussoir-limit case_ bridge_fill_slanting_load "&load point_load_dir_deg\(1\) = -80: with a fill the live loads stand on its surface" "&bridge $fl /
 &load point_load_n(1) = 1000, point_load_x_m(1) = 5, point_load_dir_deg(1) = -80 /"
