@@ -11,7 +11,9 @@ import pytest
 from conftest import REPO_ROOT, run_executable
 from figure_text import text_clashes
 from voussoir_post.cli import post
+from voussoir_post.plots.drawing import run_caption
 from voussoir_post.plots.mechanism import plot_mechanism
+from voussoir_post.plots.reactions import free_weight_n
 from voussoir_post.readers.results import read_limit_json, read_run
 
 BRIDGE = """\
@@ -34,6 +36,18 @@ def test_a_bridge_stands_in_voussoir_run(voussoir_run_exe, tmp_path):
     bridge = run.config["bridge"]
     assert bridge["shape"] == "segmental" and float(bridge["pier_density_kg_m3"]) == 2400.0
     assert float(bridge["span_m(2)"]) == 10.0
+    # At rest the supports hold up the free blocks' weight, each part at its own density
+    # (the piers 2400 kg/m3, the ring 2200): the reactions figure's reference line.
+    c = run.contacts
+    rows = c.rows(-1)
+    driven = run.body_role != 1
+    a, b = c.body[rows, 0], c.body[rows, 1]
+    force = c.force_on_a_n()[rows]
+    on_free = np.where((driven[a] & ~driven[b])[:, None], -force, force)[driven[a] ^ driven[b]]
+    weight = free_weight_n(run)
+    assert abs(float(on_free[:, 1].sum()) - weight) <= 1e-6 * weight
+    caption = run_caption(run)
+    assert caption.startswith("bridge of 2 segmental spans of 10, 10 m (rise 2.5, 2.5 m), ring 450 mm of 12 voussoirs")
 
 
 def test_mechanism_of_the_two_span_bridge(voussoir_limit_exe, tmp_path, drawn_figures):
@@ -141,3 +155,6 @@ def test_the_fill_and_a_vehicle_stand_in_voussoir_run(voussoir_run_exe, tmp_path
     # (measured: 594295.09 N against 594295.08 N, of which the fill 278134 N)
     assert abs(lifted - expected) <= 1e-6 * expected, (lifted, expected)
     assert abs(float(on_free[:, 0].sum())) <= 1e-6 * expected
+    caption = run_caption(run)
+    assert "fill to 3.45 m (2000 kg/m³): its weight and active pressure as forces, no mass" in caption
+    assert "vehicle (100 + 100 kN) standing from x = 3 m" in caption and "arch of" not in caption
