@@ -157,4 +157,4 @@ def test_the_fill_and_a_vehicle_stand_in_voussoir_run(voussoir_run_exe, tmp_path
     assert abs(float(on_free[:, 0].sum())) <= 1e-6 * expected
     caption = run_caption(run)
     assert "fill to 3.45 m (2000 kg/m³): its weight and active pressure as forces, no mass" in caption
-    assert "vehicle (100 + 100 kN) standing from x = 3 m" in caption and "arch of" not in caption
+    assert "vehicle (axles 100 + 100 kN, 1.5 m apart) standing from x = 3 m" in caption and "arch of" not in caption

@@ -13,10 +13,11 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from ..analysis.afd import afd_peak_accel_per_m
+from ..analysis.bridge_report import numbered_setting, vehicle_words
 from ..units import G_M_S2
 
 __all__ = ["new_figure", "save_figure", "save_png", "FIGURE_FORMATS", "RASTER_DPI", "figure_format", "MARKERS",
-           "COLORS", "G_M_S2", "provenance", "add_g_axis", "run_caption", "arch_caption", "bridge_caption", "legend_pad", "NOTE_STRIP_PT",
+           "COLORS", "G_M_S2", "provenance", "add_g_axis", "run_caption", "arch_caption", "bridge_caption", "vehicle_words", "legend_pad", "NOTE_STRIP_PT",
            "HINGE_COLOURS", "COLLAPSE_COLOUR", "wrap_text", "parameters_in_words", "drawing_tree", "PNG_COMMIT_KEY", "PNG_TREE_KEY", "png_provenance"]
 
 #: Marker style per specimen or parameter set, in order.
@@ -97,8 +98,8 @@ def bridge_caption(bridge: dict, vehicle: dict | None = None) -> str:
     """A &bridge group (and a standing &vehicle) in words: 'bridge of 2 segmental spans of
     10 m (rise 2.5 m), ring 450 mm of 20 voussoirs; fill to 3.45 m (2000 kg/m³) as forces;
     vehicle ... standing from x = 2 m'."""
-    spans = [float(v) for k, v in sorted(bridge.items()) if k.startswith("span_m(") and float(v) > 0]
-    rises = [float(v) for k, v in sorted(bridge.items()) if k.startswith("rise_m(") and float(v) > 0]
+    spans = [v for v in numbered_setting(bridge, "span_m") if v > 0]
+    rises = [v for v in numbered_setting(bridge, "rise_m") if v > 0]
     span_words = ", ".join(f"{s:g}" for s in spans)
     rise_words = ", ".join(f"{r:g}" for r in rises[:len(spans)])
     text = (f"bridge of {len(spans)} {bridge.get('shape', '')} span{'s' if len(spans) > 1 else ''} of {span_words} m "
@@ -109,10 +110,7 @@ def bridge_caption(bridge: dict, vehicle: dict | None = None) -> str:
         text += (f"; fill to {float(bridge.get('fill_level_m', math.nan)):g} m "
                  f"({float(bridge['fill_density_kg_m3']):g} kg/m³): its weight{pressure} as forces, no mass")
     if vehicle:
-        loads = [float(v) for k, v in sorted(vehicle.items()) if k.startswith("axle_load_kn(")]
-        name = str(vehicle.get("name", "")).strip()
-        text += (f"; vehicle{' ' + name if name else ''} ({' + '.join(f'{p:g}' for p in loads)} kN) standing from "
-                 f"x = {float(vehicle.get('first_axle_x_m', 0.0)):g} m")
+        text += f"; {vehicle_words(vehicle)} standing from x = {float(vehicle.get('first_axle_x_m', 0.0)):g} m"
     return text
 
 
