@@ -14,6 +14,7 @@ program voussoir_limit
   use voussoir_wall_config, only: wall_group
   use voussoir_load_config, only: load_group
   use voussoir_bridge_config, only: bridge_group
+  use voussoir_vehicle_config, only: vehicle_group
   use voussoir_namelist_group, only: nml_group_t
   use voussoir_assembly, only: assembly_t
   use voussoir_limit_analysis, only: limit_result_t
@@ -35,7 +36,7 @@ program voussoir_limit
 
   call parse_arguments(path, json)
   call read_config(trim(path), [character(len=8) :: 'arch', 'wall', 'motion', 'solver', 'output', 'limit', 'load', &
-                   'bridge'], &
+                   'bridge', 'vehicle'], &
                    cfg, status)
   if (status%ok) call write_warnings('voussoir-limit', cfg%warnings)
   if (status%ok) call read_limit_group(trim(path), cfg, opts, status)
@@ -60,12 +61,13 @@ contains
     integer :: exit_code
     type(config_t), target :: defaults          ! what --help lists the tables over
     type(limit_options_t), target :: limit_defaults
-    type(nml_group_t) :: tables(8)
+    type(nml_group_t) :: tables(9)
     call config_groups(defaults, tables(1:4))
     call wall_group(defaults%wall, tables(5))
     call limit_table(limit_defaults, tables(6))
     call load_group(defaults%load, tables(7))
     call bridge_group(defaults%bridge, tables(8))
+    call vehicle_group(defaults%vehicle, tables(9))
     call input_argument('voussoir-limit', 'voussoir-limit FILE.nml [--json]', &
       'Limit analysis of the assembly of FILE.nml (arch, &wall, &bridge or polygon file): the horizontal acceleration '// &
       '(in g) that brings it down statically, by linear programming with Coulomb friction (associative and '// &

@@ -9,6 +9,7 @@ program voussoir_run
   use voussoir_wall_config, only: wall_group
   use voussoir_load_config, only: load_group
   use voussoir_bridge_config, only: bridge_group
+  use voussoir_vehicle_config, only: vehicle_group
   use voussoir_namelist_group, only: nml_group_t
   use voussoir_assembly, only: assembly_t
   use voussoir_model, only: model_t
@@ -21,7 +22,7 @@ program voussoir_run
   implicit none
   type(config_t) :: cfg
   type(config_t), target :: defaults          ! what --help lists the tables over
-  type(nml_group_t) :: tables(7)
+  type(nml_group_t) :: tables(8)
   type(assembly_t) :: assembly
   type(model_t) :: model
   type(run_result_t) :: res
@@ -33,6 +34,7 @@ program voussoir_run
   call wall_group(defaults%wall, tables(5))
   call load_group(defaults%load, tables(6))
   call bridge_group(defaults%bridge, tables(7))
+  call vehicle_group(defaults%vehicle, tables(8))
   call input_argument('voussoir-run', 'voussoir-run FILE.nml', &
     'One simulation of a masonry arch (or a polygon assembly) under base motion: the groups &arch, '// &
     '&motion, &solver and &output of FILE.nml, and &wall, &bridge or &load where given (listed below; README.md and '// &
@@ -40,7 +42,8 @@ program voussoir_run
     'collapsed. Exit 0 on success, 1 with a one-line message naming the file, the variable and the allowed '// &
     'range.', path, exit_code, groups=tables)
   if (exit_code >= 0) stop exit_code, quiet=.true.
-  call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'wall', 'load', 'bridge'], &
+  call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'wall', 'load', 'bridge', &
+                   'vehicle'], &
                    cfg, status)
   if (status%ok) call write_warnings('voussoir-run', cfg%warnings)
   if (status%ok .and. .not. catch_stop_signals()) &

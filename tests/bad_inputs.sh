@@ -440,14 +440,12 @@ driver=voussoir-limit case_ bridge_shape_unknown "&bridge shape = 'gothic' is no
 driver=voussoir-limit case_ bridge_density "&bridge pier_density_kg_m3 = 0 is outside the allowed range 0 < pier_density_kg_m3 <= 1e5" "&bridge $br, pier_density_kg_m3 = 0 /"
 
 # The fill of &bridge (issue 37): below the extrados, a dispersion angle out of range or
-# without a fill, a fill in voussoir-run, a fill without a live load, a slanting live load.
+# without a fill, a fill without a live load, a slanting live load.
 fl="$br, fill_density_kg_m3 = 2000, fill_level_m = 3.45"
 driver=voussoir-limit case_ bridge_fill_below_extrados "&bridge fill_level_m = 2.9 is outside the allowed range fill_level_m >= 2.95 m, the extrados of span 1's crown .*a fill surface below the extrados would cut the ring" "&bridge $br, fill_density_kg_m3 = 2000, fill_level_m = 2.9 /
 &load point_load_n(1) = 1000, point_load_x_m(1) = 5 /"
 driver=voussoir-limit case_ bridge_dispersion_90 "&bridge dispersion_angle_deg = 90 is outside the allowed range 0 <= dispersion_angle_deg < 90" "&bridge $fl, dispersion_angle_deg = 90 /"
 driver=voussoir-limit case_ bridge_dispersion_without_fill "&bridge dispersion_angle_deg = 30 is outside the allowed range 0 without a fill" "&bridge $br, dispersion_angle_deg = 30 /"
-case_ bridge_fill_in_run "&bridge fill_density_kg_m3 > 0: voussoir-run does not model the fill" "&bridge $fl /
-$o"
 driver=voussoir-limit case_ bridge_fill_without_live_load "&bridge fill_density_kg_m3 > 0 needs a live point load in &load" "&bridge $fl /"
 driver=voussoir-limit case_ bridge_fill_slanting_load "&load point_load_dir_deg\(1\) = -80: with a fill the live loads stand on its surface" "&bridge $fl /
 &load point_load_n(1) = 1000, point_load_x_m(1) = 5, point_load_dir_deg(1) = -80 /"
@@ -457,6 +455,45 @@ driver=voussoir-limit case_ bridge_spread_beyond_ends "&load live point load 1 a
 driver=voussoir-limit case_ bridge_passive_without_phi "&bridge passive_mobilisation = 0.3 is outside the allowed range 0 without fill_friction_deg > 0" "&bridge $fl, passive_mobilisation = 0.3 /"
 driver=voussoir-limit case_ bridge_passive_above_1 "&bridge passive_mobilisation = 1.5 is outside the allowed range 0 <= passive_mobilisation <= 1" "&bridge $fl, fill_friction_deg = 35, passive_mobilisation = 1.5 /"
 driver=voussoir-limit case_ bridge_phi_without_fill "&bridge fill_friction_deg = 35 is outside the allowed range 0 without a fill" "&bridge $br, fill_friction_deg = 35 /"
+driver=voussoir-limit case_ bridge_dispersion_negative "&bridge dispersion_angle_deg = -5 is outside the allowed range 0 <= dispersion_angle_deg < 90" "&bridge $fl, dispersion_angle_deg = -5 /"
+
+# Vehicles (&vehicle, issue 37) and live loads off a bridge's deck (from x = -1 to 11 m
+# here: abutments 1 m wide behind a 10 m span): each names the variable and its value.
+pa="path_x0_m = 1, path_x1_m = 9, path_points = 5"
+driver=voussoir-limit case_ bridge_vehicle_off_deck_start "&load path_x0_m = -0.5 is outside the allowed range path_x0_m >= -0.4 m: there the vehicle \(2 axles over 1.2 m\) reaches back to x = -1.1 m, off the deck \(the bridge runs from x = -1 to 11 m" "&bridge $br /
+&load path_x0_m = -0.5, path_x1_m = 9, path_points = 5 /
+&vehicle name = 'lm1_tandem_lane1', effective_width_m = 3 /"
+driver=voussoir-limit case_ bridge_vehicle_off_deck_end "&load path_x1_m = 10.8 is outside the allowed range path_x1_m <= 9 m: there the vehicle \(3 axles over 4 m\) reaches to x = 12.8 m, off the deck" "&bridge $br /
+&load path_x0_m = 3, path_x1_m = 10.8, path_points = 5 /
+&vehicle axle_load_kn = 50, 100, 50, axle_spacing_m = 2, 2 /"
+driver=voussoir-limit case_ bridge_load_path_off_deck "&load path_x0_m = -2 is outside the allowed range path_x0_m >= -1 m: there the live load reaches back to x = -2 m, off the deck" "&bridge $br /
+&load point_load_n(1) = 1000, $pa, path_x0_m = -2 /"
+driver=voussoir-limit case_ bridge_axles_off_deck "&load live point loads with axle_spacing_m stand from x = 10 to 11.5 m, off the deck \(the bridge runs from x = -1 to 11 m\)" "&bridge $br /
+&load point_load_n(1) = 1000, point_load_x_m(1) = 10, axle_spacing_m(1) = 1.5 /"
+case_ bridge_vehicle_standing_off_deck "&vehicle first_axle_x_m = 10.5 is outside the allowed range -1 m <= first_axle_x_m <= 9.8 m: its axles stand from x = 10.5 to 11.7 m, off the deck" "&bridge $br /
+&load $pa /
+&vehicle name = 'lm1_tandem_lane1', first_axle_x_m = 10.5 /
+$o"
+driver=voussoir-limit case_ vehicle_unknown_name "&vehicle name = 'lorry' is not a named vehicle \('lm1_tandem_lane1'\) and gives no axles" "&bridge $br /
+&load $pa /
+&vehicle name = 'lorry' /"
+driver=voussoir-limit case_ vehicle_spacings "&vehicle gives 3 axles \(axle_load_kn\) and 1 spacings \(axle_spacing_m\): give 2" "&bridge $br /
+&load $pa /
+&vehicle axle_load_kn = 50, 100, 50, axle_spacing_m = 2 /"
+driver=voussoir-limit case_ vehicle_named_with_other_axles "&vehicle name = 'lm1_tandem_lane1' is a named vehicle with its own axles" "&bridge $br /
+&load $pa /
+&vehicle name = 'lm1_tandem_lane1', axle_load_kn = 100, 100, axle_spacing_m = 1.2 /"
+driver=voussoir-limit case_ vehicle_and_live_load "&vehicle and a live point load of &load: the vehicle is the live load" "&bridge $br /
+&load point_load_n(1) = 1000, $pa /
+&vehicle axle_load_kn = 100 /"
+driver=voussoir-limit case_ vehicle_without_path "&vehicle needs a &load path to move it over" "&bridge $br /
+&vehicle axle_load_kn = 100 /"
+driver=voussoir-limit case_ vehicle_narrow_effective_width "&vehicle effective_width_m = 0.5 is outside the allowed range 0 \(the whole axle on the strip\) or effective_width_m >= width_m = 1 m" "&bridge $br /
+&load $pa /
+&vehicle axle_load_kn = 100, effective_width_m = 0.5 /"
+driver=voussoir-limit case_ vehicle_axle_load_zero_kn "&vehicle axle_load_kn\(1\) = -5 is outside the allowed range 0 < axle_load_kn <= 1e5 kN" "&bridge $br /
+&load $pa /
+&vehicle axle_load_kn = -5 /"
 
 # An unknown option is named, then the usage; exit 2 (issue 26).
 for d in voussoir-run voussoir-limit voussoir-sweep; do

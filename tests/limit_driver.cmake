@@ -75,3 +75,10 @@ add_test(NAME limit_driver_bridge_fill
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
                  bridge_fill ${CMAKE_SOURCE_DIR}/input/bridge_fill.nml
          WORKING_DIRECTORY ${LIMIT_TEST_DIR})
+# Vehicles (&vehicle, issue 37) on the span of input/bridge_fill.nml: a one-axle vehicle is
+# the point load, two half axles 0 m apart are one, the axles where they stand, the
+# harmonic bound of the axles alone (convexity), the named LM1 tandem against its axles.
+add_test(NAME limit_driver_bridge_vehicle
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
+                 bridge_vehicle ${CMAKE_SOURCE_DIR}/input/bridge_fill.nml
+         WORKING_DIRECTORY ${LIMIT_TEST_DIR})

@@ -16,7 +16,14 @@ case "$name" in
     "$bin/voussoir-limit" "$input" --json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert "lambda_pos" in d' ;;
   bridge_*)  # a bridge is assessed by its limit analysis (docs/bridges.md)
     "$bin/voussoir-limit" "$input" | tee output.txt
-    "$bin/voussoir-limit" "$input" --json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert d["assembly"] == "bridge" and d["load_factor"] > 0' ;;
+    "$bin/voussoir-limit" "$input" --json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert d["assembly"] == "bridge" and d["load_factor"] > 0'
+    if grep -q '^&motion' "$input"; then  # and shaken, where it gives a motion
+      "$bin/voussoir-run" "$input" | tee run_output.txt
+      first=$(head -n 1 run_output.txt | cut -d' ' -f1)
+      [[ "$first" == "stood;" || "$first" == "collapsed" ]] || { echo "voussoir-run: first word '$first'"; exit 1; }
+      result=$(sed -n 's/.*; result \(.*\)$/\1/p' run_output.txt | head -n 1)
+      [[ -s "$result" ]] || { echo "no result file $result"; exit 1; }
+    fi ;;
   *)
     "$bin/voussoir-run" "$input" | tee output.txt
     first=$(head -n 1 output.txt | cut -d' ' -f1)

@@ -1,5 +1,6 @@
 """&bridge (issue 37) through the executables: voussoir-run takes the bridge (each part's
-mass, the effective &bridge recorded in the result file) and the mechanism figure of the
+mass, the effective &bridge recorded in the result file; the fill and a vehicle as
+constant forces) and the mechanism figure of the
 two-span bridge of input/ is the load case's."""
 
 from __future__ import annotations
@@ -10,7 +11,9 @@ import pytest
 from conftest import REPO_ROOT, run_executable
 from figure_text import text_clashes
 from voussoir_post.cli import post
+from voussoir_post.plots.drawing import run_caption
 from voussoir_post.plots.mechanism import plot_mechanism
+from voussoir_post.plots.reactions import free_weight_n
 from voussoir_post.readers.results import read_limit_json, read_run
 
 BRIDGE = """\
@@ -33,6 +36,18 @@ def test_a_bridge_stands_in_voussoir_run(voussoir_run_exe, tmp_path):
     bridge = run.config["bridge"]
     assert bridge["shape"] == "segmental" and float(bridge["pier_density_kg_m3"]) == 2400.0
     assert float(bridge["span_m(2)"]) == 10.0
+    # At rest the supports hold up the free blocks' weight, each part at its own density
+    # (the piers 2400 kg/m3, the ring 2200): the reactions figure's reference line.
+    c = run.contacts
+    rows = c.rows(-1)
+    driven = run.body_role != 1
+    a, b = c.body[rows, 0], c.body[rows, 1]
+    force = c.force_on_a_n()[rows]
+    on_free = np.where((driven[a] & ~driven[b])[:, None], -force, force)[driven[a] ^ driven[b]]
+    weight = free_weight_n(run)
+    assert abs(float(on_free[:, 1].sum()) - weight) <= 1e-6 * weight
+    caption = run_caption(run)
+    assert caption.startswith("bridge of 2 segmental spans of 10, 10 m (rise 2.5, 2.5 m), ring 450 mm of 12 voussoirs")
 
 
 def test_mechanism_of_the_two_span_bridge(voussoir_limit_exe, tmp_path, drawn_figures):
@@ -92,3 +107,69 @@ def test_mechanism_with_the_fill_pressure(voussoir_limit_exe, tmp_path, drawn_fi
     total_kn = sum(abs(p.force_n[0]) for p in limit.fill_pressures) / 1e3
     labels = [t.get_text().replace("\n", " ") for t in fig.legends[0].get_texts()]
     assert any("horizontal pressure" in t and f"{total_kn:.4g} kN in all" in t for t in labels)
+
+
+FILL_RUN = """\
+&bridge shape = 'segmental', span_m(1) = 10.0, rise_m(1) = 2.5, ring_thickness_m = 0.45, n_voussoirs = 12,
+  pier_height_m = 3.0, abutment_width_m = 2.0, width_m = 1.0, ring_density_kg_m3 = 2200,
+  fill_density_kg_m3 = 2000, fill_level_m = 3.45, dispersion_angle_deg = 30, fill_friction_deg = 35 /
+&load path_x0_m = 2.0, path_x1_m = 8.0, path_points = 3 /
+&vehicle axle_load_kn = 100, 100, axle_spacing_m = 1.5, first_axle_x_m = 3.0 /
+&motion waveform = 'afd', amplitude_m = 0.0, frequency_hz = 1.0, n_full = 0, rest_s = 0.0 /
+&output file = 'fill.h5' /
+"""
+
+
+def test_the_fill_and_a_vehicle_stand_in_voussoir_run(voussoir_run_exe, tmp_path):
+    """voussoir-run carries a bridge's fill as constant forces (its weight and its active
+    pressure) and a vehicle standing at first_axle_x_m: at rest the abutments hold up the
+    ring's weight, the fill over the ring and the axles, computed here from the geometry
+    alone (segmental ring: R = (L^2/4 + r^2)/(2r), voussoir k between angles phi_k and
+    phi_k+1, each a quadrilateral of area (R_e^2 - R_i^2) sin(dphi)/2; the fill the area
+    between the extrados chords and the level), and the active pressures balance (the
+    span is symmetric)."""
+    nml = tmp_path / "fill.nml"
+    nml.write_text(FILL_RUN)
+    out = run_executable([voussoir_run_exe, nml], tmp_path).stdout
+    assert out.startswith("stood;")
+    run = read_run(tmp_path / "fill.h5")
+    assert float(run.config["vehicle"]["axle_load_kn(2)"]) == 100.0
+    span, rise, t, n, level, g = 10.0, 2.5, 0.45, 12, 3.45, 9.81
+    radius = (span ** 2 / 4 + rise ** 2) / (2 * rise)
+    half = np.arcsin(span / 2 / radius)
+    phi = np.linspace(-half, half, n + 1)
+    ring_area = n * 0.5 * ((radius + t) ** 2 - radius ** 2) * np.sin(2 * half / n)
+    # The extrados ends of the joints (the centre at (L/2, r - R)), and the fill above their chords.
+    ex = span / 2 + (radius + t) * np.sin(phi)
+    ey = rise - radius + (radius + t) * np.cos(phi)
+    fill_area = sum((ex[k + 1] - ex[k]) * (level - 0.5 * (ey[k] + ey[k + 1])) for k in range(n))
+    expected = (2200 * ring_area + 2000 * fill_area) * g * 1.0 + 2 * 100e3
+    c = run.contacts
+    rows = c.rows(-1)
+    driven = run.body_role != 1
+    force = c.force_on_a_n()[rows]
+    a, b = c.body[rows, 0], c.body[rows, 1]
+    # The force on the free block of every free-driven contact (a's force, or minus it when a is driven).
+    on_free = np.where((driven[a] & ~driven[b])[:, None], -force, force)[driven[a] ^ driven[b]]
+    lifted = float(on_free[:, 1].sum())
+    # (measured: 594295.09 N against 594295.08 N, of which the fill 278134 N)
+    assert abs(lifted - expected) <= 1e-6 * expected, (lifted, expected)
+    assert abs(float(on_free[:, 0].sum())) <= 1e-6 * expected
+    # The left half of the ring (voussoirs 1..6) in horizontal equilibrium: the fill's active
+    # pressure on its extrados faces, into the ring (+x), sums over the contiguous faces from
+    # the springing's extrados end (y_0) to the crown's (y_6) to K_a w_f ((F - y_0)^2 - (F - y_6)^2)/2,
+    # with K_a = tan^2(45 - phi/2) (Rankine); the contacts (abutment, voussoir 7) hold it.
+    k_a = np.tan(np.radians(45 - 35 / 2)) ** 2
+    pressure = k_a * 2000 * g * 1.0 * ((level - ey[0]) ** 2 - (level - ey[n // 2]) ** 2) / 2
+    half = np.zeros(len(run.body_role), dtype=bool)
+    half[: n // 2] = True
+    across = half[a] ^ half[b]
+    on_half = np.where((half[b] & ~half[a])[:, None], -force, force)[across]
+    assert pressure > 0.05 * 2000 * g * fill_area / 2       # not negligible: a check that can fail
+    # (the sum of the contacts' x-forces, each up to 2e5 N, to the solver's round-off: 1e-6 of the largest;
+    # measured 0.046 N in 26218 N)
+    scale = float(np.abs(on_half[:, 0]).max())
+    assert abs(float(on_half[:, 0].sum()) + pressure) <= 1e-6 * scale, (float(on_half[:, 0].sum()), pressure)
+    caption = run_caption(run)
+    assert "fill to 3.45 m (2000 kg/m³): its weight and active pressure as forces, no mass" in caption
+    assert "vehicle (axles 100 + 100 kN, 1.5 m apart) standing from x = 3 m" in caption and "arch of" not in caption

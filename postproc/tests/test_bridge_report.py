@@ -135,3 +135,56 @@ def test_bridge_report_of_two_spans_without_fill(voussoir_limit_exe, tmp_path, d
     assert (tmp_path / "r" / "load_position.png").read_bytes()[:8] == PNG_MAGIC
     assert text_clashes(drawn_figures[-1]) == []
     assert not (tmp_path / "r" / "mechanism_without_passive.png").exists()
+
+
+def test_bridge_report_of_two_spans_with_fill_and_a_vehicle(voussoir_limit_exe, tmp_path, drawn_figures):
+    """input/bridge_two_spans_vehicle.nml (two spans, fill with passive pressure, EN 1991-2's
+    tandem over an effective width of 3 m) with and without the passive pressure: the live
+    load on the strip is each axle x width_m/effective_width_m = 300 x 1/3 = 100 kN, so the
+    collapse load on the strip is lambda x 200 kN and, in whole vehicles, lambda x 600 kN;
+    the vehicle is named in the report and the figures' titles; the critical position is
+    the least of the curve."""
+    text = (REPO_ROOT / "input" / "bridge_two_spans_vehicle.nml").read_text()
+    assert "passive_mobilisation = 0.33" in text and "name = 'lm1_tandem_lane1', effective_width_m = 3.0" in text
+    paths = {}
+    for key, nml_text in (("with", text), ("without", text.replace("passive_mobilisation = 0.33",
+                                                                     "passive_mobilisation = 0"))):
+        nml = tmp_path / f"vehicle_{key}.nml"
+        nml.write_text(nml_text)
+        paths[key] = tmp_path / f"vehicle_{key}.json"
+        paths[key].write_text(run_executable([voussoir_limit_exe, nml, "--json"], tmp_path).stdout)
+    raw = {k: json.loads(p.read_text()) for k, p in paths.items()}
+    out = tmp_path / "report"
+    n_drawn = len(drawn_figures)
+    assert post.main(["bridge-report", str(paths["with"]), "--without-passive", str(paths["without"]),
+                      "--out", str(out)]) == 0
+    report = (out / "report.md").read_text()
+    lam = {k: raw[k]["load_factor"] for k in raw}
+    assert lam["with"] > lam["without"] > 0
+    rows = _table(report, "Load factor")
+    for row, key in zip(rows, ("with", "without")):
+        assert float(row[1]) == pytest.approx(lam[key], abs=5.1e-5)
+        assert float(row[3]) == pytest.approx(lam[key] * 200.0, rel=1e-3)     # kN on the strip
+    loads = {r[0]: r for r in _table(report, "Loads")}
+    assert loads["the live load (load factor 1)"][1] == "200"
+    assert "vehicle 'lm1_tandem_lane1' (axles 300 + 300 kN, 1.2 m apart, each over an effective width of 3 m)" \
+        in loads["the live load (load factor 1)"][2]
+    assert "100 + 100 kN on the strip" in loads["the live load (load factor 1)"][2]
+    whole = re.search(r"weighs 600 kN on its axles; λ = ([0-9.]+) is ([0-9.]+) kN of such axles at collapse "
+                      r"\(without the passive pressure, ([0-9.]+) kN\)", report)
+    assert whole and float(whole.group(2)) == pytest.approx(600.0 * lam["with"], rel=1e-3)
+    assert float(whole.group(3)) == pytest.approx(600.0 * lam["without"], rel=1e-3)
+    for key in raw:
+        finite = [c["load_factor"] for c in raw[key]["load_factor_curve"] if c["load_factor"] is not None]
+        assert raw[key]["critical_position"]["load_factor"] <= min(finite) * (1 + 1e-9)
+        # the axles (100 kN each on the strip) stand on the fill's surface, 1.2 m apart
+        xs = sorted(q["xy_m"][0] for q in raw[key]["surface_loads"])
+        assert len(xs) == 2 and xs[1] - xs[0] == pytest.approx(1.2, abs=1e-12)
+        assert all(q["force_n"][1] == pytest.approx(-100e3, rel=1e-14) for q in raw[key]["surface_loads"])
+    titles = [t for fig in drawn_figures[n_drawn:] for t in [fig._suptitle.get_text() if fig._suptitle else ""]
+              + [ax.get_title() for ax in fig.axes]]
+    assert any("vehicle 'lm1_tandem_lane1'" in t for t in titles)
+    for name in ("mechanism.png", "mechanism_without_passive.png", "load_position.png"):
+        assert (out / name).read_bytes()[:8] == PNG_MAGIC
+    for fig in drawn_figures[n_drawn:]:
+        assert text_clashes(fig) == []

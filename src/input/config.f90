@@ -16,6 +16,8 @@ module voussoir_config
   use voussoir_wall_config, only: wall_config_t, read_wall_config, wall_group
   use voussoir_load_config, only: load_config_t, read_load_config, load_entries
   use voussoir_bridge_config, only: bridge_config_t, read_bridge_config, bridge_group, bridge_length_m
+  use voussoir_vehicle_config, only: vehicle_config_t, read_vehicle_config, vehicle_group, add_vehicle_loads, &
+    check_on_deck
   implicit none
   private
 
@@ -118,6 +120,10 @@ module voussoir_config
     type(wall_config_t) :: wall               !! a wall instead of the arch, where courses > 0
     type(load_config_t) :: load               !! point, axle and distributed loads (&load; none: no loads)
     type(bridge_config_t) :: bridge           !! a bridge instead of the arch, where it has spans (&bridge)
+    type(vehicle_config_t) :: vehicle         !! a vehicle by its axles (&vehicle): live point loads of `load`
+    !> &load as the file gives it (`load` holds the vehicle's axles too): the effective
+    !> settings record this one, so that they read back to the same configuration.
+    type(load_config_t) :: load_given
     character(len=path_len) :: source_file = ''
     !> What validate_config found plausible but unusual, one line each, for the drivers to
     !> print (config_plausible.f90); not a setting.
@@ -176,8 +182,14 @@ contains
       if (k == 1) arch_given = found
     end do
     if (any(allowed_groups == 'wall')) call read_wall_config(path, cfg%wall, status)
-    if (any(allowed_groups == 'load')) call read_load_config(path, cfg%load, status)
+    if (any(allowed_groups == 'vehicle')) call read_vehicle_config(path, cfg%vehicle, status)
+    if (any(allowed_groups == 'load')) call read_load_config(path, cfg%load, status, cfg%vehicle%given)
     if (any(allowed_groups == 'bridge')) call read_bridge_config(path, cfg%bridge, status)
+    if (.not. status%ok) return
+    cfg%load_given = cfg%load
+    call add_vehicle_loads(cfg%vehicle, merge(cfg%bridge%width_m, cfg%arch%width_m, cfg%bridge%n_spans > 0), path, &
+                           cfg%load, status)
+    call check_on_deck(cfg%bridge, cfg%load, cfg%vehicle, path, status)
     if (.not. status%ok) return
     if (cfg%bridge%n_spans > 0) then
       if (arch_given) then
@@ -321,7 +333,7 @@ contains
     type(config_t), intent(in) :: cfg
     type(config_entry_t), allocatable :: e(:)
     type(config_t), target :: c
-    type(nml_group_t) :: groups(4), wall, bridge
+    type(nml_group_t) :: groups(4), wall, bridge, vehicle
     c = cfg
     call config_groups(c, groups)
     e = [groups(1)%entries(), groups(2)%entries(), groups(3)%entries(), groups(4)%entries()]
@@ -333,7 +345,13 @@ contains
       call bridge_group(c%bridge, bridge)
       e = [e, bridge%entries()]
     end if
-    if (has_loads(c)) e = [e, load_entries(c%load)]
+    if (has_loads(c) .and. .not. c%vehicle%given) e = [e, load_entries(c%load)]
+    if (c%vehicle%given) then
+      ! &load as given (the vehicle's axles are &vehicle's), then the vehicle.
+      e = [e, load_entries(c%load_given)]
+      call vehicle_group(c%vehicle, vehicle)
+      e = [e, vehicle%entries()]
+    end if
   end function config_entries
 
   !> Whether &load gives any load (else the live load is the horizontal acceleration).

@@ -60,11 +60,13 @@ contains
     call g%add('path_points', d%path_points, range='0 <= path_points <= 10000 (0: no path)')
   end subroutine load_group
 
-  !> Read and check the &load group of `path` (absent: no loads).
-  subroutine read_load_config(path, d, status)
+  !> Read and check the &load group of `path` (absent: no loads); `vehicle_given`: the file
+  !> has &vehicle, whose axles will be the live loads the path moves.
+  subroutine read_load_config(path, d, status, vehicle_given)
     character(len=*), intent(in) :: path
     type(load_config_t), intent(out), target :: d
     type(status_t), intent(inout) :: status
+    logical, intent(in), optional :: vehicle_given
     type(nml_group_t) :: g
     integer :: j
 
@@ -108,6 +110,9 @@ contains
     if (d%path_points >= 2) then
       call need(d%path_x1_m > d%path_x0_m, path, 'load', 'path_x1_m', d%path_x1_m, &
                 'path_x1_m > path_x0_m = '//fmt_real(d%path_x0_m)//' m', status)
+    end if
+    if (present(vehicle_given)) then
+      if (vehicle_given) return
     end if
     if (status%ok .and. (d%path_points >= 2 .or. d%n_axles > 0) .and. &
         .not. any(d%point_load_live(1:d%n_point_loads))) &

@@ -6,6 +6,7 @@ module voussoir_limit_study
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
   use voussoir_config, only: config_t, springings_none, has_loads
+  use voussoir_vehicle_config, only: vehicle_config_t
   use voussoir_placed_loads, only: placed_loads_t, place_loads, vehicle_x
   use voussoir_limit_lp_study, only: path_position_m
   use voussoir_namelist_group, only: nml_group_t
@@ -176,6 +177,8 @@ contains
       end if
       if (.not. status%ok) status%message = 'limit analysis by linear programming: '//trim(status%message)
     end associate
+    if (cfg%vehicle%given .and. status%ok) lp%live_load = vehicle_words(cfg%vehicle)//' '// &
+      lp%live_load(index(lp%live_load, '('):)
     if (cfg%bridge%n_spans > 0) then
       lp%assembly = 'bridge'
     else if (cfg%wall%courses > 0) then
@@ -186,6 +189,32 @@ contains
       lp%assembly = 'restrained arch'
     end if
   end subroutine analyse_any_assembly
+
+  !> 'lambda x the vehicle of &vehicle (name, N axles, spacings), its axles as live loads'
+  function vehicle_words(v) result(text)
+    type(vehicle_config_t), intent(in) :: v
+    character(len=:), allocatable :: text
+    integer :: k
+    text = 'lambda x the vehicle of &vehicle'
+    if (len_trim(v%name) > 0) text = text//" '"//trim(v%name)//"'"
+    text = text//' ('//itoa(v%n_axles)//' axles of '
+    do k = 1, v%n_axles
+      if (k > 1) text = text//', '
+      text = text//fmt_significant(v%axle_load_kn(k), 6)
+    end do
+    text = text//' kN'
+    if (v%n_axles > 1) then
+      text = text//', spaced '
+      do k = 1, v%n_axles - 1
+        if (k > 1) text = text//', '
+        text = text//fmt_significant(v%axle_spacing_m(k), 6)
+      end do
+      text = text//' m'
+    end if
+    if (v%effective_width_m > 0.0_dp) text = text//', each over an effective width of '// &
+      fmt_significant(v%effective_width_m, 6)//' m'
+    text = text//') as these live point loads on the strip'
+  end function vehicle_words
 
   !> Every load of &load on a block, at every position of its path.
   subroutine check_loads_placed(cfg, asm, status)

@@ -47,9 +47,6 @@ contains
     duration_s = 0.0_dp
     associate (a => cfg%arch, m => cfg%motion, s => cfg%solver)
       call build_config_assembly(cfg, assembly, status)
-      if (status%ok .and. assembly%has_fill) call fail(status, '&bridge fill_density_kg_m3 > 0: voussoir-run '// &
-        'does not model the fill (its mass, its pressure on the ring); voussoir-limit takes its weight and the '// &
-        'spread of live loads through it. Leave the fill out of a dynamic run')
       if (.not. status%ok) then
         status%message = trim(cfg%source_file)//': '//trim(status%message)
         return
@@ -68,7 +65,7 @@ contains
       end if
       call init_model(assembly, a%density_kg_m3, a%width_m, settings, law, model, status)
       if (.not. status%ok) return
-      if (has_loads(cfg)) call apply_loads(cfg, assembly, model%bodies, status)
+      if (has_loads(cfg) .or. assembly%has_fill) call apply_loads(cfg, assembly, model%bodies, status)
       if (.not. status%ok) return
       if (s%coarse_correction .and. allocated(assembly%course)) &
         call coarse_init(model%coarse, assembly%course, model%bodies%inv_mass, model%bodies%inv_inertia)
@@ -254,7 +251,8 @@ contains
   !> The loads of &load as constant forces at points of the blocks: dead loads, and live
   !> loads at load factor 1, where &load puts them (a path's positions are not run: its
   !> live loads stand at their own x, on the top surface). Loads on driven blocks go to
-  !> the table.
+  !> the table. With a fill (&bridge), its weight over each voussoir and, with an angle of
+  !> friction, its active horizontal pressure: constant forces, not mass (docs/bridges.md).
   subroutine apply_loads(cfg, assembly, bodies, status)
     type(config_t), intent(in) :: cfg
     type(assembly_t), intent(in) :: assembly
@@ -270,6 +268,12 @@ contains
     do k = 1, placed%n
       if (.not. bodies%driven(placed%block(k))) &
         call add_point_load(bodies, placed%block(k), placed%xy(:, k), placed%force_n(:, k))
+    end do
+    ! The fill's horizontal pressure at rest: its active bound (the least the fill presses).
+    do k = 1, placed%n_pressure
+      if (.not. bodies%driven(placed%pressure_block(k))) &
+        call add_point_load(bodies, placed%pressure_block(k), placed%pressure_xy(:, k), &
+                            placed%pressure_lo_n(k)*placed%pressure_dir(:, k))
     end do
   end subroutine apply_loads
 

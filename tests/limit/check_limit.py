@@ -945,6 +945,73 @@ elif case == "bridge_fill":
             check(worst < 1e-7, f"pressure: every voussoir in equilibrium with the pressures at collapse ({worst:.1e})")
     check(factors[0.0] < factors[0.33] < factors[1.0],
           f"the load factor grows with the passive pressure mobilised: {factors}")
+elif case == "bridge_vehicle":
+    # &vehicle on input/bridge_fill.nml's span (fill, live loads spread at 30 deg), checked
+    # against what follows from the input alone: (1) a one-axle vehicle of 100 kN is the
+    # point load of 100000 N (the same curve, 1e-12); (2) two axles of 50 kN 0 m apart are
+    # one of 100 kN (1e-9); (3) at the critical position the axles stand on the fill's
+    # surface spacing apart, each axle_load_kn x 1e3 x width_m/effective_width_m, their
+    # resultant at the position; (4) the harmonic bound: the set of live loads the bridge
+    # carries (associative friction) is convex, so a vehicle whose axles alone carry
+    # lambda_1 and lambda_2 where they stand carries at least 1/(1/lambda_1 + 1/lambda_2)
+    # (a convex combination of the two collapse loads is carried); (5) EN 1991-2's tandem
+    # on lane 1 (2 x 300 kN, 1.2 m) on an effective width of 3 m is the user-defined 2 x
+    # 100 kN, 1.2 m apart, on the whole strip.
+    text = open(nml).read()
+    bridge = text[text.index("&bridge"):text.index("/", text.index("&bridge")) + 1]
+    def write(name, groups):
+        with open(name, "w") as f:
+            f.write(bridge + "\n" + groups)
+        return load(name)
+    def curve(d):
+        return [(p["x_m"], p["load_factor"]) for p in d["load_factor_curve"]]
+    path = "path_x0_m = 1.0, path_x1_m = 9.0, path_points = 17"
+    point = write("vehicle_point.nml", f"&load point_load_n(1) = 100000, {path} /\n")
+    one = write("vehicle_one_axle.nml", f"&load {path} /\n&vehicle axle_load_kn = 100 /\n")
+    a, b = curve(point), curve(one)
+    worst = max(abs(la - lb) / la for (_, la), (_, lb) in zip(a, b))
+    check(len(a) == len(b) and all(xa == xb for (xa, _), (xb, _) in zip(a, b)) and worst < 1e-12,
+          f"a one-axle vehicle of 100 kN = the point load of 100000 N along the path ({len(a)} positions, {worst:.1e})")
+    check("&vehicle" in one["live_load"] and "1 axles of 100 kN" in one["live_load"],
+          f"the live load in words names the vehicle: {one['live_load'][:90]}")
+    pair = write("vehicle_zero_spacing.nml", f"&load {path} /\n&vehicle axle_load_kn = 50, 50, axle_spacing_m = 0 /\n")
+    c = curve(pair)
+    worst = max(abs(la - lc) / la for (_, la), (_, lc) in zip(a, c))
+    check(len(a) == len(c) and worst < 1e-9, f"two axles of 50 kN 0 m apart = one of 100 kN ({worst:.1e})")
+    spacing = 2.0
+    veh = write("vehicle_two_axles.nml", "&load path_x0_m = 2.0, path_x1_m = 8.0, path_points = 13 /\n"
+                f"&vehicle name = 'two axles', axle_load_kn = 100, 100, axle_spacing_m = {spacing}, "
+                "effective_width_m = 2.5 /\n")
+    width = float(re.search(r"\bwidth_m *= *([-0-9.eE+]+)", bridge).group(1))
+    share = width / 2.5
+    xc = veh["critical_position"]["x_m"]
+    loads = sorted(veh["surface_loads"], key=lambda q: q["xy_m"][0])
+    level = float(re.search(r"fill_level_m *= *([-0-9.eE+]+)", bridge).group(1))
+    check(len(loads) == 2 and close(loads[1]["xy_m"][0] - loads[0]["xy_m"][0], spacing, atol=1e-12)
+          and all(close(-q["force_n"][1], 100e3 * share, rtol=1e-15) and q["xy_m"][1] == level for q in loads)
+          and close(0.5 * (loads[0]["xy_m"][0] + loads[1]["xy_m"][0]), xc, atol=1e-12),
+          f"at the critical x = {xc:.4f} m two axles of 100 kN x {share:g} on the surface {spacing:g} m apart, "
+          f"their resultant there: {[(q['xy_m'][0], q['force_n'][1]) for q in loads]}")
+    # The axles alone, on the grid 1.0 .. 9.0 m by 0.5 m: at vehicle position X they stand at X -/+ 1 m.
+    # (a's 100 kN at x carries lambda; an axle of 100 kN x share alone carries lambda/share.)
+    on_grid = dict((round(x, 9), lam) for x, lam in a)
+    alone = {round(1.0 + 0.5 * i, 9): on_grid[round(1.0 + 0.5 * i, 9)] for i in range(17)}
+    worst, n = math.inf, 0
+    for x, lam in curve(veh):
+        xr = round(x, 9)
+        if xr not in {round(2.0 + 0.5 * i, 9) for i in range(13)}:
+            continue
+        l1, l2 = alone[round(xr - 1.0, 9)] / share, alone[round(xr + 1.0, 9)] / share
+        bound = 1.0 / (1.0 / l1 + 1.0 / l2)
+        worst = min(worst, lam / bound - 1.0)
+        n += 1
+    check(n == 13 and worst >= -1e-9, f"at each of {n} grid positions the vehicle's lambda >= the harmonic bound of "
+                                      f"its axles alone (least margin {worst:.3g})")
+    tandem = write("vehicle_lm1.nml", f"&load {path} /\n&vehicle name = 'lm1_tandem_lane1', effective_width_m = 3 /\n")
+    user = write("vehicle_lm1_user.nml", f"&load {path} /\n&vehicle axle_load_kn = 100, 100, axle_spacing_m = 1.2 /\n")
+    check(close(tandem["load_factor"], user["load_factor"], rtol=1e-12),
+          f"LM1's tandem (2 x 300 kN, 1.2 m) over 3 m = 2 x 100 kN 1.2 m apart on the 1 m strip: "
+          f"{tandem['load_factor']:.10g} and {user['load_factor']:.10g}")
 else:
     check(False, f"unknown case {case}")
 

@@ -18,7 +18,8 @@ import numpy as np
 from ..errors import InputError
 from ..readers.limit_results import LimitResult
 
-__all__ = ["SpanGeometry", "BridgeSummary", "bridge_summary", "check_pair", "report_markdown"]
+__all__ = ["SpanGeometry", "BridgeSummary", "bridge_summary", "check_pair", "report_markdown", "numbered_setting",
+           "vehicle_words"]
 
 #: The &bridge variables that may differ between the two files of a pair: the passive pressure only.
 _PAIR_MAY_DIFFER = ("passive_mobilisation",)
@@ -63,6 +64,10 @@ class BridgeSummary:
     live_loads_n: list[float]  #: each live load of &load at load factor 1
     live_total_n: float
     axle_spacing_m: float
+    #: With &vehicle: the vehicle in words, and its whole axles' load [N] (before the
+    #: strip's share width_m/effective_width_m); '' and 0 without one.
+    vehicle: str = ""
+    vehicle_total_n: float = 0.0
     spread_x_m: list[tuple[float, float]] = field(default_factory=list)  #: at the critical position
     pressure_at_collapse_n: float = math.nan  #: sum of the faces' horizontal pressures, each's magnitude
     pressure_active_n: float = math.nan  #: the same, every face at its active bound
@@ -92,6 +97,29 @@ class BridgeSummary:
 
     def fill_depth_over_crown_m(self, span: SpanGeometry) -> float:
         return self.fill_level_m - span.crown_extrados_m if self.fill_density_kg_m3 > 0 else math.nan
+
+
+def numbered_setting(group: dict, name: str) -> list[float]:
+    """The entries name(1), name(2), ... of a group's effective settings, in order: a list
+    (a namelist parsed by voussoir_post.namelist) or keys 'name(k)' (a run file's /config)."""
+    if name in group:
+        value = group[name]
+        return [float(v) for v in (value if isinstance(value, list) else [value]) if v is not None]
+    found = {int(k[len(name) + 1:-1]): float(v) for k, v in group.items() if k.startswith(name + "(")}
+    return [found[k] for k in sorted(found)]
+
+
+def vehicle_words(vehicle: dict) -> str:
+    """A &vehicle group in words: "vehicle 'lm1_tandem_lane1' (axles 300 + 300 kN, 1.2 m
+    apart, each over an effective width of 3 m)"."""
+    name = str(vehicle.get("name", "")).strip()
+    loads, gaps = numbered_setting(vehicle, "axle_load_kn"), numbered_setting(vehicle, "axle_spacing_m")
+    text = f"vehicle{' ' + repr(name) if name else ''} (axle{'s' if len(loads) > 1 else ''} " \
+           f"{' + '.join(f'{p:g}' for p in loads)} kN"
+    if gaps:
+        text += ", " + ", ".join(f"{g:g}" for g in gaps) + " m apart"
+    width = float(vehicle.get("effective_width_m", 0.0) or 0.0)
+    return text + (f", each over an effective width of {width:g} m)" if width > 0 else ")")
 
 
 def _area(poly: np.ndarray) -> float:
@@ -141,6 +169,15 @@ def bridge_summary(limit: LimitResult) -> BridgeSummary:
     live = [float(v) for v in _listed(load.get("point_load_n"))]
     flags = _listed(load.get("point_load_live"))
     live = [p for p, is_live in zip(live, flags + [True] * len(live)) if is_live]
+    vehicle, vehicle_total_n = config.get("vehicle"), 0.0
+    if vehicle:
+        # The vehicle's axles are the live loads (&load gives only the path): on the strip,
+        # axle x width_m/effective_width_m.
+        axles_kn = [float(v) for v in _listed(vehicle.get("axle_load_kn"))]
+        effective = float(vehicle.get("effective_width_m", 0.0) or 0.0)
+        share = width / effective if effective > 0 else 1.0
+        live = [1e3 * p * share for p in axles_kn] + live
+        vehicle_total_n = 1e3 * sum(axles_kn)
     pressures = [abs(float(p.force_n[0])) for p in limit.fill_pressures]
     bounds = limit.fill_pressure_bounds_n
     at_passive = sum(1 for f, (a, p) in zip(pressures, bounds) if p > a * (1 + 1e-9) and abs(f - p) <= 1e-9 * p)
@@ -161,6 +198,7 @@ def bridge_summary(limit: LimitResult) -> BridgeSummary:
         live_loads_n=live, live_total_n=sum(float(np.hypot(*p.force_n)) for p in
                                             (limit.surface_loads or [q for q in limit.point_loads if q.live])),
         axle_spacing_m=float(load.get("axle_spacing_m", 0.0) or 0.0),
+        vehicle=vehicle_words(vehicle) if vehicle else "", vehicle_total_n=vehicle_total_n,
         spread_x_m=list(limit.surface_spread_x_m),
         pressure_at_collapse_n=sum(pressures) if pressures else math.nan,
         pressure_active_n=sum(a for a, _ in bounds) if bounds else math.nan,
@@ -247,8 +285,12 @@ def report_markdown(main: BridgeSummary, without: BridgeSummary | None, figures:
                    "the supports and is left out) |")
     live_words = " + ".join(_kn(p) for p in main.live_loads_n) or "-"
     spacing = f", axles {main.axle_spacing_m:g} m apart" if main.axle_spacing_m > 0 else ""
-    out.append(f"| the live load (load factor 1) | {_kn(main.live_total_n)} | {live_words} kN{spacing}, straight "
-               "down, multiplied together by the load factor |")
+    if main.vehicle:
+        out.append(f"| the live load (load factor 1) | {_kn(main.live_total_n)} | the {main.vehicle} of &vehicle: "
+                   f"{live_words} kN on the strip, straight down, multiplied together by the load factor |")
+    else:
+        out.append(f"| the live load (load factor 1) | {_kn(main.live_total_n)} | {live_words} kN{spacing}, "
+                   "straight down, multiplied together by the load factor |")
     out.append("")
     if main.fill_density_kg_m3 > 0:
         spread = "; ".join(f"x = {a:.3f} to {b:.3f} m ({b - a:.3f} m)" for a, b in main.spread_x_m)
@@ -292,8 +334,13 @@ def report_markdown(main: BridgeSummary, without: BridgeSummary | None, figures:
                 and xi != s.limit.critical_x_m]
         if same:
             out.append(f"- {label}: the same least load factor (to 1e-9) also at x = "
-                       + ", ".join(f"{xi:.4f}" for xi in same) + " m (a symmetric bridge's mirror position, or the "
-                       "other side of the critical joint).")
+                       + ", ".join(f"{xi:.4f}" for xi in same) + " m (a symmetric bridge's mirror position, the same "
+                       "place on an identical span, or the other side of the critical joint).")
+    if main.vehicle:
+        out += ["", f"In whole vehicles: the {main.vehicle} weighs {_kn(main.vehicle_total_n)} kN on its axles; λ = "
+                    f"{main.load_factor:.4f} is {_kn(main.load_factor * main.vehicle_total_n)} kN of such axles "
+                    "at collapse" + (f" (without the passive pressure, {_kn(without.load_factor * without.vehicle_total_n)}"
+                                     " kN)" if without is not None else "") + "."]
     out += ["", "λ multiplies the live load (every axle together), the dead loads, the fill's weight and its pressure "
             "bounds staying as they are: the bridge collapses under λ times the live load as given (associative "
             "friction; the non-associative column: friction without dilatancy, by the driver's iteration)."]

@@ -58,7 +58,9 @@ def cmd_bridge_report(args) -> int:
         spans = ", ".join(f"{s.span_m:g} m" for s in main.spans)
         title = (f"Collapse load factor against the vehicle's position: the bridge of "
                  f"{os.path.basename(main.limit.input_file)} "
-                 f"(span{'s' if len(main.spans) > 1 else ''} {spans}),\nlive load {main.live_total_n / 1e3:.4g} kN "
+                 f"(span{'s' if len(main.spans) > 1 else ''} {spans}),\n"
+                 + (f"the {main.vehicle}, " if main.vehicle else "")
+                 + f"live load {main.live_total_n / 1e3:.4g} kN on the strip "
                  + (f"spread through the fill at {main.dispersion_angle_deg:g}°" if main.fill_density_kg_m3 > 0
                     else "on the extrados"))
         data = plot_load_position(cases, main.live_total_n, os.path.join(out, FIGURE_NAMES["load_position"]), title,

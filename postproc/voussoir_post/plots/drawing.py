@@ -13,10 +13,11 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from ..analysis.afd import afd_peak_accel_per_m
+from ..analysis.bridge_report import numbered_setting, vehicle_words
 from ..units import G_M_S2
 
 __all__ = ["new_figure", "save_figure", "save_png", "FIGURE_FORMATS", "RASTER_DPI", "figure_format", "MARKERS",
-           "COLORS", "G_M_S2", "provenance", "add_g_axis", "run_caption", "arch_caption", "legend_pad", "NOTE_STRIP_PT",
+           "COLORS", "G_M_S2", "provenance", "add_g_axis", "run_caption", "arch_caption", "bridge_caption", "vehicle_words", "legend_pad", "NOTE_STRIP_PT",
            "HINGE_COLOURS", "COLLAPSE_COLOUR", "wrap_text", "parameters_in_words", "drawing_tree", "PNG_COMMIT_KEY", "PNG_TREE_KEY", "png_provenance"]
 
 #: Marker style per specimen or parameter set, in order.
@@ -93,11 +94,34 @@ def arch_caption(arch: dict, n_blocks: int | None = None) -> str:
             f"R_ext = {1e3 * float(arch.get('r_ext_m', math.nan)):g} mm)")
 
 
+def bridge_caption(bridge: dict, vehicle: dict | None = None) -> str:
+    """A &bridge group (and a standing &vehicle) in words: 'bridge of 2 segmental spans of
+    10 m (rise 2.5 m), ring 450 mm of 20 voussoirs; fill to 3.45 m (2000 kg/m³) as forces;
+    vehicle ... standing from x = 2 m'."""
+    spans = [v for v in numbered_setting(bridge, "span_m") if v > 0]
+    rises = [v for v in numbered_setting(bridge, "rise_m") if v > 0]
+    span_words = ", ".join(f"{s:g}" for s in spans)
+    rise_words = ", ".join(f"{r:g}" for r in rises[:len(spans)])
+    text = (f"bridge of {len(spans)} {bridge.get('shape', '')} span{'s' if len(spans) > 1 else ''} of {span_words} m "
+            f"(rise {rise_words} m), ring {1e3 * float(bridge.get('ring_thickness_m', math.nan)):g} mm of "
+            f"{bridge.get('n_voussoirs', '?')} voussoirs")
+    if float(bridge.get("fill_density_kg_m3", 0.0)) > 0:
+        pressure = " and active pressure" if float(bridge.get("fill_friction_deg", 0.0)) > 0 else ""
+        text += (f"; fill to {float(bridge.get('fill_level_m', math.nan)):g} m "
+                 f"({float(bridge['fill_density_kg_m3']):g} kg/m³): its weight{pressure} as forces, no mass")
+    if vehicle:
+        text += f"; {vehicle_words(vehicle)} standing from x = {float(vehicle.get('first_axle_x_m', 0.0)):g} m"
+    return text
+
+
 def run_caption(run, sep: str = ", ") -> str:
     """What a run simulated, in words: the structure and the shaking (joined by `sep`)."""
     arch = run.config.get("arch", {})
     motion = run.config.get("motion", {})
-    what = arch_caption(arch, len(run.body_role))
+    if "bridge" in run.config:
+        what = bridge_caption(run.config["bridge"], run.config.get("vehicle"))
+    else:
+        what = arch_caption(arch, len(run.body_role))
     wave = motion.get("waveform", "")
     if wave == "afd":
         f, a = float(motion.get("frequency_hz", math.nan)), float(motion.get("amplitude_m", math.nan))

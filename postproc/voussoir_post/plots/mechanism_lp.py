@@ -24,7 +24,7 @@ from matplotlib.patches import Polygon
 
 from ..readers.limit_results import LimitResult, LpInterfaceForce, LpInterfaceMode
 from ..tables import ReportTable
-from .drawing import HINGE_COLOURS, legend_pad, new_figure, provenance, save_figure
+from .drawing import HINGE_COLOURS, legend_pad, new_figure, provenance, save_figure, vehicle_words
 
 __all__ = ["LpPanel", "interface_resultants", "plot_lp_mechanism"]
 
@@ -254,7 +254,9 @@ def _suptitle(limit: LimitResult) -> str:
     if limit.has_arch:
         what += (f": {limit.embrace_deg:g}° of {limit.n_voussoirs} voussoirs, t = {limit.thickness_m * 1e3:.4g} mm, "
                  f"R_ext = {limit.r_ext_m * 1e3:.4g} mm")
-    case = ("horizontal acceleration" if limit.live_is_acceleration else "the live load of &load: " +
+    vehicle = limit.config.get("vehicle") if limit.config_nml else None
+    case = ("horizontal acceleration" if limit.live_is_acceleration else
+            (f"the {vehicle_words(vehicle)} of &vehicle: " if vehicle else "the live load of &load: ") +
             _live_words(limit))
     return f"Collapse mechanism by linear programming (associative friction) under {case}:\n{what}"
 

@@ -40,11 +40,28 @@ def free_weight_n(run: RunResult) -> float:
     density, width = arch.get("density_kg_m3"), arch.get("width_m")
     if not isinstance(density, (int, float)) or not isinstance(width, (int, float)):
         return math.nan
-    area = 0.0
-    for b in np.nonzero(run.body_role == ROLE_VOUSSOIR)[0]:
+    free = np.nonzero(run.body_role == ROLE_VOUSSOIR)[0]
+    densities = np.full(len(free), float(density))
+    bridge = run.config.get("bridge")
+    if bridge:
+        # A bridge's free blocks: the voussoirs of every span, then the piers (their own density).
+        n_ring = int(bridge.get("n_voussoirs", 0)) * sum(
+            1 for k, v in bridge.items() if k.startswith("span_m(") and float(v) > 0)
+        densities[n_ring:] = float(bridge.get("pier_density_kg_m3", density))
+    weight = 0.0
+    for b, rho in zip(free, densities):
         x, y = run.vertices_local_m[b, : run.n_vertices[b]].T
-        area += 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
-    return float(density) * float(width) * area * G_M_S2
+        weight += rho * 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+    return weight * float(width) * G_M_S2
+
+
+def carries_constant_forces(run: RunResult) -> bool:
+    """Whether the run's blocks carry forces besides their weight: loads of &load, a
+    vehicle, a bridge's fill (voussoir-run applies them as constant forces)."""
+    load = run.config.get("load", {})
+    bridge = run.config.get("bridge", {})
+    return bool(run.config.get("vehicle")) or any(k.startswith("point_load_n(") for k in load) or \
+        float(load.get("dead_load_n_per_m", 0.0) or 0.0) > 0 or float(bridge.get("fill_density_kg_m3", 0.0) or 0.0) > 0
 
 
 def support_names(r: Reactions) -> list[str]:
@@ -88,7 +105,9 @@ def plot_reactions(run: RunResult, out_png: str | os.PathLike) -> ReactionsData:
                      linewidth=0.9)
         axes[2].axhline(data.weight_n, color="grey", linestyle="--", linewidth=0.9,
                         label=f"Fy: the weight of the free blocks, {data.weight_n:.4g} N;\nFx: their mass times "
-                              "the table's acceleration\n(the sum while they move with the table)")
+                              "the table's acceleration\n(the sum while they move with the table" +
+                              (";\nthe constant forces of &load, a vehicle, the fill come on top)"
+                               if carries_constant_forces(run) else ")"))
     axes[1].set_ylabel("horizontal reaction Fx [N]\n(+: towards +x)")
     axes[2].set_ylabel("vertical reaction Fy [N]\n(+: upwards)")
     axes[2].set_xlabel("time [s]")
