@@ -31,7 +31,7 @@ from scipy.stats import binomtest, multivariate_normal, norm
 
 from voussoir_post.diagnosis.actuator import peak_gain
 from voussoir_post.diagnosis.bank import Bank, build_bank, key_variant, load_banks, variant_key
-from voussoir_post.diagnosis.decision import NAME_AT, credible_set
+from voussoir_post.diagnosis.decision import NAME_AT, Decision, credible_set, to_separate
 from voussoir_post.diagnosis.emulator import emulate
 from voussoir_post.diagnosis.likelihood import _log_bracket, records_log_factor, scales
 from voussoir_post.diagnosis.models import MODEL_IDS, model_prior, nominal_log, sim_spread
@@ -372,7 +372,9 @@ def test_end_to_end_diagnosis_follows_the_contract_and_keeps_the_truth(tmp_path,
                 "alternatives"} <= set(nt)
         a_from, a_to, a_by = nt["amplitudes_m"]
         assert 0 < a_by < a_from < a_to and within_limits(a_to, nt["frequency_hz"], TableLimits())
-        assert set(nt["predictions"]) == set(result["rivals"]) and nt["expected_gain_bits"] >= 0
+        assert set(nt["predictions"]) == set(result["rivals"] if result["adequate"]
+                                             else credible_set(result["probabilities"]))
+        assert nt["expected_gain_bits"] >= 0
     assert abs(sum(result["probabilities"].values()) - 1.0) < 1e-4
     assert set(result["probabilities"]) == set(MODEL_IDS)
     assert set(result["extended"]) == {"threshold_error_pct", "threshold_error_se_pct", "hinge_match"}
@@ -488,3 +490,16 @@ def test_an_advised_ramp_is_written_in_whole_half_millimetres():
         for a in amps:
             assert a >= 5e-4 and repr(a) == repr(round(a, 4)), amps
             assert abs(a / 5e-4 - round(a / 5e-4)) < 1e-9, amps
+
+
+def test_a_failed_check_still_asks_for_the_test_that_separates_the_most_probable_models():
+    """No rivals when the catalogue explains nothing, but the laboratory still gets advice:
+    the test that separates the models the rivals would have been (0.5 + 0.3 + 0.15
+    first reach 0.9); none when a cause is named."""
+    probs = {"none": 0.05, "friction": 0.5, "geometry": 0.3, "contact_edges": 0.15}
+    failed = Decision("inconclusive", [], [], False, 0.001, "friction", probs)
+    assert to_separate(failed) == ["friction", "geometry", "contact_edges"]
+    passed = Decision("inconclusive", [], ["friction", "geometry"], True, 0.4, "friction", probs)
+    assert to_separate(passed) == ["friction", "geometry"]
+    named = Decision("friction", ["friction"], [], True, 0.4, "friction", {"friction": 0.95, "none": 0.05})
+    assert to_separate(named) == []
