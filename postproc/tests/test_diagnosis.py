@@ -39,7 +39,10 @@ from voussoir_post.diagnosis.observations import Observations, PairObservation
 from voussoir_post.diagnosis.pipeline import DiagnosisSettings, diagnose
 from voussoir_post.diagnosis.posterior import ADEQUATE_P, adequacy, infer
 from voussoir_post.diagnosis.rates import draw_outcomes, mcnemar
-from voussoir_post.diagnosis.next_test import expected_gain_bits, within_limits
+from voussoir_post.diagnosis.effects import COMBINED, Variant
+from voussoir_post.diagnosis.models import ModelGrid
+from voussoir_post.diagnosis.next_test import expected_gain_bits, posterior_draws, within_limits
+from voussoir_post.diagnosis.posterior import ModelPosterior
 from voussoir_post.readers.campaign import CampaignError, Specimen, TableLimits, Test as CampaignTest, read_campaign
 
 from conftest import SEED_CAMPAIGN, VERDICTS, bin_dir, executable
@@ -228,6 +231,39 @@ def test_expected_gain_is_the_mutual_information_of_the_ramps_bin():
     # Half-overlapping predictions tell less than one bit but more than none.
     mid = expected_gain_bits([0.5, 0.5], [math.log(0.03), math.log(0.0309)], [0.02, 0.02])
     assert 0.05 < mid < 0.9
+
+
+def test_a_rival_whose_parameters_spread_at_a_new_frequency_tells_less():
+    """A rival is a mixture over its parameters' draws. Rival A predicts x1; rival B half
+    x1 and half x2, far apart: the outcome is near x2 with probability 1/4 overall, so
+    I = H(3/4) - (1/2) H(1/2) = 0.3113 bits (against 1 bit were B's draws all at x2); a
+    mixture of equal components is the normal law itself; equal mixtures tell nothing."""
+    x1, x2 = math.log(0.03), math.log(0.06)
+    h = lambda q: -(q * math.log2(q) + (1 - q) * math.log2(1 - q))
+    assert abs(expected_gain_bits([0.5, 0.5], [x1, [x1, x2]], [0.01, 0.01]) - (h(0.75) - 0.5)) < 1e-4
+    assert abs(expected_gain_bits([0.5, 0.5], [[x1] * 3, [x2] * 3], [0.01, 0.01]) - 1.0) < 1e-6
+    assert expected_gain_bits([0.5, 0.5], [[x1, x2], [x2, x1]], [0.01, 0.01]) < 1e-9
+
+
+def test_posterior_draws_are_the_posteriors_stratified_quantiles():
+    """Three draws of a uniform posterior over friction 0.30, 0.31, ..., 0.70 (41 points):
+    the first grid points whose cumulative mass reaches 1/6, 1/2 and 5/6, i.e. the
+    7th, 21st and 35th: 0.36, 0.50 and 0.64; a pair's draws carry both parameters (a
+    restraint's side as text); `none` is the nominal variant."""
+    def posterior(model_id, names, values):
+        n = values[0].size
+        grid = ModelGrid(model_id, names, values, np.full(n, -math.log(n)), np.zeros((n, 1)), False)
+        return ModelPosterior(model_id, grid, 0.0, np.full(n, 1.0 / n))
+    friction = np.round(np.linspace(0.30, 0.70, 41), 6)
+    draws = posterior_draws(posterior("friction", ("friction",), [friction]))
+    assert draws == [Variant("friction", 0.36), Variant("friction", 0.5), Variant("friction", 0.64)]
+    sides = np.array(["left", "right"], dtype=object).repeat(2)
+    pair = posterior("base_restraint+friction", ("base_restraint", "friction"), [sides, np.array([0.4, 0.6] * 2)])
+    # cumulative mass 1/4, 1/2, 3/4, 1: the first points reaching 1/4 and 3/4
+    assert posterior_draws(pair, 2) == [Variant(COMBINED, (("base_restraint", "left"), ("friction", 0.4))),
+                                        Variant(COMBINED, (("base_restraint", "right"), ("friction", 0.4)))]
+    nominal = posterior("none", (), [np.zeros(1)])
+    assert posterior_draws(nominal, 2) == [Variant(), Variant()]
 
 
 def test_a_repeat_is_scored_within_the_bracket_the_pair_already_has():

@@ -148,8 +148,7 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     suggestion = None
     if len(asked) > 1:
         log(f"[diagnose] looking for the test that separates {', '.join(asked)} (tested and new frequencies)")
-        suggestion = next_test(post, obs, asked, {m: model_run(m, parameters(post, m, obs), obs) for m in asked},
-                               settings, cache / "next-test", campaign.table)  # beside the bank: a rerun reuses it
+        suggestion = next_test(post, obs, asked, settings, cache / "next-test", campaign.table)  # beside the bank: a rerun reuses it
     sim = Simulator(settings, out_dir / "work")
     runs = {"nominal": (Variant(), {})}
     if shown:
