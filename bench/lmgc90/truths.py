@@ -15,6 +15,15 @@ one at a time:
     python bench/lmgc90/truths.py --lmgc90-build DIR [--truths N] [--seed S] [--out DIR]
     python bench/lmgc90/truths.py --lmgc90-build DIR --check   # nominal W156 at 1.25 Hz, LMGC90 vs Voussoir
     python bench/lmgc90/truths.py --summary                    # the stored truths (no LMGC90 needed)
+    python bench/lmgc90/truths.py --lmgc90-build DIR --without EFFECT SLUG [SLUG ...]
+
+--without makes a truth's counterfactual: the same specimens with the same faults, less
+one effect (an effect id of a catalogue truth's model, or `outside` for the effect of a
+truth outside the catalogue, whose counterfactual is the nominal arch). It is stored in
+<out>/counterfactual/<slug>_without_<effect>.json, and says by how much that effect moves
+each pair's threshold in LMGC90's own physics: the calibration's labels then judge
+whether it is a cause (lmgc90_campaigns.truth_model) by the generator, not by an
+emulator that may not hold it (the catalogue's brackets have no play).
 
 Resumable: truth k is drawn from numpy's default_rng([S, k]) alone, and a truth whose
 file (t<k>_*.json) is already in --out is skipped. docs/lmgc90.md says how the truths
@@ -441,6 +450,21 @@ def make_truth(truth: dict, build: str, bin_dir: Path, work: Path, log=print) ->
             "faults": truth["faults"], "pairs": pairs, "n_runs": runs, "seconds": round(time.time() - t_start, 1)}
 
 
+def counterfactual(rec: dict, effect: str) -> dict:
+    """The truth of a stored record less one effect (module docstring: --without)."""
+    t = rec["truth"]
+    model = t["model"]
+    if effect == "outside" and model == "outside":
+        kept: tuple[str, ...] = ()
+    elif model != "outside" and effect in members(model):
+        kept = tuple(e for e in members(model) if e != effect)
+    else:
+        raise SystemExit(f"truths.py: --without {effect}: not an effect of {model}")
+    truth = {"index": t["index"], "seed": t["seed"], "model": "+".join(kept) or "none",
+             "parameters": {e: t["parameters"][e] for e in kept}, "faults": rec["faults"]}
+    return truth
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--lmgc90-build", help="LMGC90 build folder (holds pylmgc90)")
@@ -452,6 +476,8 @@ def main(argv=None) -> int:
                     help="voussoir drivers (voussoir-limit for the onsets; voussoir-run for --check)")
     ap.add_argument("--check", action="store_true", help="nominal W156 at 1.25 Hz: LMGC90 against Voussoir")
     ap.add_argument("--summary", action="store_true", help="list the stored truths (no LMGC90 needed)")
+    ap.add_argument("--without", nargs="+", metavar=("EFFECT", "SLUG"),
+                    help="counterfactuals of stored truths less EFFECT (module docstring)")
     args = ap.parse_args(argv)
     if args.summary:
         return summary(Path(args.out))
@@ -468,6 +494,23 @@ def main(argv=None) -> int:
         return check(build, bin_dir)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
+    if args.without:
+        effect, slugs = args.without[0], args.without[1:]
+        (out / "counterfactual").mkdir(exist_ok=True)
+        for name in slugs:
+            target = out / "counterfactual" / f"{name}_without_{effect}.json"
+            if target.exists():
+                continue
+            rec0 = json.loads((out / f"{name}.json").read_text())
+            truth = counterfactual(rec0, effect)
+            print(f"{time.strftime('%H:%M:%S')} {name} without {effect}: {truth['model']}", flush=True)
+            with tempfile.TemporaryDirectory(prefix="lmgc-cf-") as d:
+                rec = make_truth(truth, build, bin_dir, Path(d), log=lambda s: print(s, flush=True))
+            rec["counterfactual_of"], rec["without"] = name, effect
+            target.write_text(json.dumps(_rounded(rec), separators=(",", ":")) + "\n")
+            print(f"{time.strftime('%H:%M:%S')} stored {target.name}: {rec['n_runs']} runs, {rec['seconds']:.0f} s",
+                  flush=True)
+        return 0
     for k in range(args.first, args.truths):
         if glob.glob(str(out / f"t{k:02d}_*.json")):
             continue

@@ -37,11 +37,11 @@ import numpy as np
 
 from replay_maps import bracket, ramp_observations
 from voussoir_post.diagnosis.effects import RESTRAINTS
-from voussoir_post.diagnosis.models import MATERIAL, effect_sizes, members
+from voussoir_post.diagnosis.models import MATERIAL, effect_sizes, material_threshold, members
 from voussoir_post.diagnosis.observations import Observations
 
 __all__ = ["TRUTH_DIR", "LabFaults", "load_truth", "stored_truths", "draw_campaign", "truth_model", "truth_values",
-           "SNAP_M"]
+           "generator_effect_size", "SNAP_M"]
 
 TRUTH_DIR = Path(__file__).resolve().parent / "data" / "lmgc90"
 SNAP_M = 5e-4  #: amplitudes a laboratory commands are multiples of this
@@ -71,9 +71,37 @@ def load_truth(path: Path) -> dict:
 
 
 def stored_truths(folder: Path = TRUTH_DIR) -> list[dict]:
-    """Every stored truth, by index."""
-    out = [load_truth(p) | {"slug": p.stem} for p in sorted(Path(folder).glob("t*.json"))]
+    """Every stored truth, by index, with its stored counterfactuals (bench/lmgc90/truths.py
+    --without: the same specimens less one effect) under "counterfactuals", by effect."""
+    out = []
+    for p in sorted(Path(folder).glob("t*.json")):
+        cfs = {c.stem.rsplit("_without_", 1)[1]: load_truth(c)
+               for c in sorted((Path(folder) / "counterfactual").glob(f"{p.stem}_without_*.json"))}
+        out.append(load_truth(p) | {"slug": p.stem, "counterfactuals": cfs})
     return sorted(out, key=lambda t: t["truth"]["index"])
+
+
+def generator_effect_size(truth: dict, effect: str, bank, obs: Observations) -> float | None:
+    """How far an effect moves the campaign's tested thresholds in the generator's own
+    physics: the largest |change of log threshold| between the truth and its stored
+    counterfactual without that effect, in units of the pair's material threshold
+    (models.material_threshold, as models.effect_sizes); None without a counterfactual."""
+    cf = truth.get("counterfactuals", {}).get(effect)
+    if cf is None:
+        return None
+    def thresholds(rec):
+        return {(p["specimen_id"], round(p["frequency_hz"], 9)): p["threshold_m"] for p in rec["pairs"]}
+    with_it, without = thresholds(truth), thresholds(cf)
+    size = 0.0
+    for p in obs.pairs:
+        key = (p.specimen_id, round(p.frequency_hz, 9))
+        a, b = with_it.get(key), without.get(key)
+        if a is None and b is None:
+            continue
+        if a is None or b is None:
+            return math.inf  # one of them never fell within the search's cap
+        size = max(size, abs(math.log(a / b)) / material_threshold(bank, obs, p))
+    return size
 
 
 #: A truth's parameter, as the diagnosis's MATERIAL measures it (its nominal value: the test
@@ -94,23 +122,34 @@ def truth_model(truth: dict, bank=None, obs: Observations | None = None) -> str:
     catalogue): the generator's, less any effect that is no cause by the diagnosis's
     definitions: a parameter within MATERIAL of nominal (a friction of 0.52 is the
     nominal arch) or, given the bank and a campaign's observations, an effect that moves
-    none of the campaign's tested thresholds by MATERIAL_EFFECT (models.effect_sizes, at
-    the truth's parameter values: a friction of 0.56 on arches that rock and never slide,
-    dropped one effect at a time, the smallest first)."""
+    none of the campaign's tested thresholds by its material threshold (dropped one effect
+    at a time, the smallest first). How far an effect moves them is the generator's own
+    where the truth has a stored counterfactual without it (generator_effect_size: brackets
+    with play, which the catalogue's rigid brackets cannot hold; an effect outside the
+    catalogue, whose truth is then the nominal arch when it moves nothing), else the
+    diagnosis's emulators' (models.effect_sizes, at the truth's parameter values: a
+    friction of 0.56 on arches that rock and never slide)."""
     model = truth["truth"]["model"]
+    judged = bank is not None and obs is not None and bool(obs.pairs)
     if model == "outside":
-        return model
+        size = generator_effect_size(truth, "outside", bank, obs) if judged else None
+        return "none" if size is not None and size < 1.0 else model
     params = truth["truth"].get("parameters", {})
     kept = [e for e in members(model)
             if e not in MATERIAL or abs(params[e][TRUTH_PARAMETERS[e][0]] - TRUTH_PARAMETERS[e][1])
             >= MATERIAL[e] - 1e-12]
-    while bank is not None and obs is not None and obs.pairs:
+    whole = list(members(model))
+    while judged:
         simulated = [e for e in kept if e != "table_motion"]
         if not simulated:
             break
         points = [np.array([float(RESTRAINTS.index(params[e]["side"])) if e == "base_restraint"
                             else params[e][TRUTH_PARAMETERS[e][0]]]) for e in simulated]
         sizes = effect_sizes(bank, obs, tuple(simulated), points)[0]
+        if kept == whole:  # a counterfactual is the whole truth less one effect
+            for i, e in enumerate(simulated):
+                size = generator_effect_size(truth, e, bank, obs)
+                sizes[i] = sizes[i] if size is None else size
         if sizes.min() >= 1.0:
             break
         kept.remove(simulated[int(np.argmin(sizes))])

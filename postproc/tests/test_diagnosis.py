@@ -31,7 +31,7 @@ from scipy.stats import binomtest, multivariate_normal, norm
 
 from voussoir_post.diagnosis.actuator import peak_gain
 from voussoir_post.diagnosis.bank import Bank, build_bank, key_variant, load_banks, variant_key
-from voussoir_post.diagnosis.decision import NAME_AT, credible_set
+from voussoir_post.diagnosis.decision import NAME_AT, Decision, credible_set, to_separate
 from voussoir_post.diagnosis.emulator import emulate
 from voussoir_post.diagnosis.likelihood import _log_bracket, records_log_factor, scales
 from voussoir_post.diagnosis.models import MODEL_IDS, model_prior, nominal_log, sim_spread
@@ -39,7 +39,10 @@ from voussoir_post.diagnosis.observations import Observations, PairObservation
 from voussoir_post.diagnosis.pipeline import DiagnosisSettings, diagnose
 from voussoir_post.diagnosis.posterior import ADEQUATE_P, adequacy, infer
 from voussoir_post.diagnosis.rates import draw_outcomes, mcnemar
-from voussoir_post.diagnosis.next_test import expected_gain_bits, within_limits
+from voussoir_post.diagnosis.effects import COMBINED, Variant
+from voussoir_post.diagnosis.models import ModelGrid
+from voussoir_post.diagnosis.next_test import expected_gain_bits, posterior_draws, within_limits
+from voussoir_post.diagnosis.posterior import ModelPosterior
 from voussoir_post.readers.campaign import CampaignError, Specimen, TableLimits, Test as CampaignTest, read_campaign
 
 from conftest import SEED_CAMPAIGN, VERDICTS, bin_dir, executable
@@ -230,6 +233,39 @@ def test_expected_gain_is_the_mutual_information_of_the_ramps_bin():
     assert 0.05 < mid < 0.9
 
 
+def test_a_rival_whose_parameters_spread_at_a_new_frequency_tells_less():
+    """A rival is a mixture over its parameters' draws. Rival A predicts x1; rival B half
+    x1 and half x2, far apart: the outcome is near x2 with probability 1/4 overall, so
+    I = H(3/4) - (1/2) H(1/2) = 0.3113 bits (against 1 bit were B's draws all at x2); a
+    mixture of equal components is the normal law itself; equal mixtures tell nothing."""
+    x1, x2 = math.log(0.03), math.log(0.06)
+    h = lambda q: -(q * math.log2(q) + (1 - q) * math.log2(1 - q))
+    assert abs(expected_gain_bits([0.5, 0.5], [x1, [x1, x2]], [0.01, 0.01]) - (h(0.75) - 0.5)) < 1e-4
+    assert abs(expected_gain_bits([0.5, 0.5], [[x1] * 3, [x2] * 3], [0.01, 0.01]) - 1.0) < 1e-6
+    assert expected_gain_bits([0.5, 0.5], [[x1, x2], [x2, x1]], [0.01, 0.01]) < 1e-9
+
+
+def test_posterior_draws_are_the_posteriors_stratified_quantiles():
+    """Three draws of a uniform posterior over friction 0.30, 0.31, ..., 0.70 (41 points):
+    the first grid points whose cumulative mass reaches 1/6, 1/2 and 5/6, i.e. the
+    7th, 21st and 35th: 0.36, 0.50 and 0.64; a pair's draws carry both parameters (a
+    restraint's side as text); `none` is the nominal variant."""
+    def posterior(model_id, names, values):
+        n = values[0].size
+        grid = ModelGrid(model_id, names, values, np.full(n, -math.log(n)), np.zeros((n, 1)), False)
+        return ModelPosterior(model_id, grid, 0.0, np.full(n, 1.0 / n))
+    friction = np.round(np.linspace(0.30, 0.70, 41), 6)
+    draws = posterior_draws(posterior("friction", ("friction",), [friction]))
+    assert draws == [Variant("friction", 0.36), Variant("friction", 0.5), Variant("friction", 0.64)]
+    sides = np.array(["left", "right"], dtype=object).repeat(2)
+    pair = posterior("base_restraint+friction", ("base_restraint", "friction"), [sides, np.array([0.4, 0.6] * 2)])
+    # cumulative mass 1/4, 1/2, 3/4, 1: the first points reaching 1/4 and 3/4
+    assert posterior_draws(pair, 2) == [Variant(COMBINED, (("base_restraint", "left"), ("friction", 0.4))),
+                                        Variant(COMBINED, (("base_restraint", "right"), ("friction", 0.4)))]
+    nominal = posterior("none", (), [np.zeros(1)])
+    assert posterior_draws(nominal, 2) == [Variant(), Variant()]
+
+
 def test_a_repeat_is_scored_within_the_bracket_the_pair_already_has():
     """A repeat's rows join the pair's bracket: its outcome is a bin of that bracket, each
     rival's law truncated to it. A bracket narrower than the ramp's bin: nothing left to
@@ -372,7 +408,9 @@ def test_end_to_end_diagnosis_follows_the_contract_and_keeps_the_truth(tmp_path,
                 "alternatives"} <= set(nt)
         a_from, a_to, a_by = nt["amplitudes_m"]
         assert 0 < a_by < a_from < a_to and within_limits(a_to, nt["frequency_hz"], TableLimits())
-        assert set(nt["predictions"]) == set(result["rivals"]) and nt["expected_gain_bits"] >= 0
+        assert set(nt["predictions"]) == set(result["rivals"] if result["adequate"]
+                                             else credible_set(result["probabilities"]))
+        assert nt["expected_gain_bits"] >= 0
     assert abs(sum(result["probabilities"].values()) - 1.0) < 1e-4
     assert set(result["probabilities"]) == set(MODEL_IDS)
     assert set(result["extended"]) == {"threshold_error_pct", "threshold_error_se_pct", "hinge_match"}
@@ -488,3 +526,16 @@ def test_an_advised_ramp_is_written_in_whole_half_millimetres():
         for a in amps:
             assert a >= 5e-4 and repr(a) == repr(round(a, 4)), amps
             assert abs(a / 5e-4 - round(a / 5e-4)) < 1e-9, amps
+
+
+def test_a_failed_check_still_asks_for_the_test_that_separates_the_most_probable_models():
+    """No rivals when the catalogue explains nothing, but the laboratory still gets advice:
+    the test that separates the models the rivals would have been (0.5 + 0.3 + 0.15
+    first reach 0.9); none when a cause is named."""
+    probs = {"none": 0.05, "friction": 0.5, "geometry": 0.3, "contact_edges": 0.15}
+    failed = Decision("inconclusive", [], [], False, 0.001, "friction", probs)
+    assert to_separate(failed) == ["friction", "geometry", "contact_edges"]
+    passed = Decision("inconclusive", [], ["friction", "geometry"], True, 0.4, "friction", probs)
+    assert to_separate(passed) == ["friction", "geometry"]
+    named = Decision("friction", ["friction"], [], True, 0.4, "friction", {"friction": 0.95, "none": 0.05})
+    assert to_separate(named) == []

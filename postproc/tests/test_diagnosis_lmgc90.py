@@ -190,3 +190,34 @@ def test_collapse_rows_only_are_flagged_one_sided():
     obs, drawn = draw_campaign(t, np.random.default_rng(3), LabFaults(collapses_only_p=0.0, step_mm=(1.0, 1.0)))
     assert "one_sided" not in outcome(stored_bank(), obs, truth_model(t))["flags"] or any(
         p.low_m == 0 for p in obs.pairs)
+
+
+def _with_counterfactual(t: dict, effect: str, factor: float) -> dict:
+    """A truth with a made-up counterfactual without `effect`: its thresholds x factor."""
+    cf = {"pairs": [dict(p, threshold_m=None if p["threshold_m"] is None else p["threshold_m"] * factor)
+                    for p in t["pairs"]]}
+    return dict(t, counterfactuals={effect: cf})
+
+
+@pytest.mark.parametrize("effect", ["base_restraint", "outside"])
+def test_an_effect_is_a_cause_by_the_generators_counterfactual(effect):
+    """The label's rule, by the generator: an effect whose counterfactual moves no tested
+    threshold by more than 1 % is no cause (every material threshold is at least
+    MATERIAL_EFFECT, 5 %); one that moves them by 50 % (0.41 in log, above any pair's twice
+    build-tolerance spread) is; without a counterfactual the label is the emulators'."""
+    bank = stored_bank()
+    model = "outside" if effect == "outside" else None
+    found = [t for t in truths() if (t["truth"]["model"] == "outside" if model else effect in t["truth"]["model"])]
+    assert found, f"no stored truth with {effect}"
+    t = dict(found[0], counterfactuals={})
+    obs, _ = draw_campaign(t, np.random.default_rng(1), LabFaults(collapses_only_p=0.0))
+    plain = truth_model(t, bank, obs)
+    assert plain == ("outside" if model else plain)
+    small = truth_model(_with_counterfactual(t, effect, 1.01), bank, obs)
+    large = truth_model(_with_counterfactual(t, effect, 1.5), bank, obs)
+    if model:
+        assert (small, large) == ("none", "outside")
+    else:
+        assert effect in plain.split("+"), f"{t['slug']}: the rigid brackets' emulator calls them no cause ({plain})"
+        assert effect not in small.split("+"), f"an effect that moves nothing by 1 % kept: {small}"
+        assert large == plain, f"a 50 % effect dropped: {large} against {plain}"

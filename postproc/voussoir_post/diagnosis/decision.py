@@ -23,7 +23,7 @@ import numpy as np
 from .models import members
 from .posterior import ADEQUATE_P, Posterior, adequacy
 
-__all__ = ["NAME_AT", "Decision", "decide", "credible_set", "flags", "prior_bound", "EDGE_FRACTION", "EDGE_MASS"]
+__all__ = ["NAME_AT", "Decision", "decide", "credible_set", "to_separate", "flags", "prior_bound", "EDGE_FRACTION", "EDGE_MASS"]
 
 EDGE_FRACTION = 0.05  #: the outer part of a prior's range that counts as its edge
 EDGE_MASS = 0.15  #: posterior mass there (three times the prior's) that flags the parameter
@@ -73,6 +73,17 @@ def decide(post: Posterior) -> Decision:
         verdict = "none" if not eff else (eff[0] if len(eff) == 1 else "combined")
         return Decision(verdict, eff, [], True, p, top, probs)
     return Decision("inconclusive", [], credible_set(probs), True, p, top, probs)
+
+
+def to_separate(decision: Decision) -> list[str]:
+    """The models the next test is to separate: the rivals of an inconclusive verdict;
+    when the most probable model fails its check (no rivals: nothing in the catalogue
+    explains the campaign), the models whose credible set the rivals would have been, so
+    that the test says which of them comes nearest and whether the misfit repeats; none
+    when a cause (or `none`) is named."""
+    if decision.verdict != "inconclusive":
+        return []
+    return decision.rivals if decision.adequate else credible_set(decision.probabilities)
 
 
 #: The name of each effect's parameter in diagnosis.json.

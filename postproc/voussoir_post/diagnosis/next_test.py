@@ -8,9 +8,11 @@ specimen with a certain set-up. Its outcome is the bracket the ramp would give: 
 threshold's bin on a ramp of step `RAMP_STEP` (relative). Each rival predicts that
 outcome as a normal law of the log threshold: at a tested pair its posterior predictive
 (the parameters' posterior spread, the simulator, emulator, table and discrepancies);
-at a new frequency its threshold simulated at its posterior mean, with the same
-predictive spread as the tested pairs (the parameters' own spread there is not
-simulated: stated in the report). A rival's table gain divides its threshold.
+at a new frequency a mixture over DRAWS_AT_NEW draws of its parameters' posterior
+(`posterior_draws`: stratified, so a posterior that a new frequency would spread is
+spread there), each draw's threshold simulated, with the tested pairs' predictive spread
+less the parameters' own (which the draws carry). A rival's table gain divides its
+threshold.
 
 The score is the expected information gain of the test about the cause, in bits: the
 mutual information I(M; Y) = H(Y) - sum_m p_m H(Y | m) between the rival M (weights
@@ -38,7 +40,7 @@ import numpy as np
 from scipy.special import ndtr
 
 from .bank import onset_amplitudes, variant_key
-from .effects import arch_group
+from .effects import COMBINED, Variant, arch_group
 from .likelihood import predictive_sd
 from .models import members
 from .observations import Observations
@@ -46,22 +48,51 @@ from .posterior import Posterior, predicted_log
 from .settings import DiagnosisSettings
 from .simulator import Simulator
 
-__all__ = ["next_test", "expected_gain_bits", "ramp", "within_limits", "RAMP_STEP"]
+__all__ = ["next_test", "expected_gain_bits", "ramp", "within_limits", "posterior_draws", "RAMP_STEP",
+           "DRAWS_AT_NEW"]
 
 RAMP_STEP = 0.025  #: relative step of the advised ramp (a bin of the outcome)
 ALTERNATIVES = 3
+#: Draws of each rival's parameters simulated at a new frequency (its predictive there is
+#: their mixture).
+DRAWS_AT_NEW = 3
 
 
-def expected_gain_bits(probabilities: list[float], means: list[float], sds: list[float],
+def posterior_draws(mp, k: int = DRAWS_AT_NEW) -> list[Variant]:
+    """k draws of a model's simulated parameters from its posterior over its grid, by
+    stratified (systematic) resampling: the points at cumulative posterior mass
+    (i + 1/2) / k in the grid's order, which for one parameter are its quantiles of
+    1/(2k), 3/(2k), ...; the nominal variant for `none` and a table gain alone (a gain
+    needs no simulation: it divides the threshold)."""
+    names = [n for n in mp.grid.names if n != "table_motion"]
+    if not names:
+        return [Variant()] * k
+    cdf = np.cumsum(mp.weights)
+    out = []
+    for i in range(k):
+        j = min(int(np.searchsorted(cdf, (i + 0.5) / k * cdf[-1])), cdf.size - 1)
+        parts = []
+        for n in names:
+            v = mp.grid.values[mp.grid.names.index(n)][j]
+            parts.append((n, str(v) if mp.grid.values[mp.grid.names.index(n)].dtype == object else round(float(v), 6)))
+        out.append(Variant(*parts[0]) if len(parts) == 1 else Variant(COMBINED, tuple(parts)))
+    return out
+
+
+def expected_gain_bits(probabilities: list[float], means: list, sds: list,
                        step: float = RAMP_STEP, within: tuple[float, float] | None = None) -> float:
     """I(M; Y) in bits for rivals of probabilities p_m predicting log threshold
-    N(mean_m, sd_m^2), Y the bin of width log(1 + step) the threshold falls in. `within`
-    (log low, log high): the threshold is already known to lie there (a tested pair's
-    bracket; -inf for no stand below): each rival's law is truncated to it, and the bins
-    cover it only."""
+    N(mean_m, sd_m^2), Y the bin of width log(1 + step) the threshold falls in. A rival's
+    mean may be a list: an equal mixture of normals of those means (its sd one, or one
+    per component). `within` (log low, log high): the threshold is already known to lie
+    there (a tested pair's bracket; -inf for no stand below): each rival's law is
+    truncated to it, and the bins cover it only."""
     p = np.asarray(probabilities, float)
     p = p / p.sum()
-    mu, sd = np.asarray(means, float), np.asarray(sds, float)
+    comps = [np.atleast_1d(np.asarray(m, float)) for m in means]
+    comp_sd = [np.broadcast_to(np.atleast_1d(np.asarray(s_, float)), c.shape) for c, s_ in zip(comps, sds)]
+    owner = np.concatenate([np.full(c.size, i) for i, c in enumerate(comps)])
+    mu, sd = np.concatenate(comps), np.concatenate(comp_sd)
     width = math.log1p(step)
     lo = float(np.min(mu - 6 * sd))
     if within is None:
@@ -73,7 +104,8 @@ def expected_gain_bits(probabilities: list[float], means: list[float], sds: list
             return 0.0
         edges = np.append(lo + width * np.arange(max(1, int(math.ceil((hi - lo) / width - 1e-9)))), hi)
     cdf = ndtr((edges[None, :] - mu[:, None]) / sd[:, None])
-    py_m = np.clip(np.diff(cdf, axis=1), 0.0, None)  # (rival, bin)
+    py_c = np.clip(np.diff(cdf, axis=1), 0.0, None)  # (component, bin)
+    py_m = np.stack([py_c[owner == i].mean(axis=0) for i in range(len(comps))])  # (rival, bin)
     if within is not None:
         mass = py_m.sum(axis=1, keepdims=True)
         py_m = np.where(mass > 1e-300, py_m / np.maximum(mass, 1e-300), 1.0 / py_m.shape[1])
@@ -95,8 +127,8 @@ def ramp(means: list[float], sds: list[float]) -> list[float]:
     """[from, to, by] [m] of an afd ramp that brackets every rival's threshold: from the
     smallest prediction less two spreads to the largest plus two, by RAMP_STEP of the
     smallest, in 0.5 mm."""
-    lo = min(math.exp(m - 2 * s) for m, s in zip(means, sds))
-    hi = max(math.exp(m + 2 * s) for m, s in zip(means, sds))
+    lo = min(math.exp(float(np.min(m)) - 2 * float(np.max(s))) for m, s in zip(means, sds))
+    hi = max(math.exp(float(np.max(m)) + 2 * float(np.max(s))) for m, s in zip(means, sds))
     return [_snap(lo), _snap(hi), _snap(RAMP_STEP * lo)]
 
 
@@ -126,23 +158,22 @@ def _candidate(sid: str, f: float, new: bool, rivals: list[str], probs: list[flo
         return None
     return {"specimen_id": sid, "frequency_hz": f, "new": new, "kind": "afd_ramp", "amplitudes_m": amps,
             "expected_gain_bits": expected_gain_bits(probs, means, sds, within=within),
-            "predicted_m": {m: math.exp(v) for m, v in zip(rivals, means)},
-            "spread": {m: s for m, s in zip(rivals, sds)}}
+            "predicted_m": {m: math.exp(float(np.mean(v))) for m, v in zip(rivals, means)},
+            "spread": {m: float(np.sqrt(np.mean(np.square(s_)) + np.var(v))) for m, s_, v in zip(rivals, sds, means)}}
 
 
-def next_test(post: Posterior, obs: Observations, rivals: list[str], runs: dict, settings: DiagnosisSettings,
+def next_test(post: Posterior, obs: Observations, rivals: list[str], settings: DiagnosisSettings,
               work: Path, table) -> dict | None:
     """The best test (specimen_id, frequency_hz, new, kind, amplitudes_m,
     expected_gain_bits, predicted_m per rival, alternatives: the next best), or None with
-    fewer than two rivals or no test within the table's limits. `runs` gives each
-    rival's (variant, &motion settings) at its posterior mean (pipeline.model_run)."""
+    fewer than two rivals or no test within the table's limits."""
     if len(rivals) < 2:
         return None
     sc = post.scales
     probs = [post.probabilities[m] for m in rivals]
     candidates = []
     # Tested pairs: each rival's posterior predictive (mean, and the spread of its mixture).
-    stats = {}
+    stats, noise_sd = {}, {}
     for m in rivals:
         mp = post.models[m]
         mu = mp.adjusted_mu(sc)
@@ -150,7 +181,10 @@ def next_test(post: Posterior, obs: Observations, rivals: list[str], runs: dict,
         sd = predictive_sd(mp.grid, sc, post.pairs)
         var = mp.weights @ (sd ** 2 + (mu - mean[None, :]) ** 2)
         stats[m] = (mean, np.sqrt(var))
-    typical_sd = {m: float(np.sqrt(np.mean(stats[m][1] ** 2))) for m in rivals}
+        # At a new frequency the draws carry the parameters' spread; the rest is the tested
+        # pairs' predictive spread at a given parameter.
+        noise_sd[m] = float(np.sqrt(np.mean(mp.weights @ sd ** 2)))
+    draws = {m: posterior_draws(post.models[m]) for m in rivals}
     for j, p in enumerate(post.pairs):
         c = _candidate(p.specimen_id, p.frequency_hz, False, rivals, probs, [stats[m][0][j] for m in rivals],
                        [stats[m][1][j] for m in rivals], table, (p.low_m, p.high_m))
@@ -161,7 +195,7 @@ def next_test(post: Posterior, obs: Observations, rivals: list[str], runs: dict,
         spec, freqs = obs.specimens[sid], _new_frequencies(obs, sid, settings)
         if not freqs:
             continue
-        variants = sorted({runs[m][0] for m in rivals}, key=variant_key)
+        variants = sorted({v for m in rivals for v in draws[m]}, key=variant_key)
         # A folder per question (specimen, frequencies, models): a rerun reuses its sweeps,
         # another question never meets them.
         key = json.dumps([[arch_group(spec, v) for v in variants], freqs, settings.dt_s], sort_keys=True)
@@ -170,12 +204,12 @@ def next_test(post: Posterior, obs: Observations, rivals: list[str], runs: dict,
         found = sim.thresholds_at(spec, freqs, obs.cycles[sid], variants, settings.ceiling_factor * max(onset),
                                   settings.amp_tol_fraction * min(onset))
         for f in freqs:
-            pred = {m: found.get((runs[m][0], f), math.nan) / (gain if "table_motion" in members(m) else 1.0)
-                    for m in rivals}
-            if not all(math.isfinite(v) and v > 0 for v in pred.values()):
+            pred = {m: [found.get((v, f), math.nan) / (gain if "table_motion" in members(m) else 1.0)
+                        for v in draws[m]] for m in rivals}
+            if not all(math.isfinite(v) and v > 0 for vs in pred.values() for v in vs):
                 continue
-            c = _candidate(sid, f, True, rivals, probs, [math.log(pred[m]) for m in rivals],
-                           [typical_sd[m] for m in rivals], table)
+            c = _candidate(sid, f, True, rivals, probs, [list(np.log(pred[m])) for m in rivals],
+                           [noise_sd[m] for m in rivals], table)
             if c:
                 candidates.append(c)
     if not candidates:

@@ -31,7 +31,7 @@ import numpy as np
 from ..errors import InputError
 from ..readers.campaign import read_campaign
 from .bank import Bank, build_bank
-from .decision import Decision, decide, flags
+from .decision import Decision, decide, flags, to_separate
 from .effects import COMBINED, Variant
 from .models import CANDIDATES, MODEL_IDS, members, model_prior
 from .observations import Observations, from_campaign
@@ -144,11 +144,11 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     flag_list = flags(post, decision, shown)
     sensitivity = {f: prior_sensitivity(post, f) for f in SENSITIVITY_FACTORS}
     rivals = decision.rivals
+    asked = to_separate(decision)
     suggestion = None
-    if decision.verdict == "inconclusive" and len(rivals) > 1:
-        log(f"[diagnose] looking for the test that separates {', '.join(rivals)} (tested and new frequencies)")
-        suggestion = next_test(post, obs, rivals, {m: model_run(m, parameters(post, m, obs), obs) for m in rivals},
-                               settings, cache / "next-test", campaign.table)  # beside the bank: a rerun reuses it
+    if len(asked) > 1:
+        log(f"[diagnose] looking for the test that separates {', '.join(asked)} (tested and new frequencies)")
+        suggestion = next_test(post, obs, asked, settings, cache / "next-test", campaign.table)  # beside the bank: a rerun reuses it
     sim = Simulator(settings, out_dir / "work")
     runs = {"nominal": (Variant(), {})}
     if shown:

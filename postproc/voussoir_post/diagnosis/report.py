@@ -82,6 +82,18 @@ def _param_text(params: dict) -> str:
     return "; ".join(one(k, v) for k, v in params.items())
 
 
+def _advice_text(nt: dict | None, what: str) -> str:
+    """The sentence of the notes that gives the advised test (empty without one)."""
+    if not nt:
+        return ""
+    a = nt["amplitudes_m"]
+    return (f" {what} ({nt['expected_gain_bits']:.2f} bits): specimen {nt['specimen_id']} at "
+            f"{nt['frequency_hz']:g} Hz" + (" (a frequency not tested yet)" if nt["new"] else "")
+            + f", an afd ramp from {1e3 * a[0]:.1f} to {1e3 * a[1]:.1f} mm by {1e3 * a[2]:.1f} mm, where "
+            "the models predict thresholds of "
+            + ", ".join(f"{m} {1e3 * v:.1f} mm" for m, v in nt["predicted_m"].items()) + ".")
+
+
 def notes(decision: Decision, post: Posterior, result: dict, info: dict) -> str:
     """The one plain-words paragraph of diagnosis.json."""
     p = post.probabilities
@@ -94,6 +106,8 @@ def notes(decision: Decision, post: Posterior, result: dict, info: dict) -> str:
                 f"catalogue explains the campaign: even the most probable, {top} ({p[top]:.2f}), fails the "
                 f"check on the specimens it was not fitted to (p = {decision.p_value:.3f} < {ADEQUATE_P}); the cause is likely "
                 f"outside the catalogue or several at once.")
+        text += _advice_text(info.get("next_test"), "The test whose outcome is expected to tell most about which of "
+                             "the catalogue's most probable models comes nearest, and whether the misfit repeats")
     elif decision.verdict == "none":
         text = (f"The nominal model explains the data: probability {p['none']:.2f} (the nominal model misses the "
                 f"measured thresholds by {base:.1f} % on average, within their uncertainty).")
@@ -109,15 +123,7 @@ def notes(decision: Decision, post: Posterior, result: dict, info: dict) -> str:
         common = set(members(decision.rivals[0])).intersection(*(set(members(m)) for m in decision.rivals[1:]))
         if common:
             text += f" Every rival includes {' and '.join(sorted(common))}: that part is established."
-        nt = info.get("next_test")
-        if nt:
-            a = nt["amplitudes_m"]
-            text += (f" The test whose outcome is expected to tell most about the cause "
-                     f"({nt['expected_gain_bits']:.2f} bits): specimen {nt['specimen_id']} at "
-                     f"{nt['frequency_hz']:g} Hz" + (" (a frequency not tested yet)" if nt["new"] else "")
-                     + f", an afd ramp from {1e3 * a[0]:.1f} to {1e3 * a[1]:.1f} mm by {1e3 * a[2]:.1f} mm, where "
-                     "the rivals predict thresholds of "
-                     + ", ".join(f"{m} {1e3 * v:.1f} mm" for m, v in nt["predicted_m"].items()) + ".")
+        text += _advice_text(info.get("next_test"), "The test whose outcome is expected to tell most about the cause")
     for s in info.get("screen", []):
         text += " " + s["sentence"]
     return text
