@@ -318,7 +318,8 @@ def test_cli_im_table_and_chosen_measures(tmp_path, capsys):
     assert main(["fragility", str(path), "--bootstrap", "30", "--im", "pga,sa,pga_lambda_g", "--sa-period", "0.3",
                  "--avgsa-periods", "0.1", "1.0"]) == 0
     text = capsys.readouterr().out
-    assert "fragility by intensity measure (Sa and RotD50 at T = 0.3 s, AvgSa over 0.1-1 s, 5 % damping, pyRotd 0.6.1)" in text
+    assert ("fragility by intensity measure (Sa and RotD50 at T = 0.3 s, AvgSa over 0.1-1 s, 5 % damping, "
+            "pyRotd 0.6.1)") in text
     assert "PGA / (lambda g)" in text and "Sa(T)" in text and "CAV" not in text
     assert "efficiency (smallest beta / power first" in text and "beta [90 % band]" in text
     assert "30 bootstrap resamples of the records" in text

@@ -185,7 +185,8 @@ def test_rotd50_of_two_components_apart_in_time_is_the_median_of_the_larger_peak
     degrees (numpy's median of the closed form, not pyRotd's rotation)."""
     rng = np.random.default_rng(23)
     a_alone, b_alone = burst(rng, 1200), burst(rng, 1200)
-    b_alone *= 0.8 * im.spectral_acceleration(a_alone, 0.01, [0.3])[0] / im.spectral_acceleration(b_alone, 0.01, [0.3])[0]
+    sa_0 = [float(im.spectral_acceleration(x, 0.01, [0.3])[0]) for x in (a_alone, b_alone)]
+    b_alone *= 0.8 * sa_0[0] / sa_0[1]
     gap = np.zeros(6000)
     a = np.concatenate((a_alone, gap, np.zeros(1200)))
     b = np.concatenate((np.zeros(1200), gap, b_alone))

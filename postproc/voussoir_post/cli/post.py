@@ -605,8 +605,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--im", metavar="LIST",
                    help="also fit the fragility in each intensity measure and compare them (efficiency: beta; "
                         "sufficiency: the residuals' slope on magnitude, distance, pulse, frequency ratio, pulse "
-                        "frequency ratio): 'all' or a comma-separated list of pga, pgv, pgd, arias, cav, sa, avgsa, rotd50 (of "
-                        "the record's pair of components, a packaged set's), pga_lambda_g "
+                        "frequency ratio): 'all' or a comma-separated list of pga, pgv, pgd, arias, cav, sa, avgsa, "
+                        "rotd50 (of the record's pair of components, a packaged set's), pga_lambda_g "
                         "(docs/earthquakes.md); the records are read again")
     p.add_argument("--sa-period", type=float, default=None, metavar="T_S",
                    help="period of Sa(T) and RotD50 with --im, 5 %% damping (default 1 s)")

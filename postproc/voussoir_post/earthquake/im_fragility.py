@@ -197,8 +197,9 @@ class MeasureComparison:
             rows.append(tuple(cells))
         return ReportTable(["measure", "unit", "median", "beta [90 % band]", "beta/power", "P(best)"]
                            + [f"slope on {c}" for c in names],
-                           rows, title=f"fragility by intensity measure (Sa and RotD50 at T = {self.sa_period_s:g} s, AvgSa "
-                                       f"over {self.avgsa_periods_s[0]:g}-{self.avgsa_periods_s[-1]:g} s, "
+                           rows, title=f"fragility by intensity measure (Sa and RotD50 at T = "
+                                       f"{self.sa_period_s:g} s, AvgSa over {self.avgsa_periods_s[0]:g}-"
+                                       f"{self.avgsa_periods_s[-1]:g} s, "
                                        f"{100 * DAMPING:g} % damping, pyRotd {PYROTD_VERSION})")
 
     def summary(self) -> dict:
@@ -415,7 +416,7 @@ def bootstrap_efficiency(fits: list[MeasureFit], clusters, events=None, n_resamp
 def rotd50_refusal(ida: IdaResult, unpaired: list[str]) -> str:
     """Why RotD50 cannot be had for the records ``unpaired`` of ``ida``: no second
     horizontal component known."""
-    where = (f"the set {ida.record_set} has no other component of the same pair for it" if ida.record_set else
+    where = (f"the set {ida.record_set} has no other component of one time step in its pair" if ida.record_set else
              "a record file does not say which file is the other component of its event's recording (only the "
              "packaged sets, played with &sweep record_set, pair the components)")
     more = f" (and {len(unpaired) - 1} other records)" if len(unpaired) > 1 else ""

