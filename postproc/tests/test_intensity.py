@@ -146,3 +146,74 @@ def test_bad_records_and_periods_are_refused():
         im.spectral_acceleration(np.ones(10), 0.01, [0.01])
     with pytest.raises(InputError, match="the periods of AvgSa"):
         im.avg_sa_periods(3.0, 0.2)
+
+
+# ------------------------------------------------------------------ RotD50 of a pair
+
+def burst(rng, n, dt=0.01, centre_s=6.0, width_s=3.0):
+    """A random record of n samples in a Gaussian envelope (zero at both ends)."""
+    t = np.arange(n) * dt
+    return rng.normal(0.0, 1.0, n) * np.exp(-((t - centre_s) / width_s) ** 2)
+
+
+def test_rotd50_of_a_component_and_zero_is_cos_45_of_its_sa():
+    """b = 0: the oscillator rotated by theta responds cos(theta) u_a(t) (it is linear), its
+    peak |cos theta| Sa_a; over theta = 0, 1, ..., 179 deg, 89 angles give less than
+    cos 45 deg, 89 more, and 45 and 135 deg exactly it: the median is cos 45 deg Sa_a."""
+    a = burst(np.random.default_rng(21), 2000)
+    periods = [0.2, 0.5, 1.0, 2.0]
+    sa = im.spectral_acceleration(a, 0.01, periods)
+    assert im.rotd50(a, np.zeros_like(a), 0.01, periods) == pytest.approx(math.cos(math.pi / 4) * sa, rel=1e-9)
+    # and the pair the other way round: the same by symmetry (|sin theta| has the same median)
+    assert im.rotd50(np.zeros_like(a), a, 0.01, periods) == pytest.approx(math.cos(math.pi / 4) * sa, rel=1e-9)
+
+
+def test_rotd50_of_two_identical_components_is_their_sa():
+    """b = a: the rotated response is (cos theta + sin theta) u_a = sqrt(2) sin(theta + 45 deg)
+    u_a, its peak sqrt(2) |sin(theta + 45 deg)| Sa_a; theta + 45 deg runs over 180
+    consecutive whole degrees, a full period of |sin|, whose median is sin 45 deg: RotD50 =
+    sqrt(2) sin 45 deg Sa_a = Sa_a."""
+    a = burst(np.random.default_rng(22), 2000)
+    periods = [0.3, 1.0]
+    assert im.rotd50(a, a, 0.01, periods) == pytest.approx(im.spectral_acceleration(a, 0.01, periods), rel=1e-9)
+
+
+def test_rotd50_of_two_components_apart_in_time_is_the_median_of_the_larger_peak():
+    """a shakes first, b (of Sa 0.8 times a's) 60 s later, when a's oscillator (T = 0.3 s, 5 %: decay time 0.95 s)
+    has died out (e^-60): at angle theta the peak is max(|cos theta| Sa_a, |sin theta| Sa_b),
+    each from its own component's Sa; RotD50 is the median of it over the 180 whole
+    degrees (numpy's median of the closed form, not pyRotd's rotation)."""
+    rng = np.random.default_rng(23)
+    a_alone, b_alone = burst(rng, 1200), burst(rng, 1200)
+    sa_0 = [float(im.spectral_acceleration(x, 0.01, [0.3])[0]) for x in (a_alone, b_alone)]
+    b_alone *= 0.8 * sa_0[0] / sa_0[1]
+    gap = np.zeros(6000)
+    a = np.concatenate((a_alone, gap, np.zeros(1200)))
+    b = np.concatenate((np.zeros(1200), gap, b_alone))
+    sa_a = float(im.spectral_acceleration(a_alone, 0.01, [0.3])[0])
+    sa_b = float(im.spectral_acceleration(b_alone, 0.01, [0.3])[0])
+    theta = np.radians(np.arange(180.0))
+    expected = float(np.median(np.maximum(np.abs(np.cos(theta)) * sa_a, np.abs(np.sin(theta)) * sa_b)))
+    # the pair's answer is neither component's alone (cos 45 deg Sa of the larger)
+    assert expected > 1.05 * math.cos(math.pi / 4) * max(sa_a, sa_b)
+    assert im.rotd50(a, b, 0.01, [0.3])[0] == pytest.approx(expected, rel=1e-6)
+
+
+def test_rotd50_scales_with_the_pair_and_needs_a_pair_of_one_time_step():
+    """Both components scaled by s: RotD50 times s (the IDA's scale applies to the pair);
+    a shorter second component is at rest after its end (the same as padded with zeros);
+    record_intensity gives RotD50 with a pair, NaN without."""
+    rng = np.random.default_rng(24)
+    a, b = burst(rng, 2000), burst(rng, 1500)
+    one = im.rotd50(a, b, 0.01, [0.4, 1.2])
+    assert im.rotd50(2.7 * a, 2.7 * b, 0.01, [0.4, 1.2]) == pytest.approx(2.7 * one, rel=1e-12)
+    assert im.rotd50(a, np.concatenate((b, np.zeros(500))), 0.01, [0.4, 1.2]) == pytest.approx(one, rel=1e-12)
+    periods = im.avg_sa_periods(0.2, 2.0)
+    # record_intensity pads as for its longest period (2 s), as its Sa is
+    at_04 = float(im.rotd50(a, b, 0.01, [0.4], padded_for_s=2.0)[0])
+    assert at_04 == pytest.approx(one[0], rel=1e-5)  # the padding's wrap-round: e^-12 of the free vibration
+    assert im.record_intensity(a, 0.01, 0.4, periods, b).value("rotd50") == pytest.approx(at_04, rel=1e-12)
+    assert math.isnan(im.record_intensity(a, 0.01, 0.4, periods).value("rotd50"))
+    assert im.SCALE_POWER["rotd50"] == 1
+    with pytest.raises(InputError, match="above twice the record's time step"):
+        im.rotd50(a, b, 0.01, [0.01])

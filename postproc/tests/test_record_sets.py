@@ -30,7 +30,7 @@ import pytest
 
 from voussoir_post.earthquake.ida import read_ida
 from voussoir_post.earthquake.record_sets import (G_M_S2, RecordsError, export_sets, read_at2, read_index,
-                                                  read_pulse_periods, read_set, write_at2)
+                                                  read_pulse_periods, read_set, set_table, write_at2)
 
 
 @pytest.fixture(scope="module")
@@ -91,6 +91,117 @@ def test_every_pulse_record_has_a_period_but_erzincan_and_no_other_record_has_on
     assert len(others) == 28 + 44 and all(np.isnan(r.pulse_period_s) for r in others)
     periods = read_pulse_periods()
     assert len(periods) == 14 and np.isnan(periods[821]) and periods[1503] == 5.74
+
+
+#: The near-field set's fault-normal and fault-parallel components, as the ATC-63 project
+#: (FEMA P695's) named their files: Curt Haselton's OpenSees record definitions
+#: ("DefineEarthquakeRecordInformation", Stanford, updated 28 June 2005), "Define record
+#: information for ATC-63 Near-Field Record Set", the ROTATED (fault-normal/parallel)
+#: PEER-NGA records, "component index - 1 is Fault-Normal, 2 is Fault Parallel", e.g.
+#: IMPVALL/H-E06_233_FN.acc and IMPVALL/H-E06_323_FP.acc; typed here without the _FN.acc
+#: and _FP.acc, for the 28 pairs FEMA P695 kept (the pulse set, the no-pulse set, and its
+#: "questionable pulses or pulses in the fault-parallel direction" group for Gazli, Cape
+#: Mendocino, Izmit and Denali).
+ATC63_FAULT_NORMAL = {
+    "IMPVALL/H-E06_233", "IMPVALL/H-E07_233", "ITALY/A-STU_223", "SUPERST/B-PTS_037", "LOMAP/STG_038",
+    "ERZIKAN/ERZ_032", "CAPEMEND/PET_260", "LANDERS/LCN_239", "NORTHR/RRS_032", "NORTHR/SYL_032",
+    "KOCAELI/IZT_180", "CHICHI/TCU065_272", "CHICHI/TCU102_278", "DUZCE/DZC_172",
+    "GAZLI/GAZ_177", "IMPVALL/H-BCR_233", "IMPVALL/H-CHI_233", "NAHANNI/S1_070", "NAHANNI/S2_070", "LOMAP/BRN_038",
+    "LOMAP/CLS_038", "CAPEMEND/CPM_260", "NORTHR/0637_032", "NORTHR/STC_032", "KOCAELI/YPT_180",
+    "CHICHI/TCU067_285", "CHICHI/TCU084_271", "DENALI/ps10_199"}
+ATC63_FAULT_PARALLEL = {
+    "IMPVALL/H-E06_323", "IMPVALL/H-E07_323", "ITALY/A-STU_313", "SUPERST/B-PTS_127", "LOMAP/STG_128",
+    "ERZIKAN/ERZ_122", "CAPEMEND/PET_350", "LANDERS/LCN_329", "NORTHR/RRS_122", "NORTHR/SYL_122",
+    "KOCAELI/IZT_270", "CHICHI/TCU065_002", "CHICHI/TCU102_008", "DUZCE/DZC_262",
+    "GAZLI/GAZ_267", "IMPVALL/H-BCR_323", "IMPVALL/H-CHI_323", "NAHANNI/S1_160", "NAHANNI/S2_160", "LOMAP/BRN_128",
+    "LOMAP/CLS_128", "CAPEMEND/CPM_350", "NORTHR/0637_122", "NORTHR/STC_122", "KOCAELI/YPT_270",
+    "CHICHI/TCU067_015", "CHICHI/TCU084_001", "DENALI/ps10_289"}
+
+
+def test_near_field_components_are_named_fault_normal_and_fault_parallel(near_field, far_field):
+    """Every near-field component is named as the ATC-63 record files name it (fault-normal,
+    fault-parallel: one of each per pair, the fault-parallel azimuth 90 deg after the
+    fault-normal one); the far-field components are as recorded."""
+    orientation = {r.record: r.orientation for r in near_field}
+    assert {k for k, v in orientation.items() if v == "fault-normal"} == ATC63_FAULT_NORMAL
+    assert {k for k, v in orientation.items() if v == "fault-parallel"} == ATC63_FAULT_PARALLEL
+    for pair in {r.pair for r in near_field}:
+        fn, fp = (next(r for r in near_field if r.pair == pair and r.orientation == o)
+                  for o in ("fault-normal", "fault-parallel"))
+        assert (int(fn.record[-3:]) + 90) % 360 == int(fp.record[-3:]), (fn.record, fp.record)
+    assert {r.orientation for r in far_field} == {"as recorded"}
+
+
+#: Each near-field pair's fault-normal and fault-parallel Sa [g], from the same ATC-63
+#: record definitions (their commented-out "saTOneForEQ" lines, "Sa values - comp", the
+#: component index 1 fault-normal and 2 fault-parallel), keyed here by the station part of
+#: the record name. The file does not state the period; the numbers are 5 %-damped Sa at
+#: T = 1 s (their "geoMean" lines are the geometric means of each pair's two).
+ATC63_SA_1S_G = {
+    "H-E06": (0.4294, 0.6023), "H-E07": (0.6571, 0.6435), "A-STU": (0.2524, 0.4130), "B-PTS": (0.9739, 0.5093),
+    "STG": (0.4652, 0.3221), "ERZ": (0.9758, 0.3662), "PET": (0.9220, 0.6980), "LCN": (0.4347, 0.3365),
+    "RRS": (1.9596, 0.4650), "SYL": (0.8944, 0.6459), "TCU065": (1.3297, 1.1024), "TCU102": (0.5952, 0.5754),
+    "DZC": (0.5351, 0.7325), "IZT": (0.291, 0.279), "H-BCR": (0.4420, 0.4405), "H-CHI": (0.4140, 0.3665),
+    "S1": (0.5338, 0.2943), "S2": (0.1619, 0.2859), "BRN": (0.5530, 0.4466), "CLS": (0.5259, 0.4974),
+    "0637": (0.6234, 0.9957), "STC": (0.8073, 0.3990), "YPT": (0.3752, 0.3508), "TCU067": (0.8888, 0.4611),
+    "TCU084": (2.5389, 0.8593), "GAZ": (0.814, 0.418), "CPM": (0.419, 0.727), "ps10": (0.694, 0.823)}
+
+
+def test_near_field_orientation_follows_each_components_own_motion(near_field):
+    """Not the names alone: the component named fault-normal has the ATC-63 fault-normal
+    Sa(1 s) within 1 % (records processed and spectra computed apart: 0.5 % found), and is
+    nearer to it than to the fault-parallel one, in every pair (the closest two, Bonds
+    Corner's, differ by 0.3 %)."""
+    from voussoir_post.earthquake.intensity import spectral_acceleration
+    for r in near_field:
+        fn, fp = ATC63_SA_1S_G[r.record.split("/")[1].rsplit("_", 1)[0]]
+        mine, other = (fn, fp) if r.orientation == "fault-normal" else (fp, fn)
+        sa = float(spectral_acceleration(r.accel_g, r.dt_s, [1.0])[0])
+        assert sa == pytest.approx(mine, rel=0.01) and abs(sa - mine) < abs(sa - other), (r.record, sa, mine, other)
+
+
+def test_export_and_table_name_the_orientation(tmp_path, near_field):
+    (index,) = export_sets(tmp_path, ["fema_p695_near_field_no_pulse"])
+    rows = read_index(index)
+    assert {row["orientation"] for row in rows if row["record"] in ATC63_FAULT_NORMAL} == {"fault-normal"}
+    assert {row["orientation"] for row in rows if row["record"] in ATC63_FAULT_PARALLEL} == {"fault-parallel"}
+    assert len(rows) == 28
+    first = rows[0]
+    with open(index.parent / first["file"]) as f:
+        assert f"component {first['component']} ({first['orientation']})" in f.readline()
+    table = set_table("fema_p695_near_field", near_field)
+    k = table.columns.index("orientation")
+    assert {row[k] for row in table.rows} == {"fault-normal", "fault-parallel"}
+
+
+def test_pulse_labels_and_periods_are_the_package_pairs(near_field):
+    """The pulse label of each component is the half of the package's near-field set its
+    pair is filed in (nearfield_pulse.hdf5 or nearfield_no_pulse.hdf5, both components of
+    each pair in the file), and the pulse-period table's 14 rows are the package's 14 pulse
+    records: the same record sequence numbers, years and stations (the table's station
+    names are the package's, at most lengthened: 'Sturno (STN)')."""
+    import h5py
+    import hdf5plugin  # noqa: F401
+
+    from voussoir_post.earthquake.record_sets import PULSE_PERIODS_FILE, _fema_file, _table_columns, _text
+    package = {}
+    for stem, pulse in (("nearfield_pulse", 1), ("nearfield_no_pulse", 0)):
+        with h5py.File(_fema_file(stem), "r") as h5:
+            rec = _table_columns(h5, "records")
+            for k in range(rec["index"].size):
+                package[int(rec["index"][k])] = (pulse, int(rec["RecordSequenceNumber"][k]),
+                                                 int(rec["EarthquakeYear"][k]), _text(rec["RecordingStationName"][k]),
+                                                 {_text(rec["ComponentA"][k]), _text(rec["ComponentB"][k])})
+    assert {pair: {r.record for r in near_field if r.pair == pair} for pair in package} == \
+        {pair: names for pair, (_, _, _, _, names) in package.items()}
+    assert all(r.pulse == package[r.pair][0] for r in near_field)
+    with open(PULSE_PERIODS_FILE) as f:
+        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    by_rsn = {rsn: (year, station) for pulse, rsn, year, station, _ in package.values() if pulse == 1}
+    assert {int(row["rsn"]) for row in rows} == set(by_rsn)
+    for row in rows:
+        year, station = by_rsn[int(row["rsn"])]
+        assert int(row["year"]) == year and row["station"].startswith(station), row
 
 
 def test_a_malformed_pulse_period_table_is_refused(tmp_path):

@@ -148,3 +148,19 @@ def test_fragility_writes_the_record_table(tmp_path, capsys):
     png = tmp_path / "ida_fragility_records.png"
     assert png.is_file()
     assert f"wrote {png}" in capsys.readouterr().out
+
+
+def test_near_field_components_are_named_fault_normal_and_fault_parallel():
+    """An IDA of the FEMA P695 near-field set names each record's component as the ATC-63
+    record files do (NORTHR/RRS_032 fault-normal, NORTHR/RRS_122 fault-parallel; a
+    reversed row is its record's); the far-field set's, as recorded, get no column."""
+    names = ["NORTHR/RRS_032", "NORTHR/RRS_122", "NORTHR/RRS_122 (reversed)", "LOMAP/CLS_128"]
+    ida = _ida(SCALES, names=names, events=["Northridge-01 1994"] * 3 + ["Loma Prieta 1989"])
+    ida.record_set = "fema_p695_near_field"
+    component = dict(zip(_column(record_table(ida), "record"), _column(record_table(ida), "component")))
+    assert {name.removesuffix(FLAG_MARK): c for name, c in component.items()} == {
+        "NORTHR/RRS_032": "fault-normal", "NORTHR/RRS_122": "fault-parallel",
+        "NORTHR/RRS_122 (reversed)": "fault-parallel", "LOMAP/CLS_128": "fault-parallel"}
+    far = _ida(SCALES, names=["NORTHR/MUL009", "NORTHR/MUL279", "NORTHR/LOS000", "NORTHR/LOS270"])
+    far.record_set = "fema_p695_far_field"
+    assert "component" not in _heads(record_table(far))

@@ -7,8 +7,9 @@
 !>
 !> The index has a header row and one row per component, comma-separated, no quoting
 !> (no cell holds a comma): file (relative to the set's folder, or absolute), record,
-!> event, station, pair, component (1 or 2 within the pair), magnitude, distance_km,
-!> vs30_m_s, pulse, pulse_period_s, dt_s, npts, pga_m_s2; `nan` for an unknown number.
+!> event, station, pair, component (1 or 2 within the pair), orientation (fault-normal,
+!> fault-parallel, as recorded; not read here), magnitude, distance_km, vs30_m_s, pulse,
+!> pulse_period_s, dt_s, npts, pga_m_s2; `nan` for an unknown number.
 !> The columns read here are found by name, so more may follow. `pulse` is 1 (a velocity
 !> pulse), 0 (none) or nan (not classified); `pulse_period_s` is nan without a pulse.
 module voussoir_record_set

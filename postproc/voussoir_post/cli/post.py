@@ -21,7 +21,7 @@ import os
 import sys
 
 from ..earthquake.record_sets import SET_NAMES
-from ..errors import DONE, InputError
+from ..errors import DONE, InputError, RecordsError
 from ..tables import ReportTable, format_table, write_csv
 from .bridge_report import add_bridge_report_parser
 from .dtcheck import add_dtcheck_parser
@@ -366,6 +366,8 @@ def cmd_fragility(args) -> int:
 
         by_measure = compare_measures(ida, measures, args.sa_period, tuple(args.avgsa_periods or (0.2, 3.0)),
                                       n_bootstrap=args.bootstrap, seed=args.seed)
+        if "rotd50" in by_measure.skipped and args.im.strip().lower() != "all":  # asked for by name: refused
+            raise RecordsError(f"--im rotd50: {by_measure.skipped['rotd50']}")
     from ..earthquake.fit_report import bootstrap_keys, failure_reading
 
     pga = data.data.pga if hasattr(data, "data") else data.pga
@@ -603,10 +605,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--im", metavar="LIST",
                    help="also fit the fragility in each intensity measure and compare them (efficiency: beta; "
                         "sufficiency: the residuals' slope on magnitude, distance, pulse, frequency ratio, pulse "
-                        "frequency ratio): 'all' or a comma-separated list of pga, pgv, pgd, arias, cav, sa, avgsa, pga_lambda_g "
+                        "frequency ratio): 'all' or a comma-separated list of pga, pgv, pgd, arias, cav, sa, avgsa, "
+                        "rotd50 (of the record's pair of components, a packaged set's), pga_lambda_g "
                         "(docs/earthquakes.md); the records are read again")
     p.add_argument("--sa-period", type=float, default=None, metavar="T_S",
-                   help="period of Sa(T) with --im, 5 %% damping (default 1 s)")
+                   help="period of Sa(T) and RotD50 with --im, 5 %% damping (default 1 s)")
     p.add_argument("--avgsa-periods", type=float, nargs=2, metavar=("T_LOW", "T_HIGH"),
                    help="periods of AvgSa with --im: the geometric mean of Sa at 10 periods spread in ln T over "
                         "T_LOW..T_HIGH s (default 0.2 3.0)")

@@ -8,6 +8,12 @@ IDA played, :func:`record_motions`) and its measures computed once, unscaled
 record times the row's scale bracket (:meth:`.ida.IdaResult.scale_brackets`), to the
 measure's power (2 for the Arias intensity). Besides the measures of the record alone:
 
+- RotD50 at the period of Sa(T) (``--sa-period``): of the record's pair, the record and
+  the other horizontal component of its event's recording (:func:`.intensity.rotd50`),
+  both scaled by the row's scale, as a hazard model's Sa is of both components; only the
+  packaged sets know a record's pair (:func:`record_motions`), so it is not available
+  for record files;
+
 - PGA / (lambda g): the PGA over the row's static capacity (the column
   ``static_capacity_m_s2``), dimensionless: a model that is twice as strong needs
   twice the PGA, and this measure takes that out of the spread;
@@ -58,13 +64,14 @@ from .record_sets import read_at2, read_set
 __all__ = ["MEASURES", "COVARIATES", "RecordMotion", "Sufficiency", "MeasureFit", "MeasureComparison",
            "parse_measures", "record_motions", "frequency_parameter_rad_s", "sufficiency", "residuals",
            "fit_measure", "bootstrap_efficiency", "compare_measures", "FREQUENCY_WORDS", "row_capacities_m_s2",
-           "pga_lambda_g_brackets"]
+           "pga_lambda_g_brackets", "rotd50_refusal"]
 
 #: The measures, in the order of the table: (label, unit, power of the scale).
 MEASURES = {
     "pga": ("PGA", "m/s2", 1), "pgv": ("PGV", "m/s", 1), "pgd": ("PGD", "m", 1),
     "arias": ("Arias intensity", "m/s", 2), "cav": ("CAV", "m/s", 1), "sa": ("Sa(T)", "m/s2", 1),
-    "avgsa": ("AvgSa", "m/s2", 1), "pga_lambda_g": ("PGA / (lambda g)", "-", 1),
+    "avgsa": ("AvgSa", "m/s2", 1), "rotd50": ("RotD50 Sa(T)", "m/s2", 1),
+    "pga_lambda_g": ("PGA / (lambda g)", "-", 1),
 }
 #: The covariates of the sufficiency, as far as the rows give them.
 COVARIATES = ("magnitude", "distance_km", "pulse", "ln_frequency_ratio", "ln_pulse_frequency_ratio")
@@ -115,6 +122,9 @@ class RecordMotion:
     accel_m_s2: np.ndarray
     pulse: int | None = None  #: 1 a pulse, 0 none, None not classified
     pulse_period_s: float = math.nan  #: Tp of its pulse; nan: no pulse, or not published
+    #: the other horizontal component of its pair [m/s2], sampled at dt_s; None: not known
+    pair_accel_m_s2: np.ndarray | None = None
+    orientation: str = ""  #: 'fault-normal', 'fault-parallel', 'as recorded' (a packaged set's); '' not known
 
 
 @dataclass
@@ -187,8 +197,9 @@ class MeasureComparison:
             rows.append(tuple(cells))
         return ReportTable(["measure", "unit", "median", "beta [90 % band]", "beta/power", "P(best)"]
                            + [f"slope on {c}" for c in names],
-                           rows, title=f"fragility by intensity measure (Sa at T = {self.sa_period_s:g} s, AvgSa "
-                                       f"over {self.avgsa_periods_s[0]:g}-{self.avgsa_periods_s[-1]:g} s, "
+                           rows, title=f"fragility by intensity measure (Sa and RotD50 at T = "
+                                       f"{self.sa_period_s:g} s, AvgSa over {self.avgsa_periods_s[0]:g}-"
+                                       f"{self.avgsa_periods_s[-1]:g} s, "
                                        f"{100 * DAMPING:g} % damping, pyRotd {PYROTD_VERSION})")
 
     def summary(self) -> dict:
@@ -217,7 +228,8 @@ class MeasureComparison:
                 "not_available": dict(self.skipped)},
             "record_intensities": {name: {"pga_m_s2": r.pga_m_s2, "pgv_m_s": r.pgv_m_s, "pgd_m": r.pgd_m,
                                           "arias_m_s": r.arias_m_s, "cav_m_s": r.cav_m_s, "sa_m_s2": r.sa_m_s2,
-                                          "avgsa_m_s2": r.avgsa_m_s2} for name, r in self.records.items()},
+                                          "avgsa_m_s2": r.avgsa_m_s2, "rotd50_m_s2": _number(r.rotd50_m_s2)}
+                                   for name, r in self.records.items()},
         }
 
 
@@ -268,8 +280,10 @@ def record_motions(ida: IdaResult) -> dict[str, RecordMotion]:
     names = ida.records
     if ida.record_set:
         by_name: dict[str, list] = {}
+        by_pair: dict[int, list] = {}
         for r in read_set(ida.record_set):
             by_name.setdefault(r.record, []).append(r)
+            by_pair.setdefault(r.pair, []).append(r)
         out = {}
         for name in names:
             found = by_name.get(name, [])
@@ -277,7 +291,9 @@ def record_motions(ida: IdaResult) -> dict[str, RecordMotion]:
                 raise RecordsError(f"{ida.path}: record '{name}' is {'not' if not found else 'twice'} in the set "
                                    f"{ida.record_set}")
             r = found[0]
-            out[name] = RecordMotion(name, r.dt_s, r.accel_g * G_M_S2, r.pulse, r.pulse_period_s)
+            others = [o for o in by_pair[r.pair] if o is not r]
+            pair = others[0].accel_g * G_M_S2 if len(others) == 1 and others[0].dt_s == r.dt_s else None
+            out[name] = RecordMotion(name, r.dt_s, r.accel_g * G_M_S2, r.pulse, r.pulse_period_s, pair, r.orientation)
         return out
     out = {}
     for name in names:
@@ -397,6 +413,17 @@ def bootstrap_efficiency(fits: list[MeasureFit], clusters, events=None, n_resamp
     return len(betas)
 
 
+def rotd50_refusal(ida: IdaResult, unpaired: list[str]) -> str:
+    """Why RotD50 cannot be had for the records ``unpaired`` of ``ida``: no second
+    horizontal component known."""
+    where = (f"the set {ida.record_set} has no other component of one time step in its pair" if ida.record_set else
+             "a record file does not say which file is the other component of its event's recording (only the "
+             "packaged sets, played with &sweep record_set, pair the components)")
+    more = f" (and {len(unpaired) - 1} other records)" if len(unpaired) > 1 else ""
+    return (f"RotD50 is of the two horizontal components of a record's pair, but record '{unpaired[0]}'{more} has no "
+            f"second component: {where}")
+
+
 def record_pulses(ida: IdaResult, motions: dict[str, RecordMotion]) -> tuple[np.ndarray, np.ndarray]:
     """(pulse, Tp [s]) per row: the rows' own pulse and pulse_period_s columns (written by
     voussoir-sweep from its set's index), each where the file has it; in a file written
@@ -422,9 +449,14 @@ def compare_measures(ida: IdaResult, measures: list[str], sa_period_s: float = 1
     clustered as the PGA band is (0: none)."""
     periods = avg_sa_periods(*avgsa_range_s)
     motions = record_motions(ida) if motions is None else motions
-    records = {name: record_intensity(m.accel_m_s2, m.dt_s, sa_period_s, periods) for name, m in motions.items()}
-    _check_records(ida, records)
     skipped = {}
+    unpaired = [name for name in ida.records if motions[name].pair_accel_m_s2 is None]
+    if "rotd50" in measures and unpaired:
+        skipped["rotd50"] = rotd50_refusal(ida, unpaired)
+    pairs = "rotd50" in measures and not unpaired
+    records = {name: record_intensity(m.accel_m_s2, m.dt_s, sa_period_s, periods,
+                                      m.pair_accel_m_s2 if pairs else None) for name, m in motions.items()}
+    _check_records(ida, records)
     covariates = {}
     for name, values in (("magnitude", ida.magnitude), ("distance_km", ida.distance_km)):
         if values is not None and np.sum(np.isfinite(values)) >= 3:
@@ -453,6 +485,8 @@ def compare_measures(ida: IdaResult, measures: list[str], sa_period_s: float = 1
     scale_low, scale_high = ida.scale_brackets()
     fits = []
     for name in measures:
+        if name in skipped:
+            continue
         if name == "pga_lambda_g":
             try:
                 capacity = row_capacities_m_s2(ida)

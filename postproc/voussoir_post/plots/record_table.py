@@ -1,7 +1,9 @@
 """The record table of an IDA, as a figure for a report: one line per record (component),
-with its event, magnitude, distance, site Vs30 and pulse period (where the file has them),
-its own PGA, the record scale at which the arch collapsed on each model sample (or their
-median and range with more than MAX_SAMPLE_COLUMNS samples) and the PGA at the collapse.
+with its event, the component's orientation (fault-normal or fault-parallel, for the
+FEMA P695 near-field sets, read from the set), magnitude, distance, site Vs30 and pulse
+period (where the file has them), its own PGA, the record scale at which the arch
+collapsed on each model sample (or their median and range with more than
+MAX_SAMPLE_COLUMNS samples) and the PGA at the collapse.
 A scale beyond 4 or below 0.25 (fragility_plot.SCALE_WARN, the FEMA P695 practice) marks
 its row. The cells are made by :func:`record_table` (plain text, testable without a
 figure) and drawn as figure texts by :func:`plot_record_table`."""
@@ -14,6 +16,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..earthquake.ida import FIT_BRACKET, FIT_LEFT_OUT, IdaResult
+from ..earthquake.record_sets import AS_RECORDED, read_set
+from ..errors import RecordsError
 from .drawing import G_M_S2, new_figure, provenance, save_figure
 from .fragility_plot import SCALE_WARN, arch_words, records_words, samples_words
 
@@ -94,6 +98,25 @@ def _value_cell(value: float, bound: bool) -> str:
     return (LOWER_BOUND if bound and math.isfinite(value) else "") + _number(value)
 
 
+#: What a row's record name is followed by when the sweep played it reversed (src/sweep/sweep_ida.f90).
+_REVERSED = " (reversed)"
+
+
+def record_orientations(ida: IdaResult) -> dict[str, str] | None:
+    """Each record's orientation in its packaged set (fault-normal, fault-parallel), None
+    when no record of the rows has one other than 'as recorded' (record files, the
+    far-field set) or the set cannot be read here (its package missing: the table is
+    drawn without the column)."""
+    if not ida.record_set:
+        return None
+    try:
+        by_name = {r.record: r.orientation for r in read_set(ida.record_set)}
+    except RecordsError:
+        return None
+    out = {name: by_name.get(name.removesuffix(_REVERSED), "") for name in ida.records}
+    return out if any(v not in ("", AS_RECORDED) for v in out.values()) else None
+
+
 def record_table(ida: IdaResult) -> RecordTable:
     """The cells of the record table of `ida`: one row per record, sorted by event (when
     the file has events) then record name."""
@@ -114,6 +137,10 @@ def record_table(ida: IdaResult) -> RecordTable:
     if ida.event is not None:
         heads.append(["event"])
         columns.append([events[first_row[name]] for name in order])
+    orientation = record_orientations(ida)
+    if orientation is not None:
+        heads.append(["component"])
+        columns.append([orientation[name] or "-" for name in order])
     for head, values, fmt in ((["M", "[Mw]"], ida.magnitude, ".1f"), (["R", "(Rrup)", "[km]"], ida.distance_km, ".1f"),
                               (["Vs30", "[m/s]"], ida.vs30_m_s, ".0f"),
                               (["Tp", "(pulse)", "[s]"], ida.pulse_period_s, ".2f"),
