@@ -484,3 +484,17 @@ def test_a_reversed_record_of_a_packaged_set_is_its_record():
     pulse, tp = record_pulses(ida, motions)
     assert pulse.shape == tp.shape == (2,)
 
+
+def test_cli_rotd50_of_record_files_is_refused_before_anything_is_computed(tmp_path, capsys, monkeypatch):
+    """The refusal needs no measure and no fit: nothing is computed and no figure written."""
+    import voussoir_post.earthquake.im_fragility as im
+
+    def computed(*args, **kwargs):
+        raise AssertionError("a measure was computed before --im rotd50 was refused")
+
+    monkeypatch.setattr(im, "record_intensity", computed)
+    monkeypatch.setattr(im, "compare_measures", computed)
+    path = im_fixture(tmp_path)
+    assert main(["fragility", str(path), "--bootstrap", "30", "--im", "rotd50"]) == 2
+    assert "--im rotd50: RotD50 is of the two horizontal components" in capsys.readouterr().err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["ida.csv", "rec"]  # no figure, no table
