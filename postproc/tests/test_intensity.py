@@ -2,7 +2,8 @@
 closed forms: the Arias intensity and CAV of a sine over whole cycles, PGV and PGD of a
 known motion and of a hand-integrated piecewise-linear acceleration, Sa of a lightly
 damped oscillator driven at and off resonance (the steady-state amplitude), Sa of a
-record of zeros, and how each measure grows with the record's scale."""
+record of zeros, how each measure grows with the record's scale, and that none
+changes with its sign."""
 
 from __future__ import annotations
 
@@ -135,6 +136,19 @@ def test_each_measure_scales_with_the_record():
         assert im.scaled(name, one.value(name), s) == pytest.approx(big.value(name), rel=1e-12), name
     with pytest.raises(InputError, match="no intensity measure 'pgx'"):
         im.scaled("pgx", 1.0, 2.0)
+
+
+def test_every_measure_is_blind_to_the_sign_of_the_record():
+    """A record played reversed (&sweep record_polarity, -a, its pair -b too) has every
+    measure of the record: what voussoir-post fragility --im gives a reversed row."""
+    rng = np.random.default_rng(13)
+    a, b = rng.normal(0.0, 2.0, 1500) * np.hanning(1500), rng.normal(0.0, 1.0, 1500) * np.hanning(1500)
+    periods = im.avg_sa_periods(0.2, 2.0)
+    one = im.record_intensity(a, 0.01, 0.5, periods, b)
+    flipped = im.record_intensity(-a, 0.01, 0.5, periods, -b)
+    assert one.pga_m_s2 == np.max(np.abs(a))
+    for name in im.SCALE_POWER:
+        assert flipped.value(name) == pytest.approx(one.value(name), rel=1e-12), name
 
 
 def test_bad_records_and_periods_are_refused():

@@ -348,6 +348,14 @@ def cmd_fragility(args) -> int:
     from ..plots.record_table import plot_record_table
 
     ida = _read_ida_warned(args.ida)
+    motions = None
+    if measures:  # the records read, and RotD50 asked for by name refused, before anything is fitted
+        from ..earthquake.im_fragility import record_motions, rotd50_refusal, unpaired_records
+
+        motions = record_motions(ida)
+        unpaired = unpaired_records(ida, motions)
+        if "rotd50" in measures and unpaired and args.im.strip().lower() != "all":
+            raise RecordsError(f"--im rotd50: {rotd50_refusal(ida, unpaired)}")
     if args.axis == "pga-lambda-g":
         from ..plots.fragility_lambda_g import plot_lambda_g_fragility
         png = figure_path(args.ida, "fragility_pga_lambda_g", args)
@@ -365,9 +373,7 @@ def cmd_fragility(args) -> int:
         from ..earthquake.im_fragility import compare_measures
 
         by_measure = compare_measures(ida, measures, args.sa_period, tuple(args.avgsa_periods or (0.2, 3.0)),
-                                      n_bootstrap=args.bootstrap, seed=args.seed)
-        if "rotd50" in by_measure.skipped and args.im.strip().lower() != "all":  # asked for by name: refused
-            raise RecordsError(f"--im rotd50: {by_measure.skipped['rotd50']}")
+                                      motions=motions, n_bootstrap=args.bootstrap, seed=args.seed)
     from ..earthquake.fit_report import bootstrap_keys, failure_reading
 
     pga = data.data.pga if hasattr(data, "data") else data.pga

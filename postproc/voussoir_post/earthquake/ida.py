@@ -43,7 +43,7 @@ from ..namelist import parse_namelist
 from ..readers.csv_table import read_csv_table
 
 __all__ = ["IdaResult", "IDA_COLUMNS", "RECORD_COLUMNS", "read_ida", "FIT_BRACKET", "FIT_CENSORED", "FIT_FAILED",
-           "FIT_FAILED_COLLAPSED", "FIT_LEFT_OUT"]
+           "FIT_FAILED_COLLAPSED", "FIT_LEFT_OUT", "REVERSED_SUFFIX", "PlayedRecord", "played_record"]
 
 #: The columns every IDA CSV has (others, e.g. the sampled parameters, are kept apart).
 IDA_COLUMNS = ("record", "param_set", "scale_stood", "scale_threshold", "pga_threshold_m_s2",
@@ -62,6 +62,28 @@ _OPTIONAL_TEXT = ("event",)
 #: versions lack them.
 RECORD_COLUMNS = ("vs30_m_s", "pulse", "pulse_period_s")
 _OPTIONAL_REAL = ("magnitude", "distance_km", "pga_m_s2", "static_capacity_m_s2") + RECORD_COLUMNS
+
+#: What voussoir-sweep puts after a record's name in a row that played it reversed
+#: (``&sweep record_polarity = 'reversed'`` or ``'both'``; src/sweep/sweep_ida.f90).
+REVERSED_SUFFIX = " (reversed)"
+
+
+@dataclass(frozen=True)
+class PlayedRecord:
+    """A row's record as the sweep played it: which record, and its polarity."""
+
+    record: str  #: the record as given to the sweep (its file, or its name in the set)
+    polarity: int  #: 1 as recorded, -1 reversed (the horizontal acceleration's sign flipped)
+
+
+def played_record(row_record: str) -> PlayedRecord:
+    """The record and polarity of a row from its ``record`` cell: ``'X'`` is X as
+    recorded, ``'X (reversed)'`` X reversed. Every place that matches rows to records
+    (reads a row's record, looks it up in its set) goes through this."""
+    if row_record.endswith(REVERSED_SUFFIX):
+        return PlayedRecord(row_record[:-len(REVERSED_SUFFIX)], -1)
+    return PlayedRecord(row_record, 1)
+
 
 #: How a row enters the fragility fit (:attr:`IdaResult.fit_as`).
 FIT_BRACKET = "bracket"  #: IM_c in (IM at scale_stood, IM at scale_threshold]
@@ -227,8 +249,19 @@ class IdaResult:
 
     @property
     def records(self) -> list[str]:
-        """The distinct records, in order of first appearance."""
+        """The distinct records, in order of first appearance (a record and its reversal two)."""
         return list(dict.fromkeys(self.record))
+
+    @property
+    def played(self) -> list[PlayedRecord]:
+        """Each row's record and polarity (:func:`played_record`)."""
+        return [played_record(r) for r in self.record]
+
+    @property
+    def played_records(self) -> list[str]:
+        """The distinct records the rows played, each once whatever its polarity, in
+        order of first appearance."""
+        return list(dict.fromkeys(p.record for p in self.played))
 
     @property
     def n_sets(self) -> int:

@@ -4,9 +4,14 @@ residuals with the earthquake's magnitude, distance, pulse or frequency content)
 
 Each row's record is read again (a record file, or the record of the packaged set the
 IDA played, :func:`record_motions`) and its measures computed once, unscaled
-(:mod:`.intensity`); a row's collapse intensity in a measure is the measure of its
-record times the row's scale bracket (:meth:`.ida.IdaResult.scale_brackets`), to the
-measure's power (2 for the Arias intensity). Besides the measures of the record alone:
+(:mod:`.intensity`). A row that played its record reversed (``&sweep record_polarity``,
+named ``'<record> (reversed)'``: :func:`.ida.played_record`) has the record's measures:
+every measure here is a peak of |a|, |v|, |d| or of an oscillator's |u|, or an integral
+of |a| or a^2, so the sign does not change it (RotD50 flips both components alike, which
+flips the rotated response at every angle and keeps its peaks). A row's collapse
+intensity in a measure is the measure of its record times the row's scale bracket
+(:meth:`.ida.IdaResult.scale_brackets`), to the measure's power (2 for the Arias
+intensity). Besides the measures of the record alone:
 
 - RotD50 at the period of Sa(T) (``--sa-period``): of the record's pair, the record and
   the other horizontal component of its event's recording (:func:`.intensity.rotd50`),
@@ -56,7 +61,7 @@ from ..errors import FitError, InputError, RecordsError
 from ..readers.csv_table import read_csv_table
 from ..tables import ReportTable
 from .fragility import FragilityFit, fit_intervals, resample_clusters
-from .ida import IdaResult
+from .ida import IdaResult, played_record
 from .intensity import (DAMPING, G_M_S2, PYROTD_VERSION, RecordIntensity, avg_sa_periods,
                         record_intensity)
 from .record_sets import read_at2, read_set
@@ -64,7 +69,7 @@ from .record_sets import read_at2, read_set
 __all__ = ["MEASURES", "COVARIATES", "RecordMotion", "Sufficiency", "MeasureFit", "MeasureComparison",
            "parse_measures", "record_motions", "frequency_parameter_rad_s", "sufficiency", "residuals",
            "fit_measure", "bootstrap_efficiency", "compare_measures", "FREQUENCY_WORDS", "row_capacities_m_s2",
-           "pga_lambda_g_brackets", "rotd50_refusal"]
+           "pga_lambda_g_brackets", "rotd50_refusal", "unpaired_records"]
 
 #: The measures, in the order of the table: (label, unit, power of the scale).
 MEASURES = {
@@ -115,9 +120,10 @@ def pga_lambda_g_brackets(ida: IdaResult) -> tuple[np.ndarray, np.ndarray]:
 
 @dataclass(frozen=True)
 class RecordMotion:
-    """The acceleration of one record as the sweep played it, unscaled."""
+    """The acceleration of one record as recorded, unscaled (a row that played it
+    reversed has the same measures)."""
 
-    name: str  #: as the rows name it
+    name: str  #: as given to the sweep (the rows' name without ' (reversed)')
     dt_s: float
     accel_m_s2: np.ndarray
     pulse: int | None = None  #: 1 a pulse, 0 none, None not classified
@@ -273,11 +279,12 @@ def _read_record_file(path: Path) -> tuple[float, np.ndarray]:
 
 
 def record_motions(ida: IdaResult) -> dict[str, RecordMotion]:
-    """The acceleration of each record of the rows: from the packaged set the IDA played
-    (``ida.record_set``), else each row's record file (as the sweep was given it: absolute,
-    or relative to the IDA file's folder or the working folder). RecordsError naming the
-    record when it cannot be found."""
-    names = ida.records
+    """The acceleration of each record of the rows, by the record's name as given to the
+    sweep (a record played forward and reversed once: :attr:`.ida.IdaResult.played_records`):
+    from the packaged set the IDA played (``ida.record_set``), else each row's record file
+    (absolute, or relative to the IDA file's folder or the working folder). RecordsError
+    naming the record when it cannot be found."""
+    names = ida.played_records
     if ida.record_set:
         by_name: dict[str, list] = {}
         by_pair: dict[int, list] = {}
@@ -311,9 +318,9 @@ def record_motions(ida: IdaResult) -> dict[str, RecordMotion]:
 
 def _check_records(ida: IdaResult, records: dict[str, RecordIntensity]) -> None:
     """RecordsError when a record read here is not the one the sweep played (its PGA or
-    PGV at scale 1 differs from the file's)."""
+    PGV at scale 1 differs from the file's; those of a reversed row are its record's)."""
     for k, name in enumerate(ida.record):
-        r = records[name]
+        r = records[played_record(name).record]
         for what, mine, theirs in (("PGA", r.pga_m_s2, ida.unit_pga_m_s2[k]), ("PGV", r.pgv_m_s, ida.unit_pgv_m_s[k])):
             if math.isfinite(theirs) and abs(mine - theirs) > _CHECK_RTOL * abs(theirs):
                 raise RecordsError(f"{ida.path}: record '{name}' read here has {what} {mine:.6g}, the IDA file "
@@ -413,6 +420,12 @@ def bootstrap_efficiency(fits: list[MeasureFit], clusters, events=None, n_resamp
     return len(betas)
 
 
+def unpaired_records(ida: IdaResult, motions: dict[str, RecordMotion]) -> list[str]:
+    """The records of the rows (:func:`record_motions`) with no second horizontal
+    component known: RotD50 cannot be had for them. Reads nothing, computes nothing."""
+    return [name for name in ida.played_records if motions[name].pair_accel_m_s2 is None]
+
+
 def rotd50_refusal(ida: IdaResult, unpaired: list[str]) -> str:
     """Why RotD50 cannot be had for the records ``unpaired`` of ``ida``: no second
     horizontal component known."""
@@ -429,12 +442,13 @@ def record_pulses(ida: IdaResult, motions: dict[str, RecordMotion]) -> tuple[np.
     voussoir-sweep from its set's index), each where the file has it; in a file written
     before them, the record's (:class:`RecordMotion`, from the packaged set). NaN: not
     classified, no pulse, or no period published."""
+    played = [motions[p.record] for p in ida.played]
     pulse = ida.pulse
     if pulse is None:
-        pulse = [math.nan if motions[r].pulse is None else float(motions[r].pulse) for r in ida.record]
+        pulse = [math.nan if m.pulse is None else float(m.pulse) for m in played]
     tp = ida.pulse_period_s
     if tp is None:
-        tp = [motions[r].pulse_period_s for r in ida.record]
+        tp = [m.pulse_period_s for m in played]
     return np.asarray(pulse, float), np.asarray(tp, float)
 
 
@@ -450,13 +464,14 @@ def compare_measures(ida: IdaResult, measures: list[str], sa_period_s: float = 1
     periods = avg_sa_periods(*avgsa_range_s)
     motions = record_motions(ida) if motions is None else motions
     skipped = {}
-    unpaired = [name for name in ida.records if motions[name].pair_accel_m_s2 is None]
+    unpaired = unpaired_records(ida, motions)
     if "rotd50" in measures and unpaired:
         skipped["rotd50"] = rotd50_refusal(ida, unpaired)
     pairs = "rotd50" in measures and not unpaired
     records = {name: record_intensity(m.accel_m_s2, m.dt_s, sa_period_s, periods,
                                       m.pair_accel_m_s2 if pairs else None) for name, m in motions.items()}
     _check_records(ida, records)
+    played = [p.record for p in ida.played]  # each row's record, whatever its polarity
     covariates = {}
     for name, values in (("magnitude", ida.magnitude), ("distance_km", ida.distance_km)):
         if values is not None and np.sum(np.isfinite(values)) >= 3:
@@ -473,7 +488,7 @@ def compare_measures(ida: IdaResult, measures: list[str], sa_period_s: float = 1
     if p is None:
         skipped["ln_frequency_ratio"] = no_arch
     else:
-        omega = np.array([records[r].pga_m_s2 / records[r].pgv_m_s for r in ida.record])
+        omega = np.array([records[r].pga_m_s2 / records[r].pgv_m_s for r in played])
         covariates["ln_frequency_ratio"] = np.log(omega / p)
     if np.sum(np.isfinite(tp)) < 3:
         skipped["ln_pulse_frequency_ratio"] = ("fewer than 3 rows of a record with a pulse period (only the FEMA "
@@ -493,9 +508,9 @@ def compare_measures(ida: IdaResult, measures: list[str], sa_period_s: float = 1
             except InputError as exc:
                 skipped[name] = str(exc)
                 continue
-            unit = np.array([records[r].pga_m_s2 for r in ida.record]) / capacity
+            unit = np.array([records[r].pga_m_s2 for r in played]) / capacity
         else:
-            unit = np.array([records[r].value(name) for r in ida.record])
+            unit = np.array([records[r].value(name) for r in played])
         try:
             fits.append(fit_measure(name, unit, scale_low, scale_high, covariates, ida.record))
         except FitError as exc:

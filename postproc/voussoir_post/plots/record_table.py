@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..earthquake.ida import FIT_BRACKET, FIT_LEFT_OUT, IdaResult
+from ..earthquake.ida import FIT_BRACKET, FIT_LEFT_OUT, IdaResult, played_record
 from ..earthquake.record_sets import AS_RECORDED, read_set
 from ..errors import RecordsError
 from .drawing import G_M_S2, new_figure, provenance, save_figure
@@ -98,10 +98,6 @@ def _value_cell(value: float, bound: bool) -> str:
     return (LOWER_BOUND if bound and math.isfinite(value) else "") + _number(value)
 
 
-#: What a row's record name is followed by when the sweep played it reversed (src/sweep/sweep_ida.f90).
-_REVERSED = " (reversed)"
-
-
 def record_orientations(ida: IdaResult) -> dict[str, str] | None:
     """Each record's orientation in its packaged set (fault-normal, fault-parallel), None
     when no record of the rows has one other than 'as recorded' (record files, the
@@ -113,7 +109,7 @@ def record_orientations(ida: IdaResult) -> dict[str, str] | None:
         by_name = {r.record: r.orientation for r in read_set(ida.record_set)}
     except RecordsError:
         return None
-    out = {name: by_name.get(name.removesuffix(_REVERSED), "") for name in ida.records}
+    out = {name: by_name.get(played_record(name).record, "") for name in ida.records}
     return out if any(v not in ("", AS_RECORDED) for v in out.values()) else None
 
 
