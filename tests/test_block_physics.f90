@@ -4,7 +4,10 @@
 !> every other contact is rougher; a block of half-width b and half-height h starts to rock at a
 !> horizontal acceleration g b / h; in free rocking its amplitudes follow Housner's exact
 !> recursion cos(alpha - th_k+1) - cos(alpha) = r^2 (cos(alpha - th_k) - cos(alpha)) with
-!> r = 1 - 1.5 sin^2(alpha), alpha = atan(b / h).
+!> r = 1 - 1.5 sin^2(alpha), alpha = atan(b / h). A block carrying a column of fill
+!> (a bridge's fill as mass, docs/bridges.md): its mass, centre of mass and inertia those
+!> of the composite body (rectangles, by hand), and it starts to rock at g b / y_c, y_c the
+!> height of the composite's centre of mass.
 program test_block_physics
   use voussoir_kinds, only: dp, pi, g_m_s2
   use voussoir_status, only: status_t
@@ -25,6 +28,9 @@ program test_block_physics
   call incline(slope_deg=30.0_dp, mu=0.7_dp, default_mu=0.1_dp)
   call uplift(half_width_m=0.1_dp, half_height_m=0.5_dp)
   call uplift(half_width_m=0.15_dp, half_height_m=0.3_dp)
+  call fill_column_mass()
+  call uplift_with_fill(column_m=0.4_dp, fill_density_kg_m3=2000.0_dp)
+  call uplift_with_fill(column_m=1.0_dp, fill_density_kg_m3=1800.0_dp)
   call free_rocking()
   call assert_summary()
 
@@ -158,6 +164,81 @@ contains
     call assert_close(lambda_sim, half_width_m/half_height_m, trim(label)//': uplift acceleration / g', &
                       rtol=0.02_dp)
   end subroutine uplift
+
+  !> One block (half sizes b, h) on the ground under a fill of `fill_density_kg_m3` up to
+  !> `column_m` above its top: a column as wide as the block stands on it.
+  function block_under_fill(b, h, column_m, fill_density_kg_m3, width_m) result(a)
+    real(dp), intent(in) :: b, h, column_m, fill_density_kg_m3, width_m
+    type(assembly_t) :: a
+    type(polygon_t) :: ground
+    ground%xy = reshape([-2.0_dp, -0.5_dp, 2.0_dp, -0.5_dp, 2.0_dp, 0.0_dp, -2.0_dp, 0.0_dp], [2, 4])
+    a = two_bodies(block(b, h, [0.0_dp, 0.0_dp], 0.0_dp), ground)
+    a%has_fill = .true.
+    a%fill_level_m = 2*h + column_m
+    a%fill_weight_n_m2 = fill_density_kg_m3*g_m_s2*width_m
+  end function block_under_fill
+
+  !> A block 2b x 2h (density rho_b) carrying a column 2b x H of fill (rho_f), width w: the
+  !> composite body of two rectangles, m = m_b + m_f with m_b = rho_b w 4 b h and
+  !> m_f = rho_f w 2 b H, its centre of mass at x = 0, y_c = (m_b h + m_f (2h + H/2))/m,
+  !> its inertia about it m_b (4b^2 + 4h^2)/12 + m_b (h - y_c)^2 + m_f (4b^2 + H^2)/12
+  !> + m_f (2h + H/2 - y_c)^2; the vertices stay where they were.
+  subroutine fill_column_mass()
+    real(dp), parameter :: b = 0.15_dp, h = 0.3_dp, column = 0.4_dp, rho_b = 2200.0_dp, rho_f = 1900.0_dp
+    real(dp), parameter :: w = 1.5_dp
+    type(model_t) :: model
+    type(status_t) :: status
+    real(dp) :: m_b, m_f, y_c, inertia, corner(2)
+    m_b = rho_b*w*4*b*h
+    m_f = rho_f*w*2*b*column
+    y_c = (m_b*h + m_f*(2*h + column/2))/(m_b + m_f)
+    inertia = m_b*(4*b**2 + 4*h**2)/12 + m_b*(h - y_c)**2 + m_f*(4*b**2 + column**2)/12 + m_f*(2*h + column/2 - y_c)**2
+    call init_model(block_under_fill(b, h, column, rho_f, w), rho_b, w, settings(1.0e-3_dp), law(0.9_dp), model, status)
+    call assert_true(status%ok, 'fill column: init '//trim(status%message))
+    call assert_close(model%bodies%mass_kg(1), m_b + m_f, 'fill column: composite mass', rtol=1.0e-12_dp)
+    call assert_close(1.0_dp/model%bodies%inv_mass(1), m_b + m_f, 'fill column: inverse mass', rtol=1.0e-12_dp)
+    call assert_close(model%bodies%q(1, 1), 0.0_dp, 'fill column: centre of mass x', atol=1.0e-12_dp)
+    call assert_close(model%bodies%q(2, 1), y_c, 'fill column: centre of mass y', rtol=1.0e-12_dp)
+    call assert_close(model%bodies%inertia_kg_m2(1), inertia, 'fill column: centroidal inertia', rtol=1.0e-12_dp)
+    call assert_close(1.0_dp/model%bodies%inv_inertia(1), inertia, 'fill column: inverse inertia', rtol=1.0e-12_dp)
+    ! The block's bottom right corner (b, 0) stays where it is.
+    corner = model%bodies%vertex(:, 2, 1)
+    call assert_close(corner(1), b, 'fill column: corner x', atol=1.0e-12_dp)
+    call assert_close(corner(2), 0.0_dp, 'fill column: corner y', atol=1.0e-12_dp)
+  end subroutine fill_column_mass
+
+  !> Slow ramp of horizontal load on a block 0.3 m x 0.6 m (2000 kg/m3) carrying a column of
+  !> fill as wide: it tips about its corner when the table's acceleration reaches g b / y_c
+  !> (the moment of the whole mass's inertial load, m a y_c, reaches that of its weight,
+  !> m g b), y_c the composite's centre of mass (as in fill_column_mass). With the fill as a
+  !> constant force on the top it would tip at g b (m_b + m_f)/(m_b h) instead.
+  subroutine uplift_with_fill(column_m, fill_density_kg_m3)
+    real(dp), intent(in) :: column_m, fill_density_kg_m3
+    real(dp), parameter :: b = 0.15_dp, h = 0.3_dp, rho_b = 2000.0_dp, rate_m_s3 = 0.05_dp
+    type(model_t) :: model
+    type(status_t) :: status
+    real(dp) :: lambda_sim, m_b, m_f, y_c
+    character(len=80) :: label
+    integer :: k
+    m_b = rho_b*4*b*h
+    m_f = fill_density_kg_m3*2*b*column_m
+    y_c = (m_b*h + m_f*(2*h + column_m/2))/(m_b + m_f)
+    call init_model(block_under_fill(b, h, column_m, fill_density_kg_m3, 1.0_dp), rho_b, 1.0_dp, &
+                    settings(1.0e-3_dp), law(0.9_dp), model, status)
+    model%motion = motion_ramp(rate_m_s3)
+    lambda_sim = -1.0_dp
+    do k = 1, nint(2.0_dp*b/y_c*g_m_s2/rate_m_s3/model%solver%dt_s)
+      call model_step(model, status)
+      if (.not. status%ok) exit
+      if (abs(model%bodies%q(3, 1)) > 1.0e-5_dp) then
+        lambda_sim = rate_m_s3*model%t_s/g_m_s2
+        exit
+      end if
+    end do
+    write (label, '(a,f0.2,a)') 'uplift of a block under ', column_m, ' m of fill'
+    call assert_true(status%ok, trim(label)//': run '//trim(status%message))
+    call assert_close(lambda_sim, b/y_c, trim(label)//': uplift acceleration / g', rtol=0.02_dp)
+  end subroutine uplift_with_fill
 
   !> Free rocking of a 0.2 m x 1.0 m block released at half its slenderness angle.
   subroutine free_rocking()

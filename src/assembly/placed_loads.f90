@@ -8,12 +8,12 @@ module voussoir_placed_loads
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa, fmt_significant
-  use voussoir_geometry, only: cross2
+  use voussoir_geometry, only: cross2, polygon_area, polygon_centroid, polygon_polar_moment
   use voussoir_assembly, only: assembly_t
   use voussoir_load_config, only: load_config_t
   implicit none
   private
-  public :: placed_loads_t, place_loads, block_at, top_surface, moves_on_top, vehicle_x
+  public :: placed_loads_t, place_loads, block_at, top_surface, moves_on_top, vehicle_x, fill_column
   public :: boundary_tol_m, dead_load_strips, dispersion_strips
   public :: kind_point, kind_dead_strip, kind_fill, kind_dispersed
 
@@ -228,21 +228,14 @@ contains
   pure subroutine add_fill_weight(asm, placed)
     type(assembly_t), intent(in) :: asm
     type(placed_loads_t), intent(inout) :: placed
-    real(dp) :: e(2), p0(2), p1(2), xm, ym, yt, h0, h1, xc, weight
-    integer :: blk, k, nv, top
-    logical :: ok
+    real(dp) :: p0(2), p1(2), h0, h1, xc, weight
+    integer :: blk, k
+    logical :: carries
     do blk = 1, asm%n_bodies
       if (asm%driven(blk)) cycle
-      nv = size(asm%polygon(blk)%xy, 2)
-      do k = 1, nv
-        p0 = asm%polygon(blk)%xy(:, k)
-        p1 = asm%polygon(blk)%xy(:, modulo(k, nv) + 1)
-        e = p1 - p0
-        if (e(1) >= -boundary_tol_m) cycle          ! a top face runs right to left (counter-clockwise)
-        xm = 0.5_dp*(p0(1) + p1(1))
-        ym = 0.5_dp*(p0(2) + p1(2))
-        call top_surface(asm, xm, yt, top, ok)
-        if (.not. ok .or. top /= blk .or. abs(yt - ym) > 1.0e-9_dp*max(1.0_dp, abs(ym))) cycle
+      do k = 1, size(asm%polygon(blk)%xy, 2)
+        call fill_face(asm, blk, k, p0, p1, carries)
+        if (.not. carries) cycle
         ! From p1 (left, height h0 under the level) to p0 (right, h1).
         h0 = asm%fill_level_m - p1(2)
         h1 = asm%fill_level_m - p0(2)
@@ -254,6 +247,63 @@ contains
       end do
     end do
   end subroutine add_fill_weight
+
+  !> Whether face k of block `blk` (from vertex k, `p0`, to the next, `p1`) `carries` fill: a
+  !> face that runs right to left (a top face of a counter-clockwise polygon) and is the
+  !> top surface of the assembly at its midpoint.
+  pure subroutine fill_face(asm, blk, k, p0, p1, carries)
+    type(assembly_t), intent(in) :: asm
+    integer, intent(in) :: blk, k
+    real(dp), intent(out) :: p0(2), p1(2)
+    logical, intent(out) :: carries
+    real(dp) :: xm, ym, yt
+    integer :: nv, top
+    logical :: ok
+    nv = size(asm%polygon(blk)%xy, 2)
+    p0 = asm%polygon(blk)%xy(:, k)
+    p1 = asm%polygon(blk)%xy(:, modulo(k, nv) + 1)
+    carries = .false.
+    if (p1(1) - p0(1) >= -boundary_tol_m) return
+    xm = 0.5_dp*(p0(1) + p1(1))
+    ym = 0.5_dp*(p0(2) + p1(2))
+    call top_surface(asm, xm, yt, top, ok)
+    carries = ok .and. top == blk .and. abs(yt - ym) <= 1.0e-9_dp*max(1.0_dp, abs(ym))
+  end subroutine fill_face
+
+  !> The fill a free block `blk` carries, as a body: the columns between its top faces and
+  !> the fill's level (the columns whose weight `add_fill_weight` places), their area
+  !> [m2], centroid [m] and polar second moment of area about that centroid [m4]; all 0
+  !> without a fill or a top face. The dynamics add it to the block's mass and inertia.
+  pure subroutine fill_column(asm, blk, area_m2, centroid_xy, polar_m4)
+    type(assembly_t), intent(in) :: asm
+    integer, intent(in) :: blk
+    real(dp), intent(out) :: area_m2, centroid_xy(2), polar_m4
+    real(dp) :: p0(2), p1(2), column(2, 4), a, c(2), first(2), second
+    integer :: k
+    logical :: carries
+    area_m2 = 0.0_dp
+    first = 0.0_dp
+    second = 0.0_dp
+    centroid_xy = 0.0_dp
+    polar_m4 = 0.0_dp
+    if (.not. asm%has_fill .or. asm%driven(blk)) return
+    do k = 1, size(asm%polygon(blk)%xy, 2)
+      call fill_face(asm, blk, k, p0, p1, carries)
+      if (.not. carries) cycle
+      ! Counter-clockwise: along the face left to right, then up to the level and back.
+      column = reshape([p1, p0, [p0(1), asm%fill_level_m], [p1(1), asm%fill_level_m]], [2, 4])
+      a = polygon_area(column)
+      if (.not. a > 0.0_dp) cycle           ! a face at the level carries no fill
+      c = polygon_centroid(column)
+      area_m2 = area_m2 + a
+      first = first + a*c
+      ! Each column's polar moment about the origin (parallel axes), to move to the whole's centroid.
+      second = second + polygon_polar_moment(column) + a*dot_product(c, c)
+    end do
+    if (area_m2 <= 0.0_dp) return
+    centroid_xy = first/area_m2
+    polar_m4 = second - area_m2*dot_product(centroid_xy, centroid_xy)
+  end subroutine fill_column
 
   !> The fill's horizontal pressure on every top face of a free block that is the top
   !> surface there: k times the vertical stress (weight per unit area x depth) on the face's

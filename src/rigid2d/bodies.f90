@@ -7,14 +7,15 @@ module voussoir_bodies
   implicit none
   private
 
-  public :: bodies_t, bodies_init, update_world_vertices, add_point_load, external_load
+  public :: bodies_t, bodies_init, update_world_vertices, add_point_load, external_load, add_carried_mass
 
   !> All bodies of a model, structure of arrays. Index 1 of the state is x [m], 2 is
   !> y [m], 3 is the rotation [rad] from the reference configuration.
   type :: bodies_t
     integer :: n = 0
     integer :: max_vertices = 0
-    real(dp), allocatable :: q(:, :)        !! (3, n) centroid position and rotation
+    real(dp), allocatable :: q(:, :)        !! (3, n) centre of mass and rotation (the polygon's centroid
+                                            !! unless the body carries a mass: add_carried_mass)
     real(dp), allocatable :: q_ref(:, :)    !! (3, n) reference configuration
     real(dp), allocatable :: v(:, :)        !! (3, n) velocity [m/s, m/s, rad/s]
     real(dp), allocatable :: mass_kg(:)
@@ -103,6 +104,47 @@ contains
     end where
     call update_world_vertices(bodies, bodies%q)
   end subroutine bodies_init
+
+  !> Body i carries a mass `mass_kg` [kg] that moves with it (a bridge's fill over a
+  !> voussoir), its centre of mass at `centroid_xy` [m] in the reference configuration and
+  !> its moment of inertia `inertia_kg_m2` about that centre. The body becomes the composite
+  !> of the two: mass m_b + m_c, centre of mass (m_b c_b + m_c c_c)/(m_b + m_c), inertia
+  !> about it by parallel axes from both centres. Its reference point moves to the new
+  !> centre of mass (the vertices are kept where they are), so gravity on the whole mass
+  !> and a table's inertial load act there; the constant loads already on it keep their
+  !> points (their moments are moved to the new reference point).
+  pure subroutine add_carried_mass(bodies, i, mass_kg, centroid_xy, inertia_kg_m2)
+    type(bodies_t), intent(inout) :: bodies
+    integer, intent(in) :: i
+    real(dp), intent(in) :: mass_kg, centroid_xy(2), inertia_kg_m2
+    real(dp) :: m_total, c_old(2), c_new(2), shift(2)
+    integer :: nv, k
+    if (.not. mass_kg > 0.0_dp) return
+    c_old = bodies%q_ref(1:2, i)
+    m_total = bodies%mass_kg(i) + mass_kg
+    c_new = (bodies%mass_kg(i)*c_old + mass_kg*centroid_xy)/m_total
+    bodies%inertia_kg_m2(i) = bodies%inertia_kg_m2(i) + bodies%mass_kg(i)*sum((c_old - c_new)**2) &
+                              + inertia_kg_m2 + mass_kg*sum((centroid_xy - c_new)**2)
+    bodies%mass_kg(i) = m_total
+    shift = c_old - c_new
+    nv = bodies%n_vertices(i)
+    do k = 1, nv
+      bodies%vertex_local(:, k, i) = bodies%vertex_local(:, k, i) + shift
+    end do
+    bodies%radius_m(i) = maxval(norm2(bodies%vertex_local(:, 1:nv, i), dim=1))
+    ! r' = r + shift for every load's point r from the old reference point.
+    associate (f => bodies%ext_force_n(:, i))
+      bodies%ext_cross_nm(i) = bodies%ext_cross_nm(i) + (shift(1)*f(2) - shift(2)*f(1))
+      bodies%ext_dot_nm(i) = bodies%ext_dot_nm(i) + dot_product(shift, f)
+    end associate
+    bodies%q_ref(1:2, i) = c_new
+    bodies%q(1:2, i) = bodies%q(1:2, i) - shift
+    if (.not. bodies%driven(i)) then
+      bodies%inv_mass(i) = 1.0_dp/bodies%mass_kg(i)
+      bodies%inv_inertia(i) = 1.0_dp/bodies%inertia_kg_m2(i)
+    end if
+    call update_world_vertices(bodies, bodies%q)
+  end subroutine add_carried_mass
 
   !> Add a constant force `force_n` [N] acting at the material point that is at `xy_m` [m]
   !> in the reference configuration of body i.

@@ -4,11 +4,11 @@ module voussoir_setup
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: fmt_significant, itoa
   use voussoir_config, only: config_t, waveform_afd, waveform_ramp, waveform_record, waveform_accelerogram, has_loads
-  use voussoir_placed_loads, only: placed_loads_t, place_loads
+  use voussoir_placed_loads, only: placed_loads_t, place_loads, fill_column, kind_fill
   use voussoir_assembly, only: assembly_t
   use voussoir_config_assembly, only: build_config_assembly
   use voussoir_geometry, only: polygon_min_width
-  use voussoir_bodies, only: bodies_t, bodies_init, add_point_load
+  use voussoir_bodies, only: bodies_t, bodies_init, add_point_load, add_carried_mass
   use voussoir_model, only: model_t, solver_settings_t
   use voussoir_coarse, only: coarse_init
   use voussoir_contact_law, only: contact_law_t, contact_law_init
@@ -242,17 +242,37 @@ contains
     type(status_t), intent(inout) :: status
     call bodies_init(assembly, density_kg_m3, width_m, model%bodies, status)
     if (.not. status%ok) return
+    if (assembly%has_fill) call add_fill_mass(assembly, model%bodies)
     model%solver = settings
     model%law = law
     if (.not. allocated(model%law%pairs)) allocate (model%law%pairs(0))
     if (settings%alert_m == 0.0_dp) model%solver%alert_m = automatic_alert_m(model%bodies)
   end subroutine init_model
 
+  !> With a fill (&bridge), each free block carries the fill column over its top faces
+  !> (the columns whose weight the LP places, `fill_column`) as mass that moves with it:
+  !> the column's mass and its own moment of inertia, at its own centroid, added to the
+  !> block's (docs/bridges.md, "Fill in the dynamics").
+  subroutine add_fill_mass(assembly, bodies)
+    type(assembly_t), intent(in) :: assembly
+    type(bodies_t), intent(inout) :: bodies
+    real(dp) :: area_m2, centroid_xy(2), polar_m4, mass_per_area_kg_m2
+    integer :: k
+    mass_per_area_kg_m2 = assembly%fill_weight_n_m2/g_m_s2   ! density x width
+    do k = 1, assembly%n_bodies
+      if (assembly%driven(k)) cycle
+      call fill_column(assembly, k, area_m2, centroid_xy, polar_m4)
+      if (area_m2 > 0.0_dp) call add_carried_mass(bodies, k, mass_per_area_kg_m2*area_m2, centroid_xy, &
+                                                  mass_per_area_kg_m2*polar_m4)
+    end do
+  end subroutine add_fill_mass
+
   !> The loads of &load as constant forces at points of the blocks: dead loads, and live
   !> loads at load factor 1, where &load puts them (a path's positions are not run: its
   !> live loads stand at their own x, on the top surface). Loads on driven blocks go to
-  !> the table. With a fill (&bridge), its weight over each voussoir and, with an angle of
-  !> friction, its active horizontal pressure: constant forces, not mass (docs/bridges.md).
+  !> the table. With a fill (&bridge), its active horizontal pressure (with an angle of
+  !> friction) as constant forces; its weight is gravity on the mass each block carries
+  !> (add_fill_mass), not a force here (docs/bridges.md).
   subroutine apply_loads(cfg, assembly, bodies, status)
     type(config_t), intent(in) :: cfg
     type(assembly_t), intent(in) :: assembly
@@ -266,6 +286,7 @@ contains
       return
     end if
     do k = 1, placed%n
+      if (placed%kind(k) == kind_fill) cycle     ! the fill's weight: its mass, under gravity
       if (.not. bodies%driven(placed%block(k))) &
         call add_point_load(bodies, placed%block(k), placed%xy(:, k), placed%force_n(:, k))
     end do

@@ -96,7 +96,8 @@ def arch_caption(arch: dict, n_blocks: int | None = None) -> str:
 
 def bridge_caption(bridge: dict, vehicle: dict | None = None) -> str:
     """A &bridge group (and a standing &vehicle) in words: 'bridge of 2 segmental spans of
-    10 m (rise 2.5 m), ring 450 mm of 20 voussoirs; fill to 3.45 m (2000 kg/m³) as forces;
+    10 m (rise 2.5 m), ring 450 mm of 20 voussoirs; fill to 3.45 m (2000 kg/m³) as mass the
+    ring carries;
     vehicle ... standing from x = 2 m'."""
     spans = [v for v in numbered_setting(bridge, "span_m") if v > 0]
     rises = [v for v in numbered_setting(bridge, "rise_m") if v > 0]
@@ -106,9 +107,9 @@ def bridge_caption(bridge: dict, vehicle: dict | None = None) -> str:
             f"(rise {rise_words} m), ring {1e3 * float(bridge.get('ring_thickness_m', math.nan)):g} mm of "
             f"{bridge.get('n_voussoirs', '?')} voussoirs")
     if float(bridge.get("fill_density_kg_m3", 0.0)) > 0:
-        pressure = " and active pressure" if float(bridge.get("fill_friction_deg", 0.0)) > 0 else ""
+        pressure = ", its active pressure as forces" if float(bridge.get("fill_friction_deg", 0.0)) > 0 else ""
         text += (f"; fill to {float(bridge.get('fill_level_m', math.nan)):g} m "
-                 f"({float(bridge['fill_density_kg_m3']):g} kg/m³): its weight{pressure} as forces, no mass")
+                 f"({float(bridge['fill_density_kg_m3']):g} kg/m³) as mass the ring carries{pressure}")
     if vehicle:
         text += f"; {vehicle_words(vehicle)} standing from x = {float(vehicle.get('first_axle_x_m', 0.0)):g} m"
     return text

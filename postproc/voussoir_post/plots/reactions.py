@@ -56,8 +56,9 @@ def free_weight_n(run: RunResult) -> float:
 
 
 def carries_constant_forces(run: RunResult) -> bool:
-    """Whether the run's blocks carry forces besides their weight: loads of &load, a
-    vehicle, a bridge's fill (voussoir-run applies them as constant forces)."""
+    """Whether the run's blocks carry forces besides their own weight: loads of &load, a
+    vehicle (constant forces), a bridge's fill (its weight: the mass the blocks carry;
+    its pressure: constant forces)."""
     load = run.config.get("load", {})
     bridge = run.config.get("bridge", {})
     return bool(run.config.get("vehicle")) or any(k.startswith("point_load_n(") for k in load) or \
@@ -106,7 +107,8 @@ def plot_reactions(run: RunResult, out_png: str | os.PathLike) -> ReactionsData:
         axes[2].axhline(data.weight_n, color="grey", linestyle="--", linewidth=0.9,
                         label=f"Fy: the weight of the free blocks, {data.weight_n:.4g} N;\nFx: their mass times "
                               "the table's acceleration\n(the sum while they move with the table" +
-                              (";\nthe constant forces of &load, a vehicle, the fill come on top)"
+                              (";\nthe constant forces of &load, a vehicle, the fill's pressure\n"
+                               "and the fill's weight, mass the blocks carry, come on top)"
                                if carries_constant_forces(run) else ")"))
     axes[1].set_ylabel("horizontal reaction Fx [N]\n(+: towards +x)")
     axes[2].set_ylabel("vertical reaction Fy [N]\n(+: upwards)")
