@@ -129,13 +129,14 @@ contains
     end do
   end function sweep_outcome
 
-  !> `file` with the folder `cwd` in front when it is relative ('' stays '').
+  !> `file` with the folder `cwd` in front when it is relative ('' stays ''; as given
+  !> when the whole path would not fit the configuration's text).
   pure function absolute(file, cwd) result(full)
     character(len=*), intent(in) :: file, cwd
     character(len=len(file)) :: full
     full = file
     if (len_trim(file) == 0 .or. len(cwd) == 0) return
-    if (file(1:1) == '/') return
+    if (file(1:1) == '/' .or. len(cwd) + 1 + len_trim(file) > len(file)) return
     full = cwd//'/'//trim(file)
   end function absolute
 
