@@ -27,6 +27,8 @@ program voussoir_sweep
   use voussoir_sweep_master, only: master_t, master_prepare, master_run
   use voussoir_sweep_worker, only: worker_run
   use voussoir_command_line, only: input_argument, write_warnings
+  use voussoir_sweep_row_inputs, only: write_row_inputs, row_input_stem
+  use voussoir_text, only: itoa
   implicit none
   type(sweep_comm_t) :: net
   type(config_t) :: cfg
@@ -37,19 +39,23 @@ program voussoir_sweep
   type(master_t) :: master
   type(status_t) :: status
   character(len=1024) :: path
-  integer :: exit_code
+  integer :: exit_code, n_written
+  logical :: write_rows(1)
 
   call config_groups(defaults, tables(1:4))
   sweep_defaults%mode = default_mode
   call sweep_table(sweep_defaults, tables(5))
   call load_group(defaults%load, tables(6))
-  call input_argument('voussoir-sweep', 'mpirun -np N voussoir-sweep FILE.nml', &
+  call input_argument('voussoir-sweep', 'mpirun -np N voussoir-sweep FILE.nml [--write-rows]', &
     'A sweep of simulations over MPI ranks (rank 0 schedules, the others run): collapse envelopes over '// &
     'frequencies and amplitudes, threshold searches, lists of arch parameters, or an incremental dynamic '// &
     'analysis under records (&sweep mode; docs/sweep.md, docs/earthquakes.md). Writes an HDF5 file and a CSV '// &
     'beside it, updated as jobs finish; a rerun continues a killed sweep. The groups &arch, &motion, &solver '// &
     'and &output give the base case as for voussoir-run, &sweep what varies (its ranges depend on the mode: '// &
-    'docs/sweep.md).', path, exit_code, groups=tables)
+    'docs/sweep.md). --write-rows: once the sweep is done (or found complete), an input of voussoir-run for each '// &
+    'run behind each row beside the result (an IDA row: its runs at scale_stood and scale_threshold), '// &
+    '<file stem>_job<J>_<stood|collapsed|run|threshold>.nml: voussoir-run on it replays the run as the sweep '// &
+    'ran it (docs/sweep.md).', path, exit_code, flags=['--write-rows'], given=write_rows, groups=tables)
   if (exit_code >= 0) stop exit_code, quiet=.true.
   call comm_start(net)
   call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'sweep', 'load'], cfg, &
@@ -66,8 +72,15 @@ program voussoir_sweep
   end if
   if (net%rank == 0) then
     call master_run(plan, net, master)
+    if (write_rows(1)) call write_row_inputs(plan, master%results, master%runs, master%path, n_written, status)
+    if (write_rows(1) .and. status%ok) write (output_unit, '(a)') 'voussoir-sweep: wrote '//itoa(n_written)// &
+      ' inputs of voussoir-run, the runs behind the rows: '//row_input_stem(master%path)//'_job<J>_<run>.nml'
   else
     call worker_run(plan, net)
   end if
   call comm_end(net)
+  if (.not. status%ok) then
+    write (output_unit, '(a)') 'voussoir-sweep: error: '//trim(status%message)
+    stop 1, quiet=.true.
+  end if
 end program voussoir_sweep

@@ -52,6 +52,14 @@ ld="&arch /
 case_ run_load_outside "&load point load 1 at \(x, y\) = \(5, 5\) m lies in no block" "&arch /
 &load point_load_n(1) = 1000, point_load_x_m(1) = 5, point_load_y_m(1) = 5 /
 $o"
+# The steps at rest (&solver rest_capacity_m_s2, what a sweep's row input carries): not
+# negative, and not under loads (the capacity is the arch's alone).
+case_ rest_capacity_neg "&solver rest_capacity_m_s2 = -1 is outside the allowed range rest_capacity_m_s2 >= 0" "&solver rest_capacity_m_s2 = -1 /
+$o"
+case_ rest_capacity_load "&solver rest_capacity_m_s2 = 3 is outside the allowed range 0 with &load" "&arch /
+&solver rest_capacity_m_s2 = 3 /
+&load point_load_n(1) = 1000, point_load_x_m(1) = 0, point_load_y_m(1) = 0.5 /
+$o"
 # A live load on the support alone opens no mechanism (unbounded, said so).
 printf 'block free\n-0.1 0\n0.1 0\n0.1 1\n-0.1 1\nblock driven\n-1 -0.2\n1 -0.2\n1 0\n-1 0\n' > load_block.txt
 driver=voussoir-limit case_ load_on_support "unbounded\).*the live load acts on no free block \(only on the supports\)" "&arch polygon_file = 'load_block.txt', thickness_m = 0.2 /

@@ -12,6 +12,8 @@
 #   sweep_ida_samples       an IDA over the model samples of a file: the file's values in
 #                           the rows and in the runs (voussoir-limit, voussoir-run), the
 #                           samples in the sweep definition, bad files refused
+#   sweep_ida_replay        --write-rows: voussoir-run on a row's inputs gives the row's
+#                           outcome (collapse time; steps at rest, ended at rest)
 # The input files input/sweep_*.nml are run by driver_tests.cmake.
 if(NOT TARGET voussoir-sweep)
   return()
@@ -20,7 +22,7 @@ if(NOT MPIEXEC_EXECUTABLE)
   message(FATAL_ERROR "voussoir-sweep is built but no mpiexec was found: its MPI tests cannot run")
 endif()
 
-foreach(case ranks grid resume refuse threshold_vs_run bad_inputs failing_job lock ida_samples)
+foreach(case ranks grid resume refuse threshold_vs_run bad_inputs failing_job lock ida_samples ida_replay)
   add_test(NAME sweep_${case}
            COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/sweep/sweep_test.py ${case}
                    --mpiexec ${MPIEXEC_EXECUTABLE} --bin $<TARGET_FILE_DIR:voussoir-sweep>

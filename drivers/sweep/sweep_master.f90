@@ -244,6 +244,7 @@ contains
       do w = 1, net%size - 1
         call comm_send(net, w, tag_stop, [0.0_dp])
       end do
+      call unlock_file(m%lock_fd, m%path//'.lock')
       return
     end if
     if (m%n_done < plan%n_jobs) call write_state(net, m, .false.)

@@ -95,9 +95,10 @@ module voussoir_config
     real(dp) :: alert_m = 0.0_dp              !! 0: 2 % of the smallest free block
     logical :: allow_nonconvergence = .false.
     logical :: coarse_correction = .true.     !! walls: coarse correction of the normal impulses per course
-    !> Not a namelist variable: the static capacity lambda g [m/s2] below which the
-    !> assembly at rest moves with the table, so that those steps are not solved (set by
-    !> the IDA sweep, `&sweep skip_at_rest`; 0: every step is solved).
+    !> The static capacity lambda g [m/s2] below which the assembly at rest moves with the
+    !> table, so that those steps are not solved (src/run/rest_window.f90; 0: every step is
+    !> solved). A sweep sets it per model sample (`&sweep skip_at_rest`); a run of a sweep's
+    !> row written by `voussoir-sweep --write-rows` carries it, so that it replays the row.
     real(dp) :: rest_capacity_m_s2 = 0.0_dp
   end type solver_config_t
 
@@ -252,6 +253,8 @@ contains
       call g%add('alert_m', s%alert_m, unit='m', range='alert_m >= 0 (0: automatic)')
       call g%add('allow_nonconvergence', s%allow_nonconvergence)
       call g%add('coarse_correction', s%coarse_correction)
+      call g%add('rest_capacity_m_s2', s%rest_capacity_m_s2, unit='m/s2', &
+                 range='rest_capacity_m_s2 >= 0 (0: every step is solved)')
     end associate
     associate (o => cfg%output, g => groups(4))
       g%name = 'output'

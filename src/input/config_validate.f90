@@ -35,6 +35,10 @@ contains
     if (.not. status%ok) return
     call validate_motion(cfg%motion, groups(2), f, status)
     call groups(3)%check(f, status)
+    ! The rest window is the arch's own capacity: never checked under loads (as the sweep).
+    if (cfg%solver%rest_capacity_m_s2 > 0.0_dp .and. has_loads(cfg)) &
+      call need(.false., f, 'solver', 'rest_capacity_m_s2', cfg%solver%rest_capacity_m_s2, &
+                '0 with &load (the steps at rest are skipped on the arch alone)', status)
     ! The sinusoid must be resolved: at least 20 steps per period (as the sweep asks).
     associate (m => cfg%motion, s => cfg%solver)
       if (m%waveform == waveform_afd .and. s%dt_s > 0.0_dp) &

@@ -104,6 +104,9 @@ contains
     call h5_attr(g, 'max_iterations', res%max_iterations, status)
     call h5_attr(g, 'nonconverged_steps', res%nonconverged_steps, status)
     call h5_attr(g, 'n_steps', res%n_steps, status)
+    ! The steps ridden at rest on the table (&solver rest_capacity_m_s2), not solved.
+    call h5_attr(g, 'rest_steps', res%rest_steps, status)
+    call h5_attr(g, 'ended_at_rest', merge(1, 0, res%ended_at_rest), status)
     call h5_attr(g, 'wall_time_s', res%wall_time_s, status)
     ! 0: the run went to its end; else the signal (2 SIGINT, 15 SIGTERM) that stopped it
     ! early: the file holds what was computed until then.

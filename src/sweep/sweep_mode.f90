@@ -18,7 +18,7 @@ module voussoir_sweep_mode
   use voussoir_threshold_search, only: threshold_settings_t, threshold_search_t, threshold_result_t, run_outcome_t
   use voussoir_sweep_ida, only: ida_records_t
   use voussoir_sweep_group, only: sweep_group_t
-  use voussoir_sweep_table, only: sweep_table_t, named_values_t, named_text_t, runs_table
+  use voussoir_sweep_table, only: sweep_table_t, named_values_t, named_text_t, runs_table, table_value
   implicit none
   private
 
@@ -53,6 +53,7 @@ module voussoir_sweep_mode
     procedure(csv_line_i), deferred :: csv_line
     procedure(row_text_i), deferred :: summary_line
     procedure :: closing_check
+    procedure :: row_runs
   end type sweep_mode_t
 
   !> Everything a rank needs to turn a job index into a run.
@@ -294,5 +295,22 @@ contains
     type(status_t), intent(inout) :: status
     report = ''
   end subroutine closing_check
+
+  !> The runs behind row `r` of `results` (`voussoir-sweep --write-rows` writes each as an
+  !> input of voussoir-run): their values and a word each for the file name. Here a
+  !> single run's value ('run'), and none for a search: a mode whose jobs are searches
+  !> overrides it with the runs of its row's bracket.
+  subroutine row_runs(this, plan, results, r, values, words)
+    class(sweep_mode_t), intent(in) :: this
+    type(sweep_plan_t), intent(in) :: plan
+    type(sweep_table_t), intent(in) :: results
+    integer, intent(in) :: r
+    real(dp), allocatable, intent(out) :: values(:)
+    character(len=16), allocatable, intent(out) :: words(:)
+    allocate (values(0), words(0))
+    if (this%has_search()) return
+    values = [this%run_value(plan, nint(table_value(results, 'job', r)))]
+    words = [character(len=16) :: 'run']
+  end subroutine row_runs
 
 end module voussoir_sweep_mode

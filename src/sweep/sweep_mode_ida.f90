@@ -47,6 +47,7 @@ module voussoir_sweep_mode_ida
     procedure :: csv_line
     procedure :: summary_line
     procedure :: closing_check
+    procedure :: row_runs
   end type ida_mode_t
 
 contains
@@ -221,6 +222,30 @@ contains
     if (scale_warned(results, r)) line = line//', WARNING: scaled beyond '//fmt_real(scale_warn_high)//' or below '// &
                                          fmt_real(scale_warn_low)
   end function summary_line
+
+  !> The runs that bracket row `r`'s threshold: at scale_stood ('stood', where above 0 and
+  !> below the threshold) and at scale_threshold ('collapsed'); a censored row's at
+  !> scale_max ('stood'); a failed row's last stand, where known.
+  subroutine row_runs(this, plan, results, r, values, words)
+    class(ida_mode_t), intent(in) :: this
+    type(sweep_plan_t), intent(in) :: plan
+    type(sweep_table_t), intent(in) :: results
+    integer, intent(in) :: r
+    real(dp), allocatable, intent(out) :: values(:)
+    character(len=16), allocatable, intent(out) :: words(:)
+    real(dp) :: stood, threshold
+    stood = table_value(results, 'scale_stood', r)
+    threshold = table_value(results, 'scale_threshold', r)
+    allocate (values(0), words(0))
+    if (stood > 0.0_dp .and. (stood < threshold .or. nint(table_value(results, 'censored', r)) == 1 .or. &
+                              nint(table_value(results, 'failed', r)) == 1)) then
+      values = [stood]
+      words = [character(len=16) :: 'stood']
+    end if
+    if (nint(table_value(results, 'censored', r)) == 1 .or. nint(table_value(results, 'failed', r)) == 1) return
+    values = [values, threshold]
+    words = [character(len=16) :: words, 'collapsed']
+  end subroutine row_runs
 
   !> Whether row `r` collapsed at a scale beyond scale_warn_high or below scale_warn_low.
   logical function scale_warned(results, r)

@@ -29,6 +29,7 @@ module voussoir_sweep_mode_threshold
     procedure :: csv_header
     procedure :: csv_line
     procedure :: summary_line
+    procedure :: row_runs
   end type threshold_mode_t
 
 contains
@@ -169,5 +170,21 @@ contains
     end if
     line = trim(buf)
   end function summary_line
+
+  !> The run at the row's threshold amplitude ('threshold'), where the search found one.
+  subroutine row_runs(this, plan, results, r, values, words)
+    class(threshold_mode_t), intent(in) :: this
+    type(sweep_plan_t), intent(in) :: plan
+    type(sweep_table_t), intent(in) :: results
+    integer, intent(in) :: r
+    real(dp), allocatable, intent(out) :: values(:)
+    character(len=16), allocatable, intent(out) :: words(:)
+    real(dp) :: threshold_m
+    threshold_m = table_value(results, 'threshold_m', r)
+    allocate (values(0), words(0))
+    if (.not. threshold_m > 0.0_dp) return
+    values = [threshold_m]
+    words = [character(len=16) :: 'threshold']
+  end subroutine row_runs
 
 end module voussoir_sweep_mode_threshold

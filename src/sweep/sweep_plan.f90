@@ -42,6 +42,11 @@ contains
     group%mode = default_mode
     call read_sweep_group(path, group, status)
     if (.not. status%ok) return
+    if (base%solver%rest_capacity_m_s2 /= 0.0_dp) then
+      call fail(status, path//': &solver rest_capacity_m_s2 is set, but a sweep sets it per model sample '// &
+                '(&sweep skip_at_rest, modes ida and msa): remove it')
+      return
+    end if
     call make_sweep_mode(path, group%mode, mode, status)
     if (.not. status%ok) return
     plan%combine = group%combine
@@ -291,9 +296,12 @@ contains
       end if
     end do
     plan%sweep_nml = body//'  progress_every_s = '//fmt_exact_list([plan%progress_every_s])//nl//'/'//nl
-    ! The base case without what does not change results (file name, sampling).
+    ! The base case without what does not change results (file name, sampling), nor the
+    ! steps at rest, always 0 in a sweep's base (read_sweep_plan): files of the code before
+    ! it was a &solver variable stay the same sweep.
     e = config_entries(base)
-    e = pack(e, .not. (e%group == 'output' .and. (e%name == 'file' .or. e%name == 'every')))
+    e = pack(e, .not. (e%group == 'output' .and. (e%name == 'file' .or. e%name == 'every')) .and. &
+             .not. (e%group == 'solver' .and. e%name == 'rest_capacity_m_s2'))
     plan%signature = 'voussoir-sweep definition'//nl//body//'/'//nl//mode%definition_text(plan)//config_to_nml(e)
   end subroutine make_texts
 

@@ -15,6 +15,11 @@ CASE is one of:
                     threshold collapse
   bad_inputs        bad &sweep values are refused with a message naming the file, the
                     variable and the allowed range, and no result file appears
+  ida_replay        voussoir-sweep --write-rows writes the inputs of the runs behind
+                    each IDA row (scale_stood, scale_threshold; both polarities, a model
+                    sample, the steps at rest), and voussoir-run on each gives the
+                    sweep's outcome: the collapse time of the collapsed run, the steps
+                    (ended at rest) of the standing one; again from the finished file
   ida_samples       an IDA over the model samples of a file (model_samples_file): the
                     rows carry the file's values, each sample's search starts at the
                     static capacity voussoir-limit gives for the file's &arch values
@@ -704,6 +709,118 @@ def case_ida_samples_refused(r):
         message = next((line for line in out.splitlines() if "voussoir-sweep: error:" in line), "")
         check(rc != 0 and re.search(expect, message) is not None and f"{name}.nml" in message
               and not os.path.exists(f"{name}.h5"), f"refused {name}: {message or out.strip()[:200]}")
+
+
+# The replay's IDA: a still lead ridden at rest, a record whose pulse passes long before
+# its end (a standing arch settles and its run ends early), both polarities, a model
+# sample of friction; rest_s keeps the record's own end short.
+REPLAY_BASE = """&arch
+  embrace_deg = 156, n_voussoirs = 13, r_ext_m = 0.508, thickness_m = 0.071
+/
+&motion
+  lead_s = 0.5, rest_s = 0.5
+/
+&solver
+  dt_s = 2.0e-3
+/
+"""
+REPLAY_SWEEP = """&sweep
+  mode = 'ida', record_files = 'pulse.csv', record_polarity = 'both', scale_tol = 0.05, scale_max = 30,
+  n_samples = 1, sample_seed = 3, friction_range = 0.5, 0.6, progress_every_s = 0
+/
+"""
+
+
+def replay_record(path):
+    """0.3 s of still table, four cycles of 2.5 Hz at 1 m/s2 peak, still table to 5 s
+    (sampled every 5 ms): the arch (lambda g about 3.7 m/s2) falls only scaled several
+    times. Returns the record's duration [s]."""
+    import math
+    rows = [(0.005 * k, math.sin(2 * math.pi * 2.5 * (0.005 * k - 0.3)) if 60 <= k <= 380 else 0.0)
+            for k in range(1001)]
+    with open(path, "w") as f:
+        f.write("t_s,accel_m_s2\n" + "".join(f"{t:.3f},{a:.6f}\n" for t, a in rows))
+    return rows[-1][0]
+
+
+def nml_values(path):
+    """{variable: text} of a namelist file, one 'name = value' a line (the test's own
+    reading of what --write-rows wrote)."""
+    out = {}
+    for line in open(path):
+        m = re.match(r"\s*(\w+)\s*=\s*(.*?)\s*$", line)
+        if m:
+            out[m.group(1)] = m.group(2).strip("'")
+    return out
+
+
+def case_ida_replay(r, work):
+    duration_s = replay_record("pulse.csv")
+    write_nml("ida.nml", "ida.h5", REPLAY_SWEEP, base=REPLAY_BASE)
+    p = subprocess.run(r.command(2, "ida.nml") + ["--write-rows"], capture_output=True, text=True, env=r.env)
+    out = p.stdout + p.stderr
+    if not check(p.returncode == 0 and "wrote 4 inputs of voussoir-run" in out,
+                 "voussoir-sweep --write-rows: exit 0, 4 inputs written (2 rows x stood, collapsed)"):
+        print(out)
+        return
+    data, _ = read("ida.h5")
+    rows = list(csv.DictReader(open("ida.csv")))
+    friction = float(data["parameters/values"][0, 0])
+    runs = {(int(j), float(s)): k for k, (j, s) in enumerate(zip(data["runs/job"], data["runs/scale"]))}
+    written = sorted(f for f in os.listdir(".") if re.fullmatch(r"ida_job\d+_\w+\.nml", f))
+    check(written == ["ida_job0_collapsed.nml", "ida_job0_stood.nml", "ida_job1_collapsed.nml", "ida_job1_stood.nml"],
+          f"one input per run behind each row: {written}")
+    full_steps = round((0.5 + duration_s + 0.5) / 2.0e-3)
+    for k, row in enumerate(rows):
+        polarity = -1 if row["record"].endswith("(reversed)") else 1
+        check(float(row["scale_threshold"]) > 1.5, f"row {k}: collapses only scaled (scale {row['scale_threshold']}), "
+                                                   f"so that a replay without the scale would stand")
+        for word, column in (("stood", "scale_stood"), ("collapsed", "scale_threshold")):
+            name = f"ida_job{k}_{word}"
+            scale = float(row[column])
+            given = nml_values(f"{name}.nml")
+            check(float(given["record_scale"]) == scale and int(given["record_polarity"]) == polarity
+                  and float(given["friction"]) == friction and float(given["rest_capacity_m_s2"]) > 0.0
+                  and given["waveform"] == "accelerogram",
+                  f"{name}.nml: the row's scale {scale!r}, polarity {polarity}, the sample's friction and the steps "
+                  f"at rest ({given.get('record_scale')}, {given.get('record_polarity')}, {given.get('friction')}, "
+                  f"{given.get('rest_capacity_m_s2')})")
+            run = runs.get((k, scale))
+            if not check(run is not None, f"{name}: the sweep ran scale {scale!r} (a row of /runs)"):
+                continue
+            swept = {c: data[f"runs/{c}"][run] for c in ("collapsed", "collapse_time_s", "n_steps")}
+            q = subprocess.run([r.run_exe, f"{name}.nml"], capture_output=True, text=True)
+            first = q.stdout.split()[0] if q.stdout.split() else ""
+            check(q.returncode == 0 and first == {"stood": "stood;", "collapsed": "collapsed"}[word]
+                  and int(swept["collapsed"]) == (word == "collapsed"),
+                  f"{name}: voussoir-run says '{first}', as the sweep's run of that scale ({int(swept['collapsed'])})")
+            if q.returncode != 0:
+                print(q.stdout + q.stderr)
+                continue
+            with h5py.File(f"{name}.h5", "r") as f:
+                res = dict(f["result"].attrs)
+            if word == "collapsed":
+                check(abs(float(res["collapse_time_s"]) - float(swept["collapse_time_s"])) <= 1e-9,
+                      f"{name}: collapse at {float(res['collapse_time_s']):.4f} s, the sweep's run at "
+                      f"{float(swept['collapse_time_s']):.4f} s")
+            else:
+                check(int(res["n_steps"]) == int(swept["n_steps"]) < full_steps and int(res["rest_steps"]) > 0
+                      and int(res["ended_at_rest"]) == 1,
+                      f"{name}: rides the lead at rest ({int(res['rest_steps'])} steps) and ends at rest after "
+                      f"{int(res['n_steps'])} of {full_steps} steps, as the sweep's run ({int(swept['n_steps'])})")
+    # From the finished file (the engineer's case, after the sweep): the same inputs.
+    before = {f: open(f).read() for f in written}
+    for f in written:
+        os.remove(f)
+    p = subprocess.run(r.command(1, "ida.nml") + ["--write-rows"], capture_output=True, text=True, env=r.env)
+    check(p.returncode == 0 and all(os.path.exists(f) and open(f).read() == before[f] for f in written),
+          "--write-rows on the finished file writes the same inputs again")
+    # A sweep sets the steps at rest itself: the base case may not.
+    write_nml("rest_given.nml", "rest_given.h5", REPLAY_SWEEP,
+              base=REPLAY_BASE.replace("dt_s = 2.0e-3", "dt_s = 2.0e-3, rest_capacity_m_s2 = 3.0"))
+    rc, out = r.sweep_run(1, "rest_given.nml", expect_ok=False)
+    check(rc != 0 and "rest_given.nml: &solver rest_capacity_m_s2 is set, but a sweep sets it" in out
+          and not os.path.exists("rest_given.h5"), "a sweep input with &solver rest_capacity_m_s2 is refused")
 
 
 def main():
