@@ -32,7 +32,7 @@ Resumable: one JSON per truth and design in OUT/results (finished ones are skipp
 unfinished one goes on from its last finished step). Run with the project's Python and
 PYTHONPATH at postproc (loop.sh does that):
 
-    python bench/lmgc90/loop.py --lmgc90-build DIR --out OUT [--truths N] [--designs advised,naive]
+    python bench/lmgc90/loop.py --lmgc90-build DIR --out OUT [--truths N | --slugs S1,S2] [--designs advised,naive]
     python bench/lmgc90/loop.py --out OUT --summary      # the table of what is finished
 """
 
@@ -481,6 +481,7 @@ def main(argv=None) -> int:
     ap.add_argument("--lmgc90-build", help="LMGC90 build folder (holds pylmgc90)")
     ap.add_argument("--out", required=True, help="output folder (results/, runs/, bank/)")
     ap.add_argument("--truths", type=int, default=12, help="the first N stored truths inside the catalogue, by index")
+    ap.add_argument("--slugs", help="comma-separated truths to run instead of the first N (their file names' stems)")
     ap.add_argument("--designs", default=",".join(DESIGNS))
     ap.add_argument("--seed", type=int, default=SEED)
     ap.add_argument("--np", type=int, default=2, help="MPI ranks of the sweeps")
@@ -500,7 +501,15 @@ def main(argv=None) -> int:
                                  bank_dir=Path(args.bank or out_root / "bank").resolve(),
                                  log=lambda m: print(m, flush=True) if not m.startswith("[bank]") or "cached" not in m
                                  else None)
-    truths = [t for t in stored_truths() if truth_model(t) != "outside"][:args.truths]
+    truths = [t for t in stored_truths() if truth_model(t) != "outside"]
+    if args.slugs:
+        wanted = args.slugs.split(",")
+        missing = set(wanted) - {t["slug"] for t in truths}
+        if missing:
+            sys.exit(f"loop.py: --slugs: no stored truth inside the catalogue named {', '.join(sorted(missing))}")
+        truths = [t for t in truths if t["slug"] in wanted]
+    else:
+        truths = truths[:args.truths]
     designs = [d for d in args.designs.split(",") if d]
     log(f"{len(truths)} truths inside the catalogue: " + ", ".join(t["slug"] for t in truths))
     t_all = time.time()
