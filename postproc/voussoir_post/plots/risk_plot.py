@@ -8,7 +8,7 @@ import numpy as np
 
 from .. import __version__
 from ..units import G_M_S2
-from .drawing import COLORS, new_figure, provenance, save_figure
+from .drawing import COLORS, new_figure, provenance, save_figure, wrap_text
 
 __all__ = ["plot_risk"]
 
@@ -80,7 +80,9 @@ def plot_risk(path: str, hazard, median_g: float, beta: float, result, band=None
     twin.set_ylabel("probability of collapse")
     left.set_title("The site's hazard and the arch's fragility", fontsize=10)
     handles = left.get_legend_handles_labels()[0] + twin.get_legend_handles_labels()[0]
-    left.legend(handles, [h.get_label() for h in handles], fontsize=7, loc="upper center",
+    # Labels wrapped to the panel's width: a long one (the mixture's) would widen the legend
+    # past the figure's left edge.
+    left.legend(handles, [wrap_text(h.get_label(), 5.0, 7) for h in handles], fontsize=7, loc="upper center",
                 bbox_to_anchor=(0.5, -0.17))
     # Disaggregation: the density of lambda_c over ln IM (its share per unit of ln IM).
     share = result.density * result.pga_g / result.annual_rate
@@ -94,8 +96,8 @@ def plot_risk(path: str, hazard, median_g: float, beta: float, result, band=None
     right.set_xlim(median_g * np.exp(-5 * beta), median_g * np.exp(5 * beta))
     right.set_xlabel(f"{measure} [g]")
     right.set_ylabel(f"density of the collapse rate over ln {measure} [-]")
-    right.set_title(f"Disaggregation: {result.annual_rate:.3g} collapses per year, P(50 yr) = {result.p_50yr:.3g}",
-                    fontsize=10)
+    right.set_title(f"Disaggregation: {result.annual_rate:.3g} collapses per year,\n"
+                    f"P(collapse in 50 yr) = {result.p_50yr:.3g}", fontsize=10)
     secondary = right.secondary_xaxis("top", functions=(lambda g: g * G_M_S2, lambda a: a / G_M_S2))
     secondary.set_xlabel(f"{measure} [m/s2]", fontsize=8)
     right.set_ylim(0, 1.5 * float(np.max(share)))  # room for the legend above the curve
