@@ -135,6 +135,27 @@ contains
     end if
   end subroutine incline
 
+  !> The table acceleration / g at which block 1 starts to turn (|rotation| > 1e-5 rad)
+  !> under a table acceleration ramped at `rate_m_s3`, run up to twice the `expected`
+  !> value; -1 when it never turns.
+  function tipping_load_factor(model, rate_m_s3, expected, status) result(lambda)
+    type(model_t), intent(inout) :: model
+    real(dp), intent(in) :: rate_m_s3, expected
+    type(status_t), intent(inout) :: status
+    real(dp) :: lambda
+    integer :: k
+    model%motion = motion_ramp(rate_m_s3)
+    lambda = -1.0_dp
+    do k = 1, nint(2.0_dp*expected*g_m_s2/rate_m_s3/model%solver%dt_s)
+      call model_step(model, status)
+      if (.not. status%ok) exit
+      if (abs(model%bodies%q(3, 1)) > 1.0e-5_dp) then
+        lambda = rate_m_s3*model%t_s/g_m_s2
+        exit
+      end if
+    end do
+  end function tipping_load_factor
+
   !> Slow ramp of horizontal load: the block tips when the load reaches g b / h.
   subroutine uplift(half_width_m, half_height_m)
     real(dp), intent(in) :: half_width_m, half_height_m
@@ -144,21 +165,11 @@ contains
     real(dp), parameter :: rate_m_s3 = 0.05_dp
     real(dp) :: lambda_sim
     character(len=64) :: label
-    integer :: k
 
     ground%xy = reshape([-2.0_dp, -0.5_dp, 2.0_dp, -0.5_dp, 2.0_dp, 0.0_dp, -2.0_dp, 0.0_dp], [2, 4])
     call init_model(two_bodies(block(half_width_m, half_height_m, [0.0_dp, 0.0_dp], 0.0_dp), ground), &
                     2000.0_dp, 1.0_dp, settings(1.0e-3_dp), law(0.9_dp), model, status)
-    model%motion = motion_ramp(rate_m_s3)
-    lambda_sim = -1.0_dp
-    do k = 1, nint(2.0_dp*half_width_m/half_height_m*g_m_s2/rate_m_s3/model%solver%dt_s)
-      call model_step(model, status)
-      if (.not. status%ok) exit
-      if (abs(model%bodies%q(3, 1)) > 1.0e-5_dp) then
-        lambda_sim = rate_m_s3*model%t_s/g_m_s2
-        exit
-      end if
-    end do
+    lambda_sim = tipping_load_factor(model, rate_m_s3, half_width_m/half_height_m, status)
     write (label, '(a,f0.2,a,f0.2)') 'uplift of a block b = ', half_width_m, ', h = ', half_height_m
     call assert_true(status%ok, trim(label)//': run '//trim(status%message))
     call assert_close(lambda_sim, half_width_m/half_height_m, trim(label)//': uplift acceleration / g', &
@@ -219,22 +230,12 @@ contains
     type(status_t) :: status
     real(dp) :: lambda_sim, m_b, m_f, y_c
     character(len=80) :: label
-    integer :: k
     m_b = rho_b*4*b*h
     m_f = fill_density_kg_m3*2*b*column_m
     y_c = (m_b*h + m_f*(2*h + column_m/2))/(m_b + m_f)
     call init_model(block_under_fill(b, h, column_m, fill_density_kg_m3, 1.0_dp), rho_b, 1.0_dp, &
                     settings(1.0e-3_dp), law(0.9_dp), model, status)
-    model%motion = motion_ramp(rate_m_s3)
-    lambda_sim = -1.0_dp
-    do k = 1, nint(2.0_dp*b/y_c*g_m_s2/rate_m_s3/model%solver%dt_s)
-      call model_step(model, status)
-      if (.not. status%ok) exit
-      if (abs(model%bodies%q(3, 1)) > 1.0e-5_dp) then
-        lambda_sim = rate_m_s3*model%t_s/g_m_s2
-        exit
-      end if
-    end do
+    lambda_sim = tipping_load_factor(model, rate_m_s3, b/y_c, status)
     write (label, '(a,f0.2,a)') 'uplift of a block under ', column_m, ' m of fill'
     call assert_true(status%ok, trim(label)//': run '//trim(status%message))
     call assert_close(lambda_sim, b/y_c, trim(label)//': uplift acceleration / g', rtol=0.02_dp)
