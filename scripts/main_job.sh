@@ -22,7 +22,11 @@
 #     samples on both components and the risk);
 #  8. the two fragilities side by side, with the split of beta into record-to-record and
 #     model parts, against PGA and against PGA / (lambda g) (each row over its own
-#     model's static capacity).
+#     model's static capacity);
+#  9. the calibrated fragility integrated with an invented site's hazard
+#     (data/hazard/example_site.csv): the annual collapse rate, the 50-year probability and
+#     the collapse margin ratio with their bands (voussoir-post risk), as the full
+#     assessment does with 30 samples.
 # Everything goes to results/, or to the folder of --out DIR (the test command writes its
 # run into build/test-main-job/ and so leaves results/ as this job made it).
 #   bash scripts/main_job.sh [--out DIR]
@@ -154,6 +158,13 @@ echo "   Against PGA / (lambda g), each row over the static capacity of its own 
 "$post" fragility "$results"/ida_156.h5 --compare "$results"/ida_156_calibrated.h5 --axis pga-lambda-g \
     --labels 'nominal model' 'as the tests revealed it' --out "$results"/ | tail -n 3 | sed 's/^/   /'
 
+echo "== 9. The risk at an example site (invented: data/hazard/example_site.csv; ratings good, good, fair; MCE 0.5 g)"
+"$post" fragility "$results"/ida_156_calibrated.h5 --out "$results"/ --json > "$results"/ida_156_calibrated_fragility.json
+"$post" risk data/hazard/example_site.csv --fragility-json "$results"/ida_156_calibrated_fragility.json \
+    --rating-dr good --rating-td good --rating-mdl fair --mce-g 0.5 --out "$results"/ \
+  | sed -n '/^fragility:/p; /^mean annual frequency/p; /^probability of collapse in 50/p; /^collapse margin ratio/p' \
+  | sed 's/^/   /'
+
 # An index of everything the job made, with what each shows (index.md).
 missing=()  # files the job should have made and did not
 {
@@ -189,6 +200,8 @@ missing=()  # files the job should have made and did not
   describe ida_156_calibrated_fragility_records.png "its record table: the scale at collapse on each of the 6 model samples"
   describe ida_156_compare_fragility_pga_lambda_g.png "the two against PGA / (lambda g), each row's PGA over the static capacity of its own model sample (the line at 1); the curves in ida_156_compare_fragility_pga_lambda_g.csv"
   describe ida_156_compare_fragility.png "the two side by side (blue nominal, orange as the tests revealed it; PGA solid, PGV dash-dot; the fit at the median's lower 5 % bound PGA dashed, PGV dotted; the static capacities as wide pale lines), medians and betas split into record-to-record and model parts in the legend; the curves in ida_156_compare_fragility.csv"
+  describe ida_156_calibrated_fragility.json "that fragility as JSON (its fits, the mixture and its two-stage resamples), which the risk reads"
+  describe example_site_risk.png "the collapse risk at an invented site (data/hazard/example_site.csv): the hazard curve and its fractiles beside the fragility, and the disaggregation of the annual collapse rate over PGA; the rate, the 50-year probability and the margin ratio with their bands in the log"
 } > "$results"/index.md
 if (( ${#missing[@]} )); then
   echo "[main] error: the job did not make ${missing[*]} (see the log above)" >&2
