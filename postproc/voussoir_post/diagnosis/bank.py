@@ -82,7 +82,7 @@ def key_variant(key: str) -> Variant:
     for text in key.split("+"):
         e, val = text.split("=")
         parts.append((e, val if val in RESTRAINTS else float(val)))
-    return Variant(*parts[0]) if len(parts) == 1 else Variant(COMBINED, tuple(parts))
+    return Variant.of(parts)
 
 
 def _pair_values(spec: Specimen, settings: DiagnosisSettings) -> dict[str, list]:

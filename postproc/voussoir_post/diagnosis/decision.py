@@ -23,7 +23,8 @@ import numpy as np
 from .models import members
 from .posterior import ADEQUATE_P, Posterior, adequacy
 
-__all__ = ["NAME_AT", "Decision", "decide", "credible_set", "to_separate", "flags", "prior_bound", "EDGE_FRACTION", "EDGE_MASS"]
+__all__ = ["NAME_AT", "Decision", "decide", "credible_set", "to_separate", "flags", "prior_bound", "EDGE_FRACTION",
+           "EDGE_MASS"]
 
 EDGE_FRACTION = 0.05  #: the outer part of a prior's range that counts as its edge
 EDGE_MASS = 0.15  #: posterior mass there (three times the prior's) that flags the parameter

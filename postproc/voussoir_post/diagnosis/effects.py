@@ -35,6 +35,14 @@ class Variant:
             return ()
         return tuple(self.value) if self.effect == COMBINED else ((self.effect, self.value),)
 
+    @classmethod
+    def of(cls, parts) -> Variant:
+        """The variant of these (effect id, value) parts: the inverse of `parts`."""
+        parts = tuple(parts)
+        if not parts:
+            return cls()
+        return cls(*parts[0]) if len(parts) == 1 else cls(COMBINED, parts)
+
 
 def nominal_value(effect_id: str, spec: Specimen) -> float | None:
     """The value of an effect's parameter at which it is absent (no inset, the specimen's

@@ -40,7 +40,7 @@ import numpy as np
 from scipy.special import ndtr
 
 from .bank import onset_amplitudes, variant_key
-from .effects import COMBINED, Variant, arch_group
+from .effects import Variant, arch_group
 from .likelihood import predictive_sd
 from .models import members
 from .observations import Observations
@@ -67,15 +67,12 @@ def posterior_draws(mp, k: int = DRAWS_AT_NEW) -> list[Variant]:
     names = [n for n in mp.grid.names if n != "table_motion"]
     if not names:
         return [Variant()] * k
+    columns = [(n, mp.grid.values[mp.grid.names.index(n)]) for n in names]
     cdf = np.cumsum(mp.weights)
     out = []
     for i in range(k):
         j = min(int(np.searchsorted(cdf, (i + 0.5) / k * cdf[-1])), cdf.size - 1)
-        parts = []
-        for n in names:
-            v = mp.grid.values[mp.grid.names.index(n)][j]
-            parts.append((n, str(v) if mp.grid.values[mp.grid.names.index(n)].dtype == object else round(float(v), 6)))
-        out.append(Variant(*parts[0]) if len(parts) == 1 else Variant(COMBINED, tuple(parts)))
+        out.append(Variant.of((n, str(v[j]) if v.dtype == object else round(float(v[j]), 6)) for n, v in columns))
     return out
 
 

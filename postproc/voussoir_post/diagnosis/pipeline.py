@@ -32,7 +32,7 @@ from ..errors import InputError
 from ..readers.campaign import read_campaign
 from .bank import Bank, build_bank
 from .decision import Decision, decide, flags, to_separate
-from .effects import COMBINED, Variant
+from .effects import Variant
 from .models import CANDIDATES, MODEL_IDS, members, model_prior
 from .observations import Observations, from_campaign
 from .next_test import next_test
@@ -99,8 +99,7 @@ def model_run(model_id: str | None, params: dict, obs: Observations) -> tuple[Va
         elif e == "table_motion":
             motion = {"table_gain": params["accel_gain"]["value"],
                       "table_delay_s": max(0.0, params.get("delay_s", {"value": 0.0})["value"])}
-    variant = Variant() if not parts else (Variant(*parts[0]) if len(parts) == 1 else Variant(COMBINED, tuple(parts)))
-    return variant, motion
+    return Variant.of(parts), motion
 
 
 def infer_campaign(bank: Bank, obs: Observations) -> tuple[Posterior, Decision]:
@@ -148,7 +147,8 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     suggestion = None
     if len(asked) > 1:
         log(f"[diagnose] looking for the test that separates {', '.join(asked)} (tested and new frequencies)")
-        suggestion = next_test(post, obs, asked, settings, cache / "next-test", campaign.table)  # beside the bank: a rerun reuses it
+        # The next test's simulations beside the bank: a rerun reuses them.
+        suggestion = next_test(post, obs, asked, settings, cache / "next-test", campaign.table)
     sim = Simulator(settings, out_dir / "work")
     runs = {"nominal": (Variant(), {})}
     if shown:
