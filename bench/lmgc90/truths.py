@@ -501,7 +501,10 @@ def main(argv=None) -> int:
             target = out / "counterfactual" / f"{name}_without_{effect}.json"
             if target.exists():
                 continue
-            rec0 = json.loads((out / f"{name}.json").read_text())
+            source = out / f"{name}.json"
+            if not source.exists():
+                sys.exit(f"truths.py: --without: no stored truth {source}")
+            rec0 = json.loads(source.read_text())
             truth = counterfactual(rec0, effect)
             print(f"{time.strftime('%H:%M:%S')} {name} without {effect}: {truth['model']}", flush=True)
             with tempfile.TemporaryDirectory(prefix="lmgc-cf-") as d:
