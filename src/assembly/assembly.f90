@@ -118,19 +118,24 @@ contains
   !> are the springing joints. Bodies 1..n are the voussoirs from left to right, n+1 the
   !> left foundation, n+2 the right one. With `restrained`, a bracket carried by the
   !> table stands against the outer face of the bottom voussoir on that side
-  !> (restrained(1) left, restrained(2) right). With `angle_factors` (n values of mean 1,
-  !> see `voussoir_angle_factors`), voussoir i embraces angle_factors(i) embrace/n.
-  subroutine build_arch(embrace_deg, n_voussoirs, r_ext_m, thickness_m, arch, restrained, angle_factors)
+  !> (restrained(1) left, restrained(2) right), `bracket_gap_m` off it (default 0: in
+  !> contact). With `angle_factors` (n values of mean 1, see `voussoir_angle_factors`),
+  !> voussoir i embraces angle_factors(i) embrace/n.
+  subroutine build_arch(embrace_deg, n_voussoirs, r_ext_m, thickness_m, arch, restrained, angle_factors, &
+                        bracket_gap_m)
     real(dp), intent(in) :: embrace_deg, r_ext_m, thickness_m
     integer, intent(in) :: n_voussoirs
     type(assembly_t), intent(out) :: arch
     logical, intent(in), optional :: restrained(2)
     real(dp), intent(in), optional :: angle_factors(n_voussoirs)
-    real(dp) :: r_int, ang, inner(2, 0:n_voussoirs), outer(2, 0:n_voussoirs), swept
+    real(dp), intent(in), optional :: bracket_gap_m
+    real(dp) :: r_int, ang, inner(2, 0:n_voussoirs), outer(2, 0:n_voussoirs), swept, gap
     logical :: bracket(2)
     integer :: j, n, nb, side
 
     n = n_voussoirs
+    gap = 0.0_dp
+    if (present(bracket_gap_m)) gap = bracket_gap_m
     bracket = .false.
     if (present(restrained)) bracket = restrained
     nb = n + 2 + count(bracket)
@@ -177,7 +182,7 @@ contains
     do side = 1, 2
       if (.not. bracket(side)) cycle
       j = j + 1
-      arch%polygon(j)%xy = bracket_block(side, outer, n, thickness_m)
+      arch%polygon(j)%xy = bracket_block(side, outer, n, thickness_m, gap)
       arch%driven(j) = .true.
       arch%role(j) = role_restraint
     end do
@@ -197,10 +202,13 @@ contains
   !> A bracket on the table against the outer (extrados) face of the bottom voussoir of
   !> `side` (1 left, 2 right): its inner face is the lower half of that extrados chord,
   !> it is a thickness wide and stands on the level of the springing's outer corner.
-  pure function bracket_block(side, outer, n, thickness_m) result(xy)
+  !> With a gap, the whole block stands that far off the chord, along the chord's
+  !> outward normal (the radius through the chord's middle): a bracket with play.
+  pure function bracket_block(side, outer, n, thickness_m, gap_m) result(xy)
     integer, intent(in) :: side, n
-    real(dp), intent(in) :: outer(2, 0:n), thickness_m
-    real(dp) :: xy(2, 4), p0(2), mid(2)
+    real(dp), intent(in) :: outer(2, 0:n), thickness_m, gap_m
+    real(dp) :: xy(2, 4), p0(2), mid(2), normal(2)
+    integer :: k
     if (side == 1) then
       p0 = outer(:, 0)
       mid = 0.5_dp*(p0 + outer(:, 1))
@@ -210,6 +218,10 @@ contains
       mid = 0.5_dp*(p0 + outer(:, n - 1))
       xy = reshape([p0, [p0(1) + thickness_m, p0(2)], [p0(1) + thickness_m, mid(2)], mid], [2, 4])
     end if
+    normal = mid/norm2(mid)   ! mid is the middle of the chord, the circle's centre the origin
+    do k = 1, 4
+      xy(:, k) = xy(:, k) + gap_m*normal
+    end do
   end function bracket_block
 
 end module voussoir_assembly

@@ -38,7 +38,8 @@ contains
         restrained = [a%restrained_springings == springings_left .or. a%restrained_springings == springings_both, &
                       a%restrained_springings == springings_right .or. a%restrained_springings == springings_both]
         call build_arch(a%embrace_deg, a%n_voussoirs, a%r_ext_m, a%thickness_m, assembly, restrained, &
-                        voussoir_angle_factors(a%n_voussoirs, a%size_imperfection, a%imperfection_seed))
+                        voussoir_angle_factors(a%n_voussoirs, a%size_imperfection, a%imperfection_seed), &
+                        a%bracket_gap_m)
       end if
     end associate
   end subroutine build_config_assembly

@@ -54,6 +54,7 @@ module voussoir_config
     real(dp) :: friction = 0.5_dp             !! Coulomb coefficient of every contact
     real(dp) :: contact_inset_m = 0.0_dp      !! contact points set in from face ends [m]
     character(len=16) :: restrained_springings = springings_none  !! one of springings_names
+    real(dp) :: bracket_gap_m = 0.0_dp        !! play between each bracket and its voussoir [m]
     character(len=path_len) :: polygon_file = ''          !! assembly instead of an arch
     !> Coulomb coefficient of joint j (0..n_voussoirs) where set, e.g. joint_friction(0) = 0.3
     real(dp) :: joint_friction(0:max_joint) = unset_friction
@@ -283,6 +284,7 @@ contains
     call g%add('contact_inset_m', a%contact_inset_m, unit='m', range='contact_inset_m >= 0 (finite)', &
                when=checked_apart)
     call g%add('restrained_springings', a%restrained_springings, choices=springings_names, when=arch_builder)
+    call g%add('bracket_gap_m', a%bracket_gap_m, unit='m', range='bracket_gap_m >= 0 (finite)', when=arch_builder)
     call g%add('polygon_file', a%polygon_file)
     call g%add('joint_friction', a%joint_friction, first=0, unset=unset_friction, range='joint_friction >= 0', &
                about='real, the friction of joint j = 0..n_voussoirs')

@@ -141,6 +141,14 @@ contains
       if (a%size_imperfection > 0.0_dp .and. len_trim(a%polygon_file) > 0) &
         call need(.false., f, 'arch', 'size_imperfection', a%size_imperfection, &
                   '0: a polygon_file assembly has no voussoirs', status)
+      ! A bracket stands off its voussoir by less than the ring's thickness, and only where
+      ! there is one.
+      if (a%bracket_gap_m > 0.0_dp .and. len_trim(a%polygon_file) == 0) then
+        call need(a%restrained_springings /= springings_none, f, 'arch', 'bracket_gap_m', a%bracket_gap_m, &
+                  "0 with restrained_springings = 'none' (there is no bracket to stand off)", status)
+        call need(a%bracket_gap_m < a%thickness_m, f, 'arch', 'bracket_gap_m', a%bracket_gap_m, &
+                  '0 <= bracket_gap_m < thickness_m = '//fmt_real(a%thickness_m), status)
+      end if
       call need(a%contact_inset_m >= 0.0_dp .and. a%contact_inset_m < 0.5_dp*a%thickness_m, &
                 f, 'arch', 'contact_inset_m', a%contact_inset_m, &
                 '0 <= contact_inset_m < thickness_m/2 = '//fmt_real(0.5_dp*a%thickness_m), status)

@@ -550,6 +550,34 @@ elif case == "restrained":
     rc, out, err = run("restrained_left.nml")
     check(rc == 0 and "do not model the restraint brackets" in out and "towards -x" in out,
           "left bracket: the table says the LP models the brackets")
+    # Brackets with play (bracket_gap_m): in the limit analysis (rigid blocks, small
+    # displacements) a bracket that stands off its voussoir touches nothing, so the arch
+    # is the free one in both directions, whatever the side; and each bracket's interface
+    # is gone. A gap of 0 is the bracket in contact (the cases above).
+    for side in ("left", "both"):
+        with open(f"gap_{side}.nml", "w") as f:
+            f.write(f"&arch embrace_deg = {emb}, n_voussoirs = {n}, r_ext_m = {r_ext}, thickness_m = {t},\n"
+                    f"  width_m = 0.145, density_kg_m3 = 700, friction = 10, restrained_springings = '{side}',\n"
+                    f"  bracket_gap_m = 0.0004 /\n")
+        d = load(f"gap_{side}.nml")
+        for sfx, sign in (("", 1.0), ("_neg", -1.0)):
+            check(close(d["load_factor" + sfx], expected((), sign), rtol=1e-6),
+                  f"{side} brackets 0.4 mm off: load_factor{sfx} {d['load_factor' + sfx]} = the free arch's "
+                  f"{expected((), sign)}")
+        brackets = [f for f in d["contact_forces"] + d["contact_forces_neg"] if f["joint"] is None]
+        check(not brackets, f"{side} brackets 0.4 mm off: no bracket interface ({len(brackets)})")
+    with open("gap_none.nml", "w") as f:
+        f.write(f"&arch embrace_deg = {emb}, n_voussoirs = {n}, r_ext_m = {r_ext}, thickness_m = {t},\n"
+                f"  width_m = 0.145, density_kg_m3 = 700, friction = 10, bracket_gap_m = 0.0004 /\n")
+    rc, out, err = run("gap_none.nml")
+    check(rc != 0 and "bracket_gap_m" in err + out and "restrained_springings" in err + out,
+          f"a bracket gap without brackets is refused, naming both variables: {err.strip()}")
+    with open("gap_thick.nml", "w") as f:
+        f.write(f"&arch embrace_deg = {emb}, n_voussoirs = {n}, r_ext_m = {r_ext}, thickness_m = {t},\n"
+                f"  width_m = 0.145, density_kg_m3 = 700, restrained_springings = 'left', bracket_gap_m = 0.08 /\n")
+    rc, out, err = run("gap_thick.nml")
+    check(rc != 0 and "bracket_gap_m" in err + out and "thickness_m" in err + out,
+          f"a bracket gap wider than the ring is refused: {err.strip()}")
 elif case == "joint_friction":
     # &arch joint_friction(j), the friction of joint j alone in the dynamics, in both
     # analyses. Every joint at 0.395 through joint_friction is the arch at friction 0.395.
