@@ -10,7 +10,7 @@ module voussoir_limit_lp_output
   implicit none
   private
 
-  public :: write_lp_table, lp_json
+  public :: write_lp_table, lp_json, curve_json
 
 contains
 
