@@ -1066,6 +1066,11 @@ elif case == "load_cases":
             plain, plain_curve = patched, curve(patched)
         else:
             filled = patched
+            axle = write("cases_vehicle_patch.nml", f"&load {path} /\n&vehicle axle_load_kn = 100, "
+                                                    "patch_length_m = 0.3 /\n")
+            check(worst_ratio(curve(patched), curve(axle)) < 1e-12,
+                  f"&vehicle patch_length_m = 0.3: a one-axle vehicle of 100 kN = the patch of &load along the path "
+                  f"({worst_ratio(curve(patched), curve(axle)):.1e})")
     # (2) gamma_q on the bare bridge (a patch of 0.3 m).
     one = "&load point_load_n(1) = 100000, point_load_patch_m(1) = 0.3, " + path + " /\n"
     q = write("cases_gamma_q.nml", one + "&load_cases name(1) = 'q', gamma_q(1) = 1.5 /\n", bare)
