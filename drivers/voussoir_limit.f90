@@ -20,6 +20,8 @@ program voussoir_limit
   use voussoir_limit_analysis, only: limit_result_t
   use voussoir_limit_study, only: limit_options_t, thickness_result_t, read_limit_group, analyse, limit_table
   use voussoir_limit_lp_study, only: lp_study_t
+  use voussoir_limit_load_cases, only: case_study_t
+  use voussoir_load_case_config, only: load_cases_group
   use voussoir_limit_output, only: write_table, write_json
   use voussoir_command_line, only: input_argument, write_warnings
   implicit none
@@ -30,25 +32,26 @@ program voussoir_limit
   type(limit_result_t) :: res
   type(thickness_result_t) :: tmin
   type(lp_study_t) :: lp
+  type(case_study_t), allocatable :: cases(:)
   type(status_t) :: status
   character(len=1024) :: path
   logical :: json
 
   call parse_arguments(path, json)
-  call read_config(trim(path), [character(len=8) :: 'arch', 'wall', 'motion', 'solver', 'output', 'limit', 'load', &
-                   'bridge', 'vehicle'], &
+  call read_config(trim(path), [character(len=10) :: 'arch', 'wall', 'motion', 'solver', 'output', 'limit', 'load', &
+                   'bridge', 'vehicle', 'load_cases'], &
                    cfg, status)
   if (status%ok) call write_warnings('voussoir-limit', cfg%warnings)
   if (status%ok) call read_limit_group(trim(path), cfg, opts, status)
-  if (status%ok) call analyse(cfg, opts, arch, res, tmin, lp, status)
+  if (status%ok) call analyse(cfg, opts, arch, res, tmin, lp, cases, status)
   if (.not. status%ok) then
     write (error_unit, '(a)') 'voussoir-limit: error: '//trim(status%message)
     stop 1, quiet=.true.
   end if
   if (json) then
-    call write_json(output_unit, trim(path), cfg, opts, arch, res, tmin, lp)
+    call write_json(output_unit, trim(path), cfg, opts, arch, res, tmin, lp, cases)
   else
-    call write_table(output_unit, trim(path), cfg, opts, res, tmin, lp)
+    call write_table(output_unit, trim(path), cfg, opts, res, tmin, lp, cases)
   end if
 
 contains
@@ -61,13 +64,14 @@ contains
     integer :: exit_code
     type(config_t), target :: defaults          ! what --help lists the tables over
     type(limit_options_t), target :: limit_defaults
-    type(nml_group_t) :: tables(9)
+    type(nml_group_t) :: tables(10)
     call config_groups(defaults, tables(1:4))
     call wall_group(defaults%wall, tables(5))
     call limit_table(limit_defaults, tables(6))
     call load_group(defaults%load, tables(7))
     call bridge_group(defaults%bridge, tables(8))
     call vehicle_group(defaults%vehicle, tables(9))
+    call load_cases_group(defaults%cases, tables(10))
     call input_argument('voussoir-limit', 'voussoir-limit FILE.nml [--json]', &
       'Limit analysis of the assembly of FILE.nml (arch, &wall, &bridge or polygon file): the horizontal acceleration '// &
       '(in g) that brings it down statically, by linear programming with Coulomb friction (associative and '// &

@@ -72,7 +72,7 @@ driver=voussoir-limit case_ load_nan "&load point_load_n\(1\) = NaN is not a fin
 &load point_load_n(1) = NaN /"
 driver=voussoir-limit case_ load_negative "&load point_load_n\(1\) = -5 is outside the allowed range 0 < point_load_n <= 1e12 N" "$ld
 &load point_load_n(1) = -5 /"
-driver=voussoir-limit case_ load_no_magnitude "&load point load 2 has a point, a direction or a kind but no magnitude" "$ld
+driver=voussoir-limit case_ load_no_magnitude "&load point load 2 has a point, a direction, a kind, a patch or a case but no magnitude" "$ld
 &load point_load_n(1) = 100, point_load_x_m(2) = 0.3 /"
 driver=voussoir-limit case_ load_path_dead "&load path_points moves or repeats the live point loads, but no point load is live" "$ld
 &load point_load_n(1) = 100, point_load_live(1) = .false., path_points = 5, path_x0_m = -0.3, path_x1_m = 0.3 /"
@@ -502,6 +502,32 @@ driver=voussoir-limit case_ vehicle_narrow_effective_width "&vehicle effective_w
 driver=voussoir-limit case_ vehicle_axle_load_zero_kn "&vehicle axle_load_kn\(1\) = -5 is outside the allowed range 0 < axle_load_kn <= 1e5 kN" "&bridge $br /
 &load $pa /
 &vehicle axle_load_kn = -5 /"
+
+# Patches, load cases and partial factors (&load point_load_patch_m, point_load_case,
+# &load_cases; issue 37, item 3): each names the variable and its value.
+driver=voussoir-limit case_ patch_negative "&load point_load_patch_m\(1\) = -0.3 is outside the allowed range 0 <= point_load_patch_m <= 100 m" "&bridge $br /
+&load point_load_n(1) = 1000, point_load_patch_m(1) = -0.3, $pa /"
+driver=voussoir-limit case_ patch_off_deck "&load path_x0_m = -0.8 is outside the allowed range path_x0_m >= -0.7 m: there the live load reaches back to x = -1.1 m, off the deck" "&bridge $br /
+&load point_load_n(1) = 1000, point_load_patch_m(1) = 0.6, path_x0_m = -0.8, path_x1_m = 9, path_points = 5 /"
+driver=voussoir-limit case_ patch_dead "&load point_load_patch_m\(1\) = 0.3 is outside the allowed range point_load_patch_m = 0 for a dead load" "&bridge $br /
+&load point_load_n(1) = 1000, point_load_live(1) = .false., point_load_x_m(1) = 5, point_load_y_m(1) = 2.9, point_load_patch_m(1) = 0.3 /"
+driver=voussoir-limit case_ load_case_gamma_q_zero "&load_cases gamma_q\(1\) = 0 is outside the allowed range 0 < gamma_q <= 10" "&bridge $br /
+&load point_load_n(1) = 1000, $pa /
+&load_cases name(1) = 'axle', gamma_q(1) = 0 /"
+driver=voussoir-limit case_ load_case_gamma_g_negative "&load_cases gamma_g\(1\) = -1 is outside the allowed range 0 < gamma_g <= 10" "&bridge $br /
+&load point_load_n(1) = 1000, $pa /
+&load_cases name(1) = 'axle', gamma_g(1) = -1 /"
+driver=voussoir-limit case_ load_case_without_loads "&load_cases case 2 'tandem' has no live load: give it a live point load of &load with point_load_case\(j\) = 2" "&bridge $br /
+&load point_load_n(1) = 1000, point_load_case(1) = 1, $pa /
+&load_cases name(1) = 'axle', name(2) = 'tandem' /"
+driver=voussoir-limit case_ load_case_beyond "&load point_load_case\(1\) = 3: &load_cases has cases 1..2" "&bridge $br /
+&load point_load_n(1) = 1000, point_load_case(1) = 3, $pa /
+&load_cases name(1) = 'axle', name(2) = 'tandem' /"
+driver=voussoir-limit case_ load_case_without_cases "&load point_load_case\(1\) = 1 names a load case, but the file has no &load_cases" "&bridge $br /
+&load point_load_n(1) = 1000, point_load_case(1) = 1, $pa /"
+driver=voussoir-limit case_ load_case_unnamed "&load_cases gives a factor of case 1 but no name\\(1\\)" "&bridge $br /
+&load point_load_n(1) = 1000, $pa /
+&load_cases gamma_q(1) = 1.5 /"
 
 # An unknown option is named, then the usage; exit 2 (issue 26).
 for d in voussoir-run voussoir-limit voussoir-sweep; do

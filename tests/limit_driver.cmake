@@ -82,3 +82,11 @@ add_test(NAME limit_driver_bridge_vehicle
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
                  bridge_vehicle ${CMAKE_SOURCE_DIR}/input/bridge_fill.nml
          WORKING_DIRECTORY ${LIMIT_TEST_DIR})
+# Patches, load cases and partial factors (&load point_load_patch_m, &load_cases, issue 37):
+# a vanishing patch is the point load, gamma_q divides the load factor, gamma_g multiplies
+# it (the LP is homogeneous in the loads) with statics under the factored loads, and each
+# case of input/bridge_load_cases.nml equals that case alone in its own file.
+add_test(NAME limit_driver_load_cases
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
+                 load_cases ${CMAKE_SOURCE_DIR}/input/bridge_load_cases.nml
+         WORKING_DIRECTORY ${LIMIT_TEST_DIR})

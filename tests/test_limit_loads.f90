@@ -21,13 +21,17 @@
 !>   the pivot, lambda = (W b/2 + 3 q b^2/8) / (P h);
 !> - an axle group: P at (0.05, h) repeated at +0.1 m, both on the top (y = h): 2 P at
 !>   height h, lambda = W b / (4 P h).
+!> - a live patch P of length p centred on x0 on the top surface: uniform, so its strips
+!>   sum to P and their resultant stands at x0; each strip lies within x0 -/+ p/2 on the
+!>   block the top surface has there; on a single block its moment about any point is
+!>   that of the point load P at x0.
 program test_limit_loads
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t
   use voussoir_assembly, only: assembly_t, build_arch, role_voussoir, role_foundation
   use voussoir_wall, only: box, block_stack
   use voussoir_load_config, only: load_config_t
-  use voussoir_placed_loads, only: placed_loads_t, place_loads, block_at, top_surface
+  use voussoir_placed_loads, only: placed_loads_t, place_loads, block_at, top_surface, kind_patch, dispersion_strips
   use voussoir_block_interfaces, only: interface_set_t, find_interfaces
   use voussoir_limit_lp, only: block_loads_t, lp_result_t, block_loads, add_placed_loads, lp_capacity, &
                                joint_hinge, joint_sliding
@@ -43,6 +47,7 @@ program test_limit_loads
   call test_distributed_and_axles()
   call test_placement()
   call test_refusals()
+  call test_patch()
   call assert_summary()
 
 contains
@@ -250,5 +255,84 @@ contains
                      index(status%message, 'block 2') > 0, 'a live load pressing down: unbounded, block 2 named ('// &
                      trim(status%message)//')')
   end subroutine test_refusals
+
+  !> A live patch of 0.7 m centred at x0 = -0.2 m on the extrados of a semicircular arch
+  !> (R_ext 1 m, 10 voussoirs): its strips sum to P, their resultant at x0, each within the
+  !> patch on the block on top there (several voussoirs); the patch in words of the JSON
+  !> (n_surface, spread = x0 -/+ p/2). A patch on a block alone gives the point load's
+  !> force and moment on it. Refusals: a patch beyond the assembly; a patch of a load
+  !> acting at its own point (no path, no axles, no fill).
+  subroutine test_patch()
+    type(assembly_t) :: asm
+    type(load_config_t) :: d
+    type(placed_loads_t) :: placed, point
+    type(block_loads_t) :: patch_loads, point_loads
+    type(status_t) :: status
+    real(dp), parameter :: p = 1000.0_dp, x0 = -0.2_dp, length = 0.7_dp
+    real(dp) :: total, moment, y
+    integer :: k, blk, n_strips, blocks_hit(20)
+    logical :: found, on_top
+    call build_arch(180.0_dp, 10, 1.0_dp, 0.1_dp, asm)
+    call add_load(d, p, -90.0_dp, x0, 0.0_dp, .true.)
+    d%point_load_patch_m(1) = length
+    d%path_points = 2          ! the live loads stand on the top surface
+    d%path_x0_m = -0.5_dp
+    d%path_x1_m = 0.5_dp
+    call place_loads(d, asm, 0.0_dp, placed, status)
+    call assert_true(status%ok, 'patch on an arch: placed')
+    total = 0.0_dp
+    moment = 0.0_dp
+    n_strips = 0
+    on_top = .true.
+    blocks_hit = 0
+    do k = 1, placed%n
+      if (placed%kind(k) /= kind_patch) cycle
+      n_strips = n_strips + 1
+      total = total - placed%force_n(2, k)
+      moment = moment - placed%force_n(2, k)*placed%xy(1, k)
+      call top_surface(asm, placed%xy(1, k), y, blk, found)
+      on_top = on_top .and. found .and. blk == placed%block(k) .and. abs(y - placed%xy(2, k)) < 1.0e-12_dp .and. &
+               abs(placed%xy(1, k) - x0) < 0.5_dp*length .and. placed%live(k) .and. placed%force_n(1, k) == 0.0_dp
+      blocks_hit(placed%block(k)) = 1
+    end do
+    call assert_true(n_strips == dispersion_strips, 'patch: '//'its strips placed')
+    call assert_close(total, p, 'patch: the strips sum to the load', rtol=1.0e-12_dp)
+    call assert_close(moment/total, x0, 'patch: the strips'' resultant at the patch''s centre', atol=1.0e-12_dp)
+    call assert_true(on_top, 'patch: every strip within x0 -/+ p/2 on the block on top there, live, vertical')
+    call assert_true(sum(blocks_hit) >= 3, 'patch: it covers several voussoirs')
+    call assert_true(placed%n_surface == 1 .and. .not. placed%surface_on_fill, 'patch: recorded once, not on a fill')
+    call assert_close(placed%surface_spread_x_m(1, 1), x0 - 0.5_dp*length, 'patch: from x0 - p/2', atol=1.0e-12_dp)
+    call assert_close(placed%surface_spread_x_m(2, 1), x0 + 0.5_dp*length, 'patch: to x0 + p/2', atol=1.0e-12_dp)
+    ! On one block (the voussoir right of the crown joint spans x = 0 .. cos 72 deg = 0.309 m
+    ! at its extrados corners), a patch of 0.2 m at x = 0.15 m loads it as the point load
+    ! there (force and moment).
+    d%point_load_x_m(1) = 0.15_dp
+    d%point_load_patch_m(1) = 0.2_dp
+    call place_loads(d, asm, 0.0_dp, placed, status)
+    d%point_load_patch_m(1) = 0.0_dp
+    call place_loads(d, asm, 0.0_dp, point, status)
+    call block_loads(asm, rho, width, g, patch_loads)
+    call block_loads(asm, rho, width, g, point_loads)
+    call add_placed_loads(placed, patch_loads)
+    call add_placed_loads(point, point_loads)
+    call assert_true(status%ok .and. maxval(abs(patch_loads%live_n - point_loads%live_n)) < 1.0e-9_dp*p .and. &
+                     maxval(abs(patch_loads%live_moment_nm - point_loads%live_moment_nm)) < 1.0e-12_dp*p, &
+                     'a patch on one block = the point load at its centre (force and moment)')
+    ! Beyond the arch's end (x = 1 m): refused, the patch named.
+    d%point_load_x_m(1) = 0.9_dp
+    d%point_load_patch_m(1) = 0.4_dp
+    call place_loads(d, asm, 0.0_dp, placed, status)
+    call assert_true(.not. status%ok .and. index(status%message, 'a patch of 0.4 m') > 0 .and. &
+                     index(status%message, 'stands over no block') > 0, 'a patch beyond the arch: refused ('// &
+                     trim(status%message)//')')
+    ! A load at its own point (no path, no axles, no fill) cannot be a patch.
+    status = status_t()
+    d%point_load_x_m(1) = 0.0_dp
+    d%point_load_y_m(1) = 0.95_dp
+    d%path_points = 0
+    call place_loads(d, asm, 0.0_dp, placed, status)
+    call assert_true(.not. status%ok .and. index(status%message, 'point_load_patch_m(1)') > 0, &
+                     'a patch acting at its own point: refused ('//trim(status%message)//')')
+  end subroutine test_patch
 
 end program test_limit_loads

@@ -188,3 +188,35 @@ def test_bridge_report_of_two_spans_with_fill_and_a_vehicle(voussoir_limit_exe, 
         assert (out / name).read_bytes()[:8] == PNG_MAGIC
     for fig in drawn_figures[n_drawn:]:
         assert text_clashes(fig) == []
+
+
+def test_bridge_report_of_load_cases(voussoir_limit_exe, tmp_path):
+    """input/bridge_load_cases.nml (two cases with partial factors and patches): the report's
+    "Load cases" table is the JSON's ``load_cases`` (read with ``json`` alone), the
+    governing case marked and the least; the rest of the report is of that case, its live
+    load as factored (gamma_q x 2 x 100 kN)."""
+    path = tmp_path / "cases.json"
+    path.write_text(run_executable([voussoir_limit_exe, REPO_ROOT / "input" / "bridge_load_cases.nml", "--json"],
+                                   tmp_path).stdout)
+    raw = json.loads(path.read_text())
+    assert post.main(["bridge-report", str(path), "--out", str(tmp_path / "r")]) == 0
+    report = (tmp_path / "r" / "report.md").read_text()
+    rows = _table(report, "Load cases")
+    cases = raw["load_cases"]
+    assert len(rows) == len(cases) == 2
+    gov = min(range(len(cases)), key=lambda k: cases[k]["load_factor"])
+    assert raw["governing_load_case"] == gov + 1
+    for k, (row, case) in enumerate(zip(rows, cases)):
+        assert row[0] == f"{k + 1} '{case['name']}'"
+        assert float(row[1]) == case["gamma_q"] and float(row[2]) == case["gamma_g"]
+        assert float(row[3]) == pytest.approx(case["factored_live_load_n"] / 1e3, rel=1e-3)
+        assert float(row[4]) == pytest.approx(case["load_factor"], abs=5.1e-5)
+        assert float(row[6]) == pytest.approx(case["critical_position"]["x_m"], abs=5e-3)
+        assert float(row[7]) == pytest.approx(case["load_factor"] * case["factored_live_load_n"] / 1e3, rel=1e-3)
+        assert ("not adequate" in row[8]) == (case["load_factor"] < 1) and ("governs" in row[8]) == (k == gov)
+    assert f"governing case, {gov + 1} '{cases[gov]['name']}'" in report
+    (row,) = _table(report, "Load factor")
+    assert float(row[1]) == pytest.approx(cases[gov]["load_factor"], abs=5.1e-5)
+    assert float(row[3]) == pytest.approx(cases[gov]["collapse_live_load_n"] / 1e3, rel=1e-3)
+    live = [r for r in _table(report, "Loads") if r[0] == "the live load (load factor 1)"]
+    assert float(live[0][1]) == pytest.approx(cases[gov]["factored_live_load_n"] / 1e3, rel=1e-3)

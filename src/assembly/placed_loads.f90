@@ -1,8 +1,9 @@
 !> The loads of a &load group placed on the blocks of an assembly: each point load on the
 !> block that contains its point (1e-9 m of tolerance on a block's boundary), the live
 !> loads of an axle group and of a path on the top surface of the assembly (the highest
-!> boundary point of any block at their x), the distributed dead load split into strips
-!> on the blocks whose top lies under them. voussoir-limit's LP and voussoir-run's
+!> boundary point of any block at their x), a live patch split into strips on the blocks
+!> under it (spread through the fill where there is one), the distributed dead load split
+!> into strips on the blocks whose top lies under them. voussoir-limit's LP and voussoir-run's
 !> set-up read the same placed loads. docs/limit_analysis.md, "Loads".
 module voussoir_placed_loads
   use voussoir_kinds, only: dp
@@ -15,7 +16,7 @@ module voussoir_placed_loads
   private
   public :: placed_loads_t, place_loads, block_at, top_surface, moves_on_top, vehicle_x, fill_column
   public :: boundary_tol_m, dead_load_strips, dispersion_strips
-  public :: kind_point, kind_dead_strip, kind_fill, kind_dispersed
+  public :: kind_point, kind_dead_strip, kind_fill, kind_dispersed, kind_patch
 
   real(dp), parameter :: boundary_tol_m = 1.0e-9_dp   !! a point this close outside a block is on it
   integer, parameter :: dead_load_strips = 1000       !! strips of the distributed dead load
@@ -24,6 +25,7 @@ module voussoir_placed_loads
   integer, parameter :: kind_dead_strip = 2  !! a strip of &load's distributed dead load
   integer, parameter :: kind_fill = 3        !! the weight of the fill above one top face of a block
   integer, parameter :: kind_dispersed = 4   !! a strip of a live load spread through the fill
+  integer, parameter :: kind_patch = 5       !! a strip of a live patch on the top surface (no fill)
 
   !> Forces at points of the blocks: live ones (times the load factor) and dead ones.
   type :: placed_loads_t
@@ -35,12 +37,16 @@ module voussoir_placed_loads
     logical, allocatable :: live(:)
     integer, allocatable :: kind(:)          !! kind_point, kind_dead_strip, kind_fill or kind_dispersed
     !> With a fill: each live load as it stands on the fill's surface (its strips on the
-    !> blocks are the kind_dispersed loads), and the extent of x it spreads over.
+    !> blocks are the kind_dispersed loads), and the extent of x it spreads over. Without
+    !> one: each live patch where its centre stands on the top surface (its strips the
+    !> kind_patch loads) and the x it covers.
+    logical :: surface_on_fill = .false.           !! the surface loads stand on a fill
     integer :: n_surface = 0
     integer, allocatable :: surface_source(:)      !! point load j of &load
     real(dp), allocatable :: surface_xy(:, :)      !! (2, n_surface) on the fill surface [m]
     real(dp), allocatable :: surface_force_n(:, :) !! (2, n_surface) at load factor 1 [N]
     real(dp), allocatable :: surface_spread_x_m(:, :) !! (2, n_surface) from x to x on the blocks [m]
+    real(dp), allocatable :: surface_patch_m(:)    !! (n_surface) the patch's length on the surface [m]
     !> With a fill's horizontal pressure: one bounded force per top face of a free block,
     !> horizontal, into the block, between the active and the mobilised passive resultant.
     integer :: n_pressure = 0
@@ -92,9 +98,10 @@ contains
     integer :: j, a, b
     logical :: found
 
+    placed%surface_on_fill = asm%has_fill
     allocate (placed%block(0), placed%source(0), placed%xy(2, 0), placed%force_n(2, 0), placed%live(0), &
               placed%kind(0), placed%surface_source(0), placed%surface_xy(2, 0), placed%surface_force_n(2, 0), &
-              placed%surface_spread_x_m(2, 0), placed%pressure_block(0), placed%pressure_xy(2, 0), &
+              placed%surface_spread_x_m(2, 0), placed%surface_patch_m(0), placed%pressure_block(0), placed%pressure_xy(2, 0), &
               placed%pressure_dir(2, 0), placed%pressure_lo_n(0), placed%pressure_hi_n(0))
     do j = 1, d%n_point_loads
       dir = direction(d%point_load_dir_deg(j))
@@ -109,13 +116,18 @@ contains
         do a = 0, d%n_axles
           x = d%point_load_x_m(j) + shift_x_m
           if (a > 0) x = x + d%axle_spacing_m(a)
-          call disperse_load(asm, placed, j, a, x, d%point_load_n(j), status)
+          call disperse_load(asm, placed, j, a, x, d%point_load_n(j), d%point_load_patch_m(j), status)
           if (.not. status%ok) return
         end do
       else if (d%point_load_live(j) .and. moves_on_top(d)) then
         do a = 0, d%n_axles
           x = d%point_load_x_m(j) + shift_x_m
           if (a > 0) x = x + d%axle_spacing_m(a)
+          if (d%point_load_patch_m(j) > 0.0_dp) then
+            call disperse_load(asm, placed, j, a, x, d%point_load_n(j), d%point_load_patch_m(j), status)
+            if (.not. status%ok) return
+            cycle
+          end if
           call top_surface(asm, x, y, b, found)
           if (.not. found) then
             call fail(status, '&load live point load '//itoa(j)//trim(axle_words(a))//' at x = '// &
@@ -125,6 +137,12 @@ contains
           end if
           call add_load(placed, b, j, [x, y], d%point_load_n(j)*dir, .true., kind_point)
         end do
+      else if (d%point_load_patch_m(j) > 0.0_dp) then
+        call fail(status, '&load point_load_patch_m('//itoa(j)//') = '//fmt_significant(d%point_load_patch_m(j), 6)// &
+                  ' m: a patch stands on the top surface, where a path (path_points >= 2), axle_spacing_m or a '// &
+                  'fill puts the live loads; here load '//itoa(j)//' acts at its point: give it a path, or '// &
+                  'point_load_patch_m = 0')
+        return
       else
         p = [d%point_load_x_m(j), d%point_load_y_m(j)]
         b = block_at(asm, p)
@@ -172,40 +190,49 @@ contains
     placed%kind = [placed%kind, kind]
   end subroutine add_load
 
-  !> Live load j (axle a) of `magnitude_n` on the fill surface of `asm` at `x0`: spread
-  !> either side at the dispersion angle from the vertical down to where those lines meet
-  !> the top of the blocks, uniformly along x in between (dispersion_strips strips on the
-  !> top surface); at angle 0, the whole load on the top surface beneath it.
-  subroutine disperse_load(asm, placed, j, a, x0, magnitude_n, status)
+  !> Live load j (axle a) of `magnitude_n`, a patch of `patch_m` along x centred on `x0`
+  !> (0: a point): on the fill's surface of `asm`, spread either side at the dispersion
+  !> angle from the vertical, from the patch's ends down to where those lines meet the top
+  !> of the blocks, uniformly along x in between (dispersion_strips strips on the top
+  !> surface); at angle 0, or without a fill, over the patch on the top surface beneath
+  !> it; a point at angle 0: the whole load on the top surface beneath it.
+  subroutine disperse_load(asm, placed, j, a, x0, magnitude_n, patch_m, status)
     type(assembly_t), intent(in) :: asm
     type(placed_loads_t), intent(inout) :: placed
     integer, intent(in) :: j, a
-    real(dp), intent(in) :: x0, magnitude_n
+    real(dp), intent(in) :: x0, magnitude_n, patch_m
     type(status_t), intent(inout) :: status
-    real(dp) :: x_lo, x_hi, dx, xs, ys
-    integer :: k, blk
+    real(dp) :: x_lo, x_hi, dx, xs, ys, y0
+    integer :: k, blk, side, kind
     logical :: ok
-    call top_surface(asm, x0, ys, blk, ok)
-    if (.not. ok) then
-      call fail(status, '&load live point load '//itoa(j)//trim(axle_words(a))//' at x = '//fmt_significant(x0, 6)// &
-                ' m stands over no block (the top surface of the assembly spans '//span_text(asm)//')')
-      return
-    end if
-    x_lo = spread_end(asm, x0, -1.0_dp)
-    x_hi = spread_end(asm, x0, 1.0_dp)
+    do side = -1, 1, 2   ! both ends of the patch (a point: x0 twice)
+      call top_surface(asm, x0 + side*0.5_dp*patch_m, ys, blk, ok)
+      if (.not. ok) then
+        call fail(status, '&load live point load '//itoa(j)//trim(axle_words(a))//' at x = '// &
+                  fmt_significant(x0, 6)//' m'//trim(patch_words(patch_m))//' stands over no block (the top '// &
+                  'surface of the assembly spans '//span_text(asm)//')')
+        return
+      end if
+    end do
+    call top_surface(asm, x0, y0, blk, ok)
+    x_lo = spread_end(asm, x0 - 0.5_dp*patch_m, -1.0_dp)
+    x_hi = spread_end(asm, x0 + 0.5_dp*patch_m, 1.0_dp)
     if (x_lo <= -huge(1.0_dp) .or. x_hi >= huge(1.0_dp)) then
       call fail(status, '&load live point load '//itoa(j)//trim(axle_words(a))//' at x = '//fmt_significant(x0, 6)// &
                 ' m spreads through the fill beyond the ends of the bridge ('//span_text(asm)//'): move it in, or '// &
                 'lower &bridge dispersion_angle_deg')
       return
     end if
+    kind = merge(kind_dispersed, kind_patch, asm%has_fill)
     placed%n_surface = placed%n_surface + 1
     placed%surface_source = [placed%surface_source, j]
-    placed%surface_xy = reshape([placed%surface_xy, x0, asm%fill_level_m], [2, placed%n_surface])
+    placed%surface_xy = reshape([placed%surface_xy, x0, merge(asm%fill_level_m, y0, asm%has_fill)], &
+                                [2, placed%n_surface])
     placed%surface_force_n = reshape([placed%surface_force_n, 0.0_dp, -magnitude_n], [2, placed%n_surface])
     placed%surface_spread_x_m = reshape([placed%surface_spread_x_m, x_lo, x_hi], [2, placed%n_surface])
+    placed%surface_patch_m = [placed%surface_patch_m, patch_m]
     if (x_hi - x_lo <= boundary_tol_m) then
-      call add_load(placed, blk, j, [x0, ys], [0.0_dp, -magnitude_n], .true., kind_dispersed)
+      call add_load(placed, blk, j, [x0, y0], [0.0_dp, -magnitude_n], .true., kind)
       return
     end if
     dx = (x_hi - x_lo)/dispersion_strips
@@ -217,9 +244,17 @@ contains
                   fmt_significant(xs, 6)//' m, where no block stands')
         return
       end if
-      call add_load(placed, blk, j, [xs, ys], [0.0_dp, -magnitude_n/dispersion_strips], .true., kind_dispersed)
+      call add_load(placed, blk, j, [xs, ys], [0.0_dp, -magnitude_n/dispersion_strips], .true., kind)
     end do
   end subroutine disperse_load
+
+  !> ' (a patch of p m)', or '' for a point.
+  function patch_words(patch_m) result(text)
+    real(dp), intent(in) :: patch_m
+    character(len=:), allocatable :: text
+    text = ''
+    if (patch_m > 0.0_dp) text = ' (a patch of '//fmt_significant(patch_m, 6)//' m)'
+  end function patch_words
 
   !> The fill's weight over every top face of a free block of `asm` that is the top
   !> surface there: the trapezoid between the face and the fill's level, its weight at its

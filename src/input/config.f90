@@ -15,6 +15,7 @@ module voussoir_config
   use voussoir_input_range, only: in_range
   use voussoir_wall_config, only: wall_config_t, read_wall_config, wall_group
   use voussoir_load_config, only: load_config_t, read_load_config, load_entries
+  use voussoir_load_case_config, only: load_cases_t, read_load_cases, check_load_cases, case_load, load_cases_group
   use voussoir_bridge_config, only: bridge_config_t, read_bridge_config, bridge_group, bridge_length_m
   use voussoir_vehicle_config, only: vehicle_config_t, read_vehicle_config, vehicle_group, add_vehicle_loads, &
     check_on_deck
@@ -126,6 +127,7 @@ module voussoir_config
     !> &load as the file gives it (`load` holds the vehicle's axles too): the effective
     !> settings record this one, so that they read back to the same configuration.
     type(load_config_t) :: load_given
+    type(load_cases_t) :: cases               !! named load cases with partial factors (&load_cases; none: n = 0)
     character(len=path_len) :: source_file = ''
     !> What validate_config found plausible but unusual, one line each, for the drivers to
     !> print (config_plausible.f90); not a setting.
@@ -191,8 +193,15 @@ contains
     cfg%load_given = cfg%load
     call add_vehicle_loads(cfg%vehicle, merge(cfg%bridge%width_m, cfg%arch%width_m, cfg%bridge%n_spans > 0), path, &
                            cfg%load, status)
-    call check_on_deck(cfg%bridge, cfg%load, cfg%vehicle, path, status)
+    if (any(allowed_groups == 'load_cases')) call read_load_cases(path, cfg%cases, status)
+    call check_load_cases(cfg%cases, cfg%load, path, status)
+    if (cfg%cases%n == 0) call check_on_deck(cfg%bridge, cfg%load, cfg%vehicle, path, status)
     if (.not. status%ok) return
+    do k = 1, cfg%cases%n   ! each case's live loads move about their own resultant
+      call check_on_deck(cfg%bridge, case_load(cfg%load, cfg%cases, k), cfg%vehicle, path, status)
+      if (.not. status%ok) status%message = trim(status%message)//' (load case '//itoa(k)//')'
+      if (.not. status%ok) return
+    end do
     if (cfg%bridge%n_spans > 0) then
       if (arch_given) then
         call fail(status, path//': &bridge and &arch both describe the assembly: give one of them (&bridge has '// &
@@ -338,7 +347,7 @@ contains
     type(config_t), intent(in) :: cfg
     type(config_entry_t), allocatable :: e(:)
     type(config_t), target :: c
-    type(nml_group_t) :: groups(4), wall, bridge, vehicle
+    type(nml_group_t) :: groups(4), wall, bridge, vehicle, cases
     c = cfg
     call config_groups(c, groups)
     e = [groups(1)%entries(), groups(2)%entries(), groups(3)%entries(), groups(4)%entries()]
@@ -356,6 +365,10 @@ contains
       e = [e, load_entries(c%load_given)]
       call vehicle_group(c%vehicle, vehicle)
       e = [e, vehicle%entries()]
+    end if
+    if (c%cases%n > 0) then
+      call load_cases_group(c%cases, cases)
+      e = [e, cases%entries()]
     end if
   end function config_entries
 

@@ -1,7 +1,8 @@
 !> The &load group: point loads (dead or live) at points of the blocks, an axle group
 !> (each live point load repeated at offsets along x), a distributed dead load on the top
 !> of the blocks over a range of x, and the path along which the live loads move to find
-!> their critical position. Input only: the loads are placed on the blocks by
+!> their critical position. A live point load may be a patch: spread uniformly over a
+!> length along x (a tyre's contact), on the top surface or the fill's. Input only: the loads are placed on the blocks by
 !> voussoir_placed_loads (src/assembly/placed_loads.f90). docs/limit_analysis.md, "Loads".
 module voussoir_load_config
   use voussoir_kinds, only: dp
@@ -25,6 +26,10 @@ module voussoir_load_config
     real(dp) :: point_load_x_m(max_point_loads) = 0.0_dp               !! point of application [m]
     real(dp) :: point_load_y_m(max_point_loads) = 0.0_dp
     logical :: point_load_live(max_point_loads) = .true.               !! live (times the load factor) or dead
+    !> A live load spread uniformly over this length along x, centred on its x [m]; 0: a point
+    real(dp) :: point_load_patch_m(max_point_loads) = 0.0_dp
+    !> The load case (&load_cases) of a live load; 0: every case
+    integer :: point_load_case(max_point_loads) = 0
     real(dp) :: axle_spacing_m(max_axles) = 0.0_dp      !! each live load repeated at these x offsets [m]
     real(dp) :: dead_load_n_per_m = 0.0_dp              !! a vertical dead load per metre of x [N/m]
     real(dp) :: dead_load_x0_m = 0.0_dp                 !! from x0 to x1 [m], on the top of the blocks
@@ -50,6 +55,10 @@ contains
     call g%add('point_load_x_m', d%point_load_x_m, unit='m', range='-1000 <= point_load_x_m <= 1000 m')
     call g%add('point_load_y_m', d%point_load_y_m, unit='m', range='-1000 <= point_load_y_m <= 1000 m')
     call g%add('point_load_live', d%point_load_live, about='logical, .true. live, .false. dead')
+    call g%add('point_load_patch_m', d%point_load_patch_m, unit='m', range='0 <= point_load_patch_m <= 100 m', &
+               about='real, m, the length along x a live load is spread over (0: a point)')
+    call g%add('point_load_case', d%point_load_case, range='0 <= point_load_case <= 16', &
+               about='integer, the load case of &load_cases a live load belongs to (0: every case)')
     call g%add('axle_spacing_m', d%axle_spacing_m, unset=0.0_dp, unit='m', &
                range='-1000 <= axle_spacing_m <= 1000 m', about='real, m, the x offset of axle j from the first')
     call g%add('dead_load_n_per_m', d%dead_load_n_per_m, unit='N/m', range='0 <= dead_load_n_per_m <= 1e12 N/m')
@@ -82,6 +91,7 @@ contains
       call need_finite('point_load_dir_deg('//itoa(j)//')', d%point_load_dir_deg(j))
       call need_finite('point_load_x_m('//itoa(j)//')', d%point_load_x_m(j))
       call need_finite('point_load_y_m('//itoa(j)//')', d%point_load_y_m(j))
+      call need_finite('point_load_patch_m('//itoa(j)//')', d%point_load_patch_m(j))
     end do
     do j = 1, size(d%axle_spacing_m)
       call need_finite('axle_spacing_m('//itoa(j)//')', d%axle_spacing_m(j))
@@ -96,11 +106,21 @@ contains
     if (.not. status%ok) return
     do j = d%n_point_loads + 1, size(d%point_load_n)
       if (d%point_load_x_m(j) /= 0.0_dp .or. d%point_load_y_m(j) /= 0.0_dp .or. &
-          d%point_load_dir_deg(j) /= default_dir_deg .or. .not. d%point_load_live(j)) then
-        call fail(status, path//': &load point load '//itoa(j)//' has a point, a direction or a kind but no magnitude: '// &
+          d%point_load_dir_deg(j) /= default_dir_deg .or. .not. d%point_load_live(j) .or. &
+          d%point_load_patch_m(j) /= 0.0_dp .or. d%point_load_case(j) /= 0) then
+        call fail(status, path//': &load point load '//itoa(j)//' has a point, a direction, a kind, a patch or a case but no '// &
+                  'magnitude: '// &
                   'set point_load_n('//itoa(j)//') > 0 [N]')
         return
       end if
+    end do
+    do j = 1, d%n_point_loads   ! a patch is a live load on the top surface, straight down
+      if (.not. status%ok) return
+      if (d%point_load_patch_m(j) == 0.0_dp) cycle
+      call need(d%point_load_live(j) .and. d%point_load_dir_deg(j) == default_dir_deg, path, 'load', &
+                'point_load_patch_m('//itoa(j)//')', d%point_load_patch_m(j), 'point_load_patch_m = 0 for a dead '// &
+                'load or one not straight down (a patch is a live load standing on the top surface or the '// &
+                "fill's, point_load_dir_deg = -90)", status)
     end do
     call need(d%dead_load_n_per_m == 0.0_dp .or. d%dead_load_x1_m > d%dead_load_x0_m, path, 'load', &
               'dead_load_x1_m', d%dead_load_x1_m, 'dead_load_x1_m > dead_load_x0_m = '//fmt_real(d%dead_load_x0_m)// &

@@ -33,6 +33,8 @@ module voussoir_vehicle_config
     !> strip (&bridge width_m) carries axle load x width_m/effective_width_m; 0: the whole axle.
     real(dp) :: effective_width_m = 0.0_dp
     real(dp) :: first_axle_x_m = 0.0_dp     !! where the first axle stands when no path moves it [m]
+    !> Each axle spread uniformly over this length along x (its tyres' contact) [m]; 0: a point
+    real(dp) :: patch_length_m = 0.0_dp
     integer :: n_axles = 0                  !! (derived) the axles given
     logical :: given = .false.              !! (derived) the file has &vehicle
   end type vehicle_config_t
@@ -53,6 +55,8 @@ contains
                about='real, m, the barrel width one axle spreads over (0: the whole axle on the strip)')
     call g%add('first_axle_x_m', v%first_axle_x_m, unit='m', range='-1000 <= first_axle_x_m <= 1000 m', &
                about='real, m, the first axle where no path moves the vehicle (voussoir-run)')
+    call g%add('patch_length_m', v%patch_length_m, unit='m', range='0 <= patch_length_m <= 10 m', &
+               about='real, m, the length along x each axle is spread over, its tyres'' contact (0: a point)')
   end subroutine vehicle_group
 
   !> Read and check the &vehicle group of `path` (absent: no vehicle). A named vehicle
@@ -181,6 +185,7 @@ contains
       d%point_load_x_m(j) = x
       d%point_load_y_m(j) = 0.0_dp
       d%point_load_live(j) = .true.
+      d%point_load_patch_m(j) = v%patch_length_m
     end do
     d%n_point_loads = d%n_point_loads + v%n_axles
   end subroutine add_vehicle_loads
@@ -209,9 +214,9 @@ contains
     total = 0.0_dp
     do j = 1, d%n_point_loads
       if (.not. d%point_load_live(j)) cycle
-      do a = 0, d%n_axles
-        lo = min(lo, axle_x(j, a))
-        hi = max(hi, axle_x(j, a))
+      do a = 0, d%n_axles   ! a patch reaches half its length either side
+        lo = min(lo, axle_x(j, a) - 0.5_dp*d%point_load_patch_m(j))
+        hi = max(hi, axle_x(j, a) + 0.5_dp*d%point_load_patch_m(j))
         resultant = resultant + d%point_load_n(j)*axle_x(j, a)
         total = total + d%point_load_n(j)
       end do
@@ -234,8 +239,9 @@ contains
     ! Where the loads stand without a path (voussoir-run's vehicle, always).
     if (v%given) then
       call need(lo >= deck_lo - tol_m .and. hi <= deck_hi + tol_m, path, 'vehicle', 'first_axle_x_m', &
-                v%first_axle_x_m, fmt_significant(deck_lo, 6)//' m <= first_axle_x_m <= '// &
-                fmt_significant(deck_hi - (hi - lo), 6)//' m: its axles stand from x = '//fmt_significant(lo, 6)// &
+                v%first_axle_x_m, fmt_significant(deck_lo + (v%first_axle_x_m - lo), 6)// &
+                ' m <= first_axle_x_m <= '//fmt_significant(deck_hi - (hi - v%first_axle_x_m), 6)// &
+                ' m: its axles stand from x = '//fmt_significant(lo, 6)// &
                 ' to '//fmt_significant(hi, 6)//' m, off the deck (the bridge runs from x = '// &
                 fmt_significant(deck_lo, 6)//' to '//fmt_significant(deck_hi, 6)//' m, the backs of its abutments; '// &
                 'voussoir-run stands the vehicle there)', status)

@@ -10,7 +10,7 @@ module voussoir_limit_lp_output
   implicit none
   private
 
-  public :: write_lp_table, lp_json
+  public :: write_lp_table, lp_json, curve_json
 
 contains
 
@@ -274,15 +274,7 @@ contains
     character(len=1), parameter :: nl = achar(10)
     integer :: k
     logical :: first
-    text = '  "surface_loads": ['
-    if (allocated(lp%placed%surface_source)) then
-      do k = 1, lp%placed%n_surface
-        if (k > 1) text = text//', '
-        text = text//'{"load": '//itoa(lp%placed%surface_source(k))//', "xy_m": '// &
-               xy_json(lp%placed%surface_xy(:, k))//', "force_n": '//xy_json(lp%placed%surface_force_n(:, k))// &
-               ', "spread_x_m": '//xy_json(lp%placed%surface_spread_x_m(:, k))//'}'
-      end do
-    end if
+    text = '  "surface_loads": ['//surface_json(lp, .true.)//'],'//nl//'  "patch_loads": ['//surface_json(lp, .false.)
     text = text//'],'//nl//'  "fill_loads": ['
     first = .true.
     if (allocated(lp%placed%kind)) then
@@ -311,6 +303,25 @@ contains
     end if
     text = text//'],'//nl
   end function fill_json
+
+  !> The surface loads of `lp` (each {load, xy_m, force_n, spread_x_m, patch_m}) if they
+  !> stand on a fill (`on_fill`) or, without one, on the top surface (live patches).
+  function surface_json(lp, on_fill) result(text)
+    type(lp_study_t), intent(in) :: lp
+    logical, intent(in) :: on_fill
+    character(len=:), allocatable :: text
+    integer :: k
+    text = ''
+    if (.not. allocated(lp%placed%surface_source)) return
+    if (lp%placed%surface_on_fill .neqv. on_fill) return
+    do k = 1, lp%placed%n_surface
+      if (k > 1) text = text//', '
+      text = text//'{"load": '//itoa(lp%placed%surface_source(k))//', "xy_m": '// &
+             xy_json(lp%placed%surface_xy(:, k))//', "force_n": '//xy_json(lp%placed%surface_force_n(:, k))// &
+             ', "spread_x_m": '//xy_json(lp%placed%surface_spread_x_m(:, k))//', "patch_m": '// &
+             fmt_json_real(lp%placed%surface_patch_m(k))//'}'
+    end do
+  end function surface_json
 
   !> [{"x_m": .., "load_factor": ..}, ...] along the path (null where no mechanism opens).
   function curve_json(lp) result(text)

@@ -125,7 +125,8 @@ contains
     study%live_load = live_acceleration_words
     allocate (study%placed%block(0), study%placed%source(0), study%placed%xy(2, 0), study%placed%force_n(2, 0), &
               study%placed%live(0), study%placed%kind(0), study%placed%surface_source(0), &
-              study%placed%surface_xy(2, 0), study%placed%surface_force_n(2, 0), study%placed%surface_spread_x_m(2, 0))
+              study%placed%surface_xy(2, 0), study%placed%surface_force_n(2, 0), study%placed%surface_spread_x_m(2, 0), &
+              study%placed%surface_patch_m(0))
     all_dead = .false.
     if (present(loads_dead)) all_dead = loads_dead
     if (present(load) .and. all_dead) then
@@ -394,6 +395,8 @@ contains
         if (text(len(text):) /= '(') text = text//', '
         text = text//'load '//itoa(j)//': '//fmt_significant(load%point_load_n(j), 6)//' N at '// &
                fmt_significant(load%point_load_dir_deg(j), 6)//' deg'
+        if (load%point_load_patch_m(j) > 0.0_dp) text = text//' spread over a patch of '// &
+          fmt_significant(load%point_load_patch_m(j), 6)//' m'
       end do
       text = text//')'
       if (load%n_axles > 0) text = text//', each repeated at '//itoa(load%n_axles)//' axle offsets'

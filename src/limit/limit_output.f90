@@ -10,6 +10,8 @@ module voussoir_limit_output
   use voussoir_limit_study, only: limit_options_t, thickness_result_t
   use voussoir_limit_lp_study, only: lp_study_t
   use voussoir_limit_lp_output, only: write_lp_table, lp_json
+  use voussoir_limit_load_cases, only: case_study_t
+  use voussoir_limit_case_output, only: write_cases_table, cases_json
   use voussoir_version, only: code_version
   implicit none
   private
@@ -18,8 +20,8 @@ module voussoir_limit_output
 
 contains
 
-  !> The readable report.
-  subroutine write_table(u, path, cfg, opts, res, tmin, lp)
+  !> The readable report (with load cases, each case's LP table and their summary).
+  subroutine write_table(u, path, cfg, opts, res, tmin, lp, cases)
     integer, intent(in) :: u
     character(len=*), intent(in) :: path
     type(config_t), intent(in) :: cfg
@@ -27,6 +29,7 @@ contains
     type(limit_result_t), intent(in) :: res
     type(thickness_result_t), intent(in) :: tmin
     type(lp_study_t), intent(in) :: lp
+    type(case_study_t), intent(in) :: cases(:)
     if (lp%assembly /= 'arch') then
       write (u, '(a)') 'voussoir-limit: '//path
       if (lp%assembly == 'restrained arch') then
@@ -46,7 +49,11 @@ contains
         write (u, '(a)') '      interface inset '//fmt_significant(1.0e3_dp*opts%inset_m)//' mm, friction '// &
           fmt_significant(cfg%arch%friction)
       end if
-      call write_lp_table(u, lp, cfg%arch%friction)
+      if (size(cases) > 0) then
+        call write_cases_table(u, cases, cfg%arch%friction)
+      else
+        call write_lp_table(u, lp, cfg%arch%friction)
+      end if
       return
     end if
     associate (a => cfg%arch)
@@ -57,7 +64,11 @@ contains
       write (u, '(a)') '      pivot inset '//fmt_significant(1.0e3_dp*opts%inset_m)//' mm, friction '//fmt_significant(a%friction)
       ! A load case comes first: the acceleration case of the weights alone is another
       ! question, printed after it and named as such.
-      if (.not. lp%live_is_acceleration) call write_lp_table(u, lp, a%friction)
+      if (size(cases) > 0) then
+        call write_cases_table(u, cases, a%friction)
+      else if (.not. lp%live_is_acceleration) then
+        call write_lp_table(u, lp, a%friction)
+      end if
       call write_four_hinge(u, cfg, res, tmin, .not. lp%live_is_acceleration)
       if (lp%live_is_acceleration) call write_lp_table(u, lp, a%friction)
     end associate
@@ -185,7 +196,7 @@ contains
   end subroutine sliding_union
 
   !> The JSON object of docs/results_format.md.
-  subroutine write_json(u, path, cfg, opts, arch, res, tmin, lp)
+  subroutine write_json(u, path, cfg, opts, arch, res, tmin, lp, cases)
     integer, intent(in) :: u
     character(len=*), intent(in) :: path
     type(config_t), intent(in) :: cfg
@@ -194,14 +205,15 @@ contains
     type(limit_result_t), intent(in) :: res
     type(thickness_result_t), intent(in) :: tmin
     type(lp_study_t), intent(in) :: lp
+    type(case_study_t), intent(in) :: cases(:)  !! the load cases of &load_cases (lp: the governing one)
     integer, allocatable :: sliding(:)
     character(len=1), parameter :: nl = achar(10)
     character(len=:), allocatable :: text
     if (lp%assembly /= 'arch') then
       if (lp%assembly == 'restrained arch') then
-        call write_json_any(u, path, cfg, lp, arch_json(cfg, opts, arch), blocks_json(arch))
+        call write_json_any(u, path, cfg, lp, cases, arch_json(cfg, opts, arch), blocks_json(arch))
       else
-        call write_json_any(u, path, cfg, lp, 'null', blocks_json(arch))
+        call write_json_any(u, path, cfg, lp, cases, 'null', blocks_json(arch))
       end if
       return
     end if
@@ -212,7 +224,7 @@ contains
         '  "code_version": '//json_string(code_version)//','//nl// &
         '  "input_file": '//json_string(path)//','//nl// &
         '  "config_nml": '//json_string(config_to_nml(config_entries(cfg)))//','//nl// &
-        '  "g_m_s2": '//fmt_json_real(g_m_s2)//','//nl//lp_json(lp)// &
+        '  "g_m_s2": '//fmt_json_real(g_m_s2)//','//nl//lp_json(lp)//cases_json(cases)// &
         '  "blocks": '//blocks_json(arch)//','//nl// &
         '  "lambda_pos": '//finite_or_null(res%lambda_pos)//','//nl// &
         '  "lambda_neg": '//finite_or_null(res%lambda_neg)//','//nl// &
@@ -304,11 +316,12 @@ contains
   !> The JSON of a wall, a polygon file or a restrained arch: every key of the arch's,
   !> null or empty where the four-hinge analysis of an arch does not apply (the "arch"
   !> object given for a restrained arch), and the LP's.
-  subroutine write_json_any(u, path, cfg, lp, arch_text, blocks_text)
+  subroutine write_json_any(u, path, cfg, lp, cases, arch_text, blocks_text)
     integer, intent(in) :: u
     character(len=*), intent(in) :: path
     type(config_t), intent(in) :: cfg
     type(lp_study_t), intent(in) :: lp
+    type(case_study_t), intent(in) :: cases(:)
     character(len=*), intent(in) :: arch_text   !! the "arch" object of a restrained arch, else null
     character(len=*), intent(in) :: blocks_text !! the "blocks" list
     character(len=1), parameter :: nl = achar(10)
@@ -317,7 +330,7 @@ contains
       '  "code_version": '//json_string(code_version)//','//nl// &
       '  "input_file": '//json_string(path)//','//nl// &
       '  "config_nml": '//json_string(config_to_nml(config_entries(cfg)))//','//nl// &
-      '  "g_m_s2": '//fmt_json_real(g_m_s2)//','//nl//lp_json(lp)// &
+      '  "g_m_s2": '//fmt_json_real(g_m_s2)//','//nl//lp_json(lp)//cases_json(cases)// &
       '  "blocks": '//blocks_text//','//nl// &
       '  "lambda_pos": null,'//nl//'  "lambda_neg": null,'//nl// &
       '  "hinges_pos": [],'//nl//'  "hinges_neg": [],'//nl// &

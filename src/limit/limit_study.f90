@@ -6,6 +6,7 @@ module voussoir_limit_study
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
   use voussoir_config, only: config_t, springings_none, has_loads
+  use voussoir_load_config, only: load_config_t
   use voussoir_vehicle_config, only: vehicle_config_t
   use voussoir_placed_loads, only: placed_loads_t, place_loads, vehicle_x
   use voussoir_limit_lp_study, only: path_position_m
@@ -17,6 +18,8 @@ module voussoir_limit_study
   use voussoir_limit_lp_study, only: lp_study_t, lp_study
   use voussoir_limit_analysis, only: limit_result_t, horizontal_capacity
   use voussoir_minimum_thickness, only: thickness_search => minimum_thickness
+  use voussoir_load_case_config, only: case_load
+  use voussoir_limit_load_cases, only: case_study_t, factored_assembly, governing_case, live_total_n
   implicit none
   private
 
@@ -83,23 +86,26 @@ contains
 
   !> Build the assembly and run the analyses that apply (`lp%assembly` says which
   !> assembly: 'arch', 'restrained arch', 'wall' or 'polygon file'); refuse what the
-  !> analyses do not model.
-  subroutine analyse(cfg, opts, arch, res, tmin, lp, status)
+  !> analyses do not model. With &load_cases, each case's LP study in `cases` and `lp`
+  !> the governing one's.
+  subroutine analyse(cfg, opts, arch, res, tmin, lp, cases, status)
     type(config_t), intent(in) :: cfg
     type(limit_options_t), intent(in) :: opts
     type(assembly_t), intent(out) :: arch
     type(limit_result_t), intent(out) :: res
     type(thickness_result_t), intent(out) :: tmin
     type(lp_study_t), intent(out) :: lp
+    type(case_study_t), allocatable, intent(out) :: cases(:)
     type(status_t), intent(inout) :: status
     character(len=:), allocatable :: f, why
     type(status_t) :: lp_status
 
+    allocate (cases(0))
     f = trim(cfg%source_file)
     ! A restrained arch: the brackets are driven blocks the LP takes like any other.
     if (cfg%wall%courses > 0 .or. len_trim(cfg%arch%polygon_file) > 0 .or. cfg%bridge%n_spans > 0 .or. &
         cfg%arch%restrained_springings /= springings_none) then
-      call analyse_any_assembly(cfg, opts, arch, lp, status)
+      call analyse_any_assembly(cfg, opts, arch, lp, cases, status)
       if (.not. status%ok) status%message = f//': '//trim(status%message)
       return
     end if
@@ -132,8 +138,7 @@ contains
         ! The four-hinge results stand even where the LP has no answer (an arch thinner
         ! than its minimum thickness): its reason is reported, not an error.
         if (has_loads(cfg)) then
-          call lp_study(arch, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, lp_status, cfg%load, &
-                        a%joint_friction, opts%compressive_strength_pa)
+          call loaded_study(cfg, opts, arch, lp, cases, lp_status)
         else
           call lp_study(arch, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, lp_status, &
                         joint_friction=a%joint_friction, compressive_strength_pa=opts%compressive_strength_pa)
@@ -149,12 +154,14 @@ contains
   !> restraint brackets (driven blocks against the outer faces of its springing
   !> voussoirs, which the four-hinge analysis and the minimum thickness do not model):
   !> the LP alone, whose refusals are errors here (there is nothing else to report).
-  subroutine analyse_any_assembly(cfg, opts, asm, lp, status)
+  subroutine analyse_any_assembly(cfg, opts, asm, lp, cases, status)
     type(config_t), intent(in) :: cfg
     type(limit_options_t), intent(in) :: opts
     type(assembly_t), intent(out) :: asm
     type(lp_study_t), intent(out) :: lp
+    type(case_study_t), allocatable, intent(out) :: cases(:)
     type(status_t), intent(inout) :: status
+    allocate (cases(0))
     call build_config_assembly(cfg, asm, status)
     if (.not. status%ok) return
     ! The fill's weight stands on the ring, but under horizontal acceleration its mass would
@@ -169,16 +176,15 @@ contains
     if (.not. status%ok) return
     associate (a => cfg%arch)
       if (has_loads(cfg)) then
-        call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status, cfg%load, &
-                      a%joint_friction, opts%compressive_strength_pa)
+        call loaded_study(cfg, opts, asm, lp, cases, status)
       else
         call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status, &
                       joint_friction=a%joint_friction, compressive_strength_pa=opts%compressive_strength_pa)
       end if
       if (.not. status%ok) status%message = 'limit analysis by linear programming: '//trim(status%message)
     end associate
-    if (cfg%vehicle%given .and. status%ok) lp%live_load = vehicle_words(cfg%vehicle)//' '// &
-      lp%live_load(index(lp%live_load, '('):)
+    if (cfg%vehicle%given .and. status%ok .and. cfg%cases%n == 0) lp%live_load = vehicle_words(cfg%vehicle)// &
+      ' '//lp%live_load(index(lp%live_load, '('):)
     if (cfg%bridge%n_spans > 0) then
       lp%assembly = 'bridge'
     else if (cfg%wall%courses > 0) then
@@ -189,6 +195,49 @@ contains
       lp%assembly = 'restrained arch'
     end if
   end subroutine analyse_any_assembly
+
+  !> The LP study of `asm` under the loads of &load: as given, or with &load_cases each
+  !> case's (its live loads times gamma_q, every permanent load times gamma_g) in `cases`
+  !> and `lp` the governing case's. A case the LP cannot solve fails `status`, named.
+  subroutine loaded_study(cfg, opts, asm, lp, cases, status)
+    type(config_t), intent(in) :: cfg
+    type(limit_options_t), intent(in) :: opts
+    type(assembly_t), intent(in) :: asm
+    type(lp_study_t), intent(out) :: lp
+    type(case_study_t), allocatable, intent(out) :: cases(:)
+    type(status_t), intent(inout) :: status
+    type(load_config_t) :: load
+    integer :: k
+    allocate (cases(cfg%cases%n))
+    associate (a => cfg%arch, c => cfg%cases)
+      if (c%n == 0) then
+        call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status, cfg%load, &
+                      a%joint_friction, opts%compressive_strength_pa)
+        return
+      end if
+      do k = 1, c%n
+        load = case_load(cfg%load, c, k)
+        cases(k)%name = c%name(k)
+        cases(k)%gamma_q = c%gamma_q(k)
+        cases(k)%gamma_g = c%gamma_g(k)
+        cases(k)%live_total_n = live_total_n(load)
+        call lp_study(factored_assembly(asm, c%gamma_g(k)), c%gamma_g(k)*a%density_kg_m3, a%width_m, a%friction, &
+                      opts%inset_m, cases(k)%lp, status, load, a%joint_friction, opts%compressive_strength_pa)
+        if (.not. status%ok) then
+          status%message = 'load case '//itoa(k)//" '"//trim(c%name(k))//"' (gamma_q "// &
+                           fmt_significant(c%gamma_q(k), 6)//', gamma_g '//fmt_significant(c%gamma_g(k), 6)//'): '// &
+                           trim(status%message)
+          return
+        end if
+        if (cfg%vehicle%given) cases(k)%lp%live_load = vehicle_words(cfg%vehicle)//' '// &
+          cases(k)%lp%live_load(index(cases(k)%lp%live_load, '('):)
+        cases(k)%lp%live_load = "load case '"//trim(c%name(k))//"', the live loads times gamma_q = "// &
+          fmt_significant(c%gamma_q(k), 6)//', every permanent load times gamma_g = '// &
+          fmt_significant(c%gamma_g(k), 6)//': '//cases(k)%lp%live_load
+      end do
+    end associate
+    lp = cases(governing_case(cases))%lp
+  end subroutine loaded_study
 
   !> 'lambda x the vehicle of &vehicle (name, N axles, spacings), its axles as live loads'
   function vehicle_words(v) result(text)

@@ -1040,6 +1040,162 @@ elif case == "bridge_vehicle":
     check(close(tandem["load_factor"], user["load_factor"], rtol=1e-12),
           f"LM1's tandem (2 x 300 kN, 1.2 m) over 3 m = 2 x 100 kN 1.2 m apart on the 1 m strip: "
           f"{tandem['load_factor']:.10g} and {user['load_factor']:.10g}")
+elif case == "load_cases":
+    # Patches, load cases and partial factors (issue 37, item 3) on input/bridge_load_cases.nml
+    # (its span is input/bridge_fill.nml's), each expectation from the inputs alone:
+    # (1) a patch of vanishing length is the point load (the whole curve, 1e-9), with the
+    # fill and without; (2) gamma_q multiplies the live loads alone, so the load factor on
+    # the factored live load is the unfactored one / gamma_q (every position, 1e-9); (3) with
+    # rigid blocks (no compressive strength) the LP is homogeneous in the loads (equilibrium,
+    # no tension and Coulomb are cones), so gamma_g on every permanent load multiplies the
+    # load factor by gamma_g (the permanent loads stabilise the arch: it rises, 1e-9); the
+    # statics of that solution: every voussoir in equilibrium under gamma_g x its weight,
+    # lambda x the factored patch as 200 uniform strips and the JSON's forces (1e-7); (4)
+    # each case of the two-case file equals that case alone in its own file (1e-12), the
+    # governing one the least, the JSON's top-level keys its; the table's summary.
+    text = open(nml).read()
+    bridge = text[text.index("&bridge"):text.index("/", text.index("&bridge")) + 1]
+    bare = re.sub(r",\s*fill_density_kg_m3 *= *[^,/]*, *fill_level_m *= *[^,/]*, *dispersion_angle_deg *= *[^,/\n]*",
+                  "", bridge)
+    check("fill" not in bare, "the bridge without its fill")
+    path = "path_x0_m = 1.0, path_x1_m = 9.0, path_points = 17"
+    def write(name, groups, b=bridge):
+        with open(name, "w") as f:
+            f.write(b + "\n" + groups)
+        return load(name)
+    def curve(d):
+        return [(p["x_m"], p["load_factor"]) for p in d["load_factor_curve"]]
+    def worst_ratio(a, b, factor=1.0):
+        return max(abs(lb * factor / la - 1) for (_, la), (_, lb) in zip(a, b))
+    for label, b in (("fill", bridge), ("no fill", bare)):
+        point = write(f"cases_point_{label[:2]}.nml", f"&load point_load_n(1) = 100000, {path} /\n", b)
+        # Without the fill 2e-9 m is still strips (beyond the 1e-9 m below which a patch is
+        # one load); with it the spread's feet move by half the patch, 1e-10 m.
+        tiny_m = 1e-10 if label == "fill" else 2e-9
+        tiny = write(f"cases_tiny_patch_{label[:2]}.nml",
+                     f"&load point_load_n(1) = 100000, point_load_patch_m(1) = {tiny_m}, {path} /\n", b)
+        a, c = curve(point), curve(tiny)
+        check(len(a) == len(c) > 17 and all(xa == xc for (xa, _), (xc, _) in zip(a, c)) and
+              worst_ratio(a, c) < 1e-9,
+              f"{label}: a patch of {tiny_m:g} m = the point load along the path ({len(a)} positions, "
+              f"{worst_ratio(a, c):.1e})")
+        patched = write(f"cases_patch_{label[:2]}.nml",
+                        f"&load point_load_n(1) = 100000, point_load_patch_m(1) = 0.3, {path} /\n", b)
+        key = "surface_loads" if label == "fill" else "patch_loads"
+        pl = patched[key]
+        check(len(pl) == 1 and pl[0]["patch_m"] == 0.3 and (label == "fill" or
+              close(pl[0]["spread_x_m"][1] - pl[0]["spread_x_m"][0], 0.3, atol=1e-12) and
+              close(sum(pl[0]["spread_x_m"]) / 2, patched["critical_position"]["x_m"], atol=1e-12)),
+              f"{label}: the patch of 0.3 m in {key}, centred on the critical position: {pl}")
+        check(patched["load_factor"] >= point["load_factor"] * (1 - 1e-9),
+              f"{label}: spreading the load over 0.3 m does not lower the least load factor "
+              f"({patched['load_factor']:.6g} against the point's {point['load_factor']:.6g})")
+        if label == "no fill":
+            plain, plain_curve = patched, curve(patched)
+        else:
+            filled = patched
+            axle = write("cases_vehicle_patch.nml", f"&load {path} /\n&vehicle axle_load_kn = 100, "
+                                                    "patch_length_m = 0.3 /\n")
+            check(worst_ratio(curve(patched), curve(axle)) < 1e-12,
+                  f"&vehicle patch_length_m = 0.3: a one-axle vehicle of 100 kN = the patch of &load along the path "
+                  f"({worst_ratio(curve(patched), curve(axle)):.1e})")
+    # (2) gamma_q on the bare bridge (a patch of 0.3 m).
+    one = "&load point_load_n(1) = 100000, point_load_patch_m(1) = 0.3, " + path + " /\n"
+    q = write("cases_gamma_q.nml", one + "&load_cases name(1) = 'q', gamma_q(1) = 1.5 /\n", bare)
+    check(worst_ratio(plain_curve, curve(q), 1.5) < 1e-9 and close(q["load_factor"] * 1.5, plain["load_factor"],
+                                                                    rtol=1e-9),
+          f"gamma_q = 1.5: lambda = the unfactored {plain['load_factor']:.7g} / 1.5 = {q['load_factor']:.7g} "
+          f"at every position ({worst_ratio(plain_curve, curve(q), 1.5):.1e})")
+    lc = q["load_cases"]
+    check(len(lc) == 1 and lc[0]["adequacy_factor"] == q["load_factor"] and
+          close(lc[0]["characteristic_load_factor"], plain["load_factor"], rtol=1e-9) and
+          close(lc[0]["collapse_live_load_n"], q["load_factor"] * 150000, rtol=1e-12) and
+          lc[0]["factored_live_load_n"] == 150000,
+          f"gamma_q: adequacy factor = lambda, lambda x gamma_q = the unfactored one, the collapse load lambda x 150 kN: "
+          f"{lc[0]['adequacy_factor']:.7g}, {lc[0]['characteristic_load_factor']:.7g}, "
+          f"{lc[0]['collapse_live_load_n']:.7g} N")
+    # (3) gamma_g, without the fill and with it.
+    for label, b, ref in (("no fill", bare, plain), ("fill", bridge, None)):
+        if ref is None:
+            ref = write("cases_gamma_g_ref.nml", one)
+        g = write(f"cases_gamma_g_{label[:2]}.nml", one + "&load_cases name(1) = 'g', gamma_q(1) = 1.5, "
+                                                          "gamma_g(1) = 1.3 /\n", b)
+        check(g["load_factor"] > ref["load_factor"] / 1.5 and
+              close(g["load_factor"], ref["load_factor"] * 1.3 / 1.5, rtol=1e-9),
+              f"{label}: gamma_g = 1.3, gamma_q = 1.5: lambda {g['load_factor']:.7g} = the unfactored "
+              f"{ref['load_factor']:.7g} x 1.3 / 1.5 (homogeneous LP; the permanent loads stabilise)")
+        if label != "no fill":
+            continue
+        rho = float(re.search(r"ring_density_kg_m3 *= *([-0-9.eE+]+)", bare).group(1))
+        blocks = g["blocks"]
+        patch = g["patch_loads"][0]
+        lo, hi = patch["spread_x_m"]
+        lam, p_n = g["load_factor"], -patch["force_n"][1]
+        check(p_n == 150000, f"the patch in the JSON is the factored load 1.5 x 100 kN: {p_n}")
+        def top_block(x):
+            best, who = None, None
+            for i, blk in enumerate(blocks, start=1):
+                v = blk["vertices_xy_m"]
+                for (x0, y0), (x1, y1) in zip(v, v[1:] + v[:1]):
+                    if min(x0, x1) - 1e-9 <= x <= max(x0, x1) + 1e-9 and abs(x1 - x0) > 1e-9:
+                        y = y0 + (x - x0) / (x1 - x0) * (y1 - y0)
+                        if best is None or y > best + 1e-9:
+                            best, who = y, i
+            return who
+        strips = {}
+        for k in range(200):
+            x = lo + (k + 0.5) * (hi - lo) / 200
+            strips.setdefault(top_block(x), []).append((x, p_n / 200))
+        worst = 0.0
+        for i, blk in enumerate(blocks, start=1):
+            if blk["driven"]:
+                continue
+            v = blk["vertices_xy_m"]
+            area = 0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(v, v[1:] + v[:1]))
+            cx, cy = centroid(v)
+            weight = 1.3 * rho * 9.81 * 1.0 * area
+            fx, fy, m = contact_resultant(g, i, cx, cy)
+            fy -= weight
+            for x, pk in strips.get(i, []):
+                fy -= lam * pk
+                m -= (x - cx) * lam * pk
+            worst = max(worst, abs(fx) / weight, abs(fy) / weight, abs(m) / (weight * 10.0))
+        check(worst < 1e-7 and len(strips) >= 1,
+              f"gamma_g = 1.3: every voussoir in equilibrium under 1.3 x its weight, lambda x the factored patch "
+              f"as 200 strips and the JSON's forces ({worst:.1e})")
+    # (4) The two cases of the file, each alone.
+    both = load(nml)
+    lc = both["load_cases"]
+    # Each case alone: its own loads (those of input/bridge_load_cases.nml) and factors.
+    alone = [write("cases_alone_1.nml", "&load_cases name(1) = 'single axle', gamma_q(1) = 1.5 /\n"
+                   "&load point_load_n(1) = 100000, point_load_patch_m(1) = 0.3, " + path + " /\n"),
+             write("cases_alone_2.nml", "&load_cases name(1) = 'tandem', gamma_q(1) = 1.35 /\n"
+                   "&load point_load_n(1) = 100000, point_load_x_m(1) = 0.0, point_load_patch_m(1) = 0.4,\n"
+                   "  point_load_n(2) = 100000, point_load_x_m(2) = 1.2, point_load_patch_m(2) = 0.4, " + path + " /\n")]
+    for k, a in enumerate(alone):
+        c = lc[k]
+        same = (close(c["load_factor"], a["load_factor"], rtol=1e-12) and
+                close(c["critical_position"]["x_m"], a["critical_position"]["x_m"], atol=1e-12) and
+                len(c["load_factor_curve"]) == len(a["load_factor_curve"]) and
+                all(close(p["load_factor"], r["load_factor"], rtol=1e-12)
+                    for p, r in zip(c["load_factor_curve"], a["load_factor_curve"])))
+        check(same and a["load_cases"][0]["factored_live_load_n"] == c["factored_live_load_n"],
+              f"case {k + 1} '{c['name']}' in the two-case file = alone in its own file: lambda "
+              f"{c['load_factor']:.7g} at x = {c['critical_position']['x_m']:.6g} m, "
+              f"{c['factored_live_load_n']:.6g} N of factored live load")
+    gov = min(range(2), key=lambda k: lc[k]["load_factor"])
+    check(both["governing_load_case"] == gov + 1 and both["load_factor"] == lc[gov]["load_factor"] and
+          both["critical_position"]["x_m"] == lc[gov]["critical_position"]["x_m"],
+          f"the governing case {both['governing_load_case']} is the least, and the top-level keys are its own")
+    check(lc[0]["factored_live_load_n"] == 150000 and lc[1]["factored_live_load_n"] == 270000 and
+          close(lc[0]["load_factor"] * 1.5, filled["load_factor"], rtol=1e-9),
+          f"case 1: 1.5 x 100 kN, its lambda x 1.5 = the unfactored patch's on the filled span "
+          f"{filled['load_factor']:.7g}; case 2: 1.35 x 2 x 100 kN")
+    rc, out, _ = run(nml)
+    rows = [line for line in out.splitlines() if line.startswith("  1 ") or line.startswith("  2 ")]
+    check(rc == 0 and "Load case 1 'single axle'" in out and "Load case 2 'tandem'" in out and len(rows) == 2 and
+          "(governs)" in rows[gov] and all(("NOT adequate" in r) == (c["load_factor"] < 1) for r, c in zip(rows, lc)),
+          f"the table: each case's LP, and a summary row each, the governing case marked: {rows}")
 else:
     check(False, f"unknown case {case}")
 

@@ -169,6 +169,9 @@ def bridge_summary(limit: LimitResult) -> BridgeSummary:
     live = [float(v) for v in _listed(load.get("point_load_n"))]
     flags = _listed(load.get("point_load_live"))
     live = [p for p, is_live in zip(live, flags + [True] * len(live)) if is_live]
+    if limit.load_cases:   # the governing case's live loads, as factored (the LP keys are its own)
+        live = [float(np.hypot(*q.force_n)) for q in
+                (limit.surface_loads or [q for q in limit.point_loads if q.live] + limit.patch_loads)]
     vehicle, vehicle_total_n = config.get("vehicle"), 0.0
     if vehicle:
         # The vehicle's axles are the live loads (&load gives only the path): on the strip,
@@ -176,8 +179,13 @@ def bridge_summary(limit: LimitResult) -> BridgeSummary:
         axles_kn = [float(v) for v in _listed(vehicle.get("axle_load_kn"))]
         effective = float(vehicle.get("effective_width_m", 0.0) or 0.0)
         share = width / effective if effective > 0 else 1.0
-        live = [1e3 * p * share for p in axles_kn] + live
-        vehicle_total_n = 1e3 * sum(axles_kn)
+        # With load cases the live loads above are the governing case's, factored: the
+        # vehicle's axles among them, times its gamma_q.
+        gamma_q = (float(limit.load_cases[limit.governing_load_case - 1]["gamma_q"])
+                   if limit.load_cases and limit.governing_load_case else 1.0)
+        if not limit.load_cases:
+            live = [1e3 * p * share for p in axles_kn] + live
+        vehicle_total_n = 1e3 * sum(axles_kn) * gamma_q
     pressures = [abs(float(p.force_n[0])) for p in limit.fill_pressures]
     bounds = limit.fill_pressure_bounds_n
     at_passive = sum(1 for f, (a, p) in zip(pressures, bounds) if p > a * (1 + 1e-9) and abs(f - p) <= 1e-9 * p)
@@ -196,7 +204,7 @@ def bridge_summary(limit: LimitResult) -> BridgeSummary:
         fill_friction_deg=float(b.get("fill_friction_deg", 0.0)),
         passive_mobilisation=float(b.get("passive_mobilisation", 0.0)),
         live_loads_n=live, live_total_n=sum(float(np.hypot(*p.force_n)) for p in
-                                            (limit.surface_loads or [q for q in limit.point_loads if q.live])),
+                                            (limit.surface_loads or [q for q in limit.point_loads if q.live] + limit.patch_loads)),
         axle_spacing_m=float(load.get("axle_spacing_m", 0.0) or 0.0),
         vehicle=vehicle_words(vehicle) if vehicle else "", vehicle_total_n=vehicle_total_n,
         spread_x_m=list(limit.surface_spread_x_m),
@@ -239,6 +247,39 @@ def _critical_lines(s: BridgeSummary) -> tuple[float, float]:
     lim = s.limit
     x = lim.critical_x_m if math.isfinite(lim.critical_x_m) else math.nan
     return x, lim.load_factor
+
+
+def _load_case_lines(lim: LimitResult) -> list[str]:
+    """With &load_cases: a section listing each case (its partial factors, factored live
+    load, load factor = adequacy factor, critical position, collapse live load, verdict);
+    the rest of the report is of the governing case. Nothing without cases."""
+    if not lim.load_cases:
+        return []
+    gov = lim.governing_load_case
+    out = ["## Load cases", "",
+           "Each case's live loads times γ_Q and every permanent load (the blocks' and the fill's weight, its "
+           "pressure, the dead loads) times γ_G; λ is the multiple of the factored live loads at collapse, the "
+           "factored permanent loads held fixed: the adequacy factor (at least 1: the factored loads are carried).",
+           "", "| case | γ_Q | γ_G | factored live load [kN] | λ (adequacy factor) | non-associative | "
+           "critical position x [m] | collapse live load [kN] | |", "|---|---|---|---|---|---|---|---|---|"]
+    for k, c in enumerate(lim.load_cases, start=1):
+        lam = float(c["load_factor"])
+        critical = c.get("critical_position")
+        verdict = ("adequate" if lam >= 1.0 else "**not adequate**") + (", governs" if k == gov else "")
+        out.append(f"| {k} '{c['name']}' | {float(c['gamma_q']):g} | {float(c['gamma_g']):g} | "
+                   f"{_kn(float(c['factored_live_load_n']))} | {lam:.4f} | "
+                   f"{_num(_json_number(c.get('load_factor_nonassociative')), 5)} | "
+                   f"{_num(float(critical['x_m']), 4) if critical else 'no path'} | "
+                   f"{_kn(float(c['collapse_live_load_n']))} | {verdict} |")
+    if gov is not None:
+        name = lim.load_cases[gov - 1]["name"]
+        out += ["", f"The rest of this report is of the governing case, {gov} '{name}', its loads as factored."]
+    out.append("")
+    return out
+
+
+def _json_number(value) -> float:
+    return math.nan if value is None else float(value)
 
 
 def report_markdown(main: BridgeSummary, without: BridgeSummary | None, figures: dict[str, str],
@@ -311,6 +352,7 @@ def report_markdown(main: BridgeSummary, without: BridgeSummary | None, figures:
     out.append("")
     # Load factor
     x, lam = _critical_lines(main)
+    out += _load_case_lines(lim)
     out += ["## Load factor", ""]
     cases = [("as given" if without is None else
               f"with the fill's passive pressure (mobilisation {main.passive_mobilisation:g})", main)]

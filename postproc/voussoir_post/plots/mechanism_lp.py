@@ -84,8 +84,9 @@ def _newtons(value_n: float) -> str:
 
 
 def _live_loads(limit: LimitResult) -> list:
-    """The live loads as given: on the fill's surface where there is a fill, else as placed."""
-    return limit.surface_loads or [p for p in limit.point_loads if p.live]
+    """The live loads as given: on the fill's surface where there is a fill, else as placed
+    (a patch at its centre)."""
+    return limit.surface_loads or [p for p in limit.point_loads if p.live] + limit.patch_loads
 
 
 def _live_words(limit: LimitResult) -> str:
@@ -198,7 +199,7 @@ def plot_lp_mechanism(limit: LimitResult, out_png: str | os.PathLike):
             ax.quiver(at_p[:, 0], at_p[:, 1], force_p[:, 0], force_p[:, 1], angles="xy", scale_units="xy",
                       scale=1.0 / pressure_scale, color=FILL_COLOUR, width=0.004, pivot="tip", zorder=6)
         if panel.direction == "+x":
-            for p in _live_loads(limit) if limit.surface_loads else limit.point_loads:
+            for p in _live_loads(limit) if limit.surface_loads else limit.point_loads + limit.patch_loads:
                 u = p.force_n / max(float(np.hypot(*p.force_n)), 1e-300)
                 tip = p.xy_m - shift
                 ax.annotate("", xy=tuple(tip), xytext=tuple(tip - load_len_m * u),

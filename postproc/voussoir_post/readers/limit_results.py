@@ -122,6 +122,14 @@ class LimitResult:
     load_factor_neg: float = math.nan
     contact_forces_neg: list[LpInterfaceForce] = field(default_factory=list)
     mechanism_neg: list[LpInterfaceMode] = field(default_factory=list)
+    #: With &load_cases: each case as the JSON's ``load_cases`` gives it (name, gamma_q,
+    #: gamma_g, factored_live_load_n, load_factor, ...), and the governing one (from 1);
+    #: the LP keys above are the governing case's.
+    load_cases: list[dict] = field(default_factory=list)
+    #: Without a fill: each live patch (``patch_loads``) at its centre on the top surface,
+    #: the whole patch's force (it enters the LP as strips, not in ``point_loads``).
+    patch_loads: list[PlacedLoad] = field(default_factory=list)
+    governing_load_case: int | None = None
 
     @property
     def config(self) -> dict[str, dict[str, object]]:
@@ -258,6 +266,10 @@ def read_limit_json(path: str | os.PathLike) -> LimitResult:
         load_factor_neg=_json_float(data.get("load_factor_neg")),
         contact_forces_neg=_interface_forces(path, data.get("contact_forces_neg") or []),
         mechanism_neg=_modes(path, "mechanism_neg", data.get("mechanism_neg") or []),
+        load_cases=list(data.get("load_cases") or []),
+        patch_loads=[PlacedLoad(int(e["load"]), 0, np.asarray(e["xy_m"], dtype=float),
+                                np.asarray(e["force_n"], dtype=float), True) for e in data.get("patch_loads") or []],
+        governing_load_case=data.get("governing_load_case"),
     )
 
 
