@@ -36,7 +36,7 @@ from pathlib import Path
 import numpy as np
 
 from replay_maps import bracket, ramp_observations
-from voussoir_post.diagnosis.effects import RESTRAINTS
+from voussoir_post.diagnosis.effects import BRACKET_GAPS_M, RESTRAINT_VALUES, restraint_value
 from voussoir_post.diagnosis.models import MATERIAL, effect_sizes, material_threshold, members
 from voussoir_post.diagnosis.observations import Observations
 
@@ -110,6 +110,13 @@ TRUTH_PARAMETERS = {"contact_edges": ("inset_m", 0.0), "friction": ("friction", 
                     "geometry": ("thickness_factor", 1.0)}
 
 
+def restraint_index(brackets: dict) -> float:
+    """The grid index (models.RESTRAINTS_ARRAY) of a truth's brackets: its side, with the
+    simulated play nearest its own."""
+    gap = min(BRACKET_GAPS_M, key=lambda g: abs(g - brackets.get("gap_m", 0.0)))
+    return float(RESTRAINT_VALUES.index(restraint_value(brackets["side"], gap)))
+
+
 def truth_values(truth: dict) -> dict:
     """The truth's value of each continuous parameter, by the effect ids the diagnosis's
     grids are named by (for its simulation-based calibration)."""
@@ -143,7 +150,7 @@ def truth_model(truth: dict, bank=None, obs: Observations | None = None) -> str:
         simulated = [e for e in kept if e != "table_motion"]
         if not simulated:
             break
-        points = [np.array([float(RESTRAINTS.index(params[e]["side"])) if e == "base_restraint"
+        points = [np.array([restraint_index(params[e]) if e == "base_restraint"
                             else params[e][TRUTH_PARAMETERS[e][0]]]) for e in simulated]
         sizes = effect_sizes(bank, obs, tuple(simulated), points)[0]
         if kept == whole:  # a counterfactual is the whole truth less one effect

@@ -42,7 +42,7 @@ import numpy as np
 from ..readers.campaign import Specimen
 from ..runner import Runner
 from ..units import G_M_S2
-from .effects import COMBINED, EFFECTS_BY_ID, RESTRAINTS, Variant, arch_group, nominal_value
+from .effects import COMBINED, EFFECTS_BY_ID, RESTRAINT_VALUES, Variant, arch_group, nominal_value
 from .settings import DiagnosisSettings
 from .simulator import Simulator
 
@@ -81,7 +81,7 @@ def key_variant(key: str) -> Variant:
     parts = []
     for text in key.split("+"):
         e, val = text.split("=")
-        parts.append((e, val if val in RESTRAINTS else float(val)))
+        parts.append((e, val if val in RESTRAINT_VALUES else float(val)))
     return Variant.of(parts)
 
 
@@ -91,7 +91,7 @@ def _pair_values(spec: Specimen, settings: DiagnosisSettings) -> dict[str, list]
             "friction": [round(spec.friction + d, 6) for d in settings.pair_friction_steps
                          if settings.min_friction <= spec.friction + d <= settings.max_friction],
             "geometry": list(settings.pair_thickness_factors),
-            "base_restraint": [] if spec.restrained_springings != "none" else list(RESTRAINTS)}
+            "base_restraint": [] if spec.restrained_springings != "none" else list(RESTRAINT_VALUES)}
 
 
 def bank_variants(spec: Specimen, settings: DiagnosisSettings) -> list[Variant]:

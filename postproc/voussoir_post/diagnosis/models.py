@@ -39,7 +39,7 @@ import numpy as np
 
 from .bank import FINE_DT, MISSING, Bank, SpecimenBank, key_variant, pooled_spread
 from .emulator import emulate
-from .effects import RESTRAINTS, nominal_value
+from .effects import RESTRAINT_VALUES, nominal_value
 from .observations import Observations
 
 __all__ = ["EFFECT_IDS", "MODEL_IDS", "CANDIDATES", "ModelGrid", "model_grid", "model_prior", "members", "nominal_log",
@@ -154,9 +154,9 @@ def tolerance_spread(bank: SpecimenBank, spec, f: float, tolerance: float = BUIL
 
 def _axis(bank: SpecimenBank, effect_id: str, in_pair: bool, spec) -> list:
     """The simulated values of one effect in the bank (alone or inside pairs), with its
-    nominal value, sorted (restraints: the three sides)."""
+    nominal value, sorted (restraints: each side with each play, RESTRAINT_VALUES)."""
     if effect_id == "base_restraint":
-        return list(RESTRAINTS)
+        return list(RESTRAINT_VALUES)
     found = set()
     for key in bank.thresholds:
         parts = key_variant(key).parts()
@@ -285,7 +285,7 @@ def model_grid(model_id: str, bank: Bank, obs: Observations, pairs=None) -> Mode
     return ModelGrid(model_id, names, values, log_prior, mu, gain_per_pair, log_gain, var, loo)
 
 
-RESTRAINTS_ARRAY = np.array(RESTRAINTS, dtype=object)
+RESTRAINTS_ARRAY = np.array(RESTRAINT_VALUES, dtype=object)
 
 
 def material(effects: tuple[str, ...], values: list[np.ndarray], spec) -> np.ndarray:
@@ -323,7 +323,7 @@ def effect_sizes(bank: Bank, obs: Observations, effects: tuple[str, ...], points
     it (the nominal model for a single effect, the other effect alone for a pair, each by
     its own emulator), in units of that pair's material_threshold: 1 or more is a cause.
     Points: one array per effect, as model_grid's (a restraint by its index in
-    RESTRAINTS)."""
+    RESTRAINT_VALUES)."""
     in_pair = len(effects) == 2
     out = np.zeros((np.asarray(points[0]).size, len(effects)))
     for p in obs.pairs:

@@ -32,7 +32,7 @@ from ..errors import InputError
 from ..readers.campaign import read_campaign
 from .bank import Bank, build_bank
 from .decision import Decision, decide, flags, to_separate
-from .effects import Variant
+from .effects import BRACKET_GAPS_M, Variant, restraint_parts, restraint_value
 from .models import CANDIDATES, MODEL_IDS, members, model_prior
 from .observations import Observations, from_campaign
 from .next_test import next_test
@@ -59,8 +59,18 @@ def parameters(post: Posterior, model_id: str | None, obs: Observations) -> dict
     for e in mp.grid.names:
         value, low, high = mp.summary(e)
         if e == "base_restraint":
-            sides = ["left", "right"] if value == "both" else [str(value)]
+            side, _ = restraint_parts(value)
+            sides = ["left", "right"] if side == "both" else [side]
             out["restrained_springings"] = {"value": sides, "low": sides, "high": sides, "unit": ""}
+            # The play of the brackets on that side: its posterior mean and 5-95 % range.
+            v = mp.grid.values[mp.grid.names.index(e)]
+            on = np.array([restraint_parts(x)[0] == side for x in v])
+            gaps = np.array([restraint_parts(x)[1] for x in v[on]])
+            w = mp.weights[on] / mp.weights[on].sum()
+            order = np.argsort(gaps, kind="stable")
+            cdf = np.cumsum(w[order])
+            q = lambda x: float(gaps[order][min(np.searchsorted(cdf, x), gaps.size - 1)])
+            out["bracket_gap_m"] = {"value": float(w @ gaps), "low": q(0.05), "high": q(0.95), "unit": "m"}
         elif e == "table_motion":
             out["accel_gain"] = {"value": value, "low": low, "high": high, "unit": ""}
         else:
@@ -95,7 +105,10 @@ def model_run(model_id: str | None, params: dict, obs: Observations) -> tuple[Va
             parts.append((e, params["thickness_factor"]["value"]))
         elif e == "base_restraint":
             sides = params["restrained_springings"]["value"]
-            parts.append((e, "both" if len(sides) == 2 else sides[0]))
+            gap = params.get("bracket_gap_m", {"value": 0.0})["value"]
+            # The simulated play nearest the reported one (single runs use the bank's nodes).
+            gap = min(BRACKET_GAPS_M, key=lambda g: abs(g - gap))
+            parts.append((e, restraint_value("both" if len(sides) == 2 else sides[0], gap)))
         elif e == "table_motion":
             motion = {"table_gain": params["accel_gain"]["value"],
                       "table_delay_s": max(0.0, params.get("delay_s", {"value": 0.0})["value"])}
