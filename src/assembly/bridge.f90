@@ -26,7 +26,7 @@ module voussoir_bridge
   use voussoir_fill_particles, only: cut_fill_particles
   implicit none
   private
-  public :: build_bridge, bridge_span_left_x, bridge_ring_joints, bridge_fill_bottom
+  public :: build_bridge, bridge_span_left_x, bridge_ring_joints
 
 contains
 
@@ -84,7 +84,7 @@ contains
     with_particles = b%fill_model == fill_model_particles .and. b%fill_density_kg_m3 > 0.0_dp
     allocate (particles(0))
     if (with_particles) particles = cut_fill_particles(bridge_fill_bottom(b), b%fill_level_m, b%fill_particle_size_m)
-    nb = ns*n + (ns - 1) + 2 + merge(1, 0, ns > 1) + merge(size(particles), 0, with_particles)
+    nb = ns*n + (ns - 1) + 2 + merge(1, 0, ns > 1) + size(particles)
     allocate (asm%polygon(nb), asm%driven(nb), asm%role(nb), asm%density_kg_m3(nb), asm%friction(nb), &
               asm%block_name(nb))
     allocate (inner(2, 0:n, ns), outer(2, 0:n, ns))

@@ -62,7 +62,7 @@ module voussoir_bridge_config
     !> The fill as particles instead (fill_model = 'particles'): the region between the
     !> abutments' tops, the extrados and the level cut into convex blocks of about
     !> fill_particle_size_m, free, of the fill's density, with Coulomb friction
-    !> fill_particle_friction and no tension, retained at the deck's ends by fixed walls.
+    !> fill_particle_friction and no tension, ending in free faces at the abutments' backs.
     character(len=16) :: fill_model = fill_model_columns
     real(dp) :: fill_particle_size_m = 0.0_dp           !! [m]; 0: not given (particles need it)
     real(dp) :: fill_particle_friction = 0.6_dp         !! Coulomb coefficient of the particles
