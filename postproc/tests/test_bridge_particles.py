@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 
 from conftest import run_executable
+from voussoir_post.cli import post
 from voussoir_post.analysis.contact_forces import reactions
 from voussoir_post.plots.reactions import free_weight_n
 from voussoir_post.readers.results import read_run
@@ -84,3 +85,18 @@ def test_a_vehicle_stands_on_the_particles_at_rest(voussoir_run_exe, tmp_path):
     expected = (2200 * ring_area + 2000 * fill_area) * g * 1.0 + 2 * 100e3
     held = float(r.force_n[-1, :, 1].sum())
     assert abs(held - expected) <= 1e-4 * expected, (held, expected)
+
+
+def test_the_bridge_report_refuses_particles(voussoir_limit_exe, tmp_path, capsys):
+    """The bridge report tells the engineers' columns (the fill's weight on the ring, the
+    spread, the pressures): on a bridge whose fill is particles it would report no fill on
+    the ring and a spread of 0 degrees, so it refuses (exit 2), naming the file and why.
+    (1 m particles and one load position: a few seconds of LP.)"""
+    nml = tmp_path / "coarse.nml"
+    nml.write_text(PARTICLES_AT_REST.split("&motion")[0].replace("fill_particle_size_m = 0.5", "fill_particle_size_m = 1.0")
+                   + "&load point_load_n(1) = 100000, point_load_x_m(1) = 3.0, point_load_y_m(1) = 3.45 /\n")
+    out = run_executable([voussoir_limit_exe, nml, "--json"], tmp_path).stdout
+    (tmp_path / "coarse.json").write_text(out)
+    assert post.main(["bridge-report", str(tmp_path / "coarse.json"), "--out", str(tmp_path / "report")]) == 2
+    err = capsys.readouterr().err
+    assert "coarse.json: its fill is particles" in err and not (tmp_path / "report" / "report.md").exists()
