@@ -464,6 +464,17 @@ driver=voussoir-limit case_ bridge_passive_without_phi "&bridge passive_mobilisa
 driver=voussoir-limit case_ bridge_passive_above_1 "&bridge passive_mobilisation = 1.5 is outside the allowed range 0 <= passive_mobilisation <= 1" "&bridge $fl, fill_friction_deg = 35, passive_mobilisation = 1.5 /"
 driver=voussoir-limit case_ bridge_phi_without_fill "&bridge fill_friction_deg = 35 is outside the allowed range 0 without a fill" "&bridge $br, fill_friction_deg = 35 /"
 driver=voussoir-limit case_ bridge_dispersion_negative "&bridge dispersion_angle_deg = -5 is outside the allowed range 0 <= dispersion_angle_deg < 90" "&bridge $fl, dispersion_angle_deg = -5 /"
+# The fill as particles (issue 37, item 2(b)).
+pt="$fl, fill_model = 'particles'"
+driver=voussoir-limit case_ bridge_particles_no_size "&bridge fill_particle_size_m = 0 is outside the allowed range 0 < fill_particle_size_m <= 10 m with fill_model = 'particles'" "&bridge $pt /"
+driver=voussoir-limit case_ bridge_particles_unknown_model "&bridge.*fill_model.*sand" "&bridge $fl, fill_model = 'sand', fill_particle_size_m = 0.25 /"
+driver=voussoir-limit case_ bridge_particles_without_fill "&bridge fill_density_kg_m3 = 0 is outside the allowed range > 0 with fill_model = 'particles'" "&bridge $br, fill_model = 'particles', fill_particle_size_m = 0.25 /"
+driver=voussoir-limit case_ bridge_particles_size_with_columns "&bridge fill_particle_size_m = 0.25 is outside the allowed range 0 with fill_model = 'columns'" "&bridge $fl, fill_particle_size_m = 0.25 /"
+driver=voussoir-limit case_ bridge_particles_too_small "&bridge fill_particle_size_m = 0.01 is outside the allowed range fill_particle_size_m >= 0.0455 m: the fill would be cut into about 414000 particles" "&bridge $pt, fill_particle_size_m = 0.01 /"
+driver=voussoir-limit case_ bridge_particles_thin_cover "&bridge fill_level_m = 3.1 is outside the allowed range fill_level_m >= 3.2 m with particles: at least half a particle" "&bridge $br, fill_density_kg_m3 = 2000, fill_level_m = 3.1, fill_model = 'particles', fill_particle_size_m = 0.5 /"
+driver=voussoir-limit case_ bridge_particles_dispersion "&bridge dispersion_angle_deg = 30 is outside the allowed range 0 with fill_model = 'particles'" "&bridge $pt, fill_particle_size_m = 0.25, dispersion_angle_deg = 30 /"
+driver=voussoir-limit case_ bridge_particles_rankine "&bridge fill_friction_deg = 35 is outside the allowed range 0 with fill_model = 'particles'" "&bridge $pt, fill_particle_size_m = 0.25, fill_friction_deg = 35 /"
+driver=voussoir-limit case_ bridge_particles_negative_friction "&bridge fill_particle_friction = -0.1 is outside" "&bridge $pt, fill_particle_size_m = 0.25, fill_particle_friction = -0.1 /"
 
 # Vehicles (&vehicle, issue 37) and live loads off a bridge's deck (from x = -1 to 11 m
 # here: abutments 1 m wide behind a 10 m span): each names the variable and its value.

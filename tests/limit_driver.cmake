@@ -75,6 +75,12 @@ add_test(NAME limit_driver_bridge_fill
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
                  bridge_fill ${CMAKE_SOURCE_DIR}/input/bridge_fill.nml
          WORKING_DIRECTORY ${LIMIT_TEST_DIR})
+# The fill as particles (issue 37, item 2(b)): the particles tile the fill (convex, no
+# overlap, the region's shoelace area), statics, and the lower bound against the columns.
+add_test(NAME limit_driver_bridge_particles
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
+                 bridge_particles ${CMAKE_SOURCE_DIR}/input/bridge_fill_particles.nml
+         WORKING_DIRECTORY ${LIMIT_TEST_DIR})
 # Vehicles (&vehicle, issue 37) on the span of input/bridge_fill.nml: a one-axle vehicle is
 # the point load, two half axles 0 m apart are one, the axles where they stand, the
 # harmonic bound of the axles alone (convexity), the named LM1 tandem against its axles.

@@ -2,12 +2,14 @@
 !> intrados recovered from the joints it builds (a semicircle's areas, a segmental arch's
 !> span and rise from the circle through three of its joints, the equilateral pointed
 !> arch's centres and apex, the ellipse's and the parabola's equations and equal arc
-!> lengths measured here by a fine polyline), and the parts of a two-span bridge.
+!> lengths measured here by a fine polyline), and the parts of a two-span bridge; the fill
+!> cut into particles over a hump whose area is known by hand, and a bridge's particles.
 program test_bridge
   use voussoir_kinds, only: dp, pi
   use voussoir_status, only: status_t
   use voussoir_geometry, only: polygon_area, is_convex_ccw
-  use voussoir_assembly, only: assembly_t, role_voussoir, role_foundation
+  use voussoir_assembly, only: assembly_t, polygon_t, role_voussoir, role_foundation, role_fill
+  use voussoir_fill_particles, only: cut_fill_particles, fill_region_area, min_fraction
   use voussoir_bridge_config, only: bridge_config_t
   use voussoir_bridge, only: build_bridge, bridge_ring_joints
   use voussoir_bodies, only: bodies_t, bodies_init
@@ -21,9 +23,79 @@ program test_bridge
   call test_three_centred()
   call test_elliptical_and_parabolic()
   call test_two_spans_on_a_pier()
+  call test_particles_over_a_hump()
+  call test_bridge_with_particles()
   call assert_summary()
 
 contains
+
+  !> The region over a hump, from (0, 0) level to (1, 0), up to (2, 1), down to (3, 0), level
+  !> to (4, 0), under a level at y = 2: 4 x 2 less the triangle (base 2, height 1), 7 m2 by
+  !> hand. Cut at size 0.3 m: every particle convex, counter-clockwise, at least
+  !> min_fraction x size high and wide (no two vertices of the hump closer than that), their
+  !> areas summing to 7 m2 (1e-12); the shoelace of the region gives 7 too.
+  subroutine test_particles_over_a_hump()
+    real(dp), parameter :: size_m = 0.3_dp
+    real(dp) :: hump(2, 5), total, least_height, least_width
+    type(polygon_t), allocatable :: parts(:)
+    integer :: k
+    logical :: convex
+    hump = reshape([0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, 2.0_dp, 1.0_dp, 3.0_dp, 0.0_dp, 4.0_dp, 0.0_dp], [2, 5])
+    parts = cut_fill_particles(hump, 2.0_dp, size_m)
+    total = 0.0_dp
+    convex = .true.
+    least_height = huge(1.0_dp)
+    least_width = huge(1.0_dp)
+    do k = 1, size(parts)
+      total = total + polygon_area(parts(k)%xy)
+      convex = convex .and. is_convex_ccw(parts(k)%xy) .and. polygon_area(parts(k)%xy) > 0.0_dp
+      least_height = min(least_height, maxval(parts(k)%xy(2, :)) - minval(parts(k)%xy(2, :)))
+      least_width = min(least_width, maxval(parts(k)%xy(1, :)) - minval(parts(k)%xy(1, :)))
+    end do
+    call assert_true(size(parts) > 60, 'particles over a hump: more than 60 (7 m2 / 0.09 m2 is 78)')
+    call assert_true(convex, 'particles over a hump: every one convex, counter-clockwise, of positive area')
+    call assert_close(total, 7.0_dp, 'particles over a hump: their areas sum to 4 x 2 - 1 m2', rtol=1.0e-12_dp)
+    call assert_close(fill_region_area(hump, 2.0_dp), 7.0_dp, 'the region over a hump by shoelace', rtol=1.0e-12_dp)
+    call assert_true(least_height >= min_fraction*size_m - 1.0e-12_dp .and. &
+                     least_width >= min_fraction*size_m - 1.0e-12_dp, 'particles over a hump: no sliver')
+  end subroutine test_particles_over_a_hump
+
+  !> A segmental span with its fill as 0.5 m particles: the ring and abutments as without,
+  !> then free particles (role_fill) of the fill's density and friction, no engineers' fill
+  !> (has_fill false); the particles' area the fill's over the extrados chords and the
+  !> abutments' level tops (shoelace here, from the ring's joints).
+  subroutine test_bridge_with_particles()
+    type(bridge_config_t) :: b
+    type(assembly_t) :: asm
+    type(status_t) :: status
+    real(dp) :: inner(2, 0:12), outer(2, 0:12), area, total
+    real(dp), allocatable :: region(:, :)
+    integer :: k
+    b = one_span('segmental', 10.0_dp, 2.5_dp, 0.45_dp, 12)
+    b%abutment_width_m = 2.0_dp
+    b%fill_density_kg_m3 = 1900.0_dp
+    b%fill_level_m = 3.45_dp
+    b%fill_model = 'particles'
+    b%fill_particle_size_m = 0.5_dp
+    b%fill_particle_friction = 0.45_dp
+    call build_bridge(b, asm, status)
+    call assert_true(status%ok, 'bridge with particles: built')
+    call assert_true(.not. asm%has_fill .and. all(asm%role(15:) == role_fill) .and. all(.not. asm%driven(15:)) .and. &
+                     asm%n_bodies > 14 + 50 .and. all(asm%role(1:12) == role_voussoir) .and. &
+                     all(asm%role(13:14) == role_foundation), &
+                     'bridge with particles: 12 voussoirs, 2 abutments, then free particles, no columns')
+    call assert_true(all(asm%density_kg_m3(15:) == 1900.0_dp) .and. all(asm%friction(15:) == 0.45_dp) .and. &
+                     asm%block_name(15) == 'fill particle 1', "bridge with particles: the fill's density and friction")
+    call bridge_ring_joints(b, 1, inner, outer)
+    region = reshape([[-2.0_dp, outer(2, 0)], reshape(outer, [26]), [12.0_dp, outer(2, 12)], [12.0_dp, 3.45_dp], &
+                      [-2.0_dp, 3.45_dp]], [2, 17])
+    area = polygon_area(region)
+    total = 0.0_dp
+    do k = 15, asm%n_bodies
+      total = total + polygon_area(asm%polygon(k)%xy)
+    end do
+    call assert_close(total, area, 'bridge with particles: they fill the region over the extrados', rtol=1.0e-12_dp)
+  end subroutine test_bridge_with_particles
 
   !> One span of `shape`.
   function one_span(shape, span_m, rise_m, thickness_m, n) result(b)

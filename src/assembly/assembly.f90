@@ -11,11 +11,12 @@ module voussoir_assembly
   private
 
   public :: polygon_t, assembly_t, build_arch, arch_joint_angle_deg, voussoir_angle_factors, mirrored_blocks
-  public :: role_voussoir, role_foundation, role_restraint
+  public :: role_voussoir, role_foundation, role_restraint, role_fill
 
   integer, parameter :: role_voussoir = 1    !! a free block of the arch
   integer, parameter :: role_foundation = 2  !! a block carried by the table
   integer, parameter :: role_restraint = 3   !! a bracket carried by the table
+  integer, parameter :: role_fill = 4        !! a free particle of a bridge's fill (not watched for collapse)
 
   !> One convex polygon, vertices counter-clockwise, absolute coordinates [m].
   type :: polygon_t

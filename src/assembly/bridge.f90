@@ -10,15 +10,20 @@
 !> from the intrados along its normal to a ring_thickness_m deep extrados point; the
 !> joints divide the intrados into n_voussoirs equal arc lengths. Each block carries its
 !> part's density and friction (an interface takes the lesser friction of its two blocks).
+!> With fill_model = 'particles' the fill's particles follow (free). No wall retains them at
+!> the abutments' backs: between two fixed walls the fill, rigid blocks with associative
+!> friction and no crushing, is a flat arch whose thrust the walls take without bound, and
+!> the LP finds no collapse (measured: unbounded); the fill ends in free faces there.
 module voussoir_bridge
   use voussoir_kinds, only: dp, g_m_s2, pi
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa
   use voussoir_geometry, only: is_convex_ccw
-  use voussoir_assembly, only: assembly_t, polygon_t, role_voussoir, role_foundation
+  use voussoir_assembly, only: assembly_t, polygon_t, role_voussoir, role_foundation, role_fill
   use voussoir_bridge_shape, only: intrados_t, intrados_at, crown_extrados_m, shape_pointed
-  use voussoir_bridge_config, only: bridge_config_t, bridge_intrados
+  use voussoir_bridge_config, only: bridge_config_t, bridge_intrados, fill_model_particles
   use voussoir_wall, only: box
+  use voussoir_fill_particles, only: cut_fill_particles
   implicit none
   private
   public :: build_bridge, bridge_span_left_x, bridge_ring_joints
@@ -67,20 +72,26 @@ contains
     type(assembly_t), intent(out) :: asm
     type(status_t), intent(inout) :: status
     real(dp), allocatable :: inner(:, :, :), outer(:, :, :)
+    type(polygon_t), allocatable :: particles(:)
     real(dp) :: h, x_end, w
     integer :: n, ns, nb, k, j, body
+    logical :: with_particles
 
     n = b%n_voussoirs
     ns = b%n_spans
     h = b%pier_height_m
     w = b%abutment_width_m
-    nb = ns*n + (ns - 1) + 2 + merge(1, 0, ns > 1)
+    with_particles = b%fill_model == fill_model_particles .and. b%fill_density_kg_m3 > 0.0_dp
+    allocate (particles(0))
+    if (with_particles) particles = cut_fill_particles(bridge_fill_bottom(b), b%fill_level_m, b%fill_particle_size_m)
+    nb = ns*n + (ns - 1) + 2 + merge(1, 0, ns > 1) + size(particles)
     allocate (asm%polygon(nb), asm%driven(nb), asm%role(nb), asm%density_kg_m3(nb), asm%friction(nb), &
               asm%block_name(nb))
     allocate (inner(2, 0:n, ns), outer(2, 0:n, ns))
     asm%n_bodies = nb
     asm%thickness_m = b%ring_thickness_m
-    asm%has_fill = b%fill_density_kg_m3 > 0.0_dp
+    ! The particles are blocks: no columns, spread or pressure of the engineers' model.
+    asm%has_fill = b%fill_density_kg_m3 > 0.0_dp .and. .not. with_particles
     asm%fill_level_m = b%fill_level_m
     asm%fill_weight_n_m2 = b%fill_density_kg_m3*g_m_s2*b%width_m
     asm%dispersion_angle_deg = b%dispersion_angle_deg
@@ -110,6 +121,12 @@ contains
              b%abutment_friction, 'right abutment')
     if (ns > 1) call add(box(-w, x_end + w, -h - b%ring_thickness_m, -h), .true., role_foundation, &
                          b%pier_density_kg_m3, b%pier_friction, 'ground')
+    if (with_particles) then
+      do k = 1, size(particles)
+        call add(particles(k)%xy, .false., role_fill, b%fill_density_kg_m3, b%fill_particle_friction, &
+                 'fill particle '//itoa(k))
+      end do
+    end if
 
   contains
 
@@ -133,6 +150,24 @@ contains
     end subroutine add
 
   end subroutine build_bridge
+
+  !> The bottom of the fill (2, n) [m], x ascending: the left abutment's level top from its
+  !> back, the extrados ends of every span's joints from the left (across each pier's top
+  !> from one span's last to the next one's first), the right abutment's top to its back.
+  pure function bridge_fill_bottom(b) result(bottom)
+    type(bridge_config_t), intent(in) :: b
+    real(dp), allocatable :: bottom(:, :)
+    real(dp) :: inner(2, 0:b%n_voussoirs), outer(2, 0:b%n_voussoirs), x_end
+    integer :: k
+    allocate (bottom(2, 0))
+    do k = 1, b%n_spans
+      call bridge_ring_joints(b, k, inner, outer)
+      if (k == 1) bottom = reshape([-b%abutment_width_m, outer(2, 0)], [2, 1])
+      bottom = reshape([bottom, outer], [2, size(bottom, 2) + b%n_voussoirs + 1])
+    end do
+    x_end = bridge_span_left_x(b, b%n_spans) + b%span_m(b%n_spans)
+    bottom = reshape([bottom, x_end + b%abutment_width_m, bottom(2, size(bottom, 2))], [2, size(bottom, 2) + 1])
+  end function bridge_fill_bottom
 
   !> A pier between a span's right springing joint (`in1` to `out1`) and the next span's
   !> left one (`in2` to `out2`), down to the ground `height_m` below the springings. A

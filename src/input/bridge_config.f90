@@ -17,12 +17,20 @@ module voussoir_bridge_config
   implicit none
   private
   public :: bridge_config_t, bridge_group, read_bridge_config, bridge_intrados, max_spans, bridge_length_m
+  public :: fill_model_columns, fill_model_particles, max_fill_particles
 
   integer, parameter :: max_spans = 8
   integer, parameter :: max_bridge_voussoirs = 200     !! per span, as voussoir-limit's arch
   !> A ring deeper than this fraction of its span is more a wall pierced by an opening than
   !> an arch (and its springing joints reach over its piers).
   real(dp), parameter :: max_ring_over_span = 0.25_dp
+  !> The fill's models: the engineers' columns (weight, spread and pressure in the LP, mass
+  !> the voussoirs carry in the dynamics) or an assembly of particles (docs/bridges.md).
+  character(len=*), parameter :: fill_model_columns = 'columns', fill_model_particles = 'particles'
+  character(len=16), parameter :: fill_model_names(2) = [character(len=16) :: fill_model_columns, &
+                                                         fill_model_particles]
+  !> At most this many particles (estimated from the bridge's length x the fill's level).
+  integer, parameter :: max_fill_particles = 20000
 
   !> &bridge (no span given: no bridge).
   type :: bridge_config_t
@@ -51,6 +59,13 @@ module voussoir_bridge_config
     !> where the ring moves into the fill; 0: no horizontal pressure.
     real(dp) :: fill_friction_deg = 0.0_dp
     real(dp) :: passive_mobilisation = 0.0_dp           !! the fraction of K_p mobilised (0: active only)
+    !> The fill as particles instead (fill_model = 'particles'): the region between the
+    !> abutments' tops, the extrados and the level cut into convex blocks of about
+    !> fill_particle_size_m, free, of the fill's density, with Coulomb friction
+    !> fill_particle_friction and no tension, ending in free faces at the abutments' backs.
+    character(len=16) :: fill_model = fill_model_columns
+    real(dp) :: fill_particle_size_m = 0.0_dp           !! [m]; 0: not given (particles need it)
+    real(dp) :: fill_particle_friction = 0.6_dp         !! Coulomb coefficient of the particles
     integer :: n_spans = 0                              !! (derived) the spans given
   end type bridge_config_t
 
@@ -88,6 +103,11 @@ contains
                about="real, deg, the fill's angle of friction (0: no horizontal pressure)")
     call g%add('passive_mobilisation', b%passive_mobilisation, range='0 <= passive_mobilisation <= 1', &
                about='real, the fraction of the passive pressure mobilised (0: active only)')
+    call g%add('fill_model', b%fill_model, choices=fill_model_names)
+    call g%add('fill_particle_size_m', b%fill_particle_size_m, unit='m', range='0 <= fill_particle_size_m <= 10 m', &
+               about="real, m, the particles' size with fill_model = 'particles'")
+    call g%add('fill_particle_friction', b%fill_particle_friction, range='fill_particle_friction >= 0 (finite)', &
+               about="real, the particles' Coulomb coefficient with fill_model = 'particles'")
   end subroutine bridge_group
 
   !> Read and check the &bridge group of `path` (absent, or no span: no bridge).
@@ -119,6 +139,7 @@ contains
     call g%check(path, status)
     if (.not. status%ok) return
     b%shape = lower(b%shape)
+    b%fill_model = lower(b%fill_model)
     do k = b%n_spans + 1, max_spans
       call need(b%rise_m(k) == 0.0_dp, path, 'bridge', 'rise_m('//itoa(k)//')', b%rise_m(k), &
                 'none: there are '//itoa(b%n_spans)//' spans (span_m(1..'//itoa(b%n_spans)//'))', status)
@@ -143,7 +164,12 @@ contains
     call need(b%passive_mobilisation == 0.0_dp .or. b%fill_friction_deg > 0.0_dp, path, 'bridge', &
               'passive_mobilisation', b%passive_mobilisation, '0 without fill_friction_deg > 0 (the passive '// &
               "pressure's coefficient follows from the fill's angle of friction)", status)
+    call need(b%fill_model == fill_model_particles .or. b%fill_particle_size_m == 0.0_dp, path, 'bridge', &
+              'fill_particle_size_m', b%fill_particle_size_m, "0 with fill_model = 'columns' (set "// &
+              "fill_model = 'particles' to cut the fill into particles)", status)
     if (b%fill_density_kg_m3 == 0.0_dp) then
+      call need(b%fill_model == fill_model_columns, path, 'bridge', 'fill_density_kg_m3', b%fill_density_kg_m3, &
+                "> 0 with fill_model = 'particles' (the particles' density; and fill_level_m their surface)", status)
       call need(b%fill_friction_deg == 0.0_dp, path, 'bridge', 'fill_friction_deg', b%fill_friction_deg, &
                 '0 without a fill (set fill_density_kg_m3 > 0)', status)
       call need(b%dispersion_angle_deg == 0.0_dp, path, 'bridge', 'dispersion_angle_deg', b%dispersion_angle_deg, &
@@ -164,7 +190,36 @@ contains
     call need(b%fill_level_m >= top_m, path, 'bridge', 'fill_level_m', b%fill_level_m, &
               'fill_level_m >= '//fmt_significant(top_m, 6)//' m, the extrados of span '//itoa(highest)// &
               "'s crown (its rise and ring_thickness_m): a fill surface below the extrados would cut the ring", status)
+    if (b%fill_model == fill_model_particles) call check_particles(b, top_m, path, status)
   end subroutine check_fill
+
+  !> The fill as particles: a size, enough fill over the crown for a particle, not too many
+  !> particles; none of the engineers' model's settings (the particles spread the load and
+  !> press on the ring by their contacts).
+  subroutine check_particles(b, top_m, path, status)
+    type(bridge_config_t), intent(in) :: b
+    real(dp), intent(in) :: top_m
+    character(len=*), intent(in) :: path
+    type(status_t), intent(inout) :: status
+    real(dp) :: estimate
+    call need(b%fill_particle_size_m > 0.0_dp, path, 'bridge', 'fill_particle_size_m', b%fill_particle_size_m, &
+              "0 < fill_particle_size_m <= 10 m with fill_model = 'particles' (no size is assumed)", status)
+    if (.not. status%ok) return
+    call need(b%fill_level_m >= top_m + 0.5_dp*b%fill_particle_size_m, path, 'bridge', 'fill_level_m', &
+              b%fill_level_m, 'fill_level_m >= '//fmt_significant(top_m + 0.5_dp*b%fill_particle_size_m, 6)// &
+              ' m with particles: at least half a particle (fill_particle_size_m/2) over the crown, else the '// &
+              'particles there would be slivers', status)
+    estimate = bridge_length_m(b)*b%fill_level_m/b%fill_particle_size_m**2
+    call need(estimate <= max_fill_particles, path, 'bridge', 'fill_particle_size_m', b%fill_particle_size_m, &
+              'fill_particle_size_m >= '//fmt_significant(sqrt(bridge_length_m(b)*b%fill_level_m/max_fill_particles), 4)// &
+              ' m: the fill would be cut into about '//itoa(nint(estimate))//' particles, more than '// &
+              itoa(max_fill_particles), status)
+    call need(b%dispersion_angle_deg == 0.0_dp, path, 'bridge', 'dispersion_angle_deg', b%dispersion_angle_deg, &
+              "0 with fill_model = 'particles': the particles carry the load down (no dispersion rule)", status)
+    call need(b%fill_friction_deg == 0.0_dp, path, 'bridge', 'fill_friction_deg', b%fill_friction_deg, &
+              "0 with fill_model = 'particles': their pressure on the ring is their contacts' (their friction is "// &
+              'fill_particle_friction)', status)
+  end subroutine check_particles
 
   !> The height of span k's extrados at its crown above the springings [m].
   pure real(dp) function crown_top_m(b, k)

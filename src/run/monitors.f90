@@ -7,7 +7,7 @@
 module voussoir_monitors
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use voussoir_kinds, only: dp
-  use voussoir_assembly, only: assembly_t, role_voussoir
+  use voussoir_assembly, only: assembly_t, role_voussoir, role_fill
   use voussoir_bodies, only: bodies_t
   use voussoir_hinge_side, only: side_intrados, side_extrados
   implicit none
@@ -104,7 +104,8 @@ contains
         end do
       end do
     else
-      k = maxloc(bodies%q_ref(2, :), dim=1, mask=.not. bodies%driven)
+      ! The highest free block of the structure (a fill's particles are not the crown).
+      k = maxloc(bodies%q_ref(2, :), dim=1, mask=.not. bodies%driven .and. bodies%role /= role_fill)
       mon%crown_bodies = [k]
     end if
     call monitor_clear(mon)

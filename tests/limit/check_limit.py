@@ -973,6 +973,122 @@ elif case == "bridge_fill":
             check(worst < 1e-7, f"pressure: every voussoir in equilibrium with the pressures at collapse ({worst:.1e})")
     check(factors[0.0] < factors[0.33] < factors[1.0],
           f"the load factor grows with the passive pressure mobilised: {factors}")
+elif case == "bridge_particles":
+    # The fill as particles (input/bridge_fill_particles.nml: the span of input/bridge_fill.nml,
+    # fill_model = 'particles'), checked from the input and the JSON's blocks alone:
+    # (1) every particle convex, counter-clockwise, of positive area, inside the region
+    # between the abutments' level tops, the extrados chords (the segmental geometry computed
+    # here: R = (L^2/4 + r^2)/(2r), n equal angles) and the level, no two overlapping (a
+    # separating axis), their areas summing to the region's shoelace area (1e-9): so they
+    # tile it; (2) the live load on a particle at the surface at the critical position;
+    # (3) every free block (voussoirs at the ring's density, particles at the fill's) in
+    # equilibrium under its weight, lambda x the load and the JSON's contact forces (1e-7),
+    # no tension, every interface within friction; (4) the lower bound: with friction
+    # mu >= tan of the steepest extrados chord on every interface, the particles carry the
+    # fill's weight and the load straight down (sigma_y = rho g (F - y), no shear on level
+    # faces, none on vertical ones, a vertical traction on a chord within friction): the
+    # ring then carries exactly the engineers' columns with the load on the extrados beneath
+    # it (dispersion 0, no horizontal pressure), so the associative lambda with particles is
+    # at least the columns' at the same load position.
+    d = load(nml)
+    text = open(nml).read()
+    def number(name):
+        return float(re.search(r"\b" + name + r" *= *([-0-9.eE+]+)", text).group(1))
+    span, rise, t, n = number(r"span_m\(1\)"), number(r"rise_m\(1\)"), number("ring_thickness_m"), \
+        int(number("n_voussoirs"))
+    level, w, width = number("fill_level_m"), number("abutment_width_m"), number("width_m")
+    rho_f, rho_r, size = number("fill_density_kg_m3"), number("ring_density_kg_m3"), number("fill_particle_size_m")
+    radius = (span ** 2 / 4 + rise ** 2) / (2 * rise)
+    half = math.asin(span / 2 / radius)
+    phis = [-half + 2 * half * k / n for k in range(n + 1)]
+    ext = [(span / 2 + (radius + t) * math.sin(p), rise - radius + (radius + t) * math.cos(p)) for p in phis]
+    bottom = [(-w, ext[0][1])] + ext + [(span + w, ext[-1][1])]
+    def shoelace(poly):
+        return 0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1]))
+    region = shoelace(bottom + [(span + w, level), (-w, level)])
+    def bottom_y(x):
+        for (x0, y0), (x1, y1) in zip(bottom, bottom[1:]):
+            if x0 - 1e-12 <= x <= x1 + 1e-12:
+                return y0 + (y1 - y0) * (x - x0) / (x1 - x0)
+        return None
+    blocks = d["blocks"]
+    parts = [(i, b["vertices_xy_m"]) for i, b in enumerate(blocks, start=1) if b["name"].startswith("fill particle")]
+    check(len(blocks) == n + 2 + len(parts) and all(not b["driven"] for _, b in
+                                                   ((i, blocks[i - 1]) for i, _ in parts)),
+          f"{n} voussoirs, 2 abutments and {len(parts)} free particles")
+    voussoir_ext = [tuple(blocks[k]["vertices_xy_m"][3]) for k in range(n)] + [tuple(blocks[n - 1]["vertices_xy_m"][2])]
+    check(max(math.dist(a, b) for a, b in zip(voussoir_ext, ext)) < 1e-9,
+          "the voussoirs' extrados ends where the segmental geometry puts them (1e-9 m)")
+    def convex(v):
+        return all((x1 - x0) * (y2 - y1) - (y1 - y0) * (x2 - x1) > 0
+                   for (x0, y0), (x1, y1), (x2, y2) in zip(v, v[1:] + v[:1], v[2:] + v[:2]))
+    areas = [shoelace(v) for _, v in parts]
+    check(all(convex(v) for _, v in parts) and min(areas) > 0,
+          f"every particle convex, counter-clockwise, of positive area (least {min(areas):.4g} m2 for size {size} m)")
+    inside = all(-w - 1e-9 <= x <= span + w + 1e-9 and bottom_y(x) - 1e-9 <= y <= level + 1e-9
+                 for _, v in parts for x, y in v)
+    check(inside, "every particle between the abutments' tops and the extrados below and the level above")
+    def overlap(a, b):
+        for poly in (a, b):
+            for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1]):
+                nx, ny = y1 - y0, x0 - x1
+                ln = math.hypot(nx, ny)
+                pa = [(x * nx + y * ny) / ln for x, y in a]
+                pb = [(x * nx + y * ny) / ln for x, y in b]
+                if min(max(pa), max(pb)) - max(min(pa), min(pb)) <= 1e-9:
+                    return False
+        return True
+    boxes = [(min(x for x, _ in v), max(x for x, _ in v), min(y for _, y in v), max(y for _, y in v)) for _, v in parts]
+    clash = [(i, j) for a in range(len(parts)) for b in range(a + 1, len(parts))
+             if boxes[a][0] < boxes[b][1] and boxes[b][0] < boxes[a][1] and boxes[a][2] < boxes[b][3] and
+             boxes[b][2] < boxes[a][3] and overlap(parts[a][1], parts[b][1])
+             for i, j in [(parts[a][0], parts[b][0])]]
+    check(not clash, f"no two particles overlap ({clash[:3]})")
+    check(close(sum(areas), region, rtol=1e-9), f"the particles' areas sum to the fill's region {region:.9g} m2 "
+                                                f"(shoelace; {abs(sum(areas) / region - 1):.1e})")
+    lam = d["load_factor"]
+    live = [pl for pl in d["point_loads"] if pl["live"]]
+    check(len(live) == 1 and live[0]["xy_m"][1] == level and blocks[live[0]["block"] - 1]["name"].startswith(
+        "fill particle") and close(live[0]["xy_m"][0], d["critical_position"]["x_m"], atol=1e-12),
+          f"the live load stands on a particle at the surface at the critical position x = "
+          f"{d['critical_position']['x_m']:.4g} m (lambda {lam:.6g})")
+    worst = 0.0
+    g_w = 9.81 * width
+    for i, b in enumerate(blocks, start=1):
+        if b["driven"]:
+            continue
+        v = b["vertices_xy_m"]
+        weight = (rho_f if b["name"].startswith("fill particle") else rho_r) * g_w * shoelace(v)
+        cx, cy = centroid(v)
+        fx, fy, m = contact_resultant(d, i, cx, cy)
+        fy -= weight
+        for pl in live:
+            if pl["block"] == i:
+                gy = lam * pl["force_n"][1]
+                fy, m = fy + gy, m + (pl["xy_m"][0] - cx) * gy
+        worst = max(worst, abs(fx) / weight, abs(fy) / weight, abs(m) / (weight * size))
+    check(worst < 1e-7, f"every voussoir and particle in equilibrium: weight, lambda x the load, contacts ({worst:.1e})")
+    mu = number("fill_particle_friction")
+    check(all(min(f["normal_n"]) >= -1e-6 and abs(f["shear_n"]) <= mu * sum(f["normal_n"]) * (1 + 1e-9) + 1e-6
+              for f in d["contact_forces"]), f"no tension, every interface within friction {mu}")
+    steepest = max(abs((y1 - y0) / (x1 - x0)) for (x0, y0), (x1, y1) in zip(ext, ext[1:]))
+    rough = 1.5
+    check(rough > steepest, f"premise: friction {rough} > tan of the steepest extrados chord ({steepest:.4f})")
+    base = re.sub(r"path_x0_m *= *[^,/]*, *path_x1_m *= *[^,/]*, *path_points *= *[^,/\n]*", "POINT", text)
+    for key in ("ring_friction", "abutment_friction", "fill_particle_friction"):
+        base = re.sub(key + r" *= *[0-9.]+", f"{key} = {rough}", base)
+    x0 = 2.5
+    with open("particles_rough.nml", "w") as f:
+        f.write(base.replace("POINT", f"point_load_x_m(1) = {x0}, point_load_y_m(1) = {level}"))
+    columns = re.sub(r",\s*fill_model *= *'particles', *fill_particle_size_m *= *[0-9.]+, *fill_particle_friction *= *"
+                     r"[0-9.]+", "", base)
+    with open("columns_rough.nml", "w") as f:
+        f.write(columns.replace("POINT", f"point_load_x_m(1) = {x0}, point_load_y_m(1) = {level}"))
+    b, a = load("particles_rough.nml"), load("columns_rough.nml")
+    check("fill_model" not in columns and a["load_factor"] > 0 and
+          b["load_factor"] >= a["load_factor"] * (1 - 1e-9),
+          f"friction {rough} everywhere, the load at x = {x0} m: lambda with particles {b['load_factor']:.6g} >= "
+          f"the columns' without spread or pressure {a['load_factor']:.6g}")
 elif case == "bridge_vehicle":
     # &vehicle on input/bridge_fill.nml's span (fill, live loads spread at 30 deg), checked
     # against what follows from the input alone: (1) a one-axle vehicle of 100 kN is the

@@ -143,6 +143,10 @@ def bridge_summary(limit: LimitResult) -> BridgeSummary:
     if "bridge" not in config:
         raise InputError(f"{limit.path}: no 'config_nml' with &bridge (written before voussoir-limit recorded its "
                          "settings): run voussoir-limit --json again")
+    if str(config["bridge"].get("fill_model", "columns")).strip("'\" ").lower() == "particles":
+        raise InputError(f"{limit.path}: its fill is particles (&bridge fill_model = 'particles'); the bridge "
+                         "report tells the engineers' columns (weight, spread, pressure) and does not take "
+                         "particles yet: draw its mechanism with voussoir-post mechanism")
     if limit.live_is_acceleration:
         raise InputError(f"{limit.path}: its live load is the horizontal acceleration; a bridge report is of a "
                          "live point load of &load (a vehicle), moved along a path or standing at one place")

@@ -49,6 +49,7 @@ __all__ = [
 ROLE_VOUSSOIR = 1
 ROLE_FOUNDATION = 2
 ROLE_RESTRAINT = 3
+ROLE_FILL = 4  #: a free particle of a bridge's fill (&bridge fill_model = 'particles')
 
 
 def rotation_matrix(angle_rad: np.ndarray) -> np.ndarray:

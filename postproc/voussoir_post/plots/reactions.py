@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..analysis.contact_forces import Reactions, reactions, reactions_table
-from ..analysis.kinematics import ROLE_FOUNDATION, ROLE_VOUSSOIR
+from ..analysis.kinematics import ROLE_FILL, ROLE_FOUNDATION, ROLE_VOUSSOIR
 from ..readers.results import RunResult
 from ..tables import ReportTable
 from .drawing import (G_M_S2, add_g_axis, legend_pad, new_figure, provenance, run_caption, save_figure,
@@ -48,6 +48,10 @@ def free_weight_n(run: RunResult) -> float:
         n_ring = int(bridge.get("n_voussoirs", 0)) * sum(
             1 for k, v in bridge.items() if k.startswith("span_m(") and float(v) > 0)
         densities[n_ring:] = float(bridge.get("pier_density_kg_m3", density))
+        # A fill of particles (role 4, after the ring and the piers): their own density.
+        particles = np.nonzero(run.body_role == ROLE_FILL)[0]
+        free = np.concatenate([free, particles])
+        densities = np.concatenate([densities, np.full(len(particles), float(bridge.get("fill_density_kg_m3", 0.0)))])
     weight = 0.0
     for b, rho in zip(free, densities):
         x, y = run.vertices_local_m[b, : run.n_vertices[b]].T
