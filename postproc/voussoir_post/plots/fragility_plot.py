@@ -23,7 +23,7 @@ from ..earthquake.fragility import (BetaSplit, FitCheck, FitError, FragilityBand
 from ..earthquake.ida import FIT_BRACKET, FIT_CENSORED, FIT_FAILED, FIT_LEFT_OUT, IdaResult
 from ..tables import ReportTable
 from ..units import G_M_S2
-from .drawing import legend_pad, new_figure, provenance, save_figure, wrap_text
+from .drawing import bridge_caption, legend_pad, new_figure, provenance, save_figure, wrap_text
 
 __all__ = ["FragilityData", "IntensityFragility", "fragility_of", "fragility_data", "plot_fragility", "G_M_S2",
            "BETA_CONVENTION", "BETA_SPLIT", "LEGEND_PAD", "confidence_words", "split_words", "split_label",
@@ -265,7 +265,11 @@ def top_intensity(ida: IdaResult, measure: str) -> float:
 
 
 def arch_words(ida: IdaResult) -> str:
-    """The arch of an IDA in words ('156-degree arch of 13 voussoirs (r_ext ..., t ...)')."""
+    """The arch of an IDA in words ('156-degree arch of 13 voussoirs (r_ext ..., t ...)'),
+    or its &bridge ('bridge of 2 segmental spans of 10, 10 m ...': its &arch then holds
+    only the ring's values)."""
+    if "bridge" in ida.config:
+        return bridge_caption(ida.config["bridge"], ida.config.get("vehicle"))
     arch = ida.config.get("arch", {})
     if arch.get("embrace_deg") is not None:
         return (f"{arch.get('embrace_deg'):g}-degree arch of {arch.get('n_voussoirs')} voussoirs "
