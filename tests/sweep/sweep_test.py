@@ -955,6 +955,24 @@ def case_bridge(r, work):
           f"the ramp moves the crown 1 mm at {accel[moved]:.3f} m/s2, within [lambda g, 1.10 lambda g] = "
           f"[{capacity:.3f}, {1.10 * capacity:.3f}] of the sweep's onset (fill as mass)")
 
+    # (3b) The steps at rest skipped below that capacity (skip_at_rest, an IDA) or all
+    # solved: the same runs, the same outcomes (the capacity with the fill as mass is one
+    # the dynamics do not move below).
+    for skip in ("true", "false"):
+        write_nml(f"fill_ida_{skip}.nml", f"fill_ida_{skip}.h5",
+                  BRIDGE_IDA_SWEEP.replace("progress_every_s = 0", f"progress_every_s = 0, skip_at_rest = .{skip}.,"
+                                           " record_polarity = 'both'"), base=fill_bridge + ida_base)
+        rc, out = r.sweep_run(2, f"fill_ida_{skip}.nml")
+        if rc != 0:
+            return
+    a, b = read("fill_ida_true.h5")[0], read("fill_ida_false.h5")[0]
+    check(np.array_equal(a["runs/scale"], b["runs/scale"]) and np.array_equal(a["runs/collapsed"], b["runs/collapsed"])
+          and np.array_equal(a["results/scale_threshold"], b["results/scale_threshold"])
+          and a["runs/n_steps"].sum() < b["runs/n_steps"].sum(),
+          f"fill as mass: the IDA with the steps at rest skipped ({a['runs/n_steps'].sum()} steps) runs the same "
+          f"scales to the same outcomes as with every step solved ({b['runs/n_steps'].sum()}): thresholds "
+          f"{a['results/scale_threshold']}")
+
     # (4) What a bridge sweep refuses.
     running = []
     for name, text, expect in BRIDGE_BAD:
