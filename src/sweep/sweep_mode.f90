@@ -54,6 +54,8 @@ module voussoir_sweep_mode
     procedure(row_text_i), deferred :: summary_line
     procedure :: closing_check
     procedure :: row_runs
+    ! The assembly.
+    procedure :: bridge_refusal
   end type sweep_mode_t
 
   !> Everything a rank needs to turn a job index into a run.
@@ -312,6 +314,13 @@ contains
     values = [this%run_value(plan, nint(table_value(results, 'job', r)))]
     words = [character(len=16) :: 'run']
   end subroutine row_runs
+
+  !> Why the mode cannot sweep a &bridge, or '' when it can (here: it can).
+  function bridge_refusal(this) result(why)
+    class(sweep_mode_t), intent(in) :: this
+    character(len=:), allocatable :: why
+    why = ''
+  end function bridge_refusal
 
   !> The bodies of a run of `cfg`, the unit of a run's cost (steps x bodies): a bridge's
   !> blocks (its voussoirs, piers, abutments and ground: src/assembly/bridge.f90), else

@@ -50,7 +50,7 @@ contains
     end if
     call make_sweep_mode(path, group%mode, mode, status)
     if (.not. status%ok) return
-    call check_bridge_sweep(path, base, group, mode%name, status)
+    call check_bridge_sweep(path, base, group, mode, status)
     if (.not. status%ok) return
     plan%combine = group%combine
     plan%pair_frequencies = group%pair_frequencies
@@ -86,19 +86,21 @@ contains
 
   !> What a sweep of a &bridge (docs/bridges.md, "The bridge under earthquakes") cannot
   !> take: the lists and the model samples set &arch variables, which a bridge does not
-  !> read (its parts carry their own friction, density and ring); mode 'msa' keeps the
-  !> largest opening of an arch's numbered joints, which a bridge does not number.
-  subroutine check_bridge_sweep(path, base, group, mode_name, status)
-    character(len=*), intent(in) :: path, mode_name
+  !> read (its parts carry their own friction, density and ring); and a mode that says
+  !> why it cannot (bridge_refusal).
+  subroutine check_bridge_sweep(path, base, group, mode, status)
+    character(len=*), intent(in) :: path
     type(config_t), intent(in) :: base
     type(sweep_group_t), intent(in) :: group
+    class(sweep_mode_t), intent(in) :: mode
     type(status_t), intent(inout) :: status
+    character(len=:), allocatable :: why
     integer :: j
     if (base%bridge%n_spans == 0) return
-    if (trim(mode_name) == 'msa') then
-      call fail(status, path//": &sweep mode = 'msa' is refused with &bridge: its rows keep the largest opening "// &
-                "of an arch's numbered joints (max_joint_opening_mm), and a bridge's joints are not numbered; "// &
-                "use mode = 'threshold', 'grid' or 'ida'")
+    why = mode%bridge_refusal()
+    if (len(why) > 0) then
+      call fail(status, path//": &sweep mode = '"//trim(mode%name)//"' is refused with &bridge: "//why// &
+                "; use mode = 'threshold', 'grid' or 'ida'")
       return
     end if
     do j = 1, n_kinds
