@@ -1,7 +1,8 @@
 !> voussoir-sweep FILE.nml: many simulations of one base case, spread over MPI ranks.
 !>
 !> `mpirun -np N voussoir-sweep FILE.nml`. The &arch (or &bridge, with &load and &vehicle),
-!> &motion, &solver and &output groups give the base case as for voussoir-run; &sweep says what varies (docs/sweep.md):
+!> &motion, &solver and &output groups give the base case as for voussoir-run; &sweep
+!> says what varies (docs/sweep.md):
 !> mode 'threshold' finds the collapse threshold amplitude at each frequency, mode 'grid'
 !> runs every frequency x amplitude; optional lists over model parameters make parameter
 !> sets (Cartesian product or paired). Rank 0 writes &output's `file` (HDF5, always
