@@ -10,8 +10,11 @@ def test_bridge_named_not_arch():
               "n_voussoirs": 20, "fill_density_kg_m3": 2000.0, "fill_level_m": 3.45}
     arch = {"embrace_deg": 156.0, "n_voussoirs": 13, "r_ext_m": 0.508, "thickness_m": 0.45}
     words = arch_words(SimpleNamespace(config={"arch": arch, "bridge": bridge}, path="ida_bridge.h5"))
-    assert words.startswith("bridge of 2 segmental spans of 10, 10 m (rise 2.5, 2.5 m), ring 450 mm of 20 voussoirs")
-    assert "fill to 3.45 m" in words and "156" not in words
+    assert words == "bridge of 2 segmental spans of 10, 10 m (rise 2.5, 2.5 m), ring 450 mm of 20 voussoirs, with fill"
+    no_fill = dict(bridge, fill_density_kg_m3=0.0)
+    words = arch_words(SimpleNamespace(config={"arch": arch, "bridge": no_fill, "vehicle": {"name": "x"}}, path=""))
+    assert words == "bridge of 2 segmental spans of 10, 10 m (rise 2.5, 2.5 m), ring 450 mm of 20 voussoirs, " \
+                    "a standing vehicle"
 
 
 def test_arch_unchanged():

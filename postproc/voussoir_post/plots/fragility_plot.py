@@ -266,10 +266,15 @@ def top_intensity(ida: IdaResult, measure: str) -> float:
 
 def arch_words(ida: IdaResult) -> str:
     """The arch of an IDA in words ('156-degree arch of 13 voussoirs (r_ext ..., t ...)'),
-    or its &bridge ('bridge of 2 segmental spans of 10, 10 m ...': its &arch then holds
-    only the ring's values)."""
+    or its &bridge, short enough for a title ('bridge of 2 segmental spans of 10, 10 m
+    (rise 2.5, 2.5 m), ring 450 mm of 20 voussoirs, with fill': its &arch then holds only
+    the ring's values)."""
     if "bridge" in ida.config:
-        return bridge_caption(ida.config["bridge"], ida.config.get("vehicle"))
+        bridge = ida.config["bridge"]
+        words = bridge_caption(bridge).split(";")[0]
+        if float(bridge.get("fill_density_kg_m3", 0.0)) > 0:
+            words += ", with fill"
+        return words + (", a standing vehicle" if ida.config.get("vehicle") else "")
     arch = ida.config.get("arch", {})
     if arch.get("embrace_deg") is not None:
         return (f"{arch.get('embrace_deg'):g}-degree arch of {arch.get('n_voussoirs')} voussoirs "
