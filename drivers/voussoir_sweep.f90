@@ -1,7 +1,8 @@
 !> voussoir-sweep FILE.nml: many simulations of one base case, spread over MPI ranks.
 !>
-!> `mpirun -np N voussoir-sweep FILE.nml`. The &arch, &motion, &solver and &output groups
-!> give the base case as for voussoir-run; &sweep says what varies (docs/sweep.md):
+!> `mpirun -np N voussoir-sweep FILE.nml`. The &arch (or &bridge, with &load and &vehicle),
+!> &motion, &solver and &output groups give the base case as for voussoir-run; &sweep
+!> says what varies (docs/sweep.md):
 !> mode 'threshold' finds the collapse threshold amplitude at each frequency, mode 'grid'
 !> runs every frequency x amplitude; optional lists over model parameters make parameter
 !> sets (Cartesian product or paired). Rank 0 writes &output's `file` (HDF5, always
@@ -19,6 +20,8 @@ program voussoir_sweep
   use voussoir_status, only: status_t
   use voussoir_config, only: config_t, read_config, config_groups
   use voussoir_load_config, only: load_group
+  use voussoir_bridge_config, only: bridge_group
+  use voussoir_vehicle_config, only: vehicle_group
   use voussoir_namelist_group, only: nml_group_t
   use voussoir_sweep_group, only: sweep_group_t, sweep_table
   use voussoir_sweep_mode_factory, only: default_mode
@@ -34,7 +37,7 @@ program voussoir_sweep
   type(config_t) :: cfg
   type(config_t), target :: defaults          ! what --help lists the tables over
   type(sweep_group_t), target :: sweep_defaults
-  type(nml_group_t) :: tables(6)
+  type(nml_group_t) :: tables(8)
   type(sweep_plan_t) :: plan
   type(master_t) :: master
   type(status_t) :: status
@@ -46,20 +49,23 @@ program voussoir_sweep
   sweep_defaults%mode = default_mode
   call sweep_table(sweep_defaults, tables(5))
   call load_group(defaults%load, tables(6))
+  call bridge_group(defaults%bridge, tables(7))
+  call vehicle_group(defaults%vehicle, tables(8))
   call input_argument('voussoir-sweep', 'mpirun -np N voussoir-sweep FILE.nml [--write-rows]', &
     'A sweep of simulations over MPI ranks (rank 0 schedules, the others run): collapse envelopes over '// &
     'frequencies and amplitudes, threshold searches, lists of arch parameters, or an incremental dynamic '// &
     'analysis under records (&sweep mode; docs/sweep.md, docs/earthquakes.md). Writes an HDF5 file and a CSV '// &
     'beside it, updated as jobs finish; a rerun continues a killed sweep. The groups &arch, &motion, &solver '// &
-    'and &output give the base case as for voussoir-run, &sweep what varies (its ranges depend on the mode: '// &
+    'and &output give the base case as for voussoir-run (or &bridge instead of &arch, with &load and &vehicle as '// &
+    'voussoir-run takes them: docs/bridges.md), &sweep what varies (its ranges depend on the mode: '// &
     'docs/sweep.md). --write-rows: once the sweep is done (or found complete), an input of voussoir-run for each '// &
     'run behind each row beside the result (an IDA row: its runs at scale_stood and scale_threshold), '// &
     '<file stem>_job<J>_<stood|collapsed|run|threshold>.nml: voussoir-run on it replays the run as the sweep '// &
     'ran it (docs/sweep.md).', path, exit_code, flags=['--write-rows'], given=write_rows, groups=tables)
   if (exit_code >= 0) stop exit_code, quiet=.true.
   call comm_start(net)
-  call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'sweep', 'load'], cfg, &
-                   status)
+  call read_config(trim(path), [character(len=8) :: 'arch', 'motion', 'solver', 'output', 'sweep', 'load', &
+                   'bridge', 'vehicle'], cfg, status)
   if (status%ok .and. net%rank == 0) call write_warnings('voussoir-sweep', cfg%warnings)
   if (status%ok) call read_sweep_plan(trim(path), cfg, plan, status)
   if (status%ok .and. net%rank == 0) call master_prepare(plan, cfg, net%size, master, status)

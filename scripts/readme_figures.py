@@ -63,6 +63,8 @@ FIGURES = (
 #: Figures the docs show that other programs draw (not from results/), and which.
 OTHER_FIGURES = {
     "diagnosis_reliability.png": "bench/diagnosis_calibration.sh (the calibration study)",
+    "bridge_two_spans_ida_fragility.png": "voussoir-post fragility on the IDA of the two-span bridge "
+                                          "(docs/bridges.md, \"The bridge under earthquakes\")",
 }
 
 

@@ -14,6 +14,9 @@
 #                           samples in the sweep definition, bad files refused
 #   sweep_ida_replay        --write-rows: voussoir-run on a row's inputs gives the row's
 #                           outcome (collapse time; steps at rest, ended at rest)
+#   sweep_bridge            a &bridge semicircle without fill: the &arch builder's thresholds,
+#                           onsets, IDA scale and capacity; its --write-rows input replayed;
+#                           with fill, the onset against a ramp in voussoir-run; the refusals
 # The input files input/sweep_*.nml are run by driver_tests.cmake.
 if(NOT TARGET voussoir-sweep)
   return()
@@ -22,7 +25,7 @@ if(NOT MPIEXEC_EXECUTABLE)
   message(FATAL_ERROR "voussoir-sweep is built but no mpiexec was found: its MPI tests cannot run")
 endif()
 
-foreach(case ranks grid resume refuse threshold_vs_run bad_inputs failing_job lock ida_samples ida_replay)
+foreach(case ranks grid resume refuse threshold_vs_run bad_inputs failing_job lock ida_samples ida_replay bridge)
   add_test(NAME sweep_${case}
            COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/sweep/sweep_test.py ${case}
                    --mpiexec ${MPIEXEC_EXECUTABLE} --bin $<TARGET_FILE_DIR:voussoir-sweep>

@@ -9,7 +9,7 @@ module voussoir_limit_lp_study
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa, fmt_significant
   use voussoir_load_config, only: load_config_t
-  use voussoir_placed_loads, only: placed_loads_t, place_loads, moves_on_top, vehicle_x, top_surface
+  use voussoir_placed_loads, only: placed_loads_t, place_loads, moves_on_top, vehicle_x, top_surface, fill_column
   use voussoir_assembly, only: assembly_t
   use voussoir_hinge_side, only: side_intrados, side_extrados
   use voussoir_block_interfaces, only: interface_set_t, find_interfaces
@@ -77,7 +77,7 @@ contains
   !> acceleration, the same towards -x in `study%neg` (its refusal in `study%neg%note`).
   !> With `compressive_strength_pa` > 0, the interfaces crush (voussoir_limit_crushing).
   subroutine lp_study(asm, density_kg_m3, width_m, friction, inset_m, study, status, load, joint_friction, &
-                      compressive_strength_pa, loads_dead)
+                      compressive_strength_pa, loads_dead, fill_as_mass)
     type(assembly_t), intent(in) :: asm
     real(dp), intent(in) :: density_kg_m3, width_m, friction, inset_m
     type(lp_study_t), intent(out) :: study
@@ -88,6 +88,10 @@ contains
     !> Every load of `load` dead, where a run applies it (no path), the live load the
     !> horizontal acceleration: the static capacity of a shaken, loaded assembly.
     logical, intent(in), optional :: loads_dead
+    !> A fill as voussoir-run has it (docs/bridges.md, "Fill in the dynamics"): mass its
+    !> blocks carry, so the horizontal acceleration moves it too, and its horizontal
+    !> pressure at the active bound alone (a constant force in the run)
+    logical, intent(in), optional :: fill_as_mass
     type(block_loads_t) :: loads
     real(dp), allocatable :: mu(:)
     real(dp) :: size_m, shift_m
@@ -155,6 +159,9 @@ contains
     end if
     call block_loads(asm, density_kg_m3, width_m, g_m_s2, loads)
     call add_placed_loads(study%placed, loads)
+    if (present(fill_as_mass)) then
+      if (fill_as_mass .and. asm%has_fill .and. study%live_is_acceleration) call carry_fill(asm, loads)
+    end if
     call crushing_capacity(asm, study%faces, loads, mu, study%crush, study%assoc, study%crushing_steps, &
                            study%crushing_converged, study%crushed_through, status)
     if (.not. status%ok) return
@@ -434,5 +441,26 @@ contains
       end do
     end do
   end subroutine name_arch_joints
+
+  !> The fill of `asm` as mass its free blocks carry under the horizontal acceleration:
+  !> each block's column (fill_column, the same trapezoids whose weight place_loads puts
+  !> on it) loaded by lambda times its weight towards +x at the column's centroid, as the
+  !> run's composite body takes it; its horizontal pressure fixed at the active bound.
+  pure subroutine carry_fill(asm, loads)
+    type(assembly_t), intent(in) :: asm
+    type(block_loads_t), intent(inout) :: loads
+    real(dp) :: area_m2, centroid_xy(2), polar_m4, force_n
+    integer :: b
+    do b = 1, asm%n_bodies
+      if (asm%driven(b)) cycle
+      call fill_column(asm, b, area_m2, centroid_xy, polar_m4)
+      if (.not. area_m2 > 0.0_dp) cycle
+      force_n = asm%fill_weight_n_m2*area_m2
+      loads%live_n(1, b) = loads%live_n(1, b) + force_n
+      ! The moment of [force_n, 0] at the column's centroid about the block's.
+      loads%live_moment_nm(b) = loads%live_moment_nm(b) - (centroid_xy(2) - loads%centroid(2, b))*force_n
+    end do
+    if (loads%n_bounded > 0) loads%bounded_hi_n = loads%bounded_lo_n
+  end subroutine carry_fill
 
 end module voussoir_limit_lp_study

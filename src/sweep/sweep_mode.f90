@@ -22,7 +22,7 @@ module voussoir_sweep_mode
   implicit none
   private
 
-  public :: sweep_mode_t, sweep_plan_t, job_param_set, set_description
+  public :: sweep_mode_t, sweep_plan_t, job_param_set, set_description, run_bodies
 
   !> What every sweep mode provides. `plan` is the plan that carries the mode.
   type, abstract :: sweep_mode_t
@@ -54,6 +54,8 @@ module voussoir_sweep_mode
     procedure(row_text_i), deferred :: summary_line
     procedure :: closing_check
     procedure :: row_runs
+    ! The assembly.
+    procedure :: bridge_refusal
   end type sweep_mode_t
 
   !> Everything a rank needs to turn a job index into a run.
@@ -312,5 +314,26 @@ contains
     values = [this%run_value(plan, nint(table_value(results, 'job', r)))]
     words = [character(len=16) :: 'run']
   end subroutine row_runs
+
+  !> Why the mode cannot sweep a &bridge, or '' when it can (here: it can).
+  function bridge_refusal(this) result(why)
+    class(sweep_mode_t), intent(in) :: this
+    character(len=:), allocatable :: why
+    why = ''
+  end function bridge_refusal
+
+  !> The bodies of a run of `cfg`, the unit of a run's cost (steps x bodies): a bridge's
+  !> blocks (its voussoirs, piers, abutments and ground: src/assembly/bridge.f90), else
+  !> the arch's voussoirs and its two supports.
+  pure integer function run_bodies(cfg)
+    type(config_t), intent(in) :: cfg
+    associate (b => cfg%bridge)
+      if (b%n_spans > 0) then
+        run_bodies = b%n_spans*b%n_voussoirs + (b%n_spans - 1) + 2 + merge(1, 0, b%n_spans > 1)
+      else
+        run_bodies = cfg%arch%n_voussoirs + 2
+      end if
+    end associate
+  end function run_bodies
 
 end module voussoir_sweep_mode

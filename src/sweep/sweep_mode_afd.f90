@@ -12,7 +12,7 @@ module voussoir_sweep_mode_afd
   use voussoir_threshold, only: search_run_config
   use voussoir_sweep_group, only: sweep_group_t, unset_real
   use voussoir_sweep_table, only: named_values_t, named_text_t
-  use voussoir_sweep_mode, only: sweep_mode_t, sweep_plan_t, job_param_set
+  use voussoir_sweep_mode, only: sweep_mode_t, sweep_plan_t, job_param_set, run_bodies
   implicit none
   private
 
@@ -150,7 +150,7 @@ contains
       duration_s = c%motion%duration_s
       if (duration_s == 0.0_dp) duration_s = (c%motion%n_attack + c%motion%n_full + c%motion%n_decay)/ &
                                              this%frequency_hz(plan, job) + c%motion%lead_s + c%motion%rest_s
-      cost = duration_s/c%solver%dt_s*(c%arch%n_voussoirs + 2)
+      cost = duration_s/c%solver%dt_s*run_bodies(c)
     end associate
   end function cost
 

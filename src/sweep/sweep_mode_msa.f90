@@ -44,9 +44,18 @@ module voussoir_sweep_mode_msa
     procedure :: csv_line
     procedure :: summary_line
     procedure :: closing_check
+    procedure :: bridge_refusal
   end type msa_mode_t
 
 contains
+
+  !> Its rows keep the hinge onset by the arch's joints, which a bridge does not number.
+  function bridge_refusal(this) result(why)
+    class(msa_mode_t), intent(in) :: this
+    character(len=:), allocatable :: why
+    why = "its rows keep the largest opening of an arch's numbered joints (max_joint_opening_mm), and a "// &
+          "bridge's joints are not numbered"
+  end function bridge_refusal
 
   !> Level (1-based, into levels_g) of job `job`.
   pure integer function job_level(plan, job)

@@ -19,7 +19,7 @@ module voussoir_sweep_mode_records
   use voussoir_model_samples, only: read_model_samples, samples_digest
   use voussoir_sweep_group, only: sweep_group_t, lengths_text, unset_real
   use voussoir_sweep_table, only: sweep_table_t, named_values_t, named_text_t, name_len, table_set
-  use voussoir_sweep_mode, only: sweep_mode_t, sweep_plan_t, job_param_set
+  use voussoir_sweep_mode, only: sweep_mode_t, sweep_plan_t, job_param_set, run_bodies
   implicit none
   private
 
@@ -229,7 +229,8 @@ contains
   !> Each set's static capacity lambda g, once; with skip_at_rest, also in the set's
   !> solver settings: its runs do not solve the steps in which the arch rides at rest on
   !> the table (src/run/rest_window.f90). Not with loads (&load: the rest window is not
-  !> checked on loaded runs) or where the capacity does not apply (0).
+  !> checked on loaded runs, nor with a bridge's fill pressure, forces as loads are) or
+  !> where the capacity does not apply (0).
   subroutine prepare_sets(this, group, plan, status)
     class(record_mode_t), intent(inout) :: this
     type(sweep_group_t), intent(in) :: group
@@ -242,6 +243,7 @@ contains
         this%capacity_m_s2(s) = static_capacity_m_s2(c)
         if (.not. this%skip_at_rest) cycle
         if (c%load%n_point_loads > 0 .or. c%load%dead_load_n_per_m /= 0.0_dp) cycle
+        if (c%bridge%fill_friction_deg > 0.0_dp) cycle   ! the fill's pressure: constant forces, as loads
         c%solver%rest_capacity_m_s2 = this%capacity_m_s2(s)
       end associate
     end do
@@ -342,7 +344,7 @@ contains
       duration_s = c%motion%duration_s
       if (duration_s == 0.0_dp) duration_s = c%motion%lead_s + plan%records%duration_s(job_record(plan, job)) + &
                                              c%motion%rest_s
-      cost = duration_s/c%solver%dt_s*(c%arch%n_voussoirs + 2)
+      cost = duration_s/c%solver%dt_s*run_bodies(c)
     end associate
   end function cost
 

@@ -10,8 +10,9 @@ module voussoir_sweep_plan
   use voussoir_config, only: config_t, config_entry_t, config_entries, config_to_nml, validate_config, &
                              arch_rule, arch_rule_text, has_loads, assembly_span
   use voussoir_sweep_group, only: sweep_group_t, read_sweep_group, lengths_text, n_kinds, param_kinds, list_names, &
-                                  combine_paired
-  use voussoir_sweep_mode, only: sweep_mode_t, sweep_plan_t, set_description, job_param_set
+                                  combine_paired, unset_real
+  use voussoir_sweep_ida, only: n_sampled, range_names
+  use voussoir_sweep_mode, only: sweep_mode_t, sweep_plan_t, set_description, job_param_set, run_bodies
   use voussoir_sweep_mode_factory, only: make_sweep_mode, default_mode
   use voussoir_assembly, only: assembly_t
   use voussoir_config_assembly, only: build_config_assembly
@@ -49,6 +50,8 @@ contains
     end if
     call make_sweep_mode(path, group%mode, mode, status)
     if (.not. status%ok) return
+    call check_bridge_sweep(path, base, group, mode, status)
+    if (.not. status%ok) return
     plan%combine = group%combine
     plan%pair_frequencies = group%pair_frequencies
     call mode%check_settings(group, base, path, plan, status)
@@ -80,6 +83,43 @@ contains
     call move_alloc(mode, plan%mode)
     call estimate_cost(path, group%max_runs, plan, status)
   end subroutine read_sweep_plan
+
+  !> What a sweep of a &bridge (docs/bridges.md, "The bridge under earthquakes") cannot
+  !> take: the lists and the model samples set &arch variables, which a bridge does not
+  !> read (its parts carry their own friction, density and ring); and a mode that says
+  !> why it cannot (bridge_refusal).
+  subroutine check_bridge_sweep(path, base, group, mode, status)
+    character(len=*), intent(in) :: path
+    type(config_t), intent(in) :: base
+    type(sweep_group_t), intent(in) :: group
+    class(sweep_mode_t), intent(in) :: mode
+    type(status_t), intent(inout) :: status
+    character(len=:), allocatable :: why
+    integer :: j
+    if (base%bridge%n_spans == 0) return
+    why = mode%bridge_refusal()
+    if (len(why) > 0) then
+      call fail(status, path//": &sweep mode = '"//trim(mode%name)//"' is refused with &bridge: "//why// &
+                "; use mode = 'threshold', 'grid' or 'ida'")
+      return
+    end if
+    do j = 1, n_kinds
+      if (group%lengths(j) == 0) cycle
+      call fail(status, path//': &sweep '//trim(list_names(j))//' is refused with &bridge: the swept lists set '// &
+                '&arch variables ('//trim(param_kinds(j))//'), which a bridge does not read (its parts carry '// &
+                'their own ring, density and friction in &bridge); sweep one bridge per input file')
+      return
+    end do
+    do j = 1, n_sampled
+      if (all(group%ranges(:, j) == unset_real)) cycle
+      call fail(status, path//': &sweep '//trim(range_names(j))//' is refused with &bridge: the model samples '// &
+                'set &arch variables, which a bridge does not read; leave out n_samples and the ranges')
+      return
+    end do
+    if (len_trim(group%model_samples_file) > 0) &
+      call fail(status, path//': &sweep model_samples_file is refused with &bridge: its samples set &arch '// &
+                'variables relative to a nominal arch, which a bridge does not read')
+  end subroutine check_bridge_sweep
 
   !> Every load of &load on a block of every parameter set's assembly, where a run puts
   !> it (before any run, rather than a failed run per job).
@@ -163,10 +203,10 @@ contains
     plan%est_simulated_s = 0.0_dp
     plan%est_step_blocks = 0.0_dp
     do job = 0, plan%n_jobs - 1
-      cost = plan%mode%cost(plan, job)   ! steps x bodies; bodies = n_voussoirs + 2 (the mode's cost)
+      cost = plan%mode%cost(plan, job)   ! steps x bodies (run_bodies: the mode's cost)
       plan%est_step_blocks = plan%est_step_blocks + per_job*cost
       associate (c => plan%set_cfg(job_param_set(plan, job)))
-        plan%est_simulated_s = plan%est_simulated_s + per_job*cost*c%solver%dt_s/(c%arch%n_voussoirs + 2)
+        plan%est_simulated_s = plan%est_simulated_s + per_job*cost*c%solver%dt_s/run_bodies(c)
       end associate
     end do
   end subroutine estimate_cost

@@ -12,7 +12,7 @@ module voussoir_sweep_row_inputs
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa, fmt_exact, fmt_fixed
   use voussoir_version, only: code_version
-  use voussoir_config, only: config_t, config_entries, config_to_nml
+  use voussoir_config, only: config_t, config_entry_t, config_entries, config_to_nml
   use voussoir_sweep_table, only: sweep_table_t, table_value, column_index
   use voussoir_sweep_mode, only: sweep_plan_t, job_param_set, set_description
   implicit none
@@ -79,6 +79,7 @@ contains
     character(len=*), intent(in) :: name, path, cwd
     type(status_t), intent(inout) :: status
     type(config_t) :: cfg
+    type(config_entry_t), allocatable :: e(:)
     character(len=:), allocatable :: text
     character(len=512) :: msg
     integer :: unit, ios
@@ -91,12 +92,15 @@ contains
     cfg%motion%record_file = absolute(cfg%motion%record_file, cwd)
     cfg%motion%record_vertical_file = absolute(cfg%motion%record_vertical_file, cwd)
     cfg%arch%polygon_file = absolute(cfg%arch%polygon_file, cwd)
+    e = config_entries(cfg)
+    ! A bridge's &arch holds its ring's values, read from &bridge; voussoir-run takes one of the two.
+    if (cfg%bridge%n_spans > 0) e = pack(e, e%group /= 'arch')
     text = '! The run behind job '//itoa(job)//' of '//path//' (its row of /results; '// &
            plan%mode%job_label(plan, job)//'; '//set_description(plan, job_param_set(plan, job))//'):'// &
            achar(10)//'! '//plan%mode%value_name()//' = '//fmt_exact(value)//', '// &
            sweep_outcome(runs, job, value, plan%mode%value_name())//'.'//achar(10)// &
            '! Written by voussoir-sweep --write-rows ('//code_version//'); replay: voussoir-run '// &
-           base_name(name)//'.nml'//achar(10)//config_to_nml(config_entries(cfg))
+           base_name(name)//'.nml'//achar(10)//config_to_nml(e)
     open (newunit=unit, file=name//'.nml', status='replace', action='write', iostat=ios, iomsg=msg)
     if (ios == 0) write (unit, '(a)', iostat=ios, iomsg=msg) text
     if (ios == 0) close (unit, iostat=ios, iomsg=msg)

@@ -95,9 +95,10 @@ contains
   !> joint (`&arch friction`), sliding may govern: the capacity is then the lesser of the
   !> four-hinge one and the non-associative LP capacity (the joints slide without
   !> dilating) in that direction (docs/limit_analysis.md). With the loads of &load, the
-  !> LP's capacity with them (`loaded_capacity`); a &wall, a polygon file or an arch with
-  !> restraint brackets, which the four-hinge analysis does not model, has the LP's alone
-  !> (a polygon file's driven blocks are its fixed supports).
+  !> LP's capacity with them (`loaded_capacity`); a &bridge, a &wall, a polygon file or an
+  !> arch with restraint brackets, which the four-hinge analysis does not model, has the
+  !> LP's alone (a polygon file's driven blocks are its fixed supports; a bridge's fill as
+  !> the run has it, mass its voussoirs carry).
   real(dp) function static_capacity_m_s2(cfg) result(capacity)
     type(config_t), intent(in) :: cfg
     type(assembly_t) :: arch
@@ -106,7 +107,7 @@ contains
     real(dp) :: lambda
 
     capacity = 0.0_dp
-    if (cfg%wall%courses > 0 .or. len_trim(cfg%arch%polygon_file) > 0 .or. &
+    if (cfg%bridge%n_spans > 0 .or. cfg%wall%courses > 0 .or. len_trim(cfg%arch%polygon_file) > 0 .or. &
         cfg%arch%restrained_springings /= springings_none) then
       call build_config_assembly(cfg, arch, status)
       if (status%ok) capacity = loaded_capacity(arch, cfg)
@@ -156,7 +157,8 @@ contains
   !> The capacity lambda g [m/s2] of the assembly `asm` loaded by &load (if any) as a run
   !> applies the loads (all dead, at their places; the four-hinge analysis takes the
   !> weights alone): the LP's non-associative load factor of the weaker direction; 0 when
-  !> it has none.
+  !> it has none. A bridge's fill as the run has it: mass the blocks carry (accelerated
+  !> with them), its horizontal pressure active.
   real(dp) function loaded_capacity(asm, cfg) result(capacity)
     type(assembly_t), intent(in) :: asm
     type(config_t), intent(in) :: cfg
@@ -165,7 +167,8 @@ contains
     real(dp) :: lambda
     capacity = 0.0_dp
     call lp_study(asm, cfg%arch%density_kg_m3, cfg%arch%width_m, cfg%arch%friction, cfg%arch%contact_inset_m, &
-                  study, status, load=cfg%load, joint_friction=cfg%arch%joint_friction, loads_dead=.true.)
+                  study, status, load=cfg%load, joint_friction=cfg%arch%joint_friction, loads_dead=.true., &
+                  fill_as_mass=.true.)
     if (.not. study%solved) return
     lambda = direction_lambda(study%assoc, study%nonassoc, study%nonassociative_solved)
     if (study%neg%solved) lambda = min(lambda, direction_lambda(study%neg%assoc, study%neg%nonassoc, &

@@ -23,7 +23,7 @@ from ..earthquake.fragility import (BetaSplit, FitCheck, FitError, FragilityBand
 from ..earthquake.ida import FIT_BRACKET, FIT_CENSORED, FIT_FAILED, FIT_LEFT_OUT, IdaResult
 from ..tables import ReportTable
 from ..units import G_M_S2
-from .drawing import legend_pad, new_figure, provenance, save_figure, wrap_text
+from .drawing import bridge_caption, legend_pad, new_figure, provenance, save_figure, wrap_text
 
 __all__ = ["FragilityData", "IntensityFragility", "fragility_of", "fragility_data", "plot_fragility", "G_M_S2",
            "BETA_CONVENTION", "BETA_SPLIT", "LEGEND_PAD", "confidence_words", "split_words", "split_label",
@@ -265,7 +265,16 @@ def top_intensity(ida: IdaResult, measure: str) -> float:
 
 
 def arch_words(ida: IdaResult) -> str:
-    """The arch of an IDA in words ('156-degree arch of 13 voussoirs (r_ext ..., t ...)')."""
+    """The arch of an IDA in words ('156-degree arch of 13 voussoirs (r_ext ..., t ...)'),
+    or its &bridge, short enough for a title ('bridge of 2 segmental spans of 10, 10 m
+    (rise 2.5, 2.5 m), ring 450 mm of 20 voussoirs, with fill': its &arch then holds only
+    the ring's values)."""
+    if "bridge" in ida.config:
+        bridge = ida.config["bridge"]
+        words = bridge_caption(bridge).split(";")[0]
+        if float(bridge.get("fill_density_kg_m3", 0.0)) > 0:
+            words += ", with fill"
+        return words + (", a standing vehicle" if ida.config.get("vehicle") else "")
     arch = ida.config.get("arch", {})
     if arch.get("embrace_deg") is not None:
         return (f"{arch.get('embrace_deg'):g}-degree arch of {arch.get('n_voussoirs')} voussoirs "
