@@ -50,7 +50,9 @@ __all__ = ["BANK_VERSION", "SpecimenBank", "Bank", "variant_key", "key_variant",
            "load", "save", "load_banks", "onset_amplitudes",
            "REPLICAS", "FINE_DT", "NODE_REPLICAS", "G", "spread_nodes", "refine_values", "replica_groups", "pooled_spread", "merge", "MISSING"]
 
-BANK_VERSION = 2
+#: Part of every cache key: 3 since the catalogue's brackets have play (a bank cached by an
+#: older catalogue lacks their models).
+BANK_VERSION = 3
 G = G_M_S2  #: the kernel's gravity [m/s2] (units.py)
 #: Time-step factors of the replicas of the nominal model that measure the simulator's
 #: own spread (a threshold search near a chaotic boundary answers differently to a
