@@ -42,7 +42,7 @@ import numpy as np
 from ..readers.campaign import Specimen
 from ..runner import Runner
 from ..units import G_M_S2
-from .effects import COMBINED, EFFECTS_BY_ID, RESTRAINT_VALUES, Variant, arch_group, nominal_value
+from .effects import COMBINED, EFFECTS_BY_ID, RESTRAINTS, Variant, arch_group, nominal_value, restraint_values
 from .settings import DiagnosisSettings
 from .simulator import Simulator
 
@@ -83,7 +83,7 @@ def key_variant(key: str) -> Variant:
     parts = []
     for text in key.split("+"):
         e, val = text.split("=")
-        parts.append((e, val if val in RESTRAINT_VALUES else float(val)))
+        parts.append((e, val if val.partition("@")[0] in RESTRAINTS else float(val)))
     return Variant.of(parts)
 
 
@@ -93,7 +93,7 @@ def _pair_values(spec: Specimen, settings: DiagnosisSettings) -> dict[str, list]
             "friction": [round(spec.friction + d, 6) for d in settings.pair_friction_steps
                          if settings.min_friction <= spec.friction + d <= settings.max_friction],
             "geometry": list(settings.pair_thickness_factors),
-            "base_restraint": [] if spec.restrained_springings != "none" else list(RESTRAINT_VALUES)}
+            "base_restraint": [] if spec.restrained_springings != "none" else list(restraint_values(settings.bracket_gaps_m))}
 
 
 def bank_variants(spec: Specimen, settings: DiagnosisSettings) -> list[Variant]:
@@ -164,7 +164,7 @@ def _cache_key(code: str, spec: Specimen, freqs: list[float], cycles, settings: 
     grids = {k: v for k, v in dataclasses.asdict(settings).items()
              if k in ("dt_s", "amp_tol_fraction", "inset_grid_m", "friction_steps", "min_friction", "max_friction",
                       "thickness_factors", "scan_step", "pair_inset_m", "pair_friction_steps", "pair_thickness_factors",
-                      "ceiling_factor")}
+                      "ceiling_factor", "bracket_gaps_m")}
     text = json.dumps({"version": BANK_VERSION, "code": code, "arch": group, "freqs": [round(f, 6) for f in freqs],
                        "cycles": list(cycles), "grids": grids}, sort_keys=True, default=str)
     return hashlib.sha256(text.encode()).hexdigest()[:16]

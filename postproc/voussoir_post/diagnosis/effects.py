@@ -15,15 +15,16 @@ from .settings import DiagnosisSettings
 
 __all__ = ["COMBINED", "Variant", "Effect", "ContactEdges", "TableMotion", "BaseRestraint", "Friction", "Geometry",
            "EFFECTS", "EFFECTS_BY_ID", "RESTRAINTS", "BRACKET_GAPS_M", "RESTRAINT_VALUES", "restraint_value",
-           "restraint_parts", "effect", "arch_group", "nominal_value"]
+           "restraint_values", "restraint_parts", "effect", "arch_group", "nominal_value"]
 
 RESTRAINTS = ("left", "right", "both")
-#: The play of a bracket the bank simulates [m]: in contact, and off its voussoir by a
-#: quarter and a half of a millimetre. A laboratory's brackets are set by hand against a
-#: ring that settles and moves, and LMGC90's truths have them 0 to 0.5 mm off: a play of
-#: 0.43 mm takes away most of their effect at some pairs and reverses it at others
-#: (bench/lmgc90/bracket_play.py, docs/lmgc90.md), which brackets in contact cannot show.
-BRACKET_GAPS_M = (0.0, 0.00025, 0.0005)
+#: The play of a bracket the bank simulates by default [m] (DiagnosisSettings
+#: bracket_gaps_m): in contact, and off its voussoir by a quarter and a half of a
+#: millimetre. A laboratory's brackets are set by hand against a ring that settles and
+#: moves, and LMGC90's truths have them 0 to 0.5 mm off: a play of 0.43 mm takes away most
+#: of their effect at some pairs and reverses it at others (bench/lmgc90/bracket_play.py,
+#: docs/lmgc90.md), which brackets in contact cannot show.
+BRACKET_GAPS_M = DiagnosisSettings.bracket_gaps_m
 
 
 def restraint_value(side: str, gap_m: float) -> str:
@@ -38,8 +39,13 @@ def restraint_parts(value: str) -> tuple[str, float]:
     return side, float(gap) if gap else 0.0
 
 
-#: Every value of base_restraint: each side with each play (a categorical parameter).
-RESTRAINT_VALUES = tuple(restraint_value(s, g) for s in RESTRAINTS for g in BRACKET_GAPS_M)
+def restraint_values(gaps_m=BRACKET_GAPS_M) -> tuple[str, ...]:
+    """Every value of base_restraint: each side with each play (a categorical parameter)."""
+    return tuple(restraint_value(s, g) for s in RESTRAINTS for g in gaps_m)
+
+
+#: The values of base_restraint with the default plays.
+RESTRAINT_VALUES = restraint_values()
 #: The Variant effect of two effects acting together.
 COMBINED = "combined"
 
@@ -136,7 +142,7 @@ class BaseRestraint(Effect):
     id = "base_restraint"
 
     def simulated(self, spec, settings):
-        return [] if spec.restrained_springings != "none" else [Variant(self.id, r) for r in RESTRAINT_VALUES]
+        return [] if spec.restrained_springings != "none" else [Variant(self.id, r) for r in restraint_values(settings.bracket_gaps_m)]
 
     def arch_changes(self, value, spec):
         if spec.restrained_springings != "none":

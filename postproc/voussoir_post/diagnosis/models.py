@@ -39,7 +39,7 @@ import numpy as np
 
 from .bank import FINE_DT, MISSING, Bank, SpecimenBank, key_variant, pooled_spread
 from .emulator import emulate
-from .effects import RESTRAINT_VALUES, nominal_value
+from .effects import RESTRAINTS, RESTRAINT_VALUES, nominal_value
 from .observations import Observations
 
 __all__ = ["EFFECT_IDS", "MODEL_IDS", "CANDIDATES", "ModelGrid", "model_grid", "model_prior", "members", "nominal_log",
@@ -154,9 +154,13 @@ def tolerance_spread(bank: SpecimenBank, spec, f: float, tolerance: float = BUIL
 
 def _axis(bank: SpecimenBank, effect_id: str, in_pair: bool, spec) -> list:
     """The simulated values of one effect in the bank (alone or inside pairs), with its
-    nominal value, sorted (restraints: each side with each play, RESTRAINT_VALUES)."""
+    nominal value, sorted (restraints: each side with each play the bank simulated, in the
+    order of RESTRAINT_VALUES; the three sides in contact where the specimen's brackets are
+    declared and base_restraint leaves them as they are)."""
     if effect_id == "base_restraint":
-        return list(RESTRAINT_VALUES)
+        found = {v for key in bank.thresholds for e, v in key_variant(key).parts() if e == effect_id}
+        order = {v: k for k, v in enumerate(RESTRAINT_VALUES)}
+        return sorted(found, key=lambda v: (order.get(v, len(order)), v)) or list(RESTRAINTS)
     found = set()
     for key in bank.thresholds:
         parts = key_variant(key).parts()
@@ -261,7 +265,8 @@ def model_grid(model_id: str, bank: Bank, obs: Observations, pairs=None) -> Mode
                                    np.zeros(0))
         mu[:, j], var[:, j], z = bank.grids[key]
         loo.append(z)
-    values = [RESTRAINTS_ARRAY[pt.astype(int)] if e == "base_restraint" else pt for e, pt in zip(simulated, points)]
+    restraints = np.array(_axis(bank.specimens[ref], "base_restraint", in_pair, obs.specimens[ref]), dtype=object)
+    values = [restraints[pt.astype(int)] if e == "base_restraint" else pt for e, pt in zip(simulated, points)]
     keep = material(simulated, values, obs.specimens[ref])
     if simulated:
         keep &= _material_response(model_id, bank, obs, points)
@@ -284,8 +289,6 @@ def model_grid(model_id: str, bank: Bank, obs: Observations, pairs=None) -> Mode
     log_prior = np.full(n, -math.inf if impossible else -math.log(n))
     return ModelGrid(model_id, names, values, log_prior, mu, gain_per_pair, log_gain, var, loo)
 
-
-RESTRAINTS_ARRAY = np.array(RESTRAINT_VALUES, dtype=object)
 
 
 def material(effects: tuple[str, ...], values: list[np.ndarray], spec) -> np.ndarray:
@@ -323,7 +326,7 @@ def effect_sizes(bank: Bank, obs: Observations, effects: tuple[str, ...], points
     it (the nominal model for a single effect, the other effect alone for a pair, each by
     its own emulator), in units of that pair's material_threshold: 1 or more is a cause.
     Points: one array per effect, as model_grid's (a restraint by its index in
-    RESTRAINT_VALUES)."""
+    the bank's restraint axis, _axis)."""
     in_pair = len(effects) == 2
     out = np.zeros((np.asarray(points[0]).size, len(effects)))
     for p in obs.pairs:

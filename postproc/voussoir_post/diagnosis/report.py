@@ -10,7 +10,6 @@ import numpy as np
 
 from ..plots.drawing import provenance
 from .decision import NAME_AT, Decision
-from .effects import BRACKET_GAPS_M
 from .figures import probabilities_figure, table_figure, thresholds_figure
 from .likelihood import GAIN_SCATTER_DEFAULT, OUTLIER_FACTOR, OUTLIER_PROB, TAU_CAMPAIGN, TAU_PAIR, TAU_SPECIMEN
 from .models import CANDIDATES, MATERIAL, MATERIAL_EFFECT, members, model_prior
@@ -55,8 +54,8 @@ def prior_text(settings, friction: float | None = None) -> str:
             f"the ring's thickness), friction {f_text} (within {settings.min_friction:g} to "
             f"{settings.max_friction:g}; {f_pair} in a pair), thickness factor {min(min(t), 1.0):g} to "
             f"{max(max(t), 1.0):g} ({min(min(tp), 1.0):g} to {max(max(tp), 1.0):g} in a pair); restraint left, "
-            f"right or both alike, each in contact or {' or '.join(f'{1e3 * g:g}' for g in BRACKET_GAPS_M[1:])} mm "
-            "off alike; table gain 0.7 to 1.4 for the campaign without records, each pair's gain as "
+            f"right or both alike, each {' or '.join('in contact' if g == 0 else f'{1e3 * g:g} mm off' for g in settings.bracket_gaps_m)} "
+            "alike; table gain 0.7 to 1.4 for the campaign without records, each pair's gain as "
             "its records measure it with them. Only material points: a parameter at least "
             f"{1e3 * MATERIAL['contact_edges']:g} mm of inset, {MATERIAL['friction']:g} of friction or "
             f"{MATERIAL['geometry']:g} of thickness factor from nominal, whose effect moves at least one tested "

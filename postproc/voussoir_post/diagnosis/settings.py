@@ -28,6 +28,9 @@ class DiagnosisSettings:
     pair_inset_m: tuple[float, ...] = (0.001, 0.002, 0.004, 0.006, 0.008)
     pair_friction_steps: tuple[float, ...] = (-0.2, -0.15, -0.1, -0.05, 0.1)
     pair_thickness_factors: tuple[float, ...] = (0.82, 0.88, 0.94, 1.06)
+    #: The play of base_restraint's brackets [m] the bank simulates, alone and in pairs
+    #: (0: in contact; effects.py). LMGC90's truths have them 0 to 0.5 mm off.
+    bracket_gaps_m: tuple[float, ...] = (0.0, 0.00025, 0.0005)
     #: Ceiling of every threshold search, in onsets of rocking (limit analysis) at the
     #: lowest frequency tested: data-independent.
     ceiling_factor: float = 6.0
