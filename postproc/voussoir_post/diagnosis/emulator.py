@@ -76,28 +76,39 @@ _CHOSEN: dict[bytes, tuple] = {}
 
 
 def _choose(x: np.ndarray, r: np.ndarray, noise: np.ndarray) -> tuple:
-    """(length scales, amplitude^2, roughness) of the largest marginal likelihood."""
+    """(length scales, amplitude^2, roughness) of the largest marginal likelihood (the
+    first of equals, in the order of the grids)."""
     key = x.tobytes() + b"|" + r.tobytes() + b"|" + noise.tobytes()
     if key in _CHOSEN:
         return _CHOSEN[key]
     n, d = x.shape
     base = max(AMPLITUDE_FLOOR, float(np.sqrt(np.mean(r * r))))
-    best = None
+    combos, mats = [], []
     for scales in itertools.product(LENGTH_SCALES, repeat=d):
         k0 = _matern52(x, x, np.array(scales))
         for a, rough in itertools.product(AMPLITUDES, ROUGHNESS if n > d + 3 else (0.0,)):
             amp2 = (a * base) ** 2
+            combos.append((scales, amp2, rough))
+            mats.append(amp2 * k0 + np.diag(noise + rough * rough))
+    try:  # every candidate at once (small matrices: one batched factorisation)
+        low = np.linalg.cholesky(np.array(mats))
+        ok = np.ones(len(mats), bool)
+    except np.linalg.LinAlgError:  # one is not positive definite: factor them one by one
+        low = np.zeros((len(mats), n, n))
+        ok = np.zeros(len(mats), bool)
+        for k, m in enumerate(mats):
             try:
-                c = cho_factor(amp2 * k0 + np.diag(noise + rough * rough), lower=True)
+                low[k] = np.linalg.cholesky(m)
+                ok[k] = True
             except np.linalg.LinAlgError:
-                continue
-            alpha = cho_solve(c, r)
-            logml = -0.5 * float(r @ alpha) - float(np.sum(np.log(np.diag(c[0]))))
-            if best is None or logml > best[0]:
-                best = (logml, scales, amp2, rough)
+                pass
+    low = low[ok]
+    z = np.linalg.solve(low, np.broadcast_to(r, (low.shape[0], n))[..., None])[..., 0]  # L z = r
+    logml = -0.5 * np.sum(z * z, axis=1) - np.sum(np.log(np.diagonal(low, axis1=1, axis2=2)), axis=1)
+    best = [c for c, good in zip(combos, ok) if good][int(np.argmax(logml))]
     if len(_CHOSEN) > 20000:
         _CHOSEN.clear()
-    _CHOSEN[key] = best[1:]
+    _CHOSEN[key] = best
     return _CHOSEN[key]
 
 

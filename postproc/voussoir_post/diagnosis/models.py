@@ -157,15 +157,16 @@ def _axis(bank: SpecimenBank, effect_id: str, in_pair: bool, spec) -> list:
     nominal value, sorted (restraints: each side with each play the bank simulated, in the
     order of RESTRAINT_VALUES; the three sides in contact where the specimen's brackets are
     declared and base_restraint leaves them as they are)."""
+    # The bank's keys are parsed once per bank (and again when it gains a model).
+    parsed = bank.__dict__.get("_parsed_keys")
+    if parsed is None or parsed[0] != len(bank.thresholds):
+        parsed = bank.__dict__["_parsed_keys"] = (len(bank.thresholds),
+                                                  [key_variant(key).parts() for key in bank.thresholds])
     if effect_id == "base_restraint":
-        found = {v for key in bank.thresholds for e, v in key_variant(key).parts() if e == effect_id}
+        found = {v for parts in parsed[1] for e, v in parts if e == effect_id}
         order = {v: k for k, v in enumerate(RESTRAINT_VALUES)}
         return sorted(found, key=lambda v: (order.get(v, len(order)), v)) or list(RESTRAINTS)
-    found = set()
-    for key in bank.thresholds:
-        parts = key_variant(key).parts()
-        if (len(parts) == 2) == in_pair:
-            found |= {v for e, v in parts if e == effect_id}
+    found = {v for parts in parsed[1] if (len(parts) == 2) == in_pair for e, v in parts if e == effect_id}
     return sorted(found | {nominal_value(effect_id, spec)})
 
 
