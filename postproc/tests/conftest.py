@@ -100,6 +100,21 @@ def voussoir_limit_exe() -> Path:
 VERDICTS: list[str] = []
 
 
+#: The longest tests (about 40 to 130 s each, by `pytest --durations`), started first so
+#: that the two workers of `pytest -n 2` do not end with one of them running a long test
+#: alone while the other waits.
+LONGEST_FIRST = ("test_end_to_end_diagnosis_follows_the_contract_and_keeps_the_truth",
+                 "test_a_bank_biased_by_5_percent_fails_the_judgement",
+                 "test_lmgc90_truths_are_named_with_power_and_never_wrongly",
+                 "test_a_transducer_off_by_1_5_percent_names_no_cause_and_is_flagged",
+                 "test_a_tenth_of_the_uncertainty_moves_no_probability_by_more_than_005")
+
+
+def pytest_collection_modifyitems(session, config, items):
+    rank = {name: k for k, name in enumerate(LONGEST_FIRST)}
+    items.sort(key=lambda item: rank.get(item.originalname, len(rank)))  # stable: the rest keep their order
+
+
 @pytest.hookimpl(optionalhook=True)
 def pytest_testnodedown(node, error):
     """Under pytest-xdist (scripts/test.sh runs 2 workers), each worker's verdict lines
