@@ -22,3 +22,5 @@ set_tests_properties(disk_full PROPERTIES PROCESSORS 2)
 add_test(NAME interrupt
          COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/interrupt.sh ${CMAKE_BINARY_DIR}/drivers
                  ${CMAKE_CURRENT_BINARY_DIR}/interrupt ${Python3_EXECUTABLE})
+# The longest input file (about 30 s: the LP of a fill of particles) starts first.
+set_tests_properties(input_bridge_fill_particles PROPERTIES COST 30)

@@ -96,3 +96,6 @@ add_test(NAME limit_driver_load_cases
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
                  load_cases ${CMAKE_SOURCE_DIR}/input/bridge_load_cases.nml
          WORKING_DIRECTORY ${LIMIT_TEST_DIR})
+# The longest tests start first (CTest runs the highest COST first; a fresh clone has no
+# timings of its own): about 20-30 s each, where most take a second or two.
+set_tests_properties(limit_driver_bridge_particles PROPERTIES COST 30)
