@@ -49,6 +49,8 @@ from voussoir_post.plots.drawing import provenance  # noqa: E402
 
 from lmgc90_campaigns import IDEAL, TRUTH_DIR, draw_campaign, stored_truths, truth_model  # noqa: E402
 
+from diagnosis_calibration import effect_size  # noqa: E402  (bench/, beside this script)
+
 BANK = ROOT / "postproc" / "tests" / "data" / "replay" / "bank"
 NAMED = 0.9
 POWER_EFFECT = 0.10  #: the done-when's size of a single effect that must be named
@@ -93,13 +95,6 @@ def oracle_observations(truth: dict, obs):
         pairs.append(dataclasses.replace(p, low_m=low, high_m=t["threshold_m"],
                                          gains=tuple(t["table_gain"] for _ in p.gains)))
     return dataclasses.replace(obs, pairs=pairs)
-
-
-def effect_size(truth: dict, bank) -> float:
-    from voussoir_post.diagnosis.models import nominal_log
-    sizes = [abs(math.log(p["threshold_m"]) - nominal_log(bank.specimens[p["specimen_id"]], p["frequency_hz"]))
-             for p in truth["pairs"] if p["threshold_m"] is not None]
-    return math.expm1(max(sizes)) if sizes else math.inf
 
 
 def main() -> int:

@@ -36,7 +36,7 @@ from .effects import BRACKET_GAPS_M, Variant, restraint_parts, restraint_value
 from .models import CANDIDATES, MODEL_IDS, members, model_prior
 from .observations import Observations, from_campaign
 from .next_test import next_test
-from .posterior import SENSITIVITY_FACTORS, Posterior, held_out, infer, prior_sensitivity
+from .posterior import SENSITIVITY_FACTORS, Posterior, held_out, infer, prior_sensitivity, weighted_summary
 from .report import write_report
 from .samples import write_samples
 from .screen import specimen_screen
@@ -66,11 +66,8 @@ def parameters(post: Posterior, model_id: str | None, obs: Observations) -> dict
             v = mp.grid.values[mp.grid.names.index(e)]
             on = np.array([restraint_parts(x)[0] == side for x in v])
             gaps = np.array([restraint_parts(x)[1] for x in v[on]])
-            w = mp.weights[on] / mp.weights[on].sum()
-            order = np.argsort(gaps, kind="stable")
-            cdf = np.cumsum(w[order])
-            q = lambda x: float(gaps[order][min(np.searchsorted(cdf, x), gaps.size - 1)])
-            out["bracket_gap_m"] = {"value": float(w @ gaps), "low": q(0.05), "high": q(0.95), "unit": "m"}
+            mean, low, high = weighted_summary(gaps, mp.weights[on] / mp.weights[on].sum())
+            out["bracket_gap_m"] = {"value": mean, "low": low, "high": high, "unit": "m"}
         elif e == "table_motion":
             out["accel_gain"] = {"value": value, "low": low, "high": high, "unit": ""}
         else:

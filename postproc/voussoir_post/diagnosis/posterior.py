@@ -33,7 +33,7 @@ from .likelihood import Scales, adjusted_mu, log_likelihood, predictive_sd, reco
 from .models import MODEL_IDS, ModelGrid, members, model_grid, model_prior
 from .observations import Observations, PairObservation
 
-__all__ = ["ModelPosterior", "Posterior", "infer", "held_out", "predicted_log", "ADEQUATE_P", "adequacy", "pit_values",
+__all__ = ["ModelPosterior", "weighted_summary", "Posterior", "infer", "held_out", "predicted_log", "ADEQUATE_P", "adequacy", "pit_values",
            "loso_folds", "prior_sensitivity", "SENSITIVITY_FACTORS"]
 
 ADEQUATE_P = 0.01
@@ -60,10 +60,16 @@ class ModelPosterior:
             mass = {c: float(self.weights[v == c].sum()) for c in cats}
             mode = max(cats, key=lambda c: mass[c])
             return mode, mode, mode
-        order = np.argsort(v)
-        cdf = np.cumsum(self.weights[order])
-        q = lambda x: float(v[order][min(np.searchsorted(cdf, x), v.size - 1)])
-        return float(self.weights @ v), q(0.05), q(0.95)
+        return weighted_summary(v, self.weights)
+
+
+def weighted_summary(values: np.ndarray, weights: np.ndarray) -> tuple[float, float, float]:
+    """(mean, 5 %, 95 %) of a parameter's values at grid points of these weights (summing
+    to 1)."""
+    order = np.argsort(values)
+    cdf = np.cumsum(weights[order])
+    q = lambda x: float(values[order][min(np.searchsorted(cdf, x), values.size - 1)])
+    return float(weights @ values), q(0.05), q(0.95)
 
 
 @dataclass
