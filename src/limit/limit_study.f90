@@ -137,12 +137,7 @@ contains
       if (status%ok) then
         ! The four-hinge results stand even where the LP has no answer (an arch thinner
         ! than its minimum thickness): its reason is reported, not an error.
-        if (has_loads(cfg)) then
-          call loaded_study(cfg, opts, arch, lp, cases, lp_status)
-        else
-          call lp_study(arch, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, lp_status, &
-                        joint_friction=a%joint_friction, compressive_strength_pa=opts%compressive_strength_pa)
-        end if
+        call assembly_study(cfg, opts, arch, lp, cases, lp_status)
         if (.not. lp_status%ok) lp%note = trim(lp_status%message)
       end if
     end associate
@@ -174,15 +169,8 @@ contains
     end if
     if (has_loads(cfg)) call check_loads_placed(cfg, asm, status)
     if (.not. status%ok) return
-    associate (a => cfg%arch)
-      if (has_loads(cfg)) then
-        call loaded_study(cfg, opts, asm, lp, cases, status)
-      else
-        call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status, &
-                      joint_friction=a%joint_friction, compressive_strength_pa=opts%compressive_strength_pa)
-      end if
-      if (.not. status%ok) status%message = 'limit analysis by linear programming: '//trim(status%message)
-    end associate
+    call assembly_study(cfg, opts, asm, lp, cases, status)
+    if (.not. status%ok) status%message = 'limit analysis by linear programming: '//trim(status%message)
     if (cfg%vehicle%given .and. status%ok .and. cfg%cases%n == 0) lp%live_load = vehicle_words(cfg%vehicle)// &
       ' '//lp%live_load(index(lp%live_load, '('):)
     if (cfg%bridge%n_spans > 0) then
@@ -196,10 +184,11 @@ contains
     end if
   end subroutine analyse_any_assembly
 
-  !> The LP study of `asm` under the loads of &load: as given, or with &load_cases each
-  !> case's (its live loads times gamma_q, every permanent load times gamma_g) in `cases`
-  !> and `lp` the governing case's. A case the LP cannot solve fails `status`, named.
-  subroutine loaded_study(cfg, opts, asm, lp, cases, status)
+  !> The LP study of `asm`: under horizontal acceleration without &load; under the loads
+  !> of &load as given; or with &load_cases each case's (its live loads times gamma_q,
+  !> every permanent load times gamma_g) in `cases` and `lp` the governing case's. A case
+  !> the LP cannot solve fails `status`, named.
+  subroutine assembly_study(cfg, opts, asm, lp, cases, status)
     type(config_t), intent(in) :: cfg
     type(limit_options_t), intent(in) :: opts
     type(assembly_t), intent(in) :: asm
@@ -210,6 +199,11 @@ contains
     integer :: k
     allocate (cases(cfg%cases%n))
     associate (a => cfg%arch, c => cfg%cases)
+      if (.not. has_loads(cfg)) then
+        call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status, &
+                      joint_friction=a%joint_friction, compressive_strength_pa=opts%compressive_strength_pa)
+        return
+      end if
       if (c%n == 0) then
         call lp_study(asm, a%density_kg_m3, a%width_m, a%friction, opts%inset_m, lp, status, cfg%load, &
                       a%joint_friction, opts%compressive_strength_pa)
@@ -237,7 +231,7 @@ contains
       end do
     end associate
     lp = cases(governing_case(cases))%lp
-  end subroutine loaded_study
+  end subroutine assembly_study
 
   !> 'lambda x the vehicle of &vehicle (name, N axles, spacings), its axles as live loads'
   function vehicle_words(v) result(text)
