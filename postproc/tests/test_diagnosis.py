@@ -41,7 +41,9 @@ from voussoir_post.diagnosis.posterior import ADEQUATE_P, adequacy, infer
 from voussoir_post.diagnosis.rates import draw_outcomes, mcnemar
 from voussoir_post.diagnosis.effects import COMBINED, Variant
 from voussoir_post.diagnosis.models import ModelGrid
-from voussoir_post.diagnosis.next_test import expected_gain_bits, posterior_draws, within_limits
+from voussoir_post.diagnosis.next_test import (expected_gain_bits, gain_jackknife_se_bits, gain_spread_bits,
+                                               posterior_draws, within_limits)
+from voussoir_post.diagnosis.report import _next_test_lines
 from voussoir_post.diagnosis.posterior import ModelPosterior
 from voussoir_post.readers.campaign import CampaignError, Specimen, TableLimits, Test as CampaignTest, read_campaign
 
@@ -243,6 +245,51 @@ def test_a_rival_whose_parameters_spread_at_a_new_frequency_tells_less():
     assert abs(expected_gain_bits([0.5, 0.5], [x1, [x1, x2]], [0.01, 0.01]) - (h(0.75) - 0.5)) < 1e-4
     assert abs(expected_gain_bits([0.5, 0.5], [[x1] * 3, [x2] * 3], [0.01, 0.01]) - 1.0) < 1e-6
     assert expected_gain_bits([0.5, 0.5], [[x1, x2], [x2, x1]], [0.01, 0.01]) < 1e-9
+
+
+def test_what_one_run_of_a_test_delivers_spreads_about_its_expected_gain():
+    """Rival A predicts x1; rival B half x1, half x2, far apart; 1:1. An outcome near x2
+    (probability 1/4) leaves B alone: 1 bit. One near x1 (3/4) leaves A at 2/3: 1 - H(2/3)
+    bits. Their mean is the expected gain H(3/4) - 1/2, their standard deviation the
+    spread. Far-apart rivals always deliver the same (no spread); so do identical ones."""
+    x1, x2 = math.log(0.03), math.log(0.06)
+    h = lambda q: -(q * math.log2(q) + (1 - q) * math.log2(1 - q))
+    near_x2, near_x1 = 1.0, 1.0 - h(2 / 3)
+    mean = 0.25 * near_x2 + 0.75 * near_x1
+    sd = math.sqrt(0.25 * (near_x2 - mean) ** 2 + 0.75 * (near_x1 - mean) ** 2)
+    assert abs(mean - (h(0.75) - 0.5)) < 1e-12  # (the identity the mean rests on)
+    assert abs(gain_spread_bits([0.5, 0.5], [x1, [x1, x2]], [0.01, 0.01]) - sd) < 1e-4
+    assert gain_spread_bits([0.9, 0.1], [x1, x2], [0.01, 0.01]) < 1e-6
+    assert gain_spread_bits([0.5, 0.5], [x1, x1], [0.02, 0.02]) < 1e-9
+
+
+def test_the_monte_carlo_error_of_a_gain_is_the_jackknife_over_the_draws():
+    """Rival A's three draws at x1; B's at x2, x2, x1; far apart, 1:1. Leaving out one of
+    B's x2 draws leaves B half at x1: H(3/4) - 1/2 bits (twice); leaving out its x1 draw
+    separates them: 1 bit. The jackknife: sqrt(2/3 sum (g_i - mean)^2). Draws that agree
+    have no Monte Carlo error."""
+    x1, x2 = math.log(0.03), math.log(0.06)
+    h = lambda q: -(q * math.log2(q) + (1 - q) * math.log2(1 - q))
+    g = np.array([h(0.75) - 0.5, h(0.75) - 0.5, 1.0])
+    se = math.sqrt(2 / 3 * float(np.sum((g - g.mean()) ** 2)))
+    assert abs(gain_jackknife_se_bits([0.5, 0.5], [[x1] * 3, [x2, x2, x1]], [0.01, 0.01]) - se) < 1e-4
+    assert gain_jackknife_se_bits([0.5, 0.5], [[x1] * 3, [x2] * 3], [0.01, 0.01]) < 1e-9
+
+
+def test_the_report_ranks_the_best_tests_and_calls_a_near_tie_one():
+    """The section lists every test with each rival's prediction; a lead smaller than
+    twice its standard error is called a near tie, a larger one is not."""
+    def test(sid, gain, se):
+        return {"specimen_id": sid, "frequency_hz": 2.0, "new": True, "amplitudes_m": [0.02, 0.03, 0.0005],
+                "expected_gain_bits": gain, "gain_se_bits": se, "gain_spread_bits": 0.4,
+                "predicted_m": {"geometry": 0.025, "contact_edges": 0.027}}
+    best = dict(test("W156", 0.40, 0.05), alternatives=[test("W132", 0.35, 0.05), test("W118", 0.10, 0.0)])
+    text = "\n".join(_next_test_lines(best))
+    assert "near tie" in text
+    assert "| 3 | W118 |" in text and "25.0 | 27.0 |" in text
+    best["alternatives"][0]["expected_gain_bits"] = 0.10
+    assert "near tie" not in "\n".join(_next_test_lines(best))
+    assert _next_test_lines(None) == []
 
 
 def test_posterior_draws_are_the_posteriors_stratified_quantiles():

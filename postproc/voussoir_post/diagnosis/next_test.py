@@ -48,7 +48,7 @@ from .posterior import Posterior, predicted_log
 from .settings import DiagnosisSettings
 from .simulator import Simulator
 
-__all__ = ["next_test", "expected_gain_bits", "ramp", "within_limits", "posterior_draws", "RAMP_STEP",
+__all__ = ["next_test", "expected_gain_bits", "gain_spread_bits", "gain_jackknife_se_bits", "ramp", "within_limits", "posterior_draws", "RAMP_STEP",
            "DRAWS_AT_NEW"]
 
 RAMP_STEP = 0.025  #: relative step of the advised ramp (a bin of the outcome)
@@ -76,14 +76,10 @@ def posterior_draws(mp, k: int = DRAWS_AT_NEW) -> list[Variant]:
     return out
 
 
-def expected_gain_bits(probabilities: list[float], means: list, sds: list,
-                       step: float = RAMP_STEP, within: tuple[float, float] | None = None) -> float:
-    """I(M; Y) in bits for rivals of probabilities p_m predicting log threshold
-    N(mean_m, sd_m^2), Y the bin of width log(1 + step) the threshold falls in. A rival's
-    mean may be a list: an equal mixture of normals of those means (its sd one, or one
-    per component). `within` (log low, log high): the threshold is already known to lie
-    there (a tested pair's bracket; -inf for no stand below): each rival's law is
-    truncated to it, and the bins cover it only."""
+def _outcome_laws(probabilities, means, sds, step, within):
+    """(p, py_m): the rivals' normalised probabilities and each rival's law of the ramp's
+    bin (rival, bin), for expected_gain_bits and gain_spread_bits (which see); None when
+    the bracket `within` leaves no bin."""
     p = np.asarray(probabilities, float)
     p = p / p.sum()
     comps = [np.atleast_1d(np.asarray(m, float)) for m in means]
@@ -98,7 +94,7 @@ def expected_gain_bits(probabilities: list[float], means: list, sds: list,
         lo = max(lo, within[0])
         hi = within[1]
         if not hi > lo:
-            return 0.0
+            return None
         edges = np.append(lo + width * np.arange(max(1, int(math.ceil((hi - lo) / width - 1e-9)))), hi)
     cdf = ndtr((edges[None, :] - mu[:, None]) / sd[:, None])
     py_c = np.clip(np.diff(cdf, axis=1), 0.0, None)  # (component, bin)
@@ -106,12 +102,62 @@ def expected_gain_bits(probabilities: list[float], means: list, sds: list,
     if within is not None:
         mass = py_m.sum(axis=1, keepdims=True)
         py_m = np.where(mass > 1e-300, py_m / np.maximum(mass, 1e-300), 1.0 / py_m.shape[1])
-    py = p @ py_m
+    return p, py_m
 
-    def entropy(q):
-        q = q[q > 0]
-        return float(-(q * np.log2(q)).sum())
-    return max(0.0, entropy(py) - sum(pm * entropy(row) for pm, row in zip(p, py_m)))
+
+def _entropy_bits(q) -> float:
+    q = np.asarray(q, float)
+    q = q[q > 0]
+    return float(-(q * np.log2(q)).sum())
+
+
+def expected_gain_bits(probabilities: list[float], means: list, sds: list,
+                       step: float = RAMP_STEP, within: tuple[float, float] | None = None) -> float:
+    """I(M; Y) in bits for rivals of probabilities p_m predicting log threshold
+    N(mean_m, sd_m^2), Y the bin of width log(1 + step) the threshold falls in. A rival's
+    mean may be a list: an equal mixture of normals of those means (its sd one, or one
+    per component). `within` (log low, log high): the threshold is already known to lie
+    there (a tested pair's bracket; -inf for no stand below): each rival's law is
+    truncated to it, and the bins cover it only."""
+    laws = _outcome_laws(probabilities, means, sds, step, within)
+    if laws is None:
+        return 0.0
+    p, py_m = laws
+    return max(0.0, _entropy_bits(p @ py_m) - sum(pm * _entropy_bits(row) for pm, row in zip(p, py_m)))
+
+
+def gain_spread_bits(probabilities: list[float], means: list, sds: list,
+                     step: float = RAMP_STEP, within: tuple[float, float] | None = None) -> float:
+    """The standard deviation, over the test's outcomes, of the information it delivers
+    (bits): outcome y gives H(p) - H(p | y), the rivals' entropy before less after
+    Bayes' rule, whose mean over y (drawn from the rivals' mixture) is expected_gain_bits.
+    What one run of the test may give about that mean: a test expected to give 0.3 bits
+    with a spread of 0.4 often gives nothing and sometimes a bit. Arguments as
+    expected_gain_bits."""
+    laws = _outcome_laws(probabilities, means, sds, step, within)
+    if laws is None:
+        return 0.0
+    p, py_m = laws
+    py = p @ py_m
+    seen = py > 0
+    post = (p[:, None] * py_m[:, seen]) / py[seen]
+    delivered = _entropy_bits(p) - np.array([_entropy_bits(post[:, k]) for k in range(post.shape[1])])
+    mean = float(py[seen] @ delivered)
+    return float(math.sqrt(max(0.0, py[seen] @ (delivered - mean) ** 2)))
+
+
+def gain_jackknife_se_bits(probabilities: list[float], means: list, sds: list, step: float = RAMP_STEP) -> float:
+    """The Monte Carlo standard error of expected_gain_bits at a new frequency, whose rivals'
+    laws are mixtures over k draws of their parameters, each a simulated threshold (with
+    its own chaotic jitter): the jackknife over the draws, every rival's draw i left out
+    together, sqrt((k - 1)/k sum_i (g_(i) - mean g)^2). 0 with fewer than 3 draws."""
+    comps = [np.atleast_1d(np.asarray(m, float)) for m in means]
+    k = min(c.size for c in comps)
+    if k < 3:
+        return 0.0
+    g = np.array([expected_gain_bits(probabilities, [np.delete(c, i) if c.size == k else c for c in comps], sds, step)
+                  for i in range(k)])
+    return float(math.sqrt((k - 1) / k * np.sum((g - g.mean()) ** 2)))
 
 
 def within_limits(amplitude_m: float, frequency_hz: float, table) -> bool:
@@ -155,6 +201,8 @@ def _candidate(sid: str, f: float, new: bool, rivals: list[str], probs: list[flo
         return None
     return {"specimen_id": sid, "frequency_hz": f, "new": new, "kind": "afd_ramp", "amplitudes_m": amps,
             "expected_gain_bits": expected_gain_bits(probs, means, sds, within=within),
+            "gain_spread_bits": gain_spread_bits(probs, means, sds, within=within),
+            "gain_se_bits": gain_jackknife_se_bits(probs, means, sds) if new else 0.0,
             "predicted_m": {m: math.exp(float(np.mean(v))) for m, v in zip(rivals, means)},
             "spread": {m: float(np.sqrt(np.mean(np.square(s_)) + np.var(v))) for m, s_, v in zip(rivals, sds, means)}}
 
@@ -213,6 +261,7 @@ def next_test(post: Posterior, obs: Observations, rivals: list[str], settings: D
         return None
     candidates.sort(key=lambda c: -c["expected_gain_bits"])
     best = dict(candidates[0])
-    best["alternatives"] = [{k: c[k] for k in ("specimen_id", "frequency_hz", "kind", "expected_gain_bits")}
+    best["alternatives"] = [{k: c[k] for k in ("specimen_id", "frequency_hz", "new", "kind", "amplitudes_m",
+                                               "expected_gain_bits", "gain_spread_bits", "gain_se_bits", "predicted_m")}
                             for c in candidates[1:1 + ALTERNATIVES]]
     return best

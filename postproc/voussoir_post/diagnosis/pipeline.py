@@ -186,7 +186,9 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
             "specimen_id": suggestion["specimen_id"], "frequency_hz": suggestion["frequency_hz"],
             "kind": suggestion["kind"], "amplitudes_m": suggestion["amplitudes_m"],
             "expected_gain_bits": suggestion["expected_gain_bits"], "predictions": suggestion["predicted_m"],
-            "alternatives": suggestion["alternatives"]},
+            "gain_spread_bits": suggestion["gain_spread_bits"], "gain_se_bits": suggestion["gain_se_bits"],
+            "alternatives": [{("predictions" if k == "predicted_m" else k): v for k, v in a.items() if k != "new"}
+                             for a in suggestion["alternatives"]]},
         "flags": flag_list,
         "adequacy_p_value": decision.p_value,
         "notes": "",

@@ -95,6 +95,43 @@ def _advice_text(nt: dict | None, what: str) -> str:
             + ", ".join(f"{m} {1e3 * v:.1f} mm" for m, v in nt["predicted_m"].items()) + ".")
 
 
+def _next_test_lines(nt: dict | None) -> list[str]:
+    """The section on the advised test: the best tests (at most four), each with its
+    ramp, the information it is expected to give (with the Monte Carlo standard error of
+    that expectation at a new frequency and the spread of what one run may give) and each
+    rival's predicted threshold."""
+    if not nt:
+        return []
+    tests = [nt] + list(nt.get("alternatives", []))
+    rivals = list(nt["predicted_m"])
+
+    def gain(t):
+        se = t.get("gain_se_bits", 0.0)
+        return f"{t['expected_gain_bits']:.2f}" + (f" ± {se:.2f}" if se > 0 else "")
+
+    rows = [(str(i + 1), t["specimen_id"], f"{t['frequency_hz']:g}" + (" (new)" if t.get("new") else ""),
+             f"{1e3 * t['amplitudes_m'][0]:.1f} to {1e3 * t['amplitudes_m'][1]:.1f} by {1e3 * t['amplitudes_m'][2]:.1f}",
+             gain(t), f"{t.get('gain_spread_bits', float('nan')):.2f}",
+             *[f"{1e3 * t['predicted_m'][m]:.1f}" if m in t.get("predicted_m", {}) else "-" for m in rivals])
+            for i, t in enumerate(tests)]
+    gap = ""
+    if len(tests) > 1:
+        d = tests[0]["expected_gain_bits"] - tests[1]["expected_gain_bits"]
+        se = math.hypot(tests[0].get("gain_se_bits", 0.0), tests[1].get("gain_se_bits", 0.0))
+        gap = (f" The first leads the second by {d:.2f} bits" + (f" (standard error {se:.2f})" if se > 0 else "")
+               + (": a near tie, either serves." if se > 0 and d < 2 * se else "."))
+    return ["## The next test", "",
+            "Afd ramps (from, to, by, in mm) ranked by the expected information of their outcome (the bracket the "
+            "ramp gives) about which rival is the cause, in bits. `±`: the Monte Carlo standard error of that "
+            "expectation at a new frequency, where each rival's prediction is a mixture over a few simulated draws "
+            "of its parameters (a jackknife over the draws). `spread`: the standard deviation, over the test's "
+            "possible outcomes, of the information one run delivers (the rivals' entropy before less after): a "
+            "single run often gives much less or much more than the expectation. The rivals' columns: each one's "
+            "predicted threshold amplitude [mm] there." + gap, "",
+            _md_table(["rank", "specimen", "f [Hz]", "ramp [mm]", "expected [bits]", "spread [bits]",
+                       *[f"{m} [mm]" for m in rivals]], rows), ""]
+
+
 def notes(decision: Decision, post: Posterior, result: dict, info: dict) -> str:
     """The one plain-words paragraph of diagnosis.json."""
     p = post.probabilities
@@ -258,6 +295,7 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
              "enters the check.", "",
              ] + _flag_lines(result) + _sensitivity_lines(info) + _emulator_lines(post) + [
              METHOD_CHECK, ""]
+    lines += _next_test_lines(info.get("next_test"))
     lines += ["## The table", ""]
     lines.append({"records": "Records of the table's motion were fitted as gain x command(t - delay); each "
                              "test's gain enters the probabilities.",
