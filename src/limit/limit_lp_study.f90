@@ -10,7 +10,7 @@ module voussoir_limit_lp_study
   use voussoir_text, only: itoa, fmt_significant
   use voussoir_load_config, only: load_config_t
   use voussoir_placed_loads, only: placed_loads_t, place_loads, moves_on_top, vehicle_x, top_surface, fill_column
-  use voussoir_assembly, only: assembly_t
+  use voussoir_assembly, only: assembly_t, between_rings
   use voussoir_hinge_side, only: side_intrados, side_extrados
   use voussoir_block_interfaces, only: interface_set_t, find_interfaces
   use voussoir_limit_lp, only: block_loads_t, lp_result_t, block_loads, add_placed_loads, lp_outcome_unbounded
@@ -119,6 +119,11 @@ contains
     if (allocated(asm%friction)) then   ! a bridge's parts: the lesser of the two blocks'
       do b = 1, study%faces%n
         mu(b) = minval(asm%friction(study%faces%body(:, b)))
+      end do
+    end if
+    if (allocated(asm%ring)) then       ! a multi-ring bridge: its own coefficient between two rings
+      do b = 1, study%faces%n
+        if (between_rings(asm%ring, study%faces%body(1, b), study%faces%body(2, b))) mu(b) = asm%ring_joint_friction
       end do
     end if
     if (present(joint_friction)) then
