@@ -816,8 +816,10 @@ elif case == "bridge_rings":
     # of the others), with the same work of the loads. (2) lambda is non-decreasing in
     # ring_joint_friction: a larger coefficient only widens the statically admissible set.
     # (3) Under the point load (vertical loads: the outer ring is pressed onto the inner one)
-    # at friction 10 between the rings the thrust of the single ring passes from ring to ring
-    # within each voussoir: the load factors are the single ring's (1e-9). Under horizontal
+    # at friction 10 between the rings the thrust of the single ring can pass from ring to
+    # ring within each voussoir, so the load factors are the single ring's (1e-9): measured,
+    # not proved (the thrust crosses a collar joint within friction only where it crosses it
+    # steeply enough; a failure here would say the LP found a cheaper separation). Under horizontal
     # acceleration this does not hold: the body forces pull the outer ring off the inner one
     # near the springings and the rings separate (docs/bridges.md, "Multi-ring arches"), so
     # there (1) and (2) alone are checked. (4) At friction 0 between the rings, lambda below
