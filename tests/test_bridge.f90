@@ -30,6 +30,7 @@ program test_bridge
   call test_bridge_with_particles()
   call test_rings_tile_the_ring()
   call test_particles_on_the_outer_ring()
+  call test_rings_on_a_pier()
   call assert_summary()
 
 contains
@@ -192,6 +193,47 @@ contains
                      .and. pair_friction_of(law, 2*n + 1, left) == 0.5_dp, &
                      'rings: contact friction 0.2 between rings, 0.7 within one, 0.5 on a skewback')
   end subroutine test_rings_tile_the_ring
+
+  !> Two segmental spans (10 m, rise 2.5 m, 12 voussoirs) in 3 rings on a pier: 72
+  !> voussoirs, then the pier; its sloping top carries the springing voussoir of every ring
+  !> of both spans (one interface each, a third of the springing joint, 0.15 m), the
+  !> abutments the outer springings of every ring.
+  subroutine test_rings_on_a_pier()
+    type(bridge_config_t) :: b
+    type(assembly_t) :: a
+    type(status_t) :: status
+    type(interface_set_t) :: faces
+    integer :: r, k, pier, springing(4), support(4), found
+    logical :: carried
+    b = one_span('segmental', 10.0_dp, 2.5_dp, 0.45_dp, 12)
+    b%span_m(2) = 10.0_dp
+    b%rise_m(2) = 2.5_dp
+    b%n_spans = 2
+    b%pier_width_m = 1.5_dp
+    b%n_rings = 3
+    b%ring_joint_friction = 0.6_dp
+    call build_bridge(b, a, status)
+    pier = 73
+    call assert_true(status%ok .and. a%n_bodies == 72 + 1 + 2 + 1 .and. a%block_name(pier) == 'pier 1' .and. &
+                     a%block_name(36 + 25) == 'span 2 ring 3 voussoir 1', 'rings on a pier: 2 x 3 x 12 voussoirs, the pier')
+    call find_interfaces(a, 1.0e-6_dp*21.5_dp, 0.0_dp, faces, status)
+    carried = status%ok
+    do r = 1, 3
+      ! span 1's first and last voussoir of ring r, span 2's first and last
+      springing = [(r - 1)*12 + 1, r*12, 36 + (r - 1)*12 + 1, 36 + r*12]
+      support = [pier + 1, pier, pier, pier + 2]
+      do k = 1, 4
+        found = count(faces%body(1, :) == springing(k) .and. faces%body(2, :) == support(k))
+        carried = carried .and. found == 1
+        if (found == 1) carried = carried .and. abs(norm2(pack(faces%end_xy(:, 2, :) - faces%end_xy(:, 1, :), &
+                                                               spread(faces%body(1, :) == springing(k) .and. &
+                                                                      faces%body(2, :) == support(k), 1, 2))) &
+                                                    - 0.15_dp) < 1.0e-12_dp
+      end do
+    end do
+    call assert_true(carried, "rings on a pier: the pier and the abutments carry every ring's springing voussoir, "// &
+                     'each on a third of the springing joint')
+  end subroutine test_rings_on_a_pier
 
   !> The span of test_bridge_with_particles in two rings: the particles fill the same region
   !> over the extrados (the outer ring's), and the interfaces found touch the outer ring
