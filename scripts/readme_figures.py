@@ -67,6 +67,8 @@ OTHER_FIGURES = {
                                           "(docs/bridges.md, \"The bridge under earthquakes\")",
     "bridge_backing_mechanism.png": "voussoir-post mechanism on voussoir-limit --json of input/bridge_backing.nml "
                                     "(docs/bridges.md, \"Backing\")",
+    "bridge_multi_ring_mechanism.png": "voussoir-post mechanism on voussoir-limit --json of "
+                                       "input/bridge_multi_ring.nml (docs/bridges.md, \"Multi-ring arches\")",
 }
 
 

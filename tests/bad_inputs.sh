@@ -446,6 +446,13 @@ driver=voussoir-limit case_ bridge_and_arch "&bridge and &arch both describe the
 &bridge $br /"
 driver=voussoir-limit case_ bridge_shape_unknown "&bridge shape = 'gothic' is not one of 'segmental', 'semicircular', 'elliptical', 'three-centred', 'pointed', 'parabolic'" "&bridge shape = 'gothic', span_m(1) = 10, rise_m(1) = 2 /"
 driver=voussoir-limit case_ bridge_density "&bridge pier_density_kg_m3 = 0 is outside the allowed range 0 < pier_density_kg_m3 <= 1e5" "&bridge $br, pier_density_kg_m3 = 0 /"
+# Multi-ring arches: the number of rings, the friction between them, and that friction
+# without a second ring.
+driver=voussoir-limit case_ bridge_rings_too_many "&bridge n_rings = 7 is outside the allowed range 1 <= n_rings <= 6 \(1: a single ring" "&bridge $br, n_rings = 7 /"
+case_ bridge_rings_none_run "&bridge n_rings = 0 is outside the allowed range 1 <= n_rings <= 6" "&bridge $br, n_rings = 0 /
+$o"
+driver=voussoir-limit case_ bridge_ring_joint_friction_negative "&bridge ring_joint_friction = -0.1 is outside the allowed range ring_joint_friction >= 0" "&bridge $br, n_rings = 2, ring_joint_friction = -0.1 /"
+driver=voussoir-limit case_ bridge_ring_joint_friction_one_ring "&bridge ring_joint_friction = 0.3 is outside the allowed range none with n_rings = 1: a single ring has no ring-to-ring joints" "&bridge $br, ring_joint_friction = 0.3 /"
 
 # The fill of &bridge (issue 37): below the extrados, a dispersion angle out of range or
 # without a fill, a fill without a live load, a slanting live load.

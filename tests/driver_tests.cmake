@@ -24,3 +24,10 @@ add_test(NAME interrupt
                  ${CMAKE_CURRENT_BINARY_DIR}/interrupt ${Python3_EXECUTABLE})
 # The longest input file (about 30 s: the LP of a fill of particles) starts first.
 set_tests_properties(input_bridge_fill_particles PROPERTIES COST 30)
+# Multi-ring arches in voussoir-run (&bridge n_rings, issue 37): at rest the abutments hold
+# up every ring (weight by hand); where the LP finds the rings cannot carry their weight,
+# the run sees them fall.
+add_test(NAME bridge_rings_at_rest
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/bridge_rings_at_rest.py
+                 ${CMAKE_BINARY_DIR}/drivers/voussoir-run ${CMAKE_BINARY_DIR}/drivers/voussoir-limit
+                 ${CMAKE_CURRENT_BINARY_DIR}/bridge_rings_at_rest)

@@ -87,6 +87,13 @@ add_test(NAME limit_driver_bridge_backing
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
                  bridge_backing ${CMAKE_SOURCE_DIR}/input/bridge_backing.nml
          WORKING_DIRECTORY ${LIMIT_TEST_DIR})
+# Multi-ring arches (&bridge n_rings, issue 37): the rings' load factor at most the single
+# ring's and non-decreasing in the friction between them, the single ring's under vertical
+# loads at friction 10, ring separation at friction 0, the fill on the outer ring alone.
+add_test(NAME limit_driver_bridge_rings
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
+                 bridge_rings
+         WORKING_DIRECTORY ${LIMIT_TEST_DIR})
 # Vehicles (&vehicle, issue 37) on the span of input/bridge_fill.nml: a one-axle vehicle is
 # the point load, two half axles 0 m apart are one, the axles where they stand, the
 # harmonic bound of the axles alone (convexity), the named LM1 tandem against its axles.

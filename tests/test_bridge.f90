@@ -4,7 +4,8 @@
 !> arch's centres and apex, the ellipse's and the parabola's equations and equal arc
 !> lengths measured here by a fine polyline), and the parts of a two-span bridge; the fill
 !> cut into particles over a hump whose area is known by hand, and a bridge's particles;
-!> the backing in courses over a hump (by hand) and over a bridge's haunches.
+!> the backing in courses over a hump (by hand) and over a bridge's haunches;
+!> a semicircle split into rings (their areas and their ring-to-ring interfaces by hand).
 program test_bridge
   use voussoir_kinds, only: dp, pi
   use voussoir_status, only: status_t
@@ -16,6 +17,8 @@ program test_bridge
   use voussoir_bridge, only: build_bridge, bridge_ring_joints
   use voussoir_bodies, only: bodies_t, bodies_init
   use voussoir_contact_law, only: contact_law_t, contact_law_init, pair_friction_of
+  use voussoir_block_interfaces, only: interface_set_t, find_interfaces
+  use voussoir_text, only: itoa
   use voussoir_assert, only: assert_true, assert_close, assert_summary
   implicit none
 
@@ -29,6 +32,9 @@ program test_bridge
   call test_bridge_with_particles()
   call test_backing_over_a_hump()
   call test_bridge_with_backing()
+  call test_rings_tile_the_ring()
+  call test_particles_on_the_outer_ring()
+  call test_rings_on_a_pier()
   call assert_summary()
 
 contains
@@ -167,6 +173,178 @@ contains
     call assert_close(total, area, 'bridge with backing: it fills the region over the abutments and the backed chords', &
                       rtol=1.0e-12_dp)
   end subroutine test_bridge_with_backing
+
+  !> A semicircle R_i = 3 m, R_e = 3.45 m of 16 voussoirs in 3 rings (0.15 m each): ring r
+  !> lies between R_{r-1} = R_i + (r - 1) t/3 and R_r, its chord-faced voussoirs add up to
+  !> (n/2)(R_r^2 - R_{r-1}^2) sin(pi/n), all rings to the single ring's (n/2)(R_e^2 - R_i^2)
+  !> sin(pi/n) (1e-12). Between voussoir j of ring r and voussoir j of ring r + 1 the
+  !> interfaces found from the polygons alone (as the LP finds them) hold one interface, the
+  !> whole chord 2 R_r sin(pi/(2n)) long, with the outward radial normal; no other pair of
+  !> rings touches along a face; each abutment carries every ring's springing voussoir. The
+  !> contact law: ring_joint_friction between rings, the ring's within a ring, the lesser
+  !> of ring and skewback on the abutments.
+  subroutine test_rings_tile_the_ring()
+    integer, parameter :: n = 16, nr = 3
+    real(dp), parameter :: ri = 3.0_dp, t = 0.45_dp
+    type(bridge_config_t) :: b
+    type(assembly_t) :: a
+    type(status_t) :: status
+    type(interface_set_t) :: faces
+    type(contact_law_t) :: law
+    real(dp) :: ring_area(nr), r_lo, r_hi, mid(2), chord(2)
+    real(dp), allocatable :: no_joint(:)
+    integer :: r, j, k, lo, hi, found, left, right
+    logical :: convex, normals, whole, on_abutments
+    b = one_span('semicircular', 2*ri, ri, t, n)
+    b%n_rings = nr
+    b%ring_friction = 0.7_dp
+    b%ring_joint_friction = 0.2_dp
+    b%abutment_friction = 0.5_dp
+    call build_bridge(b, a, status)
+    call assert_true(status%ok .and. a%n_bodies == nr*n + 2, 'rings: 3 x 16 voussoirs and two abutments')
+    ring_area = 0.0_dp
+    convex = .true.
+    do r = 1, nr
+      do j = 1, n
+        k = (r - 1)*n + j
+        ring_area(r) = ring_area(r) + polygon_area(a%polygon(k)%xy)
+        convex = convex .and. is_convex_ccw(a%polygon(k)%xy)
+      end do
+      r_lo = ri + (r - 1)*t/nr
+      r_hi = ri + r*t/nr
+      call assert_close(ring_area(r), 0.5_dp*n*(r_hi**2 - r_lo**2)*sin(pi/n), 'rings: ring '//itoa(r)// &
+                        "'s voussoirs add up to its annulus of chords", rtol=1.0e-12_dp)
+    end do
+    call assert_close(sum(ring_area), 0.5_dp*n*((ri + t)**2 - ri**2)*sin(pi/n), &
+                      "rings: all rings add up to the single ring's area", rtol=1.0e-12_dp)
+    call assert_true(convex, 'rings: every voussoir convex, counter-clockwise')
+    call assert_true(a%block_name(n + 3) == 'span 1 ring 2 voussoir 3' .and. all(a%ring(1:n) == 1) .and. &
+                     all(a%ring(2*n + 1:3*n) == 3) .and. all(a%ring(nr*n + 1:) == 0), &
+                     'rings: voussoirs named and numbered by ring, the abutments in none')
+    call find_interfaces(a, 1.0e-6_dp*2*(ri + t), 0.0_dp, faces, status)
+    call assert_true(status%ok, 'rings: interfaces found')
+    normals = .true.
+    whole = .true.
+    do r = 1, nr - 1
+      do j = 1, n
+        lo = (r - 1)*n + j
+        hi = r*n + j
+        found = 0
+        do k = 1, faces%n
+          if (minval(faces%body(:, k)) /= lo .or. maxval(faces%body(:, k)) /= hi) cycle
+          found = found + 1
+          chord = faces%end_xy(:, 2, k) - faces%end_xy(:, 1, k)
+          mid = 0.5_dp*(faces%end_xy(:, 1, k) + faces%end_xy(:, 2, k)) - [ri, 0.0_dp]
+          whole = whole .and. abs(norm2(chord) - 2*(ri + r*t/nr)*sin(0.5_dp*pi/n)) <= 1.0e-12_dp*norm2(chord)
+          ! From body(1) into body(2): outwards when body(1) is the inner voussoir.
+          normals = normals .and. abs(abs(dot_product(faces%normal(:, k), mid/norm2(mid))) - 1.0_dp) < 1.0e-12_dp &
+                    .and. dot_product(faces%normal(:, k), mid)*merge(1, -1, faces%body(1, k) == lo) > 0.0_dp
+        end do
+        whole = whole .and. found == 1
+      end do
+    end do
+    call assert_true(whole, 'rings: one interface between voussoir j of ring r and of ring r + 1, the whole chord '// &
+                     '2 R_r sin(pi/(2n)) long (1e-12)')
+    call assert_true(normals, 'rings: each ring-to-ring interface normal radial, from the inner ring out')
+    found = count(a%ring(faces%body(1, :)) > 0 .and. a%ring(faces%body(2, :)) > 0 .and. &
+                  a%ring(faces%body(1, :)) /= a%ring(faces%body(2, :)))
+    call assert_true(found == (nr - 1)*n, 'rings: no other interface between two rings (corners do not count)')
+    left = nr*n + 1
+    right = nr*n + 2
+    on_abutments = .true.
+    do r = 1, nr
+      on_abutments = on_abutments .and. count(faces%body(1, :) == (r - 1)*n + 1 .and. faces%body(2, :) == left) == 1 &
+                     .and. count(faces%body(1, :) == r*n .and. faces%body(2, :) == right) == 1
+    end do
+    call assert_true(on_abutments, "rings: each abutment carries every ring's springing voussoir")
+    allocate (no_joint(0:0), source=-1.0_dp)
+    call contact_law_init(0.9_dp, 0.0_dp, no_joint, a, law, status)
+    call assert_true(status%ok .and. pair_friction_of(law, 1, n + 1) == 0.2_dp .and. &
+                     pair_friction_of(law, 2*n + 5, n + 5) == 0.2_dp .and. pair_friction_of(law, n + 1, n + 2) == 0.7_dp &
+                     .and. pair_friction_of(law, 2*n + 1, left) == 0.5_dp, &
+                     'rings: contact friction 0.2 between rings, 0.7 within one, 0.5 on a skewback')
+  end subroutine test_rings_tile_the_ring
+
+  !> Two segmental spans (10 m, rise 2.5 m, 12 voussoirs) in 3 rings on a pier: 72
+  !> voussoirs, then the pier; its sloping top carries the springing voussoir of every ring
+  !> of both spans (one interface each, a third of the springing joint, 0.15 m), the
+  !> abutments the outer springings of every ring.
+  subroutine test_rings_on_a_pier()
+    type(bridge_config_t) :: b
+    type(assembly_t) :: a
+    type(status_t) :: status
+    type(interface_set_t) :: faces
+    integer :: r, k, pier, springing(4), support(4), found
+    logical :: carried
+    b = one_span('segmental', 10.0_dp, 2.5_dp, 0.45_dp, 12)
+    b%span_m(2) = 10.0_dp
+    b%rise_m(2) = 2.5_dp
+    b%n_spans = 2
+    b%pier_width_m = 1.5_dp
+    b%n_rings = 3
+    b%ring_joint_friction = 0.6_dp
+    call build_bridge(b, a, status)
+    pier = 73
+    call assert_true(status%ok .and. a%n_bodies == 72 + 1 + 2 + 1 .and. a%block_name(pier) == 'pier 1' .and. &
+                     a%block_name(36 + 25) == 'span 2 ring 3 voussoir 1', 'rings on a pier: 2 x 3 x 12 voussoirs, the pier')
+    call find_interfaces(a, 1.0e-6_dp*21.5_dp, 0.0_dp, faces, status)
+    carried = status%ok
+    do r = 1, 3
+      ! span 1's first and last voussoir of ring r, span 2's first and last
+      springing = [(r - 1)*12 + 1, r*12, 36 + (r - 1)*12 + 1, 36 + r*12]
+      support = [pier + 1, pier, pier, pier + 2]
+      do k = 1, 4
+        found = count(faces%body(1, :) == springing(k) .and. faces%body(2, :) == support(k))
+        carried = carried .and. found == 1
+        if (found == 1) carried = carried .and. abs(norm2(pack(faces%end_xy(:, 2, :) - faces%end_xy(:, 1, :), &
+                                                               spread(faces%body(1, :) == springing(k) .and. &
+                                                                      faces%body(2, :) == support(k), 1, 2))) &
+                                                    - 0.15_dp) < 1.0e-12_dp
+      end do
+    end do
+    call assert_true(carried, "rings on a pier: the pier and the abutments carry every ring's springing voussoir, "// &
+                     'each on a third of the springing joint')
+  end subroutine test_rings_on_a_pier
+
+  !> The span of test_bridge_with_particles in two rings: the particles fill the same region
+  !> over the extrados (the outer ring's), and the interfaces found touch the outer ring
+  !> alone: no particle reaches the inner ring.
+  subroutine test_particles_on_the_outer_ring()
+    type(bridge_config_t) :: b
+    type(assembly_t) :: a
+    type(status_t) :: status
+    type(interface_set_t) :: faces
+    real(dp) :: inner(2, 0:12), outer(2, 0:12), total
+    integer :: k, on_inner, on_outer
+    b = one_span('segmental', 10.0_dp, 2.5_dp, 0.45_dp, 12)
+    b%n_rings = 2
+    b%ring_joint_friction = 0.6_dp
+    b%abutment_width_m = 2.0_dp
+    b%fill_density_kg_m3 = 1900.0_dp
+    b%fill_level_m = 3.45_dp
+    b%fill_model = 'particles'
+    b%fill_particle_size_m = 0.5_dp
+    call build_bridge(b, a, status)
+    call assert_true(status%ok .and. all(a%role(27:) == role_fill), 'particles on two rings: built after the abutments')
+    call bridge_ring_joints(b, 1, inner, outer)
+    total = 0.0_dp
+    do k = 27, a%n_bodies
+      total = total + polygon_area(a%polygon(k)%xy)
+    end do
+    call assert_close(total, polygon_area(reshape([[-2.0_dp, outer(2, 0)], reshape(outer, [26]), &
+                                                   [12.0_dp, outer(2, 12)], [12.0_dp, 3.45_dp], [-2.0_dp, 3.45_dp]], &
+                                                  [2, 17])), &
+                      "particles on two rings: they fill the region over the outer ring's extrados", rtol=1.0e-12_dp)
+    call find_interfaces(a, 1.0e-6_dp*14.0_dp, 0.0_dp, faces, status)
+    on_inner = count(a%ring(faces%body(1, :)) == 1 .and. a%role(faces%body(2, :)) == role_fill)
+    on_outer = 0
+    do k = 13, 24
+      if (any(faces%body(1, :) == k .and. a%role(faces%body(2, :)) == role_fill)) on_outer = on_outer + 1
+    end do
+    call assert_true(status%ok .and. on_inner == 0 .and. on_outer == 12, &
+                     "particles on two rings: they rest on each of the outer ring's 12 voussoirs, never on the inner "// &
+                     'ring')
+  end subroutine test_particles_on_the_outer_ring
 
   !> One span of `shape`.
   function one_span(shape, span_m, rise_m, thickness_m, n) result(b)

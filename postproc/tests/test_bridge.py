@@ -11,7 +11,7 @@ import pytest
 from conftest import REPO_ROOT, run_executable
 from figure_text import text_clashes
 from voussoir_post.cli import post
-from voussoir_post.plots.drawing import run_caption
+from voussoir_post.plots.drawing import bridge_caption, run_caption
 from voussoir_post.plots.mechanism import plot_mechanism
 from voussoir_post.plots.reactions import free_weight_n
 from voussoir_post.readers.results import read_limit_json, read_run
@@ -178,3 +178,11 @@ def test_the_fill_and_a_vehicle_stand_in_voussoir_run(voussoir_run_exe, tmp_path
     caption = run_caption(run)
     assert "fill to 3.45 m (2000 kg/m³) as mass the ring carries, its active pressure as forces" in caption
     assert "vehicle (axles 100 + 100 kN, 1.5 m apart) standing from x = 3 m" in caption and "arch of" not in caption
+
+
+def test_a_multi_ring_bridge_in_words():
+    """&bridge n_rings > 1 in a figure's caption (a run file's /config keys); one ring as before."""
+    bridge = {"shape": "segmental", "span_m(1)": 6.0, "rise_m(1)": 1.5, "ring_thickness_m": 0.45, "n_voussoirs": 12}
+    assert bridge_caption(bridge) == "bridge of 1 segmental span of 6 m (rise 1.5 m), ring 450 mm of 12 voussoirs"
+    assert bridge_caption({**bridge, "n_rings": 4}) == ("bridge of 1 segmental span of 6 m (rise 1.5 m), ring 450 mm "
+                                                       "in 4 rings of 12 voussoirs")

@@ -7,6 +7,7 @@ of a pair that is not one bridge with and without the passive pressure."""
 from __future__ import annotations
 
 import json
+import math
 import re
 
 import pytest
@@ -220,3 +221,28 @@ def test_bridge_report_of_load_cases(voussoir_limit_exe, tmp_path):
     assert float(row[3]) == pytest.approx(cases[gov]["collapse_live_load_n"] / 1e3, rel=1e-3)
     live = [r for r in _table(report, "Loads") if r[0] == "the live load (load factor 1)"]
     assert float(live[0][1]) == pytest.approx(cases[gov]["factored_live_load_n"] / 1e3, rel=1e-3)
+
+
+def test_bridge_report_of_a_multi_ring_arch(voussoir_limit_exe, tmp_path):
+    """input/bridge_multi_ring.nml (&bridge n_rings = 4): the report counts every ring's
+    voussoirs, as the JSON names them (span 1 ring r voussoir j): the ring's weight is the
+    density x g x width x the shoelace area of all 48, which is the segmental ring's by hand
+    (R = (L^2/4 + r^2)/(2r), half-angle a: (n/2)(R_e^2 - R^2) sin(2a/n)); the crown's extrados
+    is rise + depth; the ring is said to be in 4 rings with the friction between them."""
+    path = tmp_path / "rings.json"
+    path.write_text(run_executable([voussoir_limit_exe, REPO_ROOT / "input" / "bridge_multi_ring.nml", "--json"],
+                                   tmp_path).stdout)
+    raw = json.loads(path.read_text())
+    assert post.main(["bridge-report", str(path), "--out", str(tmp_path / "r")]) == 0
+    report = (tmp_path / "r" / "report.md").read_text()
+    names = [b["name"] for b in raw["blocks"]]
+    assert sum(bool(re.match(r"span 1 ring [1-4] voussoir \d+$", n)) for n in names) == 48
+    span, rise, depth, n = 6.0, 1.5, 0.45, 12
+    radius = (span ** 2 / 4 + rise ** 2) / (2 * rise)
+    half = math.atan2(span / 2, radius - rise)
+    area = 0.5 * n * ((radius + depth) ** 2 - radius ** 2) * math.sin(2 * half / n)
+    (weight,) = [r for r in _table(report, "Loads") if r[0] == "the ring's weight"]
+    assert float(weight[1]) == pytest.approx(2000 * raw["g_m_s2"] * 1.0 * area / 1e3, rel=5e-4)   # 4 digits
+    (geometry,) = _table(report, "Geometry")
+    assert float(geometry[6]) == pytest.approx(rise + depth, abs=5e-4)
+    assert "in 4 rings of 0.1125 m (joints aligned; friction 0.6 between two rings)" in report

@@ -11,6 +11,7 @@ module voussoir_assembly
   private
 
   public :: polygon_t, assembly_t, build_arch, arch_joint_angle_deg, voussoir_angle_factors, mirrored_blocks
+  public :: between_rings
   public :: role_voussoir, role_foundation, role_restraint, role_fill, role_backing
 
   integer, parameter :: role_voussoir = 1    !! a free block of the arch
@@ -36,6 +37,11 @@ module voussoir_assembly
     !> Each body's Coulomb coefficient where allocated (the parts of a bridge), else the
     !> run's; a contact between two bodies takes the lesser of theirs.
     real(dp), allocatable :: friction(:)
+    !> A multi-ring bridge's ring of each body where allocated (1 the intrados ring, counted
+    !> outwards; 0 no ring's): an interface between two rings takes ring_joint_friction
+    !> instead of the lesser of its two blocks'.
+    integer, allocatable :: ring(:)
+    real(dp) :: ring_joint_friction = 0.0_dp
     !> Each body's name in the output where allocated (a bridge's: 'span 1 voussoir 3',
     !> 'pier 1', 'left abutment', 'ground'), else the body's number.
     character(len=32), allocatable :: block_name(:)
@@ -82,6 +88,8 @@ contains
     if (allocated(asm%density_kg_m3)) mirror%density_kg_m3 = asm%density_kg_m3
     if (allocated(asm%friction)) mirror%friction = asm%friction
     if (allocated(asm%block_name)) mirror%block_name = asm%block_name
+    if (allocated(asm%ring)) mirror%ring = asm%ring
+    mirror%ring_joint_friction = asm%ring_joint_friction
     mirror%has_fill = asm%has_fill
     mirror%fill_level_m = asm%fill_level_m
     mirror%fill_weight_n_m2 = asm%fill_weight_n_m2
@@ -89,6 +97,13 @@ contains
     mirror%fill_active_k = asm%fill_active_k
     mirror%fill_passive_k = asm%fill_passive_k
   end function mirrored_blocks
+
+  !> Whether bodies `a` and `b` of an assembly whose bodies lie in the rings `ring` (0: in
+  !> none) belong to two different rings: their interface is a ring-to-ring joint.
+  pure logical function between_rings(ring, a, b)
+    integer, intent(in) :: ring(:), a, b
+    between_rings = ring(a) > 0 .and. ring(b) > 0 .and. ring(a) /= ring(b)
+  end function between_rings
 
   !> Angle [deg] from +x of the radial line of joint j (0..n) of an arch.
   pure real(dp) function arch_joint_angle_deg(embrace_deg, n_voussoirs, j)

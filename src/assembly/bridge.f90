@@ -4,12 +4,18 @@
 !>
 !> Frame: x = 0 at the left intrados springing of span 1, y = 0 at the springings, the
 !> spans one after another with a pier between each two. Bodies, in order: the voussoirs
-!> of span 1 from the left, then of span 2, ...; the piers (free blocks) from the left;
-!> the left and the right abutment (driven); with piers, the ground under them (driven).
-!> Each voussoir is the quadrilateral of its two joints (chord faces), a joint running
-!> from the intrados along its normal to a ring_thickness_m deep extrados point; the
-!> joints divide the intrados into n_voussoirs equal arc lengths. Each block carries its
-!> part's density and friction (an interface takes the lesser friction of its two blocks).
+!> of span 1 from the left (ring by ring from the intrados with n_rings > 1), then of span
+!> 2, ...; the piers (free blocks) from the left; the left and the right abutment (driven);
+!> with piers, the ground under them (driven). Each voussoir is the quadrilateral of its
+!> two joints (chord faces), a joint running from the intrados along its normal to a
+!> ring_thickness_m deep extrados point; the joints divide the intrados into n_voussoirs
+!> equal arc lengths. With n_rings > 1 every joint is cut at n_rings - 1 equally spaced
+!> points between, the same for all rings: a voussoir's extrados chord is the next ring's
+!> voussoir's intrados chord, point for point (the interface between the rings). Staggered
+!> joints would not do: a voussoir bridging a joint of the ring beneath would rest on two
+!> chords at an angle, a non-convex face. Each block carries its part's density and
+!> friction (an interface takes the lesser friction of its two blocks; between two rings,
+!> ring_joint_friction).
 !> With fill_model = 'particles' the fill's particles follow (free). No wall retains them at
 !> the abutments' backs: between two fixed walls the fill, rigid blocks with associative
 !> friction and no crushing, is a flat arch whose thrust the walls take without bound, and
@@ -27,7 +33,7 @@ module voussoir_bridge
   use voussoir_bridge_backing, only: cut_backing
   implicit none
   private
-  public :: build_bridge, bridge_span_left_x, bridge_ring_joints
+  public :: build_bridge, bridge_span_left_x, bridge_ring_joints, bridge_joint_levels
 
 contains
 
@@ -39,31 +45,46 @@ contains
   end function bridge_span_left_x
 
   !> The joints 0..n of span k's ring: their intrados and extrados ends [m], in the bridge's
-  !> frame. The springings stand exactly at y = 0; the apex joint of a pointed arch is
-  !> vertical, up to where the two extrados arcs meet.
+  !> frame (bridge_joint_levels' first and last levels).
   pure subroutine bridge_ring_joints(b, k, inner, outer)
     type(bridge_config_t), intent(in) :: b
     integer, intent(in) :: k
     real(dp), intent(out) :: inner(2, 0:b%n_voussoirs), outer(2, 0:b%n_voussoirs)
+    real(dp) :: level(2, 0:b%n_voussoirs, 0:b%n_rings)
+    call bridge_joint_levels(b, k, level)
+    inner = level(:, :, 0)
+    outer = level(:, :, b%n_rings)
+  end subroutine bridge_ring_joints
+
+  !> The points of the joints 0..n of span k [m], in the bridge's frame, at the depths
+  !> m ring_thickness_m / n_rings, m = 0 (the intrados) .. n_rings (the extrados): ring r
+  !> lies between levels r - 1 and r. The springings stand exactly at y = 0; the apex joint
+  !> of a pointed arch is vertical, each level's point where the two arcs of that depth meet.
+  pure subroutine bridge_joint_levels(b, k, level)
+    type(bridge_config_t), intent(in) :: b
+    integer, intent(in) :: k
+    real(dp), intent(out) :: level(2, 0:b%n_voussoirs, 0:b%n_rings)
     type(intrados_t) :: c
-    real(dp) :: x0, p(2), nrm(2), t
-    integer :: j, n
+    real(dp) :: x0, p(2), nrm(2), depth
+    integer :: j, n, m
     c = bridge_intrados(b, k)
     n = b%n_voussoirs
-    t = b%ring_thickness_m
     x0 = bridge_span_left_x(b, k)
     do j = 0, n
       ! s at j = n exactly the whole length (no round-off past the springing)
       call intrados_at(c, merge(c%length_m, c%length_m*j/n, j == n), p, nrm)
       if (j == 0) p = [0.0_dp, 0.0_dp]
       if (j == n) p = [b%span_m(k), 0.0_dp]
-      inner(:, j) = [x0 + p(1), p(2)]
-      outer(:, j) = inner(:, j) + t*nrm
-      if (c%shape == shape_pointed .and. 2*j == n) outer(:, j) = [x0 + 0.5_dp*b%span_m(k), crown_extrados_m(c, t)]
-      ! A springing joint normal to a vertical intrados is level (cos(pi/2) is not 0 in floating point).
-      if ((j == 0 .or. j == n) .and. abs(outer(2, j)) <= 1.0e-12_dp*t) outer(2, j) = 0.0_dp
+      level(:, j, 0) = [x0 + p(1), p(2)]
+      do m = 1, b%n_rings
+        depth = b%ring_thickness_m*m/b%n_rings
+        level(:, j, m) = level(:, j, 0) + depth*nrm
+        if (c%shape == shape_pointed .and. 2*j == n) level(:, j, m) = [x0 + 0.5_dp*b%span_m(k), crown_extrados_m(c, depth)]
+        ! A springing joint normal to a vertical intrados is level (cos(pi/2) is not 0 in floating point).
+        if ((j == 0 .or. j == n) .and. abs(level(2, j, m)) <= 1.0e-12_dp*depth) level(2, j, m) = 0.0_dp
+      end do
     end do
-  end subroutine bridge_ring_joints
+  end subroutine bridge_joint_levels
 
   !> The blocks of the bridge `b` (validated by read_bridge_config); a block that comes
   !> out not convex fails `status` (a fault of the program: the checks of the group
@@ -72,14 +93,15 @@ contains
     type(bridge_config_t), intent(in) :: b
     type(assembly_t), intent(out) :: asm
     type(status_t), intent(inout) :: status
-    real(dp), allocatable :: inner(:, :, :), outer(:, :, :)
+    real(dp), allocatable :: inner(:, :, :), outer(:, :, :), level(:, :, :)
     type(polygon_t), allocatable :: particles(:), backing(:)
     real(dp) :: h, x_end, w
-    integer :: n, ns, nb, k, j, body
+    integer :: n, ns, nr, nb, k, j, r, body
     logical :: with_particles
 
     n = b%n_voussoirs
     ns = b%n_spans
+    nr = b%n_rings
     h = b%pier_height_m
     w = b%abutment_width_m
     with_particles = b%fill_model == fill_model_particles .and. b%fill_density_kg_m3 > 0.0_dp
@@ -87,11 +109,15 @@ contains
     if (with_particles) particles = cut_fill_particles(bridge_fill_bottom(b), b%fill_level_m, b%fill_particle_size_m)
     allocate (backing(0))
     if (b%backing_level_m > 0.0_dp) backing = cut_backing(bridge_fill_bottom(b), b%backing_level_m, b%backing_course_m)
-    nb = ns*n + (ns - 1) + 2 + merge(1, 0, ns > 1) + size(particles) + size(backing)
+    nb = ns*n*nr + (ns - 1) + 2 + merge(1, 0, ns > 1) + size(particles) + size(backing)
     allocate (asm%polygon(nb), asm%driven(nb), asm%role(nb), asm%density_kg_m3(nb), asm%friction(nb), &
               asm%block_name(nb))
-    allocate (inner(2, 0:n, ns), outer(2, 0:n, ns))
+    allocate (inner(2, 0:n, ns), outer(2, 0:n, ns), level(2, 0:n, 0:nr))
     asm%n_bodies = nb
+    if (nr > 1) then   ! (a single ring: no ring-to-ring joints, the assembly as before rings)
+      allocate (asm%ring(nb), source=0)
+      asm%ring_joint_friction = b%ring_joint_friction
+    end if
     asm%thickness_m = b%ring_thickness_m
     ! The particles are blocks: no columns, spread or pressure of the engineers' model.
     asm%has_fill = b%fill_density_kg_m3 > 0.0_dp .and. .not. with_particles
@@ -105,11 +131,16 @@ contains
     end if
     body = 0
     do k = 1, ns
-      call bridge_ring_joints(b, k, inner(:, :, k), outer(:, :, k))
-      do j = 1, n
-        ! Counter-clockwise: inner left, inner right, outer right, outer left.
-        call add(reshape([inner(:, j - 1, k), inner(:, j, k), outer(:, j, k), outer(:, j - 1, k)], [2, 4]), &
-                 .false., role_voussoir, b%ring_density_kg_m3, b%ring_friction, 'span '//itoa(k)//' voussoir '//itoa(j))
+      call bridge_joint_levels(b, k, level)
+      inner(:, :, k) = level(:, :, 0)
+      outer(:, :, k) = level(:, :, nr)
+      do r = 1, nr
+        do j = 1, n
+          ! Counter-clockwise: inner left, inner right, outer right, outer left.
+          call add(reshape([level(:, j - 1, r - 1), level(:, j, r - 1), level(:, j, r), level(:, j - 1, r)], [2, 4]), &
+                   .false., role_voussoir, b%ring_density_kg_m3, b%ring_friction, voussoir_name(k, r, j, nr))
+          if (nr > 1 .and. status%ok) asm%ring(body) = r
+        end do
       end do
     end do
     do k = 1, ns - 1
@@ -156,6 +187,15 @@ contains
     end subroutine add
 
   end subroutine build_bridge
+
+  !> Voussoir j of ring r of span k: 'span k voussoir j', with `n_rings` > 1
+  !> 'span k ring r voussoir j'.
+  function voussoir_name(k, r, j, n_rings) result(name)
+    integer, intent(in) :: k, r, j, n_rings
+    character(len=:), allocatable :: name
+    name = 'span '//itoa(k)//' voussoir '//itoa(j)
+    if (n_rings > 1) name = 'span '//itoa(k)//' ring '//itoa(r)//' voussoir '//itoa(j)
+  end function voussoir_name
 
   !> The bottom of the fill (2, n) [m], x ascending: the left abutment's level top from its
   !> back, the extrados ends of every span's joints from the left (across each pier's top

@@ -8,7 +8,7 @@ module voussoir_bridge_config
   use voussoir_kinds, only: dp, pi
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa, fmt_real, fmt_significant, lower
-  use voussoir_namelist_group, only: nml_group_t
+  use voussoir_namelist_group, only: nml_group_t, checked_apart
   use voussoir_input_range, only: need
   use voussoir_bridge_shape, only: intrados_t, intrados_init, springing_reach, crown_extrados_m, shape_names, &
     shape_segmental, &
@@ -17,7 +17,7 @@ module voussoir_bridge_config
   implicit none
   private
   public :: bridge_config_t, bridge_group, read_bridge_config, bridge_intrados, max_spans, bridge_length_m
-  public :: fill_model_columns, fill_model_particles, max_fill_particles
+  public :: fill_model_columns, fill_model_particles, max_fill_particles, max_rings
 
   integer, parameter :: max_spans = 8
   integer, parameter :: max_bridge_voussoirs = 200     !! per span, as voussoir-limit's arch
@@ -32,6 +32,10 @@ module voussoir_bridge_config
   !> At most this many particles (estimated from the bridge's length x the fill's level).
   integer, parameter :: max_fill_particles = 20000
   real(dp), parameter :: default_course_m = 0.3_dp     !! the backing's courses when backing_course_m is not given
+  !> At most this many rings (brick arches are built of a few half-brick rings).
+  integer, parameter :: max_rings = 6
+  !> ring_joint_friction not given: ring_friction stands in for it.
+  real(dp), parameter :: unset_ring_joint_friction = -huge(1.0_dp)
 
   !> &bridge (no span given: no bridge).
   type :: bridge_config_t
@@ -39,6 +43,10 @@ module voussoir_bridge_config
     real(dp) :: span_m(max_spans) = 0.0_dp              !! clear span k between its intrados springings [m]; 0: no span
     real(dp) :: rise_m(max_spans) = 0.0_dp              !! rise of span k's intrados above its springings [m]
     real(dp) :: ring_thickness_m = 0.45_dp              !! ring depth, normal to the intrados [m]
+    !> The ring as n_rings concentric rings of equal depth, their joints aligned; the
+    !> interfaces between two rings (no tension, Coulomb) take ring_joint_friction.
+    integer :: n_rings = 1
+    real(dp) :: ring_joint_friction = unset_ring_joint_friction  !! (unset: ring_friction)
     integer :: n_voussoirs = 16                         !! voussoirs of each span, equal lengths along the intrados
     real(dp) :: pier_width_m = 1.0_dp                   !! between the intrados springings of the spans it carries [m]
     real(dp) :: pier_height_m = 2.0_dp                  !! the springings above the ground [m]
@@ -91,6 +99,8 @@ contains
     call g%add('rise_m', b%rise_m, unset=0.0_dp, unit='m', range='0 < rise_m <= 200 m', &
                about='real, m, the rise of span k (semicircular: may be left out)')
     call g%add('ring_thickness_m', b%ring_thickness_m, unit='m', range='0 < ring_thickness_m <= 10 m')
+    call g%add('n_rings', b%n_rings, range='1 <= n_rings <= '//itoa(max_rings), when=checked_apart, &
+               about='integer, concentric rings of equal depth sharing ring_thickness_m')
     call g%add('n_voussoirs', b%n_voussoirs, range='3 <= n_voussoirs <= '//itoa(max_bridge_voussoirs), &
                about='integer, per span')
     call g%add('pier_width_m', b%pier_width_m, unit='m', range='0 < pier_width_m <= 100 m')
@@ -99,6 +109,9 @@ contains
     call g%add('width_m', b%width_m, unit='m', range='0 < width_m <= 1000 m')
     call g%add('ring_density_kg_m3', b%ring_density_kg_m3, unit='kg/m3', range='0 < ring_density_kg_m3 <= 1e5')
     call g%add('ring_friction', b%ring_friction, range='ring_friction >= 0 (finite)')
+    call g%add('ring_joint_friction', b%ring_joint_friction, range='ring_joint_friction >= 0 (finite)', &
+               unset=unset_ring_joint_friction, &
+               about='real, the Coulomb coefficient between two rings, with n_rings > 1 (default: ring_friction)')
     call g%add('pier_density_kg_m3', b%pier_density_kg_m3, unit='kg/m3', range='0 < pier_density_kg_m3 <= 1e5')
     call g%add('pier_friction', b%pier_friction, range='pier_friction >= 0 (finite)')
     call g%add('abutment_friction', b%abutment_friction, range='abutment_friction >= 0 (finite)')
@@ -163,6 +176,7 @@ contains
       call check_span(b, k, path, status)
     end do
     if (.not. status%ok) return
+    call check_rings(b, path, status)
     call check_supports(b, path, status)
     call check_fill(b, path, status)
     call check_backing(b, path, status)
@@ -200,6 +214,26 @@ contains
     call need(b%fill_model == fill_model_columns, path, 'bridge', 'backing_level_m', b%backing_level_m, &
               "0 with fill_model = 'particles' (backing under a fill of particles is not built)", status)
   end subroutine check_backing
+
+  !> A coefficient between rings only where there are two rings or more; left out, the
+  !> ring's own.
+  subroutine check_rings(b, path, status)
+    type(bridge_config_t), intent(inout) :: b
+    character(len=*), intent(in) :: path
+    type(status_t), intent(inout) :: status
+    if (.not. status%ok) return
+    call need(b%n_rings >= 1 .and. b%n_rings <= max_rings, path, 'bridge', 'n_rings', b%n_rings, &
+              '1 <= n_rings <= '//itoa(max_rings)//' (1: a single ring; a multi-ring brick arch is a few '// &
+              'half-brick rings, each ring_thickness_m/n_rings deep)', status)
+    if (.not. status%ok) return
+    if (b%n_rings == 1) then
+      call need(b%ring_joint_friction == unset_ring_joint_friction, path, 'bridge', 'ring_joint_friction', &
+                b%ring_joint_friction, 'none with n_rings = 1: a single ring has no ring-to-ring joints (set '// &
+                'n_rings >= 2 to split the ring)', status)
+    else if (b%ring_joint_friction == unset_ring_joint_friction) then
+      b%ring_joint_friction = b%ring_friction
+    end if
+  end subroutine check_rings
 
   !> A fill covers every ring (its surface not below any extrados); a dispersion angle
   !> or a fill level without a fill to spread or stand in is refused.

@@ -56,7 +56,7 @@ module voussoir_namelist_group
     character(len=:), allocatable :: when     !! '' or the case its range and choices apply to
     logical :: list = .false.
     integer :: first = 1                      !! index of a list's first entry
-    logical :: sparse = .false.               !! a list whose entries at `unset` are not settings
+    logical :: sparse = .false.               !! a list's entries, or a real, at `unset` are not settings
     real(dp) :: unset_real = 0.0_dp
     integer :: unset_integer = 0
     real(dp), pointer :: r => null(), ra(:) => null()
@@ -128,14 +128,19 @@ contains
     g%vars = [g%vars, v]
   end subroutine append
 
-  subroutine add_real(g, name, x, unit, range, when, about)
+  !> A real; with `unset`, a value that another one stands in for: at `unset` it is no
+  !> setting (neither range-checked nor among the effective settings).
+  subroutine add_real(g, name, x, unit, range, when, about, unset)
     class(nml_group_t), intent(inout) :: g
     character(len=*), intent(in) :: name
     real(dp), intent(inout), target :: x
     character(len=*), intent(in), optional :: unit, range, when, about
+    real(dp), intent(in), optional :: unset
     type(nml_var_t) :: v
     v = new_var(name, 'r', unit, range, when, about)
     v%r => x
+    v%sparse = present(unset)
+    if (present(unset)) v%unset_real = unset
     call append(g, v)
   end subroutine add_real
 
@@ -321,7 +326,7 @@ contains
     do k = 1, size(g%vars)
       associate (v => g%vars(k))
         text = text//trim(v%name)
-        if (v%sparse .and. v%kind /= 's') text = text//'(j)'
+        if (v%list .and. v%sparse .and. v%kind /= 's') text = text//'(j)'
         if (k < size(g%vars)) then
           if (g%vars(k + 1)%about == v%about) then
             text = text//', '
@@ -362,8 +367,10 @@ contains
                       "' is not one of '"//join_words(v%choices, "', '")//"'")
         end if
         if (len(v%range%text) == 0) cycle
-        if (associated(v%r)) call need(in_range(v%range, v%r), file, trim(g%name), trim(v%name), v%r, &
-                                       v%range%text, status)
+        if (associated(v%r)) then
+          if (.not. (v%sparse .and. v%r == v%unset_real)) &
+            call need(in_range(v%range, v%r), file, trim(g%name), trim(v%name), v%r, v%range%text, status)
+        end if
         if (associated(v%i)) call need(in_range(v%range, real(v%i, dp)), file, trim(g%name), trim(v%name), v%i, &
                                        v%range%text, status)
         if (associated(v%ra)) then
@@ -384,7 +391,8 @@ contains
     end do
   end subroutine check_group
 
-  !> The effective settings of the group, in table order (a sparse list: its set entries).
+  !> The effective settings of the group, in table order (a sparse list: its set entries; a
+  !> real with `unset`: where set).
   function group_entries(g) result(e)
     class(nml_group_t), intent(in) :: g
     type(config_entry_t), allocatable :: e(:)
@@ -396,7 +404,9 @@ contains
       v = g%vars(k)
       n = trim(v%name)
       associate (group => g%name)
-        if (associated(v%r)) e = [e, config_entry_t(group, n, v%kind, real_text(v%r))]
+        if (associated(v%r)) then
+          if (.not. (v%sparse .and. v%r == v%unset_real)) e = [e, config_entry_t(group, n, v%kind, real_text(v%r))]
+        end if
         if (associated(v%i)) e = [e, config_entry_t(group, n, v%kind, itoa(v%i))]
         if (associated(v%l)) e = [e, config_entry_t(group, n, v%kind, merge('.true. ', '.false.', v%l))]
         if (associated(v%la)) then

@@ -10,7 +10,7 @@ module voussoir_limit_lp_study
   use voussoir_text, only: itoa, fmt_significant
   use voussoir_load_config, only: load_config_t
   use voussoir_placed_loads, only: placed_loads_t, place_loads, moves_on_top, vehicle_x, top_surface, fill_column
-  use voussoir_assembly, only: assembly_t
+  use voussoir_assembly, only: assembly_t, between_rings
   use voussoir_hinge_side, only: side_intrados, side_extrados
   use voussoir_block_interfaces, only: interface_set_t, find_interfaces
   use voussoir_limit_lp, only: block_loads_t, lp_result_t, block_loads, add_placed_loads, lp_outcome_unbounded
@@ -114,13 +114,7 @@ contains
     end do
     call name_arch_joints(asm, study)
     if (allocated(asm%block_name)) study%block_name = asm%block_name
-    allocate (mu(study%faces%n))
-    mu = friction
-    if (allocated(asm%friction)) then   ! a bridge's parts: the lesser of the two blocks'
-      do b = 1, study%faces%n
-        mu(b) = minval(asm%friction(study%faces%body(:, b)))
-      end do
-    end if
+    mu = interface_friction(asm, study%faces, friction)
     if (present(joint_friction)) then
       call joint_coefficients(asm, study, joint_friction, mu, status)
       if (.not. status%ok) return
@@ -200,6 +194,24 @@ contains
                                  status)
     neg%nonassociative_solved = status%ok
   end subroutine reversed_direction
+
+  !> The Coulomb coefficient of each interface of `faces`: `friction`, or for a bridge's
+  !> parts the lesser of its two blocks', or between two rings of a multi-ring bridge the
+  !> coefficient of the joints between rings.
+  pure function interface_friction(asm, faces, friction) result(mu)
+    type(assembly_t), intent(in) :: asm
+    type(interface_set_t), intent(in) :: faces
+    real(dp), intent(in) :: friction
+    real(dp) :: mu(faces%n)
+    integer :: k
+    mu = friction
+    do k = 1, faces%n
+      if (allocated(asm%friction)) mu(k) = minval(asm%friction(faces%body(:, k)))
+      if (allocated(asm%ring)) then
+        if (between_rings(asm%ring, faces%body(1, k), faces%body(2, k))) mu(k) = asm%ring_joint_friction
+      end if
+    end do
+  end function interface_friction
 
   !> The friction of each interface that is arch joint j where `joint_friction(j) >= 0`,
   !> as the dynamics takes it (voussoir_contact_law); the others keep theirs.

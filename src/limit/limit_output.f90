@@ -13,6 +13,7 @@ module voussoir_limit_output
   use voussoir_limit_load_cases, only: case_study_t
   use voussoir_limit_case_output, only: write_cases_table, cases_json
   use voussoir_version, only: code_version
+  use voussoir_bridge_config, only: bridge_config_t
   implicit none
   private
 
@@ -42,9 +43,9 @@ contains
       end if
       if (lp%assembly == 'bridge') then
         write (u, '(a)') '      interface inset '//fmt_significant(1.0e3_dp*opts%inset_m)//' mm, friction: ring '// &
-          fmt_significant(cfg%bridge%ring_friction)//', piers '//fmt_significant(cfg%bridge%pier_friction)// &
-          ', skewbacks '//fmt_significant(cfg%bridge%abutment_friction)//' (an interface takes the lesser of its '// &
-          "two blocks'; the LP's heading below gives the ring's)"
+          fmt_significant(cfg%bridge%ring_friction)//rings_words(cfg%bridge)//', piers '// &
+          fmt_significant(cfg%bridge%pier_friction)//', skewbacks '//fmt_significant(cfg%bridge%abutment_friction)// &
+          " (an interface takes the lesser of its two blocks'; the LP's heading below gives the ring's)"
       else
         write (u, '(a)') '      interface inset '//fmt_significant(1.0e3_dp*opts%inset_m)//' mm, friction '// &
           fmt_significant(cfg%arch%friction)
@@ -137,6 +138,14 @@ contains
     if (lambda < 0.0_dp) write (u, '(15x,a)') &
       '(negative: the arch cannot carry its own weight; it is thinner than its minimum thickness)'
   end subroutine direction_row
+
+  !> ' (n rings, between them f)' for a multi-ring bridge, else ''.
+  function rings_words(b) result(text)
+    type(bridge_config_t), intent(in) :: b
+    character(len=:), allocatable :: text
+    text = ''
+    if (b%n_rings > 1) text = ' ('//itoa(b%n_rings)//' rings, between them '//fmt_significant(b%ring_joint_friction)//')'
+  end function rings_words
 
   !> 'joint 0 intrados, joint 5 extrados, ...'
   function hinge_text(hinges, sides) result(text)

@@ -7,7 +7,7 @@ module voussoir_contact_law
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa, fmt_real
-  use voussoir_assembly, only: assembly_t
+  use voussoir_assembly, only: assembly_t, between_rings
   implicit none
   private
 
@@ -27,6 +27,10 @@ module voussoir_contact_law
     !> Each body's own coefficient, where the assembly gives them (a bridge's parts): a
     !> contact takes the lesser of its two bodies'.
     real(dp), allocatable :: body_friction(:)
+    !> Each body's ring, where the assembly gives them (a multi-ring bridge): a contact
+    !> between two rings takes ring_joint_friction.
+    integer, allocatable :: body_ring(:)
+    real(dp) :: ring_joint_friction = 0.0_dp
   end type contact_law_t
 
 contains
@@ -43,6 +47,8 @@ contains
     law%friction = friction
     law%inset_m = inset_m
     if (allocated(assembly%friction)) law%body_friction = assembly%friction
+    if (allocated(assembly%ring)) law%body_ring = assembly%ring
+    law%ring_joint_friction = assembly%ring_joint_friction
     n_set = count(joint_friction >= 0.0_dp)
     allocate (law%pairs(n_set))
     if (n_set == 0) return
@@ -65,13 +71,17 @@ contains
   end subroutine contact_law_init
 
   !> The friction coefficient between bodies `a` and `b`: a joint's own where set, else the
-  !> lesser of the two bodies' own where the assembly gives them, else the law's.
+  !> ring-to-ring coefficient between two rings of a bridge, else the lesser of the two
+  !> bodies' own where the assembly gives them, else the law's.
   pure real(dp) function pair_friction_of(law, a, b) result(mu)
     type(contact_law_t), intent(in) :: law
     integer, intent(in) :: a, b
     integer :: m
     mu = law%friction
     if (allocated(law%body_friction)) mu = min(law%body_friction(a), law%body_friction(b))
+    if (allocated(law%body_ring)) then
+      if (between_rings(law%body_ring, a, b)) mu = law%ring_joint_friction
+    end if
     do m = 1, size(law%pairs)
       if ((law%pairs(m)%body_a == a .and. law%pairs(m)%body_b == b) .or. &
           (law%pairs(m)%body_a == b .and. law%pairs(m)%body_b == a)) mu = law%pairs(m)%friction

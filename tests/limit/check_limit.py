@@ -871,6 +871,115 @@ elif case == "bridge":
     check(len(at_skew) == 2 and all(abs(f["shear_n"]) <= 0.05 * sum(f["normal_n"]) * (1 + 1e-9) + 1e-6
                                     for f in at_skew) and e["load_factor"] < lam * (1 - 1e-3),
           f"skewback friction 0.05: |S| <= 0.05 N at both springings, load factor {e['load_factor']} < {lam}")
+elif case == "bridge_rings":
+    # &bridge n_rings (issue 37): a segmental span (6 m, rise 1.5 m, ring 0.45 m, 10 voussoirs)
+    # as one ring and as 2 or 3 rings of the same depth, joints aligned.
+    # (1) lambda(rings) <= lambda(one ring), whatever the friction between the rings: every
+    # mechanism of the single ring is one of the rings, each stack of voussoirs moving as its
+    # voussoir (the ring-to-ring joints closed, each radial joint's segments moving as the
+    # whole joint: a hinge through the whole depth is a hinge of one segment and the opening
+    # of the others), with the same work of the loads. (2) lambda is non-decreasing in
+    # ring_joint_friction: a larger coefficient only widens the statically admissible set.
+    # (3) Under the point load (vertical loads: the outer ring is pressed onto the inner one)
+    # at friction 10 between the rings the thrust of the single ring can pass from ring to
+    # ring within each voussoir, so the load factors are the single ring's (1e-9): measured,
+    # not proved (the thrust crosses a collar joint within friction only where it crosses it
+    # steeply enough; a failure here would say the LP found a cheaper separation). Under horizontal
+    # acceleration this does not hold: the body forces pull the outer ring off the inner one
+    # near the springings and the rings separate (docs/bridges.md, "Multi-ring arches"), so
+    # there (1) and (2) alone are checked. (4) At friction 0 between the rings, lambda below
+    # the single ring's means by (1) that the LP's mechanism is none of the single ring's: a
+    # ring-to-ring joint opens or slides in it; the joints carry no shear. (5) The fill (its
+    # weight, its pressure) stands on the outer ring alone, the weight the area between the
+    # outer extrados and the level; the live load spreads to the outer extrados.
+    span = ("&bridge shape = 'segmental', span_m(1) = 6.0, rise_m(1) = 1.5, ring_thickness_m = 0.45, "
+            "n_voussoirs = 10,\n  abutment_width_m = 1.0, ring_friction = 0.6{rings} /\n")
+    point = "&load point_load_n(1) = 10000, path_x0_m = 1.5, path_x1_m = 1.6, path_points = 2 /\n"
+
+    def bridge_json(name, n_rings, mu, load_text):
+        rings = "" if n_rings == 1 else f", n_rings = {n_rings}, ring_joint_friction = {mu}"
+        with open(name + ".nml", "w") as f:
+            f.write(span.format(rings=rings) + load_text)
+        return load(name + ".nml")
+
+    def ring_of(d, i):
+        m = re.match(r"span \d+ ring (\d+) voussoir", d["blocks"][i - 1]["name"])
+        return int(m.group(1)) if m else 0
+
+    def between_rings(d, f):
+        a, b = (ring_of(d, i) for i in f["blocks"])
+        return a > 0 and b > 0 and a != b
+
+    one = bridge_json("rings_1", 1, None, point)
+    curve1 = [c["load_factor"] for c in one["load_factor_curve"]]
+    for n_rings in (2, 3):
+        d = bridge_json(f"rings_{n_rings}_mu10", n_rings, 10, point)
+        curve = [c["load_factor"] for c in d["load_factor_curve"]]
+        check(len(d["blocks"]) == 10 * n_rings + 2 and len(curve) == len(curve1) and
+              all(close(a, b, rtol=1e-9) for a, b in zip(curve, curve1)),
+              f"{n_rings} rings at friction 10 between them: the point load's curve = the single ring's (1e-9; "
+              f"largest difference {max(abs(a / b - 1) for a, b in zip(curve, curve1)):.1e})")
+    lams = []
+    for mu in (0, 0.3, 0.6, 10):
+        d = bridge_json(f"rings_2_mu{mu}", 2, mu, point)
+        lams.append(d["load_factor"])
+        if mu == 0:
+            zero = d
+    check(all(lam <= one["load_factor"] * (1 + 1e-9) for lam in lams) and
+          all(b >= a * (1 - 1e-9) for a, b in zip(lams, lams[1:])),
+          f"2 rings, point load: lambda at ring_joint_friction 0, 0.3, 0.6, 10 = {lams}, non-decreasing, at most "
+          f"the single ring's {one['load_factor']}")
+    moving = [m for m in zero["mechanism"] if between_rings(zero, m) and m["mode"] != "closed"]
+    check(zero["load_factor"] < one["load_factor"] * (1 - 1e-6) and len(moving) > 0,
+          f"friction 0 between the rings: lambda {zero['load_factor']:.6g} < {one['load_factor']:.6g}, the rings "
+          f"separate: {len(moving)} ring-to-ring joints open or slide in the mechanism "
+          f"({sorted(set(m['mode'] for m in moving))})")
+    joints = [f for f in zero["contact_forces"] if between_rings(zero, f)]
+    largest = max(max(f["normal_n"]) for f in zero["contact_forces"])
+    check(len(joints) == 10 and all(abs(f["shear_n"]) <= 1e-9 * largest for f in joints) and
+          all(min(f["normal_n"]) >= -1e-9 * largest for f in zero["contact_forces"]),
+          "friction 0 between the rings: their 10 joints carry no shear, no interface any tension")
+    # Under horizontal acceleration (no &load): (1) and (2) in both directions.
+    one = bridge_json("rings_1_accel", 1, None, "")
+    both = []
+    for mu in (0, 0.6, 10):
+        d = bridge_json(f"rings_2_accel_mu{mu}", 2, mu, "")
+        both.append((d["load_factor"], d["load_factor_neg"]))
+    for k, key in ((0, "load_factor"), (1, "load_factor_neg")):
+        seq = [b[k] for b in both]
+        check(all(lam <= one[key] * (1 + 1e-9) for lam in seq) and
+              all(b >= a * (1 - 1e-9) for a, b in zip(seq, seq[1:])),
+              f"2 rings under horizontal acceleration ({key}): {seq} at friction 0, 0.6, 10, non-decreasing, at "
+              f"most the single ring's {one[key]}")
+    # (5) The fill and its pressure on the outer ring of three.
+    with open("rings_fill.nml", "w") as f:
+        f.write(span.format(rings=", n_rings = 3, fill_density_kg_m3 = 2000, fill_level_m = 2.25, "
+                            "dispersion_angle_deg = 30, fill_friction_deg = 35, passive_mobilisation = 0.33")
+                + "&load point_load_n(1) = 100000, point_load_x_m(1) = 1.5 /\n")
+    d = load("rings_fill.nml")
+    outer = [i for i in range(1, len(d["blocks"]) + 1) if ring_of(d, i) == 3]
+    check(sorted(f["block"] for f in d["fill_loads"]) == outer and
+          {p["block"] for p in d["fill_pressures"]} <= set(outer) and len(d["fill_pressures"]) >= 8,
+          "the fill's weight on each voussoir of the outer ring and on no other, its pressure on the outer ring alone")
+    ext = [tuple(d["blocks"][i - 1]["vertices_xy_m"][3]) for i in outer] + [tuple(d["blocks"][outer[-1] - 1]
+                                                                                ["vertices_xy_m"][2])]
+    poly = ext + [(ext[-1][0], 2.25), (ext[0][0], 2.25)]
+    area = abs(0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1])))
+    total = -sum(f["force_n"][1] for f in d["fill_loads"])
+    check(close(total, 2000 * 9.81 * area, rtol=1e-12),
+          f"the fill's weight {total:.6g} N = the area between the outer extrados and the level ({area:.6g} m2) "
+          f"x density x g x width")
+    (sl,) = d["surface_loads"]
+    slope = math.tan(math.radians(30))
+
+    def extrados_y(x):
+        for (x0, y0), (x1, y1) in zip(ext, ext[1:]):
+            if x0 <= x <= x1:
+                return y0 + (x - x0) / (x1 - x0) * (y1 - y0)
+
+    gaps = [2.25 - abs(x - 1.5) / slope - extrados_y(x) for x in sl["spread_x_m"]]
+    check(max(abs(g) for g in gaps) < 1e-9,
+          f"the live load spreads to where the 30-degree lines meet the outer extrados ({max(map(abs, gaps)):.1e} m)")
 elif case == "bridge_fill":
     # The engineers' fill over input/bridge_fill.nml's span, checked from the JSON's blocks
     # alone: (1) the fill's weight on each voussoir = density x g x width x the area of the

@@ -11,6 +11,7 @@ figures that ``voussoir-post bridge-report`` draws.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -45,6 +46,7 @@ class BridgeSummary:
     spans: list[SpanGeometry]
     ring_thickness_m: float
     n_voussoirs: int
+    n_rings: int  #: concentric rings sharing the depth (1: one); friction between two: frictions['ring_joint']
     width_m: float
     pier_width_m: float
     pier_height_m: float
@@ -162,7 +164,9 @@ def bridge_summary(limit: LimitResult) -> BridgeSummary:
     g, width = limit.g_m_s2, float(b.get("width_m", 1.0))
     ring_area = 0.0
     for k, (span, rise) in enumerate(zip(spans_m, rises_m), start=1):
-        voussoirs = [blk.vertices_xy_m for blk in limit.blocks if blk.name.startswith(f"span {k} voussoir ")]
+        # 'span k voussoir j', or with rings 'span k ring r voussoir j': every ring's.
+        voussoirs = [blk.vertices_xy_m for blk in limit.blocks
+                     if re.match(rf"span {k} (ring \d+ )?voussoir ", blk.name)]
         top = max((float(v[:, 1].max()) for v in voussoirs), default=math.nan)
         area = sum(_area(v) for v in voussoirs)
         ring_area += area
@@ -196,10 +200,12 @@ def bridge_summary(limit: LimitResult) -> BridgeSummary:
     return BridgeSummary(
         limit=limit, shape=str(b.get("shape", "")), spans=spans,
         ring_thickness_m=float(b.get("ring_thickness_m", math.nan)), n_voussoirs=int(b.get("n_voussoirs", 0)),
+        n_rings=int(b.get("n_rings", 1)),
         width_m=width, pier_width_m=pier_w, pier_height_m=float(b.get("pier_height_m", math.nan)),
         abutment_width_m=float(b.get("abutment_width_m", math.nan)),
         ring_density_kg_m3=rho_ring, pier_density_kg_m3=rho_pier,
-        frictions={part: float(b.get(f"{part}_friction", math.nan)) for part in ("ring", "pier", "abutment")},
+        frictions={part: float(b.get(f"{part}_friction", math.nan))
+                   for part in ("ring", "ring_joint", "pier", "abutment")},
         ring_weight_n=rho_ring * g * width * ring_area,
         pier_weight_n=rho_pier * g * width * sum(_area(p) for p in piers), n_piers=len(piers),
         fill_density_kg_m3=float(b.get("fill_density_kg_m3", 0.0)), fill_level_m=float(b.get("fill_level_m", 0.0)),
@@ -306,8 +312,10 @@ def report_markdown(main: BridgeSummary, without: BridgeSummary | None, figures:
     for k, sp in enumerate(main.spans, start=1):
         out.append(f"| {k} | {main.shape} | {sp.span_m:.4g} | {sp.rise_m:.4g} | {sp.span_m / sp.rise_m:.3g} | "
                    f"{sp.x_left_m:.4g} | {sp.crown_extrados_m:.4g} | {_num(main.fill_depth_over_crown_m(sp), 3)} |")
-    out += ["", f"- Ring: {main.ring_thickness_m:g} m deep (normal to the intrados), {main.n_voussoirs} voussoirs a "
-            f"span, {main.ring_density_kg_m3:g} kg/m³, joint friction {main.frictions['ring']:g}.",
+    rings = (f" in {main.n_rings} rings of {main.ring_thickness_m / main.n_rings:g} m (joints aligned; friction "
+             f"{main.frictions['ring_joint']:g} between two rings)" if main.n_rings > 1 else "")
+    out += ["", f"- Ring: {main.ring_thickness_m:g} m deep (normal to the intrados){rings}, {main.n_voussoirs} voussoirs "
+            f"a span, {main.ring_density_kg_m3:g} kg/m³, joint friction {main.frictions['ring']:g}.",
             f"- Abutments: reaching {main.abutment_width_m:g} m back from the outer springings, fixed; friction "
             f"{main.frictions['abutment']:g}. Springings {main.pier_height_m:g} m above the ground."]
     if main.n_piers:

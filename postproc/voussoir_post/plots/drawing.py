@@ -103,9 +103,10 @@ def bridge_caption(bridge: dict, vehicle: dict | None = None) -> str:
     rises = [v for v in numbered_setting(bridge, "rise_m") if v > 0]
     span_words = ", ".join(f"{s:g}" for s in spans)
     rise_words = ", ".join(f"{r:g}" for r in rises[:len(spans)])
+    rings = int(bridge.get("n_rings", 1))
     text = (f"bridge of {len(spans)} {bridge.get('shape', '')} span{'s' if len(spans) > 1 else ''} of {span_words} m "
-            f"(rise {rise_words} m), ring {1e3 * float(bridge.get('ring_thickness_m', math.nan)):g} mm of "
-            f"{bridge.get('n_voussoirs', '?')} voussoirs")
+            f"(rise {rise_words} m), ring {1e3 * float(bridge.get('ring_thickness_m', math.nan)):g} mm"
+            f"{f' in {rings} rings' if rings > 1 else ''} of {bridge.get('n_voussoirs', '?')} voussoirs")
     if float(bridge.get("fill_density_kg_m3", 0.0)) > 0:
         pressure = ", its active pressure as forces" if float(bridge.get("fill_friction_deg", 0.0)) > 0 else ""
         text += (f"; fill to {float(bridge.get('fill_level_m', math.nan)):g} m "
