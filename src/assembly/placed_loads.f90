@@ -14,6 +14,7 @@ module voussoir_placed_loads
   use voussoir_assembly, only: assembly_t
   use voussoir_load_config, only: load_config_t
   use voussoir_flamant, only: flamant_pressure, flamant_force
+  use voussoir_ordering, only: stable_order
   use voussoir_top_surface, only: boundary_tol_m, block_at, top_surface, span_text
   implicit none
   private
@@ -61,6 +62,7 @@ module voussoir_placed_loads
     logical :: surface_boussinesq = .false.
     integer, allocatable :: surface_first(:), surface_strips(:)
     real(dp), allocatable :: surface_retained(:)
+    real(dp), allocatable :: surface_edges_x_m(:)  !! each one's surface_strips + 1 strip ends, in turn [m]
     !> With a fill's horizontal pressure: one bounded force per top face of a free block,
     !> horizontal, into the block, between the active and the mobilised passive resultant.
     integer :: n_pressure = 0
@@ -114,7 +116,8 @@ contains
 
     placed%surface_on_fill = asm%has_fill
     placed%surface_boussinesq = asm%has_fill .and. asm%dispersion_boussinesq
-    allocate (placed%surface_first(0), placed%surface_strips(0), placed%surface_retained(0))
+    allocate (placed%surface_first(0), placed%surface_strips(0), placed%surface_retained(0), &
+              placed%surface_edges_x_m(0))
     allocate (placed%block(0), placed%source(0), placed%xy(2, 0), placed%force_n(2, 0), placed%live(0), &
               placed%kind(0), placed%surface_source(0), placed%surface_xy(2, 0), placed%surface_force_n(2, 0), &
               placed%surface_spread_x_m(2, 0), placed%surface_patch_m(0), placed%pressure_block(0), placed%pressure_xy(2, 0), &
@@ -276,8 +279,8 @@ contains
   !> blocks' top: the spread's ends are the outermost x of the deck where that stress, at
   !> the fill's depth over the top there, is at least boussinesq_cutoff x the stress beneath
   !> the load (bisection between samples of deck_samples), or the deck's ends; between them
-  !> dispersion_strips strips of equal length, each carrying the closed-form integral of
-  !> the stress over its length at the depth at its middle, on the block on top there, all
+  !> the strips of `strip_edges`, each carrying the closed-form integral of the stress over
+  !> its length at the depth at its middle, at its middle on the block on top there, all
   !> scaled so that they sum to the load.
   subroutine boussinesq_load(asm, placed, j, a, x0, magnitude_n, patch_m, status)
     type(assembly_t), intent(in) :: asm
@@ -285,9 +288,10 @@ contains
     integer, intent(in) :: j, a
     real(dp), intent(in) :: x0, magnitude_n, patch_m
     type(status_t), intent(inout) :: status
-    real(dp) :: deck(2), ends(2), y0, z0, sigma_ref, x, dx, xs, ys, f(dispersion_strips)
-    real(dp) :: lo, hi
-    integer :: blk(dispersion_strips), b, k, side, inner, step
+    real(dp) :: deck(2), ends(2), y0, z0, sigma_ref, x, dx, xs, ys, lo, hi
+    real(dp), allocatable :: edges(:), f(:)
+    integer, allocatable :: blk(:)
+    integer :: b, k, n, side, inner, step
     logical :: ok
     call top_surface(asm, x0, y0, b, ok)
     z0 = asm%fill_level_m - y0
@@ -325,17 +329,18 @@ contains
       end do
       ends(side) = 0.5_dp*(lo + hi)
     end do
-    dx = (ends(2) - ends(1))/dispersion_strips
-    do k = 1, dispersion_strips
-      xs = ends(1) + (k - 0.5_dp)*dx
+    edges = strip_edges(asm, ends)
+    n = size(edges) - 1
+    allocate (f(n), blk(n))
+    do k = 1, n
+      xs = 0.5_dp*(edges(k) + edges(k + 1))
       call top_surface(asm, xs, ys, blk(k), ok)
       if (.not. ok) then   ! (a bridge's top has no gap)
         call fail(status, '&load live point load '//itoa(j)//trim(axle_words(a))//' spreads over x = '// &
                   fmt_significant(xs, 6)//' m, where no block stands')
         return
       end if
-      f(k) = flamant_force(magnitude_n, patch_m, ends(1) + (k - 1)*dx - x0, ends(1) + k*dx - x0, &
-                           asm%fill_level_m - ys)
+      f(k) = flamant_force(magnitude_n, patch_m, edges(k) - x0, edges(k + 1) - x0, asm%fill_level_m - ys)
     end do
     placed%n_surface = placed%n_surface + 1
     placed%surface_source = [placed%surface_source, j]
@@ -344,16 +349,43 @@ contains
     placed%surface_spread_x_m = reshape([placed%surface_spread_x_m, ends], [2, placed%n_surface])
     placed%surface_patch_m = [placed%surface_patch_m, patch_m]
     placed%surface_first = [placed%surface_first, placed%n + 1]
-    placed%surface_strips = [placed%surface_strips, dispersion_strips]
+    placed%surface_strips = [placed%surface_strips, n]
     placed%surface_retained = [placed%surface_retained, sum(f)/magnitude_n]
+    placed%surface_edges_x_m = [placed%surface_edges_x_m, edges]
     f = f*(magnitude_n/sum(f))
-    do k = 1, dispersion_strips
-      xs = ends(1) + (k - 0.5_dp)*dx
+    do k = 1, n
+      xs = 0.5_dp*(edges(k) + edges(k + 1))
       call top_surface(asm, xs, ys, b, ok)   ! (found above)
       call add_load(placed, blk(k), j, [xs, ys], [0.0_dp, -f(k)], .true., kind_dispersed)
     end do
 
   end subroutine boussinesq_load
+
+  !> The ends of the strips from ends(1) to ends(2): dispersion_strips of equal length,
+  !> cut again at every vertex of a block between them, so that each strip lies on one
+  !> straight face of the top (a strip across a joint would put its whole load on one side).
+  pure function strip_edges(asm, ends) result(edges)
+    type(assembly_t), intent(in) :: asm
+    real(dp), intent(in) :: ends(2)
+    real(dp), allocatable :: edges(:), cuts(:)
+    integer, allocatable :: order(:)
+    integer :: b, k
+    cuts = [(ends(1) + k*(ends(2) - ends(1))/dispersion_strips, k=0, dispersion_strips)]
+    cuts(dispersion_strips + 1) = ends(2)
+    do b = 1, asm%n_bodies
+      do k = 1, size(asm%polygon(b)%xy, 2)
+        associate (x => asm%polygon(b)%xy(1, k))
+          if (x > ends(1) + boundary_tol_m .and. x < ends(2) - boundary_tol_m) cuts = [cuts, x]
+        end associate
+      end do
+    end do
+    order = stable_order(reshape(cuts, [1, size(cuts)]))
+    edges = [cuts(order(1))]
+    do k = 2, size(order)
+      if (cuts(order(k)) - edges(size(edges)) > boundary_tol_m) edges = [edges, cuts(order(k))]
+    end do
+    edges(size(edges)) = ends(2)
+  end function strip_edges
 
   !> Flamant's stress of a load `load_n` over `patch_m` centred on `x0` at the fill's depth
   !> over the top of `asm` at `x`, over `sigma_ref` (the stress beneath the load), less

@@ -326,19 +326,25 @@ contains
   end function surface_json
 
   !> Surface load k spread by Boussinesq: the cutoff, the fraction of the load Flamant's
-  !> stress puts within the spread (before the strips are scaled to the load) and each
-  !> strip's load [N, down, at load factor 1], the strips of equal length from the spread's
+  !> stress puts within the spread (before the strips are scaled to the load), each strip's
+  !> load [N, down, at load factor 1] and the strips' ends along x [m], from the spread's
   !> first x to its last.
   function boussinesq_json(placed, k) result(text)
     type(placed_loads_t), intent(in) :: placed
     integer, intent(in) :: k
     character(len=:), allocatable :: text
-    integer :: s
+    integer :: s, first_edge
     text = ', "dispersion": "boussinesq", "cutoff": '//fmt_json_real(boussinesq_cutoff)//', "retained": '// &
            fmt_json_real(placed%surface_retained(k))//', "strip_load_n": ['
     do s = placed%surface_first(k), placed%surface_first(k) + placed%surface_strips(k) - 1
       if (s > placed%surface_first(k)) text = text//', '
       text = text//fmt_json_real(-placed%force_n(2, s))
+    end do
+    text = text//'], "strip_edges_x_m": ['
+    first_edge = sum(placed%surface_strips(1:k - 1) + 1)
+    do s = 1, placed%surface_strips(k) + 1
+      if (s > 1) text = text//', '
+      text = text//fmt_json_real(placed%surface_edges_x_m(first_edge + s))
     end do
     text = text//']'
   end function boussinesq_json

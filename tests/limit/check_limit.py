@@ -1330,7 +1330,8 @@ elif case == "bridge_boussinesq":
     # 2/(1 + t^2)^2); a patch of length p is that integrand averaged over the patch, here by
     # Simpson's rule (not the code's closed form). (1) The strips sum to P (1e-12) and each
     # carries that integral over its length at its depth (the fill's level less the top at
-    # its middle) times P / the sum of them all (1e-9); the JSON's `retained` is that sum / P.
+    # its middle) times P / the sum of them all (1e-9); the JSON's `retained` is that sum / P;
+    # the strips tile the spread and each lies on one straight face of the blocks' top.
     # (2) Each end of the spread is the deck's end or where the stress there falls to the
     # cutoff x the stress beneath the load (1e-6), and no sample of the deck outside the
     # spread reaches the cutoff. (3) A load over the crown of the symmetric span: the spread
@@ -1375,16 +1376,23 @@ elif case == "bridge_boussinesq":
         for sl in d["surface_loads"]:
             P, x0, patch = -sl["force_n"][1], sl["xy_m"][0], sl["patch_m"]
             lo, hi = sl["spread_x_m"]
-            loads = sl["strip_load_n"]
+            loads, edges = sl["strip_load_n"], sl["strip_edges_x_m"]
             n = len(loads)
-            dx = (hi - lo) / n
-            mids = [lo + (k + 0.5) * dx for k in range(n)]
-            raw = [strip_integral(P, patch, lo + k * dx - x0, lo + (k + 1) * dx - x0, level - top_of(blocks, mids[k]))
-                   for k in range(n)]
+            # The strips tile the spread, none longer than 1/200 of it, and each lies on one
+            # straight face of the top: every block vertex inside the spread is a strip's end.
+            inside = [x for x in xs if lo + 1e-9 < x < hi - 1e-9]
+            check(len(edges) == n + 1 and edges[0] == lo and edges[-1] == hi and
+                  all(0 < b - a <= (hi - lo) / 200 * (1 + 1e-12) for a, b in zip(edges, edges[1:])) and
+                  all(min(abs(e - x) for e in edges) <= 1e-9 for x in inside),
+                  f"{name}: {n} strips tile the spread, each at most 1/200 of it, cut at the {len(set(inside))} "
+                  f"vertices inside it")
+            mids = [(a + b) / 2 for a, b in zip(edges, edges[1:])]
+            raw = [strip_integral(P, patch, a - x0, b - x0, level - top_of(blocks, m))
+                   for a, b, m in zip(edges, edges[1:], mids)]
             scale = P / sum(raw)
             worst = max(abs(q - r * scale) / (r * scale) for q, r in zip(loads, raw))
-            check(sl["dispersion"] == "boussinesq" and n == 200 and close(sum(loads), P, rtol=1e-12),
-                  f"{name}: 200 strips summing to the load {P:g} N ({abs(sum(loads) - P) / P:.1e})")
+            check(sl["dispersion"] == "boussinesq" and n >= 200 and close(sum(loads), P, rtol=1e-12),
+                  f"{name}: {n} strips summing to the load {P:g} N ({abs(sum(loads) - P) / P:.1e})")
             check(worst < 1e-9, f"{name}: each strip carries Flamant's stress integrated over it at its depth, "
                                 f"times P / their sum ({worst:.1e})")
             check(close(sl["retained"], sum(raw) / P, rtol=1e-12),
