@@ -3,9 +3,10 @@
 !> loads of an axle group and of a path on the top surface of the assembly (the highest
 !> boundary point of any block at their x), a live patch split into strips on the blocks
 !> under it (spread through the fill where there is one), the distributed dead load split
-!> into strips on the blocks whose top lies under them; with `&bridge dispersion = 'boussinesq'`
-!> a live load spread by Flamant's stress (voussoir_flamant), truncated and scaled to the load. voussoir-limit's LP and voussoir-run's
-!> set-up read the same placed loads. docs/limit_analysis.md, "Loads".
+!> into strips on the blocks whose top lies under them; with `&bridge dispersion =
+!> 'boussinesq'` a live load spread by Flamant's stress (voussoir_flamant), truncated and
+!> scaled to the load. voussoir-limit's LP and voussoir-run's set-up read the same placed
+!> loads. docs/limit_analysis.md, "Loads"; docs/bridges.md, "Boussinesq dispersion".
 module voussoir_placed_loads
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail

@@ -1432,7 +1432,8 @@ elif case == "bridge_boussinesq":
                 fy -= lam * q
                 m -= (x - cx) * lam * q
         worst = max(worst, abs(fx) / weight, abs(fy) / weight, abs(m) / (weight * 10.0))
-    check(worst < 1e-7, f"every voussoir in equilibrium: weight, fill, lambda x the strips, contact forces ({worst:.1e})")
+    check(worst < 1e-7,
+          f"every voussoir in equilibrium: weight, fill, lambda x the strips, contact forces ({worst:.1e})")
     # Over the crown of the symmetric span, the abutments 6 m long so that the cutoff ends
     # the spread; and a patch of 0.3 m at the critical position.
     crown = bous.replace(path, "point_load_x_m(1) = 5.0").replace("abutment_width_m = 2.0", "abutment_width_m = 6.0")
@@ -1444,10 +1445,11 @@ elif case == "bridge_boussinesq":
     xc = sum(x * q for x, q in zip(mids, loads)) / sum(loads)
     mirror = max(abs(a - b) / a for a, b in zip(loads, reversed(loads)))
     check(abs(xc - 5.0) < 1e-9 and abs(lo + hi - 10.0) < 1e-9 and mirror < 1e-9 and -6.0 < lo and hi < 16.0,
-          f"crown: the spread from {lo:.6g} to {hi:.6g} m, within the deck, mirrors about x = 5 m (strips {mirror:.1e}); "
-          f"the load's centroid at {xc:.12g} m")
+          f"crown: the spread from {lo:.6g} to {hi:.6g} m, within the deck, mirrors about x = 5 m "
+          f"(strips {mirror:.1e}); the load's centroid at {xc:.12g} m")
     with open("bridge_boussinesq_patch.nml", "w") as f:
-        f.write(bous.replace(path, f"point_load_x_m(1) = {d['critical_position']['x_m']!r}, point_load_patch_m(1) = 0.3"))
+        x_critical = d["critical_position"]["x_m"]
+        f.write(bous.replace(path, f"point_load_x_m(1) = {x_critical!r}, point_load_patch_m(1) = 0.3"))
     check_strips(load("bridge_boussinesq_patch.nml"), "patch of 0.3 m")
     # The ordering (5): the undispersed load moved over the whole deck, refined at the joints.
     with open("bridge_boussinesq_none.nml", "w") as f:

@@ -262,7 +262,8 @@ def read_limit_json(path: str | os.PathLike) -> LimitResult:
                                   True) for e in data.get("surface_loads") or []],
         surface_spread_x_m=[(float(e["spread_x_m"][0]), float(e["spread_x_m"][1])) for e in data.get("surface_loads") or []],
         surface_strips=[(np.asarray(e["strip_edges_x_m"], dtype=float), np.asarray(e["strip_load_n"], dtype=float),
-                         float(e["retained"])) if e.get("dispersion") == "boussinesq" else None for e in data.get("surface_loads") or []],
+                         float(e["retained"])) if e.get("dispersion") == "boussinesq" else None
+                        for e in data.get("surface_loads") or []],
         fill_loads=[PlacedLoad(0, int(e["block"]), np.asarray(e["xy_m"], dtype=float), np.asarray(e["force_n"], dtype=float),
                                False) for e in data.get("fill_loads") or []],
         fill_pressures=[PlacedLoad(0, int(e["block"]), np.asarray(e["xy_m"], dtype=float),
