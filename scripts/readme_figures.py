@@ -65,6 +65,8 @@ OTHER_FIGURES = {
     "diagnosis_reliability.png": "bench/diagnosis_calibration.sh (the calibration study)",
     "bridge_two_spans_ida_fragility.png": "voussoir-post fragility on the IDA of the two-span bridge "
                                           "(docs/bridges.md, \"The bridge under earthquakes\")",
+    "bridge_backing_mechanism.png": "voussoir-post mechanism on voussoir-limit --json of input/bridge_backing.nml "
+                                    "(docs/bridges.md, \"Backing\")",
 }
 
 

@@ -473,6 +473,12 @@ driver=voussoir-limit case_ bridge_boussinesq_particles "&bridge dispersion = 'b
 driver=voussoir-limit case_ bridge_boussinesq_flush "&bridge fill_level_m = 2.95 is outside the allowed range fill_level_m > 2.95 m with dispersion = 'boussinesq'" "&bridge $br, fill_density_kg_m3 = 2000, fill_level_m = 2.95, $bs /
 &load point_load_n(1) = 1000, point_load_x_m(1) = 5 /"
 driver=voussoir-limit case_ bridge_dispersion_unknown "&bridge dispersion = 'elastic' is not one of 'angle', 'boussinesq'" "&bridge $fl, dispersion = 'elastic' /"
+# Masonry backing (issue 37).
+driver=voussoir-limit case_ bridge_backing_below_springing "&bridge backing_level_m = 0.1 is outside the allowed range backing_level_m > 0.[0-9]* m, the extrados end of the highest springing joint" "&bridge $fl, backing_level_m = 0.1 /"
+driver=voussoir-limit case_ bridge_backing_over_crown "&bridge backing_level_m = 3 is outside the allowed range backing_level_m < 2.95 m, the lowest crown's extrados" "&bridge $fl, backing_level_m = 3.0 /"
+driver=voussoir-limit case_ bridge_backing_course_alone "&bridge backing_course_m = 0.3 is outside the allowed range 0 without backing" "&bridge $fl, backing_course_m = 0.3 /"
+driver=voussoir-limit case_ bridge_backing_negative "&bridge backing_level_m = -1 is outside the allowed range 0 <= backing_level_m <= 300 m" "&bridge $fl, backing_level_m = -1 /"
+driver=voussoir-limit case_ bridge_backing_particles "&bridge backing_level_m = 1.5 is outside the allowed range 0 with fill_model = 'particles'" "&bridge $fl, fill_model = 'particles', fill_particle_size_m = 0.5, backing_level_m = 1.5 /"
 # The fill as particles (issue 37, item 2(b)).
 pt="$fl, fill_model = 'particles'"
 driver=voussoir-limit case_ bridge_particles_no_size "&bridge fill_particle_size_m = 0 is outside the allowed range 0 < fill_particle_size_m <= 10 m with fill_model = 'particles'" "&bridge $pt /"

@@ -81,6 +81,12 @@ add_test(NAME limit_driver_bridge_particles
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
                  bridge_particles ${CMAKE_SOURCE_DIR}/input/bridge_fill_particles.nml
          WORKING_DIRECTORY ${LIMIT_TEST_DIR})
+# Masonry backing over the haunches (&bridge backing_level_m, issue 37): the courses tile the
+# backed region, the fill stands on them, statics, and weightless backing lowers no load factor.
+add_test(NAME limit_driver_bridge_backing
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
+                 bridge_backing ${CMAKE_SOURCE_DIR}/input/bridge_backing.nml
+         WORKING_DIRECTORY ${LIMIT_TEST_DIR})
 # Vehicles (&vehicle, issue 37) on the span of input/bridge_fill.nml: a one-axle vehicle is
 # the point load, two half axles 0 m apart are one, the axles where they stand, the
 # harmonic bound of the axles alone (convexity), the named LM1 tandem against its axles.

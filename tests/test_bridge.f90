@@ -3,12 +3,14 @@
 !> span and rise from the circle through three of its joints, the equilateral pointed
 !> arch's centres and apex, the ellipse's and the parabola's equations and equal arc
 !> lengths measured here by a fine polyline), and the parts of a two-span bridge; the fill
-!> cut into particles over a hump whose area is known by hand, and a bridge's particles.
+!> cut into particles over a hump whose area is known by hand, and a bridge's particles;
+!> the backing in courses over a hump (by hand) and over a bridge's haunches.
 program test_bridge
   use voussoir_kinds, only: dp, pi
   use voussoir_status, only: status_t
   use voussoir_geometry, only: polygon_area, is_convex_ccw
-  use voussoir_assembly, only: assembly_t, polygon_t, role_voussoir, role_foundation, role_fill
+  use voussoir_assembly, only: assembly_t, polygon_t, role_voussoir, role_foundation, role_fill, role_backing
+  use voussoir_bridge_backing, only: cut_backing, backing_region_area
   use voussoir_fill_particles, only: cut_fill_particles, fill_region_area, min_fraction
   use voussoir_bridge_config, only: bridge_config_t
   use voussoir_bridge, only: build_bridge, bridge_ring_joints
@@ -25,6 +27,8 @@ program test_bridge
   call test_two_spans_on_a_pier()
   call test_particles_over_a_hump()
   call test_bridge_with_particles()
+  call test_backing_over_a_hump()
+  call test_bridge_with_backing()
   call assert_summary()
 
 contains
@@ -96,6 +100,73 @@ contains
     end do
     call assert_close(total, area, 'bridge with particles: they fill the region over the extrados', rtol=1.0e-12_dp)
   end subroutine test_bridge_with_particles
+
+  !> Backing to y = 0.5 over a hump (0, 0), (1, 0), (1.5, 0.5), (2, 1), (2.5, 0.5), (3, 0),
+  !> (4, 0): the segments at or below the level are [0, 1] and [3, 4] (0.5 m2 each) and the
+  !> two that touch it, [1, 1.5] and [2.5, 3] (triangles of 0.125 m2); the two that cross
+  !> it are left bare: 1.25 m2 by hand. In courses of 0.2 m: the level ones a bottom piece
+  !> of 0.1 m and two courses (3 pieces each), the touching ones one triangle each: 8
+  !> pieces, convex, counter-clockwise, none above the level.
+  subroutine test_backing_over_a_hump()
+    real(dp) :: hump(2, 7), total
+    type(polygon_t), allocatable :: parts(:)
+    integer :: k
+    logical :: convex, below
+    hump = reshape([0.0_dp, 0.0_dp, 1.0_dp, 0.0_dp, 1.5_dp, 0.5_dp, 2.0_dp, 1.0_dp, 2.5_dp, 0.5_dp, 3.0_dp, 0.0_dp, &
+                    4.0_dp, 0.0_dp], [2, 7])
+    parts = cut_backing(hump, 0.5_dp, 0.2_dp)
+    total = 0.0_dp
+    convex = .true.
+    below = .true.
+    do k = 1, size(parts)
+      total = total + polygon_area(parts(k)%xy)
+      convex = convex .and. is_convex_ccw(parts(k)%xy) .and. polygon_area(parts(k)%xy) > 0.0_dp
+      below = below .and. maxval(parts(k)%xy(2, :)) <= 0.5_dp + 1.0e-15_dp
+    end do
+    call assert_true(size(parts) == 8, 'backing over a hump: 3 + 1 + 1 + 3 pieces')
+    call assert_true(convex .and. below, 'backing over a hump: every piece convex, counter-clockwise, below the level')
+    call assert_close(total, 1.25_dp, 'backing over a hump: 2 x 0.5 + 2 x 0.125 m2 by hand', rtol=1.0e-12_dp)
+    call assert_close(backing_region_area(hump, 0.5_dp), 1.25_dp, 'backing over a hump: its region', rtol=1.0e-12_dp)
+  end subroutine test_backing_over_a_hump
+
+  !> A segmental span with backing to 1.5 m: the ring and abutments as without, then free
+  !> blocks (role_backing) of the backing's density and friction, named 'backing k', their
+  !> area the trapezoids between the level and the abutments' tops and the extrados chords
+  !> wholly below it (from the ring's joints, here).
+  subroutine test_bridge_with_backing()
+    type(bridge_config_t) :: b
+    type(assembly_t) :: asm
+    type(status_t) :: status
+    real(dp) :: inner(2, 0:12), outer(2, 0:12), area, total
+    integer :: k
+    b = one_span('segmental', 10.0_dp, 2.5_dp, 0.45_dp, 12)
+    b%abutment_width_m = 2.0_dp
+    b%backing_level_m = 1.5_dp
+    b%backing_course_m = 0.3_dp
+    b%backing_density_kg_m3 = 2100.0_dp
+    b%backing_friction = 0.5_dp
+    call build_bridge(b, asm, status)
+    call assert_true(status%ok, 'bridge with backing: built')
+    call assert_true(asm%n_bodies > 14 + 8 .and. all(asm%role(15:) == role_backing) .and. all(.not. asm%driven(15:)) &
+                     .and. all(asm%role(1:12) == role_voussoir) .and. all(asm%role(13:14) == role_foundation), &
+                     'bridge with backing: 12 voussoirs, 2 abutments, then free backing blocks')
+    call assert_true(all(asm%density_kg_m3(15:) == 2100.0_dp) .and. all(asm%friction(15:) == 0.5_dp) .and. &
+                     asm%block_name(15) == 'backing 1', "bridge with backing: the backing's density and friction")
+    call bridge_ring_joints(b, 1, inner, outer)
+    ! The abutments' level tops, from their backs (x = -2 and 12 m) to the springing joints'
+    ! extrados ends, at those ends' height; then the chords.
+    area = (outer(1, 0) + 2.0_dp)*(1.5_dp - outer(2, 0)) + (12.0_dp - outer(1, 12))*(1.5_dp - outer(2, 12))
+    do k = 1, 12
+      if (max(outer(2, k - 1), outer(2, k)) > 1.5_dp) cycle
+      area = area + abs(outer(1, k) - outer(1, k - 1))*(1.5_dp - 0.5_dp*(outer(2, k - 1) + outer(2, k)))
+    end do
+    total = 0.0_dp
+    do k = 15, asm%n_bodies
+      total = total + polygon_area(asm%polygon(k)%xy)
+    end do
+    call assert_close(total, area, 'bridge with backing: it fills the region over the abutments and the backed chords', &
+                      rtol=1.0e-12_dp)
+  end subroutine test_bridge_with_backing
 
   !> One span of `shape`.
   function one_span(shape, span_m, rise_m, thickness_m, n) result(b)

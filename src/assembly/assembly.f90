@@ -11,12 +11,13 @@ module voussoir_assembly
   private
 
   public :: polygon_t, assembly_t, build_arch, arch_joint_angle_deg, voussoir_angle_factors, mirrored_blocks
-  public :: role_voussoir, role_foundation, role_restraint, role_fill
+  public :: role_voussoir, role_foundation, role_restraint, role_fill, role_backing
 
   integer, parameter :: role_voussoir = 1    !! a free block of the arch
   integer, parameter :: role_foundation = 2  !! a block carried by the table
   integer, parameter :: role_restraint = 3   !! a bracket carried by the table
   integer, parameter :: role_fill = 4        !! a free particle of a bridge's fill (not watched for collapse)
+  integer, parameter :: role_backing = 5     !! a free block of a bridge's backing (not watched for collapse)
 
   !> One convex polygon, vertices counter-clockwise, absolute coordinates [m].
   type :: polygon_t

@@ -19,11 +19,12 @@ module voussoir_bridge
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa
   use voussoir_geometry, only: is_convex_ccw
-  use voussoir_assembly, only: assembly_t, polygon_t, role_voussoir, role_foundation, role_fill
+  use voussoir_assembly, only: assembly_t, polygon_t, role_voussoir, role_foundation, role_fill, role_backing
   use voussoir_bridge_shape, only: intrados_t, intrados_at, crown_extrados_m, shape_pointed
   use voussoir_bridge_config, only: bridge_config_t, bridge_intrados, fill_model_particles, dispersion_boussinesq
   use voussoir_wall, only: box
   use voussoir_fill_particles, only: cut_fill_particles
+  use voussoir_bridge_backing, only: cut_backing
   implicit none
   private
   public :: build_bridge, bridge_span_left_x, bridge_ring_joints
@@ -72,7 +73,7 @@ contains
     type(assembly_t), intent(out) :: asm
     type(status_t), intent(inout) :: status
     real(dp), allocatable :: inner(:, :, :), outer(:, :, :)
-    type(polygon_t), allocatable :: particles(:)
+    type(polygon_t), allocatable :: particles(:), backing(:)
     real(dp) :: h, x_end, w
     integer :: n, ns, nb, k, j, body
     logical :: with_particles
@@ -84,7 +85,9 @@ contains
     with_particles = b%fill_model == fill_model_particles .and. b%fill_density_kg_m3 > 0.0_dp
     allocate (particles(0))
     if (with_particles) particles = cut_fill_particles(bridge_fill_bottom(b), b%fill_level_m, b%fill_particle_size_m)
-    nb = ns*n + (ns - 1) + 2 + merge(1, 0, ns > 1) + size(particles)
+    allocate (backing(0))
+    if (b%backing_level_m > 0.0_dp) backing = cut_backing(bridge_fill_bottom(b), b%backing_level_m, b%backing_course_m)
+    nb = ns*n + (ns - 1) + 2 + merge(1, 0, ns > 1) + size(particles) + size(backing)
     allocate (asm%polygon(nb), asm%driven(nb), asm%role(nb), asm%density_kg_m3(nb), asm%friction(nb), &
               asm%block_name(nb))
     allocate (inner(2, 0:n, ns), outer(2, 0:n, ns))
@@ -122,6 +125,9 @@ contains
              b%abutment_friction, 'right abutment')
     if (ns > 1) call add(box(-w, x_end + w, -h - b%ring_thickness_m, -h), .true., role_foundation, &
                          b%pier_density_kg_m3, b%pier_friction, 'ground')
+    do k = 1, size(backing)
+      call add(backing(k)%xy, .false., role_backing, b%backing_density_kg_m3, b%backing_friction, 'backing '//itoa(k))
+    end do
     if (with_particles) then
       do k = 1, size(particles)
         call add(particles(k)%xy, .false., role_fill, b%fill_density_kg_m3, b%fill_particle_friction, &

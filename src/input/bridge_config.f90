@@ -37,6 +37,7 @@ module voussoir_bridge_config
                                                          dispersion_boussinesq]
   !> At most this many particles (estimated from the bridge's length x the fill's level).
   integer, parameter :: max_fill_particles = 20000
+  real(dp), parameter :: default_course_m = 0.3_dp     !! the backing's courses when backing_course_m is not given
 
   !> &bridge (no span given: no bridge).
   type :: bridge_config_t
@@ -73,6 +74,14 @@ module voussoir_bridge_config
     character(len=16) :: fill_model = fill_model_columns
     real(dp) :: fill_particle_size_m = 0.0_dp           !! [m]; 0: not given (particles need it)
     real(dp) :: fill_particle_friction = 0.6_dp         !! Coulomb coefficient of the particles
+    !> Masonry backing over the haunches (docs/bridges.md, "Backing"): the region between
+    !> the abutments' and piers' tops, the extrados and backing_level_m, in horizontal
+    !> courses of backing_course_m, free blocks of backing_density_kg_m3 with Coulomb
+    !> friction backing_friction and no tension.
+    real(dp) :: backing_level_m = 0.0_dp                !! above the springings [m]; 0: no backing
+    real(dp) :: backing_course_m = 0.0_dp               !! the courses' height [m]; 0: not given (0.3 m)
+    real(dp) :: backing_density_kg_m3 = 2000.0_dp
+    real(dp) :: backing_friction = 0.6_dp               !! Coulomb coefficient of the backing's joints
     integer :: n_spans = 0                              !! (derived) the spans given
   end type bridge_config_t
 
@@ -116,6 +125,12 @@ contains
                about="real, m, the particles' size with fill_model = 'particles'")
     call g%add('fill_particle_friction', b%fill_particle_friction, range='fill_particle_friction >= 0 (finite)', &
                about="real, the particles' Coulomb coefficient with fill_model = 'particles'")
+    call g%add('backing_level_m', b%backing_level_m, unit='m', range='0 <= backing_level_m <= 300 m', &
+               about='real, m, the top of the masonry backing above the springings (0: no backing)')
+    call g%add('backing_course_m', b%backing_course_m, unit='m', range='0 <= backing_course_m <= 10 m', &
+               about="real, m, the height of the backing's courses (0: "//fmt_significant(default_course_m, 3)//' m)')
+    call g%add('backing_density_kg_m3', b%backing_density_kg_m3, unit='kg/m3', range='0 < backing_density_kg_m3 <= 1e5')
+    call g%add('backing_friction', b%backing_friction, range='backing_friction >= 0 (finite)')
   end subroutine bridge_group
 
   !> Read and check the &bridge group of `path` (absent, or no span: no bridge).
@@ -159,7 +174,41 @@ contains
     if (.not. status%ok) return
     call check_supports(b, path, status)
     call check_fill(b, path, status)
+    call check_backing(b, path, status)
+    if (b%backing_level_m > 0.0_dp .and. b%backing_course_m == 0.0_dp) b%backing_course_m = default_course_m
   end subroutine read_bridge_config
+
+  !> Backing stands on every haunch (its top above every springing's extrados end) and
+  !> below every crown (a ring buried in it would be no arch); not under a fill of
+  !> particles (not built).
+  subroutine check_backing(b, path, status)
+    type(bridge_config_t), intent(in) :: b
+    character(len=*), intent(in) :: path
+    type(status_t), intent(inout) :: status
+    real(dp) :: back_m, up_m, spring_m, crown_m
+    integer :: k
+    if (.not. status%ok) return
+    if (b%backing_level_m == 0.0_dp) then
+      call need(b%backing_course_m == 0.0_dp, path, 'bridge', 'backing_course_m', b%backing_course_m, &
+                '0 without backing (set backing_level_m > 0)', status)
+      return
+    end if
+    spring_m = 0.0_dp
+    crown_m = huge(1.0_dp)
+    do k = 1, b%n_spans
+      call springing_reach(bridge_intrados(b, k), b%ring_thickness_m, back_m, up_m)
+      spring_m = max(spring_m, up_m)
+      crown_m = min(crown_m, crown_top_m(b, k))
+    end do
+    call need(b%backing_level_m > spring_m, path, 'bridge', 'backing_level_m', b%backing_level_m, &
+              'backing_level_m > '//fmt_significant(spring_m, 6)//" m, the extrados end of the highest springing "// &
+              'joint: backing below it would stand on no haunch', status)
+    call need(b%backing_level_m < crown_m, path, 'bridge', 'backing_level_m', b%backing_level_m, &
+              'backing_level_m < '//fmt_significant(crown_m, 6)//" m, the lowest crown's extrados: a ring buried "// &
+              'in its backing is no arch (model it as a wall, or lower the backing)', status)
+    call need(b%fill_model == fill_model_columns, path, 'bridge', 'backing_level_m', b%backing_level_m, &
+              "0 with fill_model = 'particles' (backing under a fill of particles is not built)", status)
+  end subroutine check_backing
 
   !> A fill covers every ring (its surface not below any extrados); a dispersion angle
   !> or a fill level without a fill to spread or stand in is refused.

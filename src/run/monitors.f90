@@ -7,7 +7,7 @@
 module voussoir_monitors
   use, intrinsic :: ieee_arithmetic, only: ieee_value, ieee_quiet_nan
   use voussoir_kinds, only: dp
-  use voussoir_assembly, only: assembly_t, role_voussoir, role_fill
+  use voussoir_assembly, only: assembly_t, role_voussoir, role_fill, role_backing
   use voussoir_bodies, only: bodies_t
   use voussoir_hinge_side, only: side_intrados, side_extrados
   implicit none
@@ -104,8 +104,9 @@ contains
         end do
       end do
     else
-      ! The highest free block of the structure (a fill's particles are not the crown).
-      k = maxloc(bodies%q_ref(2, :), dim=1, mask=.not. bodies%driven .and. bodies%role /= role_fill)
+      ! The highest free block of the structure (a fill's particles and the backing are not the crown).
+      k = maxloc(bodies%q_ref(2, :), dim=1, mask=.not. bodies%driven .and. bodies%role /= role_fill .and. &
+                   bodies%role /= role_backing)
       mon%crown_bodies = [k]
     end if
     call monitor_clear(mon)

@@ -5,7 +5,7 @@ module voussoir_setup
   use voussoir_text, only: fmt_significant, itoa
   use voussoir_config, only: config_t, waveform_afd, waveform_ramp, waveform_record, waveform_accelerogram, has_loads
   use voussoir_placed_loads, only: placed_loads_t, place_loads, fill_column, kind_fill
-  use voussoir_assembly, only: assembly_t, role_fill
+  use voussoir_assembly, only: assembly_t, role_fill, role_backing
   use voussoir_config_assembly, only: build_config_assembly
   use voussoir_geometry, only: polygon_min_width
   use voussoir_bodies, only: bodies_t, bodies_init, add_point_load, add_carried_mass
@@ -112,7 +112,7 @@ contains
     if (assembly%n_voussoirs == 0) then
       size_m = huge(1.0_dp)
       do k = 1, assembly%n_bodies
-        if (assembly%driven(k) .or. assembly%role(k) == role_fill) cycle   ! (a fill's particles are not watched)
+        if (assembly%driven(k) .or. assembly%role(k) == role_fill .or. assembly%role(k) == role_backing) cycle   ! (not watched)
         size_m = min(size_m, polygon_min_width(assembly%polygon(k)%xy))
       end do
     end if

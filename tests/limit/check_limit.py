@@ -275,8 +275,8 @@ def contact_resultant(d, i, cx, cy, key="contact_forces"):
     return fx, fy, m
 
 
-def top_of(blocks, x):
-    """The top surface of the JSON's blocks at x: the highest point of any block's boundary."""
+def top_y(blocks, x):
+    """The top surface of the JSON's blocks at x: the highest point of any block's edge there."""
     best = None
     for b in blocks:
         v = b["vertices_xy_m"]
@@ -287,8 +287,9 @@ def top_of(blocks, x):
     return best
 
 
-def block_on_top_of(blocks, x):
-    """The block whose boundary is highest at x (a free block before a driven one)."""
+def top_block(blocks, x):
+    """The block (1-based) whose edge is the top surface at x, a free one where a free and a
+    driven block meet there."""
     best, who = None, None
     for i, b in enumerate(blocks, start=1):
         v = b["vertices_xy_m"]
@@ -299,6 +300,44 @@ def block_on_top_of(blocks, x):
                                                        not b["driven"]):
                     best, who = max(y, best or y), i
     return who
+
+
+def shoelace(poly):
+    """The signed area of a polygon [(x, y), ...]: positive counter-clockwise."""
+    return 0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1]))
+
+
+def convex_ccw(v):
+    """Every turn of the polygon to the left: convex and counter-clockwise."""
+    return all((x1 - x0) * (y2 - y1) - (y1 - y0) * (x2 - x1) > 0
+               for (x0, y0), (x1, y1), (x2, y2) in zip(v, v[1:] + v[:1], v[2:] + v[:2]))
+
+
+def polyline_y(line, x):
+    """The y of an x-ascending polyline [(x, y), ...] at x (None off its ends)."""
+    for (x0, y0), (x1, y1) in zip(line, line[1:]):
+        if x0 - 1e-12 <= x <= x1 + 1e-12:
+            return y0 + (y1 - y0) * (x - x0) / (x1 - x0)
+    return None
+
+
+def overlapping(parts):
+    """The pairs of convex polygons [(id, vertices), ...] that overlap by more than 1e-9 m
+    (separating axes over the edges of both, after their bounding boxes)."""
+    def overlap(a, b):
+        for poly in (a, b):
+            for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1]):
+                nx, ny = y1 - y0, x0 - x1
+                ln = math.hypot(nx, ny)
+                pa = [(x * nx + y * ny) / ln for x, y in a]
+                pb = [(x * nx + y * ny) / ln for x, y in b]
+                if min(max(pa), max(pb)) - max(min(pa), min(pb)) <= 1e-9:
+                    return False
+        return True
+    boxes = [(min(x for x, _ in v), max(x for x, _ in v), min(y for _, y in v), max(y for _, y in v)) for _, v in parts]
+    return [(parts[a][0], parts[b][0]) for a in range(len(parts)) for b in range(a + 1, len(parts))
+            if boxes[a][0] < boxes[b][1] and boxes[b][0] < boxes[a][1] and boxes[a][2] < boxes[b][3] and
+            boxes[b][2] < boxes[a][3] and overlap(parts[a][1], parts[b][1])]
 
 
 def arch_weights(a, density, width):
@@ -876,9 +915,9 @@ elif case == "bridge_fill":
     check(close(total, rho_f * g_w * area, rtol=1e-12), f"fill in all {total:.6g} N = the area over the extrados "
                                                         f"({area:.6g} m2) x density x g x width")
     def top(x):
-        return top_of(blocks, x)
+        return top_y(blocks, x)
     def block_on_top(x):
-        return block_on_top_of(blocks, x)
+        return top_block(blocks, x)
     slope = math.tan(math.radians(theta))
     for sl in d["surface_loads"]:
         x0 = sl["xy_m"][0]
@@ -1013,14 +1052,9 @@ elif case == "bridge_particles":
     phis = [-half + 2 * half * k / n for k in range(n + 1)]
     ext = [(span / 2 + (radius + t) * math.sin(p), rise - radius + (radius + t) * math.cos(p)) for p in phis]
     bottom = [(-w, ext[0][1])] + ext + [(span + w, ext[-1][1])]
-    def shoelace(poly):
-        return 0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1]))
     region = shoelace(bottom + [(span + w, level), (-w, level)])
     def bottom_y(x):
-        for (x0, y0), (x1, y1) in zip(bottom, bottom[1:]):
-            if x0 - 1e-12 <= x <= x1 + 1e-12:
-                return y0 + (y1 - y0) * (x - x0) / (x1 - x0)
-        return None
+        return polyline_y(bottom, x)
     blocks = d["blocks"]
     parts = [(i, b["vertices_xy_m"]) for i, b in enumerate(blocks, start=1) if b["name"].startswith("fill particle")]
     check(len(blocks) == n + 2 + len(parts) and all(not b["driven"] for _, b in
@@ -1029,30 +1063,13 @@ elif case == "bridge_particles":
     voussoir_ext = [tuple(blocks[k]["vertices_xy_m"][3]) for k in range(n)] + [tuple(blocks[n - 1]["vertices_xy_m"][2])]
     check(max(math.dist(a, b) for a, b in zip(voussoir_ext, ext)) < 1e-9,
           "the voussoirs' extrados ends where the segmental geometry puts them (1e-9 m)")
-    def convex(v):
-        return all((x1 - x0) * (y2 - y1) - (y1 - y0) * (x2 - x1) > 0
-                   for (x0, y0), (x1, y1), (x2, y2) in zip(v, v[1:] + v[:1], v[2:] + v[:2]))
     areas = [shoelace(v) for _, v in parts]
-    check(all(convex(v) for _, v in parts) and min(areas) > 0,
+    check(all(convex_ccw(v) for _, v in parts) and min(areas) > 0,
           f"every particle convex, counter-clockwise, of positive area (least {min(areas):.4g} m2 for size {size} m)")
     inside = all(-w - 1e-9 <= x <= span + w + 1e-9 and bottom_y(x) - 1e-9 <= y <= level + 1e-9
                  for _, v in parts for x, y in v)
     check(inside, "every particle between the abutments' tops and the extrados below and the level above")
-    def overlap(a, b):
-        for poly in (a, b):
-            for (x0, y0), (x1, y1) in zip(poly, poly[1:] + poly[:1]):
-                nx, ny = y1 - y0, x0 - x1
-                ln = math.hypot(nx, ny)
-                pa = [(x * nx + y * ny) / ln for x, y in a]
-                pb = [(x * nx + y * ny) / ln for x, y in b]
-                if min(max(pa), max(pb)) - max(min(pa), min(pb)) <= 1e-9:
-                    return False
-        return True
-    boxes = [(min(x for x, _ in v), max(x for x, _ in v), min(y for _, y in v), max(y for _, y in v)) for _, v in parts]
-    clash = [(i, j) for a in range(len(parts)) for b in range(a + 1, len(parts))
-             if boxes[a][0] < boxes[b][1] and boxes[b][0] < boxes[a][1] and boxes[a][2] < boxes[b][3] and
-             boxes[b][2] < boxes[a][3] and overlap(parts[a][1], parts[b][1])
-             for i, j in [(parts[a][0], parts[b][0])]]
+    clash = overlapping(parts)
     check(not clash, f"no two particles overlap ({clash[:3]})")
     check(close(sum(areas), region, rtol=1e-9), f"the particles' areas sum to the fill's region {region:.9g} m2 "
                                                 f"(shoelace; {abs(sum(areas) / region - 1):.1e})")
@@ -1099,6 +1116,106 @@ elif case == "bridge_particles":
           b["load_factor"] >= a["load_factor"] * (1 - 1e-9),
           f"friction {rough} everywhere, the load at x = {x0} m: lambda with particles {b['load_factor']:.6g} >= "
           f"the columns' without spread or pressure {a['load_factor']:.6g}")
+elif case == "bridge_backing":
+    # Masonry backing over the haunches (input/bridge_backing.nml: input/bridge_fill.nml's
+    # span with backing to 1.5 m in 0.3 m courses), checked from the input and the JSON:
+    # (1) the backing's blocks convex, counter-clockwise, between the bottom (the abutments'
+    # level tops and the extrados chords of the segmental geometry computed here) and the
+    # level, no two overlapping, their areas summing to the trapezoids between the level and
+    # every piece of the bottom wholly below it (1e-9): they tile the backed region; (2) the
+    # fill's weight on the backing's top courses and on the bare voussoirs, in all the area
+    # between the bottom (the backing's top where it is) and the fill's level; (3) every free
+    # block (voussoirs at the ring's density, backing at its own) in equilibrium under its
+    # weight, the fill's, lambda x the spread load (200 strips onto the block on top) and the
+    # JSON's contact forces (1e-7); (4) the lower bound: without fill, a point load on the
+    # ring at x = 2.5 m, the backing of vanishing weight adds blocks and interfaces whose
+    # forces may be zero, so every static field of the bare bridge stays admissible: lambda
+    # with it is at least the bare bridge's.
+    d = load(nml)
+    text = open(nml).read()
+    def number(name):
+        return float(re.search(r"\b" + name + r" *= *([-0-9.eE+]+)", text).group(1))
+    span, rise, t, n = number(r"span_m\(1\)"), number(r"rise_m\(1\)"), number("ring_thickness_m"), \
+        int(number("n_voussoirs"))
+    level, w, width, theta = number("fill_level_m"), number("abutment_width_m"), number("width_m"), \
+        number("dispersion_angle_deg")
+    back, course = number("backing_level_m"), number("backing_course_m")
+    rho_f, rho_r, rho_b = number("fill_density_kg_m3"), number("ring_density_kg_m3"), number("backing_density_kg_m3")
+    radius = (span ** 2 / 4 + rise ** 2) / (2 * rise)
+    half = math.asin(span / 2 / radius)
+    phis = [-half + 2 * half * k / n for k in range(n + 1)]
+    ext = [(span / 2 + (radius + t) * math.sin(p), rise - radius + (radius + t) * math.cos(p)) for p in phis]
+    bottom = [(-w, ext[0][1])] + ext + [(span + w, ext[-1][1])]
+    region = sum((x1 - x0) * (back - (y0 + y1) / 2) for (x0, y0), (x1, y1) in zip(bottom, bottom[1:])
+                 if max(y0, y1) <= back)
+    blocks = d["blocks"]
+    parts = [(i, b["vertices_xy_m"]) for i, b in enumerate(blocks, start=1) if b["name"].startswith("backing ")]
+    areas = [shoelace(v) for _, v in parts]
+    check(parts and all(convex_ccw(v) for _, v in parts) and min(areas) > 0 and
+          all(not blocks[i - 1]["driven"] for i, _ in parts),
+          f"{len(parts)} free backing blocks, every one convex, counter-clockwise, of positive area")
+    inside = all(-w - 1e-9 <= x <= span + w + 1e-9 and polyline_y(bottom, x) - 1e-9 <= y <= back + 1e-9
+                 for _, v in parts for x, y in v)
+    check(inside, f"every backing block between the bottom and the level y = {back} m")
+    clash = overlapping(parts)
+    check(not clash, f"no two backing blocks overlap ({clash[:3]})")
+    check(close(sum(areas), region, rtol=1e-9), f"the backing's areas sum to the backed region {region:.9g} m2 "
+                                                f"({abs(sum(areas) / region - 1):.1e})")
+    beds = sorted({round(y0, 9) for _, v in parts for (x0, y0), (x1, y1) in zip(v, v[1:] + v[:1])
+                   if y0 == y1 and abs(polyline_y(bottom, (x0 + x1) / 2) - y0) > 1e-9})
+    check(beds and all(close((back - y) / course, round((back - y) / course), atol=1e-9) for y in beds),
+          f"every bed (a level edge off the bottom) a whole number of {course} m courses below the level: {beds}")
+    g_w = 9.81 * width
+    # The fill's region: between the bottom and its level, less the backing's.
+    fill_area = sum((x1 - x0) * (level - (y0 + y1) / 2) for (x0, y0), (x1, y1) in zip(bottom, bottom[1:])) - region
+    fill_total = sum(-f["force_n"][1] for f in d["fill_loads"])
+    check(close(fill_total, rho_f * g_w * fill_area, rtol=1e-9) and
+          any(blocks[f["block"] - 1]["name"].startswith("backing ") for f in d["fill_loads"]),
+          f"the fill's weight {fill_total:.6g} N = its area over the ring and the backing ({fill_area:.6g} m2) x "
+          f"density x g x width, the backing's top courses carrying their part")
+    lam = d["load_factor"]
+    strips = {}
+    for sl in d["surface_loads"]:
+        lo, hi = sl["spread_x_m"]
+        for k in range(200):
+            x = lo + (k + 0.5) * (hi - lo) / 200
+            strips.setdefault(top_block(blocks, x), []).append((x, -sl["force_n"][1] / 200))
+    fills = {}
+    for f in d["fill_loads"]:
+        fills.setdefault(f["block"], []).append(f)
+    worst = 0.0
+    for i, b in enumerate(blocks, start=1):
+        if b["driven"]:
+            continue
+        v = b["vertices_xy_m"]
+        weight = (rho_b if b["name"].startswith("backing ") else rho_r) * g_w * shoelace(v)
+        cx, cy = centroid(v)
+        fx, fy, m = contact_resultant(d, i, cx, cy)
+        fy -= weight
+        for f in fills.get(i, []):
+            fy += f["force_n"][1]
+            m += (f["xy_m"][0] - cx) * f["force_n"][1]
+        for x, p in strips.get(i, []):
+            fy -= lam * p
+            m -= (x - cx) * lam * p
+        worst = max(worst, abs(fx) / weight, abs(fy) / weight, abs(m) / (weight * 10.0))
+    check(worst < 1e-7, f"every voussoir and backing block in equilibrium: weight, fill, lambda x the spread load, "
+                        f"contact forces ({worst:.1e})")
+    bare = re.sub(r"fill_density_kg_m3 *= *[^,/]*, *fill_level_m *= *[^,/]*, *dispersion_angle_deg *= *[^,/\n]*,",
+                  "", text)
+    bare = re.sub(r"path_x0_m *= *[^,/]*, *path_x1_m *= *[^,/]*, *path_points *= *[^,/\n]*",
+                  f"point_load_x_m(1) = 2.5, point_load_y_m(1) = {polyline_y(bottom, 2.5)!r}", bare)
+    light = re.sub(r"backing_density_kg_m3 *= *[^,/\n]*", "backing_density_kg_m3 = 1e-6", bare)
+    none = re.sub(r",?\s*backing_level_m *= *[^,/]*, *backing_course_m *= *[^,/]*, *backing_density_kg_m3 *= *[^,/]*,"
+                  r" *backing_friction *= *[^,/\n]*", "", bare)
+    for name, body in (("bridge_backing_light.nml", light), ("bridge_backing_none.nml", none)):
+        with open(name, "w") as f:
+            f.write(body)
+    a, b = load("bridge_backing_light.nml"), load("bridge_backing_none.nml")
+    check("fill_density" not in light and "backing_level_m" in light and "backing_level_m" not in none and
+          a["load_factor"] >= b["load_factor"] * (1 - 1e-9),
+          f"no fill, the load on the ring at x = 2.5 m: lambda with weightless backing {a['load_factor']:.7g} >= "
+          f"the bare bridge's {b['load_factor']:.7g}")
 elif case == "bridge_vehicle":
     # &vehicle on input/bridge_fill.nml's span (fill, live loads spread at 30 deg), checked
     # against what follows from the input alone: (1) a one-axle vehicle of 100 kN is the
@@ -1387,7 +1504,7 @@ elif case == "bridge_boussinesq":
                   f"{name}: {n} strips tile the spread, each at most 1/200 of it, cut at the {len(set(inside))} "
                   f"vertices inside it")
             mids = [(a + b) / 2 for a, b in zip(edges, edges[1:])]
-            raw = [strip_integral(P, patch, a - x0, b - x0, level - top_of(blocks, m))
+            raw = [strip_integral(P, patch, a - x0, b - x0, level - top_y(blocks, m))
                    for a, b, m in zip(edges, edges[1:], mids)]
             scale = P / sum(raw)
             worst = max(abs(q - r * scale) / (r * scale) for q, r in zip(loads, raw))
@@ -1397,16 +1514,16 @@ elif case == "bridge_boussinesq":
                                 f"times P / their sum ({worst:.1e})")
             check(close(sl["retained"], sum(raw) / P, rtol=1e-12),
                   f"{name}: retained {sl['retained']:.6g} = the strips' integrals / P")
-            ref = stress(P, patch, 0.0, level - top_of(blocks, x0))
+            ref = stress(P, patch, 0.0, level - top_y(blocks, x0))
             cutoff = sl["cutoff"]
             for end, bound in ((lo, deck[0]), (hi, deck[1])):
-                ratio = stress(P, patch, end - x0, level - top_of(blocks, end)) / ref
+                ratio = stress(P, patch, end - x0, level - top_y(blocks, end)) / ref
                 check(abs(end - bound) < 1e-12 or abs(ratio / cutoff - 1) < 1e-6,
                       f"{name}: the spread ends at x = {end:.6g} m, the deck's end or where the stress is "
                       f"{cutoff:g} x that beneath the load ({ratio:.6g})")
             outside = [deck[0] + (deck[1] - deck[0]) * (k + 0.5) / 997 for k in range(997)]
             outside = [x for x in outside if x < lo or x > hi]
-            check(all(stress(P, patch, x - x0, level - top_of(blocks, x)) / ref < cutoff for x in outside),
+            check(all(stress(P, patch, x - x0, level - top_y(blocks, x)) / ref < cutoff for x in outside),
                   f"{name}: no point of the deck outside the spread ({len(outside)} sampled) reaches the cutoff")
             out.append((mids, loads, lo, hi, x0))
         return out
@@ -1428,7 +1545,7 @@ elif case == "bridge_boussinesq":
         fy += fills[i]["force_n"][1] - weight
         m += (fills[i]["xy_m"][0] - cx) * fills[i]["force_n"][1]
         for x, q in zip(mids, loads):
-            if block_on_top_of(blocks, x) == i:
+            if top_block(blocks, x) == i:
                 fy -= lam * q
                 m -= (x - cx) * lam * q
         worst = max(worst, abs(fx) / weight, abs(fy) / weight, abs(m) / (weight * 10.0))

@@ -29,7 +29,7 @@ from ..errors import InputError
 from ..readers.limit_results import LimitResult
 from ..readers.results import ContactRecord, RunResult
 from ..tables import ReportTable
-from .kinematics import ROLE_FILL, ROLE_VOUSSOIR, body_transforms, joint_bodies, rotation_matrix
+from .kinematics import ROLE_BACKING, ROLE_FILL, ROLE_VOUSSOIR, body_transforms, joint_bodies, rotation_matrix
 
 __all__ = ["Reactions", "ThrustLine", "LpJointResultants", "contact_record", "reactions", "thrust_line",
            "reactions_table", "lp_joint_resultants", "pair_forces"]
@@ -92,7 +92,7 @@ def pair_forces(run: RunResult, sample: int = -1) -> dict[tuple[int, int], tuple
 def reactions(run: RunResult) -> Reactions:
     """The reactions of every driven body (role 2 or 3: not a voussoir nor a fill particle) at every sample."""
     c = contact_record(run)
-    driven = np.nonzero((run.body_role != ROLE_VOUSSOIR) & (run.body_role != ROLE_FILL))[0]
+    driven = np.nonzero(~np.isin(run.body_role, (ROLE_VOUSSOIR, ROLE_FILL, ROLE_BACKING)))[0]
     driven = driven[np.argsort(run.body_position[0, driven, 0], kind="stable")]
     column = np.full(run.n_bodies, -1)
     column[driven] = np.arange(driven.size)

@@ -50,6 +50,7 @@ ROLE_VOUSSOIR = 1
 ROLE_FOUNDATION = 2
 ROLE_RESTRAINT = 3
 ROLE_FILL = 4  #: a free particle of a bridge's fill (&bridge fill_model = 'particles')
+ROLE_BACKING = 5  #: a free block of a bridge's masonry backing (&bridge backing_level_m)
 
 
 def rotation_matrix(angle_rad: np.ndarray) -> np.ndarray:

@@ -33,6 +33,7 @@ LIVE_COLOUR = "tab:red"    #: the live load, times lambda
 DEAD_COLOUR = "tab:brown"  #: dead point loads
 HINGE_COLOUR = "tab:olive"  #: a hinge between blocks that are not arch joints (no intrados or extrados)
 FILL_COLOUR = "tab:brown"  #: the fill's surface
+BACKING_COLOUR = "#c8b8a6"  #: a bridge's masonry backing (greyer than the ring's buff)
 
 
 @dataclass
@@ -176,7 +177,8 @@ def plot_lp_mechanism(limit: LimitResult, out_png: str | os.PathLike):
     pressure_scale = size / 15.0 / largest_p if largest_p > 0 else 0.0
     for ax, panel in zip(axes, panels):
         for poly, block in zip(blocks, limit.blocks):
-            ax.add_patch(Polygon(poly, closed=True, facecolor="#9e9e9e" if block.driven else "#e8c99b",
+            ax.add_patch(Polygon(poly, closed=True, facecolor="#9e9e9e" if block.driven else
+                                 BACKING_COLOUR if _is_backing(block) else "#e8c99b",
                                  edgecolor="#333333", linewidth=0.6, hatch="//" if block.driven else None))
         at = panel.force_point_m - shift
         if has_thrust:
@@ -294,8 +296,19 @@ def _suptitle(limit: LimitResult) -> str:
     return f"Collapse mechanism by linear programming (associative friction) under {case}:\n{what}"
 
 
+def _is_backing(block) -> bool:
+    """A block of a bridge's masonry backing (&bridge backing_level_m: named 'backing k')."""
+    return block.name.startswith("backing ")
+
+
 def _legend_handles(ax, limit, panels, has_thrust, key_n, scale, live_total, load_len_m, pressure_scale=0.0):
     handles = []
+    backing = [b for b in limit.blocks if _is_backing(b)]
+    if backing:
+        top = max(float(np.max(np.asarray(b.vertices_xy_m)[:, 1])) for b in backing)
+        handles.append(ax.fill([], [], facecolor=BACKING_COLOUR, edgecolor="#333333", linewidth=0.6,
+                               label=f"masonry backing over the haunches, up to y = {top:.3g} m: {len(backing)} free "
+                                     "blocks in horizontal courses (rigid, no tension, Coulomb friction)")[0])
     sides = {m.hinge_side for p in panels for m in p.hinges}
     for side in ("intrados", "extrados"):
         if side in sides:

@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..analysis.contact_forces import Reactions, reactions, reactions_table
-from ..analysis.kinematics import ROLE_FILL, ROLE_FOUNDATION, ROLE_VOUSSOIR
+from ..analysis.kinematics import ROLE_BACKING, ROLE_FILL, ROLE_FOUNDATION, ROLE_VOUSSOIR
 from ..readers.results import RunResult
 from ..tables import ReportTable
 from .drawing import (G_M_S2, add_g_axis, legend_pad, new_figure, provenance, run_caption, save_figure,
@@ -52,6 +52,10 @@ def free_weight_n(run: RunResult) -> float:
         particles = np.nonzero(run.body_role == ROLE_FILL)[0]
         free = np.concatenate([free, particles])
         densities = np.concatenate([densities, np.full(len(particles), float(bridge.get("fill_density_kg_m3", 0.0)))])
+        # The masonry backing (role 5): its own density.
+        backing = np.nonzero(run.body_role == ROLE_BACKING)[0]
+        free = np.concatenate([free, backing])
+        densities = np.concatenate([densities, np.full(len(backing), float(bridge.get("backing_density_kg_m3", 2000.0)))])
     weight = 0.0
     for b, rho in zip(free, densities):
         x, y = run.vertices_local_m[b, : run.n_vertices[b]].T

@@ -10,7 +10,7 @@ import numpy as np
 from matplotlib.animation import FuncAnimation, PillowWriter
 from matplotlib.patches import Polygon
 
-from ..analysis.kinematics import (ROLE_FOUNDATION, ROLE_RESTRAINT, JointState, block_polygons,
+from ..analysis.kinematics import (ROLE_BACKING, ROLE_FOUNDATION, ROLE_RESTRAINT, JointState, block_polygons,
                                    default_open_tol_m, joint_openings, joint_states)
 from ..readers.results import RunResult
 from ..tables import ReportTable
@@ -19,7 +19,7 @@ from .drawing import HINGE_COLOURS, legend_pad, new_figure, provenance, run_capt
 __all__ = ["SequenceFrame", "SequenceData", "default_frame_times", "first_opening_time", "sequence_frames",
            "plot_sequence", "write_sequence_gif"]
 
-_FILL = {1: "#e8c99b", ROLE_FOUNDATION: "#9e9e9e", ROLE_RESTRAINT: "#5f5f5f"}
+_FILL = {1: "#e8c99b", ROLE_FOUNDATION: "#9e9e9e", ROLE_RESTRAINT: "#5f5f5f", ROLE_BACKING: "#c8b8a6"}
 _SIDE_LABEL = {"intrados": "i", "extrados": "e", "separated": "s"}
 
 
