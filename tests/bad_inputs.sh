@@ -471,6 +471,15 @@ driver=voussoir-limit case_ bridge_passive_without_phi "&bridge passive_mobilisa
 driver=voussoir-limit case_ bridge_passive_above_1 "&bridge passive_mobilisation = 1.5 is outside the allowed range 0 <= passive_mobilisation <= 1" "&bridge $fl, fill_friction_deg = 35, passive_mobilisation = 1.5 /"
 driver=voussoir-limit case_ bridge_phi_without_fill "&bridge fill_friction_deg = 35 is outside the allowed range 0 without a fill" "&bridge $br, fill_friction_deg = 35 /"
 driver=voussoir-limit case_ bridge_dispersion_negative "&bridge dispersion_angle_deg = -5 is outside the allowed range 0 <= dispersion_angle_deg < 90" "&bridge $fl, dispersion_angle_deg = -5 /"
+# Boussinesq's dispersion (&bridge dispersion = 'boussinesq'): not beside an angle, not
+# without a fill or with particles, not with a fill flush with a crown; an unknown rule.
+bs="dispersion = 'boussinesq'"
+driver=voussoir-limit case_ bridge_boussinesq_with_angle "&bridge dispersion_angle_deg = 30 is outside the allowed range 0 with dispersion = 'boussinesq'" "&bridge $fl, $bs, dispersion_angle_deg = 30 /"
+driver=voussoir-limit case_ bridge_boussinesq_without_fill "&bridge fill_density_kg_m3 = 0 is outside the allowed range > 0 with dispersion = 'boussinesq'" "&bridge $br, $bs /"
+driver=voussoir-limit case_ bridge_boussinesq_particles "&bridge dispersion = 'boussinesq' is outside the allowed range 'angle' with fill_model = 'particles'" "&bridge $fl, $bs, fill_model = 'particles', fill_particle_size_m = 0.25 /"
+driver=voussoir-limit case_ bridge_boussinesq_flush "&bridge fill_level_m = 2.95 is outside the allowed range fill_level_m > 2.95 m with dispersion = 'boussinesq'" "&bridge $br, fill_density_kg_m3 = 2000, fill_level_m = 2.95, $bs /
+&load point_load_n(1) = 1000, point_load_x_m(1) = 5 /"
+driver=voussoir-limit case_ bridge_dispersion_unknown "&bridge dispersion = 'elastic' is not one of 'angle', 'boussinesq'" "&bridge $fl, dispersion = 'elastic' /"
 # Masonry backing (issue 37).
 driver=voussoir-limit case_ bridge_backing_below_springing "&bridge backing_level_m = 0.1 is outside the allowed range backing_level_m > 0.[0-9]* m, the extrados end of the highest springing joint" "&bridge $fl, backing_level_m = 0.1 /"
 driver=voussoir-limit case_ bridge_backing_over_crown "&bridge backing_level_m = 3 is outside the allowed range backing_level_m < 2.95 m, the lowest crown's extrados" "&bridge $fl, backing_level_m = 3.0 /"

@@ -101,6 +101,13 @@ add_test(NAME limit_driver_bridge_vehicle
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
                  bridge_vehicle ${CMAKE_SOURCE_DIR}/input/bridge_fill.nml
          WORKING_DIRECTORY ${LIMIT_TEST_DIR})
+# Boussinesq's dispersion (&bridge dispersion = 'boussinesq', issue 37) on the span of
+# input/bridge_fill.nml: each strip against Flamant's stress integrated in the check, the
+# spread's ends, symmetry over the crown, statics, and the bound by the undispersed load.
+add_test(NAME limit_driver_bridge_boussinesq
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
+                 bridge_boussinesq ${CMAKE_SOURCE_DIR}/input/bridge_fill.nml
+         WORKING_DIRECTORY ${LIMIT_TEST_DIR})
 # Patches, load cases and partial factors (&load point_load_patch_m, &load_cases, issue 37):
 # a vanishing patch is the point load, gamma_q divides the load factor, gamma_g multiplies
 # it (the LP is homogeneous in the loads) with statics under the factored loads, and each

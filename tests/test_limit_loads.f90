@@ -25,6 +25,12 @@
 !>   sum to P and their resultant stands at x0; each strip lies within x0 -/+ p/2 on the
 !>   block the top surface has there; on a single block its moment about any point is
 !>   that of the point load P at x0.
+!> - Flamant's stress (voussoir_flamant): its closed-form integral over an interval against
+!>   Simpson's rule on the stress itself, over the whole line P; a patch's stress on its
+!>   centre line and under its edge against the strip load's textbook form
+!>   (q/pi)(alpha + sin(alpha) cos(alpha + 2 delta)), alpha the angle the patch subtends,
+!>   delta that of its near edge from the vertical (-alpha/2 on the centre line, 0 under an
+!>   edge); a patch much shorter than the depth against the point.
 program test_limit_loads
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t
@@ -36,6 +42,7 @@ program test_limit_loads
   use voussoir_limit_lp, only: block_loads_t, lp_result_t, block_loads, add_placed_loads, lp_capacity, &
                                joint_hinge, joint_sliding
   use voussoir_assert, only: assert_true, assert_close, assert_summary
+  use voussoir_flamant, only: flamant_pressure, flamant_force
   implicit none
 
   real(dp), parameter :: b = 0.2_dp, h = 0.5_dp, rho = 700.0_dp, width = 0.145_dp, g = 9.81_dp
@@ -48,6 +55,7 @@ program test_limit_loads
   call test_placement()
   call test_refusals()
   call test_patch()
+  call test_flamant()
   call assert_summary()
 
 contains
@@ -334,5 +342,47 @@ contains
     call assert_true(.not. status%ok .and. index(status%message, 'point_load_patch_m(1)') > 0, &
                      'a patch acting at its own point: refused ('//trim(status%message)//')')
   end subroutine test_patch
+
+  !> Flamant's stress and its integrals against independent forms (the header).
+  subroutine test_flamant()
+    real(dp), parameter :: p_n = 1000.0_dp, z = 0.8_dp, patch = 0.4_dp, pi = acos(-1.0_dp)
+    real(dp) :: a(2), bb(2), alpha, q
+    integer :: k
+    a = [-0.3_dp, 1.2_dp]
+    bb = [0.7_dp, 2.5_dp]
+    do k = 1, 2
+      call assert_close(flamant_force(p_n, 0.0_dp, a(k), bb(k), z), simpson(p_n, 0.0_dp, a(k), bb(k), z), &
+                        'Flamant: the integral of a point load''s stress over an interval, closed form', rtol=1.0e-10_dp)
+      call assert_close(flamant_force(p_n, patch, a(k), bb(k), z), simpson(p_n, patch, a(k), bb(k), z), &
+                        'Flamant: the integral of a patch''s stress over an interval, closed form', rtol=1.0e-10_dp)
+    end do
+    call assert_close(flamant_force(p_n, 0.0_dp, -1.0e7_dp, 1.0e7_dp, z), p_n, 'Flamant: a point load''s stress '// &
+                      'over the whole line is the load', rtol=1.0e-12_dp)
+    call assert_close(flamant_force(p_n, patch, -1.0e3_dp, 1.0e3_dp, z), p_n, 'Flamant: a patch''s stress '// &
+                      'over 1 km either side (2e-10 beyond) is the load', rtol=1.0e-9_dp)
+    q = p_n/patch
+    alpha = 2.0_dp*atan(0.5_dp*patch/z)
+    call assert_close(flamant_pressure(p_n, patch, 0.0_dp, z), q/pi*(alpha + sin(alpha)), &
+                      'Flamant: a patch''s stress on its centre line, (q/pi)(alpha + sin alpha)', rtol=1.0e-12_dp)
+    alpha = atan(patch/z)
+    call assert_close(flamant_pressure(p_n, patch, 0.5_dp*patch, z), q/pi*(alpha + sin(alpha)*cos(alpha)), &
+                      'Flamant: a patch''s stress under its edge, (q/pi)(alpha + sin alpha cos alpha)', rtol=1.0e-12_dp)
+    call assert_close(flamant_force(p_n, 1.0e-3_dp*z, a(1), bb(1), z), flamant_force(p_n, 0.0_dp, a(1), bb(1), z), &
+                      'Flamant: a patch of 1e-3 of the depth carries what the point does', rtol=1.0e-6_dp)
+  end subroutine test_flamant
+
+  !> Simpson's rule on Flamant's stress of `load_n` over `patch_m` at depth `z_m`, over
+  !> offsets from `lo` to `hi` (2000 pieces).
+  real(dp) function simpson(load_n, patch_m, lo, hi, z_m) result(total)
+    real(dp), intent(in) :: load_n, patch_m, lo, hi, z_m
+    real(dp) :: step
+    integer :: i
+    step = (hi - lo)/2000
+    total = flamant_pressure(load_n, patch_m, lo, z_m) + flamant_pressure(load_n, patch_m, hi, z_m)
+    do i = 1, 1999
+      total = total + merge(4.0_dp, 2.0_dp, mod(i, 2) == 1)*flamant_pressure(load_n, patch_m, lo + i*step, z_m)
+    end do
+    total = total*step/3.0_dp
+  end function simpson
 
 end program test_limit_loads

@@ -109,6 +109,35 @@ def test_mechanism_with_the_fill_pressure(voussoir_limit_exe, tmp_path, drawn_fi
     assert any("horizontal pressure" in t and f"{total_kn:.4g} kN in all" in t for t in labels)
 
 
+def test_mechanism_with_boussinesq(voussoir_limit_exe, tmp_path, drawn_figures):
+    """input/bridge_fill.nml with dispersion = 'boussinesq': no dotted lines bound the
+    spread (it has no ends of its own); the pressure on the extrados is drawn as a filled
+    profile over the spread, its peak in the legend the JSON's greatest strip load over
+    its length (read with json alone); no text overlapping or cut."""
+    import json
+
+    nml = tmp_path / "bridge_boussinesq.nml"
+    nml.write_text((REPO_ROOT / "input" / "bridge_fill.nml").read_text().replace(
+        "dispersion_angle_deg = 30", "dispersion = 'boussinesq'"))
+    path = tmp_path / "bridge_boussinesq.json"
+    path.write_text(run_executable([voussoir_limit_exe, nml, "--json"], tmp_path).stdout)
+    assert post.main(["mechanism", str(path), "--out", str(tmp_path / "m.png")]) == 0
+    (fig,) = drawn_figures
+    assert text_clashes(fig) == []
+    (surface,) = json.loads(path.read_text())["surface_loads"]
+    edges, loads = surface["strip_edges_x_m"], surface["strip_load_n"]
+    peak_kn = max(q / (b - a) for q, a, b in zip(loads, edges, edges[1:])) / 1e3
+    labels = [t.get_text().replace("\n", " ") for t in fig.legends[0].get_texts()]
+    assert any(t.startswith("Boussinesq") and f"peak {peak_kn:.4g} kN/m" in t and f"{surface['retained']:.3g}" in t
+               for t in labels)
+    assert not any("dotted lines" in t for t in labels)
+    ax = fig.axes[0]
+    assert not any(line.get_linestyle() == ":" for line in ax.get_lines())
+    (profile,) = [c for c in ax.collections if c.get_gid() == "boussinesq_pressure"]
+    xs = profile.get_paths()[0].vertices[:, 0]
+    assert min(xs) == pytest.approx(edges[0], abs=1e-9) and max(xs) == pytest.approx(edges[-1], abs=1e-9)
+
+
 FILL_RUN = """\
 &bridge shape = 'segmental', span_m(1) = 10.0, rise_m(1) = 2.5, ring_thickness_m = 0.45, n_voussoirs = 12,
   pier_height_m = 3.0, abutment_width_m = 2.0, width_m = 1.0, ring_density_kg_m3 = 2200,

@@ -52,6 +52,9 @@ module voussoir_assembly
     real(dp) :: fill_level_m = 0.0_dp
     real(dp) :: fill_weight_n_m2 = 0.0_dp
     real(dp) :: dispersion_angle_deg = 0.0_dp
+    !> Live loads spread instead by Flamant's vertical stress (Boussinesq's problem in plane
+    !> strain) onto the blocks' top, truncated and scaled to the load (placed_loads).
+    logical :: dispersion_boussinesq = .false.
     !> Its horizontal pressure on the top faces of free blocks, as a multiple of the vertical
     !> stress: at least `active_k`, at most `passive_k` (both 0: none).
     real(dp) :: fill_active_k = 0.0_dp
@@ -94,6 +97,7 @@ contains
     mirror%fill_level_m = asm%fill_level_m
     mirror%fill_weight_n_m2 = asm%fill_weight_n_m2
     mirror%dispersion_angle_deg = asm%dispersion_angle_deg
+    mirror%dispersion_boussinesq = asm%dispersion_boussinesq
     mirror%fill_active_k = asm%fill_active_k
     mirror%fill_passive_k = asm%fill_passive_k
   end function mirrored_blocks

@@ -27,7 +27,7 @@ module voussoir_bridge
   use voussoir_geometry, only: is_convex_ccw
   use voussoir_assembly, only: assembly_t, polygon_t, role_voussoir, role_foundation, role_fill, role_backing
   use voussoir_bridge_shape, only: intrados_t, intrados_at, crown_extrados_m, shape_pointed
-  use voussoir_bridge_config, only: bridge_config_t, bridge_intrados, fill_model_particles
+  use voussoir_bridge_config, only: bridge_config_t, bridge_intrados, fill_model_particles, dispersion_boussinesq
   use voussoir_wall, only: box
   use voussoir_fill_particles, only: cut_fill_particles
   use voussoir_bridge_backing, only: cut_backing
@@ -124,6 +124,7 @@ contains
     asm%fill_level_m = b%fill_level_m
     asm%fill_weight_n_m2 = b%fill_density_kg_m3*g_m_s2*b%width_m
     asm%dispersion_angle_deg = b%dispersion_angle_deg
+    asm%dispersion_boussinesq = b%dispersion == dispersion_boussinesq
     if (b%fill_friction_deg > 0.0_dp) then   ! Rankine's coefficients
       asm%fill_active_k = tan(0.25_dp*pi - 0.5_dp*b%fill_friction_deg*pi/180.0_dp)**2
       asm%fill_passive_k = max(asm%fill_active_k, &

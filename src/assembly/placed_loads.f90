@@ -3,24 +3,33 @@
 !> loads of an axle group and of a path on the top surface of the assembly (the highest
 !> boundary point of any block at their x), a live patch split into strips on the blocks
 !> under it (spread through the fill where there is one), the distributed dead load split
-!> into strips on the blocks whose top lies under them. voussoir-limit's LP and voussoir-run's
-!> set-up read the same placed loads. docs/limit_analysis.md, "Loads".
+!> into strips on the blocks whose top lies under them; with `&bridge dispersion =
+!> 'boussinesq'` a live load spread by Flamant's stress (voussoir_flamant), truncated and
+!> scaled to the load. voussoir-limit's LP and voussoir-run's set-up read the same placed
+!> loads. docs/limit_analysis.md, "Loads"; docs/bridges.md, "Boussinesq dispersion".
 module voussoir_placed_loads
   use voussoir_kinds, only: dp
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa, fmt_significant
-  use voussoir_geometry, only: cross2, polygon_area, polygon_centroid, polygon_polar_moment
+  use voussoir_geometry, only: polygon_area, polygon_centroid, polygon_polar_moment
   use voussoir_assembly, only: assembly_t
   use voussoir_load_config, only: load_config_t
+  use voussoir_flamant, only: flamant_pressure, flamant_force
+  use voussoir_ordering, only: stable_order
+  use voussoir_top_surface, only: boundary_tol_m, block_at, top_surface, span_text
   implicit none
   private
   public :: placed_loads_t, place_loads, block_at, top_surface, moves_on_top, vehicle_x, fill_column
-  public :: boundary_tol_m, dead_load_strips, dispersion_strips
+  public :: boundary_tol_m, dead_load_strips, dispersion_strips, boussinesq_cutoff
   public :: kind_point, kind_dead_strip, kind_fill, kind_dispersed, kind_patch
 
-  real(dp), parameter :: boundary_tol_m = 1.0e-9_dp   !! a point this close outside a block is on it
   integer, parameter :: dead_load_strips = 1000       !! strips of the distributed dead load
   integer, parameter :: dispersion_strips = 200       !! strips of a live load spread through the fill
+  !> Boussinesq's spread ends where Flamant's stress on the blocks' top falls to this
+  !> fraction of the stress beneath the load (or at the ends of the deck); the strips are
+  !> then scaled to sum to the load.
+  real(dp), parameter :: boussinesq_cutoff = 1.0e-3_dp
+  integer, parameter :: deck_samples = 4000          !! where the spread's ends are looked for
   integer, parameter :: kind_point = 1       !! a point load of &load where it stands
   integer, parameter :: kind_dead_strip = 2  !! a strip of &load's distributed dead load
   integer, parameter :: kind_fill = 3        !! the weight of the fill above one top face of a block
@@ -47,6 +56,14 @@ module voussoir_placed_loads
     real(dp), allocatable :: surface_force_n(:, :) !! (2, n_surface) at load factor 1 [N]
     real(dp), allocatable :: surface_spread_x_m(:, :) !! (2, n_surface) from x to x on the blocks [m]
     real(dp), allocatable :: surface_patch_m(:)    !! (n_surface) the patch's length on the surface [m]
+    !> Spread by Boussinesq (Flamant's stress) rather than at an angle: each surface load's
+    !> strips are its `surface_strips` placed loads from `surface_first`, equal lengths
+    !> along x between its spread's ends, and `surface_retained` the fraction of the load
+    !> Flamant's stress puts between those ends (the strips scaled by its inverse).
+    logical :: surface_boussinesq = .false.
+    integer, allocatable :: surface_first(:), surface_strips(:)
+    real(dp), allocatable :: surface_retained(:)
+    real(dp), allocatable :: surface_edges_x_m(:)  !! each one's surface_strips + 1 strip ends, in turn [m]
     !> With a fill's horizontal pressure: one bounded force per top face of a free block,
     !> horizontal, into the block, between the active and the mobilised passive resultant.
     integer :: n_pressure = 0
@@ -99,6 +116,9 @@ contains
     logical :: found
 
     placed%surface_on_fill = asm%has_fill
+    placed%surface_boussinesq = asm%has_fill .and. asm%dispersion_boussinesq
+    allocate (placed%surface_first(0), placed%surface_strips(0), placed%surface_retained(0), &
+              placed%surface_edges_x_m(0))
     allocate (placed%block(0), placed%source(0), placed%xy(2, 0), placed%force_n(2, 0), placed%live(0), &
               placed%kind(0), placed%surface_source(0), placed%surface_xy(2, 0), placed%surface_force_n(2, 0), &
               placed%surface_spread_x_m(2, 0), placed%surface_patch_m(0), placed%pressure_block(0), placed%pressure_xy(2, 0), &
@@ -214,6 +234,10 @@ contains
         return
       end if
     end do
+    if (placed%surface_boussinesq) then
+      call boussinesq_load(asm, placed, j, a, x0, magnitude_n, patch_m, status)
+      return
+    end if
     call top_surface(asm, x0, y0, blk, ok)
     x_lo = spread_end(asm, x0 - 0.5_dp*patch_m, -1.0_dp)
     x_hi = spread_end(asm, x0 + 0.5_dp*patch_m, 1.0_dp)
@@ -231,6 +255,9 @@ contains
     placed%surface_force_n = reshape([placed%surface_force_n, 0.0_dp, -magnitude_n], [2, placed%n_surface])
     placed%surface_spread_x_m = reshape([placed%surface_spread_x_m, x_lo, x_hi], [2, placed%n_surface])
     placed%surface_patch_m = [placed%surface_patch_m, patch_m]
+    placed%surface_first = [placed%surface_first, placed%n + 1]
+    placed%surface_strips = [placed%surface_strips, merge(1, dispersion_strips, x_hi - x_lo <= boundary_tol_m)]
+    placed%surface_retained = [placed%surface_retained, 1.0_dp]
     if (x_hi - x_lo <= boundary_tol_m) then
       call add_load(placed, blk, j, [x0, y0], [0.0_dp, -magnitude_n], .true., kind)
       return
@@ -247,6 +274,132 @@ contains
       call add_load(placed, blk, j, [xs, ys], [0.0_dp, -magnitude_n/dispersion_strips], .true., kind)
     end do
   end subroutine disperse_load
+
+  !> Live load j (axle a) of `magnitude_n`, a patch of `patch_m` centred on `x0` (0: a
+  !> point), on the fill's surface of `asm`, spread by Flamant's vertical stress onto the
+  !> blocks' top: the spread's ends are the outermost x of the deck where that stress, at
+  !> the fill's depth over the top there, is at least boussinesq_cutoff x the stress beneath
+  !> the load (bisection between samples of deck_samples), or the deck's ends; between them
+  !> the strips of `strip_edges`, each carrying the closed-form integral of the stress over
+  !> its length at the depth at its middle, at its middle on the block on top there, all
+  !> scaled so that they sum to the load.
+  subroutine boussinesq_load(asm, placed, j, a, x0, magnitude_n, patch_m, status)
+    type(assembly_t), intent(in) :: asm
+    type(placed_loads_t), intent(inout) :: placed
+    integer, intent(in) :: j, a
+    real(dp), intent(in) :: x0, magnitude_n, patch_m
+    type(status_t), intent(inout) :: status
+    real(dp) :: deck(2), ends(2), y0, z0, sigma_ref, x, dx, xs, ys, lo, hi
+    real(dp), allocatable :: edges(:), f(:)
+    integer, allocatable :: blk(:)
+    integer :: b, k, n, side, inner, step
+    logical :: ok
+    call top_surface(asm, x0, y0, b, ok)
+    z0 = asm%fill_level_m - y0
+    if (.not. z0 > boundary_tol_m) then
+      call fail(status, '&load live point load '//itoa(j)//trim(axle_words(a))//' at x = '//fmt_significant(x0, 6)// &
+                ' m stands where the fill has no depth over the blocks (y = '//fmt_significant(y0, 6)// &
+                ' m): Boussinesq''s spread needs fill beneath the load')
+      return
+    end if
+    sigma_ref = flamant_pressure(magnitude_n, patch_m, 0.0_dp, z0)
+    deck = [huge(1.0_dp), -huge(1.0_dp)]
+    do b = 1, asm%n_bodies
+      deck(1) = min(deck(1), minval(asm%polygon(b)%xy(1, :)))
+      deck(2) = max(deck(2), maxval(asm%polygon(b)%xy(1, :)))
+    end do
+    dx = (deck(2) - deck(1))/deck_samples
+    do side = 1, 2
+      ! From the deck's end towards the load: the first sample at or above the cutoff.
+      step = merge(1, -1, side == 1)
+      inner = merge(0, deck_samples, side == 1)
+      do while (above_cutoff(asm, deck(1) + inner*dx, x0, magnitude_n, patch_m, sigma_ref) < 0.0_dp)
+        inner = inner + step
+      end do
+      ends(side) = deck(1) + inner*dx
+      if (inner == merge(0, deck_samples, side == 1)) cycle     ! truncated at the deck's end
+      lo = ends(side) - step*dx        ! below the cutoff
+      hi = ends(side)                  ! at or above it
+      do k = 1, 60
+        x = 0.5_dp*(lo + hi)
+        if (above_cutoff(asm, x, x0, magnitude_n, patch_m, sigma_ref) < 0.0_dp) then
+          lo = x
+        else
+          hi = x
+        end if
+      end do
+      ends(side) = 0.5_dp*(lo + hi)
+    end do
+    edges = strip_edges(asm, ends)
+    n = size(edges) - 1
+    allocate (f(n), blk(n))
+    do k = 1, n
+      xs = 0.5_dp*(edges(k) + edges(k + 1))
+      call top_surface(asm, xs, ys, blk(k), ok)
+      if (.not. ok) then   ! (a bridge's top has no gap)
+        call fail(status, '&load live point load '//itoa(j)//trim(axle_words(a))//' spreads over x = '// &
+                  fmt_significant(xs, 6)//' m, where no block stands')
+        return
+      end if
+      f(k) = flamant_force(magnitude_n, patch_m, edges(k) - x0, edges(k + 1) - x0, asm%fill_level_m - ys)
+    end do
+    placed%n_surface = placed%n_surface + 1
+    placed%surface_source = [placed%surface_source, j]
+    placed%surface_xy = reshape([placed%surface_xy, x0, asm%fill_level_m], [2, placed%n_surface])
+    placed%surface_force_n = reshape([placed%surface_force_n, 0.0_dp, -magnitude_n], [2, placed%n_surface])
+    placed%surface_spread_x_m = reshape([placed%surface_spread_x_m, ends], [2, placed%n_surface])
+    placed%surface_patch_m = [placed%surface_patch_m, patch_m]
+    placed%surface_first = [placed%surface_first, placed%n + 1]
+    placed%surface_strips = [placed%surface_strips, n]
+    placed%surface_retained = [placed%surface_retained, sum(f)/magnitude_n]
+    placed%surface_edges_x_m = [placed%surface_edges_x_m, edges]
+    f = f*(magnitude_n/sum(f))
+    do k = 1, n
+      xs = 0.5_dp*(edges(k) + edges(k + 1))
+      call top_surface(asm, xs, ys, b, ok)   ! (found above)
+      call add_load(placed, blk(k), j, [xs, ys], [0.0_dp, -f(k)], .true., kind_dispersed)
+    end do
+
+  end subroutine boussinesq_load
+
+  !> The ends of the strips from ends(1) to ends(2): dispersion_strips of equal length,
+  !> cut again at every vertex of a block between them, so that each strip lies on one
+  !> straight face of the top (a strip across a joint would put its whole load on one side).
+  pure function strip_edges(asm, ends) result(edges)
+    type(assembly_t), intent(in) :: asm
+    real(dp), intent(in) :: ends(2)
+    real(dp), allocatable :: edges(:), cuts(:)
+    integer, allocatable :: order(:)
+    integer :: b, k
+    cuts = [(ends(1) + k*(ends(2) - ends(1))/dispersion_strips, k=0, dispersion_strips)]
+    cuts(dispersion_strips + 1) = ends(2)
+    do b = 1, asm%n_bodies
+      do k = 1, size(asm%polygon(b)%xy, 2)
+        associate (x => asm%polygon(b)%xy(1, k))
+          if (x > ends(1) + boundary_tol_m .and. x < ends(2) - boundary_tol_m) cuts = [cuts, x]
+        end associate
+      end do
+    end do
+    order = stable_order(reshape(cuts, [1, size(cuts)]))
+    edges = [cuts(order(1))]
+    do k = 2, size(order)
+      if (cuts(order(k)) - edges(size(edges)) > boundary_tol_m) edges = [edges, cuts(order(k))]
+    end do
+    edges(size(edges)) = ends(2)
+  end function strip_edges
+
+  !> Flamant's stress of a load `load_n` over `patch_m` centred on `x0` at the fill's depth
+  !> over the top of `asm` at `x`, over `sigma_ref` (the stress beneath the load), less
+  !> boussinesq_cutoff: >= 0 within the spread.
+  pure real(dp) function above_cutoff(asm, x, x0, load_n, patch_m, sigma_ref) result(excess)
+    type(assembly_t), intent(in) :: asm
+    real(dp), intent(in) :: x, x0, load_n, patch_m, sigma_ref
+    real(dp) :: y
+    integer :: top
+    logical :: found
+    call top_surface(asm, x, y, top, found)
+    excess = flamant_pressure(load_n, patch_m, x - x0, asm%fill_level_m - y)/sigma_ref - boussinesq_cutoff
+  end function above_cutoff
 
   !> ' (a patch of p m)', or '' for a point.
   function patch_words(patch_m) result(text)
@@ -440,81 +593,5 @@ contains
     text = ''
     if (a > 0) text = ' (axle '//itoa(a + 1)//')'
   end function axle_words
-
-  !> 'x from a to b m' over every block.
-  function span_text(asm) result(text)
-    type(assembly_t), intent(in) :: asm
-    character(len=:), allocatable :: text
-    real(dp) :: lo, hi
-    integer :: b
-    lo = huge(1.0_dp)
-    hi = -huge(1.0_dp)
-    do b = 1, asm%n_bodies
-      lo = min(lo, minval(asm%polygon(b)%xy(1, :)))
-      hi = max(hi, maxval(asm%polygon(b)%xy(1, :)))
-    end do
-    text = 'x from '//fmt_significant(lo, 6)//' to '//fmt_significant(hi, 6)//' m'
-  end function span_text
-
-  !> The block that contains `p` (convex, counter-clockwise polygons; a point within
-  !> boundary_tol_m outside counts), a free block before a driven one; 0 if none.
-  pure integer function block_at(asm, p) result(found)
-    type(assembly_t), intent(in) :: asm
-    real(dp), intent(in) :: p(2)
-    integer :: b, k, nv
-    real(dp) :: e(2)
-    logical :: inside
-    found = 0
-    do b = 1, asm%n_bodies
-      associate (xy => asm%polygon(b)%xy)
-        nv = size(xy, 2)
-        inside = .true.
-        do k = 1, nv
-          e = xy(:, modulo(k, nv) + 1) - xy(:, k)
-          if (cross2(e, p - xy(:, k))/norm2(e) < -boundary_tol_m) inside = .false.
-        end do
-      end associate
-      if (.not. inside) cycle
-      if (found == 0) found = b
-      if (asm%driven(found) .and. .not. asm%driven(b)) found = b
-    end do
-  end function block_at
-
-  !> The top surface of the assembly at `x`: the highest boundary point `y` of any block
-  !> there and that `block` (a free block before a driven one at the same height).
-  pure subroutine top_surface(asm, x, y, block, found)
-    type(assembly_t), intent(in) :: asm
-    real(dp), intent(in) :: x
-    real(dp), intent(out) :: y
-    integer, intent(out) :: block
-    logical, intent(out) :: found
-    real(dp) :: a(2), c(2), t, yk
-    integer :: b, k, nv
-    found = .false.
-    block = 0
-    y = -huge(1.0_dp)
-    do b = 1, asm%n_bodies
-      associate (xy => asm%polygon(b)%xy)
-        nv = size(xy, 2)
-        do k = 1, nv
-          a = xy(:, k)
-          c = xy(:, modulo(k, nv) + 1)
-          if (x < min(a(1), c(1)) - boundary_tol_m .or. x > max(a(1), c(1)) + boundary_tol_m) cycle
-          if (abs(c(1) - a(1)) <= boundary_tol_m) then
-            yk = max(a(2), c(2))
-          else
-            t = min(1.0_dp, max(0.0_dp, (x - a(1))/(c(1) - a(1))))
-            yk = a(2) + t*(c(2) - a(2))
-          end if
-          if (.not. found .or. yk > y + boundary_tol_m .or. &
-              (yk >= y - boundary_tol_m .and. asm%driven(block) .and. .not. asm%driven(b))) then
-            y = max(y, yk)
-            block = b
-            found = .true.
-          end if
-        end do
-      end associate
-    end do
-  end subroutine top_surface
 
 end module voussoir_placed_loads

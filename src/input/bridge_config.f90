@@ -18,6 +18,7 @@ module voussoir_bridge_config
   private
   public :: bridge_config_t, bridge_group, read_bridge_config, bridge_intrados, max_spans, bridge_length_m
   public :: fill_model_columns, fill_model_particles, max_fill_particles, max_rings
+  public :: dispersion_angle, dispersion_boussinesq
 
   integer, parameter :: max_spans = 8
   integer, parameter :: max_bridge_voussoirs = 200     !! per span, as voussoir-limit's arch
@@ -29,6 +30,11 @@ module voussoir_bridge_config
   character(len=*), parameter :: fill_model_columns = 'columns', fill_model_particles = 'particles'
   character(len=16), parameter :: fill_model_names(2) = [character(len=16) :: fill_model_columns, &
                                                          fill_model_particles]
+  !> How a live load spreads through the columns' fill: uniformly between two lines at
+  !> dispersion_angle_deg, or by Flamant's solution of Boussinesq's problem (docs/bridges.md).
+  character(len=*), parameter :: dispersion_angle = 'angle', dispersion_boussinesq = 'boussinesq'
+  character(len=16), parameter :: dispersion_names(2) = [character(len=16) :: dispersion_angle, &
+                                                         dispersion_boussinesq]
   !> At most this many particles (estimated from the bridge's length x the fill's level).
   integer, parameter :: max_fill_particles = 20000
   real(dp), parameter :: default_course_m = 0.3_dp     !! the backing's courses when backing_course_m is not given
@@ -63,6 +69,7 @@ module voussoir_bridge_config
     real(dp) :: fill_density_kg_m3 = 0.0_dp             !! 0: no fill
     real(dp) :: fill_level_m = 0.0_dp                   !! the fill's (and the road's) surface above the springings [m]
     real(dp) :: dispersion_angle_deg = 0.0_dp           !! 0: a live load acts on the extrados straight beneath it
+    character(len=16) :: dispersion = dispersion_angle  !! one of dispersion_names
     !> The fill's horizontal pressure on the ring (Rankine, angle of friction phi): at least
     !> active, K_a = tan^2(45 - phi/2), up to passive_mobilisation x K_p = tan^2(45 + phi/2)
     !> where the ring moves into the fill; 0: no horizontal pressure.
@@ -121,6 +128,7 @@ contains
                about='real, m, the fill surface above the springings')
     call g%add('dispersion_angle_deg', b%dispersion_angle_deg, unit='deg', range='0 <= dispersion_angle_deg < 90', &
                about='real, deg from the vertical, either side of a live load')
+    call g%add('dispersion', b%dispersion, choices=dispersion_names)
     call g%add('fill_friction_deg', b%fill_friction_deg, unit='deg', range='0 <= fill_friction_deg < 90', &
                about="real, deg, the fill's angle of friction (0: no horizontal pressure)")
     call g%add('passive_mobilisation', b%passive_mobilisation, range='0 <= passive_mobilisation <= 1', &
@@ -168,6 +176,7 @@ contains
     if (.not. status%ok) return
     b%shape = lower(b%shape)
     b%fill_model = lower(b%fill_model)
+    b%dispersion = lower(b%dispersion)
     do k = b%n_spans + 1, max_spans
       call need(b%rise_m(k) == 0.0_dp, path, 'bridge', 'rise_m('//itoa(k)//')', b%rise_m(k), &
                 'none: there are '//itoa(b%n_spans)//' spans (span_m(1..'//itoa(b%n_spans)//'))', status)
@@ -250,6 +259,18 @@ contains
     call need(b%fill_model == fill_model_particles .or. b%fill_particle_size_m == 0.0_dp, path, 'bridge', &
               'fill_particle_size_m', b%fill_particle_size_m, "0 with fill_model = 'columns' (set "// &
               "fill_model = 'particles' to cut the fill into particles)", status)
+    if (b%dispersion == dispersion_boussinesq) then
+      call need(b%dispersion_angle_deg == 0.0_dp, path, 'bridge', 'dispersion_angle_deg', b%dispersion_angle_deg, &
+                "0 with dispersion = 'boussinesq' (Flamant's stress spreads the load; the angle is the other "// &
+                "rule, dispersion = 'angle')", status)
+      call need(b%fill_density_kg_m3 > 0.0_dp, path, 'bridge', 'fill_density_kg_m3', b%fill_density_kg_m3, &
+                "> 0 with dispersion = 'boussinesq' (a fill for the load to spread through, and fill_level_m its "// &
+                'surface)', status)
+      call need(b%fill_model == fill_model_columns, path, 'bridge', 'dispersion', b%dispersion, &
+                "'angle' with fill_model = 'particles': the particles carry the load down by their contacts "// &
+                "(dispersion = 'boussinesq' belongs to the columns' fill)", status)
+      if (.not. status%ok) return
+    end if
     if (b%fill_density_kg_m3 == 0.0_dp) then
       call need(b%fill_model == fill_model_columns, path, 'bridge', 'fill_density_kg_m3', b%fill_density_kg_m3, &
                 "> 0 with fill_model = 'particles' (the particles' density; and fill_level_m their surface)", status)
@@ -273,6 +294,10 @@ contains
     call need(b%fill_level_m >= top_m, path, 'bridge', 'fill_level_m', b%fill_level_m, &
               'fill_level_m >= '//fmt_significant(top_m, 6)//' m, the extrados of span '//itoa(highest)// &
               "'s crown (its rise and ring_thickness_m): a fill surface below the extrados would cut the ring", status)
+    if (b%dispersion == dispersion_boussinesq) &
+      call need(b%fill_level_m > top_m, path, 'bridge', 'fill_level_m', b%fill_level_m, &
+                'fill_level_m > '//fmt_significant(top_m, 6)//" m with dispersion = 'boussinesq': Flamant's stress "// &
+                'at no depth is the load itself (span '//itoa(highest)//"'s crown would carry it undivided)", status)
     if (b%fill_model == fill_model_particles) call check_particles(b, top_m, path, status)
   end subroutine check_fill
 

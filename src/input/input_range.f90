@@ -26,7 +26,7 @@ module voussoir_input_range
 
   !> Fail `status` (unless it already failed) when `good` is false.
   interface need
-    module procedure need_real, need_integer
+    module procedure need_real, need_integer, need_text
   end interface need
 
   !> Fail `status` (unless it already failed) when `value` is outside the range text
@@ -143,6 +143,14 @@ contains
     if (good .or. .not. status%ok) return
     call fail(status, outside(file, group, name, itoa(value), allowed))
   end subroutine need_integer
+
+  subroutine need_text(good, file, group, name, value, allowed, status)
+    logical, intent(in) :: good
+    character(len=*), intent(in) :: file, group, name, value, allowed
+    type(status_t), intent(inout) :: status
+    if (good .or. .not. status%ok) return
+    call fail(status, outside(file, group, name, "'"//trim(value)//"'", allowed))
+  end subroutine need_text
 
   subroutine need_range_real(allowed, file, group, name, value, status, note)
     character(len=*), intent(in) :: allowed, file, group, name

@@ -6,7 +6,7 @@ module voussoir_limit_lp_output
   use voussoir_hinge_side, only: side_name
   use voussoir_limit_lp, only: lp_result_t, joint_mode_name, joint_closed, joint_hinge
   use voussoir_limit_lp_study, only: lp_study_t, lp_direction_t
-  use voussoir_placed_loads, only: kind_point, kind_fill
+  use voussoir_placed_loads, only: kind_point, kind_fill, placed_loads_t, boussinesq_cutoff
   implicit none
   private
 
@@ -319,9 +319,35 @@ contains
       text = text//'{"load": '//itoa(lp%placed%surface_source(k))//', "xy_m": '// &
              xy_json(lp%placed%surface_xy(:, k))//', "force_n": '//xy_json(lp%placed%surface_force_n(:, k))// &
              ', "spread_x_m": '//xy_json(lp%placed%surface_spread_x_m(:, k))//', "patch_m": '// &
-             fmt_json_real(lp%placed%surface_patch_m(k))//'}'
+             fmt_json_real(lp%placed%surface_patch_m(k))
+      if (lp%placed%surface_boussinesq .and. on_fill) text = text//boussinesq_json(lp%placed, k)
+      text = text//'}'
     end do
   end function surface_json
+
+  !> Surface load k spread by Boussinesq: the cutoff, the fraction of the load Flamant's
+  !> stress puts within the spread (before the strips are scaled to the load), each strip's
+  !> load [N, down, at load factor 1] and the strips' ends along x [m], from the spread's
+  !> first x to its last.
+  function boussinesq_json(placed, k) result(text)
+    type(placed_loads_t), intent(in) :: placed
+    integer, intent(in) :: k
+    character(len=:), allocatable :: text
+    integer :: s, first_edge
+    text = ', "dispersion": "boussinesq", "cutoff": '//fmt_json_real(boussinesq_cutoff)//', "retained": '// &
+           fmt_json_real(placed%surface_retained(k))//', "strip_load_n": ['
+    do s = placed%surface_first(k), placed%surface_first(k) + placed%surface_strips(k) - 1
+      if (s > placed%surface_first(k)) text = text//', '
+      text = text//fmt_json_real(-placed%force_n(2, s))
+    end do
+    text = text//'], "strip_edges_x_m": ['
+    first_edge = sum(placed%surface_strips(1:k - 1) + 1)
+    do s = 1, placed%surface_strips(k) + 1
+      if (s > 1) text = text//', '
+      text = text//fmt_json_real(placed%surface_edges_x_m(first_edge + s))
+    end do
+    text = text//']'
+  end function boussinesq_json
 
   !> [{"x_m": .., "load_factor": ..}, ...] along the path (null where no mechanism opens).
   function curve_json(lp) result(text)

@@ -9,7 +9,8 @@ module voussoir_limit_lp_study
   use voussoir_status, only: status_t, fail
   use voussoir_text, only: itoa, fmt_significant
   use voussoir_load_config, only: load_config_t
-  use voussoir_placed_loads, only: placed_loads_t, place_loads, moves_on_top, vehicle_x, top_surface, fill_column
+  use voussoir_placed_loads, only: placed_loads_t, place_loads, moves_on_top, vehicle_x, top_surface, fill_column, &
+    boussinesq_cutoff
   use voussoir_assembly, only: assembly_t, between_rings
   use voussoir_hinge_side, only: side_intrados, side_extrados
   use voussoir_block_interfaces, only: interface_set_t, find_interfaces
@@ -145,7 +146,7 @@ contains
         study%live_load = replaced(study%live_load, ', on the top surface', ', on the fill''s surface')
       if (asm%has_fill) study%live_load = study%live_load//'; and the fill: its weight on the blocks beneath its '// &
         'surface at y = '//fmt_significant(asm%fill_level_m, 6)//' m, the live loads standing on that surface and '// &
-        'spread through it at '//fmt_significant(asm%dispersion_angle_deg, 6)//' deg from the vertical either side'
+        trim(spread_words(asm))
       if (asm%fill_passive_k > 0.0_dp) study%live_load = study%live_load//'; its horizontal pressure on the '// &
         'ring between '//fmt_significant(asm%fill_active_k, 4)//' and '//fmt_significant(asm%fill_passive_k, 4)// &
         ' x the vertical stress (active; passive as mobilised), the LP choosing'
@@ -167,6 +168,19 @@ contains
     if (.not. study%live_is_acceleration) study%neg%note = 'the live load is the point loads of &load: '// &
       'the -x direction is that of the horizontal acceleration only'
   end subroutine lp_study
+
+  !> How the live loads spread through the fill of `asm`, in words.
+  function spread_words(asm) result(text)
+    type(assembly_t), intent(in) :: asm
+    character(len=:), allocatable :: text
+    if (asm%dispersion_boussinesq) then
+      text = 'spread through it by Boussinesq (Flamant''s vertical stress on the blocks'' top, truncated where '// &
+             'it falls below '//fmt_significant(boussinesq_cutoff, 3)//' x the stress beneath the load, scaled to '// &
+             'the load)'
+    else
+      text = 'spread through it at '//fmt_significant(asm%dispersion_angle_deg, 6)//' deg from the vertical either side'
+    end if
+  end function spread_words
 
   !> Both capacities with the live load turned round (the dead loads as they are); a
   !> refusal (a block held against -x) is the direction's note, not an error.

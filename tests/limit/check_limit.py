@@ -1548,6 +1548,143 @@ elif case == "load_cases":
     check(rc == 0 and "Load case 1 'single axle'" in out and "Load case 2 'tandem'" in out and len(rows) == 2 and
           "(governs)" in rows[gov] and all(("NOT adequate" in r) == (c["load_factor"] < 1) for r, c in zip(rows, lc)),
           f"the table: each case's LP, and a summary row each, the governing case marked: {rows}")
+elif case == "bridge_boussinesq":
+    # &bridge dispersion = 'boussinesq' on input/bridge_fill.nml's span, each expectation
+    # from the input and the JSON's blocks alone. Flamant's vertical stress under a line load
+    # P at depth z and offset u, sigma = 2 P z^3 / (pi (u^2 + z^2)^2), integrates over u from
+    # a to b to (P/pi) [G(b/z) - G(a/z)], G(t) = atan(t) + t/(1 + t^2) (differentiate: G' =
+    # 2/(1 + t^2)^2); a patch of length p is that integrand averaged over the patch, here by
+    # Simpson's rule (not the code's closed form). (1) The strips sum to P (1e-12) and each
+    # carries that integral over its length at its depth (the fill's level less the top at
+    # its middle) times P / the sum of them all (1e-9); the JSON's `retained` is that sum / P;
+    # the strips tile the spread and each lies on one straight face of the blocks' top.
+    # (2) Each end of the spread is the deck's end or where the stress there falls to the
+    # cutoff x the stress beneath the load (1e-6), and no sample of the deck outside the
+    # spread reaches the cutoff. (3) A load over the crown of the symmetric span: the spread
+    # and the strips mirror, the applied load's centroid is under the load (1e-9 m).
+    # (4) Every voussoir in equilibrium under its weight, the fill's, lambda x the strips and
+    # the JSON's forces (1e-7). (5) The ordering: the strips are a convex combination of
+    # point loads on the blocks' top, and with associative friction the loads carried form a
+    # convex set (equilibrium and yield are linear), so the spread load is carried at least
+    # at the least load factor of the load placed undispersed (angle 0) anywhere on the deck.
+    # Against the 30-degree spread no ordering follows (neither distribution is a mixture of
+    # the other's translates): the two are only reported.
+    text = open(nml).read()
+    bous = text.replace("dispersion_angle_deg = 30", "dispersion = 'boussinesq'")
+    check(bous != text, "the input gives dispersion_angle_deg = 30 to replace")
+    path = "path_x0_m = 1.0, path_x1_m = 9.0, path_points = 17"
+    check(path in text, "the input's path to replace")
+    def number(name):
+        return float(re.search(r"\b" + name + r" *= *([-0-9.eE+]+)", text).group(1))
+    level, rho_f, rho_r, width = (number(k) for k in ("fill_level_m", "fill_density_kg_m3", "ring_density_kg_m3",
+                                                      "width_m"))
+    g_w = 9.81 * width
+    def flamant_g(t):
+        return math.atan(t) + t / (1.0 + t * t)
+    def stress(P, patch, u, z):
+        if patch == 0.0:
+            return 2.0 * P * z ** 3 / (math.pi * (u * u + z * z) ** 2)
+        h = patch / 2      # the patch: Flamant's stress averaged over it (Simpson, 400 pieces)
+        return simpson(lambda s: 2.0 * P * z ** 3 / (math.pi * ((u - s) ** 2 + z * z) ** 2), -h, h) / patch
+    def strip_integral(P, patch, a, b, z):
+        if patch == 0.0:
+            return P / math.pi * (flamant_g(b / z) - flamant_g(a / z))
+        h = patch / 2
+        return simpson(lambda s: P / math.pi * (flamant_g((b - s) / z) - flamant_g((a - s) / z)), -h, h) / patch
+    def simpson(f, a, b, n=400):
+        hh = (b - a) / n
+        return hh / 3 * (f(a) + f(b) + sum((4 if k % 2 else 2) * f(a + k * hh) for k in range(1, n)))
+    def check_strips(d, name):
+        blocks = d["blocks"]
+        xs = [x for b in blocks for x, _ in b["vertices_xy_m"]]
+        deck = (min(xs), max(xs))
+        out = []
+        for sl in d["surface_loads"]:
+            P, x0, patch = -sl["force_n"][1], sl["xy_m"][0], sl["patch_m"]
+            lo, hi = sl["spread_x_m"]
+            loads, edges = sl["strip_load_n"], sl["strip_edges_x_m"]
+            n = len(loads)
+            # The strips tile the spread, none longer than 1/200 of it, and each lies on one
+            # straight face of the top: every block vertex inside the spread is a strip's end.
+            inside = [x for x in xs if lo + 1e-9 < x < hi - 1e-9]
+            check(len(edges) == n + 1 and edges[0] == lo and edges[-1] == hi and
+                  all(0 < b - a <= (hi - lo) / 200 * (1 + 1e-12) for a, b in zip(edges, edges[1:])) and
+                  all(min(abs(e - x) for e in edges) <= 1e-9 for x in inside),
+                  f"{name}: {n} strips tile the spread, each at most 1/200 of it, cut at the {len(set(inside))} "
+                  f"vertices inside it")
+            mids = [(a + b) / 2 for a, b in zip(edges, edges[1:])]
+            raw = [strip_integral(P, patch, a - x0, b - x0, level - top_y(blocks, m))
+                   for a, b, m in zip(edges, edges[1:], mids)]
+            scale = P / sum(raw)
+            worst = max(abs(q - r * scale) / (r * scale) for q, r in zip(loads, raw))
+            check(sl["dispersion"] == "boussinesq" and n >= 200 and close(sum(loads), P, rtol=1e-12),
+                  f"{name}: {n} strips summing to the load {P:g} N ({abs(sum(loads) - P) / P:.1e})")
+            check(worst < 1e-9, f"{name}: each strip carries Flamant's stress integrated over it at its depth, "
+                                f"times P / their sum ({worst:.1e})")
+            check(close(sl["retained"], sum(raw) / P, rtol=1e-12),
+                  f"{name}: retained {sl['retained']:.6g} = the strips' integrals / P")
+            ref = stress(P, patch, 0.0, level - top_y(blocks, x0))
+            cutoff = sl["cutoff"]
+            for end, bound in ((lo, deck[0]), (hi, deck[1])):
+                ratio = stress(P, patch, end - x0, level - top_y(blocks, end)) / ref
+                check(abs(end - bound) < 1e-12 or abs(ratio / cutoff - 1) < 1e-6,
+                      f"{name}: the spread ends at x = {end:.6g} m, the deck's end or where the stress is "
+                      f"{cutoff:g} x that beneath the load ({ratio:.6g})")
+            outside = [deck[0] + (deck[1] - deck[0]) * (k + 0.5) / 997 for k in range(997)]
+            outside = [x for x in outside if x < lo or x > hi]
+            check(all(stress(P, patch, x - x0, level - top_y(blocks, x)) / ref < cutoff for x in outside),
+                  f"{name}: no point of the deck outside the spread ({len(outside)} sampled) reaches the cutoff")
+            out.append((mids, loads, lo, hi, x0))
+        return out
+    with open("bridge_boussinesq.nml", "w") as f:
+        f.write(bous)
+    d = load("bridge_boussinesq.nml")
+    check("Boussinesq" in d["live_load"], f"the live load in words says how it spreads: {d['live_load']}")
+    ((mids, loads, lo, hi, x0),) = check_strips(d, "critical position")
+    blocks = d["blocks"]
+    lam = d["load_factor"]
+    fills = {f["block"]: f for f in d["fill_loads"]}
+    worst = 0.0
+    for i in [i for i, b in enumerate(blocks, start=1) if not b["driven"]]:
+        v = blocks[i - 1]["vertices_xy_m"]
+        area = 0.5 * sum(xa * yb - xb * ya for (xa, ya), (xb, yb) in zip(v, v[1:] + v[:1]))
+        cx, cy = centroid(v)
+        weight = rho_r * g_w * area
+        fx, fy, m = contact_resultant(d, i, cx, cy)
+        fy += fills[i]["force_n"][1] - weight
+        m += (fills[i]["xy_m"][0] - cx) * fills[i]["force_n"][1]
+        for x, q in zip(mids, loads):
+            if top_block(blocks, x) == i:
+                fy -= lam * q
+                m -= (x - cx) * lam * q
+        worst = max(worst, abs(fx) / weight, abs(fy) / weight, abs(m) / (weight * 10.0))
+    check(worst < 1e-7,
+          f"every voussoir in equilibrium: weight, fill, lambda x the strips, contact forces ({worst:.1e})")
+    # Over the crown of the symmetric span, the abutments 6 m long so that the cutoff ends
+    # the spread; and a patch of 0.3 m at the critical position.
+    crown = bous.replace(path, "point_load_x_m(1) = 5.0").replace("abutment_width_m = 2.0", "abutment_width_m = 6.0")
+    check("abutment_width_m = 6.0" in crown, "the input's abutments to lengthen")
+    with open("bridge_boussinesq_crown.nml", "w") as f:
+        f.write(crown)
+    e = load("bridge_boussinesq_crown.nml")
+    ((mids, loads, lo, hi, x0),) = check_strips(e, "crown")
+    xc = sum(x * q for x, q in zip(mids, loads)) / sum(loads)
+    mirror = max(abs(a - b) / a for a, b in zip(loads, reversed(loads)))
+    check(abs(xc - 5.0) < 1e-9 and abs(lo + hi - 10.0) < 1e-9 and mirror < 1e-9 and -6.0 < lo and hi < 16.0,
+          f"crown: the spread from {lo:.6g} to {hi:.6g} m, within the deck, mirrors about x = 5 m "
+          f"(strips {mirror:.1e}); the load's centroid at {xc:.12g} m")
+    with open("bridge_boussinesq_patch.nml", "w") as f:
+        x_critical = d["critical_position"]["x_m"]
+        f.write(bous.replace(path, f"point_load_x_m(1) = {x_critical!r}, point_load_patch_m(1) = 0.3"))
+    check_strips(load("bridge_boussinesq_patch.nml"), "patch of 0.3 m")
+    # The ordering (5): the undispersed load moved over the whole deck, refined at the joints.
+    with open("bridge_boussinesq_none.nml", "w") as f:
+        f.write(text.replace(", dispersion_angle_deg = 30", "").replace(
+            path, "path_x0_m = -1.99, path_x1_m = 11.99, path_points = 29"))
+    none = load("bridge_boussinesq_none.nml")["load_factor"]
+    angle = load(nml)["load_factor"]
+    check(lam >= none * (1 - 1e-9), f"Boussinesq's load factor {lam:.7g} >= the least undispersed one on the deck "
+                                    f"{none:.7g} (the 30-degree spread: {angle:.7g}, not ordered)")
 else:
     check(False, f"unknown case {case}")
 

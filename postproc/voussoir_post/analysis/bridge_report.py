@@ -70,6 +70,7 @@ class BridgeSummary:
     #: strip's share width_m/effective_width_m); '' and 0 without one.
     vehicle: str = ""
     vehicle_total_n: float = 0.0
+    dispersion: str = "angle"  #: &bridge dispersion: 'angle' or 'boussinesq'
     spread_x_m: list[tuple[float, float]] = field(default_factory=list)  #: at the critical position
     pressure_at_collapse_n: float = math.nan  #: sum of the faces' horizontal pressures, each's magnitude
     pressure_active_n: float = math.nan  #: the same, every face at its active bound
@@ -217,6 +218,7 @@ def bridge_summary(limit: LimitResult) -> BridgeSummary:
                                             (limit.surface_loads or [q for q in limit.point_loads if q.live] + limit.patch_loads)),
         axle_spacing_m=float(load.get("axle_spacing_m", 0.0) or 0.0),
         vehicle=vehicle_words(vehicle) if vehicle else "", vehicle_total_n=vehicle_total_n,
+        dispersion=str(b.get("dispersion", "angle")).strip("'\" ").lower(),
         spread_x_m=list(limit.surface_spread_x_m),
         pressure_at_collapse_n=sum(pressures) if pressures else math.nan,
         pressure_active_n=sum(a for a, _ in bounds) if bounds else math.nan,
@@ -347,9 +349,8 @@ def report_markdown(main: BridgeSummary, without: BridgeSummary | None, figures:
     out.append("")
     if main.fill_density_kg_m3 > 0:
         spread = "; ".join(f"x = {a:.3f} to {b:.3f} m ({b - a:.3f} m)" for a, b in main.spread_x_m)
-        out.append(f"The live load stands on the fill's surface and spreads through the fill at "
-                   f"{main.dispersion_angle_deg:g}° from the vertical either side, uniformly, down to the "
-                   f"extrados" + (f": at the critical position over {spread}." if spread else "."))
+        out.append(f"The live load stands on the fill's surface and spreads through the fill {spread_words(main)}"
+                   + (f": at the critical position over {spread}." if spread else "."))
     if main.fill_friction_deg > 0:
         out.append("")
         out.append(f"The fill presses horizontally on the ring (Rankine, angle of friction "
@@ -431,3 +432,12 @@ def report_markdown(main: BridgeSummary, without: BridgeSummary | None, figures:
         out.append(f"No path in `&load`: the load stands at one position, x = {_num(x, 4)} m.")
     out.append("")
     return "\n".join(out)
+
+
+def spread_words(main: BridgeSummary) -> str:
+    """How the live load spreads through the fill, in words (after 'spreads through the fill')."""
+    if main.dispersion == "boussinesq":
+        return ("by Boussinesq: Flamant's vertical stress under a line load, on the extrados at the fill's depth "
+                "there, truncated where it falls below a thousandth of the stress beneath the load (or at the deck's "
+                "ends) and scaled to the load")
+    return f"at {main.dispersion_angle_deg:g}° from the vertical either side, uniformly, down to the extrados"

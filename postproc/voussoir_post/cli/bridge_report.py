@@ -61,8 +61,9 @@ def cmd_bridge_report(args) -> int:
                  f"(span{'s' if len(main.spans) > 1 else ''} {spans}),\n"
                  + (f"the {main.vehicle}, " if main.vehicle else "")
                  + f"live load {main.live_total_n / 1e3:.4g} kN on the strip "
-                 + (f"spread through the fill at {main.dispersion_angle_deg:g}°" if main.fill_density_kg_m3 > 0
-                    else "on the extrados"))
+                 + ("on the extrados" if main.fill_density_kg_m3 <= 0 else
+                    "spread through the fill by Boussinesq" if main.dispersion == "boussinesq" else
+                    f"spread through the fill at {main.dispersion_angle_deg:g}°"))
         data = plot_load_position(cases, main.live_total_n, os.path.join(out, FIGURE_NAMES["load_position"]), title,
                                   provenance(main.limit.code_version, os.path.basename(main.limit.path),
                                              os.path.basename(without.limit.path) if without else ""))

@@ -80,6 +80,25 @@ def _top_y(blocks: list[np.ndarray], x: float) -> float:
     return best
 
 
+def _strips(limit: LimitResult) -> list:
+    """Each surface load's Boussinesq strips (edges, loads, retained), or None where it spreads at an angle."""
+    return limit.surface_strips or [None] * len(limit.surface_loads)
+
+
+def _peak_pressure(limit: LimitResult) -> float:
+    """The greatest Boussinesq pressure on the blocks' top of any surface load [N/m per the width]."""
+    return max((float(np.max(s[1] / np.diff(s[0]))) for s in _strips(limit) if s is not None), default=0.0)
+
+
+def pressure_m_per_n_m(limit: LimitResult, blocks: list[np.ndarray], shift: np.ndarray) -> float:
+    """The drawing's scale of the Boussinesq pressure [m of drawing per N/m]: the peak at 0.8 of
+    the fill's least depth beneath a surface load."""
+    level = float(limit.surface_loads[0].xy_m[1]) - shift[1]
+    depth = min(level - _top_y(blocks, float(p.xy_m[0]) - shift[0]) for p in limit.surface_loads)
+    peak = _peak_pressure(limit)
+    return 0.8 * depth / peak if peak > 0 else 0.0
+
+
 def _newtons(value_n: float) -> str:
     return f"{value_n / 1e3:.4g} kN" if abs(value_n) >= 1e3 else f"{value_n:.4g} N"
 
@@ -191,10 +210,23 @@ def plot_lp_mechanism(limit: LimitResult, out_png: str | os.PathLike):
         if limit.surface_loads:
             level = float(limit.surface_loads[0].xy_m[1]) - shift[1]
             ax.plot([lo[0], hi[0]], [level, level], "--", color=FILL_COLOUR, linewidth=1.2, zorder=3)
-            for p, (x_lo, x_hi) in zip(limit.surface_loads, limit.surface_spread_x_m):
+            for p, (x_lo, x_hi), strips in zip(limit.surface_loads, limit.surface_spread_x_m, _strips(limit)):
                 x0 = float(p.xy_m[0]) - shift[0]
-                ax.plot([x_lo - shift[0], x0, x_hi - shift[0]], [_top_y(blocks, x_lo - shift[0]), level,
-                        _top_y(blocks, x_hi - shift[0])], ":", color=LIVE_COLOUR, linewidth=1.2, zorder=8)
+                if strips is None:
+                    ax.plot([x_lo - shift[0], x0, x_hi - shift[0]], [_top_y(blocks, x_lo - shift[0]), level,
+                            _top_y(blocks, x_hi - shift[0])], ":", color=LIVE_COLOUR, linewidth=1.2, zorder=8)
+                    continue
+                # Boussinesq: no lines bound the spread; its pressure on the extrados, drawn up
+                # from it, the peak of all the loads at 0.8 of the fill's depth beneath the load.
+                edges, loads, _ = strips
+                x = edges - shift[0]
+                base = np.array([_top_y(blocks, float(v)) for v in x])
+                height = np.repeat(loads / np.diff(edges) * pressure_m_per_n_m(limit, blocks, shift), 2)
+                xs = np.repeat(x, 2)[1:-1]
+                ys = np.repeat(base, 2)[1:-1]
+                ax.fill_between(xs, ys, ys + height, color=LIVE_COLOUR, alpha=0.25, linewidth=0, zorder=3,
+                                gid="boussinesq_pressure")
+                ax.plot(xs, ys + height, "-", color=LIVE_COLOUR, linewidth=0.8, zorder=8)
         if pressure_scale > 0 and panel.direction == "+x":
             at_p = np.array([p.xy_m for p in limit.fill_pressures]) - shift
             force_p = np.array([p.force_n for p in limit.fill_pressures])
@@ -303,9 +335,19 @@ def _legend_handles(ax, limit, panels, has_thrust, key_n, scale, live_total, loa
         handles.append(ax.plot([], [], "--", color=FILL_COLOUR, linewidth=1.2,
                                label=f"fill surface, y = {level:.3g} m: the fill's weight ({_newtons(fill_n)} over the "
                                      "free blocks) a dead load on the blocks beneath")[0])
-        handles.append(ax.plot([], [], ":", color=LIVE_COLOUR, linewidth=1.2,
-                               label="spread of each live load through the fill onto the blocks (uniform along x "
-                                     "between the dotted lines' feet)")[0])
+        if any(s is None for s in _strips(limit)):
+            handles.append(ax.plot([], [], ":", color=LIVE_COLOUR, linewidth=1.2,
+                                   label="spread of each live load through the fill onto the blocks (uniform along x "
+                                         "between the dotted lines' feet)")[0])
+        if any(s is not None for s in _strips(limit)):
+            retained = [s[2] for s in _strips(limit) if s is not None]
+            handles.append(ax.fill_between([], [], [], color=LIVE_COLOUR, alpha=0.25,
+                                           label="Boussinesq: Flamant's vertical pressure of each live load on the "
+                                                 "blocks' top at the fill's depth there, drawn up from it (peak "
+                                                 f"{_newtons(_peak_pressure(limit))}/m at λ = 1; scaled to the load, "
+                                                 "the stress's integral over the strips being "
+                                                 + ", ".join(f"{r:.3g}" for r in retained)
+                                                 + " × the load before scaling); no lines bound this spread"))
     if pressure_scale > 0:
         total = sum(abs(float(p.force_n[0])) for p in limit.fill_pressures)
         largest = max(abs(float(p.force_n[0])) for p in limit.fill_pressures)

@@ -114,6 +114,11 @@ class LimitResult:
     #: on each top face of a free block.
     surface_loads: list[PlacedLoad] = field(default_factory=list)
     surface_spread_x_m: list[tuple[float, float]] = field(default_factory=list)
+    #: Per surface load spread by Boussinesq (``&bridge dispersion = 'boussinesq'``): its
+    #: strips' ends along x [m], each strip's load [N, down, at load factor 1] and the
+    #: fraction of the load Flamant's stress gave them before they were scaled to it; None
+    #: for a load spread at an angle (empty list: no surface loads).
+    surface_strips: list[tuple[np.ndarray, np.ndarray, float] | None] = field(default_factory=list)
     fill_loads: list[PlacedLoad] = field(default_factory=list)
     #: With its horizontal pressure: each face's force at collapse (horizontal, into the ring).
     fill_pressures: list[PlacedLoad] = field(default_factory=list)
@@ -256,6 +261,9 @@ def read_limit_json(path: str | os.PathLike) -> LimitResult:
         surface_loads=[PlacedLoad(int(e["load"]), 0, np.asarray(e["xy_m"], dtype=float), np.asarray(e["force_n"], dtype=float),
                                   True) for e in data.get("surface_loads") or []],
         surface_spread_x_m=[(float(e["spread_x_m"][0]), float(e["spread_x_m"][1])) for e in data.get("surface_loads") or []],
+        surface_strips=[(np.asarray(e["strip_edges_x_m"], dtype=float), np.asarray(e["strip_load_n"], dtype=float),
+                         float(e["retained"])) if e.get("dispersion") == "boussinesq" else None
+                        for e in data.get("surface_loads") or []],
         fill_loads=[PlacedLoad(0, int(e["block"]), np.asarray(e["xy_m"], dtype=float), np.asarray(e["force_n"], dtype=float),
                                False) for e in data.get("fill_loads") or []],
         fill_pressures=[PlacedLoad(0, int(e["block"]), np.asarray(e["xy_m"], dtype=float),
