@@ -28,6 +28,13 @@ turned by more than collapse_rotation_rad from its position at the start, checke
 `every` steps; the run stops at the first collapse. OUT.json: collapsed, collapse_time_s
 (from the start of the motion, i.e. after the lead), steps, loop_s, settle_max_drop_m
 (largest drop of a free body at the end of the lead at rest).
+
+With "crown_bodies" (1-based, the keystone or the two middle voussoirs) and "table_body"
+(1-based, a driven body the table carries) in MODEL.json, OUT.json also holds the crown's
+record relative to the table, as a laboratory's crown transducer gives it (the contract's
+crown_dx_m, crown_dy_m): every `every` steps from the start of the motion, the mean of the
+crown bodies' centroids less the table body's position, less that offset at the start of
+the motion: "crown_t_s", "crown_dx_m", "crown_dy_m".
 """
 import json
 import math
@@ -99,12 +106,26 @@ def run(model, spec, out_path):
     lead = spec["lead_steps"]
     solver = ["Stored_Delassus_Loops         ", "Quad ", model["tol"], 1.0, 10, 1000]
     collapsed, collapse_t, settle = False, math.nan, math.nan
+    crown, table = model.get("crown_bodies"), model.get("table_body")
+    record, start = {"crown_t_s": [], "crown_dx_m": [], "crown_dy_m": []}, None
+
+    def relative():
+        c = np.mean([chipy.RBDY2_GetBodyVector("Coor_", i)[:2] for i in crown], axis=0)
+        return c - np.array(chipy.RBDY2_GetBodyVector("Coor_", table)[:2])
+
     t0 = time.perf_counter()
     k = 0
     for k in range(1, spec["n_steps"] + 1):
         step(chipy, solver)
         if k == lead:
             settle = max(ref[i][1] - chipy.RBDY2_GetBodyVector("Coor_", i)[1] for i in free)
+            if crown:
+                start = relative()
+        if crown and start is not None and (k - lead) % every == 0:
+            d = relative() - start
+            record["crown_t_s"].append((k - lead) * dt)
+            record["crown_dx_m"].append(float(d[0]))
+            record["crown_dy_m"].append(float(d[1]))
         if k % every == 0:
             for i in free:
                 q = chipy.RBDY2_GetBodyVector("Coor_", i)
@@ -117,7 +138,7 @@ def run(model, spec, out_path):
     chipy.Finalize()
     with open(out_path, "w") as f:
         json.dump({"collapsed": collapsed, "collapse_time_s": collapse_t, "steps": k, "loop_s": loop_s,
-                   "settle_max_drop_m": settle}, f)
+                   "settle_max_drop_m": settle, **(record if crown else {})}, f)
 
 
 if __name__ == "__main__":

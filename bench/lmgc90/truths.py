@@ -300,7 +300,7 @@ class Lmgc90Specimen:
     """One specimen's LMGC90 model in its own folder: DATBOX written once, then one
     subprocess per run with that run's evolution files."""
 
-    def __init__(self, build: str, folder: Path, arch: Arch, truth: dict, friction: float):
+    def __init__(self, build: str, folder: Path, arch: Arch, truth: dict, friction: float, record_crown: bool = False):
         self.folder = folder
         self.truth = truth
         self.env = dict(os.environ, PYTHONPATH=build)
@@ -312,6 +312,10 @@ class Lmgc90Specimen:
                  "bodies": [{"role": b["role"], "centroid": b["centroid"].tolist(),
                              "vertices": (b["polygon"] - b["centroid"]).tolist(),
                              "density_kg_m3": b["density_kg_m3"], "evolution": b["evolution"]} for b in bodies]}
+        if record_crown:   # the bodies: voussoirs 1..n from the left, then the left foundation (the table's)
+            n = arch.n_voussoirs
+            model["crown_bodies"] = [(n + 1) // 2] if n % 2 else [n // 2, n // 2 + 1]
+            model["table_body"] = n + 1
         folder.mkdir(parents=True, exist_ok=True)
         (folder / "model.json").write_text(json.dumps(model))
         self._call(["gen", "model.json"])
@@ -335,6 +339,7 @@ class Lmgc90Specimen:
         r = json.loads(out.read_text())
         self.lmgc_loop_s += r["loop_s"]
         self.runs += 1
+        self.last = r
         return bool(r["collapsed"]), (r["collapse_time_s"] if r["collapsed"] else None), r["settle_max_drop_m"]
 
 

@@ -1,0 +1,184 @@
+"""Do crown records part the rivals that the thresholds confuse, across codes? A bench
+(issues 33 and 35: "the records and hinges where the causes part physically"); runs
+LMGC90 and the kernel, never a test.
+
+    python bench/lmgc90/crown_records.py --lmgc90-build DIR OUT [--slugs S1,S2]
+        [--fractions 0.9,0.95,0.98] [--bin-dir DIR]
+
+The thresholds of a campaign (three arches, two frequencies) cannot part a thinner ring
+from inset pivots, nor the nominal arch from a pair of small effects
+(bench/diagnosis_identifiability.py): the closest rival fits LMGC90's noise-free thresholds
+as closely as the truth's own model. Within Voussoir, a test that stands just below the
+threshold does part them by its crown record (bench/diagnosis_crown.py: 3 mm apart
+against 0.5 mm of spread). Whether that holds against another code is what a crown record
+would have to show before it can enter the likelihood: here, for each stored LMGC90
+truth with the table following the command (the nominal arch, a ring, a friction; no
+actuator), at each of its six (arch, frequency) pairs:
+
+- LMGC90 runs the truth's own specimens (its faults baked in) at each of `fractions` x
+  its threshold (commanded amplitude), recording the crown relative to the table
+  (truth_case.py: the keystone, or the mean of the two middle voussoirs);
+- Voussoir runs (the nominal specimens) the truth's own model and its closest rival, each
+  at its grid point closest to LMGC90's thresholds after one campaign offset (as the
+  identifiability bench finds them), at the same fraction of that model's own threshold
+  (the amplitude times the model's fitted offset), at dt x 0.97, 1 and 1.03 (the
+  simulator's spread);
+- the peak horizontal crown displacement of each: LMGC90's measured peak against the two
+  models' predictions.
+
+Prints a row per pair and fraction: the peaks [mm], the cross-code error of the truth's
+own model (log LMGC90 / own), the rivals' difference (log rival / own), the replicas'
+spread, and which model LMGC90's peak lies closer to. A row where every peak stays below
+FLOOR_M (0.5 mm, the floor of the diagnosis's crown comparison: a transducer's noise) is
+a test that did not rock, and says nothing; a row where a run fell is left out. Then,
+over the rows that rocked: the share where LMGC90's peak is closer to the truth's own
+model, and the median |cross-code error| against the median |rivals' difference|.
+Writes OUT/crown_records.json.
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import json
+import math
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+ROOT = HERE.parent.parent
+sys.path[:0] = [str(ROOT / "postproc"), str(ROOT / "postproc" / "tests"), str(ROOT / "bench"), str(HERE)]
+
+from voussoir_post.diagnosis.bank import load_banks, variant_key  # noqa: E402
+from voussoir_post.diagnosis.effects import Variant  # noqa: E402
+from voussoir_post.diagnosis.models import MODEL_IDS, model_grid  # noqa: E402
+from voussoir_post.diagnosis.rates import covers  # noqa: E402
+from voussoir_post.diagnosis.settings import DiagnosisSettings  # noqa: E402
+from voussoir_post.diagnosis.simulator import Simulator  # noqa: E402
+from voussoir_post.readers.campaign import Test  # noqa: E402
+
+from independent_campaigns import ARCHES  # noqa: E402
+from lmgc90_campaigns import IDEAL, draw_campaign, stored_truths, truth_model  # noqa: E402
+from truths import Lmgc90Specimen  # noqa: E402
+
+BANK = ROOT / "postproc" / "tests" / "data" / "replay" / "bank"
+DT_FACTORS = (0.97, 1.0, 1.03)
+FLOOR_M = 5.0e-4  #: peaks below this are a transducer's noise (single_runs.crown_comparison's floor)
+#: The truths whose table follows the command and whose model is a power truth of the
+#: identifiability bench (the nominal arch, a ring, a friction).
+DEFAULT_SLUGS = ("t03_none", "t04_none", "t07_none", "t00_geometry_0.928", "t06_geometry_0.880",
+                 "t18_geometry_0.807", "t23_geometry_1.079", "t13_friction_0.422", "t103_friction_0.268")
+
+
+def closest(bank, obs, y: np.ndarray, model: str) -> tuple[Variant, float, float]:
+    """The grid point of `model` whose log thresholds lie closest to y after one campaign
+    offset: its variant, its RMS and the offset (log, model less LMGC90)."""
+    g = model_grid(model, bank, obs)
+    r = g.mu - y[None, :]
+    ok = np.isfinite(g.log_prior)
+    rc = r - r.mean(axis=1, keepdims=True)
+    rms = np.where(ok, np.sqrt((rc ** 2).mean(axis=1)), np.inf)
+    j = int(np.argmin(rms))
+    names = [n for n in g.names if n != "table_motion"]
+    variant = Variant.of((n, str(g.values[g.names.index(n)][j]) if g.values[g.names.index(n)].dtype == object
+                          else round(float(g.values[g.names.index(n)][j]), 6)) for n in names) if names else Variant()
+    return variant, float(rms[j]), float(r[j].mean())
+
+
+def peak(record: dict) -> float:
+    return float(np.max(np.abs(np.asarray(record["crown_dx_m"], float)))) if len(record["crown_dx_m"]) else math.nan
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--lmgc90-build", required=True)
+    ap.add_argument("out", type=Path)
+    ap.add_argument("--slugs", default=",".join(DEFAULT_SLUGS))
+    ap.add_argument("--fractions", default="0.9,0.95,0.98", help="of each threshold, where the tests stand")
+    ap.add_argument("--bin-dir", type=Path, default=ROOT / "build" / "drivers")
+    args = ap.parse_args()
+    args.out.mkdir(parents=True, exist_ok=True)
+    t0 = time.time()
+    bank = load_banks(BANK)
+    truths = {t["slug"]: t for t in stored_truths()}
+    sims = {f: Simulator(DiagnosisSettings(bin_dir=args.bin_dir, dt_s=1.0e-3 * f, log=lambda *_: None),
+                         args.out / f"voussoir_dt_{f}") for f in DT_FACTORS}
+    arches = {a.specimen_id: a for a in ARCHES}
+    rows = []
+    fractions = [float(x) for x in args.fractions.split(",") if x]
+    print(f"{'truth':22s} {'pair':9s} {'frac':4s} {'own':26s} {'rival':34s} {'LMGC90':>6s} {'own':>6s} {'rival':>6s} "
+          f"{'spread':>6s} {'err':>6s} {'diff':>6s}  closer   (peak crown dx, mm; err = log LMGC90/own, "
+          f"diff = log rival/own)")
+    for slug in [s for s in args.slugs.split(",") if s]:
+        t = truths[slug]
+        obs, _ = draw_campaign(t, np.random.default_rng([2026, t["truth"]["index"], 0]), IDEAL)
+        model = truth_model(t, bank, obs)
+        by = {(p["specimen_id"], round(p["frequency_hz"], 9)): p for p in t["pairs"]}
+        y = np.array([math.log(by[(p.specimen_id, round(p.frequency_hz, 9))]["threshold_m"]) for p in obs.pairs])
+        fits = {m: closest(bank, obs, y, m) for m in MODEL_IDS if "table_motion" not in m}
+        own_id = min((m for m in fits if covers(m, model)), key=lambda m: fits[m][1])
+        rival_id = min((m for m in fits if not covers(m, model)), key=lambda m: fits[m][1])
+        own, rival = fits[own_id], fits[rival_id]
+        specimens = {}
+        for p in obs.pairs:
+            sid, f = p.specimen_id, p.frequency_hz
+            if sid not in specimens:   # as truths.make_truth builds the truth's specimens
+                drawn = dict(t["truth"], faults=t["faults"])
+                friction = drawn["parameters"].get("friction", {}).get("friction", arches[sid].friction)
+                specimens[sid] = Lmgc90Specimen(args.lmgc90_build, args.out / "lmgc90" / slug / sid, arches[sid],
+                                                drawn, friction, record_crown=True)
+            for fraction in fractions:
+                amp = fraction * by[(sid, round(f, 9))]["threshold_m"]
+                lm = specimens[sid]
+                collapsed, _, _ = lm.run(f, amp)
+                lm_mm = 1e3 * peak(lm.last)
+                spec = obs.specimens[sid]
+                pred = {}
+                for name, (variant, _, offset) in (("own", own), ("rival", rival)):
+                    test = Test(f"{slug}_{sid}_{f}_{fraction}_{name}", sid, "afd", "stand", frequency_hz=f,
+                                amplitude_m=amp * math.exp(offset), n_attack=1, n_full=1, n_decay=1)
+                    runs = [sim.run_tests([(spec, test, variant, {})])[0] for sim in sims.values()]
+                    pred[name] = ([1e3 * float(np.max(np.abs(r["crown_dx_m"]))) for r in runs],
+                                  any(r["collapsed"] for r in runs))
+                o, r_ = float(np.mean(pred["own"][0])), float(np.mean(pred["rival"][0]))
+                spread = float(np.std(np.log(pred["own"][0])))  # the own model's replicas (dt)
+                fell = collapsed or pred["own"][1] or pred["rival"][1]
+                rocked = max(lm_mm, o, r_) >= 1e3 * FLOOR_M
+                floor = 1e3 * FLOOR_M
+                lo, oo, ro = max(lm_mm, floor), max(o, floor), max(r_, floor)
+                err, diff = math.log(lo / oo), math.log(ro / oo)
+                closer = "own" if abs(math.log(lo / oo)) < abs(math.log(lo / ro)) else \
+                    ("tie" if abs(math.log(lo / oo)) == abs(math.log(lo / ro)) else "rival")
+                row = {"slug": slug, "model": model, "own": variant_key(own[0]), "own_fit": own[1],
+                       "own_offset": own[2], "rival": variant_key(rival[0]), "rival_fit": rival[1],
+                       "rival_offset": rival[2], "specimen_id": sid, "frequency_hz": f, "fraction": fraction,
+                       "amplitude_m": amp, "lmgc90_collapsed": collapsed, "lmgc90_peak_mm": lm_mm,
+                       "own_peaks_mm": pred["own"][0], "own_collapsed": pred["own"][1],
+                       "rival_peaks_mm": pred["rival"][0], "rival_collapsed": pred["rival"][1],
+                       "rocked": rocked, "fell": fell, "log_err": err, "log_diff": diff, "log_spread": spread,
+                       "closer": closer}
+                rows.append(row)
+                note = " fell: " + ",".join(n for n, c in (("LMGC90", collapsed), ("own", pred["own"][1]),
+                                                           ("rival", pred["rival"][1])) if c) if fell else \
+                    ("" if rocked else " (no rocking)")
+                print(f"{slug[:22]:22s} {sid} {f:4.2f} {fraction:4.2f} {variant_key(own[0])[:26]:26s} "
+                      f"{variant_key(rival[0])[:34]:34s} {lm_mm:6.2f} {o:6.2f} {r_:6.2f} {spread:6.3f} {err:+6.2f} "
+                      f"{diff:+6.2f}  {closer}{note}", flush=True)
+    ok = [r for r in rows if r["rocked"] and not r["fell"]]
+    share = sum(r["closer"] == "own" for r in ok) / max(1, len(ok))
+    med_err = float(np.median([abs(r["log_err"]) for r in ok])) if ok else math.nan
+    med_diff = float(np.median([abs(r["log_diff"]) for r in ok])) if ok else math.nan
+    print(f"\n{len(ok)} of {len(rows)} tests rocked and stood in every run: LMGC90's peak closer to the truth's own model in "
+          f"{share:.2f} of them; median |log LMGC90/own| {med_err:.2f}, median |log rival/own| {med_diff:.2f}; "
+          f"{time.time() - t0:.0f} s")
+    (args.out / "crown_records.json").write_text(json.dumps({"fractions": fractions, "rows": rows,
+                                                             "share_closer_own": share, "median_abs_log_err": med_err,
+                                                             "median_abs_log_diff": med_diff}, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
