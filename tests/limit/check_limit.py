@@ -275,6 +275,21 @@ def contact_resultant(d, i, cx, cy, key="contact_forces"):
     return fx, fy, m
 
 
+def nml_number(text, name):
+    """The number given to `name` (a regular expression) in a namelist file's text."""
+    return float(re.search(r"\b" + name + r" *= *([-0-9.eE+]+)", text).group(1))
+
+
+def segmental_extrados(span, rise, t, n):
+    """The extrados ends of the joints of a segmental ring of n voussoirs (span and rise of
+    its intrados, depth t), from the left springing: on the circle of radius R + t about the
+    intrados' centre, R = (L^2/4 + r^2)/(2r), at n equal angles."""
+    radius = (span ** 2 / 4 + rise ** 2) / (2 * rise)
+    half = math.asin(span / 2 / radius)
+    phis = [-half + 2 * half * k / n for k in range(n + 1)]
+    return [(span / 2 + (radius + t) * math.sin(p), rise - radius + (radius + t) * math.cos(p)) for p in phis]
+
+
 def top_y(blocks, x):
     """The top surface of the JSON's blocks at x: the highest point of any block's edge there."""
     best = None
@@ -995,7 +1010,7 @@ elif case == "bridge_fill":
           f"the live load in words says where it stands and how it spreads: {d['live_load']}")
     text = open(nml).read()
     def number(name):
-        return float(re.search(r"\b" + name + r" *= *([-0-9.eE+]+)", text).group(1))
+        return nml_number(text, name)
     rho_f, level, theta = number("fill_density_kg_m3"), number("fill_level_m"), number("dispersion_angle_deg")
     rho_r, width = number("ring_density_kg_m3"), number("width_m")
     blocks = d["blocks"]
@@ -1151,15 +1166,12 @@ elif case == "bridge_particles":
     d = load(nml)
     text = open(nml).read()
     def number(name):
-        return float(re.search(r"\b" + name + r" *= *([-0-9.eE+]+)", text).group(1))
+        return nml_number(text, name)
     span, rise, t, n = number(r"span_m\(1\)"), number(r"rise_m\(1\)"), number("ring_thickness_m"), \
         int(number("n_voussoirs"))
     level, w, width = number("fill_level_m"), number("abutment_width_m"), number("width_m")
     rho_f, rho_r, size = number("fill_density_kg_m3"), number("ring_density_kg_m3"), number("fill_particle_size_m")
-    radius = (span ** 2 / 4 + rise ** 2) / (2 * rise)
-    half = math.asin(span / 2 / radius)
-    phis = [-half + 2 * half * k / n for k in range(n + 1)]
-    ext = [(span / 2 + (radius + t) * math.sin(p), rise - radius + (radius + t) * math.cos(p)) for p in phis]
+    ext = segmental_extrados(span, rise, t, n)
     bottom = [(-w, ext[0][1])] + ext + [(span + w, ext[-1][1])]
     region = shoelace(bottom + [(span + w, level), (-w, level)])
     def bottom_y(x):
@@ -1243,17 +1255,14 @@ elif case == "bridge_backing":
     d = load(nml)
     text = open(nml).read()
     def number(name):
-        return float(re.search(r"\b" + name + r" *= *([-0-9.eE+]+)", text).group(1))
+        return nml_number(text, name)
     span, rise, t, n = number(r"span_m\(1\)"), number(r"rise_m\(1\)"), number("ring_thickness_m"), \
         int(number("n_voussoirs"))
     level, w, width, theta = number("fill_level_m"), number("abutment_width_m"), number("width_m"), \
         number("dispersion_angle_deg")
     back, course = number("backing_level_m"), number("backing_course_m")
     rho_f, rho_r, rho_b = number("fill_density_kg_m3"), number("ring_density_kg_m3"), number("backing_density_kg_m3")
-    radius = (span ** 2 / 4 + rise ** 2) / (2 * rise)
-    half = math.asin(span / 2 / radius)
-    phis = [-half + 2 * half * k / n for k in range(n + 1)]
-    ext = [(span / 2 + (radius + t) * math.sin(p), rise - radius + (radius + t) * math.cos(p)) for p in phis]
+    ext = segmental_extrados(span, rise, t, n)
     bottom = [(-w, ext[0][1])] + ext + [(span + w, ext[-1][1])]
     region = sum((x1 - x0) * (back - (y0 + y1) / 2) for (x0, y0), (x1, y1) in zip(bottom, bottom[1:])
                  if max(y0, y1) <= back)
@@ -1575,7 +1584,7 @@ elif case == "bridge_boussinesq":
     path = "path_x0_m = 1.0, path_x1_m = 9.0, path_points = 17"
     check(path in text, "the input's path to replace")
     def number(name):
-        return float(re.search(r"\b" + name + r" *= *([-0-9.eE+]+)", text).group(1))
+        return nml_number(text, name)
     level, rho_f, rho_r, width = (number(k) for k in ("fill_level_m", "fill_density_kg_m3", "ring_density_kg_m3",
                                                       "width_m"))
     g_w = 9.81 * width
