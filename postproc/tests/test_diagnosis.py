@@ -30,6 +30,7 @@ import pytest
 from scipy.stats import binomtest, multivariate_normal, norm
 
 from voussoir_post.diagnosis.actuator import peak_gain
+import voussoir_post.diagnosis.bank as bank_module
 from voussoir_post.diagnosis.bank import Bank, build_bank, key_variant, load_banks, variant_key
 from voussoir_post.diagnosis.decision import NAME_AT, Decision, credible_set, to_separate
 from voussoir_post.diagnosis.emulator import emulate
@@ -496,20 +497,50 @@ def test_end_to_end_diagnosis_follows_the_contract_and_keeps_the_truth(tmp_path,
     # ... and the next test's sweeps are the first run's (the same questions, not new ones).
     assert sorted(p.name for p in (tmp_path / "bank" / "next-test").glob("*")) == questions
     assert max(abs(p[m] - again["probabilities"][m]) for m in p) <= 0.01
-    # A test at a new frequency simulates that frequency only (the cache holds a file per
-    # specimen and frequency), and the merged bank holds both, the first to the bit.
+    # The bank the diagnosis made is the one build_bank reads back: asked again, nothing is
+    # simulated (a new frequency: test_a_new_frequency_simulates_that_frequency_only).
     spec = campaign.specimens["W156"]
     first = build_bank({"W156": spec}, {"W156": [1.25]}, {"W156": (1, 1, 1)}, settings, tmp_path / "bank",
                        tmp_path / "work")
-    grown = build_bank({"W156": spec}, {"W156": [1.25, 2.5]}, {"W156": (1, 1, 1)}, settings, tmp_path / "bank",
-                       tmp_path / "work")
-    merged = grown.specimens["W156"]
-    assert first.searches == 0 and merged.frequencies_hz == [1.25, 2.5]
-    assert grown.searches == merged.searches - first.specimens["W156"].searches > 0
-    assert merged.thresholds["nominal"][0] == first.specimens["W156"].thresholds["nominal"][0]
+    assert first.searches == 0 and first.specimens["W156"].frequencies_hz == [1.25]
     # One window for hinges, for the generator and the model: a model that names the
     # truth reproduces most of what the generator saw.
     assert result["baseline"]["hinge_match"] is not None
+
+
+def test_a_new_frequency_simulates_that_frequency_only(tmp_path, monkeypatch):
+    """The bank's cache holds one file per specimen and frequency: asked again, a bank is
+    read, not made; asked at one more frequency, only that frequency is simulated; the
+    merged bank holds both, the first frequency's thresholds to the bit, and a node refined
+    at one frequency only holds MISSING at the other. The kernel is replaced here by a
+    stand-in that records what it is asked to simulate (the end-to-end test makes and reads
+    back a real bank), so the count of simulations is exact."""
+    asked = []
+
+    def stand_in(spec, freqs, cycles, settings, work):
+        asked.append(list(freqs))
+        f = freqs[0]
+        made = bank_module.SpecimenBank(spec.specimen_id, list(freqs), tuple(cycles), [0.01 * f], 0.5, 1e-4,
+                                        settings.dt_s)
+        made.thresholds = {"nominal": [0.0123456789123 * f], f"node@{f:g}": [0.02 * f]}
+        made.searches = 2
+        return made
+
+    monkeypatch.setattr(bank_module, "_simulate", stand_in)
+    spec = Specimen("W156", 156.0, 13, 0.508, 0.071, 0.1, 1900.0, 0.5)
+    settings = DiagnosisSettings(bin_dir=bin_dir(), log=lambda *_: None)
+
+    def bank_at(freqs):
+        return build_bank({"W156": spec}, {"W156": freqs}, {"W156": (1, 1, 1)}, settings, tmp_path / "bank",
+                          tmp_path / "work")
+    first, again, grown = bank_at([1.25]), bank_at([1.25]), bank_at([1.25, 2.5])
+    assert asked == [[1.25], [2.5]]
+    assert (first.searches, again.searches, grown.searches) == (2, 0, 2)
+    merged, one = grown.specimens["W156"], first.specimens["W156"]
+    assert merged.frequencies_hz == [1.25, 2.5]
+    assert merged.thresholds["nominal"][0] == one.thresholds["nominal"][0] == float(f"{0.0123456789123 * 1.25:.9g}")
+    assert merged.thresholds["node@1.25"] == [one.thresholds["node@1.25"][0], bank_module.MISSING]
+    assert merged.thresholds["node@2.5"] == [bank_module.MISSING, 0.05]
 
 
 def test_the_reports_figures_are_written_in_the_format_asked(tmp_path):
