@@ -480,6 +480,13 @@ driver=voussoir-limit case_ bridge_boussinesq_particles "&bridge dispersion = 'b
 driver=voussoir-limit case_ bridge_boussinesq_flush "&bridge fill_level_m = 2.95 is outside the allowed range fill_level_m > 2.95 m with dispersion = 'boussinesq'" "&bridge $br, fill_density_kg_m3 = 2000, fill_level_m = 2.95, $bs /
 &load point_load_n(1) = 1000, point_load_x_m(1) = 5 /"
 driver=voussoir-limit case_ bridge_dispersion_unknown "&bridge dispersion = 'elastic' is not one of 'angle', 'boussinesq'" "&bridge $fl, dispersion = 'elastic' /"
+# The parts' compressive strengths (issue 37).
+driver=voussoir-limit case_ bridge_strength_both "&limit compressive_strength_pa gives every interface one strength, and &bridge gives its parts their own" "&bridge $fl, ring_compressive_strength_pa = 5e6 /
+&limit compressive_strength_pa = 5e6 /
+&load point_load_n(1) = 1000, point_load_x_m(1) = 5 /"
+driver=voussoir-limit case_ bridge_strength_negative "&bridge ring_compressive_strength_pa = -1 is outside the allowed range 0 <= ring_compressive_strength_pa <= 1e10 Pa" "&bridge $br, ring_compressive_strength_pa = -1 /"
+driver=voussoir-limit case_ bridge_strength_pier_one_span "&bridge pier_compressive_strength_pa = 2000000 is outside the allowed range 0 with one span" "&bridge $br, pier_compressive_strength_pa = 2e6 /"
+driver=voussoir-limit case_ bridge_strength_backing_none "&bridge backing_compressive_strength_pa = 2000000 is outside the allowed range 0 without backing" "&bridge $br, backing_compressive_strength_pa = 2e6 /"
 # Masonry backing (issue 37).
 driver=voussoir-limit case_ bridge_backing_below_springing "&bridge backing_level_m = 0.1 is outside the allowed range backing_level_m > 0.[0-9]* m, the extrados end of the highest springing joint" "&bridge $fl, backing_level_m = 0.1 /"
 driver=voussoir-limit case_ bridge_backing_over_crown "&bridge backing_level_m = 3 is outside the allowed range backing_level_m < 2.95 m, the lowest crown's extrados" "&bridge $fl, backing_level_m = 3.0 /"

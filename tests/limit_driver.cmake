@@ -94,6 +94,13 @@ add_test(NAME limit_driver_bridge_rings
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
                  bridge_rings
          WORKING_DIRECTORY ${LIMIT_TEST_DIR})
+# The parts' compressive strengths (&bridge ring_/pier_compressive_strength_pa, issue 37):
+# a single span's ring at S is &limit's S on every interface, each interface of two spans
+# at the lesser of its blocks' strengths.
+add_test(NAME limit_driver_bridge_strength
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/limit/check_limit.py $<TARGET_FILE:voussoir-limit>
+                 bridge_strength ${CMAKE_SOURCE_DIR}/input/bridge_fill.nml
+         WORKING_DIRECTORY ${LIMIT_TEST_DIR})
 # Vehicles (&vehicle, issue 37) on the span of input/bridge_fill.nml: a one-axle vehicle is
 # the point load, two half axles 0 m apart are one, the axles where they stand, the
 # harmonic bound of the axles alone (convexity), the named LM1 tandem against its axles.

@@ -37,6 +37,10 @@ module voussoir_assembly
     !> Each body's Coulomb coefficient where allocated (the parts of a bridge), else the
     !> run's; a contact between two bodies takes the lesser of theirs.
     real(dp), allocatable :: friction(:)
+    !> Each body's compressive strength [Pa] where allocated (the parts of a bridge; 0: rigid,
+    !> it does not crush); an interface takes the lesser of its two blocks' (a rigid block's
+    !> neighbour's own).
+    real(dp), allocatable :: compressive_strength_pa(:)
     !> A multi-ring bridge's ring of each body where allocated (1 the intrados ring, counted
     !> outwards; 0 no ring's): an interface between two rings takes ring_joint_friction
     !> instead of the lesser of its two blocks'.
@@ -90,6 +94,7 @@ contains
     if (allocated(asm%course)) mirror%course = asm%course
     if (allocated(asm%density_kg_m3)) mirror%density_kg_m3 = asm%density_kg_m3
     if (allocated(asm%friction)) mirror%friction = asm%friction
+    if (allocated(asm%compressive_strength_pa)) mirror%compressive_strength_pa = asm%compressive_strength_pa
     if (allocated(asm%block_name)) mirror%block_name = asm%block_name
     if (allocated(asm%ring)) mirror%ring = asm%ring
     mirror%ring_joint_friction = asm%ring_joint_friction

@@ -166,6 +166,22 @@ contains
       end do
     end if
 
+    ! The parts' compressive strengths (0: rigid), for the LP's crushing.
+    if (b%ring_compressive_strength_pa > 0.0_dp .or. b%pier_compressive_strength_pa > 0.0_dp .or. &
+        b%backing_compressive_strength_pa > 0.0_dp) then
+      allocate (asm%compressive_strength_pa(nb))
+      asm%compressive_strength_pa = 0.0_dp
+      do k = 1, nb
+        if (asm%role(k) == role_backing) then
+          asm%compressive_strength_pa(k) = b%backing_compressive_strength_pa
+        else if (asm%block_name(k)(1:5) == 'span ') then
+          asm%compressive_strength_pa(k) = b%ring_compressive_strength_pa
+        else if (asm%block_name(k)(1:5) == 'pier ') then
+          asm%compressive_strength_pa(k) = b%pier_compressive_strength_pa
+        end if
+      end do
+    end if
+
   contains
 
     subroutine add(xy, driven, role, density_kg_m3, friction, name)

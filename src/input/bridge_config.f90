@@ -86,6 +86,12 @@ module voussoir_bridge_config
     !> the abutments' and piers' tops, the extrados and backing_level_m, in horizontal
     !> courses of backing_course_m, free blocks of backing_density_kg_m3 with Coulomb
     !> friction backing_friction and no tension.
+    !> Compressive strength of each part [Pa] for the LP's crushing (0: rigid); an interface
+    !> takes the lesser of its two blocks'. &limit compressive_strength_pa gives every
+    !> interface one instead.
+    real(dp) :: ring_compressive_strength_pa = 0.0_dp
+    real(dp) :: pier_compressive_strength_pa = 0.0_dp
+    real(dp) :: backing_compressive_strength_pa = 0.0_dp
     real(dp) :: backing_level_m = 0.0_dp                !! above the springings [m]; 0: no backing
     real(dp) :: backing_course_m = 0.0_dp               !! the courses' height [m]; 0: not given (0.3 m)
     real(dp) :: backing_density_kg_m3 = 2000.0_dp
@@ -138,6 +144,15 @@ contains
                about="real, m, the particles' size with fill_model = 'particles'")
     call g%add('fill_particle_friction', b%fill_particle_friction, range='fill_particle_friction >= 0 (finite)', &
                about="real, the particles' Coulomb coefficient with fill_model = 'particles'")
+    call g%add('ring_compressive_strength_pa', b%ring_compressive_strength_pa, unit='Pa', &
+               range='0 <= ring_compressive_strength_pa <= 1e10 Pa', &
+               about="real, Pa, the ring's compressive strength for the limit analysis (0: rigid)")
+    call g%add('pier_compressive_strength_pa', b%pier_compressive_strength_pa, unit='Pa', &
+               range='0 <= pier_compressive_strength_pa <= 1e10 Pa', &
+               about="real, Pa, the piers' compressive strength for the limit analysis (0: rigid)")
+    call g%add('backing_compressive_strength_pa', b%backing_compressive_strength_pa, unit='Pa', &
+               range='0 <= backing_compressive_strength_pa <= 1e10 Pa', &
+               about="real, Pa, the backing's compressive strength for the limit analysis (0: rigid)")
     call g%add('backing_level_m', b%backing_level_m, unit='m', range='0 <= backing_level_m <= 300 m', &
                about='real, m, the top of the masonry backing above the springings (0: no backing)')
     call g%add('backing_course_m', b%backing_course_m, unit='m', range='0 <= backing_course_m <= 10 m', &
@@ -202,7 +217,11 @@ contains
     real(dp) :: back_m, up_m, spring_m, crown_m
     integer :: k
     if (.not. status%ok) return
+    call need(b%pier_compressive_strength_pa == 0.0_dp .or. b%n_spans > 1, path, 'bridge', &
+              'pier_compressive_strength_pa', b%pier_compressive_strength_pa, '0 with one span (no pier)', status)
     if (b%backing_level_m == 0.0_dp) then
+      call need(b%backing_compressive_strength_pa == 0.0_dp, path, 'bridge', 'backing_compressive_strength_pa', &
+                b%backing_compressive_strength_pa, '0 without backing (set backing_level_m > 0)', status)
       call need(b%backing_course_m == 0.0_dp, path, 'bridge', 'backing_course_m', b%backing_course_m, &
                 '0 without backing (set backing_level_m > 0)', status)
       return

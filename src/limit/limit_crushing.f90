@@ -14,7 +14,7 @@ module voussoir_limit_crushing
   implicit none
   private
 
-  public :: crushing_t, crushed_faces, crushing_capacity, crushing_nonassociative
+  public :: crushing_t, crushed_faces, crushing_capacity, crushing_nonassociative, crushes
 
   integer, parameter :: max_steps = 200
   real(dp), parameter :: rel_tol = 1.0e-9_dp
@@ -23,6 +23,9 @@ module voussoir_limit_crushing
   type :: crushing_t
     real(dp) :: strength_pa = 0.0_dp  !! sigma_c [Pa], 0: infinite
     real(dp) :: width_m = 1.0_dp      !! the width out of plane w [m]
+    !> Each interface's own sigma_c [Pa] where allocated (a bridge's parts; 0: that face
+    !> does not crush), instead of strength_pa.
+    real(dp), allocatable :: face_strength_pa(:)
   end type crushing_t
 
 contains
@@ -43,7 +46,9 @@ contains
     do k = 1, faces%n
       along = faces%end_xy(:, 2, k) - faces%end_xy(:, 1, k)
       half_m = 0.5_dp*norm2(along)
-      offset_m = max(normal_n(k), 0.0_dp)/(2.0_dp*crush%strength_pa*crush%width_m)
+      offset_m = 0.0_dp
+      if (face_strength(crush, k) > 0.0_dp) &
+        offset_m = max(normal_n(k), 0.0_dp)/(2.0_dp*face_strength(crush, k)*crush%width_m)
       if (offset_m >= half_m) then
         crushed = .true.
         offset_m = half_m
@@ -73,7 +78,7 @@ contains
     converged = .true.
     crushed = .false.
     call lp_capacity(asm, faces, loads, friction, 0.0_dp*friction, res, status)
-    if (.not. status%ok .or. crush%strength_pa <= 0.0_dp) return
+    if (.not. status%ok .or. .not. crushes(crush)) return
     converged = .false.
     normal = sum(res%normal_n, dim=1)
     do steps = 2, max_steps
@@ -110,7 +115,7 @@ contains
     real(dp) :: normal(faces%n), previous_lambda
     integer :: round, round_steps
     logical :: crushed, round_converged
-    if (crush%strength_pa <= 0.0_dp) then
+    if (.not. crushes(crush)) then
       call nonassociative_capacity(asm, faces, loads, friction, assoc, res, steps, converged, status)
       return
     end if
@@ -133,6 +138,21 @@ contains
       start = res
     end do
   end subroutine crushing_nonassociative
+
+  !> Whether any interface crushes.
+  pure logical function crushes(crush)
+    type(crushing_t), intent(in) :: crush
+    crushes = crush%strength_pa > 0.0_dp
+    if (allocated(crush%face_strength_pa)) crushes = any(crush%face_strength_pa > 0.0_dp)
+  end function crushes
+
+  !> Interface k's sigma_c [Pa] (0: it does not crush).
+  pure real(dp) function face_strength(crush, k)
+    type(crushing_t), intent(in) :: crush
+    integer, intent(in) :: k
+    face_strength = crush%strength_pa
+    if (allocated(crush%face_strength_pa)) face_strength = crush%face_strength_pa(k)
+  end function face_strength
 
   !> lambda and the interfaces' normal forces (so their offsets) within 1e-9 of the step before.
   pure logical function settled(res, previous_lambda, previous_normal)

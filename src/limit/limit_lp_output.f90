@@ -24,6 +24,12 @@ contains
       fmt_significant(friction)//')'
     if (allocated(lp%live_load)) write (u, '(a)') '  live load: '//lp%live_load
     write (u, '(a)') '  '//itoa(lp%faces%n)//' interfaces'
+    if (allocated(lp%crush%face_strength_pa)) write (u, '(a)') '  compressive strength by part (&bridge): '// &
+      itoa(count(lp%crush%face_strength_pa > 0.0_dp))//' of the interfaces crush, each at the lesser of its two '// &
+      'blocks'' sigma_c ('//fmt_significant(minval(lp%crush%face_strength_pa, mask=lp%crush%face_strength_pa > 0.0_dp), 6)// &
+      ' to '//fmt_significant(maxval(lp%crush%face_strength_pa), 6)//' Pa), its force kept N / (2 sigma_c w) from '// &
+      'the ends (iterated: '//itoa(lp%crushing_steps)//' LPs'//trim(merge('             ', ', UNCONVERGED', &
+      lp%crushing_converged))//')'
     if (lp%crush%strength_pa > 0.0_dp) write (u, '(a)') '  compressive strength '// &
       fmt_significant(lp%crush%strength_pa, 6)//' Pa: each interface force kept N / (2 sigma_c w) from the ends '// &
       '(iterated: '//itoa(lp%crushing_steps)//' LPs'//trim(merge('             ', ', UNCONVERGED', &
@@ -122,6 +128,7 @@ contains
     type(lp_study_t), intent(in) :: lp
     character(len=:), allocatable :: text
     character(len=1), parameter :: nl = achar(10)
+    integer :: i
     text = '  "assembly": '//json_string(lp%assembly)//','//nl
     if (allocated(lp%live_load)) then
       text = text//'  "live_load": '//json_string(lp%live_load)//','//nl
@@ -140,6 +147,15 @@ contains
       text = text//'  "compressive_strength_pa": '//fmt_json_real(lp%crush%strength_pa)//','//nl
     else
       text = text//'  "compressive_strength_pa": null,'//nl
+    end if
+    if (allocated(lp%crush%face_strength_pa)) then   ! each interface's, in the order of contact_forces
+      text = text//'  "interface_compressive_strength_pa": ['
+      do i = 1, size(lp%crush%face_strength_pa)
+        text = text//trim(merge('null', '    ', lp%crush%face_strength_pa(i) <= 0.0_dp))
+        if (lp%crush%face_strength_pa(i) > 0.0_dp) text = text//fmt_json_real(lp%crush%face_strength_pa(i))
+        if (i < size(lp%crush%face_strength_pa)) text = text//', '
+      end do
+      text = text//'],'//nl
     end if
     text = text//'  "crushing_steps": '//itoa(lp%crushing_steps)//','//nl// &
            '  "crushing_converged": '//json_bool(lp%crushing_converged)//','//nl// &

@@ -113,6 +113,16 @@ contains
       call fail(status, 'block '//itoa(b)//' touches no other block: nothing holds it up')
       return
     end do
+    if (allocated(asm%compressive_strength_pa)) then
+      if (any(asm%compressive_strength_pa > 0.0_dp)) then
+        if (study%crush%strength_pa > 0.0_dp) then
+          call fail(status, '&limit compressive_strength_pa gives every interface one strength, and &bridge gives '// &
+                    'its parts their own: give one or the other')
+          return
+        end if
+        study%crush%face_strength_pa = part_strengths(asm, study%faces)
+      end if
+    end if
     call name_arch_joints(asm, study)
     if (allocated(asm%block_name)) study%block_name = asm%block_name
     mu = interface_friction(asm, study%faces, friction)
@@ -488,5 +498,20 @@ contains
     end do
     if (loads%n_bounded > 0) loads%bounded_hi_n = loads%bounded_lo_n
   end subroutine carry_fill
+
+  !> Each interface's compressive strength [Pa] from its two blocks' (0: rigid): the lesser
+  !> of two that crush, the one that does beside a rigid block, 0 between rigid blocks.
+  pure function part_strengths(asm, faces) result(strength)
+    type(assembly_t), intent(in) :: asm
+    type(interface_set_t), intent(in) :: faces
+    real(dp) :: strength(faces%n), a, b
+    integer :: k
+    do k = 1, faces%n
+      a = asm%compressive_strength_pa(faces%body(1, k))
+      b = asm%compressive_strength_pa(faces%body(2, k))
+      strength(k) = max(a, b)
+      if (a > 0.0_dp .and. b > 0.0_dp) strength(k) = min(a, b)
+    end do
+  end function part_strengths
 
 end module voussoir_limit_lp_study

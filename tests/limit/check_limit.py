@@ -1334,6 +1334,64 @@ elif case == "bridge_backing":
           a["load_factor"] >= b["load_factor"] * (1 - 1e-9),
           f"no fill, the load on the ring at x = 2.5 m: lambda with weightless backing {a['load_factor']:.7g} >= "
           f"the bare bridge's {b['load_factor']:.7g}")
+elif case == "bridge_strength":
+    # The parts' compressive strengths (&bridge ring_/pier_compressive_strength_pa), on
+    # input/bridge_fill.nml and input/bridge_two_spans.nml, against the rule they state (an
+    # interface takes the lesser of its two blocks' sigma_c, a rigid block's neighbour's
+    # own): (1) a single span, whose every interface touches a voussoir, with the ring at S
+    # is the span with &limit compressive_strength_pa = S on every interface (the same load
+    # factors to 1e-9) and the crushing lowers it; (2) two spans with the ring at 5 MPa and
+    # the pier at 2 MPa: each interface's strength in the JSON is the one its blocks' names
+    # call for (ring-ring 5, ring-abutment 5, ring-pier 2, pier-ground 2 MPa); (3) a ring of
+    # 1e10 Pa moves each interface's force in by at most delta = N_max / (2 sigma_c w)
+    # (tens of micrometres): the load factor falls below the rigid one by a fraction of the
+    # order of delta / t (the hinges move in by delta), here at most 10 delta / t.
+    fill_text = open(nml).read()
+    # (two spans: the load at span 1's crown, on its extrados at rise + ring, not the path)
+    spans_text = re.sub(r"path_x0_m *= *[^,/]*, *path_x1_m *= *[^,/]*, *path_points *= *[^,/\n]*",
+                        "point_load_x_m(1) = 5.0, point_load_y_m(1) = 2.95",
+                        open(os.path.join(os.path.dirname(nml), "bridge_two_spans.nml")).read())
+    check("point_load_x_m(1) = 5.0" in spans_text, "the two spans' path replaced by a load at the crown")
+    S = 5.0e6
+    def variant(text, name, extra_bridge="", extra_groups=""):
+        body = text.replace("ring_density_kg_m3 = 2200", "ring_density_kg_m3 = 2200" + extra_bridge, 1)
+        check(body != text or not extra_bridge, f"{name}: the input names ring_density_kg_m3 = 2200 to extend")
+        with open(name, "w") as f:
+            f.write(body + extra_groups)
+        return load(name)
+    rigid = variant(fill_text, "strength_none.nml")
+    by_part = variant(fill_text, "strength_ring.nml", f", ring_compressive_strength_pa = {S:g}")
+    everywhere = variant(fill_text, "strength_limit.nml", "", f"\n&limit compressive_strength_pa = {S:g} /\n")
+    check(close(by_part["load_factor"], everywhere["load_factor"], rtol=1e-9) and
+          by_part["load_factor"] < rigid["load_factor"] * (1 - 1e-3),
+          f"one span, ring at {S:g} Pa: lambda {by_part['load_factor']:.9g} = &limit's on every interface "
+          f"{everywhere['load_factor']:.9g}, below the rigid {rigid['load_factor']:.9g}")
+    check(by_part["compressive_strength_pa"] is None and
+          all(x == S for x in by_part["interface_compressive_strength_pa"]) and
+          len(by_part["interface_compressive_strength_pa"]) == len(by_part["contact_forces"]),
+          "one span: every interface at the ring's strength in the JSON")
+    two = variant(spans_text, "strength_two_spans.nml",
+                  ", ring_compressive_strength_pa = 5e6, pier_compressive_strength_pa = 2e6")
+    names = [b["name"] for b in two["blocks"]]
+    def expected(a, b):
+        def own(n):
+            return 5e6 if n.startswith("span ") else 2e6 if n.startswith("pier ") else 0.0
+        x, y = own(a), own(b)
+        return min(x, y) if x > 0 and y > 0 else max(x, y)
+    got = [(names[c["blocks"][0] - 1], names[c["blocks"][1] - 1], st)
+           for c, st in zip(two["contact_forces"], two["interface_compressive_strength_pa"])]
+    kinds = {(a.split()[0], b.split()[0]) for a, b, _ in got}
+    check(all(st == expected(a, b) for a, b, st in got) and ("pier", "ground") in kinds and
+          any("pier" in (a.split()[0], b.split()[0]) and "span" in (a.split()[0], b.split()[0]) for a, b, _ in got),
+          f"two spans: each of {len(got)} interfaces at the lesser of its blocks' strengths (ring 5 MPa, pier 2 MPa)")
+    strong = variant(fill_text, "strength_strong.nml", ", ring_compressive_strength_pa = 1e10")
+    n_max = max(sum(c["normal_n"]) for c in strong["contact_forces"])
+    width, t = nml_number(fill_text, "width_m"), nml_number(fill_text, "ring_thickness_m")
+    delta = n_max / (2 * 1e10 * width)
+    deficit = 1 - strong["load_factor"] / rigid["load_factor"]
+    check(by_part["load_factor"] < strong["load_factor"] <= rigid["load_factor"] and deficit <= 10 * delta / t,
+          f"a ring of 1e10 Pa: {strong['load_factor']:.9g} against the rigid {rigid['load_factor']:.9g} "
+          f"(deficit {deficit:.2e} <= 10 delta / t = {10 * delta / t:.2e})")
 elif case == "bridge_vehicle":
     # &vehicle on input/bridge_fill.nml's span (fill, live loads spread at 30 deg), checked
     # against what follows from the input alone: (1) a one-axle vehicle of 100 kN is the
