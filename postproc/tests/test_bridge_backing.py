@@ -5,9 +5,13 @@ the geometry alone."""
 
 from __future__ import annotations
 
+import re
+from pathlib import Path
+
 import numpy as np
 
 from conftest import run_executable
+from voussoir_post.cli import post
 from voussoir_post.analysis.contact_forces import reactions
 from voussoir_post.analysis.kinematics import ROLE_BACKING
 from voussoir_post.plots.reactions import free_weight_n
@@ -59,3 +63,29 @@ def test_the_backing_and_the_fill_stand_on_the_ring_at_rest(voussoir_run_exe, tm
     assert abs(float(r.force_n[-1, :, 0].sum())) <= 1e-5 * expected
     ring_and_backing = (2200 * ring_area + 2100 * backing_area) * g
     assert abs(free_weight_n(run) - ring_and_backing) <= 1e-9 * ring_and_backing
+
+
+def test_the_bridge_report_lists_the_backing_and_its_weight(voussoir_limit_exe, tmp_path):
+    """voussoir-post bridge-report on input/bridge_backing.nml: the geometry says where the
+    backing stands and how it is laid, and its weight is 2200 kg/m3 x g x the trapezoids
+    between its level and the abutments' tops and the extrados chords wholly below it,
+    computed here from the segmental geometry (to the report's 4 digits); the fill's row
+    says it stands on the backing too."""
+    nml = Path(__file__).resolve().parents[2] / "input" / "bridge_backing.nml"
+    out = run_executable([voussoir_limit_exe, nml, "--json"], tmp_path).stdout
+    (tmp_path / "backing.json").write_text(out)
+    assert post.main(["bridge-report", str(tmp_path / "backing.json"), "--out", str(tmp_path / "report")]) == 0
+    text = (tmp_path / "report" / "report.md").read_text()
+    span, rise, t, n, back, w, g = 10.0, 2.5, 0.45, 20, 1.5, 2.0, 9.81
+    radius = (span ** 2 / 4 + rise ** 2) / (2 * rise)
+    half = np.arcsin(span / 2 / radius)
+    phi = np.linspace(-half, half, n + 1)
+    ex = span / 2 + (radius + t) * np.sin(phi)
+    ey = rise - radius + (radius + t) * np.cos(phi)
+    bottom = [(-w, ey[0]), *zip(ex, ey), (span + w, ey[-1])]
+    area = sum((x1 - x0) * (back - (y0 + y1) / 2) for (x0, y0), (x1, y1) in zip(bottom, bottom[1:])
+               if max(y0, y1) <= back)
+    row = re.search(r"\| the backing's weight \| ([0-9.]+) \|", text)
+    assert row and abs(float(row.group(1)) - 2200 * g * area / 1e3) <= 0.05, (row, 2200 * g * area / 1e3)
+    assert "- Backing: masonry over the haunches up to 1.5 m above the springings" in text
+    assert "courses of 0.3 m" in text and "| the fill's weight on the ring and the backing |" in text

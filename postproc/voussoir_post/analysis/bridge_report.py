@@ -77,6 +77,16 @@ class BridgeSummary:
     pressure_passive_n: float = math.nan  #: every face at its mobilised passive bound
     faces_passive: int = 0  #: faces at their passive bound at collapse (above the active one)
     n_faces: int = 0
+    #: Masonry backing (&bridge backing_level_m; docs/bridges.md, "Backing"): its top [m], its
+    #: blocks, their weight [N], density, friction and courses; 0 blocks without backing.
+    backing_level_m: float = 0.0
+    backing_blocks: int = 0
+    backing_weight_n: float = 0.0
+    backing_density_kg_m3: float = 0.0
+    backing_friction: float = math.nan
+    backing_course_m: float = math.nan
+    #: Each part's compressive strength for the LP [Pa] (0: rigid), where given.
+    strengths_pa: dict = field(default_factory=dict)
 
     @property
     def load_factor(self) -> float:
@@ -195,6 +205,10 @@ def bridge_summary(limit: LimitResult) -> BridgeSummary:
         if not limit.load_cases:
             live = [1e3 * p * share for p in axles_kn] + live
         vehicle_total_n = 1e3 * sum(axles_kn) * gamma_q
+    backing = [blk.vertices_xy_m for blk in limit.blocks if blk.name.startswith("backing ")]
+    rho_back = float(b.get("backing_density_kg_m3", 2000.0))
+    strengths = {part: float(b.get(f"{part}_compressive_strength_pa", 0.0) or 0.0)
+                 for part in ("ring", "pier", "backing")}
     pressures = [abs(float(p.force_n[0])) for p in limit.fill_pressures]
     bounds = limit.fill_pressure_bounds_n
     at_passive = sum(1 for f, (a, p) in zip(pressures, bounds) if p > a * (1 + 1e-9) and abs(f - p) <= 1e-9 * p)
@@ -213,6 +227,11 @@ def bridge_summary(limit: LimitResult) -> BridgeSummary:
         fill_weight_n=-sum(float(p.force_n[1]) for p in limit.fill_loads),
         dispersion_angle_deg=float(b.get("dispersion_angle_deg", 0.0)),
         fill_friction_deg=float(b.get("fill_friction_deg", 0.0)),
+        backing_level_m=float(b.get("backing_level_m", 0.0) or 0.0), backing_blocks=len(backing),
+        backing_weight_n=rho_back * g * width * sum(_area(v) for v in backing), backing_density_kg_m3=rho_back,
+        backing_friction=float(b.get("backing_friction", math.nan)),
+        backing_course_m=float(b.get("backing_course_m", math.nan)),
+        strengths_pa={k: v for k, v in strengths.items() if v > 0},
         passive_mobilisation=float(b.get("passive_mobilisation", 0.0)),
         live_loads_n=live, live_total_n=sum(float(np.hypot(*p.force_n)) for p in
                                             (limit.surface_loads or [q for q in limit.point_loads if q.live] + limit.patch_loads)),
@@ -323,6 +342,13 @@ def report_markdown(main: BridgeSummary, without: BridgeSummary | None, figures:
     if main.n_piers:
         out.append(f"- Piers: {main.n_piers}, {main.pier_width_m:g} m wide, {main.pier_density_kg_m3:g} kg/m³, free "
                    f"blocks on the ground; friction {main.frictions['pier']:g}.")
+    if main.backing_blocks:
+        out.append(f"- Backing: masonry over the haunches up to {main.backing_level_m:g} m above the springings, "
+                   f"{main.backing_blocks} free blocks in courses of {main.backing_course_m:g} m, "
+                   f"{main.backing_density_kg_m3:g} kg/m³, friction {main.backing_friction:g} (no tension).")
+    if main.strengths_pa:
+        out.append("- Compressive strength (each interface at the lesser of its two blocks'; the others rigid): "
+                   + ", ".join(f"{part} {v / 1e6:g} MPa" for part, v in main.strengths_pa.items()) + ".")
     if main.fill_density_kg_m3 > 0:
         out.append(f"- Fill: level surface {main.fill_level_m:g} m above the springings, {main.fill_density_kg_m3:g} "
                    f"kg/m³ ({main.fill_unit_weight_kn_m3:.4g} kN/m³).")
@@ -334,7 +360,14 @@ def report_markdown(main: BridgeSummary, without: BridgeSummary | None, figures:
             f"voussoirs' area × {main.width_m:g} m |"]
     if main.n_piers:
         out.append(f"| the piers' weight | {_kn(main.pier_weight_n)} | {main.pier_density_kg_m3:g} kg/m³ |")
-    if main.fill_density_kg_m3 > 0:
+    if main.backing_blocks:
+        out.append(f"| the backing's weight | {_kn(main.backing_weight_n)} | {main.backing_density_kg_m3:g} kg/m³ × g × "
+                   f"its blocks' area × {main.width_m:g} m |")
+    if main.fill_density_kg_m3 > 0 and main.backing_blocks:
+        out.append(f"| the fill's weight on the ring and the backing | {_kn(main.fill_weight_n)} | the column of fill "
+                   "over each bare voussoir's extrados and each top course of the backing up to the surface, at its "
+                   "centroid |")
+    elif main.fill_density_kg_m3 > 0:
         out.append(f"| the fill's weight on the ring | {_kn(main.fill_weight_n)} | the column of fill over each "
                    "voussoir's extrados up to the surface, at its centroid (the fill over the abutments goes to "
                    "the supports and is left out) |")
