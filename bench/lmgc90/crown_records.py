@@ -4,6 +4,7 @@ LMGC90 and the kernel, never a test.
 
     python bench/lmgc90/crown_records.py --lmgc90-build DIR OUT [--slugs S1,S2]
         [--fractions 0.9,0.95,0.98] [--bin-dir DIR]
+    python bench/lmgc90/crown_records.py --lmgc90-build DIR OUT --from-json OUT/crown_records.json
 
 The thresholds of a campaign (three arches, two frequencies) cannot part a thinner ring
 from inset pivots, nor the nominal arch from a pair of small effects
@@ -32,7 +33,9 @@ spread, and which model LMGC90's peak lies closer to. A row where every peak sta
 FLOOR_M (0.5 mm, the floor of the diagnosis's crown comparison: a transducer's noise) is
 a test that did not rock, and says nothing; a row where a run fell is left out. Then,
 over the rows that rocked: the share where LMGC90's peak is closer to the truth's own
-model, and the median |cross-code error| against the median |rivals' difference|.
+model, and the median |cross-code error| against the median |rivals' difference|; and at
+each fraction, per truth, the log likelihood ratio of its records between its own model
+and the rival, the error model's spread taken from the other truths' records (`evidence`).
 Writes OUT/crown_records.json.
 """
 
@@ -47,6 +50,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from scipy.stats import t as student_t
 
 HERE = Path(__file__).resolve().parent
 ROOT = HERE.parent.parent
@@ -66,6 +70,7 @@ from truths import Lmgc90Specimen  # noqa: E402
 
 BANK = ROOT / "postproc" / "tests" / "data" / "replay" / "bank"
 DT_FACTORS = (0.97, 1.0, 1.03)
+T_DOF = 3  #: degrees of freedom of the records' error law (Student t)
 FLOOR_M = 5.0e-4  #: peaks below this are a transducer's noise (single_runs.crown_comparison's floor)
 #: The truths whose table follows the command and whose model is a power truth of the
 #: identifiability bench (the nominal arch, a ring, a friction).
@@ -99,9 +104,14 @@ def main() -> int:
     ap.add_argument("--slugs", default=",".join(DEFAULT_SLUGS))
     ap.add_argument("--fractions", default="0.9,0.95,0.98", help="of each threshold, where the tests stand")
     ap.add_argument("--bin-dir", type=Path, default=ROOT / "build" / "drivers")
+    ap.add_argument("--from-json", type=Path, help="summarise a stored crown_records.json instead of running")
     args = ap.parse_args()
     args.out.mkdir(parents=True, exist_ok=True)
     t0 = time.time()
+    if args.from_json:
+        stored = json.loads(args.from_json.read_text())
+        summarise(stored["rows"], stored["fractions"], args.out, 0.0)
+        return 0
     bank = load_banks(BANK)
     truths = {t["slug"]: t for t in stored_truths()}
     sims = {f: Simulator(DiagnosisSettings(bin_dir=args.bin_dir, dt_s=1.0e-3 * f, log=lambda *_: None),
@@ -167,17 +177,62 @@ def main() -> int:
                 print(f"{slug[:22]:22s} {sid} {f:4.2f} {fraction:4.2f} {variant_key(own[0])[:26]:26s} "
                       f"{variant_key(rival[0])[:34]:34s} {lm_mm:6.2f} {o:6.2f} {r_:6.2f} {spread:6.3f} {err:+6.2f} "
                       f"{diff:+6.2f}  {closer}{note}", flush=True)
+    summarise(rows, fractions, args.out, time.time() - t0)
+    return 0
+
+
+def evidence(rows: list[dict], fraction: float) -> list[dict]:
+    """Per truth, what its crown records at `fraction` of each threshold would say between
+    its own model and its closest rival: the log likelihood ratio sum_i [log f(e_i) -
+    log f(e_i - d_i)] (e_i = log LMGC90 / own, d_i = log rival / own; positive favours the
+    truth) for an error law f of scale sigma, the robust spread (1.4826 x the median
+    absolute deviation) of the cross-code errors of the OTHER truths' records (leave one
+    truth out: the error model is never fitted to the truth it judges): a Student t of 3
+    degrees of freedom (`llr`, heavy tails: a record the codes disagree on by several
+    spreads costs little), and a normal law for comparison (`llr_normal`); P(own) from even
+    odds under the t. The rows of a truth share specimens and are taken as independent: an
+    upper bound on the evidence."""
+    use = [r for r in rows if r["rocked"] and not r["fell"] and abs(r["fraction"] - fraction) < 1e-9]
+    out = []
+    for slug in dict.fromkeys(r["slug"] for r in use):
+        mine = [r for r in use if r["slug"] == slug]
+        others = np.array([r["log_err"] for r in use if r["slug"] != slug])
+        if not mine or others.size < 5:
+            continue
+        sigma = max(1.4826 * float(np.median(np.abs(others - np.median(others)))), 0.02)
+        e = np.array([r["log_err"] for r in mine])
+        d = np.array([r["log_diff"] for r in mine])
+        llr_normal = float(np.sum(((e - d) ** 2 - e ** 2) / (2 * sigma ** 2)))
+        llr = float(np.sum(student_t.logpdf(e, T_DOF, scale=sigma) - student_t.logpdf(e - d, T_DOF, scale=sigma)))
+        out.append({"slug": slug, "rival": mine[0]["rival"], "tests": len(mine), "sigma": sigma, "llr": llr,
+                    "llr_normal": llr_normal, "p_own": 1.0 / (1.0 + math.exp(-max(-700.0, min(700.0, llr))))})
+    return out
+
+
+def summarise(rows: list[dict], fractions: list[float], out_dir: Path, seconds: float) -> None:
     ok = [r for r in rows if r["rocked"] and not r["fell"]]
     share = sum(r["closer"] == "own" for r in ok) / max(1, len(ok))
     med_err = float(np.median([abs(r["log_err"]) for r in ok])) if ok else math.nan
     med_diff = float(np.median([abs(r["log_diff"]) for r in ok])) if ok else math.nan
     print(f"\n{len(ok)} of {len(rows)} tests rocked and stood in every run: LMGC90's peak closer to the truth's own model in "
           f"{share:.2f} of them; median |log LMGC90/own| {med_err:.2f}, median |log rival/own| {med_diff:.2f}; "
-          f"{time.time() - t0:.0f} s")
-    (args.out / "crown_records.json").write_text(json.dumps({"fractions": fractions, "rows": rows,
-                                                             "share_closer_own": share, "median_abs_log_err": med_err,
-                                                             "median_abs_log_diff": med_diff}, indent=1))
-    return 0
+          f"{seconds:.0f} s")
+    by_fraction = {}
+    for fraction in fractions:
+        ev = evidence(rows, fraction)
+        by_fraction[str(fraction)] = ev
+        print(f"\nthe records at {fraction} of each threshold as evidence, own model against the closest rival "
+              f"(sigma from the other truths' records):")
+        for e in ev:
+            print(f"  {e['slug'][:22]:22s} against {e['rival'][:40]:40s} {e['tests']:2d} tests  sigma {e['sigma']:.3f}  "
+                  f"log LR (t3) {e['llr']:+7.1f}  (normal {e['llr_normal']:+8.1f})  P(own) {e['p_own']:.3f}")
+        if ev:
+            print(f"  favours the truth in {sum(e['llr'] > 0 for e in ev)} of {len(ev)} truths under the t "
+                  f"({sum(e['llr_normal'] > 0 for e in ev)} under the normal law)")
+    (out_dir / "crown_records.json").write_text(json.dumps({"fractions": fractions, "rows": rows,
+                                                            "share_closer_own": share, "median_abs_log_err": med_err,
+                                                            "median_abs_log_diff": med_diff,
+                                                            "evidence": by_fraction}, indent=1))
 
 
 if __name__ == "__main__":
