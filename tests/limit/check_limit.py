@@ -280,6 +280,14 @@ def nml_number(text, name):
     return float(re.search(r"\b" + name + r" *= *([-0-9.eE+]+)", text).group(1))
 
 
+def one_span_bridge(text):
+    """A single segmental span's numbers from its &bridge text: span, rise, ring depth,
+    voussoirs, the fill's level, the abutments' width and the strip's width."""
+    number = lambda name: nml_number(text, name)  # noqa: E731
+    return (number(r"span_m\(1\)"), number(r"rise_m\(1\)"), number("ring_thickness_m"), int(number("n_voussoirs")),
+            number("fill_level_m"), number("abutment_width_m"), number("width_m"))
+
+
 def segmental_extrados(span, rise, t, n):
     """The extrados ends of the joints of a segmental ring of n voussoirs (span and rise of
     its intrados, depth t), from the left springing: on the circle of radius R + t about the
@@ -1167,9 +1175,7 @@ elif case == "bridge_particles":
     text = open(nml).read()
     def number(name):
         return nml_number(text, name)
-    span, rise, t, n = number(r"span_m\(1\)"), number(r"rise_m\(1\)"), number("ring_thickness_m"), \
-        int(number("n_voussoirs"))
-    level, w, width = number("fill_level_m"), number("abutment_width_m"), number("width_m")
+    span, rise, t, n, level, w, width = one_span_bridge(text)
     rho_f, rho_r, size = number("fill_density_kg_m3"), number("ring_density_kg_m3"), number("fill_particle_size_m")
     ext = segmental_extrados(span, rise, t, n)
     bottom = [(-w, ext[0][1])] + ext + [(span + w, ext[-1][1])]
@@ -1256,10 +1262,8 @@ elif case == "bridge_backing":
     text = open(nml).read()
     def number(name):
         return nml_number(text, name)
-    span, rise, t, n = number(r"span_m\(1\)"), number(r"rise_m\(1\)"), number("ring_thickness_m"), \
-        int(number("n_voussoirs"))
-    level, w, width, theta = number("fill_level_m"), number("abutment_width_m"), number("width_m"), \
-        number("dispersion_angle_deg")
+    span, rise, t, n, level, w, width = one_span_bridge(text)
+    theta = number("dispersion_angle_deg")
     back, course = number("backing_level_m"), number("backing_course_m")
     rho_f, rho_r, rho_b = number("fill_density_kg_m3"), number("ring_density_kg_m3"), number("backing_density_kg_m3")
     ext = segmental_extrados(span, rise, t, n)
