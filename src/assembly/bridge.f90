@@ -165,22 +165,7 @@ contains
                  'fill particle '//itoa(k))
       end do
     end if
-
-    ! The parts' compressive strengths (0: rigid), for the LP's crushing.
-    if (b%ring_compressive_strength_pa > 0.0_dp .or. b%pier_compressive_strength_pa > 0.0_dp .or. &
-        b%backing_compressive_strength_pa > 0.0_dp) then
-      allocate (asm%compressive_strength_pa(nb))
-      asm%compressive_strength_pa = 0.0_dp
-      do k = 1, nb
-        if (asm%role(k) == role_backing) then
-          asm%compressive_strength_pa(k) = b%backing_compressive_strength_pa
-        else if (asm%block_name(k)(1:5) == 'span ') then
-          asm%compressive_strength_pa(k) = b%ring_compressive_strength_pa
-        else if (asm%block_name(k)(1:5) == 'pier ') then
-          asm%compressive_strength_pa(k) = b%pier_compressive_strength_pa
-        end if
-      end do
-    end if
+    call part_strengths(b, asm)
 
   contains
 
@@ -213,6 +198,28 @@ contains
     name = 'span '//itoa(k)//' voussoir '//itoa(j)
     if (n_rings > 1) name = 'span '//itoa(k)//' ring '//itoa(r)//' voussoir '//itoa(j)
   end function voussoir_name
+
+  !> The parts' compressive strengths [Pa] on the blocks of `asm` built from `b` (0: rigid),
+  !> for the LP's crushing: the ring's voussoirs ('span ...'), the piers, the backing; left
+  !> unallocated where no part has one.
+  subroutine part_strengths(b, asm)
+    type(bridge_config_t), intent(in) :: b
+    type(assembly_t), intent(inout) :: asm
+    integer :: k
+    if (b%ring_compressive_strength_pa <= 0.0_dp .and. b%pier_compressive_strength_pa <= 0.0_dp .and. &
+        b%backing_compressive_strength_pa <= 0.0_dp) return
+    allocate (asm%compressive_strength_pa(asm%n_bodies))
+    asm%compressive_strength_pa = 0.0_dp
+    do k = 1, asm%n_bodies
+      if (asm%role(k) == role_backing) then
+        asm%compressive_strength_pa(k) = b%backing_compressive_strength_pa
+      else if (asm%block_name(k)(1:5) == 'span ') then
+        asm%compressive_strength_pa(k) = b%ring_compressive_strength_pa
+      else if (asm%block_name(k)(1:5) == 'pier ') then
+        asm%compressive_strength_pa(k) = b%pier_compressive_strength_pa
+      end if
+    end do
+  end subroutine part_strengths
 
   !> The bottom of the fill (2, n) [m], x ascending: the left abutment's level top from its
   !> back, the extrados ends of every span's joints from the left (across each pier's top

@@ -113,16 +113,8 @@ contains
       call fail(status, 'block '//itoa(b)//' touches no other block: nothing holds it up')
       return
     end do
-    if (allocated(asm%compressive_strength_pa)) then
-      if (any(asm%compressive_strength_pa > 0.0_dp)) then
-        if (study%crush%strength_pa > 0.0_dp) then
-          call fail(status, '&limit compressive_strength_pa gives every interface one strength, and &bridge gives '// &
-                    'its parts their own: give one or the other')
-          return
-        end if
-        study%crush%face_strength_pa = part_strengths(asm, study%faces)
-      end if
-    end if
+    call part_crushing(asm, study, status)
+    if (.not. status%ok) return
     call name_arch_joints(asm, study)
     if (allocated(asm%block_name)) study%block_name = asm%block_name
     mu = interface_friction(asm, study%faces, friction)
@@ -498,6 +490,22 @@ contains
     end do
     if (loads%n_bounded > 0) loads%bounded_hi_n = loads%bounded_lo_n
   end subroutine carry_fill
+
+  !> A bridge's parts' compressive strengths on the study's interfaces (study%crush), or a
+  !> refusal beside &limit compressive_strength_pa (one strength for every interface).
+  subroutine part_crushing(asm, study, status)
+    type(assembly_t), intent(in) :: asm
+    type(lp_study_t), intent(inout) :: study
+    type(status_t), intent(inout) :: status
+    if (.not. allocated(asm%compressive_strength_pa)) return
+    if (.not. any(asm%compressive_strength_pa > 0.0_dp)) return
+    if (study%crush%strength_pa > 0.0_dp) then
+      call fail(status, '&limit compressive_strength_pa gives every interface one strength, and &bridge gives '// &
+                'its parts their own: give one or the other')
+      return
+    end if
+    study%crush%face_strength_pa = part_strengths(asm, study%faces)
+  end subroutine part_crushing
 
   !> Each interface's compressive strength [Pa] from its two blocks' (0: rigid): the lesser
   !> of two that crush, the one that does beside a rigid block, 0 between rigid blocks.
