@@ -8,6 +8,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from hand_geometry import segmental_ring
 from conftest import REPO_ROOT, run_executable
 from figure_text import text_clashes
 from voussoir_post.cli import post
@@ -169,13 +170,8 @@ def test_the_fill_and_a_vehicle_stand_in_voussoir_run(voussoir_run_exe, tmp_path
     run = read_run(tmp_path / "fill.h5")
     assert float(run.config["vehicle"]["axle_load_kn(2)"]) == 100.0
     span, rise, t, n, level, g = 10.0, 2.5, 0.45, 12, 3.45, 9.81
-    radius = (span ** 2 / 4 + rise ** 2) / (2 * rise)
-    half = np.arcsin(span / 2 / radius)
-    phi = np.linspace(-half, half, n + 1)
-    ring_area = n * 0.5 * ((radius + t) ** 2 - radius ** 2) * np.sin(2 * half / n)
     # The extrados ends of the joints (the centre at (L/2, r - R)), and the fill above their chords.
-    ex = span / 2 + (radius + t) * np.sin(phi)
-    ey = rise - radius + (radius + t) * np.cos(phi)
+    ring_area, ex, ey = segmental_ring(span, rise, t, n)
     fill_area = sum((ex[k + 1] - ex[k]) * (level - 0.5 * (ey[k] + ey[k + 1])) for k in range(n))
     expected = (2200 * ring_area + 2000 * fill_area) * g * 1.0 + 2 * 100e3
     c = run.contacts

@@ -8,9 +8,8 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-import numpy as np
-
 from conftest import run_executable
+from hand_geometry import backed_area, segmental_ring
 from voussoir_post.cli import post
 from voussoir_post.analysis.contact_forces import reactions
 from voussoir_post.analysis.kinematics import ROLE_BACKING
@@ -43,16 +42,11 @@ def test_the_backing_and_the_fill_stand_on_the_ring_at_rest(voussoir_run_exe, tm
     assert out.startswith("stood;")
     run = read_run(tmp_path / "backing.h5")
     span, rise, t, n, level, back, w, g = 10.0, 2.5, 0.45, 12, 3.45, 1.5, 2.0, 9.81
-    radius = (span ** 2 / 4 + rise ** 2) / (2 * rise)
-    half = np.arcsin(span / 2 / radius)
-    phi = np.linspace(-half, half, n + 1)
-    ring_area = n * 0.5 * ((radius + t) ** 2 - radius ** 2) * np.sin(2 * half / n)
-    ex = span / 2 + (radius + t) * np.sin(phi)
-    ey = rise - radius + (radius + t) * np.cos(phi)
+    ring_area, ex, ey = segmental_ring(span, rise, t, n)
     bottom = [(-w, ey[0]), *zip(ex, ey), (span + w, ey[-1])]
-    pieces = list(zip(bottom, bottom[1:]))
-    backing_area = sum((x1 - x0) * (back - (y0 + y1) / 2) for (x0, y0), (x1, y1) in pieces if max(y0, y1) <= back)
-    fill_area = sum((x1 - x0) * (level - (y0 + y1) / 2) for (x0, y0), (x1, y1) in pieces) - backing_area
+    backing_area = backed_area(bottom, back)
+    fill_area = sum((x1 - x0) * (level - (y0 + y1) / 2) for (x0, y0), (x1, y1) in zip(bottom, bottom[1:])) \
+        - backing_area
     expected = (2200 * ring_area + 2100 * backing_area + 2000 * fill_area) * g * 1.0
     backing = run.body_role == ROLE_BACKING
     assert backing.sum() >= 8 and n + backing.sum() + 2 == run.n_bodies
@@ -77,14 +71,8 @@ def test_the_bridge_report_lists_the_backing_and_its_weight(voussoir_limit_exe, 
     assert post.main(["bridge-report", str(tmp_path / "backing.json"), "--out", str(tmp_path / "report")]) == 0
     text = (tmp_path / "report" / "report.md").read_text()
     span, rise, t, n, back, w, g = 10.0, 2.5, 0.45, 20, 1.5, 2.0, 9.81
-    radius = (span ** 2 / 4 + rise ** 2) / (2 * rise)
-    half = np.arcsin(span / 2 / radius)
-    phi = np.linspace(-half, half, n + 1)
-    ex = span / 2 + (radius + t) * np.sin(phi)
-    ey = rise - radius + (radius + t) * np.cos(phi)
-    bottom = [(-w, ey[0]), *zip(ex, ey), (span + w, ey[-1])]
-    area = sum((x1 - x0) * (back - (y0 + y1) / 2) for (x0, y0), (x1, y1) in zip(bottom, bottom[1:])
-               if max(y0, y1) <= back)
+    _, ex, ey = segmental_ring(span, rise, t, n)
+    area = backed_area([(-w, ey[0]), *zip(ex, ey), (span + w, ey[-1])], back)
     row = re.search(r"\| the backing's weight \| ([0-9.]+) \|", text)
     assert row and abs(float(row.group(1)) - 2200 * g * area / 1e3) <= 0.05, (row, 2200 * g * area / 1e3)
     assert "- Backing: masonry over the haunches up to 1.5 m above the springings" in text

@@ -4,9 +4,8 @@ ring and the whole fill (over the abutments too), computed here from the geometr
 
 from __future__ import annotations
 
-import numpy as np
-
 from conftest import run_executable
+from hand_geometry import segmental_ring
 from voussoir_post.cli import post
 from voussoir_post.analysis.contact_forces import reactions
 from voussoir_post.plots.reactions import free_weight_n
@@ -39,12 +38,7 @@ def test_the_particles_stand_on_the_ring_at_rest(voussoir_run_exe, tmp_path):
     run = read_run(tmp_path / "particles.h5")
     assert run.config["bridge"]["fill_model"] == "particles"
     span, rise, t, n, level, w, g = 10.0, 2.5, 0.45, 12, 3.45, 2.0, 9.81
-    radius = (span ** 2 / 4 + rise ** 2) / (2 * rise)
-    half = np.arcsin(span / 2 / radius)
-    phi = np.linspace(-half, half, n + 1)
-    ring_area = n * 0.5 * ((radius + t) ** 2 - radius ** 2) * np.sin(2 * half / n)
-    ex = span / 2 + (radius + t) * np.sin(phi)
-    ey = rise - radius + (radius + t) * np.cos(phi)
+    ring_area, ex, ey = segmental_ring(span, rise, t, n)
     region = [(-w, ey[0]), *zip(ex, ey), (span + w, ey[-1]), (span + w, level), (-w, level)]
     fill_area = 0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(region, region[1:] + region[:1]))
     expected = (2200 * ring_area + 2000 * fill_area) * g * 1.0
@@ -74,12 +68,7 @@ def test_a_vehicle_stands_on_the_particles_at_rest(voussoir_run_exe, tmp_path):
     run = read_run(tmp_path / "particles.h5")
     r = reactions(run)
     span, rise, t, n, level, w, g = 10.0, 2.5, 0.45, 12, 3.45, 2.0, 9.81
-    radius = (span ** 2 / 4 + rise ** 2) / (2 * rise)
-    half = np.arcsin(span / 2 / radius)
-    phi = np.linspace(-half, half, n + 1)
-    ring_area = n * 0.5 * ((radius + t) ** 2 - radius ** 2) * np.sin(2 * half / n)
-    ex = span / 2 + (radius + t) * np.sin(phi)
-    ey = rise - radius + (radius + t) * np.cos(phi)
+    ring_area, ex, ey = segmental_ring(span, rise, t, n)
     region = [(-w, ey[0]), *zip(ex, ey), (span + w, ey[-1]), (span + w, level), (-w, level)]
     fill_area = 0.5 * sum(x0 * y1 - x1 * y0 for (x0, y0), (x1, y1) in zip(region, region[1:] + region[:1]))
     expected = (2200 * ring_area + 2000 * fill_area) * g * 1.0 + 2 * 100e3
