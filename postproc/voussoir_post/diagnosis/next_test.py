@@ -111,6 +111,21 @@ def _entropy_bits(q) -> float:
     return float(-(q * np.log2(q)).sum())
 
 
+def _information(laws) -> tuple[float, float]:
+    """(expected gain, spread) in bits from `_outcome_laws`: I(M; Y), and the standard
+    deviation over the outcomes y of the information H(p) - H(p | y) each delivers."""
+    if laws is None:
+        return 0.0, 0.0
+    p, py_m = laws
+    py = p @ py_m
+    gain = max(0.0, _entropy_bits(py) - sum(pm * _entropy_bits(row) for pm, row in zip(p, py_m)))
+    seen = py > 0
+    post = (p[:, None] * py_m[:, seen]) / py[seen]
+    delivered = _entropy_bits(p) - np.array([_entropy_bits(post[:, k]) for k in range(post.shape[1])])
+    mean = float(py[seen] @ delivered)
+    return gain, float(math.sqrt(max(0.0, py[seen] @ (delivered - mean) ** 2)))
+
+
 def expected_gain_bits(probabilities: list[float], means: list, sds: list,
                        step: float = RAMP_STEP, within: tuple[float, float] | None = None) -> float:
     """I(M; Y) in bits for rivals of probabilities p_m predicting log threshold
@@ -119,11 +134,7 @@ def expected_gain_bits(probabilities: list[float], means: list, sds: list,
     per component). `within` (log low, log high): the threshold is already known to lie
     there (a tested pair's bracket; -inf for no stand below): each rival's law is
     truncated to it, and the bins cover it only."""
-    laws = _outcome_laws(probabilities, means, sds, step, within)
-    if laws is None:
-        return 0.0
-    p, py_m = laws
-    return max(0.0, _entropy_bits(p @ py_m) - sum(pm * _entropy_bits(row) for pm, row in zip(p, py_m)))
+    return _information(_outcome_laws(probabilities, means, sds, step, within))[0]
 
 
 def gain_spread_bits(probabilities: list[float], means: list, sds: list,
@@ -134,16 +145,7 @@ def gain_spread_bits(probabilities: list[float], means: list, sds: list,
     What one run of the test may give about that mean: a test expected to give 0.3 bits
     with a spread of 0.4 often gives nothing and sometimes a bit. Arguments as
     expected_gain_bits."""
-    laws = _outcome_laws(probabilities, means, sds, step, within)
-    if laws is None:
-        return 0.0
-    p, py_m = laws
-    py = p @ py_m
-    seen = py > 0
-    post = (p[:, None] * py_m[:, seen]) / py[seen]
-    delivered = _entropy_bits(p) - np.array([_entropy_bits(post[:, k]) for k in range(post.shape[1])])
-    mean = float(py[seen] @ delivered)
-    return float(math.sqrt(max(0.0, py[seen] @ (delivered - mean) ** 2)))
+    return _information(_outcome_laws(probabilities, means, sds, step, within))[1]
 
 
 def gain_jackknife_se_bits(probabilities: list[float], means: list, sds: list, step: float = RAMP_STEP) -> float:
@@ -199,9 +201,9 @@ def _candidate(sid: str, f: float, new: bool, rivals: list[str], probs: list[flo
         amps = [_snap(start), _snap(high), _snap(RAMP_STEP * start)]
     if not within_limits(amps[1], f, table):
         return None
+    gain, spread = _information(_outcome_laws(probs, means, sds, RAMP_STEP, within))   # one law, both figures
     return {"specimen_id": sid, "frequency_hz": f, "new": new, "kind": "afd_ramp", "amplitudes_m": amps,
-            "expected_gain_bits": expected_gain_bits(probs, means, sds, within=within),
-            "gain_spread_bits": gain_spread_bits(probs, means, sds, within=within),
+            "expected_gain_bits": gain, "gain_spread_bits": spread,
             "gain_se_bits": gain_jackknife_se_bits(probs, means, sds) if new else 0.0,
             "predicted_m": {m: math.exp(float(np.mean(v))) for m, v in zip(rivals, means)},
             "spread": {m: float(np.sqrt(np.mean(np.square(s_)) + np.var(v))) for m, s_, v in zip(rivals, sds, means)}}
