@@ -504,12 +504,12 @@ contains
                 'its parts their own: give one or the other')
       return
     end if
-    study%crush%face_strength_pa = part_strengths(asm, study%faces)
+    study%crush%face_strength_pa = face_strengths(asm, study%faces)
   end subroutine part_crushing
 
   !> Each interface's compressive strength [Pa] from its two blocks' (0: rigid): the lesser
   !> of two that crush, the one that does beside a rigid block, 0 between rigid blocks.
-  pure function part_strengths(asm, faces) result(strength)
+  pure function face_strengths(asm, faces) result(strength)
     type(assembly_t), intent(in) :: asm
     type(interface_set_t), intent(in) :: faces
     real(dp) :: strength(faces%n), a, b
@@ -520,6 +520,6 @@ contains
       strength(k) = max(a, b)
       if (a > 0.0_dp .and. b > 0.0_dp) strength(k) = min(a, b)
     end do
-  end function part_strengths
+  end function face_strengths
 
 end module voussoir_limit_lp_study
