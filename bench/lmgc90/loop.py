@@ -39,6 +39,7 @@ PYTHONPATH at postproc (loop.sh does that):
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import json
 import math
 import os
@@ -68,8 +69,9 @@ MAX_TESTS = 3
 NAMED_AT = 0.9
 SEED = 35
 FAULTS = LabFaults()
-DESIGNS = ("advised", "naive")
+DESIGNS = ("advised", "naive", "ramps")  #: ramps: the advice without tests held for the crown
 RECORD_HZ = 200.0
+CROWN_NOISE_M = 5.0e-5   #: a displacement transducer's noise on the crown record
 STEP_DOWN_MAX = 10
 ARCH = {a.specimen_id: a for a in ARCHES}
 
@@ -122,8 +124,12 @@ def write_campaign(folder: Path, rows: list[dict]) -> None:
                      f"{'collapse' if r['collapsed'] else 'stand'},{tc}")
         t = np.arange(0.0, 3.0 / r["frequency_hz"] + 0.5, 1.0 / RECORD_HZ)
         x = r["gain"] * afd_command(t, r["frequency_hz"], r["amplitude_m"])
-        (folder / "records" / f"{r['test_id']}.csv").write_text(
-            "t_s,table_x_m\n" + "\n".join(f"{a:.4f},{b:.7e}" for a, b in zip(t, x)) + "\n")
+        if r.get("crown"):
+            dx = np.interp(t, r["crown"]["t_s"], r["crown"]["dx_m"])
+            text = "t_s,table_x_m,crown_dx_m\n" + "\n".join(f"{a:.4f},{b:.7e},{c:.7e}" for a, b, c in zip(t, x, dx))
+        else:
+            text = "t_s,table_x_m\n" + "\n".join(f"{a:.4f},{b:.7e}" for a, b in zip(t, x))
+        (folder / "records" / f"{r['test_id']}.csv").write_text(text + "\n")
     (folder / "tests.csv").write_text("\n".join(lines) + "\n")
     (folder / "README.md").write_text("A campaign of the LMGC90 laboratory loop (bench/lmgc90/loop.py).\n")
 
@@ -144,25 +150,33 @@ class Laboratory:
         if sid not in self.models:
             par = self.truth["parameters"]
             friction = par.get("friction", {}).get("friction", ARCH[sid].friction)
-            self.models[sid] = Lmgc90Specimen(self.build, self.work / sid, ARCH[sid], self.truth, friction)
+            self.models[sid] = Lmgc90Specimen(self.build, self.work / sid, ARCH[sid], self.truth, friction,
+                                              record_crown=True)
         return self.models[sid]
 
     def gain(self, f: float) -> float:
         q = self.truth["parameters"].get("table_motion")
         return 1.0 if q is None else actuator_gain(f, q["actuator_hz"], q["actuator_damping"])
 
-    def test(self, sid: str, f: float, amp: float, rng: np.random.Generator, step: int) -> dict:
+    def test(self, sid: str, f: float, amp: float, rng: np.random.Generator, step: int, hold: bool = False) -> dict:
         """One test: the table's real gain scatters about the actuator's, the campaign's
-        offset applies (as draw_campaign's), the transducer reads the gain with its bias."""
+        offset applies (as draw_campaign's), the transducer reads the gain with its bias.
+        `hold`: a test held below the threshold, whose crown is recorded too."""
         scatter = 1.0 + FAULTS.gain_scatter * rng.standard_normal()
         measured = self.gain(f) * scatter * (1.0 + self.faults["transducer_bias"]) * (
             1.0 + FAULTS.gain_noise * rng.standard_normal())
         t0 = time.time()
-        fell, tc, _ = self.specimen(sid).run(f, amp * scatter * self.faults["offset"])
+        model = self.specimen(sid)
+        fell, tc, _ = model.run(f, amp * scatter * self.faults["offset"])
         self.seconds += time.time() - t0
         self.runs += 1
-        return {"test_id": f"{sid}_f{f:g}_s{step}_A{1e3 * amp:.1f}", "specimen_id": sid, "frequency_hz": f,
-                "amplitude_m": amp, "collapsed": bool(fell), "collapse_time_s": tc, "gain": measured, "step": step}
+        row = {"test_id": f"{sid}_f{f:g}_s{step}_A{1e3 * amp:.1f}", "specimen_id": sid, "frequency_hz": f,
+               "amplitude_m": amp, "collapsed": bool(fell), "collapse_time_s": tc, "gain": measured, "step": step}
+        if hold:   # the crown's transducer: LMGC90's record with a displacement sensor's noise
+            dx = np.asarray(model.last["crown_dx_m"], float)
+            row["crown"] = {"t_s": model.last["crown_t_s"],
+                            "dx_m": (dx + CROWN_NOISE_M * rng.standard_normal(dx.size)).tolist()}
+        return row
 
     def ramp(self, sid: str, f: float, start: float, by: float, table, rng, step: int, max_tests: int = 40
              ) -> list[dict]:
@@ -269,6 +283,7 @@ def naive_choice(rows: list[dict], table, settings: DiagnosisSettings, rng: np.r
 
 
 def run_truth(truth: dict, design: str, args, settings: DiagnosisSettings, out_root: Path) -> dict:
+    settings_of = lambda d: dataclasses.replace(settings, advise_holds=d != "ramps")
     slug = truth["slug"]
     label = truth_model(truth)
     res_path = out_root / "results" / f"{slug}__{design}.json"
@@ -290,27 +305,30 @@ def run_truth(truth: dict, design: str, args, settings: DiagnosisSettings, out_r
         table = read_campaign(campaign).table
         if k == 0:
             # Step 0 is the replayed campaign: diagnosed once, shared by the designs.
-            shared = base / "step0.json"
+            shared = base / ("step0_ramps.json" if design == "ramps" else "step0.json")
             if shared.exists():
                 step = json.loads(shared.read_text())
             else:
                 log(f"{slug} ({label}): step 0, the replayed campaign ({len(rows)} tests)")
-                step = diagnose_step(campaign, base / "step0", settings, True, label,
+                step = diagnose_step(campaign, base / shared.stem, settings_of(design), True, label,
                                      sorted({(r["specimen_id"], r["frequency_hz"]) for r in rows}))
                 step |= {"step": 0, "tests_used": 0, "chosen": None}
                 shared.write_text(json.dumps(step, indent=1))
         else:
             prev = state["steps"][-1]
             rng = np.random.default_rng([args.seed, truth["truth"]["index"], DESIGNS.index(design), k])
-            if design == "advised":
+            if design in ("advised", "ramps"):
                 nt = prev["next_test"]
                 chosen = {"specimen_id": nt["specimen_id"], "frequency_hz": nt["frequency_hz"], "kind": nt["kind"],
                           "amplitudes_m": nt["amplitudes_m"], "expected_gain_bits": nt["expected_gain_bits"],
-                          "predictions": nt["predictions"]}
-                assert nt["kind"] == "afd_ramp", nt
-                a_from, a_to, a_by = nt["amplitudes_m"]
+                          "predictions": nt["predictions"], **({"predicted_crown_m": nt["predicted_crown_m"]}
+                                                               if "predicted_crown_m" in nt else {})}
+                assert nt["kind"] in ("afd_ramp", "hold_crown"), nt
+                a_to = max(nt["amplitudes_m"][:2])
                 assert within_limits(a_to, nt["frequency_hz"], table), f"advice beyond the table's limits: {nt}"
                 sid, f = nt["specimen_id"], nt["frequency_hz"]
+                if nt["kind"] == "afd_ramp":
+                    a_from, a_to, a_by = nt["amplitudes_m"]
             else:
                 pick = naive_choice(rows, table, settings, rng)
                 if pick is None:
@@ -325,14 +343,19 @@ def run_truth(truth: dict, design: str, args, settings: DiagnosisSettings, out_r
                                            round(max(SNAP_M, round(a_by / SNAP_M) * SNAP_M), 7)]}
             runs0, secs0 = lab.runs, lab.seconds
             log(f"{slug} [{design}] test {k}: {sid} at {f:g} Hz, ramp {chosen['amplitudes_m']} in LMGC90")
-            new = lab.ramp(sid, f, a_from, a_by, table, rng, k)
+            if chosen["kind"] == "hold_crown":
+                new = [lab.test(sid, f, chosen["amplitudes_m"][0], rng, k, hold=True)]
+            else:
+                new = lab.ramp(sid, f, a_from, a_by, table, rng, k)
             lmgc = {"runs": lab.runs - runs0, "seconds": round(lab.seconds - secs0, 1),
                     "rows": [[r["amplitude_m"], int(r["collapsed"])] for r in new]}
+            if chosen["kind"] == "hold_crown":
+                lmgc["crown_peak_mm"] = [1e3 * float(np.max(np.abs(r["crown"]["dx_m"]))) for r in new]
             log(f"  {lmgc['runs']} LMGC90 runs, {lmgc['seconds']:.0f} s: "
                 + " ".join(f"{1e3 * a:.1f}{'C' if c else 's'}" for a, c in lmgc["rows"]))
             rows.extend(new)
             write_campaign(campaign, rows)
-            step = diagnose_step(campaign, base / design / f"step{k}", settings, design == "advised", label,
+            step = diagnose_step(campaign, base / design / f"step{k}", settings_of(design), design != "naive", label,
                                  [(sid, f)])
             step |= {"step": k, "tests_used": k, "chosen": chosen, "lmgc90": lmgc}
         state["steps"].append(step)
@@ -349,7 +372,7 @@ def run_truth(truth: dict, design: str, args, settings: DiagnosisSettings, out_r
         if k >= MAX_TESTS:
             state["stopped"] = "three tests"
             break
-        if design == "advised" and not step["next_test"]:
+        if design != "naive" and not step["next_test"]:
             state["stopped"] = "no advice"
             break
     last = state["steps"][-1]
@@ -389,7 +412,7 @@ def summary(out_root: Path) -> dict:
                 continue
             ps = " ".join(f"{st['p_truth']:.2f}" for st in s["steps"])
             chosen = "; ".join(f"{st['chosen']['specimen_id']}@{st['chosen']['frequency_hz']:g}"
-                               for st in s["steps"][1:])
+                               + (" hold" if st["chosen"]["kind"] == "hold_crown" else "") for st in s["steps"][1:])
             verdict = s["steps"][-1]["verdict"] + ("" if s["named"] is None else (" (right)" if s["named_right"]
                                                                                     else " (WRONG)"))
             print(f"{t:52s} {s['label']:28s} {d:8s} {s['tests_used']:5d} {verdict:26s} {ps:24s} {chosen}")
@@ -410,29 +433,32 @@ def summary(out_root: Path) -> dict:
               + "/".join(str(v) for v in out[d]["named_after_tests"].values())
               + f"); mean tests {out[d]['mean_tests']:.2f}; mean final P(truth) {out[d]['mean_p_truth_final']:.3f}; "
               f"stopped: {out[d]['stopped']}")
-    paired = [t for t in truths if all((t, d) in res for d in DESIGNS)]
-    if paired:
-        gain = {d: [res[(t, d)]["p_truth_final"] - res[(t, d)]["p_truth_initial"] for t in paired] for d in DESIGNS}
-        diff = np.array(gain["advised"]) - np.array(gain["naive"])
+    for a, b in (("advised", "naive"), ("advised", "ramps"), ("ramps", "naive")):
+        paired = [t for t in truths if (t, a) in res and (t, b) in res]
+        if not paired:
+            continue
+        gain = {d: [res[(t, d)]["p_truth_final"] - res[(t, d)]["p_truth_initial"] for t in paired] for d in (a, b)}
+        diff = np.array(gain[a]) - np.array(gain[b])
         wins, losses = int((diff > 1e-3).sum()), int((diff < -1e-3).sum())
         ties = len(paired) - wins - losses
         p = sign_test_p(wins, losses)
-        out["paired"] = {"truths": len(paired), "wins": wins, "ties": ties, "losses": losses, "sign_test_p": p,
-                         "mean_gain_advised": float(np.mean(gain["advised"])),
-                         "mean_gain_naive": float(np.mean(gain["naive"]))}
-        print(f"advised vs naive, gain in P(truth) over {len(paired)} truths (ties within 0.001): {wins} wins, "
-              f"{ties} ties, {losses} losses; sign test p = {p:.3g}; mean gain {np.mean(gain['advised']):+.3f} "
-              f"(advised) vs {np.mean(gain['naive']):+.3f} (naive)")
+        out[f"paired_{a}_{b}"] = {"truths": len(paired), "wins": wins, "ties": ties, "losses": losses,
+                                  "sign_test_p": p, f"mean_gain_{a}": float(np.mean(gain[a])),
+                                  f"mean_gain_{b}": float(np.mean(gain[b]))}
+        print(f"{a} vs {b}, gain in P(truth) over {len(paired)} truths (ties within 0.001): {wins} wins, "
+              f"{ties} ties, {losses} losses; sign test p = {p:.3g}; mean gain {np.mean(gain[a]):+.3f} "
+              f"({a}) vs {np.mean(gain[b]):+.3f} ({b})")
     # The advice's expected gain against what its test gave: the entropy of the rivals
     # (renormalised) before the test less after it, in bits.
     expected, realised = [], []
     for (t, d), s in res.items():
-        if d != "advised":
+        if d == "naive":
             continue
         for k in range(1, len(s["steps"])):
             nt = s["steps"][k - 1]["next_test"]
-            before = out_root / "runs" / t / ("step0" if k == 1 else f"advised/step{k - 1}") / "diagnosis.json"
-            after = out_root / "runs" / t / f"advised/step{k}" / "diagnosis.json"
+            first = "step0_ramps" if d == "ramps" else "step0"
+            before = out_root / "runs" / t / (first if k == 1 else f"{d}/step{k - 1}") / "diagnosis.json"
+            after = out_root / "runs" / t / f"{d}/step{k}" / "diagnosis.json"
             if not (nt and before.exists() and after.exists()):
                 continue
             rivals = list(nt["predictions"])
@@ -448,7 +474,7 @@ def summary(out_root: Path) -> dict:
                               "realised_bits": float(np.mean(realised)),
                               "realised_per_test": [round(x, 3) for x in realised],
                               "expected_per_test": [round(x, 3) for x in expected]}
-        print(f"advised tests: expected gain {np.mean(expected):.2f} bits a test, realised (entropy of the rivals "
+        print(f"advised tests (both advising designs): expected gain {np.mean(expected):.2f} bits a test, realised (entropy of the rivals "
               f"before less after) {np.mean(realised):.2f} bits ({len(expected)} tests)")
     steps = [st for s in res.values() for st in s["steps"][1:]]
     if steps:

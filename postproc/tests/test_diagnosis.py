@@ -288,6 +288,12 @@ def test_the_report_ranks_the_best_tests_and_calls_a_near_tie_one():
     text = "\n".join(_next_test_lines(best))
     assert "near tie" in text
     assert "| 3 | W118 |" in text and "25.0 | 27.0 |" in text
+    # A test held below the threshold: its amplitude, and each rival's predicted crown peak.
+    hold = dict(test("W118", 0.05, 0.01), kind="hold_crown", amplitudes_m=[0.0215],
+                predicted_crown_m={"geometry": 0.0031, "contact_edges": 0.0008})
+    best["alternatives"].append(hold)
+    text = "\n".join(_next_test_lines(best))
+    assert "| 4 | W118 | 2 (new) | hold at 21.5, record the crown |" in text and "crown 3.10 | crown 0.80 |" in text
     best["alternatives"][0]["expected_gain_bits"] = 0.10
     assert "near tie" not in "\n".join(_next_test_lines(best))
     assert _next_test_lines(None) == []
@@ -455,8 +461,15 @@ def test_end_to_end_diagnosis_follows_the_contract_and_keeps_the_truth(tmp_path,
     if nt is not None:
         assert {"specimen_id", "frequency_hz", "kind", "amplitudes_m", "expected_gain_bits", "predictions",
                 "alternatives"} <= set(nt)
-        a_from, a_to, a_by = nt["amplitudes_m"]
-        assert 0 < a_by < a_from < a_to and within_limits(a_to, nt["frequency_hz"], TableLimits())
+        if nt["kind"] == "hold_crown":   # one amplitude, at or below the pair's largest stand
+            (amp,) = nt["amplitudes_m"]
+            stands = [t.amplitude_m for t in campaign.tests.values() if not t.collapsed
+                      and t.specimen_id == nt["specimen_id"] and abs(t.frequency_hz - nt["frequency_hz"]) < 1e-9]
+            assert 0 < amp <= max(stands) + 1e-9 and set(nt["predicted_crown_m"]) == set(nt["predictions"])
+        else:
+            assert nt["kind"] == "afd_ramp", nt["kind"]
+            a_from, a_to, a_by = nt["amplitudes_m"]
+            assert 0 < a_by < a_from < a_to and within_limits(a_to, nt["frequency_hz"], TableLimits())
         assert set(nt["predictions"]) == set(result["rivals"] if result["adequate"]
                                              else credible_set(result["probabilities"]))
         assert nt["expected_gain_bits"] >= 0
@@ -473,7 +486,12 @@ def test_end_to_end_diagnosis_follows_the_contract_and_keeps_the_truth(tmp_path,
     else:
         assert max(p.values()) >= NAME_AT and result["adequate"]
     assert p["friction"] >= 0.02, p
-    assert (tmp_path / "first" / "report.md").read_text().count("Prior:") == 1
+    report = (tmp_path / "first" / "report.md").read_text()
+    assert report.count("Prior:") == 1
+    # The generator's crown records of the tests that stood near the threshold entered the
+    # probabilities, and the report says which and what they did.
+    assert any("crown records of" in line for line in logs), logs
+    assert "## Crown records in the probabilities" in report
     for png in ("thresholds.png", "probabilities.png"):
         assert (tmp_path / "first" / png).stat().st_size > 10_000
     # The posterior as model samples of the arch: as many as asked, parameters inside the

@@ -24,6 +24,14 @@ conditioned on the bracket (truncated to it), and the ramp spans the bracket onl
 repeat of a narrow bracket tells little, and its gain says so; a repeat of a one-sided
 bracket (collapse rows only) can tell much.
 
+A test held below the threshold with its crown recorded (kind `hold_crown`) is a
+candidate at every tested pair with a stand below its collapse: one amplitude, at
+HOLD_FRACTIONS of the pair's measured threshold and at or below its largest stand (so
+expected to stand). Its outcome is the bin of the measured peak crown displacement
+(crown.py's law: censored below the transducer's floor, a Student t above it); each
+rival's law is the mixture over DRAWS draws of its posterior, each simulated at the same
+fraction of its own threshold. Its gain's standard error is the jackknife over the draws.
+
 Every candidate is within the table's limits (table.csv, or its defaults): the ramp's
 largest amplitude A (the largest rival prediction plus two predictive spreads) must have
 A <= stroke, A 2 pi f <= peak velocity and A (2 pi f)^2 <= peak acceleration.
@@ -38,8 +46,11 @@ from pathlib import Path
 
 import numpy as np
 from scipy.special import ndtr
+from scipy.stats import t as student_t
 
+from ..readers.campaign import Test
 from .bank import onset_amplitudes, variant_key
+from .crown import DRAWS, FLOOR_M, R_MIN, T_DOF, crown_scale, variant_at
 from .effects import Variant, arch_group
 from .likelihood import predictive_sd
 from .models import members
@@ -48,7 +59,7 @@ from .posterior import Posterior, predicted_log
 from .settings import DiagnosisSettings
 from .simulator import Simulator
 
-__all__ = ["next_test", "expected_gain_bits", "gain_spread_bits", "gain_jackknife_se_bits", "ramp", "within_limits", "posterior_draws", "RAMP_STEP",
+__all__ = ["next_test", "hold_gain_bits", "draw_indices", "HOLD_FRACTIONS", "expected_gain_bits", "gain_spread_bits", "gain_jackknife_se_bits", "ramp", "within_limits", "posterior_draws", "RAMP_STEP",
            "DRAWS_AT_NEW"]
 
 RAMP_STEP = 0.025  #: relative step of the advised ramp (a bin of the outcome)
@@ -56,24 +67,25 @@ ALTERNATIVES = 3
 #: Draws of each rival's parameters simulated at a new frequency (its predictive there is
 #: their mixture).
 DRAWS_AT_NEW = 3
+#: Fractions of a tested pair's measured threshold at which a test may be held with its
+#: crown recorded (kind `hold_crown`), and the outcome's bin in scales of the crown law.
+HOLD_FRACTIONS = (0.9, 0.95)
+CROWN_BIN = 0.5
+
+
+def draw_indices(mp, k: int = DRAWS_AT_NEW) -> list[int]:
+    """k grid points of a model drawn from its posterior by stratified (systematic)
+    resampling: the points at cumulative posterior mass (i + 1/2) / k in the grid's order,
+    which for one parameter are its quantiles of 1/(2k), 3/(2k), ..."""
+    cdf = np.cumsum(mp.weights)
+    return [min(int(np.searchsorted(cdf, (i + 0.5) / k * cdf[-1])), cdf.size - 1) for i in range(k)]
 
 
 def posterior_draws(mp, k: int = DRAWS_AT_NEW) -> list[Variant]:
-    """k draws of a model's simulated parameters from its posterior over its grid, by
-    stratified (systematic) resampling: the points at cumulative posterior mass
-    (i + 1/2) / k in the grid's order, which for one parameter are its quantiles of
-    1/(2k), 3/(2k), ...; the nominal variant for `none` and a table gain alone (a gain
-    needs no simulation: it divides the threshold)."""
-    names = [n for n in mp.grid.names if n != "table_motion"]
-    if not names:
-        return [Variant()] * k
-    columns = [(n, mp.grid.values[mp.grid.names.index(n)]) for n in names]
-    cdf = np.cumsum(mp.weights)
-    out = []
-    for i in range(k):
-        j = min(int(np.searchsorted(cdf, (i + 0.5) / k * cdf[-1])), cdf.size - 1)
-        out.append(Variant.of((n, str(v[j]) if v.dtype == object else round(float(v[j]), 6)) for n, v in columns))
-    return out
+    """k draws of a model's simulated parameters from its posterior over its grid
+    (draw_indices); the nominal variant for `none` and a table gain alone (a gain needs no
+    simulation: it divides the threshold)."""
+    return [variant_at(mp.grid, i) for i in draw_indices(mp, k)]
 
 
 def _outcome_laws(probabilities, means, sds, step, within):
@@ -209,11 +221,88 @@ def _candidate(sid: str, f: float, new: bool, rivals: list[str], probs: list[flo
             "spread": {m: float(np.sqrt(np.mean(np.square(s_)) + np.var(v))) for m, s_, v in zip(rivals, sds, means)}}
 
 
+def _hold_laws(probabilities, peaks, scale: float):
+    """(p, py_m) of a test held below the threshold with its crown recorded: its outcome
+    is the measured peak's bin (the censored one below FLOOR_M, then bins of CROWN_BIN
+    scales), each rival's law the mixture over its draws of the crown law (crown.py) about
+    each draw's simulated peak."""
+    p = np.asarray(probabilities, float)
+    p = p / p.sum()
+    locs = [np.log(np.maximum(np.asarray(v, float), FLOOR_M)) for v in peaks]
+    top = max(float(np.max(v)) for v in locs) + 12 * scale
+    lo = math.log(FLOOR_M)
+    edges = np.append(lo + CROWN_BIN * scale * np.arange(int(math.ceil((top - lo) / (CROWN_BIN * scale))) + 1), np.inf)
+    py_m = []
+    for v in locs:
+        cdf = student_t.cdf((edges[None, :] - v[:, None]) / scale, T_DOF)
+        py_m.append(np.column_stack([cdf[:, :1], np.diff(cdf, axis=1)]).mean(axis=0))
+    return p, np.clip(np.array(py_m), 0.0, None)
+
+
+def hold_gain_bits(probabilities, peaks, scale: float) -> tuple[float, float, float]:
+    """(expected gain, spread, jackknife standard error over the draws) in bits of a hold
+    test whose rivals' draws simulate these peaks [m]."""
+    gain, spread = _information(_hold_laws(probabilities, peaks, scale))
+    k = min(len(v) for v in peaks)
+    if k < 3:
+        return gain, spread, 0.0
+    g = np.array([_information(_hold_laws(probabilities, [np.delete(np.asarray(v, float), i) for v in peaks],
+                                          scale))[0] for i in range(k)])
+    return gain, spread, float(math.sqrt((k - 1) / k * np.sum((g - g.mean()) ** 2)))
+
+
+def _hold_candidates(post: Posterior, obs: Observations, rivals: list[str], probs: list[float], predicted: dict,
+                     settings: DiagnosisSettings, work: Path, table, recorded) -> list[dict]:
+    """Tests held at HOLD_FRACTIONS of a tested pair's measured threshold (at or below its
+    largest stand, so expected to stand), with the crown recorded: each rival's draws
+    simulated at the same fraction of their own thresholds (crown.py). A pair whose records
+    already hold a test near that fraction is not asked again."""
+    plans, jobs = [], {}
+    for j, p in enumerate(post.pairs):
+        if p.low_m <= 0:
+            continue
+        for h in HOLD_FRACTIONS:
+            amp = _snap(h * p.threshold_m)
+            r = amp / p.threshold_m
+            if (amp > p.low_m or r < R_MIN or not within_limits(amp, p.frequency_hz, table)
+                    or any(c.pair == j and abs(c.fraction - r) < 0.02 for c in recorded)):
+                continue
+            draws = {}
+            for m in rivals:
+                mp = post.models[m]
+                draws[m] = [(variant_at(mp.grid, i), round(r * math.exp(float(mp.grid.mu[i, j])), 7))
+                            for i in draw_indices(mp, DRAWS)]
+                for v, a in draws[m]:
+                    jobs.setdefault((p.specimen_id, p.frequency_hz, v, a), len(jobs))
+            plans.append((j, p, amp, r, draws))
+    if not plans:
+        return []
+    sim = Simulator(settings, Path(work) / "hold")
+    peaks = sim.peaks([(obs.specimens[sid], Test(f"hold_{k:04d}", sid, "afd", "stand", frequency_hz=f,
+                                                 amplitude_m=a, n_attack=obs.cycles[sid][0],
+                                                 n_full=obs.cycles[sid][1], n_decay=obs.cycles[sid][2]), v, {})
+                       for k, (sid, f, v, a) in enumerate(jobs)], Path(work) / "crown-runs")
+    out = []
+    for j, p, amp, r, draws in plans:
+        sims = [[peaks[jobs[(p.specimen_id, p.frequency_hz, v, a)]] for v, a in draws[m]] for m in rivals]
+        scale = crown_scale(amp / p.low_m)
+        gain, spread, se = hold_gain_bits(probs, sims, scale)
+        out.append({"specimen_id": p.specimen_id, "frequency_hz": p.frequency_hz, "new": False, "kind": "hold_crown",
+                    "amplitudes_m": [amp], "fraction": round(r, 4), "expected_gain_bits": gain,
+                    "gain_spread_bits": spread, "gain_se_bits": se,
+                    "predicted_m": {m: float(predicted[m][j]) for m in rivals},
+                    "predicted_crown_m": {m: float(np.exp(np.mean(np.log(np.maximum(v, FLOOR_M)))))
+                                          for m, v in zip(rivals, sims)}})
+    return out
+
+
 def next_test(post: Posterior, obs: Observations, rivals: list[str], settings: DiagnosisSettings,
-              work: Path, table) -> dict | None:
+              work: Path, table, recorded=(), holds: bool = True) -> dict | None:
     """The best test (specimen_id, frequency_hz, new, kind, amplitudes_m,
     expected_gain_bits, predicted_m per rival, alternatives: the next best), or None with
-    fewer than two rivals or no test within the table's limits."""
+    fewer than two rivals or no test within the table's limits. `holds`: tests held below
+    a threshold with the crown recorded are candidates too (`recorded`: the campaign's
+    crown records already in the probabilities, crown.crown_tests)."""
     if len(rivals) < 2:
         return None
     sc = post.scales
@@ -259,11 +348,15 @@ def next_test(post: Posterior, obs: Observations, rivals: list[str], settings: D
                            [noise_sd[m] for m in rivals], table)
             if c:
                 candidates.append(c)
+    if holds:
+        predicted = {m: np.exp(stats[m][0]) for m in rivals}
+        candidates += _hold_candidates(post, obs, rivals, probs, predicted, settings, work, table, recorded)
     if not candidates:
         return None
     candidates.sort(key=lambda c: -c["expected_gain_bits"])
     best = dict(candidates[0])
     best["alternatives"] = [{k: c[k] for k in ("specimen_id", "frequency_hz", "new", "kind", "amplitudes_m",
-                                               "expected_gain_bits", "gain_spread_bits", "gain_se_bits", "predicted_m")}
+                                               "expected_gain_bits", "gain_spread_bits", "gain_se_bits", "predicted_m",
+                                               "predicted_crown_m") if k in c}
                             for c in candidates[1:1 + ALTERNATIVES]]
     return best

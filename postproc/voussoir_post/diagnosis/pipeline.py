@@ -14,8 +14,10 @@ The stages, each handing its result to the next (docs/diagnosis.md explains them
 6. report.py: report.md, its figures and diagnosis.json; samples.py: the posterior as
    model samples of each arch (posterior_samples_<specimen>.csv), for the fragility.
 
-Single runs (hinges, crown records) are made only for the report, with the nominal model
-and the reported one; they do not enter the probabilities.
+The crown records of tests held below the threshold enter the probabilities (crown.py:
+each model's draws simulated at the same fraction of their own thresholds). Hinges and
+the crown comparison of the report's single runs (the nominal model and the reported
+one) do not.
 """
 
 from __future__ import annotations
@@ -31,11 +33,12 @@ import numpy as np
 from ..errors import InputError
 from ..readers.campaign import read_campaign
 from .bank import Bank, build_bank
+from .crown import crown_log_factors, crown_tests, with_crown
 from .decision import Decision, decide, flags, to_separate
 from .effects import BRACKET_GAPS_M, Variant, restraint_parts, restraint_value
 from .models import CANDIDATES, MODEL_IDS, members, model_prior
 from .observations import Observations, from_campaign
-from .next_test import next_test
+from .next_test import draw_indices, next_test
 from .posterior import SENSITIVITY_FACTORS, Posterior, held_out, infer, prior_sensitivity, weighted_summary
 from .report import write_report
 from .samples import write_samples
@@ -141,7 +144,15 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
                       cache, out_dir / "work")
     log(f"[diagnose] simulation bank: {bank.searches} threshold searches made, {bank.reused} specimens cached "
         f"({cache})")
-    post, decision = infer_campaign(bank, obs)
+    post = infer(bank, obs)
+    crown_tests_ = crown_tests(campaign, obs.pairs)
+    if crown_tests_:
+        log(f"[diagnose] crown records of {len(crown_tests_)} tests held below their threshold: each model's "
+            "draws simulated at the same fractions of their own thresholds")
+        factors = crown_log_factors(post, obs, crown_tests_, Simulator(settings, out_dir / "work" / "crown"),
+                                    draw_indices, cache / "crown-runs")
+        post = with_crown(post, factors)
+    decision = decide(post)
     log("[diagnose] most probable: " + ", ".join(f"{m} {post.probabilities[m]:.3f}" for m in post.ranked()[:4]))
     samples = write_samples(out_dir, post, obs, settings.posterior_samples, campaign.name)
     held = {m: held_out(bank, obs, m) for m in MODEL_IDS}
@@ -158,7 +169,8 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     if len(asked) > 1:
         log(f"[diagnose] looking for the test that separates {', '.join(asked)} (tested and new frequencies)")
         # The next test's simulations beside the bank: a rerun reuses them.
-        suggestion = next_test(post, obs, asked, settings, cache / "next-test", campaign.table)
+        suggestion = next_test(post, obs, asked, settings, cache / "next-test", campaign.table, crown_tests_,
+                               settings.advise_holds)
     sim = Simulator(settings, out_dir / "work")
     runs = {"nominal": (Variant(), {})}
     if shown:
@@ -187,6 +199,7 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
             "kind": suggestion["kind"], "amplitudes_m": suggestion["amplitudes_m"],
             "expected_gain_bits": suggestion["expected_gain_bits"], "predictions": suggestion["predicted_m"],
             "gain_spread_bits": suggestion["gain_spread_bits"], "gain_se_bits": suggestion["gain_se_bits"],
+            **({"predicted_crown_m": suggestion["predicted_crown_m"]} if "predicted_crown_m" in suggestion else {}),
             "alternatives": [{("predictions" if k == "predicted_m" else k): v for k, v in a.items() if k != "new"}
                              for a in suggestion["alternatives"]]},
         "flags": flag_list,
@@ -194,6 +207,7 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
         "notes": "",
     }
     info = {"elapsed_s": time.time() - t0, "bank": bank, "settings": settings, "table": table, "crown": crown, "screen": screen,
+            "crown_evidence": (crown_tests_, post.crown),
             "held": held, "baseline_pred": baseline_pred, "samples": samples, "next_test": suggestion, "runs": sim.n_runs,
             "prior": {m: model_prior(m) for m in MODEL_IDS}, "sensitivity": sensitivity}
     result["notes"] = write_report(out_dir, campaign, obs, post, decision, result, info)

@@ -80,6 +80,8 @@ class Posterior:
     probabilities: dict[str, float] = field(default_factory=dict)
     bank: Bank | None = field(default=None, repr=False)
     obs: Observations | None = field(default=None, repr=False)
+    #: log factor of the crown records of each model (crown.py; empty without them)
+    crown: dict[str, float] = field(default_factory=dict)
 
     def ranked(self) -> list[str]:
         return sorted(self.probabilities, key=lambda m: -self.probabilities[m])

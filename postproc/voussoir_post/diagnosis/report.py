@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from ..plots.drawing import provenance
+from .crown import FLOOR_M, T_DOF
 from .decision import NAME_AT, Decision
 from .figures import probabilities_figure, table_figure, thresholds_figure
 from .likelihood import GAIN_SCATTER_DEFAULT, OUTLIER_FACTOR, OUTLIER_PROB, TAU_CAMPAIGN, TAU_PAIR, TAU_SPECIMEN
@@ -88,6 +89,11 @@ def _advice_text(nt: dict | None, what: str) -> str:
     if not nt:
         return ""
     a = nt["amplitudes_m"]
+    if nt.get("kind") == "hold_crown":
+        return (f" {what} ({nt['expected_gain_bits']:.2f} bits): specimen {nt['specimen_id']} at "
+                f"{nt['frequency_hz']:g} Hz, one afd test held at {1e3 * a[0]:.1f} mm (below the measured "
+                "threshold) with the crown's horizontal displacement recorded, where the models predict peaks of "
+                + ", ".join(f"{m} {1e3 * v:.2f} mm" for m, v in nt["predicted_crown_m"].items()) + ".")
     return (f" {what} ({nt['expected_gain_bits']:.2f} bits): specimen {nt['specimen_id']} at "
             f"{nt['frequency_hz']:g} Hz" + (" (a frequency not tested yet)" if nt["new"] else "")
             + f", an afd ramp from {1e3 * a[0]:.1f} to {1e3 * a[1]:.1f} mm by {1e3 * a[2]:.1f} mm, where "
@@ -109,10 +115,19 @@ def _next_test_lines(nt: dict | None) -> list[str]:
         se = t.get("gain_se_bits", 0.0)
         return f"{t['expected_gain_bits']:.2f}" + (f" ± {se:.2f}" if se > 0 else "")
 
+    def what(t):
+        a = t["amplitudes_m"]
+        if t.get("kind") == "hold_crown":
+            return f"hold at {1e3 * a[0]:.1f}, record the crown"
+        return f"ramp {1e3 * a[0]:.1f} to {1e3 * a[1]:.1f} by {1e3 * a[2]:.1f}"
+
+    def predicted(t, m):
+        if t.get("kind") == "hold_crown":
+            return f"crown {1e3 * t['predicted_crown_m'][m]:.2f}" if m in t.get("predicted_crown_m", {}) else "-"
+        return f"{1e3 * t['predicted_m'][m]:.1f}" if m in t.get("predicted_m", {}) else "-"
+
     rows = [(str(i + 1), t["specimen_id"], f"{t['frequency_hz']:g}" + (" (new)" if t.get("new") else ""),
-             f"{1e3 * t['amplitudes_m'][0]:.1f} to {1e3 * t['amplitudes_m'][1]:.1f} by {1e3 * t['amplitudes_m'][2]:.1f}",
-             gain(t), f"{t.get('gain_spread_bits', float('nan')):.2f}",
-             *[f"{1e3 * t['predicted_m'][m]:.1f}" if m in t.get("predicted_m", {}) else "-" for m in rivals])
+             what(t), gain(t), f"{t.get('gain_spread_bits', float('nan')):.2f}", *[predicted(t, m) for m in rivals])
             for i, t in enumerate(tests)]
     gap = ""
     if len(tests) > 1:
@@ -121,15 +136,41 @@ def _next_test_lines(nt: dict | None) -> list[str]:
         gap = (f" The first leads the second by {d:.2f} bits" + (f" (standard error {se:.2f})" if se > 0 else "")
                + (": a near tie, either serves." if se > 0 and d < 2 * se else "."))
     return ["## The next test", "",
-            "Afd ramps (from, to, by, in mm) ranked by the expected information of their outcome (the bracket the "
-            "ramp gives) about which rival is the cause, in bits. `±`: the Monte Carlo standard error of that "
-            "expectation at a new frequency, where each rival's prediction is a mixture over a few simulated draws "
-            "of its parameters (a jackknife over the draws). `spread`: the standard deviation, over the test's "
-            "possible outcomes, of the information one run delivers (the rivals' entropy before less after): a "
-            "single run often gives much less or much more than the expectation. The rivals' columns: each one's "
-            "predicted threshold amplitude [mm] there." + gap, "",
-            _md_table(["rank", "specimen", "f [Hz]", "ramp [mm]", "expected [bits]", "spread [bits]",
+            "Afd ramps (from, to, by, in mm) and afd tests held below a measured threshold with the crown "
+            "recorded, ranked by the expected information of their outcome (the bracket the ramp gives; the peak "
+            "crown displacement of the held test) about which rival is the cause, in bits. `±`: the Monte Carlo "
+            "standard error of that expectation where each rival's prediction is a mixture over a few simulated "
+            "draws of its parameters (a jackknife over the draws). `spread`: the standard deviation, over the "
+            "test's possible outcomes, of the information one run delivers (the rivals' entropy before less "
+            "after): a single run often gives much less or much more than the expectation. The rivals' columns: "
+            "each one's predicted threshold amplitude [mm] there, or for a held test its predicted peak crown "
+            "displacement [mm]." + gap, "",
+            _md_table(["rank", "specimen", "f [Hz]", "test [mm]", "expected [bits]", "spread [bits]",
                        *[f"{m} [mm]" for m in rivals]], rows), ""]
+
+
+def _crown_lines(evidence, post: Posterior) -> list[str]:
+    """The section on the crown records that entered the probabilities (crown.py)."""
+    if not evidence or not evidence[0]:
+        return []
+    tests, factors = evidence
+    shown = post.ranked()[:4]
+    rows = [(c.test.test_id, c.test.specimen_id, f"{c.test.frequency_hz:g}", f"{1e3 * c.test.amplitude_m:.1f}",
+             f"{c.fraction:.3f}", f"{1e3 * c.peak_m:.2f}" + (" (below the floor)" if c.peak_m < FLOOR_M else ""),
+             f"{c.scale:.2f}") for c in tests]
+    best = max(factors[m] for m in shown)
+    return ["## Crown records in the probabilities", "",
+            f"{len(tests)} tests that stood below their pair's measured threshold carry a crown record. Each model "
+            "is simulated at the same fraction of its own threshold, for a few draws of its parameters; the "
+            f"measured peak |crown dx| against the simulated one is a Student t of {T_DOF} degrees of freedom in "
+            f"log, of the scale measured across codes at that fraction (censored below {1e3 * FLOOR_M:g} mm, a "
+            "transducer's noise). The scale is taken at the test's amplitude over the pair's largest stand: a "
+            "wide bracket widens it.", "",
+            _md_table(["test", "specimen", "f [Hz]", "amplitude [mm]", "fraction of threshold", "peak [mm]",
+                       "scale (log)"], rows), "",
+            "What the records did to the most probable models (log factor relative to the best of them, and the "
+            "odds it multiplies): " + ", ".join(f"{m} {factors[m] - best:+.2f} (x {math.exp(factors[m] - best):.3g})"
+                                                for m in shown) + ".", ""]
 
 
 def notes(decision: Decision, post: Posterior, result: dict, info: dict) -> str:
@@ -295,6 +336,7 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
              "enters the check.", "",
              ] + _flag_lines(result) + _sensitivity_lines(info) + _emulator_lines(post) + [
              METHOD_CHECK, ""]
+    lines += _crown_lines(info.get("crown_evidence"), post)
     lines += _next_test_lines(info.get("next_test"))
     lines += ["## The table", ""]
     lines.append({"records": "Records of the table's motion were fitted as gain x command(t - delay); each "

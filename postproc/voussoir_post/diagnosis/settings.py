@@ -37,6 +37,9 @@ class DiagnosisSettings:
     #: New frequencies [Hz] at which the rivals of an inconclusive verdict are simulated,
     #: to find the test that would separate them (next_test.py).
     probe_frequencies_hz: tuple[float, ...] = (0.75, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0)
+    #: Whether tests held below a threshold with the crown recorded are advised too
+    #: (next_test.py; off: afd ramps only, for a laboratory without a crown transducer).
+    advise_holds: bool = True
     #: Model samples drawn from the posterior for each specimen (posterior_samples_<id>.csv).
     posterior_samples: int = 200
     #: Where the simulation bank is cached (None: a folder `voussoir-bank` beside the output).

@@ -7,24 +7,32 @@ most every PROGRESS_EVERY_S: done of total, time elapsed and an estimate of the 
 
 from __future__ import annotations
 
+import hashlib
+import json
 import math
 import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
+import numpy as np
+
 from ..readers.campaign import Specimen, Test
 from ..runner import Runner
 from .effects import Variant, arch_group, effect
 from .settings import DiagnosisSettings
 
-__all__ = ["Simulator", "HINGE_GAP_M", "PROGRESS_EVERY_S", "duration_words"]
+__all__ = ["Simulator", "FALLEN_PEAK_M", "HINGE_GAP_M", "PROGRESS_EVERY_S", "duration_words"]
 
 #: Opening of a joint's other edge at which a hinge counts as open: 1 mm, as a
 #: laboratory sees it (and as the test generator counts it).
 HINGE_GAP_M = 1.0e-3
 #: Least time [s] between two progress lines of a batch.
 PROGRESS_EVERY_S = 10.0
+#: What a single run that fell is taken to have shown at the crown: a displacement of the
+#: size of the arch's collapse (the far tail of the crown records' law, not a reason to
+#: drop the run).
+FALLEN_PEAK_M = 0.1
 
 
 def duration_words(seconds: float) -> str:
@@ -158,3 +166,33 @@ class Simulator:
             results = list(pool.map(one, enumerate(jobs)))
         self.n_runs += len(jobs)
         return results
+
+    def peaks(self, jobs: list[tuple[Specimen, Test, Variant, dict]], cache: Path | None = None) -> list[float]:
+        """The peak |crown dx| [m] of each single test (FALLEN_PEAK_M where it fell), for the
+        crown records' likelihood and the tests held for them. With `cache` (a folder), each
+        run's result is kept there under the hash of its input and the executables, so a
+        second diagnosis runs none of them again."""
+        keys = [hashlib.sha256(json.dumps([self.code_hash(), self.s.dt_s, arch_group(spec, v), test.frequency_hz,
+                                           test.amplitude_m, test.n_attack, test.n_full, test.n_decay,
+                                           sorted(motion.items())], sort_keys=True, default=str).encode()
+                                ).hexdigest()[:20] for spec, test, v, motion in jobs]
+        found = {}
+        if cache is not None:
+            for k in set(keys):
+                path = Path(cache) / f"{k}.json"
+                if path.exists():
+                    found[k] = json.loads(path.read_text())["peak_m"]
+        todo = [(k, job) for k, job in zip(keys, jobs) if k not in found]
+        todo = list({k: job for k, job in todo}.items())
+        for (k, _), r in zip(todo, self.run_tests([job for _, job in todo]) if todo else []):
+            found[k] = FALLEN_PEAK_M if r["collapsed"] else float(np.max(np.abs(r["crown_dx_m"])))
+            if cache is not None:
+                Path(cache).mkdir(parents=True, exist_ok=True)
+                (Path(cache) / f"{k}.json").write_text(json.dumps({"peak_m": found[k]}) + "\n")
+        return [found[k] for k in keys]
+
+    def code_hash(self) -> str:
+        """The executables' hash (voussoir-run's), for the single runs' cache."""
+        if not hasattr(self, "_code_hash"):
+            self._code_hash = hashlib.sha256((Path(self.s.bin_dir) / "voussoir-run").read_bytes()).hexdigest()[:16]
+        return self._code_hash

@@ -1,0 +1,265 @@
+"""Crown records in the probabilities (diagnosis/crown.py) and the test held for them
+(next_test.py, kind hold_crown): the law against closed forms, the evidence against
+records made by another code (LMGC90, stored by bench/lmgc90/crown_records.py), the
+factor with a stand-in simulator, and the hold's expected information against the
+mutual information's closed forms."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from conftest import bin_dir
+from voussoir_post.diagnosis import crown
+from voussoir_post.diagnosis.crown import FLOOR_M, SCALE_KNOTS, crown_log_factors, crown_scale, crown_tests, log_terms
+from voussoir_post.diagnosis.effects import Variant
+from voussoir_post.diagnosis.next_test import hold_gain_bits
+from voussoir_post.diagnosis.observations import PairObservation
+from voussoir_post.diagnosis.settings import DiagnosisSettings
+from voussoir_post.diagnosis.simulator import FALLEN_PEAK_M, Simulator
+from voussoir_post.readers.campaign import Campaign, Record, Specimen
+from voussoir_post.readers.campaign import Test as CampaignTest
+
+STORED = Path(__file__).parent / "data" / "lmgc90" / "crown_records.json"
+
+
+def t3_pdf(z):
+    """Student t of 3 degrees of freedom, by hand."""
+    return 2.0 / (math.pi * math.sqrt(3.0) * (1.0 + z * z / 3.0) ** 2)
+
+
+def t3_cdf(z):
+    return 0.5 + (z / (math.sqrt(3.0) * (1.0 + z * z / 3.0)) + math.atan(z / math.sqrt(3.0))) / math.pi
+
+
+# ---------------------------------------------------------------- the law
+
+
+def test_the_law_above_the_floor_is_a_student_t_of_the_log_peak():
+    for measured, simulated, s in ((2e-3, 3e-3, 0.1), (5e-3, 1e-3, 0.31), (1e-3, 2e-4, 0.5)):
+        z = (math.log(measured) - math.log(max(simulated, FLOOR_M))) / s
+        assert log_terms(measured, [simulated], s)[0] == pytest.approx(math.log(t3_pdf(z) / s), rel=1e-10)
+
+
+def test_a_peak_below_the_floor_is_censored_and_the_law_sums_to_one():
+    s, sim = 0.2, 8e-4
+    censored = math.exp(log_terms(1e-4, [sim], s)[0])
+    assert censored == pytest.approx(t3_cdf((math.log(FLOOR_M) - math.log(sim)) / s), rel=1e-10)
+    # Every measured peak below the floor has the same likelihood: the transducer cannot tell them apart.
+    assert log_terms(4e-4, [sim], s)[0] == log_terms(1e-5, [sim], s)[0]
+    # The censored mass and the density above the floor (in log peak) make one law.
+    above, _ = quad(lambda y: math.exp(log_terms(math.exp(y), [sim], s)[0]), math.log(FLOOR_M), math.log(FLOOR_M) + 60)
+    assert censored + above == pytest.approx(1.0, abs=1e-6)
+
+
+def test_the_scale_widens_towards_the_threshold():
+    assert crown_scale(0.5) == SCALE_KNOTS[0][1]
+    assert crown_scale(0.925) == pytest.approx(0.5 * (SCALE_KNOTS[0][1] + SCALE_KNOTS[1][1]))
+    assert crown_scale(1.0) == SCALE_KNOTS[-1][1]
+
+
+# ---------------------------------------------------------------- against another code
+
+
+def _stored_rows():
+    return json.loads(STORED.read_text())["rows"]
+
+
+def _log_err(r, which="own"):
+    sim = max(np.mean(r[f"{which}_peaks_mm"]) * 1e-3, FLOOR_M)
+    return math.log(max(r["lmgc90_peak_mm"] * 1e-3, FLOOR_M) / sim)
+
+
+def _usable(rows, fraction):
+    return [r for r in rows if r["model"] != "outside" and abs(r["fraction"] - fraction) < 1e-9
+            and not (r["lmgc90_collapsed"] or r["own_collapsed"] or r["rival_collapsed"])]
+
+
+def _robust(x):
+    x = np.asarray(x, float)
+    return 1.4826 * float(np.median(np.abs(x - np.median(x))))
+
+
+def _llr(rows, fraction, law=log_terms):
+    """Per truth: log p(LMGC90's records | its own model) - log p(... | the closest rival by
+    thresholds), the law's scale the robust spread of the OTHER truths' cross-code errors."""
+    use = _usable(rows, fraction)
+    out = {}
+    for slug in sorted({r["slug"] for r in use}):
+        mine = [r for r in use if r["slug"] == slug]
+        scale = max(_robust([_log_err(r) for r in use if r["slug"] != slug]), 0.02)
+        out[slug] = sum(float(law(1e-3 * r["lmgc90_peak_mm"], [1e-3 * np.mean(r["own_peaks_mm"])], scale)[0]
+                              - law(1e-3 * r["lmgc90_peak_mm"], [1e-3 * np.mean(r["rival_peaks_mm"])], scale)[0])
+                        for r in mine)
+    return out
+
+
+def test_another_codes_records_favour_the_truths_own_model_and_none_is_confidently_wrong():
+    """LMGC90's crown records of nine truths (three nominal arches, four rings, two
+    frictions), held at 0.9 of each threshold, judged between the truth's own model and
+    the catalogue model closest to it by thresholds (what the thresholds cannot part):
+    the law must favour the truth in all but one, and exclude none at odds beyond e^5."""
+    llr = _llr(_stored_rows(), 0.9)
+    assert len(llr) >= 8
+    assert sum(v > 0 for v in llr.values()) >= len(llr) - 1, llr
+    assert min(llr.values()) > -5.0, llr
+
+
+def test_a_normal_law_in_its_place_is_confidently_wrong_on_the_same_records():
+    """The mutation the previous test must catch: the same records under a normal law of
+    the same scale exclude a truth's own model at odds beyond e^5."""
+    def normal(measured, simulated, s):
+        loc = np.log(np.maximum(np.asarray(simulated, float), FLOOR_M))
+        y = math.log(max(measured, FLOOR_M))
+        return -0.5 * ((y - loc) / s) ** 2 - math.log(s)
+    assert min(_llr(_stored_rows(), 0.9, normal).values()) < -5.0
+
+
+def test_the_laws_scales_are_not_narrower_than_the_codes_disagree():
+    """Each knot's scale is at least the robust spread of the cross-code error of every
+    leave-one-truth-out set at that fraction (the law must not claim more agreement
+    between codes than the stored records show)."""
+    rows = _stored_rows()
+    for fraction, scale in SCALE_KNOTS:
+        use = _usable(rows, fraction)
+        slugs = sorted({r["slug"] for r in use})
+        spreads = [_robust([_log_err(r) for r in use if r["slug"] != s]) for s in slugs]
+        assert scale >= max(spreads) - 1e-9, (fraction, scale, spreads)
+
+
+# ---------------------------------------------------------------- which records enter
+
+
+def _campaign(tests: list[CampaignTest], peaks: dict[str, float]) -> Campaign:
+    spec = Specimen("A", 180.0, 9, 0.5, 0.05, 0.1, 2000.0)
+    t = np.linspace(0.0, 2.0, 201)
+    records = {tid: Record(tid, "", t, np.zeros_like(t), crown_dx_m=p * np.cos(7 * t)) for tid, p in peaks.items()}
+    return Campaign("c", {"A": spec}, {x.test_id: x for x in tests}, records)
+
+
+def _test(tid, f, amp, outcome="stand"):
+    return CampaignTest(tid, "A", "afd", outcome, frequency_hz=f, amplitude_m=amp)
+
+
+def test_the_records_that_enter_are_those_that_stood_near_a_two_sided_threshold():
+    pairs = [PairObservation("A", 2.0, 0.040, 0.042), PairObservation("A", 3.0, 0.0, 0.030)]
+    tests = [_test("near", 2.0, 0.037), _test("low", 2.0, 0.020), _test("fell", 2.0, 0.042, "collapse"),
+             _test("one_sided", 3.0, 0.027), _test("top", 2.0, 0.040)]
+    c = _campaign(tests, {t.test_id: 2e-3 for t in tests})
+    chosen = crown_tests(c, pairs)
+    assert [x.test.test_id for x in chosen] == ["near", "top"]  # the narrower law first
+    near = chosen[0]
+    assert near.fraction == pytest.approx(0.037 / 0.041)
+    assert near.scale == pytest.approx(crown_scale(0.037 / 0.040))
+    assert near.peak_m == pytest.approx(2e-3, rel=1e-3)
+
+
+# ---------------------------------------------------------------- the factor, with a stand-in simulator
+
+
+class StandIn:
+    """Returns, for each job, the crown peak a variant's value sets [m], and keeps the
+    jobs it was asked."""
+
+    def __init__(self, peak_of):
+        self.peak_of, self.jobs = peak_of, []
+
+    def peaks(self, jobs, cache=None):
+        self.jobs += jobs
+        return [self.peak_of(v) for _, _, v, _ in jobs]
+
+
+def _post(models):
+    """A posterior of one pair: each model a grid of thickness factors with its weights
+    and log thresholds."""
+    out = {}
+    for m, (values, weights, mu, prob) in models.items():
+        grid = SimpleNamespace(names=("geometry",), values=[np.array(values, float)], mu=np.array(mu, float)[:, None])
+        out[m] = SimpleNamespace(grid=grid, weights=np.array(weights, float), log_evidence=0.0, log_lik=None,
+                                 probability=prob)
+    return SimpleNamespace(models=out, probabilities={m: v[3] for m, v in models.items()})
+
+
+def _draws(mp, k):
+    return [int(np.argmax(mp.weights))] * k
+
+
+def test_the_factor_favours_the_model_whose_draws_rock_as_measured():
+    pair = PairObservation("A", 2.0, 0.040, 0.042)
+    held = _test("held", 2.0, 0.037)
+    c = _campaign([held], {"held": 3e-3})
+    tests = crown_tests(c, [pair])
+    post = _post({"ring": ([0.9], [1.0], [math.log(0.050)], 0.5), "pivots": ([0.95], [1.0], [math.log(0.060)], 0.4999),
+                  "rare": ([1.1], [1.0], [math.log(0.040)], 1e-6)})
+    sim = StandIn(lambda v: {0.9: 3e-3, 0.95: 8e-4}[dict(v.parts())["geometry"]])
+    obs = SimpleNamespace(specimens={"A": c.specimens["A"]})
+    f = crown_log_factors(post, obs, tests, sim, _draws)
+    # Each model's runs at the test's fraction of its own threshold, and no run of the rare one.
+    amps = sorted({round(job[1].amplitude_m, 7) for job in sim.jobs})
+    assert amps == pytest.approx([tests[0].fraction * 0.050, tests[0].fraction * 0.060], abs=1e-7)  # in 0.1 um
+    assert all(dict(job[2].parts())["geometry"] != 1.1 for job in sim.jobs)
+    s = tests[0].scale
+    assert f["ring"] - f["pivots"] == pytest.approx(math.log(t3_pdf(0.0) / t3_pdf(math.log(3e-3 / 8e-4) / s)), rel=1e-9)
+    assert f["rare"] == min(f["ring"], f["pivots"])
+
+
+def test_with_crown_multiplies_the_odds_by_the_factors():
+    post = _post({"a": ([1.0], [1.0], [0.0], 0.6), "b": ([1.0], [1.0], [0.0], 0.4)})
+    crown.with_crown(post, {"a": 0.0, "b": math.log(3.0)})
+    assert post.probabilities["b"] / post.probabilities["a"] == pytest.approx(3 * 0.4 / 0.6)
+    assert sum(post.probabilities.values()) == pytest.approx(1.0)
+
+
+# ---------------------------------------------------------------- the hold's expected information
+
+
+def _h(p):
+    return -sum(x * math.log2(x) for x in p if x > 0)
+
+
+def test_a_hold_whose_rivals_predict_the_same_crown_gives_nothing():
+    assert hold_gain_bits([0.5, 0.5], [[2e-3] * 3, [2e-3] * 3], 0.1)[0] == pytest.approx(0.0, abs=1e-12)
+    # Below the floor every prediction is the same outcome: nothing to learn either.
+    assert hold_gain_bits([0.5, 0.5], [[1e-4] * 3, [3e-4] * 3], 0.1)[0] == pytest.approx(0.0, abs=1e-12)
+
+
+def test_a_hold_that_parts_two_even_rivals_gives_one_bit():
+    gain, spread, se = hold_gain_bits([0.5, 0.5], [[2e-3] * 3, [40e-3] * 3], 0.1)
+    assert gain == pytest.approx(1.0, abs=0.01)
+    assert spread == pytest.approx(0.0, abs=0.05)
+    assert se == pytest.approx(0.0, abs=1e-9)
+
+
+def test_a_rival_whose_draws_split_gives_half_the_entropy_of_a_third():
+    """Rival A's three draws all rock at 2 mm; rival B's at 2 mm once and at 40 mm twice:
+    P(Y = 2 mm) = 1/2 + 1/6, and I(M; Y) = H(1/3) - H(1/3) / 2."""
+    gain, _, se = hold_gain_bits([0.5, 0.5], [[2e-3] * 3, [2e-3, 40e-3, 40e-3]], 0.1)
+    assert gain == pytest.approx(0.5 * _h([1 / 3, 2 / 3]), abs=0.01)
+    assert se > 0.0
+
+
+def test_single_runs_are_kept_so_a_second_diagnosis_runs_none_again(tmp_path, monkeypatch):
+    """Simulator.peaks: each run's peak (a fall counts as FALLEN_PEAK_M), kept under the
+    hash of its input; asked again, nothing runs, and a changed amplitude runs alone."""
+    sim = Simulator(DiagnosisSettings(bin_dir=bin_dir(), log=lambda *_: None), tmp_path / "work")
+    ran = []
+
+    def stand_in(jobs):
+        ran.extend(jobs)
+        t = np.linspace(0.0, 1.0, 11)
+        return [{"collapsed": test.amplitude_m > 0.05, "crown_dx_m": test.amplitude_m * 0.1 * np.cos(t)}
+                for _, test, _, _ in jobs]
+    monkeypatch.setattr(sim, "run_tests", stand_in)
+    spec = Specimen("A", 180.0, 9, 0.5, 0.05, 0.1, 2000.0)
+    jobs = [(spec, _test(f"t{k}", 2.0, a), Variant("friction", 0.4), {}) for k, a in enumerate((0.02, 0.06, 0.02))]
+    first = sim.peaks(jobs, tmp_path / "cache")
+    assert first == pytest.approx([0.002, FALLEN_PEAK_M, 0.002]) and len(ran) == 2  # the repeat ran once
+    assert sim.peaks(jobs, tmp_path / "cache") == first and len(ran) == 2
+    sim.peaks([(spec, _test("t", 2.0, 0.03), Variant("friction", 0.4), {})], tmp_path / "cache")
+    assert len(ran) == 3

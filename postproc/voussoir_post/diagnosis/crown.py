@@ -1,0 +1,159 @@
+"""Crown records as evidence: the peak crown displacement of a test that stood below the
+threshold, set against each model's simulation of the same test at the same fraction of
+that model's own threshold (docs/diagnosis.md, "Crown records in the probabilities").
+
+The law was measured across codes before it entered the probabilities
+(bench/lmgc90/crown_records.py: LMGC90's records of its truths against Voussoir's runs of
+their own models, held at 0.9, 0.95 and 0.98 of the threshold):
+
+- the feature is the peak |crown_dx_m| of the record (relative to the table). A simulated
+  peak is floored at FLOOR_M (0.5 mm, a displacement transducer's noise), as the bench
+  floored both; a measured peak below it is censored: its likelihood is P(peak <
+  FLOOR_M) under the law below (one law: the censored mass and the density above it sum
+  to 1);
+- the error log(measured / simulated) is a Student t of T_DOF = 3 degrees of freedom
+  (a normal law was confidently wrong on two truths of eight), of scale
+  `crown_scale(r)`: the largest of the leave-one-truth-out robust spreads the bench
+  measured at that fraction r of the threshold (0.10 at 0.9, 0.31 at 0.95, 0.50 at
+  0.98: the response turns chaotic near collapse);
+- the test's fraction is its amplitude over the pair's measured threshold (the bracket's
+  midpoint); the scale is taken at its amplitude over the bracket's low end (the largest
+  stand), the highest fraction the bracket allows, so a wide bracket widens the law;
+- each model is simulated at the same fraction of its own threshold at a parameter draw
+  (the simulated threshold at that grid point, the table following the command: a
+  table gain scales the threshold and the test alike, and drops out), for DRAWS
+  stratified draws of its threshold posterior (next_test.draw_indices): the factor is
+  p(records | model, thresholds) = the mean over the draws of the product over the tests.
+
+Only records that can say something enter: tests that stood, of a certain pair with a
+stand below its collapse, at a fraction of R_MIN to R_MAX, at most MAX_TESTS of them (the
+lowest scales first). A model the thresholds already put below MIN_PROBABILITY is not
+simulated: it gets the least factor of those that were, so records cannot revive it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.special import logsumexp
+from scipy.stats import t as student_t
+
+from ..readers.campaign import Campaign, Test
+from .effects import Variant
+from .observations import PairObservation
+
+__all__ = ["FLOOR_M", "T_DOF", "SCALE_KNOTS", "CrownTest", "crown_scale", "crown_tests", "peak_m", "log_terms",
+           "crown_log_factors", "with_crown", "DRAWS", "variant_at"]
+
+FLOOR_M = 5.0e-4
+T_DOF = 3
+#: (fraction of the threshold, scale of the log error): the bench's largest leave-one-out
+#: robust spread at 0.9, 0.95 and 0.98 (docs/diagnosis.md, "Crown records across codes").
+SCALE_KNOTS = ((0.90, 0.10), (0.95, 0.31), (0.98, 0.50))
+R_MIN, R_MAX = 0.80, 0.99
+MAX_TESTS = 8
+DRAWS = 3
+MIN_PROBABILITY = 1.0e-4
+
+
+@dataclass(frozen=True)
+class CrownTest:
+    test: Test
+    pair: int  #: index of its pair in the posterior's pairs
+    fraction: float  #: amplitude over the pair's measured threshold
+    scale: float  #: of the log error
+    peak_m: float  #: measured peak |crown_dx|
+
+
+def crown_scale(r_high: float) -> float:
+    """The scale of the log error at a fraction `r_high` of the threshold (the knots'
+    values, linear between them, constant outside)."""
+    xs, ys = zip(*SCALE_KNOTS)
+    return float(np.interp(r_high, xs, ys))
+
+
+def peak_m(crown_dx_m) -> float:
+    return float(np.max(np.abs(np.asarray(crown_dx_m, float)))) if len(crown_dx_m) else math.nan
+
+
+def crown_tests(campaign: Campaign, pairs: list[PairObservation]) -> list[CrownTest]:
+    """The records that enter the probabilities (module docstring)."""
+    out = []
+    for tid, rec in campaign.records.items():
+        t = campaign.tests.get(tid)
+        if rec.crown_dx_m is None or t is None or t.collapsed or t.waveform != "afd" or not t.amplitude_m:
+            continue
+        j = next((k for k, p in enumerate(pairs) if p.specimen_id == t.specimen_id
+                  and abs(p.frequency_hz - t.frequency_hz) < 1e-6), None)
+        if j is None or pairs[j].low_m <= 0:
+            continue
+        r = t.amplitude_m / pairs[j].threshold_m
+        if not R_MIN <= r <= R_MAX:
+            continue
+        out.append(CrownTest(t, j, r, crown_scale(t.amplitude_m / pairs[j].low_m), peak_m(rec.crown_dx_m)))
+    out.sort(key=lambda c: (c.scale, c.test.test_id))
+    return out[:MAX_TESTS]
+
+
+def log_terms(measured_peak_m: float, simulated_peaks_m, scale: float) -> np.ndarray:
+    """log p(measured peak | simulated peak) for each simulated peak (module docstring)."""
+    loc = np.log(np.maximum(np.asarray(simulated_peaks_m, float), FLOOR_M))
+    if measured_peak_m < FLOOR_M:
+        return student_t.logcdf((math.log(FLOOR_M) - loc) / scale, T_DOF)
+    z = (math.log(measured_peak_m) - loc) / scale
+    return student_t.logpdf(z, T_DOF) - math.log(scale)
+
+
+def variant_at(grid, i: int) -> Variant:
+    """The simulated variant of grid point i (a table gain needs no simulation)."""
+    names = [n for n in grid.names if n != "table_motion"]
+    return Variant.of((n, str(grid.values[grid.names.index(n)][i]) if grid.values[grid.names.index(n)].dtype == object
+                       else round(float(grid.values[grid.names.index(n)][i]), 6)) for n in names)
+
+
+def crown_log_factors(post, obs, tests: list[CrownTest], sim, draw_indices, cache=None) -> dict[str, float]:
+    """log p(records | model, thresholds) of every model (module docstring). `sim` gives
+    the runs' peaks (Simulator.peaks, with its `cache`); `draw_indices(mp, k)` the
+    stratified draws."""
+    wanted = [m for m, p in post.probabilities.items() if p >= MIN_PROBABILITY]
+    plan = {}  # model -> [(draw's variant, amplitude of each test)]
+    jobs: dict[tuple, int] = {}
+    for m in wanted:
+        mp = post.models[m]
+        plan[m] = []
+        for i in draw_indices(mp, DRAWS):
+            v = variant_at(mp.grid, i)
+            amps = [round(c.fraction * math.exp(float(mp.grid.mu[i, c.pair])), 7) for c in tests]
+            plan[m].append((v, amps))
+            for c, a in zip(tests, amps):
+                jobs.setdefault((v, c.test.test_id, a), len(jobs))
+    by_id = {c.test.test_id: c for c in tests}
+    peaks = sim.peaks([(obs.specimens[by_id[tid].test.specimen_id], dataclasses.replace(by_id[tid].test, amplitude_m=a),
+                        v, {}) for (v, tid, a) in jobs], cache)
+    out = {}
+    for m, draws in plan.items():
+        per_draw = [sum(float(log_terms(c.peak_m, [peaks[jobs[(v, c.test.test_id, a)]]], c.scale)[0])
+                        for c, a in zip(tests, amps)) for v, amps in draws]
+        out[m] = float(logsumexp(per_draw) - math.log(len(per_draw)))
+    least = min(out.values()) if out else 0.0
+    return {m: out.get(m, least) for m in post.probabilities}
+
+
+def with_crown(post, factors: dict[str, float]):
+    """The posterior with each model's evidence times its records' factor."""
+    logs = {}
+    for m, mp in post.models.items():
+        mp.log_evidence += factors[m]
+        if mp.log_lik is not None:
+            mp.log_lik = mp.log_lik + factors[m]
+        logs[m] = math.log(post.probabilities[m]) + factors[m] if post.probabilities[m] > 0 else -math.inf
+    values = np.array(list(logs.values()))
+    probs = np.exp(values - logsumexp(values))
+    for (m, mp), p in zip(post.models.items(), probs):
+        mp.probability = float(p)
+    post.probabilities = {m: post.models[m].probability for m in post.models}
+    post.crown = factors
+    return post
