@@ -58,6 +58,8 @@ sys.path.insert(0, str(HERE))
 
 from independent_campaigns import ARCHES  # noqa: E402
 from lmgc90_campaigns import SNAP_M, LabFaults, draw_campaign, stored_truths, truth_model  # noqa: E402
+from voussoir_post.diagnosis.bank import build_bank  # noqa: E402
+from voussoir_post.diagnosis.observations import from_campaign  # noqa: E402
 from truths import Lmgc90Specimen, actuator_gain, onset_m  # noqa: E402
 from voussoir_post.analysis.afd import afd_command  # noqa: E402
 from voussoir_post.diagnosis import pipeline  # noqa: E402
@@ -397,12 +399,52 @@ def sign_test_p(wins: int, losses: int) -> float:
     return min(1.0, 2.0 * tail)
 
 
-def summary(out_root: Path) -> dict:
+def judged_label(truth: dict, rows: list[dict], settings: DiagnosisSettings, work: Path) -> str:
+    """The truth's label as the calibration gives it (lmgc90_campaigns.truth_model with the
+    bank and the campaign): less any effect that moves none of the campaign's tested
+    thresholds by its material threshold. Reads the loop's bank (every pair of these rows
+    is in it)."""
+    write_campaign(work, rows)
+    obs, _ = from_campaign(read_campaign(work))
+    bank = build_bank(obs.specimens, {sid: obs.frequencies(sid) for sid in obs.specimens}, obs.cycles, settings,
+                      Path(settings.bank_dir), work / "work")
+    assert bank.searches == 0, "judged_label: the bank lacks a pair of these rows"
+    shutil.rmtree(work, ignore_errors=True)
+    return truth_model(truth, bank, obs)
+
+
+def judge(res: dict, settings: DiagnosisSettings, out_root: Path) -> None:
+    """Adds to each result the calibration's labels of the truth at step 0 and at its last
+    step, whether the named model is right by the last one, and P(truth) by them."""
+    truths = {t["slug"]: t for t in stored_truths()}
+    for (t, d), s in res.items():
+        last = s["steps"][-1]["step"]
+        cache = out_root / "results" / f"{t}__{d}.judged.json"
+        if cache.exists():
+            s.update(json.loads(cache.read_text()))
+            continue
+        labels = [judged_label(truths[t], [r for r in s["rows"] if r["step"] <= k], settings, out_root / "judge")
+                  for k in (0, last)]
+        p = [json.loads((out_root / "runs" / t / (("step0_ramps" if d == "ramps" else "step0") if k == 0
+                                                  else f"{d}/step{k}") / "diagnosis.json").read_text())["probabilities"]
+             for k in (0, last)]
+        j = {"label_judged": labels, "p_truth_initial_judged": p[0].get(labels[0], 0.0),
+             "p_truth_final_judged": p[1].get(labels[1], 0.0),
+             "named_right_judged": None if s["named"] is None else s["named"] == labels[1]}
+        cache.write_text(json.dumps(j))
+        s.update(j)
+
+
+def summary(out_root: Path, settings: DiagnosisSettings | None = None) -> dict:
     res = {}
-    for p in sorted((out_root / "results").glob("*.json")):
+    for p in sorted((out_root / "results").glob("*__*.json")):
+        if p.name.endswith(".judged.json"):
+            continue
         s = json.loads(p.read_text())
         if s.get("finished"):
             res[(s["truth"], s["design"])] = s
+    if settings is not None:
+        judge(res, settings, out_root)
     truths = sorted({t for t, _ in res}, key=lambda t: int(t[1:].split("_")[0]))
     print(f"{'truth':52s} {'label':28s} design   tests verdict                    P(truth) by step")
     for t in truths:
@@ -428,6 +470,14 @@ def summary(out_root: Path) -> dict:
                   "mean_p_truth_final": float(np.mean([s["p_truth_final"] for s in done]))}
         out[d]["named_after_tests"] = {k: sum(s["named_at_step"] == k for s in named) for k in range(MAX_TESTS + 1)}
         out[d]["stopped"] = {r: sum(s["stopped"] == r for s in done) for r in sorted({s["stopped"] for s in done})}
+        if all("named_right_judged" in s for s in done):
+            rj = sum(bool(s["named_right_judged"]) for s in named)
+            out[d] |= {"right_judged": rj, "wrong_judged": len(named) - rj,
+                       "labels_changed": [s["truth"] for s in done if s["label_judged"][-1] != s["label"]]}
+            print(f"{d}, labelled as the calibration labels (an effect that moves no tested threshold by its "
+                  f"material threshold is no cause): {rj} right, {len(named) - rj} wrong; labels changed: "
+                  + (", ".join(f"{s['truth']} {s['label']} -> {s['label_judged'][-1]}" for s in done
+                               if s["label_judged"][-1] != s["label"]) or "none"))
         print(f"{d}: named at {NAMED_AT} within {MAX_TESTS} tests in {len(named)} of {len(done)} truths "
               f"({right} right, {len(named) - right} wrong; after 0/1/2/3 tests: "
               + "/".join(str(v) for v in out[d]["named_after_tests"].values())
@@ -517,7 +567,9 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     out_root = Path(args.out)
     if args.summary:
-        summary(out_root)
+        summary(out_root, DiagnosisSettings(bin_dir=Path(args.bin_dir).resolve(), n_ranks=args.np,
+                                            bank_dir=Path(args.bank or out_root / "bank").resolve(),
+                                            log=lambda m: None))
         return 0
     build = os.path.abspath(args.lmgc90_build or ".")
     if not (Path(build) / "pylmgc90").is_dir():
@@ -547,7 +599,7 @@ def main(argv=None) -> int:
                 f"({'right' if s['named_right'] else 'wrong' if s['named'] else '-'}), P(truth) "
                 f"{s['p_truth_initial']:.3f} -> {s['p_truth_final']:.3f} ({time.time() - t0:.0f} s)")
     log(f"all done in {time.time() - t_all:.0f} s")
-    summary(out_root)
+    summary(out_root, settings)
     return 0
 
 

@@ -147,16 +147,22 @@ def _test(tid, f, amp, outcome="stand"):
     return CampaignTest(tid, "A", "afd", outcome, frequency_hz=f, amplitude_m=amp)
 
 
-def test_the_records_that_enter_are_those_that_stood_near_a_two_sided_threshold():
-    pairs = [PairObservation("A", 2.0, 0.040, 0.042), PairObservation("A", 3.0, 0.0, 0.030)]
-    tests = [_test("near", 2.0, 0.037), _test("low", 2.0, 0.020), _test("fell", 2.0, 0.042, "collapse"),
-             _test("one_sided", 3.0, 0.027), _test("top", 2.0, 0.040)]
+def test_the_records_that_enter_are_one_per_pair_that_stood_near_a_two_sided_threshold():
+    pairs = [PairObservation("A", 2.0, 0.040, 0.042), PairObservation("A", 3.0, 0.0, 0.030),
+             PairObservation("A", 4.0, 0.020, 0.021)]
+    tests = [_test("near", 2.0, 0.036), _test("lower", 2.0, 0.035), _test("low", 2.0, 0.020),
+             _test("fell", 2.0, 0.042, "collapse"), _test("one_sided", 3.0, 0.027), _test("top", 2.0, 0.040),
+             _test("other", 4.0, 0.020)]
     c = _campaign(tests, {t.test_id: 2e-3 for t in tests})
     chosen = crown_tests(c, pairs)
-    assert [x.test.test_id for x in chosen] == ["near", "top"]  # the narrower law first
+    # 2 Hz: "near" and "lower" (0.9 and 0.875 of the largest stand) have the same,
+    # narrowest law, "near" the higher fraction;
+    # "top" stood at the bracket's low end (the widest law); 3 Hz has no stand below its
+    # collapse; 4 Hz's only record enters after the narrower law.
+    assert [x.test.test_id for x in chosen] == ["near", "other"]
     near = chosen[0]
-    assert near.fraction == pytest.approx(0.037 / 0.041)
-    assert near.scale == pytest.approx(crown_scale(0.037 / 0.040))
+    assert near.fraction == pytest.approx(0.036 / 0.041)
+    assert near.scale == pytest.approx(crown_scale(0.036 / 0.040)) == SCALE_KNOTS[0][1]
     assert near.peak_m == pytest.approx(2e-3, rel=1e-3)
 
 

@@ -26,8 +26,10 @@ their own models, held at 0.9, 0.95 and 0.98 of the threshold):
   p(records | model, thresholds) = the mean over the draws of the product over the tests.
 
 Only records that can say something enter: tests that stood, of a certain pair with a
-stand below its collapse, at a fraction of R_MIN to R_MAX, at most MAX_TESTS of them (the
-lowest scales first). A model the thresholds already put below MIN_PROBABILITY is not
+stand below its collapse, at a fraction of R_MIN to R_MAX; one per pair (the narrowest
+law, then the highest fraction), because the codes differ by pair more than by test: a
+second record of the same pair shares the first one's error, and counting both as
+independent would overstate them; at most MAX_TESTS pairs (the narrowest laws first). A model the thresholds already put below MIN_PROBABILITY is not
 simulated: it gets the least factor of those that were, so records cannot revive it.
 """
 
@@ -94,8 +96,11 @@ def crown_tests(campaign: Campaign, pairs: list[PairObservation]) -> list[CrownT
         if not R_MIN <= r <= R_MAX:
             continue
         out.append(CrownTest(t, j, r, crown_scale(t.amplitude_m / pairs[j].low_m), peak_m(rec.crown_dx_m)))
-    out.sort(key=lambda c: (c.scale, c.test.test_id))
-    return out[:MAX_TESTS]
+    # One record per pair: the narrowest law, then the highest fraction (the arch rocks most).
+    best = {}
+    for c in sorted(out, key=lambda c: (c.scale, -c.fraction, c.test.test_id)):
+        best.setdefault(c.pair, c)
+    return sorted(best.values(), key=lambda c: (c.scale, c.test.test_id))[:MAX_TESTS]
 
 
 def log_terms(measured_peak_m: float, simulated_peaks_m, scale: float) -> np.ndarray:
