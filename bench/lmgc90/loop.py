@@ -9,7 +9,10 @@ record per test) and then, up to MAX_TESTS times:
 1. diagnoses it (pipeline.diagnose, the `voussoir-diagnose run` pipeline) with one bank
    folder shared by every truth, design and step, so the bank grows test by test;
 2. chooses the next test: `advised` reads diagnosis.json's next_test (specimen,
-   frequency, afd ramp from/to/by); `naive` takes the next frequency up (of
+   frequency, an afd ramp from/to/by, or an afd test held at one amplitude with the crown
+   recorded, kind hold_crown); `ramps` the same advice with held tests left out
+   (DiagnosisSettings.advise_holds = False: a laboratory without a crown transducer;
+   its own step 0); `naive` takes the next frequency up (of
    DiagnosisSettings.probe_frequencies_hz, not yet tested) on the specimen of the most
    recent test, within the table's limits, else a seeded random untested (specimen,
    frequency), ramped as the laboratory ramps (lmgc90_campaigns.LabFaults: a start of
@@ -21,7 +24,11 @@ record per test) and then, up to MAX_TESTS times:
    step until it stands, at most 10 tests), each run with the laboratory's faults of
    the campaign (each test's table gain scattered by 1 %, the campaign-wide offset, the
    transducer's bias on the measured gain, as draw_campaign draws them);
-4. appends the rows and their table records to the campaign folder, and diagnoses again.
+   A held test is one LMGC90 run at that amplitude (with the same faults), its crown
+   recorded as a transducer gives it (truth_case.py, relative to the table, with 0.05 mm
+   of noise);
+4. appends the rows and their table records (and a held test's crown record) to the
+   campaign folder, and diagnoses again.
 
 It stops early when a cause (or `none`) is named at 0.9 or more. The step 0 diagnosis
 (the replayed campaign) is shared by both designs. After each diagnosis the loop asserts
@@ -34,6 +41,11 @@ PYTHONPATH at postproc (loop.sh does that):
 
     python bench/lmgc90/loop.py --lmgc90-build DIR --out OUT [--truths N | --slugs S1,S2] [--designs advised,naive]
     python bench/lmgc90/loop.py --out OUT --summary      # the table of what is finished
+
+The summary also labels each truth as the calibration does (lmgc90_campaigns.truth_model
+with the bank and the campaign at step 0 and at the last step: an effect that moves none
+of the tested thresholds by its material threshold is no cause), beside the generator's
+label.
 """
 
 from __future__ import annotations
@@ -344,7 +356,8 @@ def run_truth(truth: dict, design: str, args, settings: DiagnosisSettings, out_r
                           "amplitudes_m": [round(round(a_from / SNAP_M) * SNAP_M, 7), None,
                                            round(max(SNAP_M, round(a_by / SNAP_M) * SNAP_M), 7)]}
             runs0, secs0 = lab.runs, lab.seconds
-            log(f"{slug} [{design}] test {k}: {sid} at {f:g} Hz, ramp {chosen['amplitudes_m']} in LMGC90")
+            log(f"{slug} [{design}] test {k}: {sid} at {f:g} Hz, "
+                + ("held" if chosen["kind"] == "hold_crown" else "ramp") + f" {chosen['amplitudes_m']} in LMGC90")
             if chosen["kind"] == "hold_crown":
                 new = [lab.test(sid, f, chosen["amplitudes_m"][0], rng, k, hold=True)]
             else:

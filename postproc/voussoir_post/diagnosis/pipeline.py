@@ -149,9 +149,11 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     if crown_tests_:
         log(f"[diagnose] crown records of {len(crown_tests_)} tests held below their threshold: each model's "
             "draws simulated at the same fractions of their own thresholds")
-        factors = crown_log_factors(post, obs, crown_tests_, Simulator(settings, out_dir / "work" / "crown"),
-                                    draw_indices, cache / "crown-runs")
+        crown_sim = Simulator(settings, out_dir / "work" / "crown")
+        factors = crown_log_factors(post, obs, crown_tests_, crown_sim, draw_indices, cache / "crown-runs")
         post = with_crown(post, factors)
+        log(f"[diagnose] crown records weighed: {crown_sim.n_runs} single runs made now (the rest from "
+            f"{cache / 'crown-runs'})")
     decision = decide(post)
     log("[diagnose] most probable: " + ", ".join(f"{m} {post.probabilities[m]:.3f}" for m in post.ranked()[:4]))
     samples = write_samples(out_dir, post, obs, settings.posterior_samples, campaign.name)
