@@ -255,8 +255,8 @@ def _hold_candidates(post: Posterior, obs: Observations, rivals: list[str], prob
                      settings: DiagnosisSettings, work: Path, table, recorded) -> list[dict]:
     """Tests held at HOLD_FRACTIONS of a tested pair's measured threshold (at or below its
     largest stand, so expected to stand), with the crown recorded: each rival's draws
-    simulated at the same fraction of their own thresholds (crown.py). A pair whose records
-    already hold a test near that fraction is not asked again."""
+    simulated at the same fraction of their own thresholds (crown.py). A pair whose crown
+    record is already in the probabilities is not asked again (one record a pair counts)."""
     plans, jobs = [], {}
     for j, p in enumerate(post.pairs):
         if p.low_m <= 0:
@@ -265,7 +265,7 @@ def _hold_candidates(post: Posterior, obs: Observations, rivals: list[str], prob
             amp = _snap(h * p.threshold_m)
             r = amp / p.threshold_m
             if (amp > p.low_m or r < R_MIN or not within_limits(amp, p.frequency_hz, table)
-                    or any(c.pair == j and abs(c.fraction - r) < 0.02 for c in recorded)):
+                    or any(c.pair == j for c in recorded)):
                 continue
             draws = {}
             for m in rivals:
