@@ -189,7 +189,9 @@ def _post(models):
         grid = SimpleNamespace(names=("geometry",), values=[np.array(values, float)], mu=np.array(mu, float)[:, None])
         out[m] = SimpleNamespace(grid=grid, weights=np.array(weights, float), log_evidence=0.0, log_lik=None,
                                  probability=prob)
-    return SimpleNamespace(models=out, probabilities={m: v[3] for m, v in models.items()})
+    # The pair's simulator and build-tolerance spreads: 0.03 and 0.04, 0.05 together.
+    scales = SimpleNamespace(sigma_sim=np.array([0.03]), sigma_tol=np.array([0.04]))
+    return SimpleNamespace(models=out, probabilities={m: v[3] for m, v in models.items()}, scales=scales)
 
 
 def _draws(mp, k):
@@ -206,9 +208,13 @@ def test_the_factor_favours_the_model_whose_draws_rock_as_measured():
     sim = StandIn(lambda v: {0.9: 3e-3, 0.95: 8e-4}[dict(v.parts())["geometry"]])
     obs = SimpleNamespace(specimens={"A": c.specimens["A"]})
     f = crown_log_factors(post, obs, tests, sim, _draws)
-    # Each model's runs at the test's fraction of its own threshold, and no run of the rare one.
+    # Each model's runs at the test's fraction of its own threshold, at the three-point
+    # Gauss-Hermite nodes of that threshold's spread (0, -sqrt(3), +sqrt(3) times 0.05 in
+    # log), and no run of the rare one.
     amps = sorted({round(job[1].amplitude_m, 7) for job in sim.jobs})
-    assert amps == pytest.approx([tests[0].fraction * 0.050, tests[0].fraction * 0.060], abs=1e-7)  # in 0.1 um
+    expected = sorted(tests[0].fraction * t * math.exp(k * math.sqrt(3.0) * 0.05) for t in (0.050, 0.060)
+                      for k in (-1, 0, 1))
+    assert amps == pytest.approx(expected, abs=1e-7)  # in 0.1 um
     assert all(dict(job[2].parts())["geometry"] != 1.1 for job in sim.jobs)
     s = tests[0].scale
     assert f["ring"] - f["pivots"] == pytest.approx(math.log(t3_pdf(0.0) / t3_pdf(math.log(3e-3 / 8e-4) / s)), rel=1e-9)
@@ -269,3 +275,17 @@ def test_single_runs_are_kept_so_a_second_diagnosis_runs_none_again(tmp_path, mo
     assert sim.peaks(jobs, tmp_path / "cache") == first and len(ran) == 2
     sim.peaks([(spec, _test("t", 2.0, 0.03), Variant("friction", 0.4), {})], tmp_path / "cache")
     assert len(ran) == 3
+
+
+def test_a_threshold_known_to_a_few_per_cent_widens_a_steep_crown():
+    """Near the threshold the crown can grow tenfold within a few per cent of amplitude:
+    a model whose central node barely rocks (1 mm) but whose upper node (its threshold a
+    spread lower for the specimen as built) rocks as measured (25 mm) keeps the weight of
+    that node, 1/6 of the t's density, instead of the t's far tail."""
+    measured, s = 0.025, 0.31
+    central = math.log(t3_pdf(math.log(measured / 0.001) / s) / s)
+    mixed = crown.mixture_log_term(measured, [0.001, 0.0004, 0.025], s)
+    by_hand = math.log(2 / 3 * t3_pdf(math.log(measured / 0.001) / s) / s
+                       + 1 / 6 * t3_pdf(math.log(measured / FLOOR_M) / s) / s + 1 / 6 * t3_pdf(0.0) / s)
+    assert mixed == pytest.approx(by_hand, rel=1e-12) and mixed > central + 3.0
+    assert crown.amplitudes(0.9, math.log(0.04), 0.0) == [0.036, 0.036, 0.036]

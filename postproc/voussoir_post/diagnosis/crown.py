@@ -22,8 +22,12 @@ their own models, held at 0.9, 0.95 and 0.98 of the threshold):
 - each model is simulated at the same fraction of its own threshold at a parameter draw
   (the simulated threshold at that grid point, the table following the command: a
   table gain scales the threshold and the test alike, and drops out), for DRAWS
-  stratified draws of its threshold posterior (next_test.draw_indices): the factor is
-  p(records | model, thresholds) = the mean over the draws of the product over the tests.
+  stratified draws of its threshold posterior (next_test.draw_indices); and, because the
+  crown can grow tenfold within a few per cent of amplitude near the threshold (W118 at
+  3 Hz: 1 mm at 0.88 of its threshold, 25 mm at 0.95), over the model's own uncertainty
+  of that threshold for the specimen as built (`pair_spread`: the simulator's spread and
+  the build tolerance's, by QUADRATURE): the factor is p(records | model, thresholds) =
+  the mean over the draws of the product over the tests of the quadrature's mixture.
 
 Only records that can say something enter: tests that stood, of a certain pair with a
 stand below its collapse, at a fraction of R_MIN to R_MAX; one per pair (the narrowest
@@ -47,8 +51,9 @@ from ..readers.campaign import Campaign, Test
 from .effects import Variant
 from .observations import PairObservation
 
-__all__ = ["FLOOR_M", "T_DOF", "SCALE_KNOTS", "CrownTest", "crown_scale", "crown_tests", "peak_m", "log_terms",
-           "crown_log_factors", "with_crown", "DRAWS", "variant_at"]
+__all__ = ["FLOOR_M", "T_DOF", "SCALE_KNOTS", "QUADRATURE", "CrownTest", "crown_scale", "crown_tests", "peak_m",
+           "log_terms", "pair_spread", "amplitudes", "mixture_log_term", "crown_log_factors", "with_crown", "DRAWS",
+           "variant_at"]
 
 FLOOR_M = 5.0e-4
 T_DOF = 3
@@ -59,6 +64,11 @@ R_MIN, R_MAX = 0.80, 0.99
 MAX_TESTS = 8
 DRAWS = 3
 MIN_PROBABILITY = 1.0e-4
+#: Three-point Gauss-Hermite rule (nodes in standard deviations, weights) over the model's
+#: own threshold at the pair, whose spread is the simulator's and the build tolerance's
+#: (likelihood.Scales.sigma_sim, sigma_tol): the fraction the laboratory held at is a
+#: fraction of its specimen's threshold, which the model knows to within that spread.
+QUADRATURE = ((0.0, 2.0 / 3.0), (-math.sqrt(3.0), 1.0 / 6.0), (math.sqrt(3.0), 1.0 / 6.0))
 
 
 @dataclass(frozen=True)
@@ -119,6 +129,24 @@ def variant_at(grid, i: int) -> Variant:
                        else round(float(grid.values[grid.names.index(n)][i]), 6)) for n in names)
 
 
+def pair_spread(scales, j: int) -> float:
+    """The model's uncertainty of its own log threshold at pair j for the specimen as
+    built: the simulator's spread and the build tolerance's."""
+    return math.hypot(float(scales.sigma_sim[j]), float(scales.sigma_tol[j]))
+
+
+def amplitudes(fraction: float, log_threshold: float, spread: float) -> list[float]:
+    """The amplitudes [m] of QUADRATURE's nodes for a test held at `fraction` of a model's
+    threshold exp(log_threshold) known to within `spread` (log)."""
+    return [round(fraction * math.exp(log_threshold + node * spread), 7) for node, _ in QUADRATURE]
+
+
+def mixture_log_term(measured_peak_m: float, node_peaks_m, scale: float) -> float:
+    """log of the quadrature's mixture of the law over its nodes' simulated peaks."""
+    w = np.log([wt for _, wt in QUADRATURE])
+    return float(logsumexp(w + log_terms(measured_peak_m, node_peaks_m, scale)))
+
+
 def crown_log_factors(post, obs, tests: list[CrownTest], sim, draw_indices, cache=None) -> dict[str, float]:
     """log p(records | model, thresholds) of every model (module docstring). `sim` gives
     the runs' peaks (Simulator.peaks, with its `cache`); `draw_indices(mp, k)` the
@@ -131,17 +159,19 @@ def crown_log_factors(post, obs, tests: list[CrownTest], sim, draw_indices, cach
         plan[m] = []
         for i in draw_indices(mp, DRAWS):
             v = variant_at(mp.grid, i)
-            amps = [round(c.fraction * math.exp(float(mp.grid.mu[i, c.pair])), 7) for c in tests]
+            amps = [amplitudes(c.fraction, float(mp.grid.mu[i, c.pair]), pair_spread(post.scales, c.pair))
+                    for c in tests]
             plan[m].append((v, amps))
-            for c, a in zip(tests, amps):
-                jobs.setdefault((v, c.test.test_id, a), len(jobs))
+            for c, nodes in zip(tests, amps):
+                for a in nodes:
+                    jobs.setdefault((v, c.test.test_id, a), len(jobs))
     by_id = {c.test.test_id: c for c in tests}
     peaks = sim.peaks([(obs.specimens[by_id[tid].test.specimen_id], dataclasses.replace(by_id[tid].test, amplitude_m=a),
                         v, {}) for (v, tid, a) in jobs], cache)
     out = {}
     for m, draws in plan.items():
-        per_draw = [sum(float(log_terms(c.peak_m, [peaks[jobs[(v, c.test.test_id, a)]]], c.scale)[0])
-                        for c, a in zip(tests, amps)) for v, amps in draws]
+        per_draw = [sum(mixture_log_term(c.peak_m, [peaks[jobs[(v, c.test.test_id, a)]] for a in nodes], c.scale)
+                        for c, nodes in zip(tests, amps)) for v, amps in draws]
         out[m] = float(logsumexp(per_draw) - math.log(len(per_draw)))
     least = min(out.values()) if out else 0.0
     return {m: out.get(m, least) for m in post.probabilities}

@@ -50,7 +50,7 @@ from scipy.stats import t as student_t
 
 from ..readers.campaign import Test
 from .bank import onset_amplitudes, variant_key
-from .crown import DRAWS, FLOOR_M, R_MIN, T_DOF, crown_scale, variant_at
+from .crown import DRAWS, FLOOR_M, QUADRATURE, R_MIN, T_DOF, amplitudes, crown_scale, pair_spread, variant_at
 from .effects import Variant, arch_group
 from .likelihood import predictive_sd
 from .models import members
@@ -224,29 +224,34 @@ def _candidate(sid: str, f: float, new: bool, rivals: list[str], probs: list[flo
 def _hold_laws(probabilities, peaks, scale: float):
     """(p, py_m) of a test held below the threshold with its crown recorded: its outcome
     is the measured peak's bin (the censored one below FLOOR_M, then bins of CROWN_BIN
-    scales), each rival's law the mixture over its draws of the crown law (crown.py) about
-    each draw's simulated peak."""
+    scales), each rival's law the mixture over its draws (and, where a draw is a row of
+    peaks, over crown.QUADRATURE's nodes of its threshold) of the crown law (crown.py)
+    about each simulated peak."""
     p = np.asarray(probabilities, float)
     p = p / p.sum()
-    locs = [np.log(np.maximum(np.asarray(v, float), FLOOR_M)) for v in peaks]
+    rows = [np.atleast_2d(np.asarray(v, float).T).T if np.ndim(v) == 1 else np.asarray(v, float) for v in peaks]
+    locs = [np.log(np.maximum(r, FLOOR_M)) for r in rows]
     top = max(float(np.max(v)) for v in locs) + 12 * scale
     lo = math.log(FLOOR_M)
     edges = np.append(lo + CROWN_BIN * scale * np.arange(int(math.ceil((top - lo) / (CROWN_BIN * scale))) + 1), np.inf)
     py_m = []
     for v in locs:
-        cdf = student_t.cdf((edges[None, :] - v[:, None]) / scale, T_DOF)
-        py_m.append(np.column_stack([cdf[:, :1], np.diff(cdf, axis=1)]).mean(axis=0))
+        w = np.array([wt for _, wt in QUADRATURE]) if v.shape[1] == len(QUADRATURE) else np.full(v.shape[1], 1.0 / v.shape[1])
+        cdf = student_t.cdf((edges[None, None, :] - v[:, :, None]) / scale, T_DOF)  # (draw, node, edge)
+        per = np.concatenate([cdf[:, :, :1], np.diff(cdf, axis=2)], axis=2)
+        py_m.append(np.tensordot(per, w, axes=([1], [0])).mean(axis=0))
     return p, np.clip(np.array(py_m), 0.0, None)
 
 
 def hold_gain_bits(probabilities, peaks, scale: float) -> tuple[float, float, float]:
     """(expected gain, spread, jackknife standard error over the draws) in bits of a hold
-    test whose rivals' draws simulate these peaks [m]."""
+    test whose rivals' draws simulate these peaks [m] (a list per rival: a peak per draw,
+    or a row of crown.QUADRATURE's nodes per draw)."""
     gain, spread = _information(_hold_laws(probabilities, peaks, scale))
     k = min(len(v) for v in peaks)
     if k < 3:
         return gain, spread, 0.0
-    g = np.array([_information(_hold_laws(probabilities, [np.delete(np.asarray(v, float), i) for v in peaks],
+    g = np.array([_information(_hold_laws(probabilities, [np.delete(np.asarray(v, float), i, axis=0) for v in peaks],
                                           scale))[0] for i in range(k)])
     return gain, spread, float(math.sqrt((k - 1) / k * np.sum((g - g.mean()) ** 2)))
 
@@ -270,10 +275,11 @@ def _hold_candidates(post: Posterior, obs: Observations, rivals: list[str], prob
             draws = {}
             for m in rivals:
                 mp = post.models[m]
-                draws[m] = [(variant_at(mp.grid, i), round(r * math.exp(float(mp.grid.mu[i, j])), 7))
+                draws[m] = [(variant_at(mp.grid, i), amplitudes(r, float(mp.grid.mu[i, j]), pair_spread(post.scales, j)))
                             for i in draw_indices(mp, DRAWS)]
-                for v, a in draws[m]:
-                    jobs.setdefault((p.specimen_id, p.frequency_hz, v, a), len(jobs))
+                for v, nodes in draws[m]:
+                    for a in nodes:
+                        jobs.setdefault((p.specimen_id, p.frequency_hz, v, a), len(jobs))
             plans.append((j, p, amp, r, draws))
     if not plans:
         return []
@@ -284,14 +290,15 @@ def _hold_candidates(post: Posterior, obs: Observations, rivals: list[str], prob
                        for k, (sid, f, v, a) in enumerate(jobs)], Path(work) / "crown-runs")
     out = []
     for j, p, amp, r, draws in plans:
-        sims = [[peaks[jobs[(p.specimen_id, p.frequency_hz, v, a)]] for v, a in draws[m]] for m in rivals]
+        sims = [[[peaks[jobs[(p.specimen_id, p.frequency_hz, v, a)]] for a in nodes] for v, nodes in draws[m]]
+                for m in rivals]
         scale = crown_scale(amp / p.low_m)
         gain, spread, se = hold_gain_bits(probs, sims, scale)
         out.append({"specimen_id": p.specimen_id, "frequency_hz": p.frequency_hz, "new": False, "kind": "hold_crown",
                     "amplitudes_m": [amp], "fraction": round(r, 4), "expected_gain_bits": gain,
                     "gain_spread_bits": spread, "gain_se_bits": se,
                     "predicted_m": {m: float(predicted[m][j]) for m in rivals},
-                    "predicted_crown_m": {m: float(np.exp(np.mean(np.log(np.maximum(v, FLOOR_M)))))
+                    "predicted_crown_m": {m: float(np.exp(np.mean(np.log(np.maximum(np.asarray(v)[:, 0], FLOOR_M)))))
                                           for m, v in zip(rivals, sims)}})
     return out
 

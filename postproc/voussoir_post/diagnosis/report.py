@@ -348,7 +348,7 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
                   }[obs.gain_source])
     if tfig:
         lines += ["", f"![table]({tfig})"]
-    lines += ["", "## Hinges and crown motion (reported, not in the probabilities)", ""]
+    lines += ["", "## Hinges and crown motion of the reported model (reported, not in the probabilities)", ""]
     if result["baseline"]["hinge_match"] is None:
         lines.append("No hinges were observed (no hinges/ files).")
     else:
