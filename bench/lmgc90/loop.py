@@ -10,9 +10,9 @@ record per test) and then, up to MAX_TESTS times:
    folder shared by every truth, design and step, so the bank grows test by test;
 2. chooses the next test: `advised` reads diagnosis.json's next_test (specimen,
    frequency, an afd ramp from/to/by, or an afd test held at one amplitude with the crown
-   recorded, kind hold_crown); `ramps` the same advice with held tests left out
-   (DiagnosisSettings.advise_holds = False: a laboratory without a crown transducer;
-   its own step 0); `naive` takes the next frequency up (of
+   recorded, kind hold_crown; DiagnosisSettings.crown_records on: the records weighed);
+   `ramps` the same advice with held tests left out (crown_records off, the default of
+   voussoir-diagnose; its own step 0); `naive` takes the next frequency up (of
    DiagnosisSettings.probe_frequencies_hz, not yet tested) on the specimen of the most
    recent test, within the table's limits, else a seeded random untested (specimen,
    frequency), ramped as the laboratory ramps (lmgc90_campaigns.LabFaults: a start of
@@ -297,7 +297,7 @@ def naive_choice(rows: list[dict], table, settings: DiagnosisSettings, rng: np.r
 
 
 def run_truth(truth: dict, design: str, args, settings: DiagnosisSettings, out_root: Path) -> dict:
-    settings_of = lambda d: dataclasses.replace(settings, advise_holds=d != "ramps")
+    settings_of = lambda d: dataclasses.replace(settings, crown_records=d != "ramps")
     slug = truth["slug"]
     label = truth_model(truth)
     res_path = out_root / "results" / f"{slug}__{design}.json"

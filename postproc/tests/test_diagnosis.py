@@ -436,13 +436,13 @@ def test_end_to_end_diagnosis_follows_the_contract_and_keeps_the_truth(tmp_path,
     assert all(s.friction == 0.5 for s in campaign.specimens.values())
     logs: list[str] = []
     settings = DiagnosisSettings(bin_dir=bin_dir(), n_ranks=2, log=logs.append, bank_dir=tmp_path / "bank",
-                                 **SMALL_GRIDS)
+                                 crown_records=True, **SMALL_GRIDS)
     result = diagnose(folder, tmp_path / "first", settings)
     questions = sorted(p.name for p in (tmp_path / "bank" / "next-test").glob("*"))
     again_logs: list[str] = []
     again = diagnose(folder, tmp_path / "second",
                      DiagnosisSettings(bin_dir=bin_dir(), n_ranks=2, log=again_logs.append,
-                                       bank_dir=tmp_path / "bank", **SMALL_GRIDS))
+                                       bank_dir=tmp_path / "bank", crown_records=True, **SMALL_GRIDS))
     VERDICTS.append(f"[end to end, friction 0.43 on W156] verdict {result['verdict']} rivals {result['rivals']} "
                     f"P(friction) {result['probabilities']['friction']:.2f}")
     # The contract, version 4.

@@ -57,7 +57,7 @@ def cmd_run(args) -> int:
                          "and 0.2 (0.015 is 1.5 %)")
     out = args.out or os.path.join(os.getcwd(), "diagnosis_" + os.path.basename(os.path.normpath(args.campaign)))
     settings = DiagnosisSettings(bin_dir=bin_dir, n_ranks=args.np, dt_s=args.dt, figure_format=args.format,
-                                 build_tolerance=args.build_tolerance,
+                                 build_tolerance=args.build_tolerance, crown_records=args.crown_records,
                                  log=lambda m: print(m, flush=True))
     result = diagnose(args.campaign, out, settings)
     top = sorted(result["probabilities"].items(), key=lambda kv: -kv[1])[:3]
@@ -88,6 +88,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--build-tolerance", type=float, default=0.015, metavar="FRACTION",
                    help="how far the specimens as built may lie from their stated ring thickness, a relative "
                         "standard deviation (default 0.015; 0 for specimens made exactly)")
+    p.add_argument("--crown-records", action="store_true",
+                   help="weigh the crown records (crown_dx_m) of tests that stood near their threshold, and advise "
+                        "tests held below it with the crown recorded (not yet calibrated across codes: "
+                        "docs/diagnosis.md)")
     p.add_argument("--bin-dir", help=f"folder of the Fortran executables (default: ${BIN_DIR_ENV}, else the "
                                      f"folder scripts/setup.sh wrote into {installed_bin_dir_file()}, else PATH)")
     p.set_defaults(func=cmd_run)

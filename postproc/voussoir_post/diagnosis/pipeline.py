@@ -145,7 +145,8 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     log(f"[diagnose] simulation bank: {bank.searches} threshold searches made, {bank.reused} specimens cached "
         f"({cache})")
     post = infer(bank, obs)
-    crown_tests_ = crown_tests(campaign, obs.pairs)
+    crown_available = crown_tests(campaign, obs.pairs)
+    crown_tests_ = crown_available if settings.crown_records else []
     if crown_tests_:
         log(f"[diagnose] crown records of {len(crown_tests_)} tests held below their threshold: each model's "
             "draws simulated at the same fractions of their own thresholds")
@@ -172,7 +173,7 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
         log(f"[diagnose] looking for the test that separates {', '.join(asked)} (tested and new frequencies)")
         # The next test's simulations beside the bank: a rerun reuses them.
         suggestion = next_test(post, obs, asked, settings, cache / "next-test", campaign.table, crown_tests_,
-                               settings.advise_holds)
+                               settings.crown_records)
     sim = Simulator(settings, out_dir / "work")
     runs = {"nominal": (Variant(), {})}
     if shown:
@@ -209,7 +210,7 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
         "notes": "",
     }
     info = {"elapsed_s": time.time() - t0, "bank": bank, "settings": settings, "table": table, "crown": crown, "screen": screen,
-            "crown_evidence": (crown_tests_, post.crown),
+            "crown_evidence": (crown_available, post.crown, settings.crown_records),
             "held": held, "baseline_pred": baseline_pred, "samples": samples, "next_test": suggestion, "runs": sim.n_runs,
             "prior": {m: model_prior(m) for m in MODEL_IDS}, "sensitivity": sensitivity}
     result["notes"] = write_report(out_dir, campaign, obs, post, decision, result, info)

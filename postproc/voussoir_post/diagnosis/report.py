@@ -153,7 +153,12 @@ def _crown_lines(evidence, post: Posterior) -> list[str]:
     """The section on the crown records that entered the probabilities (crown.py)."""
     if not evidence or not evidence[0]:
         return []
-    tests, factors = evidence
+    tests, factors, weighed = evidence
+    if not weighed:
+        return ["## Crown records", "",
+                f"{len(tests)} tests that stood near their pair's threshold carry a crown record. They are not in "
+                "the probabilities: `voussoir-diagnose run --crown-records` weighs them (docs/diagnosis.md says how, "
+                "and why it is not yet the default).", ""]
     shown = post.ranked()[:4]
     rows = [(c.test.test_id, c.test.specimen_id, f"{c.test.frequency_hz:g}", f"{1e3 * c.test.amplitude_m:.1f}",
              f"{c.fraction:.3f}", f"{1e3 * c.peak_m:.2f}" + (" (below the floor)" if c.peak_m < FLOOR_M else ""),

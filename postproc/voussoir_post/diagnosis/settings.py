@@ -37,9 +37,11 @@ class DiagnosisSettings:
     #: New frequencies [Hz] at which the rivals of an inconclusive verdict are simulated,
     #: to find the test that would separate them (next_test.py).
     probe_frequencies_hz: tuple[float, ...] = (0.75, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0)
-    #: Whether tests held below a threshold with the crown recorded are advised too
-    #: (next_test.py; off: afd ramps only, for a laboratory without a crown transducer).
-    advise_holds: bool = True
+    #: Whether the crown records of tests held near the threshold are weighed (crown.py) and
+    #: such tests advised (next_test.py). Off by default: against LMGC90 the records named
+    #: causes the thresholds could not, and also moved two nominal arches away from the
+    #: truth at one pair (docs/diagnosis.md), so their probabilities are not yet calibrated.
+    crown_records: bool = False
     #: Model samples drawn from the posterior for each specimen (posterior_samples_<id>.csv).
     posterior_samples: int = 200
     #: Where the simulation bank is cached (None: a folder `voussoir-bank` beside the output).
