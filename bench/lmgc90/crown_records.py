@@ -60,6 +60,7 @@ ROOT = HERE.parent.parent
 sys.path[:0] = [str(ROOT / "postproc"), str(ROOT / "postproc" / "tests"), str(ROOT / "bench"), str(HERE)]
 
 from voussoir_post.diagnosis.bank import load_banks, variant_key  # noqa: E402
+from voussoir_post.diagnosis.crown import peak_m, variant_at  # noqa: E402
 from voussoir_post.diagnosis.effects import Variant  # noqa: E402
 from voussoir_post.diagnosis.models import MODEL_IDS, model_grid  # noqa: E402
 from voussoir_post.diagnosis.rates import covers  # noqa: E402
@@ -90,14 +91,7 @@ def closest(bank, obs, y: np.ndarray, model: str) -> tuple[Variant, float, float
     rc = r - r.mean(axis=1, keepdims=True)
     rms = np.where(ok, np.sqrt((rc ** 2).mean(axis=1)), np.inf)
     j = int(np.argmin(rms))
-    names = [n for n in g.names if n != "table_motion"]
-    variant = Variant.of((n, str(g.values[g.names.index(n)][j]) if g.values[g.names.index(n)].dtype == object
-                          else round(float(g.values[g.names.index(n)][j]), 6)) for n in names) if names else Variant()
-    return variant, float(rms[j]), float(r[j].mean())
-
-
-def peak(record: dict) -> float:
-    return float(np.max(np.abs(np.asarray(record["crown_dx_m"], float)))) if len(record["crown_dx_m"]) else math.nan
+    return variant_at(g, j), float(rms[j]), float(r[j].mean())
 
 
 def main() -> int:
@@ -151,7 +145,7 @@ def main() -> int:
                 amp = fraction * by[(sid, round(f, 9))]["threshold_m"]
                 lm = specimens[sid]
                 collapsed, _, _ = lm.run(f, amp)
-                lm_mm = 1e3 * peak(lm.last)
+                lm_mm = 1e3 * peak_m(lm.last["crown_dx_m"])
                 spec = obs.specimens[sid]
                 pred = {}
                 for name, (variant, _, offset) in (("own", own), ("rival", rival)):

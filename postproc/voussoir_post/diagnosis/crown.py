@@ -32,8 +32,12 @@ Only records that can say something enter: tests that stood, of a certain pair w
 stand below its collapse, at a fraction of R_MIN to R_MAX; one per pair (the narrowest
 law, then the highest fraction), because the codes differ by pair more than by test: a
 second record of the same pair shares the first one's error, and counting both as
-independent would overstate them; at most MAX_TESTS pairs (the narrowest laws first). A model the thresholds already put below MIN_PROBABILITY is not
-simulated: it gets the least factor of those that were, so records cannot revive it.
+independent would overstate them; at most MAX_TESTS pairs (the narrowest laws first). A
+model the thresholds already put below MIN_PROBABILITY is not simulated: it gets the
+least factor of those that were, so records cannot revive it.
+
+They are weighed only with DiagnosisSettings.crown_records (voussoir-diagnose run
+--crown-records): against LMGC90 they are not yet calibrated (docs/diagnosis.md).
 """
 
 from __future__ import annotations
@@ -126,9 +130,8 @@ def log_terms(measured_peak_m: float, simulated_peaks_m, scale: float) -> np.nda
 
 def variant_at(grid, i: int) -> Variant:
     """The simulated variant of grid point i (a table gain needs no simulation)."""
-    names = [n for n in grid.names if n != "table_motion"]
-    return Variant.of((n, str(grid.values[grid.names.index(n)][i]) if grid.values[grid.names.index(n)].dtype == object
-                       else round(float(grid.values[grid.names.index(n)][i]), 6)) for n in names)
+    columns = [(n, v) for n, v in zip(grid.names, grid.values) if n != "table_motion"]
+    return Variant.of((n, str(v[i]) if v.dtype == object else round(float(v[i]), 6)) for n, v in columns)
 
 
 def pair_spread(scales, j: int) -> float:

@@ -30,7 +30,9 @@ HOLD_FRACTIONS of the pair's measured threshold and at or below its largest stan
 expected to stand). Its outcome is the bin of the measured peak crown displacement
 (crown.py's law: censored below the transducer's floor, a Student t above it); each
 rival's law is the mixture over DRAWS draws of its posterior, each simulated at the same
-fraction of its own threshold. Its gain's standard error is the jackknife over the draws.
+fraction of its own threshold at crown.QUADRATURE's nodes of that threshold's spread. Its
+gain's standard error is the jackknife over the draws. Advised only with
+DiagnosisSettings.crown_records.
 
 Every candidate is within the table's limits (table.csv, or its defaults): the ramp's
 largest amplitude A (the largest rival prediction plus two predictive spreads) must have
@@ -229,8 +231,7 @@ def _hold_laws(probabilities, peaks, scale: float):
     about each simulated peak."""
     p = np.asarray(probabilities, float)
     p = p / p.sum()
-    rows = [np.atleast_2d(np.asarray(v, float).T).T if np.ndim(v) == 1 else np.asarray(v, float) for v in peaks]
-    locs = [np.log(np.maximum(r, FLOOR_M)) for r in rows]
+    locs = [np.log(np.maximum(np.asarray(v, float).reshape(len(v), -1), FLOOR_M)) for v in peaks]  # (draw, node)
     top = max(float(np.max(v)) for v in locs) + 12 * scale
     lo = math.log(FLOOR_M)
     edges = np.append(lo + CROWN_BIN * scale * np.arange(int(math.ceil((top - lo) / (CROWN_BIN * scale))) + 1), np.inf)

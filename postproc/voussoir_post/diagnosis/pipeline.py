@@ -14,10 +14,10 @@ The stages, each handing its result to the next (docs/diagnosis.md explains them
 6. report.py: report.md, its figures and diagnosis.json; samples.py: the posterior as
    model samples of each arch (posterior_samples_<specimen>.csv), for the fragility.
 
-The crown records of tests held below the threshold enter the probabilities (crown.py:
-each model's draws simulated at the same fraction of their own thresholds). Hinges and
-the crown comparison of the report's single runs (the nominal model and the reported
-one) do not.
+With DiagnosisSettings.crown_records (off by default), the crown records of tests held
+below the threshold enter the probabilities (crown.py: each model's draws simulated at the
+same fraction of their own thresholds). Hinges and the crown comparison of the report's
+single runs (the nominal model and the reported one) do not.
 """
 
 from __future__ import annotations

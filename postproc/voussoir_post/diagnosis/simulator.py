@@ -15,10 +15,9 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-import numpy as np
-
 from ..readers.campaign import Specimen, Test
 from ..runner import Runner
+from .crown import peak_m
 from .effects import Variant, arch_group, effect
 from .settings import DiagnosisSettings
 
@@ -185,7 +184,7 @@ class Simulator:
         todo = [(k, job) for k, job in zip(keys, jobs) if k not in found]
         todo = list({k: job for k, job in todo}.items())
         for (k, _), r in zip(todo, self.run_tests([job for _, job in todo]) if todo else []):
-            found[k] = FALLEN_PEAK_M if r["collapsed"] else float(np.max(np.abs(r["crown_dx_m"])))
+            found[k] = FALLEN_PEAK_M if r["collapsed"] else peak_m(r["crown_dx_m"])
             if cache is not None:
                 Path(cache).mkdir(parents=True, exist_ok=True)
                 (Path(cache) / f"{k}.json").write_text(json.dumps({"peak_m": found[k]}) + "\n")
