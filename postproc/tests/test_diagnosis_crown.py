@@ -163,15 +163,18 @@ def test_the_records_that_enter_are_one_per_pair_that_stood_near_a_two_sided_thr
              _test("other", 4.0, 0.020)]
     c = _campaign(tests, {t.test_id: 2e-3 for t in tests})
     chosen = crown_tests(c, pairs)
-    # 2 Hz: "near" and "lower" (0.9 and 0.875 of the largest stand) have the same,
+    # 2 Hz: "near" and "lower" (0.878 and 0.854 of the bracket's midpoint) have the same,
     # narrowest law, "near" the higher fraction;
-    # "top" stood at the bracket's low end (the widest law); 3 Hz has no stand below its
-    # collapse; 4 Hz's only record enters after the narrower law.
+    # "top" stood at 0.976 of it (a wider law); 3 Hz has no stand below its
+    # collapse; 4 Hz's only record (0.976) enters after the narrower law.
     assert [x.test.test_id for x in chosen] == ["near", "other"]
     near = chosen[0]
     assert near.fraction == pytest.approx(0.036 / 0.041)
-    assert near.scale == pytest.approx(crown_scale(0.036 / 0.040)) == SCALE_KNOTS[0][1]
+    assert near.scale == pytest.approx(crown_scale(0.036 / 0.041)) == SCALE_KNOTS[0][1]
     assert near.peak_m == pytest.approx(2e-3, rel=1e-3)
+    # The bracket: its geometric centre and its width in log.
+    assert near.centre == pytest.approx(0.036 / math.sqrt(0.040 * 0.042))
+    assert near.width == pytest.approx(math.log(0.042 / 0.040))
 
 
 # ---------------------------------------------------------------- the factor, with a stand-in simulator
@@ -216,12 +219,13 @@ def test_the_factor_favours_the_model_whose_draws_rock_as_measured():
     sim = StandIn(lambda v: {0.9: 3e-3, 0.95: 8e-4}[dict(v.parts())["geometry"]])
     obs = SimpleNamespace(specimens={"A": c.specimens["A"]})
     f = crown_log_factors(post, obs, tests, sim, _draws)
-    # Each model's runs at the test's fraction of its own threshold, at the three-point
-    # Gauss-Hermite nodes of that threshold's spread (0, -sqrt(3), +sqrt(3) times 0.05 in
-    # log), and no run of the rare one.
+    # Each model's runs at the test's amplitude times its threshold over the specimen's,
+    # at the nodes of that ratio's law (its threshold known to 0.05 in log, the
+    # specimen's anywhere in the 40 to 42 mm bracket; threshold_nodes is tested below),
+    # and no run of the rare one.
     amps = sorted({round(job[1].amplitude_m, 7) for job in sim.jobs})
-    expected = sorted(tests[0].fraction * t * math.exp(k * math.sqrt(3.0) * 0.05) for t in (0.050, 0.060)
-                      for k in (-1, 0, 1))
+    nodes = crown.threshold_nodes(0.05, math.log(0.042 / 0.040))
+    expected = sorted(0.037 / math.sqrt(0.040 * 0.042) * t * math.exp(x) for t in (0.050, 0.060) for x in nodes)
     assert amps == pytest.approx(expected, abs=1e-7)  # in 0.1 um
     assert all(dict(job[2].parts())["geometry"] != 1.1 for job in sim.jobs)
     s = tests[0].scale
@@ -285,15 +289,50 @@ def test_single_runs_are_kept_so_a_second_diagnosis_runs_none_again(tmp_path, mo
     assert len(ran) == 3
 
 
+def test_the_nodes_are_the_quantiles_of_a_normal_plus_a_uniform():
+    """threshold_nodes against independent answers: the normal's quantiles (no bracket),
+    the uniform's (no spread), and a large seeded sample of the sum for both."""
+    q = (np.arange(5) + 0.5) / 5
+    assert crown.threshold_nodes(0.05, 0.0) == pytest.approx(0.05 * np.array([-1.2815516, -0.5244005, 0.0,
+                                                                               0.5244005, 1.2815516]), abs=1e-7)
+    assert crown.threshold_nodes(0.0, 0.1) == pytest.approx([-0.04, -0.02, 0.0, 0.02, 0.04], abs=1e-12)
+    rng = np.random.default_rng(7)
+    sample = rng.normal(0.0, 0.03, 2_000_000) + rng.uniform(-0.05, 0.05, 2_000_000)
+    assert crown.threshold_nodes(0.03, 0.1) == pytest.approx(np.quantile(sample, q), abs=3e-4)
+
+
 def test_a_threshold_known_to_a_few_per_cent_widens_a_steep_crown():
     """Near the threshold the crown can grow tenfold within a few per cent of amplitude:
     a model whose central node barely rocks (1 mm) but whose upper node (its threshold a
-    spread lower for the specimen as built) rocks as measured (25 mm) keeps the weight of
-    that node, 1/6 of the t's density, instead of the t's far tail."""
+    spread lower for the specimen as built) rocks as measured (25 mm) keeps that node's
+    weight, 1/5 of the t's density, instead of the t's far tail."""
     measured, s = 0.025, 0.31
     central = math.log(t3_pdf(math.log(measured / 0.001) / s) / s)
-    mixed = crown.mixture_log_term(measured, [0.001, 0.0004, 0.025], s)
-    by_hand = math.log(2 / 3 * t3_pdf(math.log(measured / 0.001) / s) / s
-                       + 1 / 6 * t3_pdf(math.log(measured / FLOOR_M) / s) / s + 1 / 6 * t3_pdf(0.0) / s)
+    mixed = crown.mixture_log_term(measured, [0.0004, 0.001, 0.001, 0.001, 0.025], s)
+    by_hand = math.log(3 / 5 * t3_pdf(math.log(measured / 0.001) / s) / s
+                       + 1 / 5 * t3_pdf(math.log(measured / FLOOR_M) / s) / s + 1 / 5 * t3_pdf(0.0) / s)
     assert mixed == pytest.approx(by_hand, rel=1e-12) and mixed > central + 3.0
-    assert crown.amplitudes(0.9, math.log(0.04), 0.0) == [0.036, 0.036, 0.036]
+    assert crown.amplitudes(0.9, math.log(0.04), 0.0) == [0.036] * 5
+
+
+def test_a_wide_bracket_keeps_the_specimen_whose_threshold_is_at_its_largest_stand():
+    """W118 at 3 Hz in the loop against LMGC90: held at 32.5 mm below a 34 to 38 mm
+    bracket, the specimen rocked 30 mm. A model (its threshold 36 mm, known exactly) that
+    rocks 25 mm above 0.94 of its threshold and 1 mm below: of the five equal quantiles of
+    the specimen's threshold (log-uniform in the bracket), only the lowest (34.38 mm) puts
+    the test above 0.94 of it, so the factor is the mixture of one node at 25 mm and four
+    at 1 mm, not the 1 mm alone the bracket's midpoint would give."""
+    pair = PairObservation("A", 3.0, 0.034, 0.038)
+    held = _test("held", 3.0, 0.0325)
+    c = _campaign([held], {"held": 0.030})
+    tests = crown_tests(c, [pair])
+    post = _post({"m": ([1.0], [1.0], [math.log(0.036)], 1.0)})
+    post.scales = SimpleNamespace(sigma_sim=np.array([0.0]), sigma_tol=np.array([0.0]))
+    sim = StandIn(None)
+    sim.peaks = lambda jobs, cache=None: [0.025 if job[1].amplitude_m / 0.036 > 0.94 else 0.001 for job in jobs]
+    lab = [0.034 * (0.038 / 0.034) ** ((i + 0.5) / 5) for i in range(5)]
+    assert sum(0.0325 / t > 0.94 for t in lab) == 1 and 0.0325 / 0.036 < 0.94
+    f = crown_log_factors(post, SimpleNamespace(specimens={"A": c.specimens["A"]}), tests, sim, _draws)
+    s = crown_scale(0.0325 / 0.036)
+    assert f["m"] == pytest.approx(math.log((t3_pdf(math.log(0.030 / 0.025) / s) + 4 * t3_pdf(math.log(30.0) / s))
+                                            / (5 * s)), rel=1e-9)

@@ -16,17 +16,21 @@ their own models, held at 0.9, 0.95 and 0.98 of the threshold):
   `crown_scale(r)` at that fraction r of the threshold, calibrated to the coverage of the
   bench's cross-code errors (SCALE_KNOTS: 0.28 at 0.9, 0.34 at 0.95, 0.55 at 0.98);
 - the test's fraction is its amplitude over the pair's measured threshold (the bracket's
-  midpoint); the scale is taken at its amplitude over the bracket's low end (the largest
-  stand), the highest fraction the bracket allows, so a wide bracket widens the law;
+  midpoint), and the law's scale is taken there;
 - each model is simulated at the same fraction of its own threshold at a parameter draw
   (the simulated threshold at that grid point, the table following the command: a
   table gain scales the threshold and the test alike, and drops out), for DRAWS
   stratified draws of its threshold posterior (next_test.draw_indices); and, because the
   crown can grow tenfold within a few per cent of amplitude near the threshold (W118 at
-  3 Hz: 1 mm at 0.88 of its threshold, 25 mm at 0.95), over the model's own uncertainty
-  of that threshold for the specimen as built (`pair_spread`: the simulator's spread and
-  the build tolerance's, by QUADRATURE): the factor is p(records | model, thresholds) =
-  the mean over the draws of the product over the tests of the quadrature's mixture.
+  3 Hz: 1 mm at 0.88 of its threshold, 25 mm at 0.95), over both uncertainties of that
+  fraction: the specimen's threshold lies anywhere in its bracket (uniform in log
+  between the largest stand and the smallest collapse), and the model knows its own
+  threshold for the specimen as built to within `pair_spread` (the simulator's spread
+  and the build tolerance's, normal in log). The model's amplitude is the test's
+  amplitude times (its threshold / the specimen's), whose log is their difference: the
+  runs are at NODES equal-weight nodes of that sum's law (`threshold_nodes`), and the
+  factor is p(records | model, thresholds) = the mean over the draws of the product over
+  the tests of the nodes' mixture.
 
 Only records that can say something enter: tests that stood, of a certain pair with a
 stand below its collapse, at a fraction of R_MIN to R_MAX; one per pair (the narrowest
@@ -48,15 +52,17 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.special import logsumexp
+from scipy.optimize import brentq
+from scipy.stats import norm
 from scipy.stats import t as student_t
 
 from ..readers.campaign import Campaign, Test
 from .effects import Variant
 from .observations import PairObservation
 
-__all__ = ["FLOOR_M", "T_DOF", "SCALE_KNOTS", "QUADRATURE", "CrownTest", "crown_scale", "crown_tests", "peak_m",
-           "log_terms", "pair_spread", "amplitudes", "mixture_log_term", "crown_log_factors", "with_crown", "DRAWS",
-           "variant_at"]
+__all__ = ["FLOOR_M", "T_DOF", "SCALE_KNOTS", "CrownTest", "crown_scale", "crown_tests", "peak_m",
+           "log_terms", "pair_spread", "threshold_nodes", "amplitudes", "mixture_log_term", "crown_log_factors",
+           "with_crown", "DRAWS", "NODES", "variant_at"]
 
 FLOOR_M = 5.0e-4
 T_DOF = 3
@@ -70,11 +76,9 @@ R_MIN, R_MAX = 0.80, 0.99
 MAX_TESTS = 8
 DRAWS = 3
 MIN_PROBABILITY = 1.0e-4
-#: Three-point Gauss-Hermite rule (nodes in standard deviations, weights) over the model's
-#: own threshold at the pair, whose spread is the simulator's and the build tolerance's
-#: (likelihood.Scales.sigma_sim, sigma_tol): the fraction the laboratory held at is a
-#: fraction of its specimen's threshold, which the model knows to within that spread.
-QUADRATURE = ((0.0, 2.0 / 3.0), (-math.sqrt(3.0), 1.0 / 6.0), (math.sqrt(3.0), 1.0 / 6.0))
+#: Equal-weight nodes of the law of the model's amplitude relative to the test's
+#: (module docstring, `threshold_nodes`).
+NODES = 5
 
 
 @dataclass(frozen=True)
@@ -84,13 +88,15 @@ class CrownTest:
     fraction: float  #: amplitude over the pair's measured threshold
     scale: float  #: of the log error
     peak_m: float  #: measured peak |crown_dx|
+    centre: float = math.nan  #: amplitude over the bracket's geometric centre, sqrt(low high)
+    width: float = 0.0  #: of the bracket in log, log(high / low)
 
 
-def crown_scale(r_high: float) -> float:
-    """The scale of the log error at a fraction `r_high` of the threshold (the knots'
-    values, linear between them, constant outside)."""
+def crown_scale(r: float) -> float:
+    """The scale of the log error at a fraction `r` of the threshold (the knots' values,
+    linear between them, constant outside)."""
     xs, ys = zip(*SCALE_KNOTS)
-    return float(np.interp(r_high, xs, ys))
+    return float(np.interp(r, xs, ys))
 
 
 def peak_m(crown_dx_m) -> float:
@@ -111,12 +117,14 @@ def crown_tests(campaign: Campaign, pairs: list[PairObservation]) -> list[CrownT
         r = t.amplitude_m / pairs[j].threshold_m
         if not R_MIN <= r <= R_MAX:
             continue
-        out.append(CrownTest(t, j, r, crown_scale(t.amplitude_m / pairs[j].low_m), peak_m(rec.crown_dx_m)))
+        p = pairs[j]
+        out.append(CrownTest(t, j, r, crown_scale(r), peak_m(rec.crown_dx_m),
+                             t.amplitude_m / math.sqrt(p.low_m * p.high_m), math.log(p.high_m / p.low_m)))
     # One record per pair: the narrowest law, then the highest fraction (the arch rocks most).
     best = {}
     for c in sorted(out, key=lambda c: (c.scale, -c.fraction, c.test.test_id)):
         best.setdefault(c.pair, c)
-    return sorted(best.values(), key=lambda c: (c.scale, c.test.test_id))[:MAX_TESTS]
+    return sorted(best.values(), key=lambda c: (c.scale, c.width, c.test.test_id))[:MAX_TESTS]
 
 
 def log_terms(measured_peak_m: float, simulated_peaks_m, scale: float) -> np.ndarray:
@@ -140,16 +148,38 @@ def pair_spread(scales, j: int) -> float:
     return math.hypot(float(scales.sigma_sim[j]), float(scales.sigma_tol[j]))
 
 
-def amplitudes(fraction: float, log_threshold: float, spread: float) -> list[float]:
-    """The amplitudes [m] of QUADRATURE's nodes for a test held at `fraction` of a model's
-    threshold exp(log_threshold) known to within `spread` (log)."""
-    return [round(fraction * math.exp(log_threshold + node * spread), 7) for node, _ in QUADRATURE]
+def threshold_nodes(spread: float, width: float, k: int = NODES) -> np.ndarray:
+    """The k equal-weight nodes (the quantiles at (i + 1/2) / k) of N(0, spread^2) +
+    U(-width / 2, width / 2): the log of a model's threshold over the specimen's, the
+    first known to within `spread`, the second anywhere in a bracket `width` wide (both
+    in log)."""
+    q = (np.arange(k) + 0.5) / k
+    if width <= 1e-12:
+        return spread * norm.ppf(q)
+    if spread <= 1e-12:
+        return width * (q - 0.5)
+    h = 0.5 * width
+
+    def g(z):  # the integral of the normal cdf
+        return z * norm.cdf(z) + norm.pdf(z)
+
+    def cdf(x):
+        return spread / width * (g((x + h) / spread) - g((x - h) / spread))
+
+    lim = h + 10.0 * spread
+    return np.array([brentq(lambda x: cdf(x) - qi, -lim, lim, xtol=1e-12) for qi in q])
+
+
+def amplitudes(centre: float, log_threshold: float, spread: float, width: float = 0.0) -> list[float]:
+    """The amplitudes [m] of a model's runs for a test held at `centre` times the
+    bracket's geometric centre, the model's threshold exp(log_threshold) known to within
+    `spread`, the specimen's anywhere in a bracket `width` wide (log): `threshold_nodes`."""
+    return [round(centre * math.exp(log_threshold + x), 7) for x in threshold_nodes(spread, width)]
 
 
 def mixture_log_term(measured_peak_m: float, node_peaks_m, scale: float) -> float:
-    """log of the quadrature's mixture of the law over its nodes' simulated peaks."""
-    w = np.log([wt for _, wt in QUADRATURE])
-    return float(logsumexp(w + log_terms(measured_peak_m, node_peaks_m, scale)))
+    """log of the equal-weight mixture of the law over the nodes' simulated peaks."""
+    return float(logsumexp(log_terms(measured_peak_m, node_peaks_m, scale)) - math.log(len(node_peaks_m)))
 
 
 def crown_log_factors(post, obs, tests: list[CrownTest], sim, draw_indices, cache=None) -> dict[str, float]:
@@ -164,7 +194,7 @@ def crown_log_factors(post, obs, tests: list[CrownTest], sim, draw_indices, cach
         plan[m] = []
         for i in draw_indices(mp, DRAWS):
             v = variant_at(mp.grid, i)
-            amps = [amplitudes(c.fraction, float(mp.grid.mu[i, c.pair]), pair_spread(post.scales, c.pair))
+            amps = [amplitudes(c.centre, float(mp.grid.mu[i, c.pair]), pair_spread(post.scales, c.pair), c.width)
                     for c in tests]
             plan[m].append((v, amps))
             for c, nodes in zip(tests, amps):

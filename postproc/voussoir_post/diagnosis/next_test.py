@@ -30,7 +30,8 @@ HOLD_FRACTIONS of the pair's measured threshold and at or below its largest stan
 expected to stand). Its outcome is the bin of the measured peak crown displacement
 (crown.py's law: censored below the transducer's floor, a Student t above it); each
 rival's law is the mixture over DRAWS draws of its posterior, each simulated at the same
-fraction of its own threshold at crown.QUADRATURE's nodes of that threshold's spread. Its
+fraction of its own threshold at crown.threshold_nodes (that threshold's spread and the
+bracket's). Its
 gain's standard error is the jackknife over the draws. Advised only with
 DiagnosisSettings.crown_records.
 
@@ -52,7 +53,7 @@ from scipy.stats import t as student_t
 
 from ..readers.campaign import Test
 from .bank import onset_amplitudes, variant_key
-from .crown import DRAWS, FLOOR_M, QUADRATURE, R_MIN, T_DOF, amplitudes, crown_scale, pair_spread, variant_at
+from .crown import DRAWS, FLOOR_M, R_MIN, T_DOF, amplitudes, crown_scale, pair_spread, variant_at
 from .effects import Variant, arch_group
 from .likelihood import predictive_sd
 from .models import members
@@ -227,7 +228,7 @@ def _hold_laws(probabilities, peaks, scale: float):
     """(p, py_m) of a test held below the threshold with its crown recorded: its outcome
     is the measured peak's bin (the censored one below FLOOR_M, then bins of CROWN_BIN
     scales), each rival's law the mixture over its draws (and, where a draw is a row of
-    peaks, over crown.QUADRATURE's nodes of its threshold) of the crown law (crown.py)
+    peaks, over crown.threshold_nodes of its threshold) of the crown law (crown.py)
     about each simulated peak."""
     p = np.asarray(probabilities, float)
     p = p / p.sum()
@@ -237,7 +238,7 @@ def _hold_laws(probabilities, peaks, scale: float):
     edges = np.append(lo + CROWN_BIN * scale * np.arange(int(math.ceil((top - lo) / (CROWN_BIN * scale))) + 1), np.inf)
     py_m = []
     for v in locs:
-        w = np.array([wt for _, wt in QUADRATURE]) if v.shape[1] == len(QUADRATURE) else np.full(v.shape[1], 1.0 / v.shape[1])
+        w = np.full(v.shape[1], 1.0 / v.shape[1])
         cdf = student_t.cdf((edges[None, None, :] - v[:, :, None]) / scale, T_DOF)  # (draw, node, edge)
         per = np.concatenate([cdf[:, :, :1], np.diff(cdf, axis=2)], axis=2)
         py_m.append(np.tensordot(per, w, axes=([1], [0])).mean(axis=0))
@@ -247,7 +248,7 @@ def _hold_laws(probabilities, peaks, scale: float):
 def hold_gain_bits(probabilities, peaks, scale: float) -> tuple[float, float, float]:
     """(expected gain, spread, jackknife standard error over the draws) in bits of a hold
     test whose rivals' draws simulate these peaks [m] (a list per rival: a peak per draw,
-    or a row of crown.QUADRATURE's nodes per draw)."""
+    or a row of crown.threshold_nodes's peaks per draw)."""
     gain, spread = _information(_hold_laws(probabilities, peaks, scale))
     k = min(len(v) for v in peaks)
     if k < 3:
@@ -270,13 +271,15 @@ def _hold_candidates(post: Posterior, obs: Observations, rivals: list[str], prob
         for h in HOLD_FRACTIONS:
             amp = _snap(h * p.threshold_m)
             r = amp / p.threshold_m
+            centre, width = amp / math.sqrt(p.low_m * p.high_m), math.log(p.high_m / p.low_m)
             if (amp > p.low_m or r < R_MIN or not within_limits(amp, p.frequency_hz, table)
                     or any(c.pair == j for c in recorded)):
                 continue
             draws = {}
             for m in rivals:
                 mp = post.models[m]
-                draws[m] = [(variant_at(mp.grid, i), amplitudes(r, float(mp.grid.mu[i, j]), pair_spread(post.scales, j)))
+                draws[m] = [(variant_at(mp.grid, i),
+                             amplitudes(centre, float(mp.grid.mu[i, j]), pair_spread(post.scales, j), width))
                             for i in draw_indices(mp, DRAWS)]
                 for v, nodes in draws[m]:
                     for a in nodes:
@@ -293,13 +296,14 @@ def _hold_candidates(post: Posterior, obs: Observations, rivals: list[str], prob
     for j, p, amp, r, draws in plans:
         sims = [[[peaks[jobs[(p.specimen_id, p.frequency_hz, v, a)]] for a in nodes] for v, nodes in draws[m]]
                 for m in rivals]
-        scale = crown_scale(amp / p.low_m)
+        scale = crown_scale(r)
         gain, spread, se = hold_gain_bits(probs, sims, scale)
         out.append({"specimen_id": p.specimen_id, "frequency_hz": p.frequency_hz, "new": False, "kind": "hold_crown",
                     "amplitudes_m": [amp], "fraction": round(r, 4), "expected_gain_bits": gain,
                     "gain_spread_bits": spread, "gain_se_bits": se,
                     "predicted_m": {m: float(predicted[m][j]) for m in rivals},
-                    "predicted_crown_m": {m: float(np.exp(np.mean(np.log(np.maximum(np.asarray(v)[:, 0], FLOOR_M)))))
+                    "predicted_crown_m": {m: float(np.exp(np.mean(np.log(np.maximum(np.asarray(v)[:, len(v[0]) // 2],
+                                                                                   FLOOR_M)))))
                                           for m, v in zip(rivals, sims)}})
     return out
 
