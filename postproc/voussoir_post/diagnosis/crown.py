@@ -22,11 +22,14 @@ their own models, held at 0.9, 0.95 and 0.98 of the threshold):
   table gain scales the threshold and the test alike, and drops out), for DRAWS
   stratified draws of its threshold posterior (next_test.draw_indices); and, because the
   crown can grow tenfold within a few per cent of amplitude near the threshold (W118 at
-  3 Hz: 1 mm at 0.88 of its threshold, 25 mm at 0.95), over both uncertainties of that
+  3 Hz: 1 mm at 0.88 of its threshold, 25 mm at 0.95), over the uncertainties of that
   fraction: the specimen's threshold lies anywhere in its bracket (uniform in log
-  between the largest stand and the smallest collapse), and the model knows its own
-  threshold for the specimen as built to within `pair_spread` (the simulator's spread
-  and the build tolerance's, normal in log). The model's amplitude is the test's
+  between the largest stand and the smallest collapse); the model knows its own
+  threshold for the specimen as built to within the simulator's spread and the build
+  tolerance's (normal in log); and where, below its threshold, a code's crown starts to
+  grow differs between codes by a few per cent of the threshold (CLIFF_SPREAD, normal
+  in log: a discrepancy of the pair, integrated over its scale); `pair_spread` joins
+  the last three. The model's amplitude is the test's
   amplitude times (its threshold / the specimen's), whose log is their difference: the
   runs are at NODES equal-weight nodes of that sum's law (`threshold_nodes`), and the
   factor is p(records | model, thresholds) = the mean over the draws of the product over
@@ -62,7 +65,7 @@ from .observations import PairObservation
 
 __all__ = ["FLOOR_M", "T_DOF", "SCALE_KNOTS", "CrownTest", "crown_scale", "crown_tests", "peak_m",
            "log_terms", "pair_spread", "threshold_nodes", "amplitudes", "mixture_log_term", "crown_log_factors",
-           "with_crown", "DRAWS", "NODES", "variant_at"]
+           "with_crown", "DRAWS", "NODES", "CLIFF_SPREAD", "variant_at"]
 
 FLOOR_M = 5.0e-4
 T_DOF = 3
@@ -76,6 +79,12 @@ R_MIN, R_MAX = 0.80, 0.99
 MAX_TESTS = 8
 DRAWS = 3
 MIN_PROBABILITY = 1.0e-4
+#: The cross-code discrepancy of the fraction of its threshold at which a code's crown
+#: reaches a given peak (normal in log): the largest over the leave-one-truth-out sets of
+#: the stored records (bench/lmgc90/crown_records.py) of the 90th percentile of that
+#: shift between LMGC90 and Voussoir's own model, over 1.645: 0.020 (docs/diagnosis.md;
+#: test_diagnosis_crown.py works it from the records), taken as 0.022.
+CLIFF_SPREAD = 0.022
 #: Equal-weight nodes of the law of the model's amplitude relative to the test's
 #: (module docstring, `threshold_nodes`).
 NODES = 5
@@ -143,9 +152,10 @@ def variant_at(grid, i: int) -> Variant:
 
 
 def pair_spread(scales, j: int) -> float:
-    """The model's uncertainty of its own log threshold at pair j for the specimen as
-    built: the simulator's spread and the build tolerance's."""
-    return math.hypot(float(scales.sigma_sim[j]), float(scales.sigma_tol[j]))
+    """The spread (log) of a model's fraction of its own threshold at pair j when the
+    laboratory held at a known fraction of its specimen's: the simulator's spread, the
+    build tolerance's and CLIFF_SPREAD."""
+    return math.hypot(float(scales.sigma_sim[j]), float(scales.sigma_tol[j]), CLIFF_SPREAD)
 
 
 def threshold_nodes(spread: float, width: float, k: int = NODES) -> np.ndarray:

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 
 from ..plots.drawing import provenance
-from .crown import FLOOR_M, T_DOF
+from .crown import FLOOR_M, NODES, T_DOF
 from .decision import NAME_AT, Decision
 from .figures import probabilities_figure, table_figure, thresholds_figure
 from .likelihood import GAIN_SCATTER_DEFAULT, OUTLIER_FACTOR, OUTLIER_PROB, TAU_CAMPAIGN, TAU_PAIR, TAU_SPECIMEN
@@ -166,11 +166,12 @@ def _crown_lines(evidence, post: Posterior) -> list[str]:
     best = max(factors[m] for m in shown)
     return ["## Crown records in the probabilities", "",
             f"{len(tests)} tests that stood below their pair's measured threshold carry a crown record. Each model "
-            "is simulated at the same fraction of its own threshold, for a few draws of its parameters; the "
-            f"measured peak |crown dx| against the simulated one is a Student t of {T_DOF} degrees of freedom in "
-            f"log, of the scale measured across codes at that fraction (censored below {1e3 * FLOOR_M:g} mm, a "
-            "transducer's noise). The scale is taken at the test's amplitude over the pair's largest stand: a "
-            "wide bracket widens it.", "",
+            "is simulated at the same fraction of its own threshold, for a few draws of its parameters, at "
+            f"{NODES} amplitudes that cover where in its bracket the specimen's threshold lies, how well the model "
+            "knows its own for the specimen as built, and how far the codes differ in where the crown starts to "
+            "grow; the measured peak |crown dx| against the simulated ones is a Student t of "
+            f"{T_DOF} degrees of freedom in log, of the scale measured across codes at the test's fraction "
+            f"(censored below {1e3 * FLOOR_M:g} mm, a transducer's noise).", "",
             _md_table(["test", "specimen", "f [Hz]", "amplitude [mm]", "fraction of threshold", "peak [mm]",
                        "scale (log)"], rows), "",
             "What the records did to the most probable models (log factor relative to the best of them, and the "
