@@ -12,7 +12,9 @@ record per test) and then, up to MAX_TESTS times:
    frequency, an afd ramp from/to/by, or an afd test held at one amplitude with the crown
    recorded, kind hold_crown; DiagnosisSettings.crown_records on: the records weighed);
    `ramps` the same advice with held tests left out (crown_records off, the default of
-   voussoir-diagnose; its own step 0); `naive` takes the next frequency up (of
+   voussoir-diagnose; its own step 0); `recorded` is `advised` with the crown recorded
+   in every test, as a laboratory with a crown transducer has it (a ramp's stands near
+   the threshold then bring their records too); `naive` takes the next frequency up (of
    DiagnosisSettings.probe_frequencies_hz, not yet tested) on the specimen of the most
    recent test, within the table's limits, else a seeded random untested (specimen,
    frequency), ramped as the laboratory ramps (lmgc90_campaigns.LabFaults: a start of
@@ -26,12 +28,12 @@ record per test) and then, up to MAX_TESTS times:
    transducer's bias on the measured gain, as draw_campaign draws them);
    A held test is one LMGC90 run at that amplitude (with the same faults), its crown
    recorded as a transducer gives it (truth_case.py, relative to the table, with 0.05 mm
-   of noise);
+   of noise; in `recorded`, every test's);
 4. appends the rows and their table records (and a held test's crown record) to the
    campaign folder, and diagnoses again.
 
 It stops early when a cause (or `none`) is named at 0.9 or more. The step 0 diagnosis
-(the replayed campaign) is shared by both designs. After each diagnosis the loop asserts
+(the replayed campaign) is shared by the designs that weigh the same evidence. After each diagnosis the loop asserts
 that the bank gained at most the file of the (specimen, frequency) pair just tested,
 counts its threshold searches, and that every advised ramp is within the table's limits.
 
@@ -39,7 +41,8 @@ Resumable: one JSON per truth and design in OUT/results (finished ones are skipp
 unfinished one goes on from its last finished step). Run with the project's Python and
 PYTHONPATH at postproc (loop.sh does that):
 
-    python bench/lmgc90/loop.py --lmgc90-build DIR --out OUT [--truths N | --slugs S1,S2] [--designs advised,naive]
+    python bench/lmgc90/loop.py --lmgc90-build DIR --out OUT [--truths N | --slugs S1,S2] \
+        [--designs advised,ramps,recorded,naive]
     python bench/lmgc90/loop.py --out OUT --summary      # the table of what is finished
 
 The summary also labels each truth as the calibration does (lmgc90_campaigns.truth_model
@@ -83,7 +86,8 @@ MAX_TESTS = 3
 NAMED_AT = 0.9
 SEED = 35
 FAULTS = LabFaults()
-DESIGNS = ("advised", "naive", "ramps")  #: ramps: the advice without tests held for the crown
+#: ramps: the advice without tests held for the crown; recorded: the crown recorded in every test
+DESIGNS = ("advised", "naive", "ramps", "recorded")
 RECORD_HZ = 200.0
 CROWN_NOISE_M = 5.0e-5   #: a displacement transducer's noise on the crown record
 STEP_DOWN_MAX = 10
@@ -192,22 +196,22 @@ class Laboratory:
                             "dx_m": (dx + CROWN_NOISE_M * rng.standard_normal(dx.size)).tolist()}
         return row
 
-    def ramp(self, sid: str, f: float, start: float, by: float, table, rng, step: int, max_tests: int = 40
-             ) -> list[dict]:
+    def ramp(self, sid: str, f: float, start: float, by: float, table, rng, step: int, max_tests: int = 40,
+             record: bool = False) -> list[dict]:
         """Up from `start` by `by` to the first collapse, within the table's limits; when the
-        first test falls, down by `by` until one stands."""
+        first test falls, down by `by` until one stands. `record`: every test's crown too."""
         snap = lambda a: round(round(a / SNAP_M) * SNAP_M, 7)
         by = max(SNAP_M, snap(by))
         rows, amp = [], max(SNAP_M, snap(start))
         while len(rows) < max_tests and within_limits(amp, f, table):
-            rows.append(self.test(sid, f, amp, rng, step))
+            rows.append(self.test(sid, f, amp, rng, step, hold=record))
             if rows[-1]["collapsed"]:
                 break
             amp = snap(amp + by)
         if len(rows) == 1 and rows[0]["collapsed"]:
             amp = snap(rows[0]["amplitude_m"] - by)
             while amp >= SNAP_M and len(rows) <= STEP_DOWN_MAX:
-                rows.append(self.test(sid, f, amp, rng, step))
+                rows.append(self.test(sid, f, amp, rng, step, hold=record))
                 if not rows[-1]["collapsed"]:
                     break
                 amp = snap(amp - by)
@@ -331,7 +335,7 @@ def run_truth(truth: dict, design: str, args, settings: DiagnosisSettings, out_r
         else:
             prev = state["steps"][-1]
             rng = np.random.default_rng([args.seed, truth["truth"]["index"], DESIGNS.index(design), k])
-            if design in ("advised", "ramps"):
+            if design in ("advised", "ramps", "recorded"):
                 nt = prev["next_test"]
                 chosen = {"specimen_id": nt["specimen_id"], "frequency_hz": nt["frequency_hz"], "kind": nt["kind"],
                           "amplitudes_m": nt["amplitudes_m"], "expected_gain_bits": nt["expected_gain_bits"],
@@ -361,7 +365,7 @@ def run_truth(truth: dict, design: str, args, settings: DiagnosisSettings, out_r
             if chosen["kind"] == "hold_crown":
                 new = [lab.test(sid, f, chosen["amplitudes_m"][0], rng, k, hold=True)]
             else:
-                new = lab.ramp(sid, f, a_from, a_by, table, rng, k)
+                new = lab.ramp(sid, f, a_from, a_by, table, rng, k, record=design == "recorded")
             lmgc = {"runs": lab.runs - runs0, "seconds": round(lab.seconds - secs0, 1),
                     "rows": [[r["amplitude_m"], int(r["collapsed"])] for r in new]}
             if chosen["kind"] == "hold_crown":
@@ -496,7 +500,8 @@ def summary(out_root: Path, settings: DiagnosisSettings | None = None) -> dict:
               + "/".join(str(v) for v in out[d]["named_after_tests"].values())
               + f"); mean tests {out[d]['mean_tests']:.2f}; mean final P(truth) {out[d]['mean_p_truth_final']:.3f}; "
               f"stopped: {out[d]['stopped']}")
-    for a, b in (("advised", "naive"), ("advised", "ramps"), ("ramps", "naive")):
+    for a, b in (("advised", "naive"), ("advised", "ramps"), ("ramps", "naive"), ("recorded", "ramps"),
+                 ("recorded", "advised")):
         paired = [t for t in truths if (t, a) in res and (t, b) in res]
         if not paired:
             continue

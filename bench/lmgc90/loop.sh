@@ -2,7 +2,7 @@
 # The laboratory loop against LMGC90 (issue 35 item 4; docs/diagnosis.md, "The loop
 # against LMGC90"). A bench: never a dependency of the tests. Resumable: run it again
 # with the same --out to go on.
-#   bash bench/lmgc90/loop.sh LMGC90_BUILD_DIR --out DIR [--truths N] [--designs advised,naive] [--np N]
+#   bash bench/lmgc90/loop.sh LMGC90_BUILD_DIR --out DIR [--truths N] [--designs advised,ramps,recorded,naive] [--np N]
 #   bash bench/lmgc90/loop.sh --summary --out DIR
 # VOUSSOIR_PYTHON: the project's Python (default .venv/bin/python, else /work/main/.venv/bin/python);
 # VOUSSOIR_BIN_DIR: the executables (default build/drivers).
@@ -19,7 +19,7 @@ if [ "${1:-}" = "--summary" ]; then
     exec "$py" "$here/loop.py" "$@"
 fi
 if [ $# -lt 1 ] || [ ! -d "$1/pylmgc90" ]; then
-    echo "usage: $0 LMGC90_BUILD_DIR --out DIR [--truths N] [--designs advised,naive] [--np N]" >&2
+    echo "usage: $0 LMGC90_BUILD_DIR --out DIR [--truths N] [--designs advised,ramps,recorded,naive] [--np N]" >&2
     echo "       $0 --summary --out DIR" >&2
     echo "(LMGC90_BUILD_DIR must hold pylmgc90; see docs/lmgc90.md for the build)" >&2
     exit 2
