@@ -542,8 +542,8 @@ def summary(out_root: Path, settings: DiagnosisSettings | None = None) -> dict:
                               "realised_bits": float(np.mean(realised)),
                               "realised_per_test": [round(x, 3) for x in realised],
                               "expected_per_test": [round(x, 3) for x in expected]}
-        print(f"advised tests (both advising designs): expected gain {np.mean(expected):.2f} bits a test, realised (entropy of the rivals "
-              f"before less after) {np.mean(realised):.2f} bits ({len(expected)} tests)")
+        print(f"advised tests (every advising design): expected gain {np.mean(expected):.2f} bits a test, realised "
+              f"(entropy of the rivals before less after) {np.mean(realised):.2f} bits ({len(expected)} tests)")
     steps = [st for s in res.values() for st in s["steps"][1:]]
     if steps:
         fresh = [st for st in steps if st["bank_new_searches"] > 0]
