@@ -63,7 +63,7 @@ from ..readers.campaign import Campaign, Test
 from .effects import Variant
 from .observations import PairObservation
 
-__all__ = ["FLOOR_M", "T_DOF", "SCALE_KNOTS", "CrownTest", "crown_scale", "crown_tests", "peak_m",
+__all__ = ["FLOOR_M", "T_DOF", "SCALE_KNOTS", "CrownTest", "crown_scale", "crown_tests", "peak_m", "bracket",
            "log_terms", "pair_spread", "threshold_nodes", "amplitudes", "mixture_log_term", "crown_log_factors",
            "with_crown", "DRAWS", "NODES", "CLIFF_SPREAD", "variant_at"]
 
@@ -97,8 +97,8 @@ class CrownTest:
     fraction: float  #: amplitude over the pair's measured threshold
     scale: float  #: of the log error
     peak_m: float  #: measured peak |crown_dx|
-    centre: float = math.nan  #: amplitude over the bracket's geometric centre, sqrt(low high)
-    width: float = 0.0  #: of the bracket in log, log(high / low)
+    centre: float  #: amplitude over the bracket's geometric centre (`bracket`)
+    width: float  #: of the bracket in log (`bracket`)
 
 
 def crown_scale(r: float) -> float:
@@ -126,14 +126,19 @@ def crown_tests(campaign: Campaign, pairs: list[PairObservation]) -> list[CrownT
         r = t.amplitude_m / pairs[j].threshold_m
         if not R_MIN <= r <= R_MAX:
             continue
-        p = pairs[j]
-        out.append(CrownTest(t, j, r, crown_scale(r), peak_m(rec.crown_dx_m),
-                             t.amplitude_m / math.sqrt(p.low_m * p.high_m), math.log(p.high_m / p.low_m)))
+        out.append(CrownTest(t, j, r, crown_scale(r), peak_m(rec.crown_dx_m), *bracket(pairs[j], t.amplitude_m)))
     # One record per pair: the narrowest law, then the highest fraction (the arch rocks most).
     best = {}
     for c in sorted(out, key=lambda c: (c.scale, -c.fraction, c.test.test_id)):
         best.setdefault(c.pair, c)
     return sorted(best.values(), key=lambda c: (c.scale, c.width, c.test.test_id))[:MAX_TESTS]
+
+
+def bracket(pair: PairObservation, amplitude_m: float) -> tuple[float, float]:
+    """(amplitude over the bracket's geometric centre sqrt(low high), the bracket's width
+    in log, log(high / low)) of a test of a pair with a stand below its collapse: what
+    `amplitudes` takes."""
+    return amplitude_m / math.sqrt(pair.low_m * pair.high_m), math.log(pair.high_m / pair.low_m)
 
 
 def log_terms(measured_peak_m: float, simulated_peaks_m, scale: float) -> np.ndarray:
@@ -197,7 +202,7 @@ def crown_log_factors(post, obs, tests: list[CrownTest], sim, draw_indices, cach
     the runs' peaks (Simulator.peaks, with its `cache`); `draw_indices(mp, k)` the
     stratified draws."""
     wanted = [m for m, p in post.probabilities.items() if p >= MIN_PROBABILITY]
-    plan = {}  # model -> [(draw's variant, amplitude of each test)]
+    plan = {}  # model -> [(draw's variant, the nodes' amplitudes of each test)]
     jobs: dict[tuple, int] = {}
     for m in wanted:
         mp = post.models[m]

@@ -53,7 +53,7 @@ from scipy.stats import t as student_t
 
 from ..readers.campaign import Test
 from .bank import onset_amplitudes, variant_key
-from .crown import DRAWS, FLOOR_M, R_MIN, T_DOF, amplitudes, crown_scale, pair_spread, variant_at
+from .crown import DRAWS, FLOOR_M, R_MIN, T_DOF, amplitudes, bracket, crown_scale, pair_spread, variant_at
 from .effects import Variant, arch_group
 from .likelihood import predictive_sd
 from .models import members
@@ -238,10 +238,9 @@ def _hold_laws(probabilities, peaks, scale: float):
     edges = np.append(lo + CROWN_BIN * scale * np.arange(int(math.ceil((top - lo) / (CROWN_BIN * scale))) + 1), np.inf)
     py_m = []
     for v in locs:
-        w = np.full(v.shape[1], 1.0 / v.shape[1])
         cdf = student_t.cdf((edges[None, None, :] - v[:, :, None]) / scale, T_DOF)  # (draw, node, edge)
         per = np.concatenate([cdf[:, :, :1], np.diff(cdf, axis=2)], axis=2)
-        py_m.append(np.tensordot(per, w, axes=([1], [0])).mean(axis=0))
+        py_m.append(per.mean(axis=(0, 1)))  # the nodes are equal-weight, and so are the draws
     return p, np.clip(np.array(py_m), 0.0, None)
 
 
@@ -271,7 +270,7 @@ def _hold_candidates(post: Posterior, obs: Observations, rivals: list[str], prob
         for h in HOLD_FRACTIONS:
             amp = _snap(h * p.threshold_m)
             r = amp / p.threshold_m
-            centre, width = amp / math.sqrt(p.low_m * p.high_m), math.log(p.high_m / p.low_m)
+            centre, width = bracket(p, amp)
             if (amp > p.low_m or r < R_MIN or not within_limits(amp, p.frequency_hz, table)
                     or any(c.pair == j for c in recorded)):
                 continue
