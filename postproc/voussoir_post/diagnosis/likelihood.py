@@ -118,9 +118,9 @@ def _log_bracket(lo: np.ndarray, hi: np.ndarray, m: np.ndarray, s: np.ndarray) -
     a = (lo - m) / s
     b = (hi - m) / s
     # P = Phi(b) - Phi(a) = Phi(-a) - Phi(-b); take the side away from the tails.
-    upper = a > 0
-    la = np.where(upper, log_ndtr(-a), log_ndtr(a))
-    lb = np.where(upper, log_ndtr(-b), log_ndtr(b))
+    sign = np.where(a > 0, -1.0, 1.0)
+    la, lb = log_ndtr(sign * a), log_ndtr(sign * b)
+    upper = sign < 0
     big, small = np.where(upper, la, lb), np.where(upper, lb, la)
     with np.errstate(invalid="ignore", divide="ignore"):
         out = big + np.log1p(-np.exp(np.minimum(small - big, -1e-300)))
