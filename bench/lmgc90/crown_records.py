@@ -3,7 +3,7 @@
 LMGC90 and the kernel, never a test.
 
     python bench/lmgc90/crown_records.py --lmgc90-build DIR OUT [--slugs S1,S2]
-        [--fractions 0.9,0.95,0.98] [--bin-dir DIR]
+        [--fractions 0.9,0.95,0.98] [--extra-pairs W118:4,W156:3] [--bin-dir DIR]
     python bench/lmgc90/crown_records.py --lmgc90-build DIR OUT --from-json OUT/crown_records.json
 
 The thresholds of a campaign (three arches, two frequencies) cannot part a thinner ring
@@ -70,10 +70,11 @@ from voussoir_post.readers.campaign import Test  # noqa: E402
 
 from independent_campaigns import ARCHES  # noqa: E402
 from lmgc90_campaigns import IDEAL, draw_campaign, stored_truths, truth_model  # noqa: E402
-from truths import Lmgc90Specimen  # noqa: E402
+from truths import Lmgc90Specimen, onset_m, search  # noqa: E402
 
 BANK = ROOT / "postproc" / "tests" / "data" / "replay" / "bank"
 DT_FACTORS = (0.97, 1.0, 1.03)
+DEFAULTS = DiagnosisSettings(bin_dir=ROOT / "build" / "drivers")  #: the bank's search settings
 T_DOF = 3  #: degrees of freedom of the records' error law (Student t)
 FLOOR_M = 5.0e-4  #: peaks below this are a transducer's noise (single_runs.crown_comparison's floor)
 #: The truths whose table follows the command and whose model is a power truth of the
@@ -100,6 +101,13 @@ def main() -> int:
     ap.add_argument("out", type=Path)
     ap.add_argument("--slugs", default=",".join(DEFAULT_SLUGS))
     ap.add_argument("--fractions", default="0.9,0.95,0.98", help="of each threshold, where the tests stand")
+    ap.add_argument("--extra-pairs", default="",
+                    help="pairs beyond the campaign's six, as W118:4,W156:3: LMGC90's threshold found there by the "
+                         "truths' own search (truths.search), then the records as at the others")
+    ap.add_argument("--extra-only", action="store_true", help="the extra pairs only")
+    ap.add_argument("--thresholds-from", type=Path,
+                    help="a crown_records.json whose rows give LMGC90's thresholds at the extra pairs (amplitude / "
+                         "fraction): no search again (LMGC90 repeats itself to 5e-5 mm)")
     ap.add_argument("--bin-dir", type=Path, default=ROOT / "build" / "drivers")
     ap.add_argument("--from-json", type=Path, help="summarise a stored crown_records.json instead of running")
     args = ap.parse_args()
@@ -116,6 +124,9 @@ def main() -> int:
     arches = {a.specimen_id: a for a in ARCHES}
     rows = []
     fractions = [float(x) for x in args.fractions.split(",") if x]
+    extra = [(x.split(":")[0], float(x.split(":")[1])) for x in args.extra_pairs.split(",") if x]
+    known = {(r["slug"], r["specimen_id"], round(r["frequency_hz"], 9)): r["amplitude_m"] / r["fraction"]
+             for r in json.loads(args.thresholds_from.read_text())["rows"]} if args.thresholds_from else {}
     print(f"{'truth':22s} {'pair':9s} {'frac':4s} {'own':26s} {'rival':34s} {'LMGC90':>6s} {'own':>6s} {'rival':>6s} "
           f"{'spread':>6s} {'err':>6s} {'diff':>6s}  closer   (peak crown dx, mm; err = log LMGC90/own, "
           f"diff = log rival/own)")
@@ -134,21 +145,49 @@ def main() -> int:
             rival_id = min((m for m in fits if not covers(m, model)), key=lambda m: fits[m][1])
         own, rival = fits[own_id], fits[rival_id]
         specimens = {}
-        for p in obs.pairs:
-            sid, f = p.specimen_id, p.frequency_hz
+
+        def specimen(sid):
             if sid not in specimens:   # as truths.make_truth builds the truth's specimens
                 drawn = dict(t["truth"], faults=t["faults"])
                 friction = drawn["parameters"].get("friction", {}).get("friction", arches[sid].friction)
                 specimens[sid] = Lmgc90Specimen(args.lmgc90_build, args.out / "lmgc90" / slug / sid, arches[sid],
                                                 drawn, friction, record_crown=True)
+            return specimens[sid]
+
+        thresholds = [(p.specimen_id, p.frequency_hz, by[(p.specimen_id, round(p.frequency_hz, 9))]["threshold_m"])
+                      for p in obs.pairs if not args.extra_only]
+        for sid, f in extra:   # pairs beyond the campaign's: LMGC90's threshold by the truths' own search
+            if sid not in obs.specimens:
+                continue
+            onset = onset_m(arches[sid], f, args.bin_dir)
+            if (slug, sid, round(f, 9)) in known:
+                thr, how = known[(slug, sid, round(f, 9))], "stored"
+            else:
+                lm = specimen(sid)
+                found = search(lambda a, f=f, lm=lm: lm.run(f, a)[:2], onset)
+                thr, how = found["threshold_m"], f"{len(found['probes'])} runs"
+            if thr is None:
+                print(f"{slug[:22]:22s} {sid} {f:4.2f} LMGC90 threshold none ({how})", flush=True)
+                continue
+            # Voussoir's own thresholds there (as the bank searches them): the models run at a
+            # fraction of their threshold at the pair, as the diagnosis runs them, not of one
+            # offset from the campaign's pairs.
+            found = sims[1.0].thresholds_at(obs.specimens[sid], [f], (1, 1, 1), [own[0], rival[0]],
+                                            DEFAULTS.ceiling_factor * onset, DEFAULTS.amp_tol_fraction * onset)
+            offsets = {name: math.log(found[(v[0], f)] / thr) for name, v in (("own", own), ("rival", rival))}
+            print(f"{slug[:22]:22s} {sid} {f:4.2f} LMGC90 threshold {1e3 * thr:.2f} mm ({how}); Voussoir's own "
+                  f"{1e3 * found[(own[0], f)]:.2f} mm, rival {1e3 * found[(rival[0], f)]:.2f} mm", flush=True)
+            thresholds.append((sid, f, thr, offsets))
+        for sid, f, threshold, *pair_offsets in thresholds:
             for fraction in fractions:
-                amp = fraction * by[(sid, round(f, 9))]["threshold_m"]
-                lm = specimens[sid]
+                amp = fraction * threshold
+                lm = specimen(sid)
                 collapsed, _, _ = lm.run(f, amp)
                 lm_mm = 1e3 * peak_m(lm.last["crown_dx_m"])
                 spec = obs.specimens[sid]
                 pred = {}
                 for name, (variant, _, offset) in (("own", own), ("rival", rival)):
+                    offset = pair_offsets[0][name] if pair_offsets else offset
                     test = Test(f"{slug}_{sid}_{f}_{fraction}_{name}", sid, "afd", "stand", frequency_hz=f,
                                 amplitude_m=amp * math.exp(offset), n_attack=1, n_full=1, n_decay=1)
                     runs = [sim.run_tests([(spec, test, variant, {})])[0] for sim in sims.values()]
@@ -169,6 +208,8 @@ def main() -> int:
                        "amplitude_m": amp, "lmgc90_collapsed": collapsed, "lmgc90_peak_mm": lm_mm,
                        "own_peaks_mm": pred["own"][0], "own_collapsed": pred["own"][1],
                        "rival_peaks_mm": pred["rival"][0], "rival_collapsed": pred["rival"][1],
+                       "campaign_pair": (sid, round(f, 9)) in by,
+                       "own_threshold_offset": pair_offsets[0]["own"] if pair_offsets else own[2],
                        "rocked": rocked, "fell": fell, "log_err": err, "log_diff": diff, "log_spread": spread,
                        "closer": closer}
                 rows.append(row)
