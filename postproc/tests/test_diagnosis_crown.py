@@ -121,7 +121,8 @@ def test_another_codes_records_favour_the_truths_own_model_and_none_is_confident
     are not held to it, because one fails it: t207 (a friction of 0.309; its ring 0.982
     is within the material threshold) is excluded at odds of e^-9.7 under this law and
     under t laws of 1 or 2 degrees of freedom alike. Voussoir's model of it slides at W118
-    2 Hz and W132 2.5 Hz, where LMGC90's barely moves (crown 14.5 mm against 2.5 mm), and
+    2 Hz and W132 2.5 Hz (its grid point closest by thresholds, friction 0.35), where
+    LMGC90's barely moves (crown 14.5 mm against 2.5 mm at W118 2 Hz), and
     at 3 and 4 Hz its closest rival (pivots set in by 3.6 mm, friction 0.33) matches
     LMGC90's thresholds and records better than its own model does. That is a cross-code
     discrepancy of sliding, not a shape of the law, and it is one reason the records stay
