@@ -84,6 +84,7 @@ from voussoir_post.readers.campaign import read_campaign  # noqa: E402
 
 MAX_TESTS = 3
 NAMED_AT = 0.9
+CONFIDENT_AGAINST = 0.01  #: a final P(truth) at or below this is confidently against the truth
 SEED = 35
 FAULTS = LabFaults()
 #: ramps: the advice without tests held for the crown; recorded: the crown recorded in every test
@@ -487,6 +488,12 @@ def summary(out_root: Path, settings: DiagnosisSettings | None = None) -> dict:
                   "mean_p_truth_final": float(np.mean([s["p_truth_final"] for s in done]))}
         out[d]["named_after_tests"] = {k: sum(s["named_at_step"] == k for s in named) for k in range(MAX_TESTS + 1)}
         out[d]["stopped"] = {r: sum(s["stopped"] == r for s in done) for r in sorted({s["stopped"] for s in done})}
+        # Confidently against the truth: a wrong naming (by the calibration's labels where
+        # judged) or the truth's probability at the end at CONFIDENT_AGAINST or below.
+        against = [s["truth"] for s in done
+                   if s["p_truth_final"] <= CONFIDENT_AGAINST
+                   or (s["named"] is not None and not s.get("named_right_judged", s["named_right"]))]
+        out[d]["confidently_against"] = against
         if all("named_right_judged" in s for s in done):
             rj = sum(bool(s["named_right_judged"]) for s in named)
             out[d] |= {"right_judged": rj, "wrong_judged": len(named) - rj,
@@ -499,7 +506,8 @@ def summary(out_root: Path, settings: DiagnosisSettings | None = None) -> dict:
               f"({right} right, {len(named) - right} wrong; after 0/1/2/3 tests: "
               + "/".join(str(v) for v in out[d]["named_after_tests"].values())
               + f"); mean tests {out[d]['mean_tests']:.2f}; mean final P(truth) {out[d]['mean_p_truth_final']:.3f}; "
-              f"stopped: {out[d]['stopped']}")
+              f"stopped: {out[d]['stopped']}; confidently against the truth (named wrongly, or P(truth) <= "
+              f"{CONFIDENT_AGAINST} at the end): {len(against)}" + (f" ({', '.join(against)})" if against else ""))
     for a, b in (("advised", "naive"), ("advised", "ramps"), ("ramps", "naive"), ("recorded", "ramps"),
                  ("recorded", "advised")):
         paired = [t for t in truths if (t, a) in res and (t, b) in res]
