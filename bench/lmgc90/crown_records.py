@@ -45,7 +45,6 @@ Writes OUT/crown_records.json.
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import json
 import math
 import sys
@@ -105,6 +104,10 @@ def main() -> int:
                     help="pairs beyond the campaign's six, as W118:4,W156:3: LMGC90's threshold found there by the "
                          "truths' own search (truths.search), then the records as at the others")
     ap.add_argument("--extra-only", action="store_true", help="the extra pairs only")
+    ap.add_argument("--pair-thresholds", action="store_true",
+                    help="at the campaign's pairs too, run Voussoir's models at a fraction of their own threshold "
+                         "searched at the pair (as at the extra pairs and in the diagnosis), not of LMGC90's times "
+                         "the campaign's offset")
     ap.add_argument("--thresholds-from", type=Path,
                     help="a crown_records.json whose rows give LMGC90's thresholds at the extra pairs (amplitude / "
                          "fraction): no search again (LMGC90 repeats itself to 5e-5 mm)")
@@ -154,8 +157,22 @@ def main() -> int:
                                                 drawn, friction, record_crown=True)
             return specimens[sid]
 
-        thresholds = [(p.specimen_id, p.frequency_hz, by[(p.specimen_id, round(p.frequency_hz, 9))]["threshold_m"])
-                      for p in obs.pairs if not args.extra_only]
+        def own_offsets(sid, f, thr, onset, how):
+            """Voussoir's own and rival thresholds at the pair (as the bank searches them):
+            their log offsets from LMGC90's, so that the models run at a fraction of their
+            own threshold at the pair, as the diagnosis runs them."""
+            found = sims[1.0].thresholds_at(obs.specimens[sid], [f], (1, 1, 1), [own[0], rival[0]],
+                                            DEFAULTS.ceiling_factor * onset, DEFAULTS.amp_tol_fraction * onset)
+            print(f"{slug[:22]:22s} {sid} {f:4.2f} LMGC90 threshold {1e3 * thr:.2f} mm ({how}); Voussoir's own "
+                  f"{1e3 * found[(own[0], f)]:.2f} mm, rival {1e3 * found[(rival[0], f)]:.2f} mm", flush=True)
+            return {name: math.log(found[(v[0], f)] / thr) for name, v in (("own", own), ("rival", rival))}
+
+        thresholds = []
+        for p in ([] if args.extra_only else obs.pairs):   # LMGC90's stored threshold
+            sid, f = p.specimen_id, p.frequency_hz
+            thr = by[(sid, round(f, 9))]["threshold_m"]
+            thresholds.append((sid, f, thr) + ((own_offsets(sid, f, thr, onset_m(arches[sid], f, args.bin_dir),
+                                                             "stored"),) if args.pair_thresholds else ()))
         for sid, f in extra:   # pairs beyond the campaign's: LMGC90's threshold by the truths' own search
             if sid not in obs.specimens:
                 continue
@@ -169,15 +186,9 @@ def main() -> int:
             if thr is None:
                 print(f"{slug[:22]:22s} {sid} {f:4.2f} LMGC90 threshold none ({how})", flush=True)
                 continue
-            # Voussoir's own thresholds there (as the bank searches them): the models run at a
-            # fraction of their threshold at the pair, as the diagnosis runs them, not of one
-            # offset from the campaign's pairs.
-            found = sims[1.0].thresholds_at(obs.specimens[sid], [f], (1, 1, 1), [own[0], rival[0]],
-                                            DEFAULTS.ceiling_factor * onset, DEFAULTS.amp_tol_fraction * onset)
-            offsets = {name: math.log(found[(v[0], f)] / thr) for name, v in (("own", own), ("rival", rival))}
-            print(f"{slug[:22]:22s} {sid} {f:4.2f} LMGC90 threshold {1e3 * thr:.2f} mm ({how}); Voussoir's own "
-                  f"{1e3 * found[(own[0], f)]:.2f} mm, rival {1e3 * found[(rival[0], f)]:.2f} mm", flush=True)
-            thresholds.append((sid, f, thr, offsets))
+            # Not the campaign's offset: carried from the other frequencies it differs from
+            # the pair's own by several per cent (docs/diagnosis.md).
+            thresholds.append((sid, f, thr, own_offsets(sid, f, thr, onset, how)))
         for sid, f, threshold, *pair_offsets in thresholds:
             for fraction in fractions:
                 amp = fraction * threshold
