@@ -3,7 +3,8 @@
 LMGC90 and the kernel, never a test.
 
     python bench/lmgc90/crown_records.py --lmgc90-build DIR OUT [--slugs S1,S2]
-        [--fractions 0.9,0.95,0.98] [--extra-pairs W118:4,W156:3] [--bin-dir DIR]
+        [--fractions 0.9,0.95,0.98] [--pair-thresholds] [--extra-pairs W118:4,W156:3]
+        [--extra-only] [--thresholds-from JSON] [--bin-dir DIR]
     python bench/lmgc90/crown_records.py --lmgc90-build DIR OUT --from-json OUT/crown_records.json
 
 The thresholds of a campaign (three arches, two frequencies) cannot part a thinner ring
@@ -22,8 +23,16 @@ actuator), at each of its six (arch, frequency) pairs:
 - Voussoir runs (the nominal specimens) the truth's own model and its closest rival, each
   at its grid point closest to LMGC90's thresholds after one campaign offset (as the
   identifiability bench finds them), at the same fraction of that model's own threshold
-  (the amplitude times the model's fitted offset), at dt x 0.97, 1 and 1.03 (the
-  simulator's spread);
+  (with --pair-thresholds, its threshold searched at the pair, as the bank searches it
+  and as the diagnosis uses it; without, the amplitude times the model's campaign
+  offset, which takes the fit's misfit at the pair for cross-code error), at dt x 0.97, 1
+  and 1.03 (the simulator's spread);
+- with --extra-pairs, the same at pairs beyond the campaign's six, LMGC90's threshold
+  there found by the truths' own scan and bisection (or read from --thresholds-from) and
+  the models always at their own threshold at the pair. The stored file of the tests
+  (postproc/tests/data/lmgc90/crown_records.json) is this bench with --pair-thresholds
+  --extra-pairs W118:4,W132:4,W156:3,W156:4 on the nine DEFAULT_SLUGS and t107, t109,
+  t206 and t207;
 - the peak horizontal crown displacement of each: LMGC90's measured peak against the two
   models' predictions.
 
