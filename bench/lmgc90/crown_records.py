@@ -136,9 +136,23 @@ def main() -> int:
     arches = {a.specimen_id: a for a in ARCHES}
     rows = []
     fractions = [float(x) for x in args.fractions.split(",") if x]
-    extra = [(x.split(":")[0], float(x.split(":")[1])) for x in args.extra_pairs.split(",") if x]
-    known = {(r["slug"], r["specimen_id"], round(r["frequency_hz"], 9)): r["amplitude_m"] / r["fraction"]
-             for r in json.loads(args.thresholds_from.read_text())["rows"]} if args.thresholds_from else {}
+    extra = []
+    for x in (x for x in args.extra_pairs.split(",") if x):
+        sid, _, f = x.partition(":")
+        try:
+            extra.append((sid, float(f)))
+        except ValueError:
+            ap.error(f"--extra-pairs: {x!r} is not SPECIMEN:FREQUENCY_HZ (as W118:4)")
+        if sid not in arches or not extra[-1][1] > 0:
+            ap.error(f"--extra-pairs: {x!r}: the specimens are {', '.join(sorted(arches))}, the frequency in Hz > 0")
+    known = {}
+    if args.thresholds_from:
+        given = json.loads(args.thresholds_from.read_text())["rows"]
+        if any("amplitude_m" not in r for r in given):
+            ap.error(f"--thresholds-from {args.thresholds_from}: its rows have no amplitude_m (a file this bench "
+                     "wrote, not the tests' stored file, which keeps only what the tests read)")
+        known = {(r["slug"], r["specimen_id"], round(r["frequency_hz"], 9)): r["amplitude_m"] / r["fraction"]
+                 for r in given}
     print(f"{'truth':22s} {'pair':9s} {'frac':4s} {'own':26s} {'rival':34s} {'LMGC90':>6s} {'own':>6s} {'rival':>6s} "
           f"{'spread':>6s} {'err':>6s} {'diff':>6s}  closer   (peak crown dx, mm; err = log LMGC90/own, "
           f"diff = log rival/own)")
@@ -176,14 +190,16 @@ def main() -> int:
                   f"{1e3 * found[(own[0], f)]:.2f} mm, rival {1e3 * found[(rival[0], f)]:.2f} mm", flush=True)
             return {name: math.log(found[(v[0], f)] / thr) for name, v in (("own", own), ("rival", rival))}
 
-        thresholds = []
+        thresholds = []   # (specimen, frequency, LMGC90's threshold, the models' offsets at the pair or None)
         for p in ([] if args.extra_only else obs.pairs):   # LMGC90's stored threshold
             sid, f = p.specimen_id, p.frequency_hz
             thr = by[(sid, round(f, 9))]["threshold_m"]
-            thresholds.append((sid, f, thr) + ((own_offsets(sid, f, thr, onset_m(arches[sid], f, args.bin_dir),
-                                                             "stored"),) if args.pair_thresholds else ()))
+            offsets = (own_offsets(sid, f, thr, onset_m(arches[sid], f, args.bin_dir), "stored")
+                       if args.pair_thresholds else None)
+            thresholds.append((sid, f, thr, offsets))
         for sid, f in extra:   # pairs beyond the campaign's: LMGC90's threshold by the truths' own search
             if sid not in obs.specimens:
+                print(f"{slug[:22]:22s} {sid} {f:4.2f} not in this truth's campaign: left out", flush=True)
                 continue
             onset = onset_m(arches[sid], f, args.bin_dir)
             if (slug, sid, round(f, 9)) in known:
@@ -198,7 +214,7 @@ def main() -> int:
             # Not the campaign's offset: carried from the other frequencies it differs from
             # the pair's own by several per cent (docs/diagnosis.md).
             thresholds.append((sid, f, thr, own_offsets(sid, f, thr, onset, how)))
-        for sid, f, threshold, *pair_offsets in thresholds:
+        for sid, f, threshold, offsets in thresholds:
             for fraction in fractions:
                 amp = fraction * threshold
                 lm = specimen(sid)
@@ -207,7 +223,7 @@ def main() -> int:
                 spec = obs.specimens[sid]
                 pred = {}
                 for name, (variant, _, offset) in (("own", own), ("rival", rival)):
-                    offset = pair_offsets[0][name] if pair_offsets else offset
+                    offset = offsets[name] if offsets else offset   # else the campaign's
                     test = Test(f"{slug}_{sid}_{f}_{fraction}_{name}", sid, "afd", "stand", frequency_hz=f,
                                 amplitude_m=amp * math.exp(offset), n_attack=1, n_full=1, n_decay=1)
                     runs = [sim.run_tests([(spec, test, variant, {})])[0] for sim in sims.values()]
@@ -229,7 +245,7 @@ def main() -> int:
                        "own_peaks_mm": pred["own"][0], "own_collapsed": pred["own"][1],
                        "rival_peaks_mm": pred["rival"][0], "rival_collapsed": pred["rival"][1],
                        "campaign_pair": (sid, round(f, 9)) in by,
-                       "own_threshold_offset": pair_offsets[0]["own"] if pair_offsets else own[2],
+                       "own_threshold_offset": offsets["own"] if offsets else own[2],
                        "rocked": rocked, "fell": fell, "log_err": err, "log_diff": diff, "log_spread": spread,
                        "closer": closer}
                 rows.append(row)
