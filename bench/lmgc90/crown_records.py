@@ -4,7 +4,7 @@ LMGC90 and the kernel, never a test.
 
     python bench/lmgc90/crown_records.py --lmgc90-build DIR OUT [--slugs S1,S2]
         [--fractions 0.9,0.95,0.98] [--pair-thresholds] [--extra-pairs W118:4,W156:3]
-        [--extra-only] [--thresholds-from JSON] [--bin-dir DIR]
+        [--extra-only] [--thresholds-from JSON] [--truths-dir DIR] [--bin-dir DIR]
     python bench/lmgc90/crown_records.py --lmgc90-build DIR OUT --from-json OUT/crown_records.json
 
 The thresholds of a campaign (three arches, two frequencies) cannot part a thinner ring
@@ -22,7 +22,9 @@ actuator), at each of its six (arch, frequency) pairs:
   (truth_case.py: the keystone, or the mean of the two middle voussoirs);
 - Voussoir runs (the nominal specimens) the truth's own model and its closest rival, each
   at its grid point closest to LMGC90's thresholds after one campaign offset (as the
-  identifiability bench finds them), at the same fraction of that model's own threshold
+  identifiability bench finds them; the own model of a truth with brackets among the
+  points with brackets on its side, which the thresholds do not tell), at the same
+  fraction of that model's own threshold
   (with --pair-thresholds, its threshold searched at the pair, as the bank searches it
   and as the diagnosis uses it; without, the amplitude times the model's campaign
   offset, which takes the fit's misfit at the pair for cross-code error), at dt x 0.97, 1
@@ -32,7 +34,12 @@ actuator), at each of its six (arch, frequency) pairs:
   the models always at their own threshold at the pair. The stored file of the tests
   (postproc/tests/data/lmgc90/crown_records.json) is this bench with --pair-thresholds
   --extra-pairs W118:4,W132:4,W156:3,W156:4 on the nine DEFAULT_SLUGS and t107, t109,
-  t206 and t207;
+  t206 and t207, and with --truths-dir postproc/tests/data/lmgc90/crown_truths on the
+  eight truths with pivots set in stored there (truths.py --first K --truths K+1 for K
+  in 26, 27, 46, 47, 89, 110, 153, 158: picked by hand among the calibration seed's
+  draws past its stored truths whose model has contact_edges and no actuator, for a
+  spread of chamfers, 1.1 to 7.5 mm, alone and beside a ring, brackets or a friction;
+  kept apart from the calibration's truths because they were chosen by model);
 - the peak horizontal crown displacement of each: LMGC90's measured peak against the two
   models' predictions.
 
@@ -77,7 +84,7 @@ from voussoir_post.diagnosis.simulator import Simulator  # noqa: E402
 from voussoir_post.readers.campaign import Test  # noqa: E402
 
 from independent_campaigns import ARCHES  # noqa: E402
-from lmgc90_campaigns import IDEAL, draw_campaign, stored_truths, truth_model  # noqa: E402
+from lmgc90_campaigns import IDEAL, TRUTH_DIR, draw_campaign, stored_truths, truth_model  # noqa: E402
 from truths import Lmgc90Specimen, onset_m, search  # noqa: E402
 
 BANK = ROOT / "postproc" / "tests" / "data" / "replay" / "bank"
@@ -91,12 +98,16 @@ DEFAULT_SLUGS = ("t03_none", "t04_none", "t07_none", "t00_geometry_0.928", "t06_
                  "t18_geometry_0.807", "t23_geometry_1.079", "t13_friction_0.422", "t103_friction_0.268")
 
 
-def closest(bank, obs, y: np.ndarray, model: str) -> tuple[Variant, float, float]:
+def closest(bank, obs, y: np.ndarray, model: str, side: str | None = None) -> tuple[Variant, float, float]:
     """The grid point of `model` whose log thresholds lie closest to y after one campaign
-    offset: its variant, its RMS and the offset (log, model less LMGC90)."""
+    offset: its variant, its RMS and the offset (log, model less LMGC90). With `side`, among
+    the points whose brackets are on that side only."""
     g = model_grid(model, bank, obs)
     r = g.mu - y[None, :]
     ok = np.isfinite(g.log_prior)
+    if side is not None and "base_restraint" in g.names:
+        column = g.values[list(g.names).index("base_restraint")]
+        ok &= np.array([str(v).split("@")[0] == side for v in column])
     rc = r - r.mean(axis=1, keepdims=True)
     rms = np.where(ok, np.sqrt((rc ** 2).mean(axis=1)), np.inf)
     j = int(np.argmin(rms))
@@ -120,6 +131,8 @@ def main() -> int:
     ap.add_argument("--thresholds-from", type=Path,
                     help="a crown_records.json whose rows give LMGC90's thresholds at the extra pairs (amplitude / "
                          "fraction): no search again (LMGC90 repeats itself to 5e-5 mm)")
+    ap.add_argument("--truths-dir", type=Path, default=TRUTH_DIR,
+                    help="folder of the LMGC90 truths (bench/lmgc90/truths.py --out; default the calibration's)")
     ap.add_argument("--bin-dir", type=Path, default=ROOT / "build" / "drivers")
     ap.add_argument("--from-json", type=Path, help="summarise a stored crown_records.json instead of running")
     args = ap.parse_args()
@@ -130,7 +143,10 @@ def main() -> int:
         summarise(stored["rows"], stored["fractions"], args.out, 0.0)
         return 0
     bank = load_banks(BANK)
-    truths = {t["slug"]: t for t in stored_truths()}
+    truths = {t["slug"]: t for t in stored_truths(args.truths_dir)}
+    unknown = [s for s in args.slugs.split(",") if s and s not in truths]
+    if unknown:
+        ap.error(f"--slugs: no stored truth {', '.join(unknown)} in {args.truths_dir}")
     sims = {f: Simulator(DiagnosisSettings(bin_dir=args.bin_dir, dt_s=1.0e-3 * f, log=lambda *_: None),
                          args.out / f"voussoir_dt_{f}") for f in DT_FACTORS}
     arches = {a.specimen_id: a for a in ARCHES}
@@ -168,6 +184,12 @@ def main() -> int:
             own_id, rival_id = ranked[0], ranked[1]
         else:
             own_id = min((m for m in fits if covers(m, model)), key=lambda m: fits[m][1])
+            side = t["truth"]["parameters"].get("base_restraint", {}).get("side")
+            if side is not None and "base_restraint" in own_id:
+                # The thresholds do not tell the brackets' side (a side's mirror fits them
+                # about as well) and the diagnosis keeps both; the truth's own model is on
+                # its side (t158: its left-side mirror rocked 0.2 to 3 in log more).
+                fits[own_id] = closest(bank, obs, y, own_id, side)
             rival_id = min((m for m in fits if not covers(m, model)), key=lambda m: fits[m][1])
         own, rival = fits[own_id], fits[rival_id]
         specimens = {}
