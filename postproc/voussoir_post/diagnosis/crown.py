@@ -44,7 +44,8 @@ model the thresholds already put below MIN_PROBABILITY is not simulated: it gets
 least factor of those that were, so records cannot revive it.
 
 They are weighed only with DiagnosisSettings.crown_records (voussoir-diagnose run
---crown-records): against LMGC90 they are not yet calibrated (docs/diagnosis.md).
+--crown-records): against LMGC90 they are calibrated on twenty-one truths but leave a
+truth whose collapse is not monotone in amplitude confidently wrong (docs/diagnosis.md).
 """
 
 from __future__ import annotations

@@ -38,9 +38,9 @@ class DiagnosisSettings:
     #: to find the test that would separate them (next_test.py).
     probe_frequencies_hz: tuple[float, ...] = (0.75, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0)
     #: Whether the crown records of tests held near the threshold are weighed (crown.py) and
-    #: such tests advised (next_test.py). Off by default: against LMGC90 the records named
-    #: causes the thresholds could not, and also moved two nominal arches away from the
-    #: truth at one pair (docs/diagnosis.md), so their probabilities are not yet calibrated.
+    #: such tests advised (next_test.py). Off by default: in the loop against LMGC90 they
+    #: name none wrongly and raise P(truth) in 15 truths of 20, but name 11, and leave two
+    #: whose collapse is not monotone in amplitude at 0.00 (docs/diagnosis.md).
     crown_records: bool = False
     #: Model samples drawn from the posterior for each specimen (posterior_samples_<id>.csv).
     posterior_samples: int = 200
