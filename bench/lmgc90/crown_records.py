@@ -131,11 +131,18 @@ def main() -> int:
     ap.add_argument("--thresholds-from", type=Path,
                     help="a crown_records.json whose rows give LMGC90's thresholds at the extra pairs (amplitude / "
                          "fraction): no search again (LMGC90 repeats itself to 5e-5 mm)")
+    ap.add_argument("--ramp-brackets", action="store_true",
+                    help="at the campaign's pairs, hold LMGC90 at fractions of the midpoint of the bracket a "
+                         "laboratory's ramp finds (the campaign of lmgc90_campaigns.IDEAL: 2 mm steps from 0.7 x the "
+                         "onset, through the windows where the truth stands above its first collapse), as the "
+                         "diagnosis reads a record's fraction, not of the search's first collapse")
     ap.add_argument("--truths-dir", type=Path, default=TRUTH_DIR,
                     help="folder of the LMGC90 truths (bench/lmgc90/truths.py --out; default the calibration's)")
     ap.add_argument("--bin-dir", type=Path, default=ROOT / "build" / "drivers")
     ap.add_argument("--from-json", type=Path, help="summarise a stored crown_records.json instead of running")
     args = ap.parse_args()
+    if args.ramp_brackets and (args.extra_pairs or args.extra_only):
+        ap.error("--ramp-brackets: the campaign's pairs only (the extra pairs have no stored probes to ramp through)")
     args.out.mkdir(parents=True, exist_ok=True)
     t0 = time.time()
     if args.from_json:
@@ -215,8 +222,14 @@ def main() -> int:
         thresholds = []   # (specimen, frequency, LMGC90's threshold, the models' offsets at the pair or None)
         for p in ([] if args.extra_only else obs.pairs):   # LMGC90's stored threshold
             sid, f = p.specimen_id, p.frequency_hz
-            thr = by[(sid, round(f, 9))]["threshold_m"]
-            offsets = (own_offsets(sid, f, thr, onset_m(arches[sid], f, args.bin_dir), "stored")
+            thr, how = by[(sid, round(f, 9))]["threshold_m"], "stored"
+            if args.ramp_brackets:
+                if p.low_m <= 0:
+                    print(f"{slug[:22]:22s} {sid} {f:4.2f} no stand below the ramp's collapse: left out", flush=True)
+                    continue
+                thr, how = p.threshold_m, (f"ramp bracket {1e3 * p.low_m:.2f}-{1e3 * p.high_m:.2f} mm; "
+                                           f"bisection {1e3 * thr:.2f} mm")
+            offsets = (own_offsets(sid, f, thr, onset_m(arches[sid], f, args.bin_dir), how)
                        if args.pair_thresholds else None)
             thresholds.append((sid, f, thr, offsets))
         for sid, f in extra:   # pairs beyond the campaign's: LMGC90's threshold by the truths' own search
@@ -267,6 +280,8 @@ def main() -> int:
                        "own_peaks_mm": pred["own"][0], "own_collapsed": pred["own"][1],
                        "rival_peaks_mm": pred["rival"][0], "rival_collapsed": pred["rival"][1],
                        "campaign_pair": (sid, round(f, 9)) in by,
+                       "held_at": ("ramp bracket" if args.ramp_brackets and (sid, round(f, 9)) in by
+                                   else "threshold"),
                        "own_threshold_offset": offsets["own"] if offsets else own[2],
                        "rocked": rocked, "fell": fell, "log_err": err, "log_diff": diff, "log_spread": spread,
                        "closer": closer}
