@@ -40,6 +40,8 @@ actuator), at each of its six (arch, frequency) pairs:
   draws past its stored truths whose model has contact_edges and no actuator, for a
   spread of chamfers, 1.1 to 7.5 mm, alone and beside a ring, brackets or a friction;
   kept apart from the calibration's truths because they were chosen by model);
+  postproc/tests/data/lmgc90/crown_records_ramp.json is this bench with --pair-thresholds
+  --ramp-brackets on the same twenty-one truths (LMGC90 at fractions of a ramp's bracket);
 - the peak horizontal crown displacement of each: LMGC90's measured peak against the two
   models' predictions.
 
