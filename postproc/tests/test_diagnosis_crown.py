@@ -171,7 +171,7 @@ def test_records_held_at_a_ramps_bracket_exclude_no_truths_own_model():
     records held that way (the stored ramp file: the twenty-one truths at the campaigns'
     pairs, 2 mm ramps), the law as calibrated, at each knot's own scale, must exclude no
     truth's own model at odds beyond e^5, as on the records held at the bisection's
-    threshold. At the knots of 0.9 and 0.95: at 0.98 a 2 mm bracket (4 to 8 % of these
+    threshold. At the knots of 0.9 and 0.95: at 0.98 a 2 mm bracket (3 to 8 % of these
     thresholds) spans the cliff, which the law integrates over (its nodes) and this point
     comparison does not (there the nominal t03 rocked 24 and 36 mm at two pairs where its
     own model, at 0.98 of its own threshold, rocked 0.7 and 1.6: -5.3; docs/diagnosis.md)."""
