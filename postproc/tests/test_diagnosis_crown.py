@@ -149,6 +149,12 @@ def test_another_codes_records_favour_the_truths_own_model_and_none_is_confident
     assert min(llr.values()) > -5.0, llr
 
 
+def _normal_law(measured, simulated, s):
+    """The mutation of log_terms the floor tests must catch: a normal law of scale s."""
+    loc = np.log(np.maximum(np.asarray(simulated, float), FLOOR_M))
+    return -0.5 * ((math.log(max(measured, FLOOR_M)) - loc) / s) ** 2 - math.log(s)
+
+
 def _llr_at_knots(rows, law=log_terms, factor=1.0, knots=SCALE_KNOTS):
     """Per knot, per truth: log p(LMGC90's records | own) - log p(... | the closest rival),
     under `law` at the knot's scale (times `factor`)."""
@@ -186,22 +192,14 @@ def test_a_normal_law_in_its_place_is_confidently_wrong_on_the_ramps_records():
     """The mutation the previous test must catch: a normal law of the same scales. (A t
     law four times narrower is not: its tails cap what one record costs, -4.8 at most.)"""
     rows = json.loads(STORED_RAMP.read_text())["rows"]
-
-    def normal(measured, simulated, s):
-        loc = np.log(np.maximum(np.asarray(simulated, float), FLOOR_M))
-        return -0.5 * ((math.log(max(measured, FLOOR_M)) - loc) / s) ** 2 - math.log(s)
-    llr = _llr_at_knots(rows, normal, 1.0, SCALE_KNOTS[:2])
+    llr = _llr_at_knots(rows, _normal_law, 1.0, SCALE_KNOTS[:2])
     assert min(min(v.values()) for v in llr.values()) < -5.0
 
 
 def test_a_normal_law_in_its_place_is_confidently_wrong_on_the_same_records():
     """The mutation the previous test must catch: the same records under a normal law of
     the same scale exclude a truth's own model at odds beyond e^5."""
-    def normal(measured, simulated, s):
-        loc = np.log(np.maximum(np.asarray(simulated, float), FLOOR_M))
-        y = math.log(max(measured, FLOOR_M))
-        return -0.5 * ((y - loc) / s) ** 2 - math.log(s)
-    assert min(_llr(_stored_rows(), 0.9, normal).values()) < -5.0
+    assert min(_llr(_stored_rows(), 0.9, _normal_law).values()) < -5.0
 
 
 def test_the_laws_90_percent_interval_holds_90_percent_of_the_codes_disagreements():
