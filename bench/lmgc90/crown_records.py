@@ -78,7 +78,7 @@ sys.path[:0] = [str(ROOT / "postproc"), str(ROOT / "postproc" / "tests"), str(RO
 
 from voussoir_post.diagnosis.bank import load_banks, variant_key  # noqa: E402
 from voussoir_post.diagnosis.crown import peak_m, variant_at  # noqa: E402
-from voussoir_post.diagnosis.effects import Variant  # noqa: E402
+from voussoir_post.diagnosis.effects import Variant, restraint_parts  # noqa: E402
 from voussoir_post.diagnosis.models import MODEL_IDS, model_grid  # noqa: E402
 from voussoir_post.diagnosis.rates import covers  # noqa: E402
 from voussoir_post.diagnosis.settings import DiagnosisSettings  # noqa: E402
@@ -109,7 +109,7 @@ def closest(bank, obs, y: np.ndarray, model: str, side: str | None = None) -> tu
     ok = np.isfinite(g.log_prior)
     if side is not None and "base_restraint" in g.names:
         column = g.values[list(g.names).index("base_restraint")]
-        ok &= np.array([str(v).split("@")[0] == side for v in column])
+        ok &= np.array([restraint_parts(v)[0] == side for v in column])
     rc = r - r.mean(axis=1, keepdims=True)
     rms = np.where(ok, np.sqrt((rc ** 2).mean(axis=1)), np.inf)
     j = int(np.argmin(rms))
@@ -252,6 +252,7 @@ def main() -> int:
             # the pair's own by several per cent (docs/diagnosis.md).
             thresholds.append((sid, f, thr, own_offsets(sid, f, thr, onset, how)))
         for sid, f, threshold, offsets in thresholds:
+            campaign_pair = (sid, round(f, 9)) in by
             for fraction in fractions:
                 amp = fraction * threshold
                 lm = specimen(sid)
@@ -281,9 +282,8 @@ def main() -> int:
                        "amplitude_m": amp, "lmgc90_collapsed": collapsed, "lmgc90_peak_mm": lm_mm,
                        "own_peaks_mm": pred["own"][0], "own_collapsed": pred["own"][1],
                        "rival_peaks_mm": pred["rival"][0], "rival_collapsed": pred["rival"][1],
-                       "campaign_pair": (sid, round(f, 9)) in by,
-                       "held_at": ("ramp bracket" if args.ramp_brackets and (sid, round(f, 9)) in by
-                                   else "threshold"),
+                       "campaign_pair": campaign_pair,
+                       "held_at": "ramp bracket" if args.ramp_brackets and campaign_pair else "threshold",
                        "own_threshold_offset": offsets["own"] if offsets else own[2],
                        "rocked": rocked, "fell": fell, "log_err": err, "log_diff": diff, "log_spread": spread,
                        "closer": closer}

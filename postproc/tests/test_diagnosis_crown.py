@@ -95,6 +95,14 @@ def _robust(x):
     return 1.4826 * float(np.median(np.abs(x - np.median(x))))
 
 
+def _records_llr(rows, law, scale):
+    """log p(LMGC90's records | the own model) - log p(... | the rival) over `rows`, each
+    record's simulated peak the mean of its runs, under `law` of scale `scale`."""
+    return sum(float(law(1e-3 * r["lmgc90_peak_mm"], [1e-3 * np.mean(r["own_peaks_mm"])], scale)[0]
+                     - law(1e-3 * r["lmgc90_peak_mm"], [1e-3 * np.mean(r["rival_peaks_mm"])], scale)[0])
+               for r in rows)
+
+
 def _llr(rows, fraction, law=log_terms):
     """Per truth: log p(LMGC90's records | its own model) - log p(... | the closest rival by
     thresholds), the law's scale calibrated (as SCALE_KNOTS) to the coverage of the OTHER
@@ -106,9 +114,7 @@ def _llr(rows, fraction, law=log_terms):
         scale = max(float(np.quantile(np.abs([_log_err(r) for r in use if r["slug"] != slug]), 0.9, method="higher"))
                     / t3_ppf_95,
                     0.02)
-        out[slug] = sum(float(law(1e-3 * r["lmgc90_peak_mm"], [1e-3 * np.mean(r["own_peaks_mm"])], scale)[0]
-                              - law(1e-3 * r["lmgc90_peak_mm"], [1e-3 * np.mean(r["rival_peaks_mm"])], scale)[0])
-                        for r in mine)
+        out[slug] = _records_llr(mine, law, scale)
     return out
 
 
@@ -155,17 +161,13 @@ def _normal_law(measured, simulated, s):
     return -0.5 * ((math.log(max(measured, FLOOR_M)) - loc) / s) ** 2 - math.log(s)
 
 
-def _llr_at_knots(rows, law=log_terms, factor=1.0, knots=SCALE_KNOTS):
+def _llr_at_knots(rows, law=log_terms, knots=SCALE_KNOTS):
     """Per knot, per truth: log p(LMGC90's records | own) - log p(... | the closest rival),
-    under `law` at the knot's scale (times `factor`)."""
+    under `law` at the knot's scale."""
     out = {}
     for fraction, scale in knots:
         use = _usable(rows, fraction)
-        out[fraction] = {slug: sum(float(law(1e-3 * r["lmgc90_peak_mm"], [1e-3 * np.mean(r["own_peaks_mm"])],
-                                             factor * scale)[0]
-                                         - law(1e-3 * r["lmgc90_peak_mm"], [1e-3 * np.mean(r["rival_peaks_mm"])],
-                                               factor * scale)[0])
-                                   for r in use if r["slug"] == slug)
+        out[fraction] = {slug: _records_llr([r for r in use if r["slug"] == slug], law, scale)
                          for slug in sorted({r["slug"] for r in use})}
     return out
 
@@ -192,7 +194,7 @@ def test_a_normal_law_in_its_place_is_confidently_wrong_on_the_ramps_records():
     """The mutation the previous test must catch: a normal law of the same scales. (A t
     law four times narrower is not: its tails cap what one record costs, -4.8 at most.)"""
     rows = json.loads(STORED_RAMP.read_text())["rows"]
-    llr = _llr_at_knots(rows, _normal_law, 1.0, SCALE_KNOTS[:2])
+    llr = _llr_at_knots(rows, _normal_law, SCALE_KNOTS[:2])
     assert min(min(v.values()) for v in llr.values()) < -5.0
 
 
