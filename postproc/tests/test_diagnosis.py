@@ -34,9 +34,9 @@ import voussoir_post.diagnosis.bank as bank_module
 from voussoir_post.diagnosis.bank import Bank, build_bank, key_variant, load_banks, variant_key
 from voussoir_post.diagnosis.decision import NAME_AT, Decision, credible_set, to_separate
 from voussoir_post.diagnosis.emulator import emulate
-from voussoir_post.diagnosis.likelihood import _log_bracket, records_log_factor, scales
+from voussoir_post.diagnosis.likelihood import ONE_SIDED_STEPS, _log_bracket, bracket_terms, records_log_factor, scales
 from voussoir_post.diagnosis.models import MODEL_IDS, model_prior, nominal_log, sim_spread
-from voussoir_post.diagnosis.observations import Observations, PairObservation
+from voussoir_post.diagnosis.observations import Observations, PairObservation, from_campaign
 from voussoir_post.diagnosis.pipeline import DiagnosisSettings, diagnose
 from voussoir_post.diagnosis.posterior import ADEQUATE_P, adequacy, infer
 from voussoir_post.diagnosis.rates import draw_outcomes, mcnemar
@@ -130,6 +130,38 @@ def test_bracket_probability_is_the_normal_mass_between_its_ends():
     # Far in a tail the difference of two CDFs underflows; the log form does not.
     assert math.isfinite(_log_bracket(lo[3:], hi[3:], m[3:], s[3:])[0])
     assert abs(_log_bracket(lo[3:], hi[3:], m[3:], s[3:])[0] - norm.logsf(15.0) - math.log1p(-math.exp(norm.logsf(15.5) - norm.logsf(15.0)))) < 1e-6
+
+
+def test_a_campaign_of_collapse_rows_only_reads_each_as_a_ramps_first_collapse():
+    """Given the threshold t, a ramp of step r whose phase is arbitrary puts its first
+    collapse h uniformly in log on (log t, log t + log(1 + r)); over r the pair's term,
+    as a function of log h, must therefore be a probability density (integral 1) for any
+    t, and where the campaign reports stands elsewhere the pair stays an upper bound."""
+    pair = PairObservation("S", 1.0, 0.0, 0.05)
+    assert bracket_terms(pair, stands_unreported=False) == [(-math.inf, math.log(0.05), 0.0)]
+    assert bracket_terms(dataclasses.replace(pair, low_m=0.04), True) == [(math.log(0.04), math.log(0.05), 0.0)]
+    log_t = math.log(0.037)
+    grid = np.linspace(log_t - 0.5, log_t + 2.0, 20001)  # h from below t to 300 % above
+    density = [sum(math.exp(w) for lo, hi, w in bracket_terms(dataclasses.replace(pair, high_m=math.exp(h)), True)
+                   if lo < log_t <= hi) for h in grid]
+    total = float(np.sum(density) * (grid[1] - grid[0]))
+    assert abs(total - 1.0) < 0.01, total
+    # Exactly, by the nodes: the mean over r of (1 / log(1 + r)) x log(1 + r) is 1.
+    widths = np.log1p(ONE_SIDED_STEPS)
+    assert sum(w * math.exp(lw) for w, (_, _, lw) in zip(widths, bracket_terms(pair, True))) == pytest.approx(1.0)
+    # The density falls with how far below the collapse the threshold lies.
+    near, far = (sum(math.exp(w) for lo, hi, w in bracket_terms(pair, True) if lo < math.log(x) <= hi)
+                 for x in (0.0495, 0.03))
+    assert near > 10 * far > 0
+
+
+def test_a_campaign_says_whether_it_reports_stands():
+    camp = read_campaign(SEED_CAMPAIGN)
+    obs, _ = from_campaign(camp)
+    assert obs.stand_rows is False and obs.stands_unreported  # the seed paper: collapse rows only
+    assert all(p.low_m == 0 for p in obs.pairs)
+    with_stand = dataclasses.replace(obs, stand_rows=True)
+    assert not with_stand.stands_unreported
 
 
 def _obs(gains_per_pair, source="records"):

@@ -31,6 +31,7 @@ import pytest
 
 from voussoir_post.diagnosis import posterior as posterior_module
 from voussoir_post.diagnosis.bank import Bank
+from voussoir_post.diagnosis.observations import Observations
 from voussoir_post.diagnosis.rates import outcome, power
 
 from conftest import VERDICTS
@@ -39,9 +40,11 @@ from test_diagnosis import stored_bank
 
 DRAWS = 3
 POWER_MARGIN = 0.2  #: nats of information about the truth, on average over the draws (a diagnosis blind to the data: 0)
-#: Mean probability of `none` on the nominal truths: more probable than not (its prior is
-#: 0.25; banks 5 % off give 0.43 and 0.47 on the stored truths, the stored bank 0.59).
-NOMINAL_P_NONE = 0.5
+#: Mean probability of `none` on the nominal truths (its prior is 0.25). With campaigns of
+#: collapse rows only read as ramps whose stands went unreported (likelihood.bracket_terms),
+#: the stored bank gives 0.81 on the stored truths and banks 5 % off 0.62 (x 1.05) and
+#: 0.52 (x 0.95); read as bare upper bounds, 0.59, 0.43 and 0.47 (the floor was 0.5).
+NOMINAL_P_NONE = 0.7
 NAMED_LEVEL = 0.01  #: p-value below which the named causes are wrong more often than they say
 IN_SET = 0.7
 PARAMETER_COVERAGE = 0.7
@@ -190,6 +193,47 @@ def test_collapse_rows_only_are_flagged_one_sided():
     obs, drawn = draw_campaign(t, np.random.default_rng(3), LabFaults(collapses_only_p=0.0, step_mm=(1.0, 1.0)))
     assert "one_sided" not in outcome(stored_bank(), obs, truth_model(t))["flags"] or any(
         p.low_m == 0 for p in obs.pairs)
+
+
+def _collapse_rows_only(bank: Bank) -> list[dict]:
+    """One campaign of collapse rows only for every stored truth inside the catalogue."""
+    out = []
+    for t in truths():
+        obs, _ = draw_campaign(t, np.random.default_rng([7, t["truth"]["index"], 0]), LabFaults(collapses_only_p=1.0))
+        if obs.pairs and truth_model(t, bank, obs) != "outside":
+            out.append(outcome(bank, obs, truth_model(t, bank, obs), truth_values(t)))
+    return out
+
+
+ONE_SIDED_IN_SET = 0.8  #: a 90 % set, over a truth per draw: 0.9 within about two standard errors
+
+
+def _one_sided_failures(outs: list[dict]) -> list[str]:
+    failed = []
+    held = float(np.mean([o["in_set"] for o in outs]))
+    if held < ONE_SIDED_IN_SET:
+        failed.append(f"truth in the 90 % set {held:.2f} < {ONE_SIDED_IN_SET}")
+    if not power(outs) > POWER_MARGIN:
+        failed.append(f"power {power(outs):.2f} nats <= {POWER_MARGIN}")
+    return failed
+
+
+def test_campaigns_of_collapse_rows_only_hold_the_truth_and_say_something():
+    """A campaign that reports only the collapse of each ramp (like the seed paper's) still
+    says where the thresholds are: its 90 % sets hold the truth about 90 % of the time and
+    the truth gains probability on average. Read as bare upper bounds they favour every
+    model that predicts lower thresholds: 0.74 in the set and -0.28 nats over 68 such
+    draws (docs/diagnosis.md)."""
+    outs = _collapse_rows_only(stored_bank())
+    assert len(outs) >= 25, len(outs)
+    failed = _one_sided_failures(outs)
+    assert failed == [], (failed, [(o["top"], round(o["p_truth"], 2)) for o in outs])
+
+
+def test_collapse_rows_read_as_bare_upper_bounds_fail_the_one_sided_check(monkeypatch):
+    """Mutation: the campaign's unreported stands ignored (every pair an upper bound)."""
+    monkeypatch.setattr(Observations, "stands_unreported", property(lambda self: False))
+    assert _one_sided_failures(_collapse_rows_only(stored_bank()))
 
 
 def _with_counterfactual(t: dict, effect: str, factor: float) -> dict:

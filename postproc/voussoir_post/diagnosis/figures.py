@@ -46,11 +46,16 @@ def thresholds_figure(out: Path, pairs: Sequence[PairObservation], nominal_m: Se
                     arrowprops=dict(arrowstyle="-|>", color="k", linewidth=1.3, mutation_scale=12))
     if (~closed).any():
         ax.plot([], [], color="k", linewidth=2.5, marker="v", markersize=6,
-                label="measured: at most the first collapse (no test stood below it)")
+                label="measured: at most the first collapse (no stand row below it)")
     ax.plot(x - 0.15, 1e3 * np.asarray(nominal_m), "s", color=_NOMINAL_COLOUR, label="nominal model")
     if shown and shown_m is not None:
         ax.plot(x + 0.15, 1e3 * np.asarray(shown_m), "D", color=_MODEL_COLOUR,
                 label=f"{shown} (probability {shown_probability:.2f}), fitted without the specimen")
+    if (~closed).any():  # annotations do not widen the axes: keep every arrow's tip inside
+        bottom, top = ax.get_ylim()
+        tip = 0.85 * float(np.min(high[~closed]))
+        if tip < bottom:
+            ax.set_ylim(tip - 0.05 * (top - tip), top)
     ax.set_xticks(x)
     ax.set_xticklabels([f"{p.specimen_id}\n{p.frequency_hz:g} Hz" for p in pairs], fontsize=8)
     ax.set_xlim(-0.6, len(pairs) - 0.4)

@@ -33,6 +33,19 @@ likelihood is tabulated against its total shift, convolved with delta_s's densit
 then, over the specimens, with delta_c's. A cause is therefore named only where its
 effect on the thresholds exceeds what these can make.
 
+In a campaign of collapse rows only (no `stand` row anywhere), each pair's smallest
+collapse, high, is read as what such a campaign is (shared/MEASURED_DATA.md: "a campaign usually ramps the
+amplitude ... until the arch falls"): the first collapse of a ramp whose stands were not
+reported, of an unknown relative step r, log-uniform over ONE_SIDED_STEPS (1 % to 100 % of
+the collapse amplitude). Given r, the threshold lies in (high / (1 + r), high] and high
+has the density 1 / log(1 + r) in log over it (the ramp's phase is arbitrary), so the
+pair's term is the mean over r of P(high / (1 + r) < t <= high) / log(1 + r). Read as a
+bare upper bound (P(t <= high), as before), the data favour every model that predicts a
+lower threshold, by as much as it predicts lower: on LMGC90's campaigns with collapse rows
+only the 90 % sets held the truth in 0.76 of the draws (0.95 with stands; docs/diagnosis.md).
+Where the campaign reports stands elsewhere, a pair without one fell at its ramp's first
+test, and its bracket stays the upper bound P(t <= high).
+
 Each pair's probability is mixed with an outlier model (probability 0.05: log t uniform
 within a factor 3 of mu), so one odd pair cannot carry a verdict (the adequacy check of
 posterior.py has no outliers: an odd pair makes it fail).
@@ -59,7 +72,8 @@ from .models import GAIN_RANGE, SIM_FLOOR, ModelGrid, pair_tolerance, sim_spread
 from .observations import Observations, PairObservation
 
 __all__ = ["Scales", "scales", "adjusted_mu", "pair_variance", "log_likelihood", "records_log_factor",
-           "TAU_PAIR", "TAU_SPECIMEN", "TAU_CAMPAIGN", "SHIFTS", "OUTLIER_PROB", "OUTLIER_FACTOR", "GAIN_SD_DEFAULT"]
+           "TAU_PAIR", "TAU_SPECIMEN", "TAU_CAMPAIGN", "SHIFTS", "OUTLIER_PROB", "OUTLIER_FACTOR", "GAIN_SD_DEFAULT",
+           "ONE_SIDED_STEPS", "bracket_terms"]
 
 TAU_PAIR = (0.01, 0.03, 0.06, 0.12)  #: discrepancy of each pair (relative), integrated with equal weights
 TAU_SPECIMEN = (0.01, 0.03, 0.06)  #: discrepancy of a specimen (relative), integrated with equal weights
@@ -67,6 +81,9 @@ TAU_CAMPAIGN = (0.005, 0.01, 0.02, 0.04)  #: discrepancy of the campaign (relati
 SHIFTS = np.linspace(-0.45, 0.45, 61)  #: grid of log shifts on which the discrepancies are integrated
 OUTLIER_PROB = 0.05
 OUTLIER_FACTOR = 3.0  #: an outlier's threshold lies within this factor of the prediction
+#: Nodes of the unreported relative ramp step r of a pair with collapse rows only,
+#: log-uniform from 1 % to 100 % (equal weights in log r).
+ONE_SIDED_STEPS = np.geomspace(0.01, 3.0, 11)
 GAIN_SCATTER_DEFAULT = 0.01  #: test-to-test gain scatter assumed without records
 GAIN_SCATTER_FLOOR = 0.003
 PEAK_SCATTER_FLOOR = 0.03  #: scatter of a gain read from measured peak accelerations (no records)
@@ -157,11 +174,17 @@ def pair_variance(grid: ModelGrid, sc: Scales) -> np.ndarray:
     return var
 
 
-def brackets(pairs: list[PairObservation]) -> tuple[np.ndarray, np.ndarray]:
-    """The log ends of each pair's bracket (low -inf where no stand row lies below)."""
-    lo = np.array([math.log(p.low_m) if p.low_m > 0 else -np.inf for p in pairs])
-    hi = np.log(np.array([p.high_m for p in pairs]))
-    return lo, hi
+def bracket_terms(pair: PairObservation, stands_unreported: bool) -> list[tuple[float, float, float]]:
+    """(log low, log high, log weight) of the brackets a pair's term mixes: its own, or,
+    in a campaign of collapse rows only, one per unreported ramp step r of
+    ONE_SIDED_STEPS, weighted by 1 / log(1 + r) (module docstring)."""
+    hi = math.log(pair.high_m)
+    if pair.low_m > 0:
+        return [(math.log(pair.low_m), hi, 0.0)]
+    if not stands_unreported:  # its ramp fell at its first test: an upper bound
+        return [(-math.inf, hi, 0.0)]
+    widths = np.log1p(ONE_SIDED_STEPS)
+    return [(hi - w, hi, -math.log(w) - math.log(widths.size)) for w in widths]
 
 
 @lru_cache(maxsize=64)
@@ -178,17 +201,20 @@ def _campaign_taus(grid: ModelGrid, sc: Scales) -> list[float]:
 
 
 def specimen_log_tables(pairs: list[PairObservation], shifted: list[np.ndarray], var: np.ndarray,
-                        outlier: list[np.ndarray], tau_pair: float) -> dict[str, np.ndarray]:
+                        outlier: list[list[np.ndarray]], tau_pair: float,
+                        stands_unreported: bool) -> dict[str, np.ndarray]:
     """Per specimen, log p(its brackets | theta, total shift) on SHIFTS: (n_points, n_shifts),
     each pair's own discrepancy (scale tau_pair) in its spread. `shifted` holds each pair's
-    predictions shifted over SHIFTS, `outlier` its outlier term (neither depends on
-    tau_pair)."""
-    lo, hi = brackets(pairs)
+    predictions shifted over SHIFTS, `outlier` its outlier term for each of its
+    bracket_terms (neither depends on tau_pair)."""
     s = np.sqrt(var + tau_pair ** 2)
     out = {}
     for j, p in enumerate(pairs):
-        normal = _log_bracket(lo[j], hi[j], shifted[j], s[:, j, None])
-        mixed = np.logaddexp(math.log1p(-OUTLIER_PROB) + normal, math.log(OUTLIER_PROB) + outlier[j])
+        terms = []
+        for (lo, hi, log_w), out_k in zip(bracket_terms(p, stands_unreported), outlier[j]):
+            normal = _log_bracket(np.float64(lo), np.float64(hi), shifted[j], s[:, j, None])
+            terms.append(log_w + np.logaddexp(math.log1p(-OUTLIER_PROB) + normal, math.log(OUTLIER_PROB) + out_k))
+        mixed = terms[0] if len(terms) == 1 else logsumexp(np.stack(terms), axis=0)
         out[p.specimen_id] = out.get(p.specimen_id, 0.0) + mixed
     return out
 
@@ -206,15 +232,16 @@ def log_likelihood(grid: ModelGrid, obs: Observations, pairs: list[PairObservati
     specimen and campaign discrepancies integrated."""
     centre = SHIFTS.size // 2
     prior_c = np.column_stack([_shift_weights(t)[:, centre] for t in _campaign_taus(grid, sc)])
-    lo, hi = brackets(pairs)
     mu = adjusted_mu(grid, sc)
     shifted = [mu[:, j, None] + SHIFTS[None, :] for j in range(len(pairs))]
-    outlier = [_log_outlier(lo[j], hi[j], shifted[j]) for j in range(len(pairs))]
+    unreported = obs.stands_unreported
+    outlier = [[_log_outlier(lo, hi, shifted[j]) for lo, hi, _ in bracket_terms(p, unreported)]
+               for j, p in enumerate(pairs)]
     var = pair_variance(grid, sc)
     per_level = []
     for tau_pair in TAU_PAIR:
         total = None
-        for sid, table in specimen_log_tables(pairs, shifted, var, outlier, tau_pair).items():
+        for sid, table in specimen_log_tables(pairs, shifted, var, outlier, tau_pair, unreported).items():
             taus = [round(math.sqrt(t0 * t0 + sc.d_fine.get(sid, 0.0) ** 2), 12) for t0 in TAU_SPECIMEN]
             # Every specimen level at once: (n, shifts x levels).
             conv = _log_matmul(table, np.hstack([_shift_weights(t) for t in taus]))

@@ -56,6 +56,17 @@ class Observations:
     #: How far the specimens as built may lie from their stated ring thickness (relative
     #: standard deviation; DiagnosisSettings.build_tolerance, models.tolerance_spread).
     build_tolerance: float = 0.015
+    #: Whether the campaign reports any `stand` row (None: read from the pairs' brackets).
+    stand_rows: bool | None = None
+
+    @property
+    def stands_unreported(self) -> bool:
+        """True when the campaign reports collapses only: its pairs are then read as the
+        first collapses of ramps whose stands went unreported (likelihood.bracket_terms);
+        where it reports stands elsewhere, a pair with none fell at its first test."""
+        if self.stand_rows is not None:
+            return not self.stand_rows
+        return all(p.low_m <= 0 for p in self.pairs + self.apart)
 
     def of(self, specimen_id: str) -> list[PairObservation]:
         return [p for p in self.pairs if p.specimen_id == specimen_id]
@@ -83,5 +94,6 @@ def from_campaign(campaign: Campaign) -> tuple[Observations, TableEvidence]:
         (pairs if campaign.specimens[m.specimen_id].setup_certain else apart).append(obs)
         cycles.setdefault(m.specimen_id, cycles_of(campaign, m.test_ids[0]))
     specimens = {sid: s for sid, s in campaign.specimens.items() if any(p.specimen_id == sid for p in pairs + apart)}
+    stand_rows = any(not t.collapsed for t in campaign.tests.values())
     return (Observations(campaign.name, specimens, pairs, cycles, table.source, table.delay_s, table.delay_se,
-                         apart, campaign.table.displacement_gain_sd), table)
+                         apart, campaign.table.displacement_gain_sd, stand_rows=stand_rows), table)

@@ -12,7 +12,7 @@ from ..plots.drawing import provenance
 from .crown import FLOOR_M, NODES, T_DOF
 from .decision import NAME_AT, Decision
 from .figures import probabilities_figure, table_figure, thresholds_figure
-from .likelihood import GAIN_SCATTER_DEFAULT, OUTLIER_FACTOR, OUTLIER_PROB, TAU_CAMPAIGN, TAU_PAIR, TAU_SPECIMEN
+from .likelihood import GAIN_SCATTER_DEFAULT, ONE_SIDED_STEPS, OUTLIER_FACTOR, OUTLIER_PROB, TAU_CAMPAIGN, TAU_PAIR, TAU_SPECIMEN
 from .models import CANDIDATES, MATERIAL, MATERIAL_EFFECT, members, model_prior
 from .posterior import ADEQUATE_P, SENSITIVITY_FACTORS, Posterior
 
@@ -28,9 +28,7 @@ METHOD_CHECK = ("The probabilities were checked by a calibration study (bench/di
                 "stated probabilities.")
 
 #: What each flag of diagnosis.json means, for the report.
-FLAG_TEXT = {"one_sided": "some pairs have collapse rows only: their brackets are upper bounds, and a parameter "
-                          "they bound is bounded from one side only",
-             "sensor_bias": "the records' common gain offset is within what the transducer's calibration allows "
+FLAG_TEXT = {"sensor_bias": "the records' common gain offset is within what the transducer's calibration allows "
                             "(table.csv `displacement_gain_sd`); it was taken as a possible sensor bias, not as a "
                             "cause",
              "inadequate": "the check of the most probable model failed: no model of the catalogue explains the "
@@ -219,7 +217,19 @@ def _common_friction(obs) -> float | None:
     return values.pop() if len(values) == 1 else None
 
 
-def _flag_lines(result: dict) -> list[str]:
+def _one_sided_text(obs) -> str:
+    """What `one_sided` means for this campaign (likelihood.bracket_terms)."""
+    if obs.stands_unreported:
+        return (f"every row is a collapse: each pair's smallest collapse is read as the first collapse of a ramp "
+                f"whose stands were not reported, of an unknown step ({_pct(float(ONE_SIDED_STEPS[0]))} to "
+                f"{_pct(float(ONE_SIDED_STEPS[-1]))} of the collapse amplitude, log-uniform), so a threshold is "
+                "known only to within that step below it; stand rows below each collapse would say how far")
+    return ("some pairs have collapse rows only (their ramps fell at the first test, since the campaign reports "
+            "stands elsewhere): their brackets are upper bounds, and a parameter they bound is bounded from one "
+            "side only")
+
+
+def _flag_lines(result: dict, obs) -> list[str]:
     if not result["flags"]:
         return ["Flags: none (no one-sided brackets, no parameter against its prior's edge, no sensor bias, "
                 "the check passed).", ""]
@@ -230,7 +240,7 @@ def _flag_lines(result: dict) -> list[str]:
                          "data do not bound it from that side, and its interval is the prior's as much as the "
                          "data's.")
         else:
-            lines.append(f"- `{f}`: {FLAG_TEXT[f]}.")
+            lines.append(f"- `{f}`: {_one_sided_text(obs) if f == 'one_sided' else FLAG_TEXT[f]}.")
     return lines + [""]
 
 
@@ -306,7 +316,10 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
                                           _model_rows(post, info, result)),
              "", "## How the probabilities are made", "",
              "Each pair's rows bracket its threshold; the likelihood is the probability that the threshold lies "
-             "in the bracket, under each model over a grid of its parameters. Between the simulated nodes the "
+             "in the bracket, under each model over a grid of its parameters"
+             + (" (the campaign reports collapses only: each pair's bracket is that of a ramp whose stands went "
+                "unreported, averaged over the ramp's unknown step; see the flag below)" if obs.stands_unreported
+                else "") + ". Between the simulated nodes the "
              "threshold is emulated (a Gaussian process through the bank's nodes, whose nugget is the "
              "simulator's own spread and, where the nodes follow no smooth curve, their roughness), and the "
              "emulator's variance goes with it. The spreads: the simulator's "
@@ -340,7 +353,7 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
              "right, and the largest |Phi^-1(PIT)| over the pairs is compared with its null distribution "
              "(Sidak's, exact for independent pairs, conservative for dependent ones). No outlier process "
              "enters the check.", "",
-             ] + _flag_lines(result) + _sensitivity_lines(info) + _emulator_lines(post) + [
+             ] + _flag_lines(result, obs) + _sensitivity_lines(info) + _emulator_lines(post) + [
              METHOD_CHECK, ""]
     lines += _crown_lines(info.get("crown_evidence"), post)
     lines += _next_test_lines(info.get("next_test"))
