@@ -34,9 +34,9 @@ then, over the specimens, with delta_c's. A cause is therefore named only where 
 effect on the thresholds exceeds what these can make.
 
 In a campaign of collapse rows only (no `stand` row anywhere), each pair's smallest
-collapse, high, is read as what such a campaign is (shared/MEASURED_DATA.md: "a campaign usually ramps the
-amplitude ... until the arch falls"): the first collapse of a ramp whose stands were not
-reported, of an unknown relative step r, log-uniform over ONE_SIDED_STEPS (1 % to 100 % of
+collapse, high, is read as what such a campaign is (docs/measured_data.md: "a campaign usually
+ramps the amplitude ... until the arch falls"): the first collapse of a ramp whose stands were not
+reported, of an unknown relative step r, log-uniform over ONE_SIDED_STEPS (1 % to 300 % of
 the collapse amplitude). Given r, the threshold lies in (high / (1 + r), high] and high
 has the density 1 / log(1 + r) in log over it (the ramp's phase is arbitrary), so the
 pair's term is the mean over r of P(high / (1 + r) < t <= high) / log(1 + r). Read as a
@@ -82,7 +82,8 @@ SHIFTS = np.linspace(-0.45, 0.45, 61)  #: grid of log shifts on which the discre
 OUTLIER_PROB = 0.05
 OUTLIER_FACTOR = 3.0  #: an outlier's threshold lies within this factor of the prediction
 #: Nodes of the unreported relative ramp step r of a pair with collapse rows only,
-#: log-uniform from 1 % to 100 % (equal weights in log r).
+#: log-uniform from 1 % to 300 % (equal weights in log r): at 300 % the unreported last stand
+#: was a quarter of the collapse amplitude.
 ONE_SIDED_STEPS = np.geomspace(0.01, 3.0, 11)
 GAIN_SCATTER_DEFAULT = 0.01  #: test-to-test gain scatter assumed without records
 GAIN_SCATTER_FLOOR = 0.003
