@@ -22,6 +22,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import shutil
 from functools import lru_cache
 from pathlib import Path
 
@@ -376,6 +377,40 @@ def test_a_repeat_is_scored_within_the_bracket_the_pair_already_has():
                - (h(mix) - 0.5 * (h(rows[0]) + h(rows[1])))) < 1e-9
 
 
+def test_a_pair_whose_tests_all_stood_is_a_lower_bound(tmp_path):
+    """A ramp that ends without a collapse says that the threshold lies above its largest
+    stand: the pair is read (not dropped, as it was), its term is the normal mass above
+    the stand, and a repeat of it ramps on upward, where a rival below the stand has no
+    bin left and two rivals above it part by the mutual information of their laws
+    truncated to (stand, inf), computed apart."""
+    folder = tmp_path / "campaign"
+    shutil.copytree(SEED_CAMPAIGN, folder)
+    with open(folder / "tests.csv", "a") as f:
+        for k, a in enumerate((0.004, 0.006, 0.008)):
+            f.write(f"A156_2Hz_{k},A156,afd,2.0,{a},1,1,1,stand,\n")
+    obs, _ = from_campaign(read_campaign(folder))
+    lower = [p for p in obs.pairs if p.frequency_hz == 2.0]
+    assert len(lower) == 1 and lower[0].low_m == 0.008 and lower[0].high_m == math.inf
+    assert not lower[0].collapsed and not lower[0].closed and obs.stand_rows and not obs.stands_unreported
+    (lo, hi, w), = bracket_terms(lower[0], obs.stands_unreported)
+    assert (lo, hi, w) == (math.log(0.008), math.inf, 0.0)
+    m, s_ = np.array([math.log(0.007), math.log(0.009)]), np.array([0.1, 0.1])
+    assert np.allclose(np.exp(_log_bracket(np.full(2, lo), np.full(2, hi), m, s_)), norm.sf(lo, m, s_), rtol=1e-12)
+    # The repeat's outcome: bins of RAMP_STEP above the stand, the last one open.
+    means, sds = [math.log(0.0095), math.log(0.0120)], [0.03, 0.03]
+    step = 0.025
+    got = expected_gain_bits([0.5, 0.5], means, sds, step, within=(lo, math.inf))
+    edges = lo + math.log1p(step) * np.arange(0, 200)
+    edges = np.append(edges[edges < max(means) + 6 * 0.03 + math.log1p(step)], np.inf)
+    rows = np.array([np.diff(norm.cdf(edges, mu, s)) / norm.sf(lo, mu, s) for mu, s in zip(means, sds)])
+    mix = rows.mean(axis=0)
+    h = lambda q: -float(np.sum(q[q > 0] * np.log2(q[q > 0])))
+    assert got == pytest.approx(h(mix) - 0.5 * (h(rows[0]) + h(rows[1])), abs=0.02)
+    assert got > 0.9  # the two rivals lie 23 % apart, far beyond their spread
+    assert expected_gain_bits([0.5, 0.5], [math.log(0.002), math.log(0.003)], [0.01, 0.01], step,
+                              within=(lo, math.inf)) < 1e-9
+
+
 def test_an_advised_ramp_stays_within_the_tables_limits():
     table = TableLimits(stroke_m=0.1, max_velocity_m_s=0.5, max_accel_m_s2=10.0)
     assert within_limits(0.05, 1.0, table)  # 0.31 m/s, 2.0 m/s2
@@ -385,7 +420,6 @@ def test_an_advised_ramp_stays_within_the_tables_limits():
 
 
 def test_table_csv_is_read_with_its_defaults_and_refused_when_off(tmp_path):
-    import shutil
     folder = tmp_path / "c"
     shutil.copytree(SEED_CAMPAIGN, folder)
     assert read_campaign(folder).table == TableLimits()

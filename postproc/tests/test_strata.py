@@ -31,15 +31,15 @@ def test_allocation_is_the_hand_computed_one():
 
 
 def test_the_seed_posterior_in_30_samples():
-    # diagnosis.json's probabilities >= 0.01: friction .403981, contact_edges .149672, contact_edges+friction
-    # .12536, friction+geometry .113626, geometry .083738, contact_edges+geometry .080689,
-    # base_restraint+friction .031799 (sum .988865); 30 q = 12.26, 4.54, 3.80, 3.45, 2.54, 2.45, 0.96:
-    # floors 12, 4, 3, 3, 2, 2 and the floor of one 1 (27), the 3 left to the largest remainders .803
-    # (edges+friction), .541 (edges), .540 (geometry)
+    # diagnosis.json's probabilities >= 0.01 (the seed campaign read as ramps, 2026-11-30):
+    # contact_edges .285723, geometry .270533, friction .210446, contact_edges+geometry .073219,
+    # friction+geometry .056692, contact_edges+friction .054735, base_restraint+friction .029006
+    # (sum .980354); 30 q = 8.74, 8.28, 6.44, 2.24, 1.73, 1.68, 0.89: floors 8, 8, 6, 2, 1, 1 and
+    # the floor of one 1 (27), the 3 left to the largest remainders .744 (edges), .735
+    # (friction+geometry), .675 (edges+friction)
     p = json.loads((SEED / "diagnosis.json").read_text())["probabilities"]
-    assert allocate(p, 30) == {"friction": 12, "contact_edges": 5, "contact_edges+friction": 4,
-                               "friction+geometry": 3, "contact_edges+geometry": 2, "geometry": 3,
-                               "base_restraint+friction": 1}
+    assert allocate(p, 30) == {"contact_edges": 9, "geometry": 8, "friction": 6, "contact_edges+geometry": 2,
+                               "friction+geometry": 2, "contact_edges+friction": 2, "base_restraint+friction": 1}
 
 
 def test_the_stratified_file_keeps_each_models_first_rows_and_its_weights(tmp_path):
@@ -68,9 +68,10 @@ def test_the_command_writes_a_file_the_strata_reader_reads(tmp_path, capsys):
     assert main(["samples", str(SEED / "posterior_samples_A156.csv"), "--n", "7", "--min-probability", "0.05",
                  "--out", str(out)]) == 0
     text = capsys.readouterr().out
-    # 0.05 leaves out base_restraint+friction (0.037): 6 models (sum 0.948904); 7 q = friction 2.25 -> 2,
-    # the others 1.87, 0.84, 0.69, 0.69, 0.65 -> 1 each (7 in all)
-    assert read_strata(str(out)).counts() == {"friction": 2, "contact_edges": 1, "contact_edges+friction": 1,
-                                              "friction+geometry": 1, "contact_edges+geometry": 1, "geometry": 1}
+    # 0.05 leaves out base_restraint+friction (0.029): 6 models (sum 0.951348); 7 q = contact_edges 2.10 -> 2,
+    # the others 1.99, 1.55, 0.54, 0.42, 0.40 -> 1 each (7 in all)
+    assert read_strata(str(out)).counts() == {"contact_edges": 2, "geometry": 1, "friction": 1,
+                                              "contact_edges+geometry": 1, "friction+geometry": 1,
+                                              "contact_edges+friction": 1}
     assert "wrote" in text
     assert main(["samples", str(SEED / "posterior_samples_A156.csv"), "--n", "3", "--out", str(out)]) == 2

@@ -125,7 +125,7 @@ def crown_tests(campaign: Campaign, pairs: list[PairObservation]) -> list[CrownT
             continue
         j = next((k for k, p in enumerate(pairs) if p.specimen_id == t.specimen_id
                   and abs(p.frequency_hz - t.frequency_hz) < 1e-6), None)
-        if j is None or pairs[j].low_m <= 0:
+        if j is None or not pairs[j].closed:
             continue
         r = t.amplitude_m / pairs[j].threshold_m
         if not R_MIN <= r <= R_MAX:

@@ -31,8 +31,9 @@ def thresholds_figure(out: Path, pairs: Sequence[PairObservation], nominal_m: Se
     fig = new_figure(max(6.5, 1.1 * len(pairs) + 2.5), 4.6)
     ax = fig.subplots()
     x = np.arange(len(pairs))
-    closed = np.array([p.low_m > 0 for p in pairs])
-    meas = np.array([1e3 * p.threshold_m for p in pairs])
+    closed = np.array([p.closed for p in pairs])
+    above = np.array([not p.collapsed for p in pairs])  # every test stood: a bound from below
+    meas = np.array([1e3 * p.threshold_m if p.closed else np.nan for p in pairs])
     low = np.array([1e3 * p.low_m for p in pairs])
     high = np.array([1e3 * p.high_m for p in pairs])
     if closed.any():
@@ -40,22 +41,31 @@ def thresholds_figure(out: Path, pairs: Sequence[PairObservation], nominal_m: Se
                     capsize=4, label="measured: midpoint, bar from the last stand to the first collapse")
     # A pair with no stand below its collapse is a bound, not a value: the threshold is at
     # most the first collapse (a cap there and an arrow down, as in the compare figure).
-    for k in np.flatnonzero(~closed):
+    for k in np.flatnonzero(~closed & ~above):
         ax.plot([x[k] - 0.08, x[k] + 0.08], [high[k], high[k]], color="k", linewidth=2.5)
         ax.annotate("", (x[k], 0.85 * high[k]), (x[k], high[k]),
                     arrowprops=dict(arrowstyle="-|>", color="k", linewidth=1.3, mutation_scale=12))
-    if (~closed).any():
+    if (~closed & ~above).any():
         ax.plot([], [], color="k", linewidth=2.5, marker="v", markersize=6,
                 label="measured: at most the first collapse (no stand row below it)")
+    for k in np.flatnonzero(above):
+        ax.plot([x[k] - 0.08, x[k] + 0.08], [low[k], low[k]], color="k", linewidth=2.5)
+        ax.annotate("", (x[k], 1.15 * low[k]), (x[k], low[k]),
+                    arrowprops=dict(arrowstyle="-|>", color="k", linewidth=1.3, mutation_scale=12))
+    if above.any():
+        ax.plot([], [], color="k", linewidth=2.5, marker="^", markersize=6,
+                label="measured: above the last stand (every test stood)")
     ax.plot(x - 0.15, 1e3 * np.asarray(nominal_m), "s", color=_NOMINAL_COLOUR, label="nominal model")
     if shown and shown_m is not None:
         ax.plot(x + 0.15, 1e3 * np.asarray(shown_m), "D", color=_MODEL_COLOUR,
                 label=f"{shown} (probability {shown_probability:.2f}), fitted without the specimen")
-    if (~closed).any():  # annotations do not widen the axes: keep every arrow's tip inside
+    # Annotations do not widen the axes: keep every arrow's tip inside.
+    tips = np.concatenate([0.85 * high[~closed & ~above], 1.15 * low[above]])
+    if tips.size:
         bottom, top = ax.get_ylim()
-        tip = 0.85 * float(np.min(high[~closed]))
-        if tip < bottom:
-            ax.set_ylim(tip - 0.05 * (top - tip), top)
+        new_bottom, new_top = min(bottom, float(tips.min())), max(top, float(tips.max()))
+        pad = 0.05 * (new_top - new_bottom)
+        ax.set_ylim(new_bottom - (pad if new_bottom < bottom else 0.0), new_top + (pad if new_top > top else 0.0))
     ax.set_xticks(x)
     ax.set_xticklabels([f"{p.specimen_id}\n{p.frequency_hz:g} Hz" for p in pairs], fontsize=8)
     ax.set_xlim(-0.6, len(pairs) - 0.4)

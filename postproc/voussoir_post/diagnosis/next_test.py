@@ -110,7 +110,11 @@ def _outcome_laws(probabilities, means, sds, step, within):
         hi = within[1]
         if not hi > lo:
             return None
-        edges = np.append(lo + width * np.arange(max(1, int(math.ceil((hi - lo) / width - 1e-9)))), hi)
+        # Above a lower bound the bins run to where the rivals reach, then one more to infinity.
+        top = hi if math.isfinite(hi) else max(float(np.max(mu + 6 * sd)), lo + width)
+        edges = np.append(lo + width * np.arange(max(1, int(math.ceil((top - lo) / width - 1e-9)))), top)
+        if not math.isfinite(hi):
+            edges = np.append(edges, hi)
     cdf = ndtr((edges[None, :] - mu[:, None]) / sd[:, None])
     py_c = np.clip(np.diff(cdf, axis=1), 0.0, None)  # (component, bin)
     py_m = np.stack([py_c[owner == i].mean(axis=0) for i in range(len(comps))])  # (rival, bin)
@@ -209,7 +213,11 @@ def _candidate(sid: str, f: float, new: bool, rivals: list[str], probs: list[flo
     spans it (from its stand, or from the ramp's start without one, to its collapse)."""
     amps = ramp(means, sds)
     within = None
-    if bracket is not None:
+    if bracket is not None and not math.isfinite(bracket[1]):  # every test stood: ramp on from the stand
+        low = bracket[0]
+        within = (math.log(low), math.inf)
+        amps = [_snap(low), _snap(max(amps[1], (1.0 + RAMP_STEP) * low)), _snap(RAMP_STEP * low)]
+    elif bracket is not None:
         low, high = bracket
         within = (math.log(low) if low > 0 else -math.inf, math.log(high))
         start = low if low > 0 else min(amps[0], 0.9 * high)
@@ -265,7 +273,7 @@ def _hold_candidates(post: Posterior, obs: Observations, rivals: list[str], prob
     record is already in the probabilities is not asked again (one record a pair counts)."""
     plans, jobs = [], {}
     for j, p in enumerate(post.pairs):
-        if p.low_m <= 0:
+        if not p.closed:
             continue
         for h in HOLD_FRACTIONS:
             amp = _snap(h * p.threshold_m)

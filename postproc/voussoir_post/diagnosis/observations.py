@@ -2,7 +2,9 @@
 
 Each (specimen, frequency) pair with a collapse gives a *bracket*: the collapse threshold
 (in commanded amplitude) lies in (low_m, high_m], low_m the largest `stand` amplitude
-below the smallest `collapse` amplitude high_m (0 when no stand row lies below). The
+below the smallest `collapse` amplitude high_m (0 when no stand row lies below); a pair
+whose tests all stood is a lower bound (high_m infinite: the threshold lies above its
+largest stand). The
 table's own evidence enters as one measured gain per test (records fitted as
 gain x command(t - delay), or measured / commanded peak acceleration).
 
@@ -29,14 +31,25 @@ class PairObservation:
     specimen_id: str
     frequency_hz: float
     low_m: float  #: largest stand amplitude below high_m (0: none below)
-    high_m: float  #: smallest collapse amplitude
+    high_m: float  #: smallest collapse amplitude (inf: every test stood)
     gains: tuple[float, ...] = ()  #: measured table gain of each test of the pair (may be empty)
     test_ids: tuple[str, ...] = ()
 
     @property
     def threshold_m(self) -> float:
-        """The measured threshold of docs/measured_data.md (midpoint of the bracket)."""
+        """The measured threshold of docs/measured_data.md (midpoint of the bracket; inf
+        for a pair whose tests all stood)."""
         return 0.5 * (self.low_m + self.high_m) if self.low_m > 0 else self.high_m
+
+    @property
+    def closed(self) -> bool:
+        """Both ends known: a stand below the smallest collapse."""
+        return self.low_m > 0 and math.isfinite(self.high_m)
+
+    @property
+    def collapsed(self) -> bool:
+        """Some test of the pair fell (else the pair is a lower bound)."""
+        return math.isfinite(self.high_m)
 
 
 @dataclass
@@ -86,10 +99,12 @@ def from_campaign(campaign: Campaign) -> tuple[Observations, TableEvidence]:
     gain_of = {tid: g for tid, g, _, _ in table.per_test}  # from the records, else from the peaks
     pairs, apart, cycles = [], [], {}
     for m in measured_thresholds(campaign):
-        if not m.has_collapse:
-            continue
         low = m.low_m if math.isfinite(m.low_m) else 0.0
-        obs = PairObservation(m.specimen_id, float(m.frequency_hz), float(low), float(m.high_m),
+        if not m.has_collapse and not low > 0:
+            continue
+        # A pair whose tests all stood says that its threshold lies above the largest stand.
+        high = float(m.high_m) if m.has_collapse else math.inf
+        obs = PairObservation(m.specimen_id, float(m.frequency_hz), float(low), high,
                               tuple(float(gain_of[t]) for t in m.test_ids if t in gain_of), tuple(m.test_ids))
         (pairs if campaign.specimens[m.specimen_id].setup_certain else apart).append(obs)
         cycles.setdefault(m.specimen_id, cycles_of(campaign, m.test_ids[0]))

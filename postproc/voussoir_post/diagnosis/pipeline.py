@@ -131,14 +131,16 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     campaign = read_campaign(campaign_dir)
     obs, table = from_campaign(campaign)
     obs.build_tolerance = settings.build_tolerance
-    if not obs.pairs and not obs.apart:
+    if not any(p.collapsed for p in obs.pairs + obs.apart):
         raise InputError(f"{campaign.path}: no (specimen, frequency) pair has a collapse: no threshold to compare")
-    if not obs.pairs:
+    if not any(p.collapsed for p in obs.pairs):
         raise InputError(f"{campaign.path}: every specimen with a collapse has setup_certain = 0: "
                          "nothing can fit or judge a cause")
+    stood = sum(not p.collapsed for p in obs.pairs)
     log(f"[diagnose] {campaign.name}: {len(campaign.specimens)} specimens, {len(campaign.tests)} tests, "
-        f"{len(obs.pairs)} pairs with a collapse and a certain set-up ({len(obs.apart)} apart); "
-        f"table evidence: {obs.gain_source}")
+        f"{len(obs.pairs) - stood} pairs with a collapse and a certain set-up"
+        + (f" and {stood} whose tests all stood (lower bounds)" if stood else "")
+        + f" ({len(obs.apart)} apart); table evidence: {obs.gain_source}")
     cache = Path(settings.bank_dir) if settings.bank_dir else out_dir.resolve().parent / "voussoir-bank"
     bank = build_bank(obs.specimens, {sid: obs.frequencies(sid) for sid in obs.specimens}, obs.cycles, settings,
                       cache, out_dir / "work")
@@ -161,7 +163,8 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     held = {m: held_out(bank, obs, m) for m in MODEL_IDS}
     baseline_pred = np.array([bank.specimens[p.specimen_id].threshold("nominal", p.frequency_hz) for p in obs.pairs])
     meas = np.array([p.threshold_m for p in obs.pairs])
-    baseline_error = float(np.mean(np.abs(baseline_pred - meas) / meas))
+    fell = np.isfinite(meas)  # a pair whose tests all stood has no measured threshold to miss
+    baseline_error = float(np.mean(np.abs(baseline_pred - meas)[fell] / meas[fell])) if fell.any() else math.nan
     shown = decision.shown
     shown_params = parameters(post, shown, obs)
     flag_list = flags(post, decision, shown)

@@ -126,7 +126,8 @@ def pit_values(bank: Bank, obs: Observations, pairs: list[PairObservation], mode
     specimen left out): P(log t <= log midpoint) under the held-out predictive, a mixture
     over the parameters' posterior of normals whose spread holds the simulator, emulator,
     table and the discrepancies at their middle values. For a bracket with no stand row
-    below, the midpoint of the transform over (0, high]: PIT(high) / 2."""
+    below, the midpoint of the transform over (0, high]: PIT(high) / 2; for a pair whose
+    tests all stood, over (low, inf): (1 + PIT(low)) / 2."""
     pit = np.full(len(pairs), math.nan)
     for test in loso_folds(pairs):
         train = [pairs[j] for j in range(len(pairs)) if j not in test] or [pairs[j] for j in test]
@@ -138,7 +139,9 @@ def pit_values(bank: Bank, obs: Observations, pairs: list[PairObservation], mode
         sd = predictive_sd(grid, sc, held)
         for col, j in enumerate(test):
             p = pairs[j]
-            if p.low_m > 0:
+            if not p.collapsed:  # above the largest stand: the midpoint of the transform over (low, inf)
+                cdf = 0.5 * (1.0 + float(weights @ ndtr((math.log(p.low_m) - mu[:, col]) / sd[:, col])))
+            elif p.low_m > 0:
                 cdf = float(weights @ ndtr((math.log(p.threshold_m) - mu[:, col]) / sd[:, col]))
             else:
                 cdf = 0.5 * float(weights @ ndtr((math.log(p.high_m) - mu[:, col]) / sd[:, col]))
@@ -174,9 +177,9 @@ def held_out(bank: Bank, obs: Observations, model_id: str) -> tuple[np.ndarray, 
         other = ModelPosterior(model_id, grid, 0.0, mp.weights)
         pred[test] = np.exp(predicted_log(other, sc))
     meas = np.array([p.threshold_m for p in pairs])
-    err = np.abs(pred - meas) / meas
+    err = (np.abs(pred - meas) / meas)[np.isfinite(meas)]  # a pair whose tests all stood has no value to miss
     se = float(np.std(err, ddof=1) / math.sqrt(err.size)) if err.size > 1 else math.nan
-    return pred, float(np.mean(err)), se
+    return pred, float(np.mean(err)) if err.size else math.nan, se
 
 
 #: The factors of the prior-sensitivity table (every continuous range about its nominal value).

@@ -307,7 +307,7 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
              f"![thresholds]({figs[0]})", "",
              _md_table(["specimen", "f [Hz]", "last stand [mm]", "first collapse [mm]", "nominal [mm]"],
                        [(p.specimen_id, f"{p.frequency_hz:g}", "-" if p.low_m <= 0 else f"{1e3 * p.low_m:.1f}",
-                         f"{1e3 * p.high_m:.1f}", f"{1e3 * b:.1f}")
+                         f"{1e3 * p.high_m:.1f}" if p.collapsed else "none (every test stood)", f"{1e3 * b:.1f}")
                         for p, b in zip(obs.pairs, info["baseline_pred"])]),
              "", "## Every model", "",
              "Prior and posterior probability, held-out error (fitted without the specimen it predicts, with "
@@ -387,8 +387,9 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
                   "Declared `setup_certain = 0`: simulated with their declared set-up, not used in the "
                   "probabilities.", "",
                   _md_table(["specimen", "f [Hz]", "measured [mm]", "nominal [mm]", "nominal error"],
-                            [(p.specimen_id, f"{p.frequency_hz:g}", f"{1e3 * p.threshold_m:.1f}",
-                              f"{1e3 * t:.1f}", f"{100 * (t - p.threshold_m) / p.threshold_m:+.1f} %")
+                            [(p.specimen_id, f"{p.frequency_hz:g}",
+                              f"{1e3 * p.threshold_m:.1f}" if p.collapsed else f"> {1e3 * p.low_m:.1f}", f"{1e3 * t:.1f}",
+                              f"{100 * (t - p.threshold_m) / p.threshold_m:+.1f} %" if p.collapsed else "-")
                              for p in obs.apart
                              for t in [bank.specimens[p.specimen_id].threshold("nominal", p.frequency_hz)]])]
     if info.get("samples"):
