@@ -39,31 +39,34 @@ def thresholds_figure(out: Path, pairs: Sequence[PairObservation], nominal_m: Se
     if closed.any():
         ax.errorbar(x[closed], meas[closed], yerr=[(meas - low)[closed], (high - meas)[closed]], fmt="o", color="k",
                     capsize=4, label="measured: midpoint, bar from the last stand to the first collapse")
-    # A pair with no stand below its collapse is a bound, not a value: the threshold is at
-    # most the first collapse (a cap there and an arrow down, as in the compare figure).
-    for k in np.flatnonzero(~closed & ~above):
-        ax.plot([x[k] - 0.08, x[k] + 0.08], [high[k], high[k]], color="k", linewidth=2.5)
-        ax.annotate("", (x[k], 0.85 * high[k]), (x[k], high[k]),
-                    arrowprops=dict(arrowstyle="-|>", color="k", linewidth=1.3, mutation_scale=12))
-    if (~closed & ~above).any():
-        ax.plot([], [], color="k", linewidth=2.5, marker="v", markersize=6,
-                label="measured: at most the first collapse (no stand row below it)")
-    for k in np.flatnonzero(above):
-        ax.plot([x[k] - 0.08, x[k] + 0.08], [low[k], low[k]], color="k", linewidth=2.5)
-        ax.annotate("", (x[k], 1.15 * low[k]), (x[k], low[k]),
-                    arrowprops=dict(arrowstyle="-|>", color="k", linewidth=1.3, mutation_scale=12))
-    if above.any():
-        ax.plot([], [], color="k", linewidth=2.5, marker="^", markersize=6,
-                label="measured: above the last stand (every test stood)")
     ax.plot(x - 0.15, 1e3 * np.asarray(nominal_m), "s", color=_NOMINAL_COLOUR, label="nominal model")
     if shown and shown_m is not None:
         ax.plot(x + 0.15, 1e3 * np.asarray(shown_m), "D", color=_MODEL_COLOUR,
                 label=f"{shown} (probability {shown_probability:.2f}), fitted without the specimen")
-    # Annotations do not widen the axes: keep every arrow's tip inside.
-    tips = np.concatenate([0.85 * high[~closed & ~above], 1.15 * low[above]])
-    if tips.size:
+    # A bound is not a value: a cap at the first collapse with an arrow down where no stand
+    # lies below it (as in the compare figure), a cap at the last stand with an arrow up
+    # where every test stood; the arrows a tenth of the points' span long, and the axes
+    # widened to hold their tips (annotations do not widen them).
+    ends = np.concatenate([high[np.isfinite(high)], low[low > 0], 1e3 * np.asarray(nominal_m, float)])
+    length = 0.1 * max(float(np.ptp(ends)), 0.2 * float(np.max(ends)))
+    tips = []
+    for k in np.flatnonzero(~closed):
+        up = bool(above[k])
+        at = low[k] if up else high[k]
+        tip = at + length if up else at - length
+        tips.append(tip)
+        ax.plot([x[k] - 0.08, x[k] + 0.08], [at, at], color="k", linewidth=2.5)
+        ax.annotate("", (x[k], tip), (x[k], at), arrowprops=dict(arrowstyle="-|>", color="k", linewidth=1.3,
+                                                                   mutation_scale=12))
+    if (~closed & ~above).any():
+        ax.plot([], [], color="k", linewidth=2.5, marker="v", markersize=6,
+                label="measured: at most the first collapse (no stand row below it)")
+    if above.any():
+        ax.plot([], [], color="k", linewidth=2.5, marker="^", markersize=6,
+                label="measured: above the last stand (every test stood)")
+    if tips:
         bottom, top = ax.get_ylim()
-        new_bottom, new_top = min(bottom, float(tips.min())), max(top, float(tips.max()))
+        new_bottom, new_top = min(bottom, min(tips)), max(top, max(tips))
         pad = 0.05 * (new_top - new_bottom)
         ax.set_ylim(new_bottom - (pad if new_bottom < bottom else 0.0), new_top + (pad if new_top > top else 0.0))
     ax.set_xticks(x)
