@@ -65,7 +65,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
-from scipy.special import log_ndtr, logsumexp
+from scipy.special import log_ndtr, logsumexp, ndtr
 
 from .bank import FINE_DT, Bank
 from .models import GAIN_RANGE, SIM_FLOOR, ModelGrid, pair_tolerance, sim_spread
@@ -202,22 +202,44 @@ def _campaign_taus(grid: ModelGrid, sc: Scales) -> list[float]:
 
 
 def specimen_log_tables(pairs: list[PairObservation], shifted: list[np.ndarray], var: np.ndarray,
-                        outlier: list[list[np.ndarray]], tau_pair: float,
+                        outlier: list[np.ndarray | None], tau_pair: float,
                         stands_unreported: bool) -> dict[str, np.ndarray]:
     """Per specimen, log p(its brackets | theta, total shift) on SHIFTS: (n_points, n_shifts),
     each pair's own discrepancy (scale tau_pair) in its spread. `shifted` holds each pair's
-    predictions shifted over SHIFTS, `outlier` its outlier term for each of its
-    bracket_terms (neither depends on tau_pair)."""
+    predictions shifted over SHIFTS, `outlier` its outlier term where it has one bracket
+    (None where it mixes several: _log_ramp_mixture; neither depends on tau_pair)."""
     s = np.sqrt(var + tau_pair ** 2)
     out = {}
     for j, p in enumerate(pairs):
-        terms = []
-        for (lo, hi, log_w), out_k in zip(bracket_terms(p, stands_unreported), outlier[j]):
+        terms = bracket_terms(p, stands_unreported)
+        if len(terms) == 1:
+            (lo, hi, _), = terms
             normal = _log_bracket(np.float64(lo), np.float64(hi), shifted[j], s[:, j, None])
-            terms.append(log_w + np.logaddexp(math.log1p(-OUTLIER_PROB) + normal, math.log(OUTLIER_PROB) + out_k))
-        mixed = terms[0] if len(terms) == 1 else logsumexp(np.stack(terms), axis=0)
+            mixed = np.logaddexp(math.log1p(-OUTLIER_PROB) + normal, math.log(OUTLIER_PROB) + outlier[j])
+        else:
+            mixed = _log_ramp_mixture(terms, shifted[j], s[:, j, None])
         out[p.specimen_id] = out.get(p.specimen_id, 0.0) + mixed
     return out
+
+
+def _log_ramp_mixture(terms: list[tuple[float, float, float]], m: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """log of the weighted sum over bracket_terms (one upper end) of each bracket's
+    probability mixed with the outlier model, in linear space (one normal tail a term:
+    the likelihood's costliest piece when every pair of a campaign has collapse rows only);
+    floored at 1e-300, beyond which no grid point's probability matters."""
+    hi = terms[0][1]
+    b = (hi - m) / s
+    below_hi, above_hi = ndtr(b), ndtr(-b)
+    half = math.log(OUTLIER_FACTOR)
+    top = np.minimum(hi, m + half)
+    total = np.zeros(np.broadcast_shapes(m.shape, s.shape))
+    for lo, _, log_w in terms:
+        a = (lo - m) / s
+        tail = ndtr(-np.abs(a))  # the small side, exactly: S(a) where a > 0, Phi(a) elsewhere
+        normal = np.where(a > 0, tail - above_hi, below_hi - tail)
+        outlier = np.clip(top - np.maximum(lo, m - half), 0.0, None) / (2 * half)
+        total += math.exp(log_w) * ((1.0 - OUTLIER_PROB) * np.clip(normal, 0.0, None) + OUTLIER_PROB * outlier)
+    return np.log(np.maximum(total, 1e-300))
 
 
 def _log_matmul(log_table: np.ndarray, weights: np.ndarray) -> np.ndarray:
@@ -236,8 +258,8 @@ def log_likelihood(grid: ModelGrid, obs: Observations, pairs: list[PairObservati
     mu = adjusted_mu(grid, sc)
     shifted = [mu[:, j, None] + SHIFTS[None, :] for j in range(len(pairs))]
     unreported = obs.stands_unreported
-    outlier = [[_log_outlier(lo, hi, shifted[j]) for lo, hi, _ in bracket_terms(p, unreported)]
-               for j, p in enumerate(pairs)]
+    outlier = [_log_outlier(*bracket_terms(p, unreported)[0][:2], shifted[j])
+               if len(bracket_terms(p, unreported)) == 1 else None for j, p in enumerate(pairs)]
     var = pair_variance(grid, sc)
     per_level = []
     for tau_pair in TAU_PAIR:
