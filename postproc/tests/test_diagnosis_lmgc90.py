@@ -202,8 +202,9 @@ def _collapse_rows_only(bank: Bank) -> list[dict]:
     out = []
     for t in truths():
         obs, _ = draw_campaign(t, np.random.default_rng([7, t["truth"]["index"], 0]), LabFaults(collapses_only_p=1.0))
-        if obs.pairs and truth_model(t, bank, obs) != "outside":
-            out.append(outcome(bank, obs, truth_model(t, bank, obs), truth_values(t)))
+        model = truth_model(t, bank, obs) if obs.pairs else "outside"
+        if model != "outside":
+            out.append(outcome(bank, obs, model, truth_values(t)))
     return out
 
 

@@ -145,10 +145,15 @@ def _log_bracket(lo: np.ndarray, hi: np.ndarray, m: np.ndarray, s: np.ndarray) -
     return np.where(np.isfinite(big), out, -np.inf)
 
 
-def _log_outlier(lo: np.ndarray, hi: np.ndarray, m: np.ndarray) -> np.ndarray:
+def _outlier_mass(lo, hi, m: np.ndarray) -> np.ndarray:
+    """P(lo < log t <= hi) under the outlier model: log t uniform within a factor
+    OUTLIER_FACTOR of the prediction m."""
     half = math.log(OUTLIER_FACTOR)
-    inside = np.clip(np.minimum(hi, m + half) - np.maximum(lo, m - half), 0.0, None)
-    return np.log(np.maximum(inside / (2 * half), 1e-300))
+    return np.clip(np.minimum(hi, m + half) - np.maximum(lo, m - half), 0.0, None) / (2 * half)
+
+
+def _log_outlier(lo: np.ndarray, hi: np.ndarray, m: np.ndarray) -> np.ndarray:
+    return np.log(np.maximum(_outlier_mass(lo, hi, m), 1e-300))
 
 
 def adjusted_mu(grid: ModelGrid, sc: Scales) -> np.ndarray:
@@ -201,17 +206,17 @@ def _campaign_taus(grid: ModelGrid, sc: Scales) -> list[float]:
     return [math.sqrt(t * t + extra) for t in TAU_CAMPAIGN]
 
 
-def specimen_log_tables(pairs: list[PairObservation], shifted: list[np.ndarray], var: np.ndarray,
-                        outlier: list[np.ndarray | None], tau_pair: float,
-                        stands_unreported: bool) -> dict[str, np.ndarray]:
+def specimen_log_tables(pairs: list[PairObservation], terms_of: list[list[tuple[float, float, float]]],
+                        shifted: list[np.ndarray], var: np.ndarray, outlier: list[np.ndarray | None],
+                        tau_pair: float) -> dict[str, np.ndarray]:
     """Per specimen, log p(its brackets | theta, total shift) on SHIFTS: (n_points, n_shifts),
-    each pair's own discrepancy (scale tau_pair) in its spread. `shifted` holds each pair's
-    predictions shifted over SHIFTS, `outlier` its outlier term where it has one bracket
-    (None where it mixes several: _log_ramp_mixture; neither depends on tau_pair)."""
+    each pair's own discrepancy (scale tau_pair) in its spread. `terms_of` holds each pair's
+    bracket_terms, `shifted` its predictions shifted over SHIFTS, `outlier` its outlier term
+    where it has one bracket (None where it mixes several: _log_ramp_mixture); none of them
+    depends on tau_pair."""
     s = np.sqrt(var + tau_pair ** 2)
     out = {}
-    for j, p in enumerate(pairs):
-        terms = bracket_terms(p, stands_unreported)
+    for j, (p, terms) in enumerate(zip(pairs, terms_of)):
         if len(terms) == 1:
             (lo, hi, _), = terms
             normal = _log_bracket(np.float64(lo), np.float64(hi), shifted[j], s[:, j, None])
@@ -230,15 +235,13 @@ def _log_ramp_mixture(terms: list[tuple[float, float, float]], m: np.ndarray, s:
     hi = terms[0][1]
     b = (hi - m) / s
     below_hi, above_hi = ndtr(b), ndtr(-b)
-    half = math.log(OUTLIER_FACTOR)
-    top = np.minimum(hi, m + half)
     total = np.zeros(np.broadcast_shapes(m.shape, s.shape))
     for lo, _, log_w in terms:
         a = (lo - m) / s
         tail = ndtr(-np.abs(a))  # the small side, exactly: S(a) where a > 0, Phi(a) elsewhere
         normal = np.where(a > 0, tail - above_hi, below_hi - tail)
-        outlier = np.clip(top - np.maximum(lo, m - half), 0.0, None) / (2 * half)
-        total += math.exp(log_w) * ((1.0 - OUTLIER_PROB) * np.clip(normal, 0.0, None) + OUTLIER_PROB * outlier)
+        total += math.exp(log_w) * ((1.0 - OUTLIER_PROB) * np.clip(normal, 0.0, None)
+                                    + OUTLIER_PROB * _outlier_mass(lo, hi, m))
     return np.log(np.maximum(total, 1e-300))
 
 
@@ -257,14 +260,13 @@ def log_likelihood(grid: ModelGrid, obs: Observations, pairs: list[PairObservati
     prior_c = np.column_stack([_shift_weights(t)[:, centre] for t in _campaign_taus(grid, sc)])
     mu = adjusted_mu(grid, sc)
     shifted = [mu[:, j, None] + SHIFTS[None, :] for j in range(len(pairs))]
-    unreported = obs.stands_unreported
-    outlier = [_log_outlier(*bracket_terms(p, unreported)[0][:2], shifted[j])
-               if len(bracket_terms(p, unreported)) == 1 else None for j, p in enumerate(pairs)]
+    terms_of = [bracket_terms(p, obs.stands_unreported) for p in pairs]
+    outlier = [_log_outlier(t[0][0], t[0][1], shifted[j]) if len(t) == 1 else None for j, t in enumerate(terms_of)]
     var = pair_variance(grid, sc)
     per_level = []
     for tau_pair in TAU_PAIR:
         total = None
-        for sid, table in specimen_log_tables(pairs, shifted, var, outlier, tau_pair, unreported).items():
+        for sid, table in specimen_log_tables(pairs, terms_of, shifted, var, outlier, tau_pair).items():
             taus = [round(math.sqrt(t0 * t0 + sc.d_fine.get(sid, 0.0) ** 2), 12) for t0 in TAU_SPECIMEN]
             # Every specimen level at once: (n, shifts x levels).
             conv = _log_matmul(table, np.hstack([_shift_weights(t) for t in taus]))

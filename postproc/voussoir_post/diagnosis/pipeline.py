@@ -39,7 +39,8 @@ from .effects import BRACKET_GAPS_M, Variant, restraint_parts, restraint_value
 from .models import CANDIDATES, MODEL_IDS, members, model_prior
 from .observations import Observations, from_campaign
 from .next_test import draw_indices, next_test
-from .posterior import SENSITIVITY_FACTORS, Posterior, held_out, infer, prior_sensitivity, weighted_summary
+from .posterior import (SENSITIVITY_FACTORS, Posterior, held_out, infer, prior_sensitivity, relative_errors,
+                        weighted_summary)
 from .report import write_report
 from .samples import write_samples
 from .screen import specimen_screen
@@ -162,9 +163,8 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     samples = write_samples(out_dir, post, obs, settings.posterior_samples, campaign.name)
     held = {m: held_out(bank, obs, m) for m in MODEL_IDS}
     baseline_pred = np.array([bank.specimens[p.specimen_id].threshold("nominal", p.frequency_hz) for p in obs.pairs])
-    meas = np.array([p.threshold_m for p in obs.pairs])
-    fell = np.isfinite(meas)  # a pair whose tests all stood has no measured threshold to miss
-    baseline_error = float(np.mean(np.abs(baseline_pred - meas)[fell] / meas[fell])) if fell.any() else math.nan
+    # Over the pairs with a collapse (diagnose refuses a campaign without one).
+    baseline_error = float(np.mean(relative_errors(baseline_pred, obs.pairs)))
     shown = decision.shown
     shown_params = parameters(post, shown, obs)
     flag_list = flags(post, decision, shown)

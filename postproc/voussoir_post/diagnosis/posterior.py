@@ -33,8 +33,8 @@ from .likelihood import Scales, adjusted_mu, log_likelihood, predictive_sd, reco
 from .models import MODEL_IDS, ModelGrid, members, model_grid, model_prior
 from .observations import Observations, PairObservation
 
-__all__ = ["ModelPosterior", "weighted_summary", "Posterior", "infer", "held_out", "predicted_log", "ADEQUATE_P", "adequacy", "pit_values",
-           "loso_folds", "prior_sensitivity", "SENSITIVITY_FACTORS"]
+__all__ = ["ModelPosterior", "weighted_summary", "Posterior", "infer", "held_out", "relative_errors", "predicted_log",
+           "ADEQUATE_P", "adequacy", "pit_values", "loso_folds", "prior_sensitivity", "SENSITIVITY_FACTORS"]
 
 ADEQUATE_P = 0.01
 
@@ -158,6 +158,14 @@ def adequacy(post: Posterior, model_id: str) -> float:
     return float(-np.expm1(pit.size * np.log1p(-2.0 * ndtr(-t)))) if t > 0 else 1.0
 
 
+def relative_errors(pred: np.ndarray, pairs: list[PairObservation]) -> np.ndarray:
+    """|predicted - measured| / measured threshold of each pair that has one (a pair whose
+    tests all stood has no value to miss)."""
+    meas = np.array([p.threshold_m for p in pairs])
+    fell = np.isfinite(meas)
+    return np.abs(pred[fell] - meas[fell]) / meas[fell]
+
+
 def held_out(bank: Bank, obs: Observations, model_id: str) -> tuple[np.ndarray, float, float]:
     """Each pair's threshold [m] predicted by a model fitted without its specimen (without
     the pair itself when there is one specimen), and the mean relative error and its
@@ -176,8 +184,7 @@ def held_out(bank: Bank, obs: Observations, model_id: str) -> tuple[np.ndarray, 
         sc = scales(bank, obs, held)
         other = ModelPosterior(model_id, grid, 0.0, mp.weights)
         pred[test] = np.exp(predicted_log(other, sc))
-    meas = np.array([p.threshold_m for p in pairs])
-    err = (np.abs(pred - meas) / meas)[np.isfinite(meas)]  # a pair whose tests all stood has no value to miss
+    err = relative_errors(pred, pairs)
     se = float(np.std(err, ddof=1) / math.sqrt(err.size)) if err.size > 1 else math.nan
     return pred, float(np.mean(err)) if err.size else math.nan, se
 

@@ -12,7 +12,8 @@ from ..plots.drawing import provenance
 from .crown import FLOOR_M, NODES, T_DOF
 from .decision import NAME_AT, Decision
 from .figures import probabilities_figure, table_figure, thresholds_figure
-from .likelihood import GAIN_SCATTER_DEFAULT, ONE_SIDED_STEPS, OUTLIER_FACTOR, OUTLIER_PROB, TAU_CAMPAIGN, TAU_PAIR, TAU_SPECIMEN
+from .likelihood import (GAIN_SCATTER_DEFAULT, ONE_SIDED_STEPS, OUTLIER_FACTOR, OUTLIER_PROB, TAU_CAMPAIGN, TAU_PAIR,
+                         TAU_SPECIMEN)
 from .models import CANDIDATES, MATERIAL, MATERIAL_EFFECT, members, model_prior
 from .posterior import ADEQUATE_P, SENSITIVITY_FACTORS, Posterior
 
@@ -388,7 +389,8 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
                   "probabilities.", "",
                   _md_table(["specimen", "f [Hz]", "measured [mm]", "nominal [mm]", "nominal error"],
                             [(p.specimen_id, f"{p.frequency_hz:g}",
-                              f"{1e3 * p.threshold_m:.1f}" if p.collapsed else f"> {1e3 * p.low_m:.1f}", f"{1e3 * t:.1f}",
+                              f"{1e3 * p.threshold_m:.1f}" if p.collapsed else f"> {1e3 * p.low_m:.1f}",
+                              f"{1e3 * t:.1f}",
                               f"{100 * (t - p.threshold_m) / p.threshold_m:+.1f} %" if p.collapsed else "-")
                              for p in obs.apart
                              for t in [bank.specimens[p.specimen_id].threshold("nominal", p.frequency_hz)]])]
