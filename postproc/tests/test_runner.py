@@ -8,7 +8,7 @@ import math
 import pytest
 
 from voussoir_post.namelist import format_namelist, format_value, parse_namelist
-from voussoir_post.runner import RunError, Runner
+from voussoir_post.runner import RunError, Runner, code_hash
 
 
 def test_namelist_round_trip_through_the_parser():
@@ -25,6 +25,27 @@ def test_namelist_round_trip_through_the_parser():
 def test_values_without_a_namelist_form_are_refused(bad):
     with pytest.raises((ValueError, TypeError)):
         format_value(bad)
+
+
+def _fake_executable(folder, version: str, body: str):
+    """A stand-in executable that embeds its version string as the drivers do and prints it
+    for --version as they do: '<program> (voussoir <version>)'."""
+    folder.mkdir(parents=True, exist_ok=True)
+    exe = folder / "voussoir-run"
+    exe.write_text(f"#!/bin/sh\n# {body}\nV='voussoir {version}'\necho \"voussoir-run ($V)\"\n")
+    exe.chmod(0o755)
+    return folder
+
+
+def test_the_code_hash_ignores_the_version_string_and_nothing_else(tmp_path):
+    """The caches of the diagnosis are keyed by the executables' hash: a commit that changes
+    only the version string they embed (git describe) keeps the key; any other byte changes it."""
+    a = code_hash(_fake_executable(tmp_path / "a", "0.9.0+1234abc", "the kernel"), ["voussoir-run"])
+    b = code_hash(_fake_executable(tmp_path / "b", "0.9.0+9876fed", "the kernel"), ["voussoir-run"])
+    c = code_hash(_fake_executable(tmp_path / "c", "0.9.0+9876fed", "the kernel, changed"), ["voussoir-run"])
+    assert a == b
+    assert c != b
+    assert len(a) == 16 and int(a, 16) >= 0
 
 
 def test_run_single_reads_the_result_and_a_bad_input_raises(voussoir_run_exe, tmp_path):

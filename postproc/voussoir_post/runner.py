@@ -14,7 +14,9 @@ with the command, the namelist and the program's own words. Sweeps run under MPI
 
 from __future__ import annotations
 
+import hashlib
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -30,7 +32,7 @@ from .readers.csv_table import read_csv_table
 if TYPE_CHECKING:  # h5py, through the readers: imported when a run is read, not by voussoir-diagnose's parser
     from .readers.results import LimitResult, RunResult, SweepResult
 
-__all__ = ["RunError", "Runner", "read_csv_rows", "find_bin_dir", "BIN_DIR_ENV", "installed_bin_dir_file"]
+__all__ = ["RunError", "Runner", "read_csv_rows", "find_bin_dir", "BIN_DIR_ENV", "installed_bin_dir_file", "code_hash"]
 
 BIN_DIR_ENV = "VOUSSOIR_BIN_DIR"  #: the environment variable naming the folder of the executables
 
@@ -68,6 +70,23 @@ def find_bin_dir(given: str | os.PathLike | None = None,
             raise BinDirError(f"{folder / program} not found (the folder comes from {source}): build the project "
                               f"(bash scripts/setup.sh) or name the folder of the executables")
     return folder
+
+
+def code_hash(bin_dir: str | os.PathLike, names: Sequence[str]) -> str:
+    """A hash of the executables `names` in `bin_dir` that ignores the version string they
+    embed (`<program> --version` prints it in brackets: project version + git commit). A
+    commit that changes only Python or docs then keeps the caches keyed by this hash (the
+    diagnosis's bank and single runs); any change of the compiled code still changes it."""
+    h = hashlib.sha256()
+    for name in names:
+        exe = Path(bin_dir) / name
+        data = exe.read_bytes()
+        out = subprocess.run([str(exe), "--version"], capture_output=True, text=True).stdout
+        version = re.search(r"\((voussoir [^()]+)\)\s*$", out)
+        if version:
+            data = data.replace(version.group(1).encode(), b"voussoir <version>")
+        h.update(data)
+    return h.hexdigest()[:16]
 
 
 def read_csv_rows(path: str | os.PathLike) -> list[dict[str, str]]:

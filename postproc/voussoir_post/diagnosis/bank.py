@@ -9,7 +9,8 @@ Nothing here reads a measured threshold: the search ceiling and tolerance come f
 specimen's limit analysis (the onset of rocking, voussoir-limit), so every noise draw
 of a campaign, and every campaign of the same specimens and frequencies, asks the
 kernel the same questions and gets the same answers. The bank is cached as JSON, one
-file per specimen and frequency, under a key of the executables' bytes, the specimen, the
+file per specimen and frequency, under a key of the executables' bytes (less the version
+string they embed: a commit of Python or docs keeps the cache), the specimen, the
 frequency and cycles, the time step and the grids: a second diagnosis re-simulates
 nothing, and a test at a new frequency simulates that frequency only (`merge` joins a
 specimen's frequencies).
@@ -20,7 +21,7 @@ the two ends of every single effect's grid, so that the spread is known over the
 parameter space, not at one point. Where the response is steep, the bank simulates more
 nodes: between two neighbouring values of a single effect whose thresholds differ (at
 any frequency) by more than `REFINE_SPREADS` times the larger of the pair's replica
-spread and 1 %, the midpoint is simulated, for `REFINE_ROUNDS` rounds (models.py
+spread and 1 %, the midpoint is simulated, for `settings.refine_rounds` rounds (models.py
 interpolates between the nodes, so a steep step must be resolved by nodes, not guessed).
 
 Cost, per specimen and tested frequency, in threshold searches (each about 12 runs of
@@ -40,7 +41,7 @@ from pathlib import Path
 import numpy as np
 
 from ..readers.campaign import Specimen
-from ..runner import Runner
+from ..runner import Runner, code_hash
 from ..units import G_M_S2
 from .effects import COMBINED, EFFECTS_BY_ID, RESTRAINTS, Variant, arch_group, nominal_value, restraint_values
 from .settings import DiagnosisSettings
@@ -66,7 +67,6 @@ FINE_DT = ("dt / 2", 0.5, None)  #: the discretisation check of each specimen
 #: The replicas made at the ends of every single effect's grid.
 NODE_REPLICAS = (("dt x0.97", 0.97, None), ("dt x1.03", 1.03, None))
 REFINE_SPREADS = 3.0  #: neighbouring nodes this many spreads apart get a node between them
-REFINE_ROUNDS = 2
 #: The smallest spacing refinement goes down to, per effect (in its parameter's unit).
 REFINE_MIN_STEP = {"contact_edges": 0.00025, "friction": 0.0125, "geometry": 0.015}
 
@@ -152,19 +152,12 @@ class Bank:
     grids: dict = field(default_factory=dict, repr=False, compare=False)
 
 
-def _code_hash(bin_dir: Path) -> str:
-    h = hashlib.sha256()
-    for name in ("voussoir-sweep", "voussoir-limit"):
-        h.update((Path(bin_dir) / name).read_bytes())
-    return h.hexdigest()[:16]
-
-
 def _cache_key(code: str, spec: Specimen, freqs: list[float], cycles, settings: DiagnosisSettings) -> str:
     group = arch_group(spec, Variant())
     grids = {k: v for k, v in dataclasses.asdict(settings).items()
              if k in ("dt_s", "amp_tol_fraction", "inset_grid_m", "friction_steps", "min_friction", "max_friction",
                       "thickness_factors", "scan_step", "pair_inset_m", "pair_friction_steps", "pair_thickness_factors",
-                      "ceiling_factor", "bracket_gaps_m")}
+                      "ceiling_factor", "bracket_gaps_m", "refine_rounds")}
     text = json.dumps({"version": BANK_VERSION, "code": code, "arch": group, "freqs": [round(f, 6) for f in freqs],
                        "cycles": list(cycles), "grids": grids}, sort_keys=True, default=str)
     return hashlib.sha256(text.encode()).hexdigest()[:16]
@@ -292,7 +285,7 @@ def _simulate(spec: Specimen, freqs, cycles, settings: DiagnosisSettings, work: 
         searches += len(nodes)
     # Steep responses: more nodes where neighbouring ones differ by more than the spread.
     spread = _replica_spread(bank)
-    for round_ in range(REFINE_ROUNDS):
+    for round_ in range(settings.refine_rounds):
         new = []
         for e in ("contact_edges", "friction", "geometry"):
             table = {nominal_value(e, spec): bank.thresholds["nominal"]}
@@ -350,7 +343,7 @@ def build_bank(specimens: dict[str, Specimen], frequencies: dict[str, list[float
     """The bank of every specimen, from the cache where it is there. The cache holds one
     file per specimen and frequency (the key says which: executables, specimen, frequency,
     cycles, grids), so a test at a new frequency simulates that frequency only."""
-    code = _code_hash(settings.bin_dir)
+    code = code_hash(settings.bin_dir, ("voussoir-sweep", "voussoir-limit"))
     out, reused, searches = {}, 0, 0
     for sid, spec in specimens.items():
         parts, cached = [], 0

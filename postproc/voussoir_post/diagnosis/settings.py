@@ -31,6 +31,8 @@ class DiagnosisSettings:
     #: The play of base_restraint's brackets [m] the bank simulates, alone and in pairs
     #: (0: in contact; effects.py). LMGC90's truths have them 0 to 0.5 mm off.
     bracket_gaps_m: tuple[float, ...] = (0.0, 0.00025, 0.0005)
+    #: Rounds of nodes added where a single effect's response is steep (bank.py).
+    refine_rounds: int = 2
     #: Ceiling of every threshold search, in onsets of rocking (limit analysis) at the
     #: lowest frequency tested: data-independent.
     ceiling_factor: float = 6.0

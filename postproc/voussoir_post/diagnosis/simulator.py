@@ -16,7 +16,7 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from ..readers.campaign import Specimen, Test
-from ..runner import Runner
+from ..runner import Runner, code_hash
 from .crown import peak_m
 from .effects import Variant, arch_group, effect
 from .settings import DiagnosisSettings
@@ -193,5 +193,5 @@ class Simulator:
     def code_hash(self) -> str:
         """The executables' hash (voussoir-run's), for the single runs' cache."""
         if not hasattr(self, "_code_hash"):
-            self._code_hash = hashlib.sha256((Path(self.s.bin_dir) / "voussoir-run").read_bytes()).hexdigest()[:16]
+            self._code_hash = code_hash(self.s.bin_dir, ("voussoir-run",))
         return self._code_hash
