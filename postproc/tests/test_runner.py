@@ -27,22 +27,28 @@ def test_values_without_a_namelist_form_are_refused(bad):
         format_value(bad)
 
 
-def _fake_executable(folder, version: str, body: str):
-    """A stand-in executable that embeds its version string as the drivers do and prints it
-    for --version as they do: '<program> (voussoir <version>)'."""
+def _fake_executable(folder, version: str, body: str, build_id: bytes = b"A" * 20):
+    """A stand-in executable that embeds its version string as the drivers do, prints it
+    for --version as they do ('<program> (voussoir <version>)'), and holds a GNU build-id
+    note as the linker writes it (name size 4, id size 20, type 3, 'GNU', the id)."""
     folder.mkdir(parents=True, exist_ok=True)
     exe = folder / "voussoir-run"
-    exe.write_text(f"#!/bin/sh\n# {body}\nV='voussoir {version}'\necho \"voussoir-run ($V)\"\n")
+    note = b"\x04\x00\x00\x00\x14\x00\x00\x00\x03\x00\x00\x00GNU\x00" + build_id
+    exe.write_bytes(b"#!/bin/sh\n# " + note + f"\n# {body}\nV='voussoir {version}'\n".encode()
+                    + b'echo "voussoir-run ($V)"\n')
     exe.chmod(0o755)
     return folder
 
 
-def test_the_code_hash_ignores_the_version_string_and_nothing_else(tmp_path):
+def test_the_code_hash_ignores_the_version_string_and_the_build_id_and_nothing_else(tmp_path):
     """The caches of the diagnosis are keyed by the executables' hash: a commit that changes
-    only the version string they embed (git describe) keeps the key; any other byte changes it."""
-    a = code_hash(_fake_executable(tmp_path / "a", "0.9.0+1234abc", "the kernel"), ["voussoir-run"])
-    b = code_hash(_fake_executable(tmp_path / "b", "0.9.0+9876fed", "the kernel"), ["voussoir-run"])
-    c = code_hash(_fake_executable(tmp_path / "c", "0.9.0+9876fed", "the kernel, changed"), ["voussoir-run"])
+    only the version string they embed (git describe), and with it the linker's build id,
+    keeps the key; any other byte changes it."""
+    def key(name, version, body, build_id=b"A" * 20):
+        return code_hash(_fake_executable(tmp_path / name, version, body, build_id), ["voussoir-run"])
+    a = key("a", "0.9.0+1234abc", "the kernel")
+    b = key("b", "0.9.0+9876fed", "the kernel", b"B" * 20)
+    c = key("c", "0.9.0+9876fed", "the kernel, changed", b"B" * 20)
     assert a == b
     assert c != b
     assert len(a) == 16 and int(a, 16) >= 0

@@ -74,9 +74,10 @@ def find_bin_dir(given: str | os.PathLike | None = None,
 
 def code_hash(bin_dir: str | os.PathLike, names: Sequence[str]) -> str:
     """A hash of the executables `names` in `bin_dir` that ignores the version string they
-    embed (`<program> --version` prints it in brackets: project version + git commit). A
-    commit that changes only Python or docs then keeps the caches keyed by this hash (the
-    diagnosis's bank and single runs); any change of the compiled code still changes it."""
+    embed (`<program> --version` prints it in brackets: project version + git commit) and
+    the linker's build id (a hash of the whole file, so of that string too). A commit that
+    changes only Python or docs then keeps the caches keyed by this hash (the diagnosis's
+    bank and single runs); any change of the compiled code still changes it."""
     h = hashlib.sha256()
     for name in names:
         exe = Path(bin_dir) / name
@@ -85,8 +86,23 @@ def code_hash(bin_dir: str | os.PathLike, names: Sequence[str]) -> str:
         version = re.search(r"\((voussoir [^()]+)\)\s*$", out)
         if version:
             data = data.replace(version.group(1).encode(), b"voussoir <version>")
-        h.update(data)
+        h.update(_without_build_id(data))
     return h.hexdigest()[:16]
+
+
+#: An ELF note of the GNU build id (little-endian): name size 4, id size 20 (SHA-1), type 3.
+_BUILD_ID_NOTE = b"\x04\x00\x00\x00\x14\x00\x00\x00\x03\x00\x00\x00GNU\x00"
+
+
+def _without_build_id(data: bytes) -> bytes:
+    """The bytes with the 20 bytes of every GNU build-id note zeroed."""
+    out = bytearray(data)
+    k = out.find(_BUILD_ID_NOTE)
+    while k >= 0:
+        start = k + len(_BUILD_ID_NOTE)
+        out[start:start + 20] = bytes(20)
+        k = out.find(_BUILD_ID_NOTE, start + 20)
+    return bytes(out)
 
 
 def read_csv_rows(path: str | os.PathLike) -> list[dict[str, str]]:
