@@ -71,6 +71,9 @@ class Observations:
     build_tolerance: float = 0.015
     #: Whether the campaign reports any `stand` row (None: read from the pairs' brackets).
     stand_rows: bool | None = None
+    #: Tests the diagnosis does not read: driven by a record without an afd frequency and
+    #: amplitude (an earthquake, a pulse), so in no (specimen, frequency) pair.
+    unread: tuple[str, ...] = ()
 
     @property
     def stands_unreported(self) -> bool:
@@ -110,5 +113,6 @@ def from_campaign(campaign: Campaign) -> tuple[Observations, TableEvidence]:
         cycles.setdefault(m.specimen_id, cycles_of(campaign, m.test_ids[0]))
     specimens = {sid: s for sid, s in campaign.specimens.items() if any(p.specimen_id == sid for p in pairs + apart)}
     stand_rows = any(not t.collapsed for t in campaign.tests.values())
+    unread = tuple(t.test_id for t in campaign.tests.values() if t.frequency_hz is None or t.amplitude_m is None)
     return (Observations(campaign.name, specimens, pairs, cycles, table.source, table.delay_s, table.delay_se,
-                         apart, campaign.table.displacement_gain_sd, stand_rows=stand_rows), table)
+                         apart, campaign.table.displacement_gain_sd, stand_rows=stand_rows, unread=unread), table)

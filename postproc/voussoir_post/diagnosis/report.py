@@ -213,6 +213,17 @@ def notes(decision: Decision, post: Posterior, result: dict, info: dict) -> str:
     return text
 
 
+def _unread_text(obs) -> str:
+    """The sentence of the notes on the tests the diagnosis does not read (none: '')."""
+    if not obs.unread:
+        return ""
+    ids = ", ".join(obs.unread[:5]) + (", ..." if len(obs.unread) > 5 else "")
+    n = len(obs.unread)
+    return (f" {n} test{'s' if n > 1 else ''} driven by a record ({ids}) {'are' if n > 1 else 'is'} in none of "
+            f"these probabilities: the diagnosis reads afd ramps (a frequency and an amplitude per test), not "
+            f"motions given by a record alone.")
+
+
 def _common_friction(obs) -> float | None:
     values = {float(obs.specimens[p.specimen_id].friction) for p in obs.pairs}
     return values.pop() if len(values) == 1 else None
@@ -291,7 +302,7 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
     """Write report.md and its figures; return the notes paragraph."""
     bank = info["bank"]
     note = provenance(f"voussoir-diagnose, executables {bank.code}", f"campaign {campaign.name}")
-    text = notes(decision, post, result, info)
+    text = notes(decision, post, result, info) + _unread_text(obs)
     shown = decision.shown
     fmt = info["settings"].figure_format
     figs = [thresholds_figure(out, obs.pairs, info["baseline_pred"], shown,
