@@ -46,17 +46,8 @@ def collapses(spec: T.Lmgc90Specimen, f: float, amp: float, n_full: int) -> bool
     """One LMGC90 run of the commanded motion (truths.evolutions with n_full cycles; a
     truth with an actuator or a spreading support is not handled here)."""
     lead = int(round(T.LEAD_S / T.DT_S))
-    n_steps = lead + int(round(((2 + n_full) / f + T.REST_S) / T.DT_S))
-    t = np.arange(n_steps + 3) * T.DT_S
-    tm = np.arange(n_steps + 3 - lead) * T.DT_S
-    v = np.concatenate([np.zeros(lead), velocity(tm, f, amp, n_full)])
-    for name in ("table_vx.dat", "right_vx.dat"):
-        np.savetxt(spec.folder / "DATBOX" / name, np.column_stack([t, v]), fmt="%.10e")
-    (spec.folder / "run.json").write_text(json.dumps({"n_steps": n_steps, "lead_steps": lead}))
-    out = spec.folder / "out.json"
-    out.unlink(missing_ok=True)
-    spec._call(["run", "model.json", "run.json", "out.json"])
-    return bool(json.loads(out.read_text())["collapsed"])
+    tm = np.arange(int(round(((2 + n_full) / f + T.REST_S) / T.DT_S))) * T.DT_S
+    return spec.run_table(velocity(tm, f, amp, n_full), lead)
 
 
 def threshold(spec: T.Lmgc90Specimen, f: float, start: float, n_full: int) -> float:
@@ -80,13 +71,7 @@ def threshold(spec: T.Lmgc90Specimen, f: float, start: float, n_full: int) -> fl
             lo = a
         else:
             return math.nan
-    while hi - lo > TOL * hi:
-        mid = 0.5 * (lo + hi)
-        if collapses(spec, f, mid, n_full):
-            hi = mid
-        else:
-            lo = mid
-    return hi
+    return T.bisect(lambda a: collapses(spec, f, a, n_full), lo, hi, TOL)
 
 
 def main() -> int:

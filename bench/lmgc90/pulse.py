@@ -55,17 +55,7 @@ def unit_pulse() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def lmgc90_collapses(spec: T.Lmgc90Specimen, vel: np.ndarray, scale: float, polarity: int) -> bool:
-    lead = int(round(T.LEAD_S / T.DT_S))
-    n = lead + vel.size
-    tt = np.arange(n + 3) * T.DT_S
-    v = np.concatenate([np.zeros(lead), polarity * scale * vel, np.zeros(3)])
-    for name in ("table_vx.dat", "right_vx.dat"):
-        np.savetxt(spec.folder / "DATBOX" / name, np.column_stack([tt, v]), fmt="%.10e")
-    (spec.folder / "run.json").write_text(json.dumps({"n_steps": n, "lead_steps": lead}))
-    out = spec.folder / "out.json"
-    out.unlink(missing_ok=True)
-    spec._call(["run", "model.json", "run.json", "out.json"])
-    return bool(json.loads(out.read_text())["collapsed"])
+    return spec.run_table(polarity * scale * vel, int(round(T.LEAD_S / T.DT_S)))
 
 
 class VoussoirRuns:
@@ -94,13 +84,7 @@ def threshold(collapses, lo: float = 1.0, hi: float = 40.0) -> float:
         return math.nan
     if not collapses(hi):
         return math.inf
-    while hi / lo > 1.01:
-        mid = math.sqrt(lo * hi)
-        if collapses(mid):
-            hi = mid
-        else:
-            lo = mid
-    return hi
+    return T.bisect(collapses, lo, hi, 0.01)
 
 
 def main() -> int:

@@ -330,6 +330,11 @@ class Lmgc90Specimen:
 
     def run(self, f: float, amp: float) -> tuple[bool, float | None, float]:
         files, n_steps, lead = evolutions(self.truth, f, amp)
+        r = self.run_files(files, n_steps, lead)
+        return bool(r["collapsed"]), (r["collapse_time_s"] if r["collapsed"] else None), r["settle_max_drop_m"]
+
+    def run_files(self, files: dict[str, np.ndarray], n_steps: int, lead: int) -> dict:
+        """One run with these evolution files (name -> (time, vx) columns): OUT.json's dict."""
         for name, arr in files.items():
             np.savetxt(self.folder / "DATBOX" / name, arr, fmt="%.10e")
         (self.folder / "run.json").write_text(json.dumps({"n_steps": n_steps, "lead_steps": lead}))
@@ -340,10 +345,31 @@ class Lmgc90Specimen:
         self.lmgc_loop_s += r["loop_s"]
         self.runs += 1
         self.last = r
-        return bool(r["collapsed"]), (r["collapse_time_s"] if r["collapsed"] else None), r["settle_max_drop_m"]
+        return r
+
+    def run_table(self, table_vx: np.ndarray, lead: int) -> bool:
+        """One run whose table (and both foundations) move at `table_vx` [m/s] per step of
+        DT_S after `lead` steps at rest: whether it collapsed."""
+        n_steps = lead + table_vx.size
+        t = np.arange(n_steps + 3) * DT_S
+        v = np.concatenate([np.zeros(lead), table_vx, np.zeros(3)])
+        files = {name: np.column_stack([t, v]) for name in ("table_vx.dat", "right_vx.dat")}
+        return bool(self.run_files(files, n_steps, lead)["collapsed"])
 
 
 # ---------------------------------------------------------------- the threshold search
+
+
+def bisect(collapses, lo: float, hi: float, rel_tol: float) -> float:
+    """The smallest amplitude that collapses, between a stand at `lo` and a collapse at
+    `hi`, to `rel_tol` of it (geometric midpoints): the collapse end of the last bracket."""
+    while hi - lo > rel_tol * hi:
+        mid = math.sqrt(lo * hi) if lo > 0 else 0.5 * hi
+        if collapses(mid):
+            hi = mid
+        else:
+            lo = mid
+    return hi
 
 
 def search(run, onset: float) -> dict:
