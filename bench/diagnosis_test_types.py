@@ -43,7 +43,6 @@ from __future__ import annotations
 import argparse
 import json
 import math
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -51,21 +50,22 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path[:0] = [str(ROOT / "postproc"), str(ROOT / "postproc" / "tests"), str(ROOT / "bench")]
+sys.path[:0] = [str(ROOT / "postproc"), str(ROOT / "postproc" / "tests"), str(ROOT / "bench"),
+                str(ROOT / "bench" / "lmgc90")]
 
 from voussoir_post.diagnosis.bank import load_banks  # noqa: E402
-from voussoir_post.diagnosis.crown import variant_at  # noqa: E402
-from voussoir_post.diagnosis.effects import Variant, arch_group, restraint_value  # noqa: E402
-from voussoir_post.diagnosis.models import MODEL_IDS, model_grid  # noqa: E402
+from voussoir_post.diagnosis.effects import RESTRAINT_VALUES, Variant, arch_group  # noqa: E402
+from voussoir_post.diagnosis.models import MODEL_IDS  # noqa: E402
 from voussoir_post.diagnosis.rates import covers  # noqa: E402
-from voussoir_post.namelist import format_namelist  # noqa: E402
 from voussoir_post.plots.drawing import provenance  # noqa: E402
 from voussoir_post.readers.campaign import TableLimits  # noqa: E402
 from voussoir_post.runner import Runner  # noqa: E402
 from voussoir_post.units import G_M_S2  # noqa: E402
 
-from lmgc90_campaigns import BRACKET_GAPS_M, IDEAL, draw_campaign, stored_truths, truth_model  # noqa: E402
+from lmgc90_campaigns import (IDEAL, TRUTH_PARAMETERS, draw_campaign, restraint_index, stored_truths,  # noqa: E402
+                              truth_model)
 
+from crown_records import closest  # noqa: E402  (bench/lmgc90: a model's best grid point)
 from diagnosis_identifiability import BANK, truth_thresholds  # noqa: E402
 
 CYCLES = (1, 6)  #: full cycles of the afd motion compared (attack and decay one each)
@@ -73,36 +73,26 @@ CYCLES = (1, 6)  #: full cycles of the afd motion compared (attack and decay one
 
 def truth_variant(truth: dict) -> Variant:
     """The catalogue variant of a truth at its own parameters (its table motion apart: it
-    changes no static capacity and no kernel threshold of the commanded motion)."""
+    changes no static capacity and no kernel threshold of the commanded motion); the
+    parameters' names are lmgc90_campaigns's, the brackets' play the simulated one nearest."""
     parts = []
     for e, p in sorted(truth["truth"].get("parameters", {}).items()):
-        if e == "contact_edges":
-            parts.append((e, p["inset_m"]))
-        elif e == "friction":
-            parts.append((e, p["friction"]))
-        elif e == "geometry":
-            parts.append((e, p["thickness_factor"]))
+        if e in TRUTH_PARAMETERS:
+            parts.append((e, p[TRUTH_PARAMETERS[e][0]]))
         elif e == "base_restraint":
-            gap = min(BRACKET_GAPS_M, key=lambda g: abs(g - p.get("gap_m", 0.0)))
-            parts.append((e, restraint_value(p["side"], gap)))
+            parts.append((e, RESTRAINT_VALUES[int(restraint_index(p))]))
     return Variant.of(parts)
 
 
-def closest(bank, obs, y: np.ndarray, model: str) -> tuple[tuple, list[tuple]]:
+def closest_fits(bank, obs, y: np.ndarray, model: str) -> tuple[tuple, list[tuple]]:
     """(own fit, three closest rivals): (rms of the log residuals less a campaign offset,
-    model id, variant at the best grid point)."""
+    model id, variant at the best grid point), each model's by crown_records.closest."""
     fits = []
     for m in MODEL_IDS:
         if "table_motion" in m:
             continue
-        g = model_grid(m, bank, obs)
-        if g.n == 0:
-            continue
-        r = g.mu - y[None, :]
-        dist = np.sqrt(((r - r.mean(axis=1, keepdims=True)) ** 2).mean(axis=1))
-        dist[~np.isfinite(g.log_prior)] = np.inf
-        i = int(np.argmin(dist))
-        fits.append((float(dist[i]), m, variant_at(g, i)))
+        v, rms, _ = closest(bank, obs, y, m)
+        fits.append((rms, m, v))
     fits.sort(key=lambda x: x[0])
     own = [f for f in fits if covers(f[1], model)]
     return (own[0] if own else None), [f for f in fits if not covers(f[1], model)][:3]
@@ -112,9 +102,7 @@ class Kernel:
     """Static capacities and afd thresholds of one variant on one specimen, cached."""
 
     def __init__(self, bin_dir: Path, work: Path):
-        self.bin_dir, self.work = Path(bin_dir), Path(work)
-        self.work.mkdir(parents=True, exist_ok=True)
-        self.runner = Runner(self.bin_dir, self.work)
+        self.runner = Runner(bin_dir, work)
         self.cache: dict[str, object] = {}
         self.n = 0
 
@@ -126,11 +114,8 @@ class Kernel:
         key = self._key("lp", arch_group(spec, v))
         if key not in self.cache:
             self.n += 1
-            nml = self.work / f"lp_{self.n}.nml"
-            nml.write_text(format_namelist({"arch": arch_group(spec, v)}))
-            out = subprocess.run([str(self.bin_dir / "voussoir-limit"), str(nml), "--json"], capture_output=True,
-                                 text=True, check=True).stdout
-            d = json.loads(out)
+            nml = self.runner.write({"arch": arch_group(spec, v)}, f"lp_{self.n}")
+            d = json.loads(self.runner.execute("voussoir-limit", nml, "--json").stdout)
             self.cache[key] = (float(d["load_factor_nonassociative"]), float(d["load_factor_nonassociative_neg"]))
         return self.cache[key]
 
@@ -207,7 +192,7 @@ def main() -> int:
     for t in chosen:
         obs, _ = draw_campaign(t, np.random.default_rng([2026, t["truth"]["index"], 0]), IDEAL)
         model = truth_model(t, bank, obs)
-        own, rivals = closest(bank, obs, truth_thresholds(t, obs), model)
+        own, rivals = closest_fits(bank, obs, truth_thresholds(t, obs), model)
         ref = describe(kernel, obs, truth_variant(t))
         row = {"slug": t["slug"], "model": model, "truth": ref, "fits": []}
         print(f"{t['slug'][:44]:44s} {model}", flush=True)

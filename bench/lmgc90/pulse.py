@@ -23,7 +23,6 @@ from __future__ import annotations
 import argparse
 import json
 import math
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -36,8 +35,8 @@ sys.path[:0] = [str(HERE), str(HERE.parent)]
 import truths as T  # noqa: E402  (puts postproc/ and postproc/tests/ on the path)
 from independent_campaigns import ARCHES  # noqa: E402
 from voussoir_post.diagnosis.effects import arch_group  # noqa: E402
-from voussoir_post.namelist import format_namelist  # noqa: E402
 from voussoir_post.readers.campaign import Specimen  # noqa: E402
+from voussoir_post.runner import Runner  # noqa: E402
 
 from diagnosis_test_types import truth_variant  # noqa: E402
 
@@ -60,22 +59,18 @@ def lmgc90_collapses(spec: T.Lmgc90Specimen, vel: np.ndarray, scale: float, pola
 
 class VoussoirRuns:
     def __init__(self, work: Path, record: Path, bin_dir: Path):
-        self.work, self.record, self.bin_dir, self.k = work, record, bin_dir, 0
+        self.runner, self.record, self.k = Runner(bin_dir, work), record, 0
 
     def collapses(self, group: dict, scale: float, polarity: int) -> bool:
         self.k += 1
-        nml = self.work / f"v{self.k}.nml"
-        nml.write_text(format_namelist({
+        nml = self.runner.write({
             "arch": group,
             "motion": {"waveform": "accelerogram", "record_file": str(self.record), "record_scale": scale,
                        "record_polarity": polarity, "lead_s": T.LEAD_S, "rest_s": 0.0},
-            "solver": {"dt_s": DT}, "output": {"file": f"v{self.k}.h5"}}))
-        p = subprocess.run([str(self.bin_dir / "voussoir-run"), str(nml)], cwd=self.work, capture_output=True,
-                           text=True)
-        if p.returncode != 0:
-            raise RuntimeError(f"voussoir-run {nml}: {p.stdout[-500:]}{p.stderr[-500:]}")
-        (self.work / f"v{self.k}.h5").unlink(missing_ok=True)
-        return "collapsed" in p.stdout
+            "solver": {"dt_s": DT}, "output": {"file": f"v{self.k}.h5"}}, f"v{self.k}")
+        out = self.runner.execute("voussoir-run", nml).stdout
+        (self.runner.work_dir / f"v{self.k}.h5").unlink(missing_ok=True)
+        return "collapsed" in out
 
 
 def threshold(collapses, lo: float = 1.0, hi: float = 40.0) -> float:
@@ -101,7 +96,7 @@ def main() -> int:
     disp = np.concatenate([[0.0], np.cumsum(0.5 * (vel[1:] + vel[:-1]) * DT)])
     print(f"the pulse per m/s2: peak velocity {vel.max():.3f} m/s, travel {disp.max():.3f} m, final velocity "
           f"{vel[-1]:.1e} m/s")
-    voussoir = VoussoirRuns(args.work, record, args.bin_dir)
+    voussoir = VoussoirRuns(args.work, record.resolve(), args.bin_dir)
     arch = ARCHES[0]
     spec = Specimen(arch.specimen_id, arch.embrace_deg, arch.n_voussoirs, arch.r_ext_m, arch.thickness_m,
                     arch.width_m, arch.density_kg_m3, arch.friction)

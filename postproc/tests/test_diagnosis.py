@@ -169,7 +169,7 @@ def test_a_test_driven_by_a_record_alone_is_named_as_not_read(tmp_path):
     """A campaign may hold tests driven by a record (an earthquake, a pulse) with no afd
     frequency and amplitude: they fall in no (specimen, frequency) pair, and the notes and
     the log say which tests the probabilities leave out instead of passing over them."""
-    from voussoir_post.diagnosis.report import _unread_text
+    from voussoir_post.diagnosis.report import unread_text
     folder = tmp_path / "campaign"
     shutil.copytree(SEED_CAMPAIGN, folder)
     with open(folder / "tests.csv", "a") as f:
@@ -178,11 +178,11 @@ def test_a_test_driven_by_a_record_alone_is_named_as_not_read(tmp_path):
     (folder / "records" / "E1.csv").write_text("t_s,table_x_m\n0.0,0.0\n0.01,0.001\n0.02,0.003\n")
     plain, _ = from_campaign(read_campaign(SEED_CAMPAIGN))
     obs, _ = from_campaign(read_campaign(folder))
-    assert plain.unread == () and _unread_text(plain) == ""
+    assert plain.unread == () and unread_text(plain) == ""
     assert obs.unread == ("E1",)
     assert [(p.specimen_id, p.frequency_hz, p.high_m) for p in obs.pairs] == \
         [(p.specimen_id, p.frequency_hz, p.high_m) for p in plain.pairs]
-    text = _unread_text(obs)
+    text = unread_text(obs)
     assert "1 test driven by a record (E1)" in text and "none of these probabilities" in text
 
 

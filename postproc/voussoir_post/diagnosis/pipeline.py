@@ -41,7 +41,7 @@ from .observations import Observations, from_campaign
 from .next_test import draw_indices, next_test
 from .posterior import (SENSITIVITY_FACTORS, Posterior, held_out, infer, prior_sensitivity, relative_errors,
                         weighted_summary)
-from .report import write_report
+from .report import unread_text, write_report
 from .samples import write_samples
 from .screen import specimen_screen
 from .settings import DiagnosisSettings
@@ -141,9 +141,9 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
     log(f"[diagnose] {campaign.name}: {len(campaign.specimens)} specimens, {len(campaign.tests)} tests, "
         f"{len(obs.pairs) - stood} pairs with a collapse and a certain set-up"
         + (f" and {stood} whose tests all stood (lower bounds)" if stood else "")
-        + f" ({len(obs.apart)} apart); table evidence: {obs.gain_source}"
-        + (f"; {len(obs.unread)} record-driven tests not read ({', '.join(obs.unread[:5])}"
-           f"{', ...' if len(obs.unread) > 5 else ''})" if obs.unread else ""))
+        + f" ({len(obs.apart)} apart); table evidence: {obs.gain_source}")
+    if obs.unread:
+        log(f"[diagnose]{unread_text(obs)}")
     cache = Path(settings.bank_dir) if settings.bank_dir else out_dir.resolve().parent / "voussoir-bank"
     bank = build_bank(obs.specimens, {sid: obs.frequencies(sid) for sid in obs.specimens}, obs.cycles, settings,
                       cache, out_dir / "work")

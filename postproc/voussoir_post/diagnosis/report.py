@@ -213,7 +213,7 @@ def notes(decision: Decision, post: Posterior, result: dict, info: dict) -> str:
     return text
 
 
-def _unread_text(obs) -> str:
+def unread_text(obs) -> str:
     """The sentence of the notes on the tests the diagnosis does not read (none: '')."""
     if not obs.unread:
         return ""
@@ -302,7 +302,7 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
     """Write report.md and its figures; return the notes paragraph."""
     bank = info["bank"]
     note = provenance(f"voussoir-diagnose, executables {bank.code}", f"campaign {campaign.name}")
-    text = notes(decision, post, result, info) + _unread_text(obs)
+    text = notes(decision, post, result, info) + unread_text(obs)
     shown = decision.shown
     fmt = info["settings"].figure_format
     figs = [thresholds_figure(out, obs.pairs, info["baseline_pred"], shown,
