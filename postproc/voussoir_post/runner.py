@@ -203,6 +203,17 @@ class Runner:
             self.execute("voussoir-sweep", nml, mpi=True)
         return read_sweep(self.work_dir / f"{name}.h5"), read_csv_rows(self.work_dir / f"{name}.csv")
 
+    def run_sweep_rows(self, groups: Mapping[str, Mapping[str, object]], name: str) -> list[dict[str, str]]:
+        """voussoir-sweep of any mode (under MPI when n_ranks > 1): its CSV rows only. A
+        finished sweep of the same input in the work folder is reused."""
+        groups = self._with_output(groups, f"{name}.h5")
+        nml, done = self._fresh(groups, name, [f"{name}.h5", f"{name}.csv"])
+        if done:
+            self.reused += 1
+        else:
+            self.execute("voussoir-sweep", nml, mpi=True)
+        return read_csv_rows(self.work_dir / f"{name}.csv")
+
     def run_limit(self, groups: Mapping[str, Mapping[str, object]], name: str) -> LimitResult:
         """voussoir-limit --json on the groups."""
         from .readers.limit_results import read_limit_json

@@ -134,6 +134,35 @@ class Simulator:
                 out[(v, f)] = math.nan if text in ("", "nan", "NaN") else float(text)
         return out
 
+    def record_thresholds(self, spec: Specimen, record: Path, variants: list[Variant], lead_s: float, rest_s: float,
+                          scale_max: float = 20.0, scale_tol: float = 0.01) -> dict[Variant, tuple[float, float]]:
+        """Each variant's collapse scale of an accelerogram (CSV t_s, accel_m_s2) as given and
+        reversed, by the kernel's IDA sweep (`record_polarity = 'both'`), to `scale_tol`;
+        inf where it stood at `scale_max`. One sweep a variant."""
+        out = {}
+        progress = _Progress(self.s.log, f"[pulse] {spec.specimen_id}: searches both ways", len(variants), self.clock)
+        for v in variants:
+            groups = {"arch": arch_group(spec, v), "motion": {"lead_s": float(lead_s), "rest_s": float(rest_s)},
+                      "solver": self._solver(), "output": {},
+                      "sweep": {"mode": "ida", "record_files": [str(record)], "record_polarity": "both",
+                                "scale_max": float(scale_max), "scale_tol": float(scale_tol),
+                                "scan_step": float(self.s.scan_step), "progress_every_s": 1.0e9}}
+            before = self.runner.reused
+            # Named by its input: another batch in the same folder never meets a sweep of other content.
+            name = hashlib.sha256(json.dumps(groups, sort_keys=True, default=str).encode()).hexdigest()[:12]
+            rows = self.runner.run_sweep_rows(groups, f"ida_{spec.specimen_id}_{name}")
+            if self.runner.reused == before:
+                self.n_sweeps += 1
+            found = {}
+            for row in rows:
+                censored = row.get("censored", "").strip().lower() in ("1", "true", "t", "yes")
+                text = row["scale_threshold"].strip()
+                value = math.inf if censored or text in ("", "nan", "NaN") else float(text)
+                found[-1 if "(reversed)" in row["record"] else 1] = value
+            out[v] = (found[1], found[-1])
+            progress.advance(1)
+        return out
+
     def run_tests(self, jobs: list[tuple[Specimen, Test, Variant, dict]]) -> list[dict]:
         """Simulate single tests as they were run (voussoir-run, in parallel). Each job's
         dict may add &motion settings (e.g. the table gain and delay). Returns for each
