@@ -150,6 +150,8 @@ class Bank:
     searches: int = 0  #: threshold searches made now (0 when everything was cached)
     #: Model grids already made from this bank (models.model_grid), by model and pairs.
     grids: dict = field(default_factory=dict, repr=False, compare=False)
+    #: Pulse pairs' thresholds (pulses.py): {"<specimen>:<shape key>": {variant key: (+, -) [m]}}.
+    pulses: dict = field(default_factory=dict)
 
 
 def _cache_key(code: str, spec: Specimen, freqs: list[float], cycles, settings: DiagnosisSettings) -> str:

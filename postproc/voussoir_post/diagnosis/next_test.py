@@ -59,6 +59,7 @@ from .likelihood import predictive_sd
 from .models import members
 from .observations import Observations
 from .posterior import Posterior, predicted_log
+from .pulses import PULSE_S, RATIO_SCALE, PulsePair, grid_log_ratio, pulse_thresholds, pulse_variants, table_demand, unit_pulse
 from .settings import DiagnosisSettings
 from .simulator import Simulator
 
@@ -315,6 +316,71 @@ def _hold_candidates(post: Posterior, obs: Observations, rivals: list[str], prob
     return out
 
 
+#: Posterior draws of each rival whose pulse ratio makes its law for a pulse pair (no
+#: simulation per draw: the ratios are the pulse bank's).
+PULSE_DRAWS = 12
+#: The advised pulse ramp: from PULSE_RANGE[0] times the smallest simulated threshold (either
+#: way, of the nominal model and the models with brackets on one side) to PULSE_RANGE[1]
+#: times the largest.
+PULSE_RANGE = (0.8, 1.25)
+
+
+def pulse_ramp(thresholds: list[float], demand: tuple[float, float, float], table) -> list[float] | None:
+    """[from, to, by] [m of travel] of a pulse ramp both ways (PULSE_RANGE), `to` cut to the
+    table's limits (`demand`: the unit pulse's half travel, peak velocity and acceleration);
+    None when the table cannot reach past the largest simulated threshold."""
+    lo = PULSE_RANGE[0] * min(thresholds)
+    hi = PULSE_RANGE[1] * max(thresholds)
+    reach = min(table.stroke_m / demand[0], table.max_velocity_m_s / demand[1], table.max_accel_m_s2 / demand[2])
+    if reach < 1.05 * max(thresholds):
+        return None
+    return [_snap(lo), _snap(min(hi, reach - 5e-4)), _snap(RAMP_STEP * lo)]
+
+
+def _pulse_candidates(post: Posterior, obs: Observations, rivals: list[str], probs: list[float],
+                      settings: DiagnosisSettings, work: Path, table) -> list[dict]:
+    """A pair of pulse ramps, one way and the other (pulses.py), on each certain specimen
+    that has none yet, when a rival has brackets. Its outcome is the bin (of the ramps'
+    step) of the log ratio of the two ways' thresholds; each rival's law the mixture over
+    PULSE_DRAWS posterior draws of its ratio (0 for a mirror-symmetric model) with the codes'
+    disagreement (pulses.RATIO_SCALE) and the two ramps' bins."""
+    if not any("base_restraint" in members(m) for m in rivals):
+        return []
+    t, x, _ = unit_pulse()
+    demand = table_demand(t, x)
+    sd = math.sqrt(RATIO_SCALE ** 2 + math.log1p(RAMP_STEP) ** 2 / 6.0)
+    out = []
+    pulsed = {pp.specimen_id for pp in obs.pulse_pairs}
+    for sid in sorted({p.specimen_id for p in obs.pairs} - pulsed):
+        spec = obs.specimens[sid]
+        pp = PulsePair(sid, t, x)
+        cache, folder = Path(work) / "pulse-bank", Path(work) / f"pulse-{sid}"
+        nominal = pulse_thresholds(spec, pp, [Variant()], settings, cache, folder)["nominal"]
+        if pulse_ramp(list(nominal), demand, table) is None:
+            continue
+        bank_keys = post.bank.specimens[sid].thresholds if post.bank is not None else {}
+        ratios = pulse_thresholds(spec, pp, pulse_variants(spec, bank_keys), settings, cache, folder)
+        finite = [v for pm in ratios.values() for v in pm if math.isfinite(v)]
+        amps = pulse_ramp(finite, demand, table)
+        if amps is None:
+            continue
+        means, level, ratio = [], {}, {}
+        for m in rivals:
+            mp = post.models[m]
+            idx = draw_indices(mp, PULSE_DRAWS)
+            rho = grid_log_ratio(mp.grid, ratios, spec)[idx]
+            means.append(list(rho))
+            plus = [ratios.get(variant_key(variant_at(mp.grid, i)), nominal)[0] for i in idx]
+            level[m] = float(np.exp(np.mean(np.log(plus))))
+            ratio[m] = float(np.exp(np.mean(rho)))
+        gain, spread = _information(_outcome_laws(probs, means, [sd] * len(rivals), RAMP_STEP, None))
+        out.append({"specimen_id": sid, "frequency_hz": round(1.0 / (2.0 * PULSE_S[0]), 4), "new": True,
+                    "kind": "pulse_pair", "amplitudes_m": amps, "expected_gain_bits": gain,
+                    "gain_spread_bits": spread, "gain_se_bits": 0.0, "predicted_m": level,
+                    "predicted_ratio": ratio})
+    return out
+
+
 def next_test(post: Posterior, obs: Observations, rivals: list[str], settings: DiagnosisSettings,
               work: Path, table, recorded=(), holds: bool = True) -> dict | None:
     """The best test (specimen_id, frequency_hz, new, kind, amplitudes_m,
@@ -367,6 +433,7 @@ def next_test(post: Posterior, obs: Observations, rivals: list[str], settings: D
                            [noise_sd[m] for m in rivals], table)
             if c:
                 candidates.append(c)
+    candidates += _pulse_candidates(post, obs, rivals, probs, settings, work, table)
     if holds:
         predicted = {m: np.exp(stats[m][0]) for m in rivals}
         candidates += _hold_candidates(post, obs, rivals, probs, predicted, settings, work, table, recorded)
@@ -376,6 +443,6 @@ def next_test(post: Posterior, obs: Observations, rivals: list[str], settings: D
     best = dict(candidates[0])
     best["alternatives"] = [{k: c[k] for k in ("specimen_id", "frequency_hz", "new", "kind", "amplitudes_m",
                                                "expected_gain_bits", "gain_spread_bits", "gain_se_bits", "predicted_m",
-                                               "predicted_crown_m") if k in c}
+                                               "predicted_crown_m", "predicted_ratio") if k in c}
                             for c in candidates[1:1 + ALTERNATIVES]]
     return best

@@ -74,6 +74,8 @@ class Observations:
     #: Tests the diagnosis does not read: driven by a record without an afd frequency and
     #: amplitude (an earthquake, a pulse), so in no (specimen, frequency) pair.
     unread: tuple[str, ...] = ()
+    #: Record tests read as pulses one way and the other (pulses.py), of certain specimens.
+    pulse_pairs: list = field(default_factory=list)
 
     @property
     def stands_unreported(self) -> bool:
@@ -112,7 +114,13 @@ def from_campaign(campaign: Campaign) -> tuple[Observations, TableEvidence]:
         (pairs if campaign.specimens[m.specimen_id].setup_certain else apart).append(obs)
         cycles.setdefault(m.specimen_id, cycles_of(campaign, m.test_ids[0]))
     specimens = {sid: s for sid, s in campaign.specimens.items() if any(p.specimen_id == sid for p in pairs + apart)}
-    stand_rows = any(not t.collapsed for t in campaign.tests.values())
-    unread = tuple(t.test_id for t in campaign.tests.values() if t.frequency_hz is None or t.amplitude_m is None)
+    stand_rows = any(not t.collapsed for t in campaign.tests.values() if t.waveform == "afd")
+    from .pulses import read_pulse_pairs  # pulses.py reads the bank's keys, which reads PairObservation
+    certain = {sid for sid in specimens if any(p.specimen_id == sid for p in pairs)}
+    pulse_pairs, _ = read_pulse_pairs(campaign, certain)
+    pulsed = {tid for pp in pulse_pairs for r in pp.ramps.values() for tid in r.test_ids}
+    unread = tuple(t.test_id for t in campaign.tests.values()
+                   if (t.frequency_hz is None or t.amplitude_m is None) and t.test_id not in pulsed)
     return (Observations(campaign.name, specimens, pairs, cycles, table.source, table.delay_s, table.delay_se,
-                         apart, campaign.table.displacement_gain_sd, stand_rows=stand_rows, unread=unread), table)
+                         apart, campaign.table.displacement_gain_sd, stand_rows=stand_rows, unread=unread,
+                         pulse_pairs=pulse_pairs), table)

@@ -39,6 +39,7 @@ from .effects import BRACKET_GAPS_M, Variant, restraint_parts, restraint_value
 from .models import CANDIDATES, MODEL_IDS, members, model_prior
 from .observations import Observations, from_campaign
 from .next_test import draw_indices, next_test
+from .pulses import add_pulse_banks, unit_pulse
 from .posterior import (SENSITIVITY_FACTORS, Posterior, held_out, infer, prior_sensitivity, relative_errors,
                         weighted_summary)
 from .report import unread_text, write_report
@@ -51,6 +52,9 @@ from .single_runs import crown_comparison, hinge_matches
 __all__ = ["DiagnosisSettings", "diagnose", "infer_campaign", "parameters", "model_run", "CONTRACT_VERSION"]
 
 CONTRACT_VERSION = 4
+#: The pulse of a pulse_pair advice, of unit travel (table_x_m from -0.5 to +0.5 m): the
+#: laboratory plays it scaled by each amplitude of the ramp, and reversed.
+PULSE_RECORD = "next_test_pulse.csv"
 
 
 def parameters(post: Posterior, model_id: str | None, obs: Observations) -> dict:
@@ -149,6 +153,10 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
                       cache, out_dir / "work")
     log(f"[diagnose] simulation bank: {bank.searches} threshold searches made, {bank.reused} specimens cached "
         f"({cache})")
+    if obs.pulse_pairs:
+        n = add_pulse_banks(bank, obs, settings, cache / "pulses", out_dir / "work" / "pulses")
+        log(f"[diagnose] {len(obs.pulse_pairs)} pulse pairs (record tests one way and the other): {n} models' "
+            "thresholds both ways, simulated or read from the cache; their ratio enters the probabilities")
     post = infer(bank, obs)
     crown_available = crown_tests(campaign, obs.pairs)
     crown_tests_ = crown_available if settings.crown_records else []
@@ -208,6 +216,8 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
             "expected_gain_bits": suggestion["expected_gain_bits"], "predictions": suggestion["predicted_m"],
             "gain_spread_bits": suggestion["gain_spread_bits"], "gain_se_bits": suggestion["gain_se_bits"],
             **({"predicted_crown_m": suggestion["predicted_crown_m"]} if "predicted_crown_m" in suggestion else {}),
+            **({"predicted_ratio": suggestion["predicted_ratio"], "record": PULSE_RECORD}
+               if suggestion["kind"] == "pulse_pair" else {}),
             "alternatives": [{("predictions" if k == "predicted_m" else k): v for k, v in a.items() if k != "new"}
                              for a in suggestion["alternatives"]]},
         "flags": flag_list,
@@ -218,6 +228,9 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
             "crown_evidence": (crown_available, post.crown, settings.crown_records),
             "held": held, "baseline_pred": baseline_pred, "samples": samples, "next_test": suggestion, "runs": sim.n_runs,
             "prior": {m: model_prior(m) for m in MODEL_IDS}, "sensitivity": sensitivity}
+    if suggestion is not None and "pulse_pair" in [suggestion["kind"]] + [a["kind"] for a in suggestion["alternatives"]]:
+        t, x, _ = unit_pulse()
+        (out_dir / PULSE_RECORD).write_text("t_s,table_x_m\n" + "".join(f"{a:.4f},{b:.7f}\n" for a, b in zip(t, x)))
     result["notes"] = write_report(out_dir, campaign, obs, post, decision, result, info)
     (out_dir / "diagnosis.json").write_text(json.dumps(result, indent=2) + "\n")
     log(f"[diagnose] verdict: {decision.verdict} ({info['elapsed_s']:.0f} s, {bank.searches} threshold searches, "

@@ -32,6 +32,7 @@ from .effects import nominal_value
 from .likelihood import Scales, adjusted_mu, log_likelihood, predictive_sd, records_log_factor, scales
 from .models import MODEL_IDS, ModelGrid, members, model_grid, model_prior
 from .observations import Observations, PairObservation
+from .pulses import pulse_log_likelihood
 
 __all__ = ["ModelPosterior", "weighted_summary", "Posterior", "infer", "held_out", "relative_errors", "predicted_log",
            "ADEQUATE_P", "adequacy", "pit_values", "loso_folds", "prior_sensitivity", "SENSITIVITY_FACTORS"]
@@ -96,6 +97,8 @@ def infer(bank: Bank, obs: Observations, pairs: list[PairObservation] | None = N
     for m in model_ids:
         grid = model_grid(m, bank, obs, pairs)
         lik = log_likelihood(grid, obs, pairs, sc)
+        if obs.pulse_pairs and bank.pulses:
+            lik = lik + pulse_log_likelihood(grid, obs.pulse_pairs, bank.pulses, obs.specimens)
         ll = lik + grid.log_prior
         z = float(logsumexp(ll))
         w = np.exp(ll - z) if math.isfinite(z) else np.full(grid.n, 1.0 / grid.n)

@@ -16,6 +16,7 @@ from .likelihood import (GAIN_SCATTER_DEFAULT, ONE_SIDED_STEPS, OUTLIER_FACTOR, 
                          TAU_SPECIMEN)
 from .models import CANDIDATES, MATERIAL, MATERIAL_EFFECT, members, model_prior
 from .posterior import ADEQUATE_P, SENSITIVITY_FACTORS, Posterior
+from .pulses import RATIO_SCALE, grid_log_ratio
 
 __all__ = ["write_report", "notes", "METHOD_CHECK", "prior_text", "FLAG_TEXT"]
 
@@ -93,6 +94,12 @@ def _advice_text(nt: dict | None, what: str) -> str:
                 f"{nt['frequency_hz']:g} Hz, one afd test held at {1e3 * a[0]:.1f} mm (below the measured "
                 "threshold) with the crown's horizontal displacement recorded, where the models predict peaks of "
                 + ", ".join(f"{m} {1e3 * v:.2f} mm" for m, v in nt["predicted_crown_m"].items()) + ".")
+    if nt.get("kind") == "pulse_pair":
+        return (f" {what} ({nt['expected_gain_bits']:.2f} bits): specimen {nt['specimen_id']}, a pulse one way and "
+                f"the other (next_test_pulse.csv, a table travel of 1 m: scaled from {1e3 * a[0]:.1f} to "
+                f"{1e3 * a[1]:.1f} mm of travel by {1e3 * a[2]:.1f} mm, each way, to the first collapse), where the "
+                "models predict ratios of the two ways' thresholds (the other way over its own) of "
+                + ", ".join(f"{m} {v:.3f}" for m, v in nt["predicted_ratio"].items()) + ".")
     return (f" {what} ({nt['expected_gain_bits']:.2f} bits): specimen {nt['specimen_id']} at "
             f"{nt['frequency_hz']:g} Hz" + (" (a frequency not tested yet)" if nt["new"] else "")
             + f", an afd ramp from {1e3 * a[0]:.1f} to {1e3 * a[1]:.1f} mm by {1e3 * a[2]:.1f} mm, where "
@@ -118,11 +125,15 @@ def _next_test_lines(nt: dict | None) -> list[str]:
         a = t["amplitudes_m"]
         if t.get("kind") == "hold_crown":
             return f"hold at {1e3 * a[0]:.1f}, record the crown"
+        if t.get("kind") == "pulse_pair":
+            return f"pulse each way, travel {1e3 * a[0]:.1f} to {1e3 * a[1]:.1f} by {1e3 * a[2]:.1f}"
         return f"ramp {1e3 * a[0]:.1f} to {1e3 * a[1]:.1f} by {1e3 * a[2]:.1f}"
 
     def predicted(t, m):
         if t.get("kind") == "hold_crown":
             return f"crown {1e3 * t['predicted_crown_m'][m]:.2f}" if m in t.get("predicted_crown_m", {}) else "-"
+        if t.get("kind") == "pulse_pair":
+            return f"ratio {t['predicted_ratio'][m]:.3f}" if m in t.get("predicted_ratio", {}) else "-"
         return f"{1e3 * t['predicted_m'][m]:.1f}" if m in t.get("predicted_m", {}) else "-"
 
     rows = [(str(i + 1), t["specimen_id"], f"{t['frequency_hz']:g}" + (" (new)" if t.get("new") else ""),
@@ -143,7 +154,9 @@ def _next_test_lines(nt: dict | None) -> list[str]:
             "test's possible outcomes, of the information one run delivers (the rivals' entropy before less "
             "after): a single run often gives much less or much more than the expectation. The rivals' columns: "
             "each one's predicted threshold amplitude [mm] there, or for a held test its predicted peak crown "
-            "displacement [mm]." + gap, "",
+            "displacement [mm], or for a pulse pair (a pulse one way and the other, next_test_pulse.csv scaled to "
+            "the travel of the ramp) its predicted ratio of the two ways' thresholds, the other way over its own "
+            "(1 for a mirror-symmetric arch)." + gap, "",
             _md_table(["rank", "specimen", "f [Hz]", "test [mm]", "expected [bits]", "spread [bits]",
                        *[f"{m} [mm]" for m in rivals]], rows), ""]
 
@@ -220,8 +233,40 @@ def unread_text(obs) -> str:
     ids = ", ".join(obs.unread[:5]) + (", ..." if len(obs.unread) > 5 else "")
     n = len(obs.unread)
     return (f" {n} test{'s' if n > 1 else ''} driven by a record ({ids}) {'are' if n > 1 else 'is'} in none of "
-            f"these probabilities: the diagnosis reads afd ramps (a frequency and an amplitude per test), not "
-            f"motions given by a record alone.")
+            f"these probabilities: the diagnosis reads afd ramps (a frequency and an amplitude per test) and pulses "
+            f"of one shape ramped one way and the other on a specimen with afd pairs, not other motions given by "
+            f"a record alone.")
+
+
+def _pulse_lines(obs, post: Posterior) -> list[str]:
+    """The section on the pulse pairs that entered the probabilities (pulses.py): each
+    way's bracket, the measured ratio, and each leading model's predicted ratio."""
+    if not obs.pulse_pairs or post.bank is None:
+        return []
+    shown = post.ranked()[:4]
+    rows = []
+    for pp in obs.pulse_pairs:
+        ratios = post.bank.pulses.get(pp.specimen_id + ":" + pp.key, {})
+        own, other = pp.ramps[1], pp.ramps[-1]
+        fmt = lambda r: (f"{1e3 * r.low:.1f}" if r.low > 0 else "0") + " to " + (
+            f"{1e3 * r.high:.1f}" if math.isfinite(r.high) else "(stood)")
+        centre = lambda r: math.sqrt(r.low * r.high) if r.closed else (r.high if r.low <= 0 else r.low)
+        predicted = []
+        for m in shown:
+            mp = post.models[m]
+            rho = grid_log_ratio(mp.grid, ratios, obs.specimens[pp.specimen_id])
+            predicted.append(f"{float(mp.weights @ np.exp(rho)):.3f}")
+        rows.append((pp.specimen_id, str(len(own.test_ids) + len(other.test_ids)), fmt(own), fmt(other),
+                     f"{centre(other) / centre(own):.3f}", *predicted))
+    return ["## Pulses one way and the other", "",
+            "Record tests of one pulse shape, ramped its own way and reversed, read as a pair (pulses.py): each way's "
+            "bracket of the collapse in mm of the table's travel (from the records), and the ratio of the two ways' "
+            "thresholds (the other way over its own; 1 for an arch that is its own mirror image, away from 1 with "
+            "brackets on one side). Only the ratio enters the probabilities, with the two codes' disagreement on it "
+            f"(RMS {100 * RATIO_SCALE:.0f} %, bench/lmgc90/pulse.py) as its scale. The models' columns: each one's "
+            "posterior mean ratio.", "",
+            _md_table(["specimen", "tests", "own way [mm]", "other way [mm]", "measured ratio",
+                       *[f"{m}" for m in shown]], rows), ""]
 
 
 def _common_friction(obs) -> float | None:
@@ -368,6 +413,7 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
              ] + _flag_lines(result, obs) + _sensitivity_lines(info) + _emulator_lines(post) + [
              METHOD_CHECK, ""]
     lines += _crown_lines(info.get("crown_evidence"), post)
+    lines += _pulse_lines(obs, post)
     lines += _next_test_lines(info.get("next_test"))
     lines += ["## The table", ""]
     lines.append({"records": "Records of the table's motion were fitted as gain x command(t - delay); each "
