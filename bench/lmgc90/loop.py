@@ -79,6 +79,7 @@ from truths import Lmgc90Specimen, actuator_gain, onset_m  # noqa: E402
 from voussoir_post.analysis.afd import afd_command  # noqa: E402
 from voussoir_post.diagnosis import pipeline  # noqa: E402
 from voussoir_post.diagnosis.next_test import within_limits  # noqa: E402
+from voussoir_post.diagnosis.pulses import LEAD_S as PULSE_LEAD_S, table_demand, unit_pulse  # noqa: E402
 from voussoir_post.diagnosis.settings import DiagnosisSettings  # noqa: E402
 from voussoir_post.readers.campaign import read_campaign  # noqa: E402
 
@@ -137,10 +138,19 @@ def write_campaign(folder: Path, rows: list[dict]) -> None:
     (folder / "table.csv").write_text("stroke_m,max_velocity_m_s,max_accel_m_s2,displacement_gain_sd\n"
                                       "0.15,1.0,20,0.01\n")
     lines = ["test_id,specimen_id,waveform,frequency_hz,amplitude_m,n_attack,n_full,n_decay,outcome,collapse_time_s"]
+    t_pulse, x_pulse, _ = unit_pulse()
     for r in rows:
         tc = "" if r["collapse_time_s"] is None else f"{r['collapse_time_s']:.3f}"
+        outcome = "collapse" if r["collapsed"] else "stand"
+        if r.get("kind") == "pulse":   # a record test: the table's record says what drove it
+            lines.append(f"{r['test_id']},{r['specimen_id']},record,,,,,,{outcome},{tc}")
+            t = np.arange(0.0, t_pulse[-1] + 1e-9, 1.0 / RECORD_HZ)
+            x = r["gain"] * r["polarity"] * r["amplitude_m"] * np.interp(t, t_pulse, x_pulse)
+            text = "t_s,table_x_m\n" + "\n".join(f"{a:.4f},{b:.7e}" for a, b in zip(t, x))
+            (folder / "records" / f"{r['test_id']}.csv").write_text(text + "\n")
+            continue
         lines.append(f"{r['test_id']},{r['specimen_id']},afd,{r['frequency_hz']:g},{r['amplitude_m']:.4f},1,1,1,"
-                     f"{'collapse' if r['collapsed'] else 'stand'},{tc}")
+                     f"{outcome},{tc}")
         t = np.arange(0.0, 3.0 / r["frequency_hz"] + 0.5, 1.0 / RECORD_HZ)
         x = r["gain"] * afd_command(t, r["frequency_hz"], r["amplitude_m"])
         if r.get("crown"):
@@ -196,6 +206,49 @@ class Laboratory:
             row["crown"] = {"t_s": model.last["crown_t_s"],
                             "dx_m": (dx + CROWN_NOISE_M * rng.standard_normal(dx.size)).tolist()}
         return row
+
+    def pulse(self, sid: str, travel: float, polarity: int, rng: np.random.Generator, step: int) -> dict:
+        """One pulse test (pulses.unit_pulse scaled to `travel` [m], `polarity` +1 or -1),
+        with the campaign's faults as an afd test has them: the table's travel scattered
+        and offset, the transducer reading it with its bias."""
+        scatter = 1.0 + FAULTS.gain_scatter * rng.standard_normal()
+        measured = scatter * (1.0 + self.faults["transducer_bias"]) * (1.0 + FAULTS.gain_noise * rng.standard_normal())
+        t, x, _ = unit_pulse()
+        vel = np.gradient(x, t[1] - t[0]) * polarity * travel * scatter * self.faults["offset"]
+        t0 = time.time()
+        fell = self.specimen(sid).run_table(vel, int(round(PULSE_LEAD_S / (t[1] - t[0]))))
+        self.seconds += time.time() - t0
+        self.runs += 1
+        return {"test_id": f"{sid}_pulse{'p' if polarity > 0 else 'm'}_s{step}_T{1e3 * travel:.1f}",
+                "specimen_id": sid, "kind": "pulse", "polarity": polarity, "frequency_hz": None,
+                "amplitude_m": travel, "collapsed": bool(fell), "collapse_time_s": None, "gain": measured,
+                "step": step}
+
+    def pulse_ramps(self, sid: str, start: float, by: float, table, rng, step: int, max_tests: int = 40
+                    ) -> list[dict]:
+        """A pulse ramp each way, up from `start` by `by` [m of travel] to the first
+        collapse within the table's limits; when the first falls, down until one stands."""
+        snap = lambda a: round(round(a / SNAP_M) * SNAP_M, 7)
+        t, x, _ = unit_pulse()
+        half, vmax, amax = table_demand(t, x)
+        ok = lambda a: a * half <= table.stroke_m and a * vmax <= table.max_velocity_m_s and a * amax <= table.max_accel_m_s2
+        by, rows = max(SNAP_M, snap(by)), []
+        for pol in (1, -1):
+            way, amp = [], max(SNAP_M, snap(start))
+            while len(way) < max_tests and ok(amp):
+                way.append(self.pulse(sid, amp, pol, rng, step))
+                if way[-1]["collapsed"]:
+                    break
+                amp = snap(amp + by)
+            if len(way) == 1 and way[0]["collapsed"]:
+                amp = snap(way[0]["amplitude_m"] - by)
+                while amp >= SNAP_M and len(way) <= STEP_DOWN_MAX:
+                    way.append(self.pulse(sid, amp, pol, rng, step))
+                    if not way[-1]["collapsed"]:
+                        break
+                    amp = snap(amp - by)
+            rows += way
+        return rows
 
     def ramp(self, sid: str, f: float, start: float, by: float, table, rng, step: int, max_tests: int = 40,
              record: bool = False) -> list[dict]:
@@ -342,11 +395,16 @@ def run_truth(truth: dict, design: str, args, settings: DiagnosisSettings, out_r
                           "amplitudes_m": nt["amplitudes_m"], "expected_gain_bits": nt["expected_gain_bits"],
                           "predictions": nt["predictions"], **({"predicted_crown_m": nt["predicted_crown_m"]}
                                                                if "predicted_crown_m" in nt else {})}
-                assert nt["kind"] in ("afd_ramp", "hold_crown"), nt
+                assert nt["kind"] in ("afd_ramp", "hold_crown", "pulse_pair"), nt
                 a_to = max(nt["amplitudes_m"][:2])
-                assert within_limits(a_to, nt["frequency_hz"], table), f"advice beyond the table's limits: {nt}"
+                if nt["kind"] == "pulse_pair":
+                    half, vmax, amax = table_demand(*unit_pulse()[:2])
+                    assert (a_to * half <= table.stroke_m and a_to * vmax <= table.max_velocity_m_s
+                            and a_to * amax <= table.max_accel_m_s2), f"advice beyond the table's limits: {nt}"
+                else:
+                    assert within_limits(a_to, nt["frequency_hz"], table), f"advice beyond the table's limits: {nt}"
                 sid, f = nt["specimen_id"], nt["frequency_hz"]
-                if nt["kind"] == "afd_ramp":
+                if nt["kind"] in ("afd_ramp", "pulse_pair"):
                     a_from, a_to, a_by = nt["amplitudes_m"]
             else:
                 pick = naive_choice(rows, table, settings, rng)
@@ -362,13 +420,15 @@ def run_truth(truth: dict, design: str, args, settings: DiagnosisSettings, out_r
                                            round(max(SNAP_M, round(a_by / SNAP_M) * SNAP_M), 7)]}
             runs0, secs0 = lab.runs, lab.seconds
             log(f"{slug} [{design}] test {k}: {sid} at {f:g} Hz, "
-                + ("held" if chosen["kind"] == "hold_crown" else "ramp") + f" {chosen['amplitudes_m']} in LMGC90")
+                + {"hold_crown": "held", "pulse_pair": "pulses each way"}.get(chosen["kind"], "ramp") + f" {chosen['amplitudes_m']} in LMGC90")
             if chosen["kind"] == "hold_crown":
                 new = [lab.test(sid, f, chosen["amplitudes_m"][0], rng, k, hold=True)]
+            elif chosen["kind"] == "pulse_pair":
+                new = lab.pulse_ramps(sid, a_from, a_by, table, rng, k)
             else:
                 new = lab.ramp(sid, f, a_from, a_by, table, rng, k, record=design == "recorded")
             lmgc = {"runs": lab.runs - runs0, "seconds": round(lab.seconds - secs0, 1),
-                    "rows": [[r["amplitude_m"], int(r["collapsed"])] for r in new]}
+                    "rows": [[r.get("polarity", 1) * r["amplitude_m"], int(r["collapsed"])] for r in new]}
             if chosen["kind"] == "hold_crown":
                 lmgc["crown_peak_mm"] = [1e3 * float(np.max(np.abs(r["crown"]["dx_m"]))) for r in new]
             log(f"  {lmgc['runs']} LMGC90 runs, {lmgc['seconds']:.0f} s: "
@@ -472,7 +532,8 @@ def summary(out_root: Path, settings: DiagnosisSettings | None = None) -> dict:
                 continue
             ps = " ".join(f"{st['p_truth']:.2f}" for st in s["steps"])
             chosen = "; ".join(f"{st['chosen']['specimen_id']}@{st['chosen']['frequency_hz']:g}"
-                               + (" hold" if st["chosen"]["kind"] == "hold_crown" else "") for st in s["steps"][1:])
+                               + {"hold_crown": " hold", "pulse_pair": " pulses"}.get(st["chosen"]["kind"], "")
+                               for st in s["steps"][1:])
             verdict = s["steps"][-1]["verdict"] + ("" if s["named"] is None else (" (right)" if s["named_right"]
                                                                                     else " (WRONG)"))
             print(f"{t:52s} {s['label']:28s} {d:8s} {s['tests_used']:5d} {verdict:26s} {ps:24s} {chosen}")

@@ -7,10 +7,10 @@ directions (bench/diagnosis_test_types.py: 61 to 91 % one way when in contact), 
 afd test, symmetric, hardly sees. This bench drives the W156 specimen of stored LMGC90
 truths (postproc/tests/data/lmgc90/<slug>.json: their parameters and faults, the model of
 truths.py) and Voussoir's model of the same truth at its own parameters (voussoir-run,
-`waveform = 'accelerogram'`, `record_polarity` +1 and -1) with one table pulse: a
-half-sine of acceleration of TP = 0.15 s towards +x, then a half-sine of TD = 0.6 s the
-other way that brings the table to rest (the velocity back to zero), 1.5 s still. For
-each code and each direction it finds the smallest peak acceleration that brings the
+`waveform = 'accelerogram'`, `record_polarity` +1 and -1) with one table pulse, the
+diagnosis's (pulses.unit_pulse): a half-sine of acceleration of 0.15 s towards +x, then a
+half-sine of 0.6 s the other way that brings the table to rest (the velocity back to
+zero), 1.5 s still. For each code and each direction it finds the smallest peak acceleration that brings the
 arch down (geometric bisection to 1 %, from 1 to 40 m/s2), and prints the ratio -x / +x:
 1 for a symmetric arch, away from 1 with brackets on one side.
 
@@ -34,21 +34,21 @@ sys.path[:0] = [str(HERE), str(HERE.parent)]
 
 import truths as T  # noqa: E402  (puts postproc/ and postproc/tests/ on the path)
 from independent_campaigns import ARCHES  # noqa: E402
+from voussoir_post.diagnosis import pulses  # noqa: E402
 from voussoir_post.diagnosis.effects import arch_group  # noqa: E402
 from voussoir_post.readers.campaign import Specimen  # noqa: E402
 from voussoir_post.runner import Runner  # noqa: E402
 
 from diagnosis_test_types import truth_variant  # noqa: E402
 
-TP, TD, REST = 0.15, 0.6, 1.5  #: the pulse, the return, the stillness after [s]
 DT = 1.0e-3
 
 
 def unit_pulse() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(t, acceleration, velocity) of the pulse of peak acceleration 1 m/s2."""
-    t = np.arange(0.0, TP + TD + REST + DT / 2, DT)
-    acc = np.where(t < TP, np.sin(np.pi * t / TP),
-                   np.where(t < TP + TD, -(TP / TD) * np.sin(np.pi * (t - TP) / TD), 0.0))
+    """(t, acceleration, velocity) of the pulse (the diagnosis's, pulses.unit_pulse) of peak
+    acceleration 1 m/s2."""
+    t, _, acc = pulses.unit_pulse(DT)
+    acc = acc / acc.max()
     vel = np.concatenate([[0.0], np.cumsum(0.5 * (acc[1:] + acc[:-1]) * DT)])
     return t, acc, vel
 
