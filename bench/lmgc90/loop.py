@@ -224,52 +224,40 @@ class Laboratory:
                 "amplitude_m": travel, "collapsed": bool(fell), "collapse_time_s": None, "gain": measured,
                 "step": step}
 
-    def pulse_ramps(self, sid: str, start: float, by: float, table, rng, step: int, max_tests: int = 40
-                    ) -> list[dict]:
-        """A pulse ramp each way, up from `start` by `by` [m of travel] to the first
-        collapse within the table's limits; when the first falls, down until one stands."""
-        snap = lambda a: round(round(a / SNAP_M) * SNAP_M, 7)
-        t, x, _ = unit_pulse()
-        half, vmax, amax = table_demand(t, x)
+    def pulse_ramps(self, sid: str, start: float, by: float, table, rng, step: int) -> list[dict]:
+        """A pulse ramp each way (`ramp_rows`), in metres of travel, within the table's limits."""
+        half, vmax, amax = table_demand(*unit_pulse()[:2])
         ok = lambda a: a * half <= table.stroke_m and a * vmax <= table.max_velocity_m_s and a * amax <= table.max_accel_m_s2
-        by, rows = max(SNAP_M, snap(by)), []
-        for pol in (1, -1):
-            way, amp = [], max(SNAP_M, snap(start))
-            while len(way) < max_tests and ok(amp):
-                way.append(self.pulse(sid, amp, pol, rng, step))
-                if way[-1]["collapsed"]:
-                    break
-                amp = snap(amp + by)
-            if len(way) == 1 and way[0]["collapsed"]:
-                amp = snap(way[0]["amplitude_m"] - by)
-                while amp >= SNAP_M and len(way) <= STEP_DOWN_MAX:
-                    way.append(self.pulse(sid, amp, pol, rng, step))
-                    if not way[-1]["collapsed"]:
-                        break
-                    amp = snap(amp - by)
-            rows += way
-        return rows
+        return [r for pol in (1, -1) for r in ramp_rows(lambda a, pol=pol: self.pulse(sid, a, pol, rng, step),
+                                                         start, by, ok)]
 
-    def ramp(self, sid: str, f: float, start: float, by: float, table, rng, step: int, max_tests: int = 40,
-             record: bool = False) -> list[dict]:
-        """Up from `start` by `by` to the first collapse, within the table's limits; when the
-        first test falls, down by `by` until one stands. `record`: every test's crown too."""
-        snap = lambda a: round(round(a / SNAP_M) * SNAP_M, 7)
-        by = max(SNAP_M, snap(by))
-        rows, amp = [], max(SNAP_M, snap(start))
-        while len(rows) < max_tests and within_limits(amp, f, table):
-            rows.append(self.test(sid, f, amp, rng, step, hold=record))
-            if rows[-1]["collapsed"]:
+    def ramp(self, sid: str, f: float, start: float, by: float, table, rng, step: int, record: bool = False
+             ) -> list[dict]:
+        """An afd ramp (`ramp_rows`) within the table's limits. `record`: every test's crown too."""
+        return ramp_rows(lambda a: self.test(sid, f, a, rng, step, hold=record), start, by,
+                         lambda a: within_limits(a, f, table))
+
+
+def ramp_rows(run, start: float, by: float, ok, max_tests: int = 40) -> list[dict]:
+    """Up from `start` by `by` to the first collapse while `ok(amplitude)`; when the first
+    test falls, down by `by` until one stands (at most STEP_DOWN_MAX). `run(amplitude)`
+    gives a test's row."""
+    snap = lambda a: round(round(a / SNAP_M) * SNAP_M, 7)
+    by = max(SNAP_M, snap(by))
+    rows, amp = [], max(SNAP_M, snap(start))
+    while len(rows) < max_tests and ok(amp):
+        rows.append(run(amp))
+        if rows[-1]["collapsed"]:
+            break
+        amp = snap(amp + by)
+    if len(rows) == 1 and rows[0]["collapsed"]:
+        amp = snap(rows[0]["amplitude_m"] - by)
+        while amp >= SNAP_M and len(rows) <= STEP_DOWN_MAX:
+            rows.append(run(amp))
+            if not rows[-1]["collapsed"]:
                 break
-            amp = snap(amp + by)
-        if len(rows) == 1 and rows[0]["collapsed"]:
-            amp = snap(rows[0]["amplitude_m"] - by)
-            while amp >= SNAP_M and len(rows) <= STEP_DOWN_MAX:
-                rows.append(self.test(sid, f, amp, rng, step, hold=record))
-                if not rows[-1]["collapsed"]:
-                    break
-                amp = snap(amp - by)
-        return rows
+            amp = snap(amp - by)
+    return rows
 
 
 # ---------------------------------------------------------------- one truth, one design
