@@ -282,3 +282,16 @@ def test_the_ratios_scale_is_the_coverage_rule_on_lmgc90s_truths(kernel_ratios):
         own = k[slug][1] / k[slug][0] if "base_restraint" in slug else 1.0
         diffs.append(abs(math.log(row["lmgc90_minus_m_s2"] / row["lmgc90_plus_m_s2"]) - math.log(own)))
     assert float(np.percentile(diffs, 90)) / 1.645 == pytest.approx(RATIO_SCALE, abs=0.002)
+
+
+def test_the_report_says_how_to_run_a_pulse_pair_and_what_each_rival_predicts():
+    from voussoir_post.diagnosis.report import _advice_text, _next_test_lines
+    nt = {"specimen_id": "W156", "frequency_hz": 3.3333, "new": True, "kind": "pulse_pair",
+          "amplitudes_m": [0.2, 0.2995, 0.005], "expected_gain_bits": 0.8, "gain_spread_bits": 0.3, "gain_se_bits": 0.0,
+          "predicted_m": {"none": 0.25, "base_restraint": 0.27},
+          "predicted_ratio": {"none": 1.0, "base_restraint": 0.85}, "alternatives": []}
+    text = _advice_text(nt, "The next test")
+    assert "next_test_pulse.csv" in text and "from 200.0 to 299.5 mm of travel by 5.0 mm, each way" in text
+    assert "none 1.000, base_restraint 0.850" in text
+    table = "\n".join(_next_test_lines(nt))
+    assert "| 1 | W156 | (a pulse) | pulse each way, travel 200.0 to 299.5 by 5.0 | 0.80 | 0.30 | ratio 1.000 | ratio 0.850 |" in table

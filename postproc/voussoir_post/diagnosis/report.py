@@ -136,7 +136,8 @@ def _next_test_lines(nt: dict | None) -> list[str]:
             return f"ratio {t['predicted_ratio'][m]:.3f}" if m in t.get("predicted_ratio", {}) else "-"
         return f"{1e3 * t['predicted_m'][m]:.1f}" if m in t.get("predicted_m", {}) else "-"
 
-    rows = [(str(i + 1), t["specimen_id"], f"{t['frequency_hz']:g}" + (" (new)" if t.get("new") else ""),
+    rows = [(str(i + 1), t["specimen_id"], "(a pulse)" if t.get("kind") == "pulse_pair" else
+             f"{t['frequency_hz']:g}" + (" (new)" if t.get("new") else ""),
              what(t), gain(t), f"{t.get('gain_spread_bits', float('nan')):.2f}", *[predicted(t, m) for m in rivals])
             for i, t in enumerate(tests)]
     gap = ""
@@ -146,9 +147,10 @@ def _next_test_lines(nt: dict | None) -> list[str]:
         gap = (f" The first leads the second by {d:.2f} bits" + (f" (standard error {se:.2f})" if se > 0 else "")
                + (": a near tie, either serves." if se > 0 and d < 2 * se else "."))
     return ["## The next test", "",
-            "Afd ramps (from, to, by, in mm) and afd tests held below a measured threshold with the crown "
-            "recorded, ranked by the expected information of their outcome (the bracket the ramp gives; the peak "
-            "crown displacement of the held test) about which rival is the cause, in bits. `±`: the Monte Carlo "
+            "Afd ramps (from, to, by, in mm), afd tests held below a measured threshold with the crown "
+            "recorded and pulse pairs (a pulse ramped in travel one way and the other), ranked by the expected "
+            "information of their outcome (the bracket the ramp gives; the peak crown displacement of the held "
+            "test; the ratio of the pulse's two ways) about which rival is the cause, in bits. `±`: the Monte Carlo "
             "standard error of that expectation where each rival's prediction is a mixture over a few simulated "
             "draws of its parameters (a jackknife over the draws). `spread`: the standard deviation, over the "
             "test's possible outcomes, of the information one run delivers (the rivals' entropy before less "
