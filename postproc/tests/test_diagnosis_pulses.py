@@ -270,6 +270,14 @@ def test_a_pulse_pair_is_advised_by_what_the_rivals_predict_for_its_ratio(monkey
     # A table whose stroke cannot reach past the thresholds: nothing advised.
     short, _ = _advice(monkeypatch, tmp_path, strong, stroke_m=0.1)
     assert short == []
+    # The bank's other models (brackets in contact, far beyond the stroke one way) do not
+    # stop the advice: the ramp spans what the rivals' draws predict, and one way of each
+    # draw falls within the table's reach (0.30 m).
+    (c2,), _ = _advice(monkeypatch, tmp_path, strong | {"base_restraint=left": (0.45, 0.25)})
+    assert c2["expected_gain_bits"] == pytest.approx(c["expected_gain_bits"])
+    # A draw that stands both ways at the table's limit cannot give a ratio: no advice.
+    beyond = strong | {"base_restraint=left@0.0005": (0.45, 0.40)}
+    assert _advice(monkeypatch, tmp_path, beyond)[0] == []
 
 
 def test_the_ratios_scale_is_the_coverage_rule_on_lmgc90s_truths(kernel_ratios):

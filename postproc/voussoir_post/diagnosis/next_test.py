@@ -59,7 +59,8 @@ from .likelihood import predictive_sd
 from .models import members
 from .observations import Observations
 from .posterior import Posterior, predicted_log
-from .pulses import PULSE_S, RATIO_SCALE, PulsePair, grid_log_ratio, pulse_thresholds, pulse_variants, table_demand, unit_pulse
+from .pulses import (PULSE_S, RATIO_SCALE, PulsePair, grid_log_ratio, one_sided, pulse_thresholds, pulse_variants,
+                     table_demand, unit_pulse)
 from .settings import DiagnosisSettings
 from .simulator import Simulator
 
@@ -325,14 +326,16 @@ PULSE_DRAWS = 12
 PULSE_RANGE = (0.8, 1.25)
 
 
-def pulse_ramp(thresholds: list[float], demand: tuple[float, float, float], table) -> list[float] | None:
-    """[from, to, by] [m of travel] of a pulse ramp both ways (PULSE_RANGE), `to` cut to the
-    table's limits (`demand`: the unit pulse's half travel, peak velocity and acceleration);
-    None when the table cannot reach past the largest simulated threshold."""
+def pulse_ramp(thresholds: list[float], demand: tuple[float, float, float], table,
+               must_reach: float | None = None) -> list[float] | None:
+    """[from, to, by] [m of travel] of a pulse ramp both ways (PULSE_RANGE of the
+    thresholds), `to` cut to the table's limits (`demand`: the unit pulse's half travel,
+    peak velocity and acceleration); None when the table cannot reach 1.05 times
+    `must_reach` (default: the largest threshold)."""
     lo = PULSE_RANGE[0] * min(thresholds)
     hi = PULSE_RANGE[1] * max(thresholds)
     reach = min(table.stroke_m / demand[0], table.max_velocity_m_s / demand[1], table.max_accel_m_s2 / demand[2])
-    if reach < 1.05 * max(thresholds):
+    if reach < 1.05 * (max(thresholds) if must_reach is None else must_reach):
         return None
     return [_snap(lo), _snap(min(hi, reach - 5e-4)), _snap(RAMP_STEP * lo)]
 
@@ -360,19 +363,31 @@ def _pulse_candidates(post: Posterior, obs: Observations, rivals: list[str], pro
             continue
         bank_keys = post.bank.specimens[sid].thresholds if post.bank is not None else {}
         ratios = pulse_thresholds(spec, pp, pulse_variants(spec, bank_keys), settings, cache, folder)
-        finite = [v for pm in ratios.values() for v in pm if math.isfinite(v)]
-        amps = pulse_ramp(finite, demand, table)
-        if amps is None:
-            continue
-        means, level, ratio = [], {}, {}
+
+        def both_ways(v: Variant) -> tuple[float, float]:
+            """A draw's thresholds both ways: its own where simulated, else its brackets
+            alone's (a pair's other effect at a value between the bank's nodes), else the
+            nominal arch's (mirror-symmetric)."""
+            side = one_sided(v)
+            return ratios.get(variant_key(v), ratios.get(f"base_restraint={side}", nominal) if side else nominal)
+
+        means, level, ratio, ways = [], {}, {}, []
         for m in rivals:
             mp = post.models[m]
             idx = draw_indices(mp, PULSE_DRAWS)
             rho = grid_log_ratio(mp.grid, ratios, spec)[idx]
             means.append(list(rho))
-            plus = [ratios.get(variant_key(variant_at(mp.grid, i)), nominal)[0] for i in idx]
-            level[m] = float(np.exp(np.mean(np.log(plus))))
+            drawn = [both_ways(variant_at(mp.grid, i)) for i in idx]
+            ways += drawn
+            own = [d[0] for d in drawn if math.isfinite(d[0])]   # inf: stood at the IDA's ceiling
+            level[m] = float(np.exp(np.mean(np.log(own)))) if own else None
             ratio[m] = float(np.exp(np.mean(rho)))
+        # The ramps span the draws' thresholds both ways; each draw must fall one way
+        # within the table's reach (a way that stands at the table's limit is a lower bound).
+        finite = [v for d in ways for v in d if math.isfinite(v)]
+        amps = pulse_ramp(finite, demand, table, must_reach=max(min(d) for d in ways))
+        if amps is None:
+            continue
         gain, spread = _information(_outcome_laws(probs, means, [sd] * len(rivals), RAMP_STEP, None))
         out.append({"specimen_id": sid, "frequency_hz": round(1.0 / (2.0 * PULSE_S[0]), 4), "new": True,
                     "kind": "pulse_pair", "amplitudes_m": amps, "expected_gain_bits": gain,
