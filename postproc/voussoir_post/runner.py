@@ -191,28 +191,24 @@ class Runner:
 
     def run_sweep(self, groups: Mapping[str, Mapping[str, object]], name: str, reuse: bool = True
                   ) -> tuple[SweepResult, list[dict[str, str]]]:
-        """voussoir-sweep (under MPI when n_ranks > 1): the HDF5 result and the CSV rows.
-        A finished sweep of the same input in the work folder is reused when ``reuse``."""
+        """voussoir-sweep of threshold or grid mode (`run_sweep_file`): the HDF5 result and
+        the CSV rows."""
         from .readers.results import read_sweep
 
+        h5 = self.run_sweep_file(groups, name, reuse)
+        return read_sweep(h5), read_csv_rows(h5.with_suffix(".csv"))
+
+    def run_sweep_file(self, groups: Mapping[str, Mapping[str, object]], name: str, reuse: bool = True) -> Path:
+        """voussoir-sweep of any mode (under MPI when n_ranks > 1): the path of its HDF5
+        file ``<name>.h5`` (its CSV beside it). A finished sweep of the same input in the
+        work folder is reused when ``reuse``."""
         groups = self._with_output(groups, f"{name}.h5")
         nml, done = self._fresh(groups, name, [f"{name}.h5", f"{name}.csv"])
         if done and reuse:
             self.reused += 1
         else:
             self.execute("voussoir-sweep", nml, mpi=True)
-        return read_sweep(self.work_dir / f"{name}.h5"), read_csv_rows(self.work_dir / f"{name}.csv")
-
-    def run_sweep_rows(self, groups: Mapping[str, Mapping[str, object]], name: str) -> list[dict[str, str]]:
-        """voussoir-sweep of any mode (under MPI when n_ranks > 1): its CSV rows only. A
-        finished sweep of the same input in the work folder is reused."""
-        groups = self._with_output(groups, f"{name}.h5")
-        nml, done = self._fresh(groups, name, [f"{name}.h5", f"{name}.csv"])
-        if done:
-            self.reused += 1
-        else:
-            self.execute("voussoir-sweep", nml, mpi=True)
-        return read_csv_rows(self.work_dir / f"{name}.csv")
+        return self.work_dir / f"{name}.h5"
 
     def run_limit(self, groups: Mapping[str, Mapping[str, object]], name: str) -> LimitResult:
         """voussoir-limit --json on the groups."""

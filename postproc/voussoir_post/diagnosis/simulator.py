@@ -16,6 +16,7 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from ..readers.campaign import Specimen, Test
+from ..earthquake.ida import played_record, read_ida
 from ..runner import Runner, code_hash
 from .crown import peak_m
 from .effects import Variant, arch_group, effect
@@ -150,15 +151,11 @@ class Simulator:
             before = self.runner.reused
             # Named by its input: another batch in the same folder never meets a sweep of other content.
             name = hashlib.sha256(json.dumps(groups, sort_keys=True, default=str).encode()).hexdigest()[:12]
-            rows = self.runner.run_sweep_rows(groups, f"ida_{spec.specimen_id}_{name}")
+            ida = read_ida(self.runner.run_sweep_file(groups, f"ida_{spec.specimen_id}_{name}"))
             if self.runner.reused == before:
                 self.n_sweeps += 1
-            found = {}
-            for row in rows:
-                censored = row.get("censored", "").strip().lower() in ("1", "true", "t", "yes")
-                text = row["scale_threshold"].strip()
-                value = math.inf if censored or text in ("", "nan", "NaN") else float(text)
-                found[-1 if "(reversed)" in row["record"] else 1] = value
+            found = {played_record(rec).polarity: math.inf if censored else float(scale)
+                     for rec, scale, censored in zip(ida.record, ida.scale_threshold, ida.censored)}
             out[v] = (found[1], found[-1])
             progress.advance(1)
         return out
