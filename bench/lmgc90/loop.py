@@ -79,7 +79,7 @@ from truths import Lmgc90Specimen, actuator_gain, onset_m  # noqa: E402
 from voussoir_post.analysis.afd import afd_command  # noqa: E402
 from voussoir_post.diagnosis import pipeline  # noqa: E402
 from voussoir_post.diagnosis.next_test import within_limits  # noqa: E402
-from voussoir_post.diagnosis.pulses import LEAD_S as PULSE_LEAD_S, table_demand, unit_pulse  # noqa: E402
+from voussoir_post.diagnosis.pulses import LEAD_S as PULSE_LEAD_S, reach_m, unit_pulse  # noqa: E402
 from voussoir_post.diagnosis.settings import DiagnosisSettings  # noqa: E402
 from voussoir_post.readers.campaign import read_campaign  # noqa: E402
 
@@ -226,10 +226,9 @@ class Laboratory:
 
     def pulse_ramps(self, sid: str, start: float, by: float, table, rng, step: int) -> list[dict]:
         """A pulse ramp each way (`ramp_rows`), in metres of travel, within the table's limits."""
-        half, vmax, amax = table_demand(*unit_pulse()[:2])
-        ok = lambda a: a * half <= table.stroke_m and a * vmax <= table.max_velocity_m_s and a * amax <= table.max_accel_m_s2
+        reach = reach_m(table)
         return [r for pol in (1, -1) for r in ramp_rows(lambda a, pol=pol: self.pulse(sid, a, pol, rng, step),
-                                                         start, by, ok)]
+                                                         start, by, lambda a: a <= reach)]
 
     def ramp(self, sid: str, f: float, start: float, by: float, table, rng, step: int, record: bool = False
              ) -> list[dict]:
@@ -386,9 +385,7 @@ def run_truth(truth: dict, design: str, args, settings: DiagnosisSettings, out_r
                 assert nt["kind"] in ("afd_ramp", "hold_crown", "pulse_pair"), nt
                 a_to = max(nt["amplitudes_m"][:2])
                 if nt["kind"] == "pulse_pair":
-                    half, vmax, amax = table_demand(*unit_pulse()[:2])
-                    assert (a_to * half <= table.stroke_m and a_to * vmax <= table.max_velocity_m_s
-                            and a_to * amax <= table.max_accel_m_s2), f"advice beyond the table's limits: {nt}"
+                    assert a_to <= reach_m(table), f"advice beyond the table's limits: {nt}"
                 else:
                     assert within_limits(a_to, nt["frequency_hz"], table), f"advice beyond the table's limits: {nt}"
                 sid, f = nt["specimen_id"], nt["frequency_hz"]

@@ -22,6 +22,7 @@ from voussoir_post.diagnosis.effects import RESTRAINT_VALUES, Variant
 from voussoir_post.diagnosis.next_test import pulse_ramp
 from voussoir_post.diagnosis.pulses import (OUTLIER_FACTOR, OUTLIER_PROB, RATIO_SCALE, PulsePair, PulseRamp,
                                             log_ratio_terms, read_pulse_pairs, table_demand, unit_pulse)
+from voussoir_post.diagnosis.observations import from_campaign
 from voussoir_post.diagnosis.settings import DiagnosisSettings
 from voussoir_post.readers.campaign import read_campaign
 from voussoir_post.readers.campaign import Specimen
@@ -59,16 +60,14 @@ def test_the_unit_pulse_is_its_two_half_sines_integrated():
 def test_a_pulse_ramp_stays_within_the_tables_limits():
     """Unit demand (half travel 0.5 m, 2.67 m/s, 27.9 m/s2 a metre of travel): the default
     table (0.15 m, 1 m/s, 20 m/s2) reaches 0.30 m of travel, by its stroke."""
-    t, x, _ = unit_pulse()
-    demand = table_demand(t, x)
     table = SimpleNamespace(stroke_m=0.15, max_velocity_m_s=1.0, max_accel_m_s2=20.0)
-    amps = pulse_ramp([0.25, 0.27], demand, table)
+    amps = pulse_ramp([0.25, 0.27], table)
     assert amps[0] == pytest.approx(0.2, abs=5e-4)
     assert amps[1] <= 0.30 and amps[1] == pytest.approx(0.2995, abs=1e-9)
     assert amps[2] == pytest.approx(0.005, abs=5e-4)
     # A specimen whose thresholds lie beyond the stroke gets no pulse advice.
-    assert pulse_ramp([0.28, 0.31], demand, table) is None
-    assert pulse_ramp([0.1, 0.12], demand, table)[1] == pytest.approx(0.15, abs=5e-4)
+    assert pulse_ramp([0.28, 0.31], table) is None
+    assert pulse_ramp([0.1, 0.12], table)[1] == pytest.approx(0.15, abs=5e-4)
 
 
 # ---------------------------------------------------------------- reading a campaign
@@ -108,7 +107,8 @@ def test_record_tests_of_one_shape_both_ways_are_a_pulse_pair(tmp_path):
     sine = (t, 0.01 * np.sin(2 * np.pi * 2.0 * t))
     rows += [("sine", "W156", sine, False), ("lone", "W132", (t, noisy(0.3, 1)), True)]
     campaign = read_campaign(_campaign(tmp_path / "c", rows, ("W156", "W132")))
-    pairs, unread = read_pulse_pairs(campaign)
+    pairs = read_pulse_pairs(campaign)
+    unread = from_campaign(campaign)[0].unread
     assert len(pairs) == 1
     pp = pairs[0]
     assert pp.specimen_id == "W156" and pp.usable

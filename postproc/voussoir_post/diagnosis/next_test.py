@@ -60,7 +60,7 @@ from .models import members
 from .observations import Observations
 from .posterior import Posterior, predicted_log
 from .pulses import (PULSE_S, RATIO_SCALE, PulsePair, grid_log_ratio, one_sided, pulse_thresholds, pulse_variants,
-                     table_demand, unit_pulse)
+                     reach_m, unit_pulse)
 from .settings import DiagnosisSettings
 from .simulator import Simulator
 
@@ -326,15 +326,13 @@ PULSE_DRAWS = 12
 PULSE_RANGE = (0.8, 1.25)
 
 
-def pulse_ramp(thresholds: list[float], demand: tuple[float, float, float], table,
-               must_reach: float | None = None) -> list[float] | None:
+def pulse_ramp(thresholds: list[float], table, must_reach: float | None = None) -> list[float] | None:
     """[from, to, by] [m of travel] of a pulse ramp both ways (PULSE_RANGE of the
-    thresholds), `to` cut to the table's limits (`demand`: the unit pulse's half travel,
-    peak velocity and acceleration); None when the table cannot reach 1.05 times
-    `must_reach` (default: the largest threshold)."""
+    thresholds), `to` cut to the table's reach (pulses.reach_m); None when the table
+    cannot reach 1.05 times `must_reach` (default: the largest threshold)."""
     lo = PULSE_RANGE[0] * min(thresholds)
     hi = PULSE_RANGE[1] * max(thresholds)
-    reach = min(table.stroke_m / demand[0], table.max_velocity_m_s / demand[1], table.max_accel_m_s2 / demand[2])
+    reach = reach_m(table)
     if reach < 1.05 * (max(thresholds) if must_reach is None else must_reach):
         return None
     return [_snap(lo), _snap(min(hi, reach - 5e-4)), _snap(RAMP_STEP * lo)]
@@ -350,7 +348,6 @@ def _pulse_candidates(post: Posterior, obs: Observations, rivals: list[str], pro
     if not any("base_restraint" in members(m) for m in rivals):
         return []
     t, x, _ = unit_pulse()
-    demand = table_demand(t, x)
     sd = math.sqrt(RATIO_SCALE ** 2 + math.log1p(RAMP_STEP) ** 2 / 6.0)
     out = []
     pulsed = {pp.specimen_id for pp in obs.pulse_pairs}
@@ -359,10 +356,10 @@ def _pulse_candidates(post: Posterior, obs: Observations, rivals: list[str], pro
         pp = PulsePair(sid, t, x)
         cache, folder = Path(work) / "pulse-bank", Path(work) / f"pulse-{sid}"
         nominal = pulse_thresholds(spec, pp, [Variant()], settings, cache, folder)["nominal"]
-        if pulse_ramp(list(nominal), demand, table) is None:
+        if pulse_ramp(list(nominal), table) is None:
             continue
         bank_keys = post.bank.specimens[sid].thresholds if post.bank is not None else {}
-        ratios = pulse_thresholds(spec, pp, pulse_variants(spec, bank_keys), settings, cache, folder)
+        ratios = pulse_thresholds(spec, pp, pulse_variants(bank_keys), settings, cache, folder)
 
         def both_ways(v: Variant) -> tuple[float, float]:
             """A draw's thresholds both ways: its own where simulated, else its brackets
@@ -385,7 +382,7 @@ def _pulse_candidates(post: Posterior, obs: Observations, rivals: list[str], pro
         # The ramps span the draws' thresholds both ways; each draw must fall one way
         # within the table's reach (a way that stands at the table's limit is a lower bound).
         finite = [v for d in ways for v in d if math.isfinite(v)]
-        amps = pulse_ramp(finite, demand, table, must_reach=max(min(d) for d in ways))
+        amps = pulse_ramp(finite, table, must_reach=max(min(d) for d in ways))
         if amps is None:
             continue
         gain, spread = _information(_outcome_laws(probs, means, [sd] * len(rivals), RAMP_STEP, None))

@@ -117,7 +117,7 @@ def from_campaign(campaign: Campaign) -> tuple[Observations, TableEvidence]:
     stand_rows = any(not t.collapsed for t in campaign.tests.values() if t.waveform == "afd")
     from .pulses import read_pulse_pairs  # pulses.py reads the bank's keys, which reads PairObservation
     certain = {sid for sid in specimens if any(p.specimen_id == sid for p in pairs)}
-    pulse_pairs, _ = read_pulse_pairs(campaign, certain)
+    pulse_pairs = read_pulse_pairs(campaign, certain)
     pulsed = {tid for pp in pulse_pairs for r in pp.ramps.values() for tid in r.test_ids}
     unread = tuple(t.test_id for t in campaign.tests.values()
                    if (t.frequency_hz is None or t.amplitude_m is None) and t.test_id not in pulsed)

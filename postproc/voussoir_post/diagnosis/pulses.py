@@ -59,7 +59,7 @@ from .simulator import Simulator
 __all__ = ["PulseRamp", "PulsePair", "read_pulse_pairs", "unit_pulse", "accelerogram", "one_sided",
            "pulse_variants", "pulse_thresholds", "log_ratio_terms", "grid_log_ratio", "pulse_log_likelihood",
            "RATIO_SCALE", "OUTLIER_PROB", "OUTLIER_FACTOR", "SHAPE_TOLERANCE", "PULSE_S", "SMOOTH_HZ",
-           "table_demand", "PULSE_VERSION"]
+           "table_demand", "reach_m", "add_pulse_banks", "PULSE_VERSION"]
 
 #: The scale of the two codes' disagreement on the log ratio of the two ways' thresholds,
 #: a normal law's sd, calibrated to coverage as the crown law is: LMGC90's ratios of nine
@@ -111,6 +111,14 @@ def table_demand(t: np.ndarray, x: np.ndarray) -> tuple[float, float, float]:
     _, vel, acc = _derivatives(t, x)
     centre = 0.5 * (float(np.max(x)) + float(np.min(x)))
     return float(np.max(np.abs(x - centre))), float(np.max(np.abs(vel))), float(np.max(np.abs(acc)))
+
+
+def reach_m(table, demand: tuple[float, float, float] | None = None) -> float:
+    """The largest travel [m] of a pulse within the table's limits (stroke about the
+    record's centre, peak velocity, peak acceleration); `demand`: table_demand of its unit
+    record (default: the project's pulse)."""
+    half, vmax, amax = demand or table_demand(*unit_pulse()[:2])
+    return min(table.stroke_m / half, table.max_velocity_m_s / vmax, table.max_accel_m_s2 / amax)
 
 
 def _derivatives(t: np.ndarray, x: np.ndarray):
@@ -166,6 +174,11 @@ class PulsePair:
         return hashlib.sha256(text.encode()).hexdigest()[:12]
 
     @property
+    def bank_key(self) -> str:
+        """Its key in Bank.pulses: the specimen and the shape."""
+        return f"{self.specimen_id}:{self.key}"
+
+    @property
     def usable(self) -> bool:
         """Both ways observed, one of them a closed bracket."""
         return len(self.ramps) == 2 and any(r.closed for r in self.ramps.values()) and all(
@@ -178,11 +191,10 @@ def _normalised(x: np.ndarray) -> np.ndarray:
     return x / x[k] if x[k] != 0 else x
 
 
-def read_pulse_pairs(campaign: Campaign, specimens=None) -> tuple[list[PulsePair], tuple[str, ...]]:
-    """The campaign's pulse pairs (module docstring) of the specimens given (default all),
-    and the record tests that are in none usable."""
+def read_pulse_pairs(campaign: Campaign, specimens=None) -> list[PulsePair]:
+    """The campaign's usable pulse pairs (module docstring) of the specimens given (default
+    all)."""
     groups: list[tuple[str, np.ndarray, list]] = []  # (specimen, time, [(test, normalised, raw)])
-    read = set()
     for tid, test in campaign.tests.items():
         rec = campaign.records.get(tid)
         if test.waveform != "record" or rec is None or (specimens is not None and test.specimen_id not in specimens):
@@ -225,10 +237,7 @@ def read_pulse_pairs(campaign: Campaign, specimens=None) -> tuple[list[PulsePair
                                         tuple(test.test_id for _, test in sorted(rs, key=lambda r: r[0])))
         if pair.usable:
             pairs.append(pair)
-            read.update(test.test_id for test, _, _ in members_)
-    unread = tuple(tid for tid, test in campaign.tests.items() if test.waveform == "record" and tid not in read
-                   and (specimens is None or test.specimen_id in specimens))
-    return pairs, unread
+    return pairs
 
 
 # ---------------------------------------------------------------- simulation
@@ -242,7 +251,7 @@ def one_sided(variant: Variant) -> str | None:
     return None
 
 
-def pulse_variants(spec: Specimen, bank_keys) -> list[Variant]:
+def pulse_variants(bank_keys) -> list[Variant]:
     """The models simulated for a pulse: the nominal one and every variant of the bank
     (keys) with brackets on one side."""
     return [Variant()] + [v for v in map(key_variant, sorted(bank_keys)) if one_sided(v)]
@@ -357,7 +366,7 @@ def pulse_log_likelihood(grid, pairs: list[PulsePair], ratios: dict[str, dict], 
     """The pulse pairs' log likelihood at every grid point of a model (0 without pairs)."""
     total = np.zeros(grid.n)
     for pp in pairs:
-        r = ratios.get(pp.specimen_id + ":" + pp.key)
+        r = ratios.get(pp.bank_key)
         if r is None:
             continue
         rho = grid_log_ratio(grid, r, specimens[pp.specimen_id])
@@ -366,15 +375,14 @@ def pulse_log_likelihood(grid, pairs: list[PulsePair], ratios: dict[str, dict], 
     return total
 
 
-
-def add_pulse_banks(bank, obs, settings, cache: Path, work: Path, pairs=None) -> int:
+def add_pulse_banks(bank, obs, settings, cache: Path, work: Path) -> int:
     """Simulate (or read from `cache`) every pulse pair's thresholds into bank.pulses;
     returns the number of variants simulated or read."""
     n = 0
-    for pp in (obs.pulse_pairs if pairs is None else pairs):
+    for pp in obs.pulse_pairs:
         spec = obs.specimens[pp.specimen_id]
-        variants = pulse_variants(spec, bank.specimens[pp.specimen_id].thresholds)
-        bank.pulses[pp.specimen_id + ":" + pp.key] = pulse_thresholds(spec, pp, variants, settings, cache,
-                                                                      Path(work) / f"pulse-{pp.specimen_id}")
+        variants = pulse_variants(bank.specimens[pp.specimen_id].thresholds)
+        bank.pulses[pp.bank_key] = pulse_thresholds(spec, pp, variants, settings, cache,
+                                                    Path(work) / f"pulse-{pp.specimen_id}")
         n += len(variants)
     return n

@@ -248,7 +248,7 @@ def _pulse_lines(obs, post: Posterior) -> list[str]:
     shown = post.ranked()[:4]
     rows = []
     for pp in obs.pulse_pairs:
-        ratios = post.bank.pulses.get(pp.specimen_id + ":" + pp.key, {})
+        ratios = post.bank.pulses.get(pp.bank_key, {})
         own, other = pp.ramps[1], pp.ramps[-1]
         fmt = lambda r: (f"{1e3 * r.low:.1f}" if r.low > 0 else "0") + " to " + (
             f"{1e3 * r.high:.1f}" if math.isfinite(r.high) else "(stood)")
