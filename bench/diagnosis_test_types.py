@@ -54,7 +54,7 @@ sys.path[:0] = [str(ROOT / "postproc"), str(ROOT / "postproc" / "tests"), str(RO
                 str(ROOT / "bench" / "lmgc90")]
 
 from voussoir_post.diagnosis.bank import load_banks  # noqa: E402
-from voussoir_post.diagnosis.effects import RESTRAINT_VALUES, Variant, arch_group  # noqa: E402
+from voussoir_post.diagnosis.effects import Variant, arch_group  # noqa: E402
 from voussoir_post.diagnosis.models import MODEL_IDS  # noqa: E402
 from voussoir_post.diagnosis.rates import covers  # noqa: E402
 from voussoir_post.plots.drawing import provenance  # noqa: E402
@@ -62,26 +62,12 @@ from voussoir_post.readers.campaign import TableLimits  # noqa: E402
 from voussoir_post.runner import Runner  # noqa: E402
 from voussoir_post.units import G_M_S2  # noqa: E402
 
-from lmgc90_campaigns import (IDEAL, TRUTH_PARAMETERS, draw_campaign, restraint_index, stored_truths,  # noqa: E402
-                              truth_model)
+from lmgc90_campaigns import IDEAL, draw_campaign, stored_truths, truth_model, truth_variant  # noqa: E402
 
 from crown_records import closest  # noqa: E402  (bench/lmgc90: a model's best grid point)
 from diagnosis_identifiability import BANK, truth_thresholds  # noqa: E402
 
 CYCLES = (1, 6)  #: full cycles of the afd motion compared (attack and decay one each)
-
-
-def truth_variant(truth: dict) -> Variant:
-    """The catalogue variant of a truth at its own parameters (its table motion apart: it
-    changes no static capacity and no kernel threshold of the commanded motion); the
-    parameters' names are lmgc90_campaigns's, the brackets' play the simulated one nearest."""
-    parts = []
-    for e, p in sorted(truth["truth"].get("parameters", {}).items()):
-        if e in TRUTH_PARAMETERS:
-            parts.append((e, p[TRUTH_PARAMETERS[e][0]]))
-        elif e == "base_restraint":
-            parts.append((e, RESTRAINT_VALUES[int(restraint_index(p))]))
-    return Variant.of(parts)
 
 
 def closest_fits(bank, obs, y: np.ndarray, model: str) -> tuple[tuple, list[tuple]]:

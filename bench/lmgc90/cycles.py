@@ -84,11 +84,8 @@ def main() -> int:
     args = ap.parse_args()
     results = {}
     for slug in args.slugs.split(","):
-        stored = json.loads((T.ROOT / "postproc" / "tests" / "data" / "lmgc90" / f"{slug}.json").read_text())
-        par = stored["truth"]["parameters"]
-        if "table_motion" in par or "spreading_support" in par:
-            sys.exit(f"cycles.py: {slug}: a table motion or a spreading support is not handled here")
-        truth = {"parameters": par, "faults": stored["faults"]}
+        stored, truth = T.fixed_table_truth(slug, "cycles.py")
+        par = truth["parameters"]
         one = {(p["specimen_id"], p["frequency_hz"]): p["threshold_m"] for p in stored["pairs"]}
         for arch in ARCHES:
             friction = par.get("friction", {}).get("friction", arch.friction)

@@ -21,7 +21,6 @@ at 7 m/s2, 0.25 m of travel (a table of 0.15 m amplitude, from one end) and 0.67
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import sys
 import time
@@ -33,13 +32,13 @@ HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent)]
 
 import truths as T  # noqa: E402  (puts postproc/ and postproc/tests/ on the path)
+from lmgc90_campaigns import truth_variant  # noqa: E402
 from independent_campaigns import ARCHES  # noqa: E402
 from voussoir_post.diagnosis import pulses  # noqa: E402
 from voussoir_post.diagnosis.effects import arch_group  # noqa: E402
 from voussoir_post.readers.campaign import Specimen  # noqa: E402
 from voussoir_post.runner import Runner  # noqa: E402
 
-from diagnosis_test_types import truth_variant  # noqa: E402
 
 DT = 1.0e-3
 
@@ -101,11 +100,8 @@ def main() -> int:
     spec = Specimen(arch.specimen_id, arch.embrace_deg, arch.n_voussoirs, arch.r_ext_m, arch.thickness_m,
                     arch.width_m, arch.density_kg_m3, arch.friction)
     for slug in args.slugs.split(","):
-        stored = json.loads((T.ROOT / "postproc" / "tests" / "data" / "lmgc90" / f"{slug}.json").read_text())
-        par = stored["truth"]["parameters"]
-        if "table_motion" in par or "spreading_support" in par:
-            sys.exit(f"pulse.py: {slug}: a table motion or a spreading support is not handled here")
-        truth = {"parameters": par, "faults": stored["faults"]}
+        stored, truth = T.fixed_table_truth(slug, "pulse.py")
+        par = truth["parameters"]
         lmgc = T.Lmgc90Specimen(args.lmgc90_build, args.work / slug, arch, truth,
                                 par.get("friction", {}).get("friction", arch.friction))
         group = arch_group(spec, truth_variant(stored))

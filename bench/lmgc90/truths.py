@@ -360,6 +360,17 @@ class Lmgc90Specimen:
 # ---------------------------------------------------------------- the threshold search
 
 
+def fixed_table_truth(slug: str, bench: str) -> tuple[dict, dict]:
+    """(the stored truth postproc/tests/data/lmgc90/<slug>.json, its {parameters, faults}
+    as Lmgc90Specimen takes them), for a bench that drives the table itself: a table
+    motion or a spreading support is refused in `bench`'s name."""
+    stored = json.loads((ROOT / "postproc" / "tests" / "data" / "lmgc90" / f"{slug}.json").read_text())
+    par = stored["truth"]["parameters"]
+    if "table_motion" in par or "spreading_support" in par:
+        sys.exit(f"{bench}: {slug}: a table motion or a spreading support is not handled here")
+    return stored, {"parameters": par, "faults": stored["faults"]}
+
+
 def bisect(collapses, lo: float, hi: float, rel_tol: float) -> float:
     """The smallest amplitude that collapses, between a stand at `lo` and a collapse at
     `hi`, to `rel_tol` of it (geometric midpoints): the collapse end of the last bracket."""

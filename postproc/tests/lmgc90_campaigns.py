@@ -36,7 +36,7 @@ from pathlib import Path
 import numpy as np
 
 from replay_maps import bracket, ramp_observations
-from voussoir_post.diagnosis.effects import BRACKET_GAPS_M, RESTRAINT_VALUES, restraint_value
+from voussoir_post.diagnosis.effects import BRACKET_GAPS_M, RESTRAINT_VALUES, Variant, restraint_value
 from voussoir_post.diagnosis.models import MATERIAL, effect_sizes, material_threshold, members
 from voussoir_post.diagnosis.observations import Observations
 
@@ -68,6 +68,19 @@ IDEAL = LabFaults(step_mm=(2.0, 2.0), start_fraction=(0.7, 0.7), transducer_bias
 
 def load_truth(path: Path) -> dict:
     return json.loads(Path(path).read_text())
+
+
+def truth_variant(truth: dict) -> Variant:
+    """The catalogue variant of a truth at its own parameters (its table motion apart: it
+    changes no static capacity and no kernel threshold of the commanded motion); the
+    brackets' play the simulated one nearest."""
+    parts = []
+    for e, p in sorted(truth["truth"].get("parameters", {}).items()):
+        if e in TRUTH_PARAMETERS:
+            parts.append((e, p[TRUTH_PARAMETERS[e][0]]))
+        elif e == "base_restraint":
+            parts.append((e, RESTRAINT_VALUES[int(restraint_index(p))]))
+    return Variant.of(parts)
 
 
 def stored_truths(folder: Path = TRUTH_DIR) -> list[dict]:

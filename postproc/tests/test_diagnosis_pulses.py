@@ -16,9 +16,9 @@ import pytest
 from scipy.stats import norm
 
 from conftest import bin_dir
-from lmgc90_campaigns import TRUTH_PARAMETERS, restraint_index
+from lmgc90_campaigns import truth_variant
 from voussoir_post.diagnosis import pulses
-from voussoir_post.diagnosis.effects import RESTRAINT_VALUES, Variant
+from voussoir_post.diagnosis.effects import Variant
 from voussoir_post.diagnosis.next_test import pulse_ramp
 from voussoir_post.diagnosis.pulses import (OUTLIER_FACTOR, OUTLIER_PROB, RATIO_SCALE, PulsePair, PulseRamp,
                                             log_ratio_terms, read_pulse_pairs, table_demand, unit_pulse)
@@ -167,10 +167,7 @@ def kernel_ratios(tmp_path_factory):
     variants = {"nominal": Variant(), "left": Variant("base_restraint", "left@0.0005"),
                 "right": Variant("base_restraint", "right@0.0005")}
     for slug in stored:
-        par = json.loads((TRUTHS / f"{slug}.json").read_text())["truth"]["parameters"]
-        parts = [(e, p[TRUTH_PARAMETERS[e][0]]) for e, p in sorted(par.items()) if e in TRUTH_PARAMETERS]
-        parts += [(e, RESTRAINT_VALUES[int(restraint_index(p))]) for e, p in par.items() if e == "base_restraint"]
-        variants[slug] = Variant.of(parts)
+        variants[slug] = truth_variant(json.loads((TRUTHS / f"{slug}.json").read_text()))
     work = tmp_path_factory.mktemp("pulse")
     t, x, _ = unit_pulse()
     pair = PulsePair("W156", t, x)
