@@ -23,7 +23,6 @@ import dataclasses
 import json
 import math
 import shutil
-import tempfile
 from functools import lru_cache
 from pathlib import Path
 
@@ -42,7 +41,6 @@ from voussoir_post.diagnosis.observations import Observations, PairObservation, 
 from voussoir_post.diagnosis.pipeline import DiagnosisSettings, diagnose
 from voussoir_post.diagnosis.posterior import ADEQUATE_P, adequacy, infer
 from voussoir_post.diagnosis.rates import draw_outcomes, mcnemar
-from voussoir_post.diagnosis.early import early_fractions
 from voussoir_post.diagnosis.effects import COMBINED, Variant
 from voussoir_post.diagnosis.models import ModelGrid
 from voussoir_post.diagnosis.next_test import (expected_gain_bits, gain_jackknife_se_bits, gain_spread_bits,
@@ -52,31 +50,23 @@ from voussoir_post.diagnosis.posterior import ModelPosterior
 from voussoir_post.readers.campaign import CampaignError, Specimen, TableLimits, Test as CampaignTest, read_campaign
 
 from conftest import SEED_CAMPAIGN, VERDICTS, bin_dir, executable
-from independent_campaigns import ARCHES, Arch, Truth, write_campaign
+from independent_campaigns import Arch, Truth, write_campaign
 from replay_maps import draw_observations, load_map
 
 DATA = Path(__file__).parent / "data" / "replay"
+BANK_SCANS = DATA / "bank_scans.json"
 DRAWS = 20
 
 
 @lru_cache(maxsize=1)
 def stored_bank() -> Bank:
     """The stored bank of the test arches, with the kernel's scan of each pair's nominal
-    arch (early.early_fractions, run now: the diagnosis's own path) that sorts its pairs
-    for early collapses."""
+    arch that sorts its pairs for early collapses (early.early_fractions, stored beside it:
+    test_diagnosis_early.py checks its classes against the kernel's live scans)."""
     bank = load_banks(DATA / "bank")
     assert bank.specimens, f"no stored simulation bank in {DATA / 'bank'} (bench/diagnosis_replay_bank.sh makes it)"
-    settings = DiagnosisSettings(bin_dir=bin_dir(), n_ranks=2, log=lambda m: None)
-    work = Path(tempfile.mkdtemp(prefix="voussoir-early-"))
-    for a in ARCHES:
-        sb = bank.specimens.get(a.specimen_id)
-        if sb is None:
-            continue
-        spec = Specimen(a.specimen_id, a.embrace_deg, a.n_voussoirs, a.r_ext_m, a.thickness_m, a.width_m,
-                        a.density_kg_m3, a.friction)
-        found = early_fractions(spec, sb.frequencies_hz, sb.thresholds["nominal"], tuple(sb.cycles), settings,
-                                work / "cache", work / "runs")
-        bank.early.update({(a.specimen_id, round(f, 6)): d["fraction"] for f, d in found.items()})
+    for r in json.loads(BANK_SCANS.read_text())["rows"]:
+        bank.early[(r["specimen_id"], round(r["frequency_hz"], 6))] = r["fraction"]
     return bank
 
 

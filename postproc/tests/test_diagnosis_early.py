@@ -23,6 +23,7 @@ from voussoir_post.diagnosis.settings import DiagnosisSettings
 from voussoir_post.readers.campaign import Specimen
 
 SCANS = Path(__file__).parent / "data" / "lmgc90" / "collapse_scan.json"
+BANK_SCANS = Path(__file__).parent / "data" / "replay" / "bank_scans.json"
 PROB = (E.EARLY_PROB_ROUGH, E.LATE_PROB_ROUGH)  #: a rough pair's
 
 
@@ -127,12 +128,19 @@ def kernel_scans(tmp_path_factory):
     return out
 
 
-def test_the_kernels_scans_bracket_their_thresholds(kernel_scans):
-    """Every scan of the nominal arch stands at 0.7 of its threshold and falls at 1.35."""
+def test_the_kernels_scans_bracket_their_thresholds_and_sort_the_stored_banks_pairs_alike(kernel_scans):
+    """Every scan of the nominal arch stands at 0.7 of its threshold and falls at 1.35; the
+    stored bank's scans (tests/data/replay/bank_scans.json, which the replay tests read)
+    sort its six pairs as the live scans do."""
     assert len(kernel_scans) == 10
     for d in kernel_scans.values():
         assert not d["collapsed"][0] and d["collapsed"][-1], d
         assert d["fraction"] is not None
+    stored = json.loads(BANK_SCANS.read_text())["rows"]
+    assert len(stored) == 6
+    for r in stored:
+        live = kernel_scans[(r["specimen_id"], round(r["frequency_hz"], 6))]["fraction"]
+        assert (r["fraction"] > 0) == (live > 0), r
 
 
 def test_the_kernel_sees_where_lmgc90s_ramps_fall_early_and_the_constants_are_the_rule(kernel_scans):

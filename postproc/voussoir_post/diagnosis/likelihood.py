@@ -245,25 +245,32 @@ def specimen_log_tables(pairs: list[PairObservation], terms_of: list[list[tuple[
     return out
 
 
-def _shift_mass(lo: float, hi: float, m: np.ndarray, s: np.ndarray, a: float, b: float) -> np.ndarray:
-    """P(a first collapse at log t + u, u uniform on (a, b), falls in (lo, hi]), log t ~
-    N(m, s^2). The overlap of (lo, hi] with (log t + a, log t + b) is a trapezoid in log t,
-    a sum of four ramps, whose normal mean is s G((m - c) / s), G(z) = z Phi(z) + phi(z)."""
-    def ramp(c):
-        z = (m - c) / s
-        return s * (z * ndtr(z) + np.exp(-0.5 * z * z) / math.sqrt(2.0 * math.pi))
-    overlap = ramp(lo - b) - ramp(hi - b) - ramp(lo - a) + ramp(hi - a)
-    return np.clip(overlap / (b - a), 0.0, 1.0)
+def _ramp_mean(c: float, m: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """E[max(0, log t - c)], log t ~ N(m, s^2): s G((m - c) / s), G(z) = z Phi(z) + phi(z)."""
+    z = (m - c) / s
+    return s * (z * ndtr(z) + np.exp(-0.5 * z * z) * (1.0 / math.sqrt(2.0 * math.pi)))
+
+
+def _shifted_masses(lo: float, hi: float, m: np.ndarray, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(P(early in (lo, hi]), P(late in (lo, hi])): a first collapse at log t + u, u uniform
+    on (-EARLY_SPAN, 0) or on (0, LATE_SPAN), log t ~ N(m, s^2). The overlap of (lo, hi] with
+    (log t + a, log t + b) is a trapezoid in log t, R(x + b - lo) - R(x + b - hi) -
+    R(x + a - lo) + R(x + a - hi) with R the ramp max(0, .), whose normal mean is _ramp_mean;
+    the two stories share the ramps at lo and hi."""
+    at_lo, at_hi = _ramp_mean(lo, m, s), _ramp_mean(hi, m, s)
+    early = (at_lo - at_hi - _ramp_mean(lo + EARLY_SPAN, m, s) + _ramp_mean(hi + EARLY_SPAN, m, s)) / EARLY_SPAN
+    late = (_ramp_mean(lo - LATE_SPAN, m, s) - _ramp_mean(hi - LATE_SPAN, m, s) - at_lo + at_hi) / LATE_SPAN
+    return np.clip(early, 0.0, 1.0), np.clip(late, 0.0, 1.0)
 
 
 def _early_mass(lo, hi, m, s):
     """P(an early first collapse, up to EARLY_SPAN below the threshold, falls in (lo, hi])."""
-    return _shift_mass(lo, hi, m, s, -EARLY_SPAN, 0.0)
+    return _shifted_masses(lo, hi, m, s)[0]
 
 
 def _late_mass(lo, hi, m, s):
     """P(a late first collapse, up to LATE_SPAN above the threshold, falls in (lo, hi])."""
-    return _shift_mass(lo, hi, m, s, 0.0, LATE_SPAN)
+    return _shifted_masses(lo, hi, m, s)[1]
 
 
 def _with_early(log_normal: np.ndarray, lo: float, hi: float, m: np.ndarray, s: np.ndarray, prob) -> np.ndarray:
@@ -271,8 +278,9 @@ def _with_early(log_normal: np.ndarray, lo: float, hi: float, m: np.ndarray, s: 
     a two-sided bracket read as the ramp's first collapse, early with probability e, late
     (past a window the search found) with probability l; prob = (e, l)."""
     e, late = prob
+    early_mass, late_mass = _shifted_masses(lo, hi, m, s)
     with np.errstate(divide="ignore"):
-        shifted = np.log(e * _early_mass(lo, hi, m, s) + late * _late_mass(lo, hi, m, s))
+        shifted = np.log(e * early_mass + late * late_mass)
     return np.logaddexp(math.log1p(-e - late) + log_normal, shifted)
 
 
@@ -291,8 +299,8 @@ def _log_ramp_mixture(terms: list[tuple[float, float, float]], m: np.ndarray, s:
         tail = ndtr(-np.abs(a))  # the small side, exactly: S(a) where a > 0, Phi(a) elsewhere
         normal = np.where(a > 0, tail - above_hi, below_hi - tail)
         e, late = early_prob
-        normal = ((1.0 - e - late) * np.clip(normal, 0.0, None) + e * _early_mass(lo, hi, m, s)
-                  + late * _late_mass(lo, hi, m, s))
+        early_mass, late_mass = _shifted_masses(lo, hi, m, s)
+        normal = (1.0 - e - late) * np.clip(normal, 0.0, None) + e * early_mass + late * late_mass
         total += math.exp(log_w) * ((1.0 - OUTLIER_PROB) * normal + OUTLIER_PROB * _outlier_mass(lo, hi, m))
     return np.log(np.maximum(total, 1e-300))
 
