@@ -21,14 +21,14 @@ from __future__ import annotations
 import hashlib
 import json
 import math
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import numpy as np
 
 from voussoir_post.diagnosis.effects import Variant, arch_group
-from voussoir_post.diagnosis.simulator import Simulator
-from voussoir_post.readers.campaign import Specimen, Test
-from voussoir_post.runner import code_hash
+from voussoir_post.readers.campaign import Specimen
+from voussoir_post.runner import Runner, code_hash
 
 EARLY_QUANTILE = 0.95
 SCAN_LO, SCAN_HI, SCAN_STEP = 0.7, 1.35, 0.015
@@ -112,11 +112,23 @@ def early_fractions(spec: Specimen, frequencies: list[float], thresholds: list[f
         else:
             todo.append((f, ref, path))
     if todo:
-        sim = Simulator(settings, Path(work))
-        jobs = [(spec, Test(f"scan_{spec.specimen_id}_{f:g}_{i}", spec.specimen_id, "afd", "stand", f, float(ref * x),
-                            *cycles), Variant(), {})
-                for f, ref, _ in todo for i, x in enumerate(grid)]
-        fell = [r["collapsed"] for r in sim.run_tests(jobs)]
+        runner = Runner(settings.bin_dir, Path(work))
+        jobs = [(f"scan_{spec.specimen_id}_{f:g}_{i}", f, float(ref * x)) for f, ref, _ in todo for i, x in enumerate(grid)]
+
+        def fell_at(job):
+            name, f, amp = job
+            nml = runner.write({"arch": arch_group(spec, Variant()),
+                                "motion": {"waveform": "afd", "frequency_hz": f, "amplitude_m": amp,
+                                           "n_attack": cycles[0], "n_full": cycles[1], "n_decay": cycles[2],
+                                           "rest_s": 1.0},
+                                "solver": {"dt_s": settings.dt_s},
+                                "output": {"file": f"{name}.h5", "stop_after_collapse_s": 0.0}}, name)
+            out = runner.execute("voussoir-run", nml).stdout
+            (Path(work) / f"{name}.h5").unlink(missing_ok=True)
+            return "collapsed" in out
+
+        with ThreadPoolExecutor(max_workers=max(1, settings.n_ranks)) as pool:
+            fell = list(pool.map(fell_at, jobs))
         for k, (f, ref, path) in enumerate(todo):
             collapsed = [bool(c) for c in fell[k * grid.size:(k + 1) * grid.size]]
             d = {"specimen_id": spec.specimen_id, "frequency_hz": f, "reference_m": ref,
