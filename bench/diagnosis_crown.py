@@ -37,7 +37,7 @@ sys.path[:0] = [str(ROOT / "postproc"), str(ROOT / "postproc" / "tests")]
 from voussoir_post.diagnosis.effects import Variant  # noqa: E402
 from voussoir_post.diagnosis.settings import DiagnosisSettings  # noqa: E402
 from voussoir_post.diagnosis.simulator import Simulator  # noqa: E402
-from voussoir_post.readers.campaign import Specimen, Test  # noqa: E402
+from voussoir_post.readers.campaign import Test  # noqa: E402
 
 from independent_campaigns import ARCHES  # noqa: E402
 
@@ -84,8 +84,7 @@ def main() -> None:
           f"{'between':>8} {'within':>7} {'z':>5}   (crown dx, mm)")
     for arch in ARCHES:
         bank = json.loads((BANK / f"{arch.specimen_id}.json").read_text())
-        spec = Specimen(arch.specimen_id, arch.embrace_deg, arch.n_voussoirs, arch.r_ext_m, arch.thickness_m,
-                        arch.width_m, arch.density_kg_m3, arch.friction)
+        spec = arch.specimen()
         for k, freq in enumerate(bank["frequencies_hz"]):
             threshold, inset = matched_models(bank, k)
             models = {"ring": Variant("geometry", THICKNESS_FACTOR), "edges": Variant("contact_edges", round(inset, 6))}

@@ -26,7 +26,6 @@ sys.path[:0] = [str(ROOT / "postproc"), str(ROOT / "postproc" / "tests")]
 from voussoir_post.diagnosis.bank import build_bank  # noqa: E402
 from voussoir_post.diagnosis.rates import outcome  # noqa: E402
 from voussoir_post.diagnosis.settings import DiagnosisSettings  # noqa: E402
-from voussoir_post.readers.campaign import Specimen  # noqa: E402
 
 from independent_campaigns import ARCHES, Arch, Truth  # noqa: E402
 from replay_maps import draw_observations, load_map, outcome_map, save_map  # noqa: E402
@@ -47,8 +46,7 @@ def main() -> int:
     settings = DiagnosisSettings(bin_dir=args.bin_dir, n_ranks=2, log=print)
     print(f"{'design':16s} {'truth':16s} {'named':>6s} {'in set':>7s} {'P(truth)':>9s} {'wrong':>6s}")
     for design, arches in (("2 per arch", ARCHES), ("4 per arch", FOUR)):
-        specs = {a.specimen_id: Specimen(a.specimen_id, a.embrace_deg, a.n_voussoirs, a.r_ext_m, a.thickness_m,
-                                         a.width_m, a.density_kg_m3, a.friction) for a in arches}
+        specs = {a.specimen_id: a.specimen() for a in arches}
         bank = build_bank(specs, {a.specimen_id: list(a.frequencies_hz) for a in arches},
                           {k: (1, 1, 1) for k in specs}, settings, args.out / "bank", args.out / "work")
         for slug, truth in TRUTHS.items():

@@ -26,7 +26,6 @@ sys.path[:0] = [str(ROOT / "postproc"), str(ROOT / "postproc" / "tests")]
 from voussoir_post.diagnosis.bank import Bank, build_bank, load_banks  # noqa: E402
 from voussoir_post.diagnosis.rates import mcnemar  # noqa: E402
 from voussoir_post.diagnosis.settings import DiagnosisSettings  # noqa: E402
-from voussoir_post.readers.campaign import Specimen  # noqa: E402
 
 from independent_campaigns import ARCHES  # noqa: E402
 from lmgc90_campaigns import stored_truths  # noqa: E402
@@ -36,8 +35,7 @@ DATA = ROOT / "postproc" / "tests" / "data" / "replay"
 
 
 def arches_bank(bin_dir: Path, out: Path) -> Bank:
-    specs = {a.specimen_id: Specimen(a.specimen_id, a.embrace_deg, a.n_voussoirs, a.r_ext_m, a.thickness_m,
-                                     a.width_m, a.density_kg_m3, a.friction) for a in ARCHES}
+    specs = {a.specimen_id: a.specimen() for a in ARCHES}
     freqs = {a.specimen_id: list(a.frequencies_hz) for a in ARCHES}
     settings = DiagnosisSettings(bin_dir=bin_dir, n_ranks=2, log=print)
     return build_bank(specs, freqs, {k: (1, 1, 1) for k in specs}, settings, out, out / "work")

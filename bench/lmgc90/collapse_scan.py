@@ -26,13 +26,13 @@ import sys
 import time
 from pathlib import Path
 
-import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path[:0] = [str(HERE), str(HERE.parent)]
 
 import truths as T  # noqa: E402  (puts postproc/ and postproc/tests/ on the path)
 from independent_campaigns import ARCHES  # noqa: E402
+from collapse_windows import SCAN_HI, SCAN_LO, SCAN_STEP, scan_grid  # noqa: E402
 
 ARCH = {a.specimen_id: a for a in ARCHES}
 
@@ -42,15 +42,14 @@ def main() -> int:
     ap.add_argument("--lmgc90-build", required=True)
     ap.add_argument("--slugs", required=True, help="comma-separated stored truths (file stems)")
     ap.add_argument("--pairs", required=True, help="comma-separated specimen:frequency_hz:reference_mm")
-    ap.add_argument("--lo", type=float, default=0.7, help="first amplitude / reference")
-    ap.add_argument("--hi", type=float, default=1.35, help="last amplitude / reference")
-    ap.add_argument("--step", type=float, default=0.015, help="relative step of the grid")
+    ap.add_argument("--lo", type=float, default=SCAN_LO, help="first amplitude / reference")
+    ap.add_argument("--hi", type=float, default=SCAN_HI, help="last amplitude / reference")
+    ap.add_argument("--step", type=float, default=SCAN_STEP, help="relative step of the grid")
     ap.add_argument("--work", type=Path, default=Path("lmgc90_scan_work"))
     ap.add_argument("--out", type=Path, default=Path("collapse_scan.json"))
     args = ap.parse_args()
     pairs = [(s, float(f), float(r) * 1e-3) for s, f, r in (p.split(":") for p in args.pairs.split(","))]
-    n = int(np.floor(np.log(args.hi / args.lo) / np.log1p(args.step))) + 1
-    grid = args.lo * (1.0 + args.step) ** np.arange(n)
+    grid = scan_grid(args.lo, args.hi, args.step)
     rows = json.loads(args.out.read_text())["rows"] if args.out.exists() else []
     done = {(r["slug"], r["specimen_id"], r["frequency_hz"]) for r in rows}
     for slug in args.slugs.split(","):

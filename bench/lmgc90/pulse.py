@@ -36,7 +36,6 @@ from lmgc90_campaigns import truth_variant  # noqa: E402
 from independent_campaigns import ARCHES  # noqa: E402
 from voussoir_post.diagnosis import pulses  # noqa: E402
 from voussoir_post.diagnosis.effects import arch_group  # noqa: E402
-from voussoir_post.readers.campaign import Specimen  # noqa: E402
 from voussoir_post.runner import Runner  # noqa: E402
 
 
@@ -62,14 +61,11 @@ class VoussoirRuns:
 
     def collapses(self, group: dict, scale: float, polarity: int) -> bool:
         self.k += 1
-        nml = self.runner.write({
+        return self.runner.collapses({
             "arch": group,
             "motion": {"waveform": "accelerogram", "record_file": str(self.record), "record_scale": scale,
                        "record_polarity": polarity, "lead_s": T.LEAD_S, "rest_s": 0.0},
-            "solver": {"dt_s": DT}, "output": {"file": f"v{self.k}.h5"}}, f"v{self.k}")
-        out = self.runner.execute("voussoir-run", nml).stdout
-        (self.runner.work_dir / f"v{self.k}.h5").unlink(missing_ok=True)
-        return "collapsed" in out
+            "solver": {"dt_s": DT}}, f"v{self.k}")
 
 
 def threshold(collapses, lo: float = 1.0, hi: float = 40.0) -> float:
@@ -97,8 +93,7 @@ def main() -> int:
           f"{vel[-1]:.1e} m/s")
     voussoir = VoussoirRuns(args.work, record.resolve(), args.bin_dir)
     arch = ARCHES[0]
-    spec = Specimen(arch.specimen_id, arch.embrace_deg, arch.n_voussoirs, arch.r_ext_m, arch.thickness_m,
-                    arch.width_m, arch.density_kg_m3, arch.friction)
+    spec = arch.specimen()
     for slug in args.slugs.split(","):
         stored, truth = T.fixed_table_truth(slug, "pulse.py")
         par = truth["parameters"]

@@ -10,7 +10,7 @@ The rule, on a scan (a pair run at every amplitude of a geometric grid of step `
 the search is played at each of its SEARCH_STEP phases (up by SEARCH_STEP grid steps to the
 first collapse, bisection between it and the last stand), a ramp at each step of
 RAMP_STEPS (3, 4.5 and 6 %) and each phase; a ramp is early against a search when its first
-collapse lies below the search's threshold. `kernel_scans` runs the kernel's nominal arch
+collapse lies below the search's threshold. `early_fractions` runs the kernel's nominal arch
 over the same grid as bench/lmgc90/collapse_scan.py runs LMGC90's truths; `early_rule`
 sorts LMGC90's scans by the kernel's (rough: the kernel's scan of the pair has an early
 ramp) and gives each class's early rate and the depth of the early ones.
@@ -36,10 +36,11 @@ SEARCH_STEP = 4  #: the search's scan step in grid steps (x 1.06 on a 1.5 % grid
 RAMP_STEPS = (2, 3, 4)  #: a laboratory ramp's step in grid steps (3, 4.5 and 6 %)
 
 
-def scan_grid() -> np.ndarray:
-    """The scan's amplitudes over the reference threshold: SCAN_LO to SCAN_HI by SCAN_STEP."""
-    n = int(math.floor(math.log(SCAN_HI / SCAN_LO) / math.log1p(SCAN_STEP))) + 1
-    return SCAN_LO * (1.0 + SCAN_STEP) ** np.arange(n)
+def scan_grid(lo: float = SCAN_LO, hi: float = SCAN_HI, step: float = SCAN_STEP) -> np.ndarray:
+    """A scan's amplitudes over the reference threshold: from lo up to hi by the relative
+    step (the kernel's scans and bench/lmgc90/collapse_scan.py's)."""
+    n = int(math.floor(math.log(hi / lo) / math.log1p(step))) + 1
+    return lo * (1.0 + step) ** np.arange(n)
 
 
 def first_collapse(collapsed, phase: int, k: int) -> int | None:
@@ -99,12 +100,13 @@ def early_fractions(spec: Specimen, frequencies: list[float], thresholds: list[f
     executables: {frequency: {"collapsed": [...], "fraction": early_fraction}}."""
     code = code_hash(settings.bin_dir, ("voussoir-run",))
     grid = scan_grid()
+    group = arch_group(spec, Variant())
     out, todo = {}, []
     for f, ref in zip(frequencies, thresholds):
         if not (ref > 0 and math.isfinite(ref)):
             continue
         key = hashlib.sha256(json.dumps([code, settings.dt_s, round(f, 6), list(cycles), f"{ref:.9g}",
-                                         SCAN_LO, SCAN_HI, SCAN_STEP, arch_group(spec, Variant())],
+                                         SCAN_LO, SCAN_HI, SCAN_STEP, group],
                                         sort_keys=True).encode()).hexdigest()[:16]
         path = Path(cache) / f"{spec.specimen_id}-{f:g}Hz-scan-{key}.json"
         if path.exists():
@@ -117,15 +119,12 @@ def early_fractions(spec: Specimen, frequencies: list[float], thresholds: list[f
 
         def fell_at(job):
             name, f, amp = job
-            nml = runner.write({"arch": arch_group(spec, Variant()),
-                                "motion": {"waveform": "afd", "frequency_hz": f, "amplitude_m": amp,
-                                           "n_attack": cycles[0], "n_full": cycles[1], "n_decay": cycles[2],
-                                           "rest_s": 1.0},
-                                "solver": {"dt_s": settings.dt_s},
-                                "output": {"file": f"{name}.h5", "stop_after_collapse_s": 0.0}}, name)
-            out = runner.execute("voussoir-run", nml).stdout
-            (Path(work) / f"{name}.h5").unlink(missing_ok=True)
-            return "collapsed" in out
+            return runner.collapses({"arch": group,
+                                     "motion": {"waveform": "afd", "frequency_hz": f, "amplitude_m": amp,
+                                                "n_attack": cycles[0], "n_full": cycles[1], "n_decay": cycles[2],
+                                                "rest_s": 1.0},
+                                     "solver": {"dt_s": settings.dt_s},
+                                     "output": {"stop_after_collapse_s": 0.0}}, name)
 
         with ThreadPoolExecutor(max_workers=max(1, settings.n_ranks)) as pool:
             fell = list(pool.map(fell_at, jobs))

@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 
 from voussoir_post.analysis.afd import afd_command
+from voussoir_post.readers.campaign import Specimen
 from voussoir_post.runner import Runner
 
 G = 9.81
@@ -49,6 +50,11 @@ class Arch:
     width_m: float = 0.145
     density_kg_m3: float = 700.0
     friction: float = 0.5
+
+    def specimen(self) -> Specimen:
+        """The arch as a campaign's specimens.csv declares it (the nominal specimen)."""
+        return Specimen(self.specimen_id, self.embrace_deg, self.n_voussoirs, self.r_ext_m, self.thickness_m,
+                        self.width_m, self.density_kg_m3, self.friction)
 
 
 ARCHES = (Arch("W156", 156.0, 13, (1.25, 2.0)),

@@ -44,7 +44,6 @@ import numpy as np
 from independent_campaigns import (ARCHES, Arch, Truth, _motion, _onset_amplitude_m, ring_blocks, run_groups,
                                    write_polygon_file)
 from voussoir_post.diagnosis.observations import Observations, PairObservation
-from voussoir_post.readers.campaign import Specimen
 from voussoir_post.runner import Runner, find_bin_dir
 
 __all__ = ["MAP_DIR", "MAP_TRUTHS", "truth_model", "table_gain", "outcome_map", "first_collapse_ratio",
@@ -241,10 +240,7 @@ def ramp_observations(name: str, pairs: list[PairObservation], arches=ARCHES,
     transducer's calibration: 1.5 % for LMGC90's truths, 0 for the maps)."""
     by_id = {a.specimen_id: a for a in arches}
     ids = list(dict.fromkeys(p.specimen_id for p in pairs))
-    specimens = {sid: Specimen(sid, by_id[sid].embrace_deg, by_id[sid].n_voussoirs, by_id[sid].r_ext_m,
-                               by_id[sid].thickness_m, by_id[sid].width_m, by_id[sid].density_kg_m3,
-                               friction=by_id[sid].friction, restrained_springings="none", setup_certain=True)
-                 for sid in ids}
+    specimens = {sid: by_id[sid].specimen() for sid in ids}
     return Observations(name, specimens, pairs, {sid: (1, 1, 1) for sid in ids}, gain_source="records",
                         build_tolerance=build_tolerance)
 

@@ -15,7 +15,6 @@ from collapse_windows import early_depths, early_fractions, early_rule
 from conftest import bin_dir
 from independent_campaigns import ARCHES
 from voussoir_post.diagnosis.settings import DiagnosisSettings
-from voussoir_post.readers.campaign import Specimen
 
 SCANS = Path(__file__).parent / "data" / "lmgc90" / "collapse_scan.json"
 
@@ -51,8 +50,7 @@ def kernel_scans(tmp_path_factory):
     for a in ARCHES:
         if a.specimen_id not in refs:
             continue
-        spec = Specimen(a.specimen_id, a.embrace_deg, a.n_voussoirs, a.r_ext_m, a.thickness_m, a.width_m,
-                        a.density_kg_m3, a.friction)
+        spec = a.specimen()
         freqs = sorted(refs[a.specimen_id])
         found = early_fractions(spec, freqs, [refs[a.specimen_id][f] for f in freqs], (1, 1, 1), settings,
                                 work / "cache", work / "runs")

@@ -189,6 +189,14 @@ class Runner:
             h5.unlink()
         return result
 
+    def collapses(self, groups: Mapping[str, Mapping[str, object]], name: str) -> bool:
+        """voussoir-run on the groups, for its outcome only: whether the arch fell (its
+        summary line says "collapsed at"); the result file is removed."""
+        groups = self._with_output(groups, f"{name}.h5")
+        out = self.execute("voussoir-run", self.write(groups, name)).stdout
+        (self.work_dir / f"{name}.h5").unlink(missing_ok=True)
+        return "collapsed at" in out
+
     def run_sweep(self, groups: Mapping[str, Mapping[str, object]], name: str, reuse: bool = True
                   ) -> tuple[SweepResult, list[dict[str, str]]]:
         """voussoir-sweep of threshold or grid mode (`run_sweep_file`): the HDF5 result and
