@@ -48,7 +48,14 @@ def main() -> int:
     ap.add_argument("--work", type=Path, default=Path("lmgc90_scan_work"))
     ap.add_argument("--out", type=Path, default=Path("collapse_scan.json"))
     args = ap.parse_args()
-    pairs = [(s, float(f), float(r) * 1e-3) for s, f, r in (p.split(":") for p in args.pairs.split(","))]
+    try:
+        pairs = [(s, float(f), float(r) * 1e-3) for s, f, r in (p.split(":") for p in args.pairs.split(","))]
+    except ValueError:
+        ap.error(f"--pairs {args.pairs!r}: give specimen:frequency_hz:reference_mm, comma-separated "
+                 "(e.g. W156:3:14.45,W118:3:32.44)")
+    unknown = sorted({s for s, _, _ in pairs} - set(ARCH))
+    if unknown or not all(f > 0 and r > 0 for _, f, r in pairs):
+        ap.error(f"--pairs {args.pairs!r}: specimens are {', '.join(ARCH)}; frequency and reference must be > 0")
     grid = scan_grid(args.lo, args.hi, args.step)
     rows = json.loads(args.out.read_text())["rows"] if args.out.exists() else []
     done = {(r["slug"], r["specimen_id"], r["frequency_hz"]) for r in rows}
