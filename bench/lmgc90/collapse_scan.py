@@ -32,7 +32,7 @@ sys.path[:0] = [str(HERE), str(HERE.parent)]
 
 import truths as T  # noqa: E402  (puts postproc/ and postproc/tests/ on the path)
 from independent_campaigns import ARCHES  # noqa: E402
-from collapse_windows import SCAN_HI, SCAN_LO, SCAN_STEP, scan_grid  # noqa: E402
+from voussoir_post.diagnosis.early import SCAN_HI, SCAN_LO, SCAN_STEP, scan_grid  # noqa: E402
 
 ARCH = {a.specimen_id: a for a in ARCHES}
 

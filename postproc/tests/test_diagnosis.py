@@ -54,13 +54,19 @@ from independent_campaigns import Arch, Truth, write_campaign
 from replay_maps import draw_observations, load_map
 
 DATA = Path(__file__).parent / "data" / "replay"
+BANK_SCANS = DATA / "bank_scans.json"
 DRAWS = 20
 
 
 @lru_cache(maxsize=1)
 def stored_bank() -> Bank:
+    """The stored bank of the test arches, with the kernel's scan of each pair's nominal
+    arch that sorts its pairs for early collapses (early.early_fractions, stored beside it:
+    test_diagnosis_early.py checks its classes against the kernel's live scans)."""
     bank = load_banks(DATA / "bank")
     assert bank.specimens, f"no stored simulation bank in {DATA / 'bank'} (bench/diagnosis_replay_bank.sh makes it)"
+    for r in json.loads(BANK_SCANS.read_text())["rows"]:
+        bank.early[(r["specimen_id"], round(r["frequency_hz"], 6))] = r["fraction"]
     return bank
 
 

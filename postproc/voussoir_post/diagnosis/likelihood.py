@@ -50,6 +50,18 @@ Each pair's probability is mixed with an outlier model (probability 0.05: log t 
 within a factor 3 of mu), so one odd pair cannot carry a verdict (the adequacy check of
 posterior.py has no outliers: an odd pair makes it fail).
 
+A two-sided bracket is a ramp's first collapse, and rocking is not monotone in amplitude:
+a ramp finer than a threshold search can fall in a narrow window of collapse below the
+threshold the search finds (early), or step over a window the search found and fall a
+ramp step or more above it (late). LMGC90 in the laboratory loop: W156 at 3 Hz fell at 12.1
+and 12.2 mm, stood from 12.3 to 14.9 mm and fell from 15.0 mm. The bracket's term is
+(1 - e - l) P(low < t <= high) + e P(early) + l P(late), the early collapse at log t - u
+(u uniform on (0, EARLY_SPAN)), the late one at log t + v (v uniform on (0, LATE_SPAN)),
+each a closed form (_shift_mass); e and l by the pair's class, from the kernel's own fine
+scan of it (early.py, which states where the constants come from). Without it, one early
+collapse named a thinner ring on a truth of a stiff actuator at 0.91 (docs/diagnosis.md,
+"Early collapses").
+
 The table records add their own factor. Each test's measured gain reads the table
 through its transducer, whose calibration may be off by a common factor 1 + b,
 b ~ N(0, gain_sd^2) with gain_sd from table.csv (`displacement_gain_sd`, 1 % by
@@ -68,6 +80,7 @@ import numpy as np
 from scipy.special import log_ndtr, logsumexp, ndtr
 
 from .bank import FINE_DT, Bank
+from .early import EARLY_SPAN, LATE_SPAN, pair_early_prob
 from .models import GAIN_RANGE, SIM_FLOOR, ModelGrid, pair_tolerance, sim_spread
 from .observations import Observations, PairObservation
 
@@ -108,6 +121,8 @@ class Scales:
     gain_se: np.ndarray  #: its standard error
     sigma_tol: np.ndarray  #: what the specimens' build tolerance moves each pair by (relative)
     gain_bias_sd: float = GAIN_SD_DEFAULT  #: the transducer's calibration (relative)
+    #: per pair: P(its ramp's first collapse is early) (early.py, from the kernel's scan)
+    early_prob: np.ndarray | None = None
 
 
 def scales(bank: Bank, obs: Observations, pairs: list[PairObservation]) -> Scales:
@@ -128,7 +143,8 @@ def scales(bank: Bank, obs: Observations, pairs: list[PairObservation]) -> Scale
     gm = np.array([np.mean(p.gains) if p.gains else 1.0 for p in pairs])
     gse = np.array([sigma_gain / math.sqrt(len(p.gains)) if p.gains else 0.0 for p in pairs])
     sigma_tol = np.array([pair_tolerance(bank, obs, p) for p in pairs])
-    return Scales(sigma_sim, sigma_gain, fine, gm, gse, sigma_tol, obs.gain_bias_sd)
+    early = np.array([pair_early_prob(bank.early.get((p.specimen_id, round(p.frequency_hz, 6)))) for p in pairs])
+    return Scales(sigma_sim, sigma_gain, fine, gm, gse, sigma_tol, obs.gain_bias_sd, early)
 
 
 def _log_bracket(lo: np.ndarray, hi: np.ndarray, m: np.ndarray, s: np.ndarray) -> np.ndarray:
@@ -208,26 +224,100 @@ def _campaign_taus(grid: ModelGrid, sc: Scales) -> list[float]:
 
 def specimen_log_tables(pairs: list[PairObservation], terms_of: list[list[tuple[float, float, float]]],
                         shifted: list[np.ndarray], var: np.ndarray, outlier: list[np.ndarray | None],
-                        tau_pair: float) -> dict[str, np.ndarray]:
+                        tau_pair: float, early_prob) -> dict[str, np.ndarray]:
     """Per specimen, log p(its brackets | theta, total shift) on SHIFTS: (n_points, n_shifts),
     each pair's own discrepancy (scale tau_pair) in its spread. `terms_of` holds each pair's
     bracket_terms, `shifted` its predictions shifted over SHIFTS, `outlier` its outlier term
     where it has one bracket (None where it mixes several: _log_ramp_mixture); none of them
-    depends on tau_pair."""
+    depends on tau_pair; `early_prob` each pair's probability of an early first collapse."""
     s = np.sqrt(var + tau_pair ** 2)
     out = {}
     for j, (p, terms) in enumerate(zip(pairs, terms_of)):
         if len(terms) == 1:
             (lo, hi, _), = terms
             normal = _log_bracket(np.float64(lo), np.float64(hi), shifted[j], s[:, j, None])
+            if math.isfinite(lo):
+                normal = _with_early(normal, lo, hi, shifted[j], s[:, j, None], tuple(early_prob[j]))
             mixed = np.logaddexp(math.log1p(-OUTLIER_PROB) + normal, math.log(OUTLIER_PROB) + outlier[j])
         else:
-            mixed = _log_ramp_mixture(terms, shifted[j], s[:, j, None])
+            mixed = _log_ramp_mixture(terms, shifted[j], s[:, j, None], tuple(early_prob[j]))
         out[p.specimen_id] = out.get(p.specimen_id, 0.0) + mixed
     return out
 
 
-def _log_ramp_mixture(terms: list[tuple[float, float, float]], m: np.ndarray, s: np.ndarray) -> np.ndarray:
+#: G(z) = E[max(0, z + x)], x ~ N(0, 1) = z Phi(z) + phi(z), tabulated: G(z) = max(z, 0) +
+#: H(|z|) with H(u) = G(-u) = phi(u) - u Phi(-u), linear between nodes G_STEP apart on
+#: [0, G_REACH] (error below G_STEP^2 phi(0) / 8 = 5e-8) and 0 beyond (H(8) = 5e-17). A
+#: table, not ndtr and exp: the early and late stories take six G's a bracket, and the
+#: table's few arithmetic passes cost a sixth of theirs (bench/likelihood_cost.py).
+G_STEP, G_REACH = 1.0 / 1024.0, 8.0
+_H_NODES = np.arange(int(G_REACH / G_STEP) + 2) * G_STEP
+_H_TABLE = np.exp(-0.5 * _H_NODES ** 2) / math.sqrt(2.0 * math.pi) - _H_NODES * ndtr(-_H_NODES)
+_H_SLOPE = np.append(np.diff(_H_TABLE), 0.0)
+
+
+def ramp_g(z: np.ndarray) -> np.ndarray:
+    """G(z) = z Phi(z) + phi(z), from the table (see _H_TABLE)."""
+    t = np.minimum(np.abs(z), G_REACH) * (1.0 / G_STEP)
+    i = t.astype(np.intp)
+    return np.maximum(z, 0.0) + _H_TABLE[i] + _H_SLOPE[i] * (t - i)
+
+
+def _ramp_mean(c: float, m: np.ndarray, s: np.ndarray) -> np.ndarray:
+    """E[max(0, log t - c)], log t ~ N(m, s^2): s G((m - c) / s)."""
+    return s * ramp_g((m - c) / s)
+
+
+def _shifted_masses(lo: float, hi: float, m: np.ndarray, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(P(early in (lo, hi]), P(late in (lo, hi])): a first collapse at log t + u, u uniform
+    on (-EARLY_SPAN, 0) or on (0, LATE_SPAN), log t ~ N(m, s^2). The overlap of (lo, hi] with
+    (log t + a, log t + b) is a trapezoid in log t, R(x + b - lo) - R(x + b - hi) -
+    R(x + a - lo) + R(x + a - hi) with R the ramp max(0, .), whose normal mean is _ramp_mean;
+    the two stories share the ramps at lo and hi."""
+    at_lo, at_hi = _ramp_mean(lo, m, s), _ramp_mean(hi, m, s)
+    early = (at_lo - at_hi - _ramp_mean(lo + EARLY_SPAN, m, s) + _ramp_mean(hi + EARLY_SPAN, m, s)) / EARLY_SPAN
+    late = (_ramp_mean(lo - LATE_SPAN, m, s) - _ramp_mean(hi - LATE_SPAN, m, s) - at_lo + at_hi) / LATE_SPAN
+    return np.clip(early, 0.0, 1.0), np.clip(late, 0.0, 1.0)
+
+
+def _early_mass(lo, hi, m, s):
+    """P(an early first collapse, up to EARLY_SPAN below the threshold, falls in (lo, hi])."""
+    return _shifted_masses(lo, hi, m, s)[0]
+
+
+def _late_mass(lo, hi, m, s):
+    """P(a late first collapse, up to LATE_SPAN above the threshold, falls in (lo, hi])."""
+    return _shifted_masses(lo, hi, m, s)[1]
+
+
+def _end_ramps(c: float, m: np.ndarray, s: np.ndarray, prob) -> np.ndarray:
+    """One end's share of e P(early in (lo, hi]) + l P(late in (lo, hi]), over s (prob =
+    (e, l)): (e / EARLY_SPAN - l / LATE_SPAN) G(z_c) - e / EARLY_SPAN G(z_{c + EARLY_SPAN})
+    + l / LATE_SPAN G(z_{c - LATE_SPAN}), z_x = (m - x) / s; the term is the low end's share
+    less the high end's (_shifted_masses, collected by the G's)."""
+    e, late = prob
+    a, b = e / EARLY_SPAN, late / LATE_SPAN
+    z = (m - c) / s
+    return (a - b) * ramp_g(z) - a * ramp_g(z - EARLY_SPAN / s) + b * ramp_g(z + LATE_SPAN / s)
+
+
+def _shifted_term(lo: float, at_hi: np.ndarray, m: np.ndarray, s: np.ndarray, prob) -> np.ndarray:
+    """e P(early in (lo, hi]) + l P(late in (lo, hi]), given the high end's _end_ramps."""
+    return np.maximum(s * (_end_ramps(lo, m, s, prob) - at_hi), 0.0)
+
+
+def _with_early(log_normal: np.ndarray, lo: float, hi: float, m: np.ndarray, s: np.ndarray, prob) -> np.ndarray:
+    """log[(1 - e - l) P(lo < t <= hi) + e P(early in (lo, hi]) + l P(late in (lo, hi])]:
+    a two-sided bracket read as the ramp's first collapse, early with probability e, late
+    (past a window the search found) with probability l; prob = (e, l)."""
+    e, late = prob
+    with np.errstate(divide="ignore"):
+        shifted = np.log(_shifted_term(lo, _end_ramps(hi, m, s, prob), m, s, prob))
+    return np.logaddexp(math.log1p(-e - late) + log_normal, shifted)
+
+
+def _log_ramp_mixture(terms: list[tuple[float, float, float]], m: np.ndarray, s: np.ndarray, early_prob: float
+                      ) -> np.ndarray:
     """log of the weighted sum over bracket_terms (one upper end) of each bracket's
     probability mixed with the outlier model, in linear space (one normal tail a term:
     the likelihood's costliest piece when every pair of a campaign has collapse rows only);
@@ -236,12 +326,14 @@ def _log_ramp_mixture(terms: list[tuple[float, float, float]], m: np.ndarray, s:
     b = (hi - m) / s
     below_hi, above_hi = ndtr(b), ndtr(-b)
     total = np.zeros(np.broadcast_shapes(m.shape, s.shape))
+    e, late = early_prob
+    at_hi = _end_ramps(hi, m, s, early_prob)
     for lo, _, log_w in terms:
         a = (lo - m) / s
         tail = ndtr(-np.abs(a))  # the small side, exactly: S(a) where a > 0, Phi(a) elsewhere
         normal = np.where(a > 0, tail - above_hi, below_hi - tail)
-        total += math.exp(log_w) * ((1.0 - OUTLIER_PROB) * np.clip(normal, 0.0, None)
-                                    + OUTLIER_PROB * _outlier_mass(lo, hi, m))
+        normal = (1.0 - e - late) * np.clip(normal, 0.0, None) + _shifted_term(lo, at_hi, m, s, early_prob)
+        total += math.exp(log_w) * ((1.0 - OUTLIER_PROB) * normal + OUTLIER_PROB * _outlier_mass(lo, hi, m))
     return np.log(np.maximum(total, 1e-300))
 
 
@@ -263,10 +355,11 @@ def log_likelihood(grid: ModelGrid, obs: Observations, pairs: list[PairObservati
     terms_of = [bracket_terms(p, obs.stands_unreported) for p in pairs]
     outlier = [_log_outlier(t[0][0], t[0][1], shifted[j]) if len(t) == 1 else None for j, t in enumerate(terms_of)]
     var = pair_variance(grid, sc)
+    early = sc.early_prob if sc.early_prob is not None else np.array([pair_early_prob(None)] * len(pairs)).reshape(len(pairs), 2)
     per_level = []
     for tau_pair in TAU_PAIR:
         total = None
-        for sid, table in specimen_log_tables(pairs, terms_of, shifted, var, outlier, tau_pair).items():
+        for sid, table in specimen_log_tables(pairs, terms_of, shifted, var, outlier, tau_pair, early).items():
             taus = [round(math.sqrt(t0 * t0 + sc.d_fine.get(sid, 0.0) ** 2), 12) for t0 in TAU_SPECIMEN]
             # Every specimen level at once: (n, shifts x levels).
             conv = _log_matmul(table, np.hstack([_shift_weights(t) for t in taus]))

@@ -5,9 +5,10 @@ For an `inconclusive` verdict each candidate test is an afd ramp of one specimen
 frequency: every tested (specimen, frequency) pair again, and every new frequency of
 `DiagnosisSettings.probe_frequencies_hz` (at least 0.05 Hz from the tested ones) on each
 specimen with a certain set-up. Its outcome is the bracket the ramp would give: the
-threshold's bin on a ramp of step `RAMP_STEP` (relative). Each rival predicts that
-outcome as a normal law of the log threshold: at a tested pair its posterior predictive
-(the parameters' posterior spread, the simulator, emulator, table and discrepancies);
+threshold's bin on a ramp of step `RAMP_STEP` (relative), the ramp's first collapse
+early or late as the likelihood reads it (by the pair's class, early.py; a new frequency
+is of the unknown class). Each rival predicts the threshold as a normal law of its log:
+at a tested pair its posterior predictive (the parameters' posterior spread, the simulator, emulator, table and discrepancies);
 at a new frequency a mixture over DRAWS_AT_NEW draws of its parameters' posterior
 (`posterior_draws`: stratified, so a posterior that a new frequency would spread is
 spread there), each draw's threshold simulated, with the tested pairs' predictive spread
@@ -55,7 +56,8 @@ from ..readers.campaign import Test
 from .bank import onset_amplitudes, variant_key
 from .crown import DRAWS, FLOOR_M, R_MIN, T_DOF, amplitudes, bracket, crown_scale, pair_spread, variant_at
 from .effects import Variant, arch_group
-from .likelihood import predictive_sd
+from .early import EARLY_SPAN, LATE_SPAN, pair_early_prob
+from .likelihood import predictive_sd, ramp_g
 from .models import members
 from .observations import Observations
 from .posterior import Posterior, predicted_log
@@ -93,10 +95,27 @@ def posterior_draws(mp, k: int = DRAWS_AT_NEW) -> list[Variant]:
     return [variant_at(mp.grid, i) for i in draw_indices(mp, k)]
 
 
-def _outcome_laws(probabilities, means, sds, step, within):
+def _ramp_cdf(x: np.ndarray, mu: np.ndarray, sd: np.ndarray, early) -> np.ndarray:
+    """P(a ramp's first collapse <= x), log t ~ N(mu, sd^2), early with probability e (at
+    log t - u, u uniform on (0, EARLY_SPAN)) and late with l (at log t + v, v uniform on
+    (0, LATE_SPAN)), early = (e, l): the likelihood's story of a two-sided bracket
+    (likelihood.py), each part the mean of Phi over the shift, sd (G(z + span / sd) - G(z)) /
+    span with z the standardised x. Infinite x: 0 or 1."""
+    e, late = early
+    finite = np.isfinite(x)
+    z = (np.where(finite, x, 0.0) - mu) / sd
+    cdf = (1.0 - e - late) * ndtr(z)
+    if e > 0:
+        cdf = cdf + e * sd * (ramp_g(z + EARLY_SPAN / sd) - ramp_g(z)) / EARLY_SPAN
+    if late > 0:
+        cdf = cdf + late * sd * (ramp_g(z) - ramp_g(z - LATE_SPAN / sd)) / LATE_SPAN
+    return np.where(finite, np.clip(cdf, 0.0, 1.0), np.where(x > 0, 1.0, 0.0))
+
+
+def _outcome_laws(probabilities, means, sds, step, within, early=(0.0, 0.0)):
     """(p, py_m): the rivals' normalised probabilities and each rival's law of the ramp's
     bin (rival, bin), for expected_gain_bits and gain_spread_bits (which see); None when
-    the bracket `within` leaves no bin."""
+    the bracket `within` leaves no bin. `early`: the pair's (e, l) (_ramp_cdf)."""
     p = np.asarray(probabilities, float)
     p = p / p.sum()
     comps = [np.atleast_1d(np.asarray(m, float)) for m in means]
@@ -104,20 +123,21 @@ def _outcome_laws(probabilities, means, sds, step, within):
     owner = np.concatenate([np.full(c.size, i) for i, c in enumerate(comps)])
     mu, sd = np.concatenate(comps), np.concatenate(comp_sd)
     width = math.log1p(step)
-    lo = float(np.min(mu - 6 * sd))
+    lo = float(np.min(mu - 6 * sd)) - (EARLY_SPAN if early[0] > 0 else 0.0)
+    reach = float(np.max(mu + 6 * sd)) + (LATE_SPAN if early[1] > 0 else 0.0)
     if within is None:
-        edges = lo + width * np.arange(int(math.ceil((float(np.max(mu + 6 * sd)) - lo) / width)) + 2)
+        edges = lo + width * np.arange(int(math.ceil((reach - lo) / width)) + 2)
     else:
         lo = max(lo, within[0])
         hi = within[1]
         if not hi > lo:
             return None
         # Above a lower bound the bins run to where the rivals reach, then one more to infinity.
-        top = hi if math.isfinite(hi) else max(float(np.max(mu + 6 * sd)), lo + width)
+        top = hi if math.isfinite(hi) else max(reach, lo + width)
         edges = np.append(lo + width * np.arange(max(1, int(math.ceil((top - lo) / width - 1e-9)))), top)
         if not math.isfinite(hi):
             edges = np.append(edges, hi)
-    cdf = ndtr((edges[None, :] - mu[:, None]) / sd[:, None])
+    cdf = _ramp_cdf(edges[None, :], mu[:, None], sd[:, None], early)
     py_c = np.clip(np.diff(cdf, axis=1), 0.0, None)  # (component, bin)
     py_m = np.stack([py_c[owner == i].mean(axis=0) for i in range(len(comps))])  # (rival, bin)
     if within is not None:
@@ -148,14 +168,15 @@ def _information(laws) -> tuple[float, float]:
 
 
 def expected_gain_bits(probabilities: list[float], means: list, sds: list,
-                       step: float = RAMP_STEP, within: tuple[float, float] | None = None) -> float:
+                       step: float = RAMP_STEP, within: tuple[float, float] | None = None, early=(0.0, 0.0)) -> float:
     """I(M; Y) in bits for rivals of probabilities p_m predicting log threshold
     N(mean_m, sd_m^2), Y the bin of width log(1 + step) the threshold falls in. A rival's
     mean may be a list: an equal mixture of normals of those means (its sd one, or one
     per component). `within` (log low, log high): the threshold is already known to lie
     there (a tested pair's bracket; -inf for no stand below): each rival's law is
-    truncated to it, and the bins cover it only."""
-    return _information(_outcome_laws(probabilities, means, sds, step, within))[0]
+    truncated to it, and the bins cover it only. `early` (e, l): the ramp's first collapse
+    may be early or late (_ramp_cdf), as the likelihood reads the pair's bracket."""
+    return _information(_outcome_laws(probabilities, means, sds, step, within, early))[0]
 
 
 def gain_spread_bits(probabilities: list[float], means: list, sds: list,
@@ -169,7 +190,8 @@ def gain_spread_bits(probabilities: list[float], means: list, sds: list,
     return _information(_outcome_laws(probabilities, means, sds, step, within))[1]
 
 
-def gain_jackknife_se_bits(probabilities: list[float], means: list, sds: list, step: float = RAMP_STEP) -> float:
+def gain_jackknife_se_bits(probabilities: list[float], means: list, sds: list, step: float = RAMP_STEP,
+                           early=(0.0, 0.0)) -> float:
     """The Monte Carlo standard error of expected_gain_bits at a new frequency, whose rivals'
     laws are mixtures over k draws of their parameters, each a simulated threshold (with
     its own chaotic jitter): the jackknife over the draws, every rival's draw i left out
@@ -178,7 +200,8 @@ def gain_jackknife_se_bits(probabilities: list[float], means: list, sds: list, s
     k = min(c.size for c in comps)
     if k < 3:
         return 0.0
-    g = np.array([expected_gain_bits(probabilities, [np.delete(c, i) if c.size == k else c for c in comps], sds, step)
+    g = np.array([expected_gain_bits(probabilities, [np.delete(c, i) if c.size == k else c for c in comps], sds, step,
+                                     early=early)
                   for i in range(k)])
     return float(math.sqrt((k - 1) / k * np.sum((g - g.mean()) ** 2)))
 
@@ -210,9 +233,10 @@ def _new_frequencies(obs: Observations, sid: str, settings: DiagnosisSettings) -
 
 
 def _candidate(sid: str, f: float, new: bool, rivals: list[str], probs: list[float], means: list[float],
-               sds: list[float], table, bracket: tuple[float, float] | None = None) -> dict | None:
+               sds: list[float], table, bracket: tuple[float, float] | None = None, early=(0.0, 0.0)) -> dict | None:
     """One candidate test; `bracket` (low, high) [m] of a tested pair: the repeat's ramp
-    spans it (from its stand, or from the ramp's start without one, to its collapse)."""
+    spans it (from its stand, or from the ramp's start without one, to its collapse);
+    `early` the pair's (e, l) of early and late first collapses (likelihood.py)."""
     amps = ramp(means, sds)
     within = None
     if bracket is not None and not math.isfinite(bracket[1]):  # every test stood: ramp on from the stand
@@ -226,10 +250,10 @@ def _candidate(sid: str, f: float, new: bool, rivals: list[str], probs: list[flo
         amps = [_snap(start), _snap(high), _snap(RAMP_STEP * start)]
     if not within_limits(amps[1], f, table):
         return None
-    gain, spread = _information(_outcome_laws(probs, means, sds, RAMP_STEP, within))   # one law, both figures
+    gain, spread = _information(_outcome_laws(probs, means, sds, RAMP_STEP, within, early))   # one law, both figures
     return {"specimen_id": sid, "frequency_hz": f, "new": new, "kind": "afd_ramp", "amplitudes_m": amps,
             "expected_gain_bits": gain, "gain_spread_bits": spread,
-            "gain_se_bits": gain_jackknife_se_bits(probs, means, sds) if new else 0.0,
+            "gain_se_bits": gain_jackknife_se_bits(probs, means, sds, early=early) if new else 0.0,
             "predicted_m": {m: math.exp(float(np.mean(v))) for m, v in zip(rivals, means)},
             "spread": {m: float(np.sqrt(np.mean(np.square(s_)) + np.var(v))) for m, s_, v in zip(rivals, sds, means)}}
 
@@ -420,7 +444,8 @@ def next_test(post: Posterior, obs: Observations, rivals: list[str], settings: D
     draws = {m: posterior_draws(post.models[m]) for m in rivals}
     for j, p in enumerate(post.pairs):
         c = _candidate(p.specimen_id, p.frequency_hz, False, rivals, probs, [stats[m][0][j] for m in rivals],
-                       [stats[m][1][j] for m in rivals], table, (p.low_m, p.high_m))
+                       [stats[m][1][j] for m in rivals], table, (p.low_m, p.high_m),
+                       tuple(sc.early_prob[j]) if sc.early_prob is not None else pair_early_prob(None))
         if c:
             candidates.append(c)
     gain = float(np.mean(sc.gain_mean)) if obs.gain_source != "none" else 1.0
@@ -442,7 +467,7 @@ def next_test(post: Posterior, obs: Observations, rivals: list[str], settings: D
             if not all(math.isfinite(v) and v > 0 for vs in pred.values() for v in vs):
                 continue
             c = _candidate(sid, f, True, rivals, probs, [list(np.log(pred[m])) for m in rivals],
-                           [noise_sd[m] for m in rivals], table)
+                           [noise_sd[m] for m in rivals], table, early=pair_early_prob(None))
             if c:
                 candidates.append(c)
     candidates += _pulse_candidates(post, obs, rivals, probs, settings, work, table)

@@ -39,6 +39,7 @@ from .effects import BRACKET_GAPS_M, Variant, restraint_parts, restraint_value
 from .models import CANDIDATES, MODEL_IDS, members, model_prior
 from .observations import Observations, from_campaign
 from .next_test import draw_indices, next_test
+from .early import add_early_scans
 from .pulses import add_pulse_banks, unit_pulse
 from .posterior import (SENSITIVITY_FACTORS, Posterior, held_out, infer, prior_sensitivity, relative_errors,
                         weighted_summary)
@@ -153,6 +154,7 @@ def diagnose(campaign_dir: str | os.PathLike, out_dir: str | os.PathLike, settin
                       cache, out_dir / "work")
     log(f"[diagnose] simulation bank: {bank.searches} threshold searches made, {bank.reused} specimens cached "
         f"({cache})")
+    add_early_scans(bank, obs, settings, cache / "scans", out_dir / "work" / "scans")
     if obs.pulse_pairs:
         n = add_pulse_banks(bank, obs, settings, cache / "pulses", out_dir / "work" / "pulses")
         log(f"[diagnose] {len(obs.pulse_pairs)} pulse pairs (record tests one way and the other): {n} models' "

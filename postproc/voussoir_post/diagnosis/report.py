@@ -12,8 +12,9 @@ from ..plots.drawing import provenance
 from .crown import FLOOR_M, NODES, T_DOF
 from .decision import NAME_AT, Decision
 from .figures import probabilities_figure, table_figure, thresholds_figure
-from .likelihood import (GAIN_SCATTER_DEFAULT, ONE_SIDED_STEPS, OUTLIER_FACTOR, OUTLIER_PROB, TAU_CAMPAIGN, TAU_PAIR,
-                         TAU_SPECIMEN)
+from .early import EARLY_PROB_ROUGH, EARLY_PROB_SMOOTH, EARLY_PROB_UNKNOWN, EARLY_SPAN
+from .likelihood import (GAIN_SCATTER_DEFAULT, ONE_SIDED_STEPS, OUTLIER_FACTOR, OUTLIER_PROB,
+                         TAU_CAMPAIGN, TAU_PAIR, TAU_SPECIMEN)
 from .models import CANDIDATES, MATERIAL, MATERIAL_EFFECT, members, model_prior
 from .posterior import ADEQUATE_P, SENSITIVITY_FACTORS, Posterior
 from .pulses import RATIO_SCALE, grid_log_ratio
@@ -62,6 +63,16 @@ def prior_text(settings, friction: float | None = None) -> str:
             f"{MATERIAL['geometry']:g} of thickness factor from nominal, whose effect moves at least one tested "
             f"threshold by {_pct(MATERIAL_EFFECT)} and by twice the build tolerance's spread at that pair "
             "(smaller effects are the nominal model: these tests could not tell them from it).")
+
+
+def _early_text(obs, sc) -> str:
+    """Which pairs the likelihood gives an early first collapse, and how probable (early.py)."""
+    rough = [f"{p.specimen_id} {p.frequency_hz:g} Hz" for p, e in zip(obs.pairs, sc.early_prob)
+             if e[0] == EARLY_PROB_ROUGH]
+    return (f"probability {EARLY_PROB_ROUGH:g} where the kernel's own fine scan of the nominal arch falls early ("
+            + (", ".join(rough) if rough else "no pair of this campaign")
+            + f"), {EARLY_PROB_SMOOTH:g} where it does not, {EARLY_PROB_UNKNOWN:g} without a scan (rates from "
+            "another code's fine scans).")
 
 
 def _pct(x) -> str:
@@ -397,7 +408,10 @@ def write_report(out: Path, campaign, obs, post: Posterior, decision: Decision, 
              + ", ".join(f"{sid} {_pct(v)}" for sid, v in sc.d_fine.items())
              + "), a discrepancy shared by the whole campaign (what two codes, or a code and a laboratory, differ "
              f"by; integrated over {', '.join(_pct(t) for t in TAU_CAMPAIGN)}) and an outlier mixture "
-             f"(probability {OUTLIER_PROB:g}, within a factor {OUTLIER_FACTOR:g}). "
+             f"(probability {OUTLIER_PROB:g}, within a factor {OUTLIER_FACTOR:g}). A ramp's first collapse "
+             "may be an early one (rocking is not monotone in amplitude: a finer ramp can fall in a window "
+             f"below the threshold a search finds), anywhere up to {_pct(-math.expm1(-EARLY_SPAN))} below it: "
+             + _early_text(obs, sc) + " "
              + ("Each test's measured gain (records, or measured over commanded peak acceleration) is weighed "
                 "too: 1 if the table followed the command, read through a transducer whose calibration may be "
                 f"off by a common factor (standard deviation {_pct(sc.gain_bias_sd)}, "
