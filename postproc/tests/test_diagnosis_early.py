@@ -26,6 +26,7 @@ from voussoir_post.diagnosis.settings import DiagnosisSettings
 SCANS = Path(__file__).parent / "data" / "lmgc90" / "collapse_scan.json"
 BANK_SCANS = Path(__file__).parent / "data" / "replay" / "bank_scans.json"
 PROB = (E.EARLY_PROB_ROUGH, E.LATE_PROB_ROUGH)  #: a rough pair's
+CENTRE = L.SHIFTS.size // 2  #: the column of SHIFTS at no shift
 
 
 # ---------------------------------------------------------------- the bracket's term
@@ -57,28 +58,47 @@ def test_a_brackets_term_is_the_probability_its_story_gives(shift, s, width):
     hi = math.log(0.012)
     lo = hi - width
     m = hi + shift
-    shifted = [np.array([[m]])]
     term = L.bracket_terms(SimpleNamespace(low_m=math.exp(lo), high_m=math.exp(hi)), stands_unreported=False)
-    outlier = [L._log_outlier(term[0][0], term[0][1], shifted[0])]
-    table = L.specimen_log_tables([SimpleNamespace(specimen_id="A")], [term], shifted, np.array([[s * s]]),
+    outlier = [L._log_outlier(term[0][0], term[0][1], m + L.SHIFTS[None, :])]
+    table = L.specimen_log_tables([SimpleNamespace(specimen_id="A")], [term], np.array([[m]]), np.array([[s * s]]),
                                   outlier, tau_pair=0.0, early_prob=[PROB])["A"]
     p = _story_probability(lo, hi, m, s, rng)
     se = math.sqrt(p * (1 - p) / 400_000)
-    assert math.exp(float(table[0, 0])) == pytest.approx(p, abs=4 * se + 1e-6)
+    assert math.exp(float(table[0, CENTRE])) == pytest.approx(p, abs=4 * se + 1e-6)
     if 0.05 < shift < 0.15 and width < E.EARLY_SPAN:
         assert p > 0.3 * PROB[0] * width / E.EARLY_SPAN
     if -0.2 < shift < -0.1:
         assert p > 0.3 * PROB[1] * width / E.LATE_SPAN
 
 
+@pytest.mark.parametrize("shift,s", [(0.10, 0.03), (-0.05, 0.06), (0.30, 0.04)])
+def test_a_pair_of_collapse_rows_only_mixes_the_story_over_its_unreported_steps(shift, s):
+    """A pair whose stands went unreported: its term is the weighted sum, over the ramp
+    steps bracket_terms gives, of each bracket's story (drawn here) with the outlier's, within
+    4 standard errors of that Monte Carlo."""
+    rng = np.random.default_rng(8)
+    hi = math.log(0.012)
+    m = hi + shift
+    terms = L.bracket_terms(SimpleNamespace(low_m=0.0, high_m=math.exp(hi)), stands_unreported=True)
+    assert len(terms) > 1
+    table = L.specimen_log_tables([SimpleNamespace(specimen_id="A")], [terms], np.array([[m]]), np.array([[s * s]]),
+                                  [None], tau_pair=0.0, early_prob=[PROB])["A"]
+    ps = [_story_probability(lo, hi, m, s, rng) for lo, _, _ in terms]
+    want = sum(math.exp(w) * p for (_, _, w), p in zip(terms, ps))
+    se = math.sqrt(sum(math.exp(2 * w) * p * (1 - p) / 400_000 for (_, _, w), p in zip(terms, ps)))
+    assert math.exp(float(table[0, CENTRE])) == pytest.approx(want, abs=4 * se + 1e-6)
+
+
 def test_shifted_masses_over_a_ramps_steps_add_to_one():
     """An early (or late) collapse falls in some step of the ramp: the masses of steps that
-    tile the line add to 1, wherever the threshold lies."""
-    edges = np.log(0.012) + 0.03 * np.arange(-40, 41)
+    tile the line add to 1, wherever the threshold lies (at every column of the shifts)."""
+    edges = np.log(0.012) + 0.03 * np.arange(-70, 71)
     for m, s in [(np.log(0.012), 0.02), (np.log(0.013), 0.08)]:
-        for mass in (L._early_mass, L._late_mass):
-            total = sum(float(mass(a, b, np.array(m), np.array(s))) for a, b in zip(edges[:-1], edges[1:]))
-            assert total == pytest.approx(1.0, abs=1e-9)
+        base, sd = np.array([[m]]), np.array([[s]])
+        for prob in ((1.0, 0.0), (0.0, 1.0)):
+            total = sum(L._shifted_term(a, L._end_ramps(b, base, sd, prob), base, sd, prob)
+                        for a, b in zip(edges[:-1], edges[1:]))
+            assert np.allclose(total, 1.0, atol=1e-9)
 
 
 def test_the_advices_outcome_law_is_the_storys(rng=np.random.default_rng(11)):
@@ -177,7 +197,7 @@ def test_the_kernel_sees_where_lmgc90s_ramps_fall_early_and_the_constants_are_th
     eight truths (effects and faults of their own) fall early ten times as often as where it
     has none, on at least 60 scans that bracket, with windows in at least 10: a kernel that
     saw no windows, or saw them at other pairs, fails. The constants of early.py are the
-    rule's, rounded to 0.01."""
+    rule's, the rates rounded to 0.01 and the spans up to a step of the likelihood's shifts."""
     scan = json.loads(SCANS.read_text())
     assert scan["made_by"].startswith("bench/lmgc90/collapse_scan.py")
     rule = early_rule(scan, {k: d["fraction"] for k, d in kernel_scans.items()})
@@ -189,4 +209,6 @@ def test_the_kernel_sees_where_lmgc90s_ramps_fall_early_and_the_constants_are_th
         r2(rule["early"][c]) for c in ("rough", "smooth", "unknown"))
     assert (E.LATE_PROB_ROUGH, E.LATE_PROB_SMOOTH, E.LATE_PROB_UNKNOWN) == tuple(
         r2(rule["late"][c]) for c in ("rough", "smooth", "unknown"))
-    assert (E.EARLY_SPAN, E.LATE_SPAN) == (r2(rule["early_span"]), r2(rule["late_span"]))
+    up = lambda x: round(math.ceil(x / E.SPAN_STEP - 1e-9) * E.SPAN_STEP, 9)  # noqa: E731
+    assert (E.EARLY_SPAN, E.LATE_SPAN) == (up(rule["early_span"]), up(rule["late_span"]))
+    assert E.SPAN_STEP == pytest.approx(L.SHIFTS[1] - L.SHIFTS[0], abs=1e-12)

@@ -22,7 +22,9 @@ class (EARLY_PROB_UNKNOWN, the pooled rate, for a bank without scans), anywhere 
 EARLY_SPAN (log) below the threshold; late with LATE_PROB_*, up to LATE_SPAN above. The
 constants are the rule of `ramp_depths` on LMGC90's scans (bench/lmgc90/collapse_scan.py),
 sorted by the kernel's: the rates of each class (each scan weighed alike) and the 95th
-percentiles of the depths and heights (tests/collapse_windows.py works them out again).
+percentiles of the depths and heights, rounded up to a step of the likelihood's shift grid
+(0.015: the likelihood reads a story's shift as whole columns of that grid;
+tests/collapse_windows.py works them out again).
 
 The rule, on a scan of grid step `step`: the search is played at each of its SEARCH_STEP
 phases (up by SEARCH_STEP grid steps to the first collapse, bisection between it and the
@@ -51,7 +53,8 @@ __all__ = ["EARLY_PROB_ROUGH", "EARLY_PROB_SMOOTH", "EARLY_PROB_UNKNOWN", "EARLY
 
 #: P(a ramp's first collapse is early) at a pair whose kernel scan has early ramps, at one
 #: whose scan has none, and without a scan (the pooled rate); EARLY_SPAN: how far below the
-#: search's threshold an early collapse may lie (log), the 95th percentile of LMGC90's.
+#: search's threshold an early collapse may lie (log), the 95th percentile of LMGC90's
+#: (0.179) rounded up to a multiple of SPAN_STEP.
 EARLY_PROB_ROUGH = 0.15
 EARLY_PROB_SMOOTH = 0.01
 EARLY_PROB_UNKNOWN = 0.07
@@ -61,7 +64,9 @@ EARLY_SPAN = 0.18
 LATE_PROB_ROUGH = 0.07
 LATE_PROB_SMOOTH = 0.01
 LATE_PROB_UNKNOWN = 0.03
-LATE_SPAN = 0.22
+LATE_SPAN = 0.225  #: the 95th percentile (0.222) rounded up to a multiple of SPAN_STEP
+#: The step the spans are rounded up to: that of likelihood.SHIFTS.
+SPAN_STEP = 0.015
 SCAN_LO, SCAN_HI, SCAN_STEP = 0.7, 1.35, 0.015
 SEARCH_STEP = 4  #: the search's scan step in grid steps (x 1.06 on a 1.5 % grid)
 RAMP_STEPS = (2, 3, 4)  #: a laboratory ramp's step in grid steps (3, 4.5 and 6 %)

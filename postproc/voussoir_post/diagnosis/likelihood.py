@@ -223,24 +223,25 @@ def _campaign_taus(grid: ModelGrid, sc: Scales) -> list[float]:
 
 
 def specimen_log_tables(pairs: list[PairObservation], terms_of: list[list[tuple[float, float, float]]],
-                        shifted: list[np.ndarray], var: np.ndarray, outlier: list[np.ndarray | None],
+                        mu: np.ndarray, var: np.ndarray, outlier: list[np.ndarray | None],
                         tau_pair: float, early_prob) -> dict[str, np.ndarray]:
     """Per specimen, log p(its brackets | theta, total shift) on SHIFTS: (n_points, n_shifts),
     each pair's own discrepancy (scale tau_pair) in its spread. `terms_of` holds each pair's
-    bracket_terms, `shifted` its predictions shifted over SHIFTS, `outlier` its outlier term
-    where it has one bracket (None where it mixes several: _log_ramp_mixture); none of them
-    depends on tau_pair; `early_prob` each pair's probability of an early first collapse."""
+    bracket_terms, `mu` (n_points, n_pairs) its predictions (shifted over SHIFTS here),
+    `outlier` its outlier term where it has one bracket (None where it mixes several:
+    _log_ramp_mixture); none of them depends on tau_pair; `early_prob` each pair's
+    probabilities (e, l) of an early and a late first collapse."""
     s = np.sqrt(var + tau_pair ** 2)
     out = {}
     for j, (p, terms) in enumerate(zip(pairs, terms_of)):
         if len(terms) == 1:
             (lo, hi, _), = terms
-            normal = _log_bracket(np.float64(lo), np.float64(hi), shifted[j], s[:, j, None])
+            normal = _log_bracket(np.float64(lo), np.float64(hi), mu[:, j, None] + SHIFTS[None, :], s[:, j, None])
             if math.isfinite(lo):
-                normal = _with_early(normal, lo, hi, shifted[j], s[:, j, None], tuple(early_prob[j]))
+                normal = _with_early(normal, lo, hi, mu[:, j, None], s[:, j, None], tuple(early_prob[j]))
             mixed = np.logaddexp(math.log1p(-OUTLIER_PROB) + normal, math.log(OUTLIER_PROB) + outlier[j])
         else:
-            mixed = _log_ramp_mixture(terms, shifted[j], s[:, j, None], tuple(early_prob[j]))
+            mixed = _log_ramp_mixture(terms, mu[:, j, None], s[:, j, None], tuple(early_prob[j]))
         out[p.specimen_id] = out.get(p.specimen_id, 0.0) + mixed
     return out
 
@@ -263,76 +264,73 @@ def ramp_g(z: np.ndarray) -> np.ndarray:
     return np.maximum(z, 0.0) + _H_TABLE[i] + _H_SLOPE[i] * (t - i)
 
 
-def _ramp_mean(c: float, m: np.ndarray, s: np.ndarray) -> np.ndarray:
-    """E[max(0, log t - c)], log t ~ N(m, s^2): s G((m - c) / s)."""
-    return s * ramp_g((m - c) / s)
+def _span_columns(span: float) -> int:
+    """A story's span in columns of SHIFTS (early.py states the spans on its step)."""
+    k = round(span / SHIFT_STEP)
+    if abs(k * SHIFT_STEP - span) > 1e-12:
+        raise ValueError(f"span {span} is not a multiple of the shift step {SHIFT_STEP}")
+    return k
 
 
-def _shifted_masses(lo: float, hi: float, m: np.ndarray, s: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """(P(early in (lo, hi]), P(late in (lo, hi])): a first collapse at log t + u, u uniform
-    on (-EARLY_SPAN, 0) or on (0, LATE_SPAN), log t ~ N(m, s^2). The overlap of (lo, hi] with
-    (log t + a, log t + b) is a trapezoid in log t, R(x + b - lo) - R(x + b - hi) -
-    R(x + a - lo) + R(x + a - hi) with R the ramp max(0, .), whose normal mean is _ramp_mean;
-    the two stories share the ramps at lo and hi."""
-    at_lo, at_hi = _ramp_mean(lo, m, s), _ramp_mean(hi, m, s)
-    early = (at_lo - at_hi - _ramp_mean(lo + EARLY_SPAN, m, s) + _ramp_mean(hi + EARLY_SPAN, m, s)) / EARLY_SPAN
-    late = (_ramp_mean(lo - LATE_SPAN, m, s) - _ramp_mean(hi - LATE_SPAN, m, s) - at_lo + at_hi) / LATE_SPAN
-    return np.clip(early, 0.0, 1.0), np.clip(late, 0.0, 1.0)
+SHIFT_STEP = float(SHIFTS[1] - SHIFTS[0])
+_EARLY_COLUMNS, _LATE_COLUMNS = _span_columns(EARLY_SPAN), _span_columns(LATE_SPAN)
+#: SHIFTS widened by the early span below and the late span above: G at a threshold
+#: EARLY_SPAN lower is G at the column that many steps to the left, and so on.
+_SHIFTS_WIDE = SHIFTS[0] + SHIFT_STEP * np.arange(-_EARLY_COLUMNS, SHIFTS.size + _LATE_COLUMNS)
 
 
-def _early_mass(lo, hi, m, s):
-    """P(an early first collapse, up to EARLY_SPAN below the threshold, falls in (lo, hi])."""
-    return _shifted_masses(lo, hi, m, s)[0]
-
-
-def _late_mass(lo, hi, m, s):
-    """P(a late first collapse, up to LATE_SPAN above the threshold, falls in (lo, hi])."""
-    return _shifted_masses(lo, hi, m, s)[1]
-
-
-def _end_ramps(c: float, m: np.ndarray, s: np.ndarray, prob) -> np.ndarray:
-    """One end's share of e P(early in (lo, hi]) + l P(late in (lo, hi]), over s (prob =
-    (e, l)): (e / EARLY_SPAN - l / LATE_SPAN) G(z_c) - e / EARLY_SPAN G(z_{c + EARLY_SPAN})
-    + l / LATE_SPAN G(z_{c - LATE_SPAN}), z_x = (m - x) / s; the term is the low end's share
-    less the high end's (_shifted_masses, collected by the G's)."""
+def _end_ramps(c: float, base: np.ndarray, s: np.ndarray, prob) -> np.ndarray:
+    """One end's share, over s, of e P(early in (lo, hi]) + l P(late in (lo, hi]) at the
+    predictions base + SHIFTS ((n, 1) each; prob = (e, l)):
+    (e / EARLY_SPAN - l / LATE_SPAN) G(z_c) - e / EARLY_SPAN G(z_{c + EARLY_SPAN})
+    + l / LATE_SPAN G(z_{c - LATE_SPAN}), z_x = (m - x) / s. The term is the low end's share
+    less the high end's: a first collapse at log t + u, u uniform on (a, b), falls in
+    (lo, hi] when log t lies in (lo - u, hi - u], a trapezoid in log t, four ramps
+    max(0, log t - x) of normal mean s G(z_x). The three G's of an end are one row of G
+    over _SHIFTS_WIDE, read at three offsets."""
     e, late = prob
     a, b = e / EARLY_SPAN, late / LATE_SPAN
-    z = (m - c) / s
-    return (a - b) * ramp_g(z) - a * ramp_g(z - EARLY_SPAN / s) + b * ramp_g(z + LATE_SPAN / s)
+    g = ramp_g((base + (_SHIFTS_WIDE - c)) / s)
+    n = SHIFTS.size
+    at, below, above = (g[:, _EARLY_COLUMNS:_EARLY_COLUMNS + n], g[:, :n],
+                        g[:, _EARLY_COLUMNS + _LATE_COLUMNS:_EARLY_COLUMNS + _LATE_COLUMNS + n])
+    return (a - b) * at - a * below + b * above
 
 
-def _shifted_term(lo: float, at_hi: np.ndarray, m: np.ndarray, s: np.ndarray, prob) -> np.ndarray:
+def _shifted_term(lo: float, at_hi: np.ndarray, base: np.ndarray, s: np.ndarray, prob) -> np.ndarray:
     """e P(early in (lo, hi]) + l P(late in (lo, hi]), given the high end's _end_ramps."""
-    return np.maximum(s * (_end_ramps(lo, m, s, prob) - at_hi), 0.0)
+    return np.maximum(s * (_end_ramps(lo, base, s, prob) - at_hi), 0.0)
 
 
-def _with_early(log_normal: np.ndarray, lo: float, hi: float, m: np.ndarray, s: np.ndarray, prob) -> np.ndarray:
+def _with_early(log_normal: np.ndarray, lo: float, hi: float, base: np.ndarray, s: np.ndarray, prob) -> np.ndarray:
     """log[(1 - e - l) P(lo < t <= hi) + e P(early in (lo, hi]) + l P(late in (lo, hi])]:
     a two-sided bracket read as the ramp's first collapse, early with probability e, late
     (past a window the search found) with probability l; prob = (e, l)."""
     e, late = prob
     with np.errstate(divide="ignore"):
-        shifted = np.log(_shifted_term(lo, _end_ramps(hi, m, s, prob), m, s, prob))
+        shifted = np.log(_shifted_term(lo, _end_ramps(hi, base, s, prob), base, s, prob))
     return np.logaddexp(math.log1p(-e - late) + log_normal, shifted)
 
 
-def _log_ramp_mixture(terms: list[tuple[float, float, float]], m: np.ndarray, s: np.ndarray, early_prob: float
+def _log_ramp_mixture(terms: list[tuple[float, float, float]], base: np.ndarray, s: np.ndarray, early_prob
                       ) -> np.ndarray:
     """log of the weighted sum over bracket_terms (one upper end) of each bracket's
     probability mixed with the outlier model, in linear space (one normal tail a term:
     the likelihood's costliest piece when every pair of a campaign has collapse rows only);
-    floored at 1e-300, beyond which no grid point's probability matters."""
+    floored at 1e-300, beyond which no grid point's probability matters. `base` (n, 1): the
+    predictions, shifted over SHIFTS here."""
     hi = terms[0][1]
+    m = base + SHIFTS[None, :]
     b = (hi - m) / s
     below_hi, above_hi = ndtr(b), ndtr(-b)
     total = np.zeros(np.broadcast_shapes(m.shape, s.shape))
     e, late = early_prob
-    at_hi = _end_ramps(hi, m, s, early_prob)
+    at_hi = _end_ramps(hi, base, s, early_prob)
     for lo, _, log_w in terms:
         a = (lo - m) / s
         tail = ndtr(-np.abs(a))  # the small side, exactly: S(a) where a > 0, Phi(a) elsewhere
         normal = np.where(a > 0, tail - above_hi, below_hi - tail)
-        normal = (1.0 - e - late) * np.clip(normal, 0.0, None) + _shifted_term(lo, at_hi, m, s, early_prob)
+        normal = (1.0 - e - late) * np.clip(normal, 0.0, None) + _shifted_term(lo, at_hi, base, s, early_prob)
         total += math.exp(log_w) * ((1.0 - OUTLIER_PROB) * normal + OUTLIER_PROB * _outlier_mass(lo, hi, m))
     return np.log(np.maximum(total, 1e-300))
 
@@ -359,7 +357,7 @@ def log_likelihood(grid: ModelGrid, obs: Observations, pairs: list[PairObservati
     per_level = []
     for tau_pair in TAU_PAIR:
         total = None
-        for sid, table in specimen_log_tables(pairs, terms_of, shifted, var, outlier, tau_pair, early).items():
+        for sid, table in specimen_log_tables(pairs, terms_of, mu, var, outlier, tau_pair, early).items():
             taus = [round(math.sqrt(t0 * t0 + sc.d_fine.get(sid, 0.0) ** 2), 12) for t0 in TAU_SPECIMEN]
             # Every specimen level at once: (n, shifts x levels).
             conv = _log_matmul(table, np.hstack([_shift_weights(t) for t in taus]))
