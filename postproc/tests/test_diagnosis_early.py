@@ -212,3 +212,36 @@ def test_the_kernel_sees_where_lmgc90s_ramps_fall_early_and_the_constants_are_th
     up = lambda x: round(math.ceil(x / E.SPAN_STEP - 1e-9) * E.SPAN_STEP, 9)  # noqa: E731
     assert (E.EARLY_SPAN, E.LATE_SPAN) == (up(rule["early_span"]), up(rule["late_span"]))
     assert E.SPAN_STEP == pytest.approx(L.SHIFTS[1] - L.SHIFTS[0], abs=1e-12)
+
+
+def test_the_advice_reads_each_tested_pairs_ramp_by_its_class(monkeypatch, tmp_path):
+    """A replayed campaign on the stored bank (its kernel scans read as the replay tests read
+    them): next_test scores the repeat of each tested pair with that pair's class, the rough
+    rates where the stored scan of the pair has early ramps and the smooth ones where not;
+    an advice blind to the class scores every pair alike."""
+    from replay_maps import draw_observations, load_map
+    from test_diagnosis import DATA, stored_bank
+    from voussoir_post.diagnosis.posterior import infer
+    from voussoir_post.readers.campaign import TableLimits
+
+    bank = stored_bank()
+    rough = {k for k, x in bank.early.items() if x}
+    assert rough and len(rough) < len(bank.early), "the stored scans should hold rough and smooth pairs"
+    obs = draw_observations(load_map(DATA / "maps" / "chamfer_3mm.json"), np.random.default_rng(5))
+    post = infer(bank, obs)
+    seen = {}
+    laws = N._outcome_laws
+
+    def spy(probabilities, means, sds, step, within, early=(0.0, 0.0)):
+        if within is not None:
+            seen[round(math.exp(within[1]), 9)] = tuple(early)
+        return laws(probabilities, means, sds, step, within, early)
+
+    monkeypatch.setattr(N, "_outcome_laws", spy)
+    settings = DiagnosisSettings(bin_dir=bin_dir(), n_ranks=1, log=lambda m: None, probe_frequencies_hz=())
+    rivals = sorted(post.probabilities, key=lambda m: -post.probabilities[m])[:3]
+    N.next_test(post, obs, rivals, settings, tmp_path, TableLimits(), holds=False)
+    want = {round(p.high_m, 9): (E.EARLY_PROB_ROUGH, E.LATE_PROB_ROUGH)
+            if (p.specimen_id, round(p.frequency_hz, 6)) in rough else (E.EARLY_PROB_SMOOTH, E.LATE_PROB_SMOOTH)
+            for p in post.pairs if math.isfinite(p.high_m)}
+    assert want and seen == want
