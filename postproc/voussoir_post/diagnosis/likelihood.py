@@ -57,7 +57,7 @@ ramp step or more above it (late). LMGC90 in the laboratory loop: W156 at 3 Hz f
 and 12.2 mm, stood from 12.3 to 14.9 mm and fell from 15.0 mm. The bracket's term is
 (1 - e - l) P(low < t <= high) + e P(early) + l P(late), the early collapse at log t - u
 (u uniform on (0, EARLY_SPAN)), the late one at log t + v (v uniform on (0, LATE_SPAN)),
-each a closed form (_shift_mass); e and l by the pair's class, from the kernel's own fine
+each a closed form (_end_ramps); e and l by the pair's class, from the kernel's own fine
 scan of it (early.py, which states where the constants come from). Without it, one early
 collapse named a thinner ring on a truth of a stiff actuator at 0.91 (docs/diagnosis.md,
 "Early collapses").
@@ -120,9 +120,10 @@ class Scales:
     gain_mean: np.ndarray  #: measured gain of each pair (1 without records)
     gain_se: np.ndarray  #: its standard error
     sigma_tol: np.ndarray  #: what the specimens' build tolerance moves each pair by (relative)
+    #: (n_pairs, 2): each pair's P(its ramp's first collapse is early), P(late) (early.py,
+    #: by the class of the kernel's scan of it)
+    early_prob: np.ndarray
     gain_bias_sd: float = GAIN_SD_DEFAULT  #: the transducer's calibration (relative)
-    #: per pair: P(its ramp's first collapse is early) (early.py, from the kernel's scan)
-    early_prob: np.ndarray | None = None
 
 
 def scales(bank: Bank, obs: Observations, pairs: list[PairObservation]) -> Scales:
@@ -143,8 +144,9 @@ def scales(bank: Bank, obs: Observations, pairs: list[PairObservation]) -> Scale
     gm = np.array([np.mean(p.gains) if p.gains else 1.0 for p in pairs])
     gse = np.array([sigma_gain / math.sqrt(len(p.gains)) if p.gains else 0.0 for p in pairs])
     sigma_tol = np.array([pair_tolerance(bank, obs, p) for p in pairs])
-    early = np.array([pair_early_prob(bank.early.get((p.specimen_id, round(p.frequency_hz, 6)))) for p in pairs])
-    return Scales(sigma_sim, sigma_gain, fine, gm, gse, sigma_tol, obs.gain_bias_sd, early)
+    early = np.array([pair_early_prob(bank.early.get((p.specimen_id, round(p.frequency_hz, 6)))) for p in pairs],
+                     dtype=float).reshape(len(pairs), 2)
+    return Scales(sigma_sim, sigma_gain, fine, gm, gse, sigma_tol, early, obs.gain_bias_sd)
 
 
 def _log_bracket(lo: np.ndarray, hi: np.ndarray, m: np.ndarray, s: np.ndarray) -> np.ndarray:
@@ -249,8 +251,9 @@ def specimen_log_tables(pairs: list[PairObservation], terms_of: list[list[tuple[
 #: G(z) = E[max(0, z + x)], x ~ N(0, 1) = z Phi(z) + phi(z), tabulated: G(z) = max(z, 0) +
 #: H(|z|) with H(u) = G(-u) = phi(u) - u Phi(-u), linear between nodes G_STEP apart on
 #: [0, G_REACH] (error below G_STEP^2 phi(0) / 8 = 5e-8) and 0 beyond (H(8) = 5e-17). A
-#: table, not ndtr and exp: the early and late stories take six G's a bracket, and the
-#: table's few arithmetic passes cost a sixth of theirs (bench/likelihood_cost.py).
+#: table, not ndtr and exp: the early and late stories take a row of G at each end of every
+#: bracket, and the table's few arithmetic passes cost a quarter of theirs (5 ns an element
+#: against 21; bench/likelihood_cost.py).
 G_STEP, G_REACH = 1.0 / 1024.0, 8.0
 _H_NODES = np.arange(int(G_REACH / G_STEP) + 2) * G_STEP
 _H_TABLE = np.exp(-0.5 * _H_NODES ** 2) / math.sqrt(2.0 * math.pi) - _H_NODES * ndtr(-_H_NODES)
@@ -353,11 +356,10 @@ def log_likelihood(grid: ModelGrid, obs: Observations, pairs: list[PairObservati
     terms_of = [bracket_terms(p, obs.stands_unreported) for p in pairs]
     outlier = [_log_outlier(t[0][0], t[0][1], shifted[j]) if len(t) == 1 else None for j, t in enumerate(terms_of)]
     var = pair_variance(grid, sc)
-    early = sc.early_prob if sc.early_prob is not None else np.array([pair_early_prob(None)] * len(pairs)).reshape(len(pairs), 2)
     per_level = []
     for tau_pair in TAU_PAIR:
         total = None
-        for sid, table in specimen_log_tables(pairs, terms_of, mu, var, outlier, tau_pair, early).items():
+        for sid, table in specimen_log_tables(pairs, terms_of, mu, var, outlier, tau_pair, sc.early_prob).items():
             taus = [round(math.sqrt(t0 * t0 + sc.d_fine.get(sid, 0.0) ** 2), 12) for t0 in TAU_SPECIMEN]
             # Every specimen level at once: (n, shifts x levels).
             conv = _log_matmul(table, np.hstack([_shift_weights(t) for t in taus]))

@@ -445,7 +445,7 @@ def next_test(post: Posterior, obs: Observations, rivals: list[str], settings: D
     for j, p in enumerate(post.pairs):
         c = _candidate(p.specimen_id, p.frequency_hz, False, rivals, probs, [stats[m][0][j] for m in rivals],
                        [stats[m][1][j] for m in rivals], table, (p.low_m, p.high_m),
-                       tuple(sc.early_prob[j]) if sc.early_prob is not None else pair_early_prob(None))
+                       tuple(sc.early_prob[j]))
         if c:
             candidates.append(c)
     gain = float(np.mean(sc.gain_mean)) if obs.gain_source != "none" else 1.0
