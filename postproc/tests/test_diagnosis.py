@@ -359,6 +359,32 @@ def test_the_report_ranks_the_best_tests_and_calls_a_near_tie_one():
     assert _next_test_lines(None) == []
 
 
+def test_the_notes_say_when_no_test_tells_much_and_how_to_part_a_thinner_ring_from_pivots():
+    """Below LITTLE_BITS the notes say that no test is expected to tell much, and where
+    the two leading rivals differ only by a thinner ring against pivots set in (alone or
+    beside the same other effect) they say to measure the specimens; neither at a larger
+    gain, and no caliper where the leading rivals differ otherwise."""
+    from voussoir_post.diagnosis.report import LITTLE_BITS, _advice_text
+
+    def advice(gain, rivals):
+        return _advice_text({"specimen_id": "W132", "frequency_hz": 3.0, "new": False, "kind": "afd_ramp",
+                             "amplitudes_m": [0.015, 0.023, 0.0005], "expected_gain_bits": gain,
+                             "predicted_m": {m: 0.018 for m in rivals}}, "The next test")
+
+    little = "No test within the table's limits is expected to tell much: the best 0.04 bits"
+    caliper = "Measuring the ring's thickness and the voussoirs' edges"
+    for rivals in (["geometry", "contact_edges", "contact_edges+geometry"],
+                   ["contact_edges+table_motion", "geometry+table_motion"]):
+        text = advice(0.04, rivals)
+        assert text.startswith(" The next test (0.04 bits): specimen W132 at 3 Hz")
+        assert little in text and caliper in text
+    text = advice(0.04, ["base_restraint", "base_restraint+contact_edges", "geometry"])
+    assert little in text and caliper not in text
+    text = advice(LITTLE_BITS, ["geometry", "contact_edges"])
+    assert "tell much" not in text and caliper not in text
+    assert _advice_text(None, "The next test") == ""
+
+
 def test_posterior_draws_are_the_posteriors_stratified_quantiles():
     """Three draws of a uniform posterior over friction 0.30, 0.31, ..., 0.70 (41 points):
     the first grid points whose cumulative mass reaches 1/6, 1/2 and 5/6, i.e. the

@@ -95,10 +95,40 @@ def _param_text(params: dict) -> str:
     return "; ".join(one(k, v) for k, v in params.items())
 
 
+#: An advised test expected to tell less than this [bits] tells little: a test that surely
+#: parts two even rivals tells 1 bit.
+LITTLE_BITS = 0.1
+
+
+def _little_to_tell(nt: dict) -> str:
+    """The sentences of the notes when even the best test is expected to tell little
+    (below LITTLE_BITS), and why, where the two leading rivals differ only by a thinner
+    ring against pivots set in (empty otherwise)."""
+    best = nt["expected_gain_bits"]
+    if best >= LITTLE_BITS:
+        return ""
+    text = (f" No test within the table's limits is expected to tell much: the best {best:.2f} bits, where a test "
+            "that surely parts two even rivals tells 1 bit.")
+    lead = [set(members(m)) for m in list(nt["predicted_m"])[:2]]
+    if len(lead) == 2 and lead[0] ^ lead[1] == {"geometry", "contact_edges"}:
+        text += (" The two leading rivals differ by a thinner ring against pivots set in, which thin the arch's "
+                 "line of thrust alike: on a shaking table their thresholds at every frequency, crown records, "
+                 "pulses and static capacities differ by a few per cent, less than two codes differ "
+                 "(docs/diagnosis.md, \"Other kinds of test\"). Measuring the ring's thickness and the voussoirs' "
+                 "edges on the specimens parts them where the table cannot.")
+    return text
+
+
 def _advice_text(nt: dict | None, what: str) -> str:
-    """The sentence of the notes that gives the advised test (empty without one)."""
+    """The sentence of the notes that gives the advised test (empty without one), and
+    what to do instead when even it is expected to tell little (_little_to_tell)."""
     if not nt:
         return ""
+    return _advised(nt, what) + _little_to_tell(nt)
+
+
+def _advised(nt: dict, what: str) -> str:
+    """The sentence of the notes that gives the advised test."""
     a = nt["amplitudes_m"]
     if nt.get("kind") == "hold_crown":
         return (f" {what} ({nt['expected_gain_bits']:.2f} bits): specimen {nt['specimen_id']} at "
