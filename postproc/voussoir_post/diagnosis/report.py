@@ -113,9 +113,9 @@ def _little_to_tell(nt: dict) -> str:
     if len(lead) == 2 and lead[0] ^ lead[1] == {"geometry", "contact_edges"}:
         text += (" The two leading rivals differ by a thinner ring against pivots set in, which thin the arch's "
                  "line of thrust alike: on a shaking table their thresholds at every frequency, crown records, "
-                 "pulses and static capacities differ by a few per cent, less than two codes differ "
-                 "(docs/diagnosis.md, \"Other kinds of test\"). Measuring the ring's thickness and the voussoirs' "
-                 "edges on the specimens parts them where the table cannot.")
+                 "pulses and static capacities differ by a few per cent at most, less than two codes differ "
+                 "(docs/diagnosis.md, \"Why a thinner ring and pivots set in stay unnamed\"). Measuring the "
+                 "ring's thickness and the voussoirs' edges on the specimens parts them where the table cannot.")
     return text
 
 
