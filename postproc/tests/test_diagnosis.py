@@ -35,6 +35,7 @@ import voussoir_post.diagnosis.bank as bank_module
 from voussoir_post.diagnosis.bank import Bank, build_bank, key_variant, load_banks, variant_key
 from voussoir_post.diagnosis.decision import NAME_AT, Decision, credible_set, to_separate
 from voussoir_post.diagnosis.emulator import emulate
+from voussoir_post.diagnosis.early import early_key
 from voussoir_post.diagnosis.likelihood import ONE_SIDED_STEPS, _log_bracket, bracket_terms, records_log_factor, scales
 from voussoir_post.diagnosis.models import MODEL_IDS, model_prior, nominal_log, sim_spread
 from voussoir_post.diagnosis.observations import Observations, PairObservation, from_campaign
@@ -66,7 +67,7 @@ def stored_bank() -> Bank:
     bank = load_banks(DATA / "bank")
     assert bank.specimens, f"no stored simulation bank in {DATA / 'bank'} (bench/diagnosis_replay_bank.sh makes it)"
     for r in json.loads(BANK_SCANS.read_text())["rows"]:
-        bank.early[(r["specimen_id"], round(r["frequency_hz"], 6))] = r["fraction"]
+        bank.early[early_key(r["specimen_id"], r["frequency_hz"])] = r["fraction"]
     return bank
 
 

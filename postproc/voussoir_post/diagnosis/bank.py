@@ -152,7 +152,7 @@ class Bank:
     grids: dict = field(default_factory=dict, repr=False, compare=False)
     #: Pulse pairs' thresholds (pulses.py): {"<specimen>:<shape key>": {variant key: (+, -) [m]}}.
     pulses: dict = field(default_factory=dict)
-    #: The kernel's scan of each afd pair (early.py): {(specimen, round(f, 6)): early fraction or None}.
+    #: The kernel's scan of each afd pair (early.py): {early.early_key(specimen, f): early fraction or None}.
     early: dict = field(default_factory=dict)
 
 

@@ -49,7 +49,7 @@ from .effects import Variant, arch_group
 
 __all__ = ["EARLY_PROB_ROUGH", "EARLY_PROB_SMOOTH", "EARLY_PROB_UNKNOWN", "EARLY_SPAN", "LATE_PROB_ROUGH", "LATE_PROB_SMOOTH", "LATE_PROB_UNKNOWN", "LATE_SPAN", "SCAN_LO", "SCAN_HI",
            "SCAN_STEP", "SEARCH_STEP", "RAMP_STEPS", "scan_grid", "first_collapse", "search_index", "ramp_depths",
-           "early_fraction", "early_fractions", "pair_early_prob", "add_early_scans"]
+           "early_fraction", "early_fractions", "pair_early_prob", "early_key", "add_early_scans"]
 
 #: P(a ramp's first collapse is early) at a pair whose kernel scan has early ramps, at one
 #: whose scan has none, and without a scan (the pooled rate); EARLY_SPAN: how far below the
@@ -187,6 +187,11 @@ def early_fractions(spec: Specimen, frequencies: list[float], thresholds: list[f
     return out
 
 
+def early_key(specimen_id: str, frequency_hz: float) -> tuple[str, float]:
+    """The key of a pair's scan in bank.early."""
+    return specimen_id, round(frequency_hz, 6)
+
+
 def add_early_scans(bank, obs, settings, cache: Path, work: Path) -> int:
     """Scan (or read from `cache`) every afd pair's nominal arch into bank.early; returns the
     number of pairs scanned or read."""
@@ -199,7 +204,7 @@ def add_early_scans(bank, obs, settings, cache: Path, work: Path) -> int:
         found = early_fractions(obs.specimens[sid], freqs, [sb.threshold("nominal", f) for f in freqs],
                                 obs.cycles[sid], settings, cache, Path(work) / sid)
         for f, d in found.items():
-            bank.early[(sid, round(f, 6))] = d["fraction"]
+            bank.early[early_key(sid, f)] = d["fraction"]
             n += 1
     settings.log(f"[diagnose] early collapses: the kernel's fine scan of {n} pairs' nominal arch (cached in "
                  f"{cache}); early windows at " + (", ".join(f"{s} {f:g} Hz" for (s, f), x in bank.early.items()

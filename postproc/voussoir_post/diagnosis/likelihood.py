@@ -80,7 +80,7 @@ import numpy as np
 from scipy.special import log_ndtr, logsumexp, ndtr
 
 from .bank import FINE_DT, Bank
-from .early import EARLY_SPAN, LATE_SPAN, pair_early_prob
+from .early import EARLY_SPAN, LATE_SPAN, early_key, pair_early_prob
 from .models import GAIN_RANGE, SIM_FLOOR, ModelGrid, pair_tolerance, sim_spread
 from .observations import Observations, PairObservation
 
@@ -144,7 +144,7 @@ def scales(bank: Bank, obs: Observations, pairs: list[PairObservation]) -> Scale
     gm = np.array([np.mean(p.gains) if p.gains else 1.0 for p in pairs])
     gse = np.array([sigma_gain / math.sqrt(len(p.gains)) if p.gains else 0.0 for p in pairs])
     sigma_tol = np.array([pair_tolerance(bank, obs, p) for p in pairs])
-    early = np.array([pair_early_prob(bank.early.get((p.specimen_id, round(p.frequency_hz, 6)))) for p in pairs],
+    early = np.array([pair_early_prob(bank.early.get(early_key(p.specimen_id, p.frequency_hz))) for p in pairs],
                      dtype=float).reshape(len(pairs), 2)
     return Scales(sigma_sim, sigma_gain, fine, gm, gse, sigma_tol, early, obs.gain_bias_sd)
 
