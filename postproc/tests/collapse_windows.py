@@ -13,14 +13,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from voussoir_post.diagnosis.early import ramp_depths
+from voussoir_post.diagnosis.early import early_key, ramp_depths
 
 EARLY_QUANTILE = 0.95
 
 
 def early_rule(scan: dict, kernel: dict) -> dict:
     """The constants from a collapse_scan.py result and the kernel's early fraction of each
-    (specimen, round(frequency, 6)) (None: its scan brackets nothing)."""
+    pair, keyed by early.early_key (None: its scan brackets nothing)."""
     classes = {"rough": [], "smooth": []}
     depths, heights, unusable = [], [], 0
     for row in scan["rows"]:
@@ -28,7 +28,7 @@ def early_rule(scan: dict, kernel: dict) -> dict:
         if n == 0:
             unusable += 1
             continue
-        k = kernel[(row["specimen_id"], round(row["frequency_hz"], 6))]
+        k = kernel[early_key(row["specimen_id"], row["frequency_hz"])]
         classes["rough" if k else "smooth"].append((len(early) / n, len(late) / n))
         depths += early
         heights += late

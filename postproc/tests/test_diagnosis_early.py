@@ -20,7 +20,7 @@ from independent_campaigns import ARCHES
 from voussoir_post.diagnosis import early as E
 from voussoir_post.diagnosis import likelihood as L
 from voussoir_post.diagnosis import next_test as N
-from voussoir_post.diagnosis.early import early_fractions, ramp_depths
+from voussoir_post.diagnosis.early import early_fractions, early_key, ramp_depths
 from voussoir_post.diagnosis.settings import DiagnosisSettings
 
 SCANS = Path(__file__).parent / "data" / "lmgc90" / "collapse_scan.json"
@@ -173,7 +173,7 @@ def kernel_scans(tmp_path_factory):
         freqs = sorted(refs[a.specimen_id])
         found = early_fractions(spec, freqs, [refs[a.specimen_id][f] for f in freqs], (1, 1, 1), settings,
                                 work / "cache", work / "runs")
-        out.update({(a.specimen_id, round(f, 6)): d for f, d in found.items()})
+        out.update({early_key(a.specimen_id, f): d for f, d in found.items()})
     return out
 
 
@@ -188,7 +188,7 @@ def test_the_kernels_scans_bracket_their_thresholds_and_sort_the_stored_banks_pa
     stored = json.loads(BANK_SCANS.read_text())["rows"]
     assert len(stored) == 6
     for r in stored:
-        live = kernel_scans[(r["specimen_id"], round(r["frequency_hz"], 6))]["fraction"]
+        live = kernel_scans[early_key(r["specimen_id"], r["frequency_hz"])]["fraction"]
         assert (r["fraction"] > 0) == (live > 0), r
 
 
@@ -242,6 +242,6 @@ def test_the_advice_reads_each_tested_pairs_ramp_by_its_class(monkeypatch, tmp_p
     rivals = sorted(post.probabilities, key=lambda m: -post.probabilities[m])[:3]
     N.next_test(post, obs, rivals, settings, tmp_path, TableLimits(), holds=False)
     want = {round(p.high_m, 9): (E.EARLY_PROB_ROUGH, E.LATE_PROB_ROUGH)
-            if (p.specimen_id, round(p.frequency_hz, 6)) in rough else (E.EARLY_PROB_SMOOTH, E.LATE_PROB_SMOOTH)
+            if early_key(p.specimen_id, p.frequency_hz) in rough else (E.EARLY_PROB_SMOOTH, E.LATE_PROB_SMOOTH)
             for p in post.pairs if math.isfinite(p.high_m)}
     assert want and seen == want
